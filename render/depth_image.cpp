@@ -1,0 +1,22 @@
+#include "render/depth_image.hpp"
+
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+
+namespace campo {
+
+cv::Mat depth_to_gray16(const cv::Mat& depth) {
+  CV_Assert(depth.type() == CV_32F);
+  cv::Mat gray;
+  depth.convertTo(gray, CV_16U, 65535.0);  // saturating and rounding
+  return gray;
+}
+
+void write_depth_png(const cv::Mat& depth, const std::filesystem::path& path) {
+  if (!cv::imwrite(path.string(), depth_to_gray16(depth))) {
+    throw std::runtime_error("cannot write PNG " + path.string());
+  }
+}
+
+}  // namespace campo

@@ -1,0 +1,23 @@
+#pragma once
+/// WGS84 geodetic <-> ECEF <-> local ENU (x east, y north, z up) conversions
+/// (000 §3.1.1, 001 §4.2.3), with the proper cos(latitude) scaling.
+#include <Eigen/Core>
+
+namespace campo {
+
+/// Latitude and longitude in degrees, height above the WGS84 ellipsoid in metres.
+struct Geodetic {
+  double latitude_deg = 0.0;
+  double longitude_deg = 0.0;
+  double altitude_m = 0.0;
+};
+
+Eigen::Vector3d geodetic_to_ecef(const Geodetic& g);
+Geodetic ecef_to_geodetic(const Eigen::Vector3d& ecef_m);
+
+/// ENU coordinates of `point` in the tangent frame at `origin`.
+Eigen::Vector3d geodetic_to_enu(const Geodetic& point, const Geodetic& origin);
+/// Inverse of geodetic_to_enu.
+Geodetic enu_to_geodetic(const Eigen::Vector3d& enu_m, const Geodetic& origin);
+
+}  // namespace campo

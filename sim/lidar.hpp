@@ -1,0 +1,58 @@
+#pragma once
+/// Ray-cast LIDAR (SPEC §6): beams from a LidarConfig cast in one batch, with
+/// seeded noise, dropout and quantization; range image, point cloud, and the
+/// normalized depth map that the depth-map planners read.
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+
+#include "sim/lidar_config.hpp"
+#include "sim/random.hpp"
+#include "sim/raycaster.hpp"
+
+namespace campo {
+
+/// One scan. Beam i of a grid sensor is pixel (i % cols, i / cols).
+struct LidarScan {
+  int rows = 0;
+  int cols = 0;
+  double time_s = 0.0;
+  Eigen::Isometry3d sensor_pose = Eigen::Isometry3d::Identity();  ///< world frame
+  std::vector<float> ranges_m;           ///< per beam; max_range_m where no hit
+  std::vector<std::uint8_t> hits;        ///< per beam: 1 hit, 0 no return
+  std::vector<Eigen::Vector3f> points;   ///< world-frame hit points (hits only, beam order)
+};
+
+class Lidar {
+ public:
+  /// `world_seed` is combined with config.seed for the noise stream.
+  Lidar(const LidarConfig& config, std::uint64_t world_seed);
+
+  const LidarConfig& config() const { return config_; }
+  /// Unit beam directions in the sensor frame, beam order.
+  const std::vector<Eigen::Vector3f>& directions() const { return directions_sensor_; }
+
+  /// Scans from `sensor_pose` (world frame); reuses `out`'s buffers.
+  void scan(const RayCaster& caster, const Eigen::Isometry3d& sensor_pose, double time_s,
+            LidarScan& out);
+
+ private:
+  LidarConfig config_;
+  Rng rng_;
+  std::vector<Eigen::Vector3f> directions_sensor_;
+  std::vector<Eigen::Vector3f> directions_world_;  // scratch, reused
+  std::vector<RayHit> hits_;                       // scratch, reused
+};
+
+/// Unit direction of a beam in the sensor frame (x forward, y left, z up).
+Eigen::Vector3f beam_direction(const Beam& beam);
+/// The beams of a config in beam order (explicit list, or the grid row-major).
+std::vector<Beam> lidar_beams(const LidarConfig& config);
+
+/// Depth map of SPEC §6 as CV_32F rows x cols: value = range / max_range_m in
+/// [0, 1], 0 where the range is below min_range_m, 1 where nothing was hit.
+cv::Mat depth_map(const LidarScan& scan, const LidarConfig& config);
+
+}  // namespace campo

@@ -1,0 +1,131 @@
+#include "sim/scene.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace campo {
+
+namespace {
+
+constexpr std::array<std::pair<ShapeType, std::string_view>, 6> kShapeNames{{
+    {ShapeType::cuboid, "cuboid"},
+    {ShapeType::cylinder, "cylinder"},
+    {ShapeType::sphere, "sphere"},
+    {ShapeType::cone, "cone"},
+    {ShapeType::plane, "plane"},
+    {ShapeType::heightfield, "heightfield"},
+}};
+
+constexpr std::array<std::pair<VehicleType, std::string_view>, 2> kVehicleNames{{
+    {VehicleType::quadrotor, "quadrotor"},
+    {VehicleType::rover, "rover"},
+}};
+
+template <class Enum, std::size_t N>
+std::string_view name_of(const std::array<std::pair<Enum, std::string_view>, N>& table, Enum e) {
+  for (const auto& [value, name] : table) {
+    if (value == e) return name;
+  }
+  return "?";
+}
+
+template <class Enum, std::size_t N>
+std::optional<Enum> value_of(const std::array<std::pair<Enum, std::string_view>, N>& table,
+                             std::string_view name) {
+  for (const auto& [value, n] : table) {
+    if (n == name) return value;
+  }
+  return std::nullopt;
+}
+
+template <class T>
+const T* find_by_alias(const std::vector<T>& items, std::string_view alias) {
+  for (const auto& item : items) {
+    if (item.alias == alias) return &item;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::string_view to_string(ShapeType type) { return name_of(kShapeNames, type); }
+std::optional<ShapeType> shape_type_from_string(std::string_view name) {
+  return value_of(kShapeNames, name);
+}
+std::string_view to_string(VehicleType type) { return name_of(kVehicleNames, type); }
+std::optional<VehicleType> vehicle_type_from_string(std::string_view name) {
+  return value_of(kVehicleNames, name);
+}
+
+double HeightGrid::min_height_m() const {
+  return *std::min_element(heights_m.begin(), heights_m.end());
+}
+
+double HeightGrid::max_height_m() const {
+  return *std::max_element(heights_m.begin(), heights_m.end());
+}
+
+std::optional<double> HeightGrid::height_at(double x, double y) const {
+  // Continuous vertex coordinates, origin at vertex (0, 0).
+  const double u = x / spacing_x_m + 0.5 * (cols - 1);
+  const double v = y / spacing_y_m + 0.5 * (rows - 1);
+  if (!(u >= 0.0 && v >= 0.0 && u <= cols - 1 && v <= rows - 1)) return std::nullopt;
+  const int c = std::min(static_cast<int>(u), cols - 2);
+  const int r = std::min(static_cast<int>(v), rows - 2);
+  const double fu = u - c;
+  const double fv = v - r;
+  const double h00 = at(c, r), h10 = at(c + 1, r), h01 = at(c, r + 1), h11 = at(c + 1, r + 1);
+  // Split along the diagonal (c+1, r)-(c, r+1), as Bullet does.
+  if (fu + fv <= 1.0) return h00 + fu * (h10 - h00) + fv * (h01 - h00);
+  return h11 + (1.0 - fu) * (h01 - h11) + (1.0 - fv) * (h10 - h11);
+}
+
+Eigen::Vector3d Mover::position_at(double t_s) const {
+  double travelled = std::max(0.0, t_s - start_time_s) * speed_mps;
+  double total = 0.0;
+  for (std::size_t i = 1; i < path_m.size(); ++i) total += (path_m[i] - path_m[i - 1]).norm();
+  if (total <= 0.0) return path_m.front();
+  if (loop) {
+    travelled = std::fmod(travelled, total);
+  } else if (travelled >= total) {
+    return path_m.back();
+  }
+  for (std::size_t i = 1; i < path_m.size(); ++i) {
+    const double segment = (path_m[i] - path_m[i - 1]).norm();
+    if (travelled <= segment && segment > 0.0) {
+      return path_m[i - 1] + (path_m[i] - path_m[i - 1]) * (travelled / segment);
+    }
+    travelled -= segment;
+  }
+  return path_m.back();
+}
+
+const Shape* Scene::find_shape(std::string_view alias) const { return find_by_alias(shapes, alias); }
+const Frame* Scene::find_frame(std::string_view alias) const { return find_by_alias(frames, alias); }
+const VehicleDef* Scene::find_vehicle(std::string_view alias) const {
+  return find_by_alias(vehicles, alias);
+}
+
+std::optional<double> Scene::ground_height(double x, double y) const {
+  std::optional<double> best;
+  const auto consider = [&](double h) {
+    if (!best || h > *best) best = h;
+  };
+  for (const auto& shape : shapes) {
+    if (shape.type == ShapeType::heightfield) {
+      const Eigen::Vector3d local = shape.pose.inverse() * Eigen::Vector3d(x, y, 0.0);
+      if (auto h = shape.terrain->height_at(local.x(), local.y())) consider(*h + shape.pose.translation().z());
+    } else if (shape.type == ShapeType::plane) {
+      // z where the vertical line through (x, y) meets the plane, if it is not vertical.
+      const Eigen::Vector3d n = shape.pose.linear().col(2);
+      if (std::abs(n.z()) > 1e-9) {
+        const Eigen::Vector3d p = shape.pose.translation();
+        consider(p.z() - (n.x() * (x - p.x()) + n.y() * (y - p.y())) / n.z());
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace campo

@@ -1,0 +1,156 @@
+#pragma once
+/// The validated, immutable description of a world: what a scene file says,
+/// with generators expanded and every pose resolved to the world frame.
+/// Plain data; no Bullet. Built by load_scene() (scene_loader.hpp).
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include "sim/lidar_config.hpp"
+#include "sim/pose.hpp"
+
+namespace campo {
+
+/// RGB colour, components in [0, 1].
+struct Color {
+  double r = 0.6;
+  double g = 0.6;
+  double b = 0.6;
+};
+
+enum class ShapeType { cuboid, cylinder, sphere, cone, plane, heightfield };
+
+/// One name table for both directions (parsing and printing).
+std::string_view to_string(ShapeType type);
+std::optional<ShapeType> shape_type_from_string(std::string_view name);
+
+/// Heights on a regular vertex grid. Column index grows along local +x, row
+/// index along local +y; the grid is centred on its local origin, so vertex
+/// (c, r) sits at x = (c - (cols-1)/2) * spacing_x_m, y = (r - (rows-1)/2) * spacing_y_m.
+/// Each cell is split into two triangles along the diagonal from (c+1, r) to
+/// (c, r+1), which is how Bullet's btHeightfieldTerrainShape triangulates it.
+struct HeightGrid {
+  int cols = 0;                  ///< vertices along x (>= 2)
+  int rows = 0;                  ///< vertices along y (>= 2)
+  double spacing_x_m = 1.0;      ///< vertex spacing along x, metres
+  double spacing_y_m = 1.0;      ///< vertex spacing along y, metres
+  std::vector<double> heights_m; ///< rows*cols heights, row-major (index r*cols + c)
+
+  double at(int col, int row) const { return heights_m[static_cast<std::size_t>(row) * cols + col]; }
+  double size_x_m() const { return (cols - 1) * spacing_x_m; }
+  double size_y_m() const { return (rows - 1) * spacing_y_m; }
+  double min_height_m() const;
+  double max_height_m() const;
+  /// Height of the triangulated surface at local (x, y); nullopt outside the grid.
+  std::optional<double> height_at(double x, double y) const;
+};
+
+/// A rigid shape in the world frame. Shapes are centred on their pose:
+/// cuboid (size_m = full extents), cylinder and cone (axis along local z,
+/// radius_m, height_m; the cone's apex at +z), sphere (radius_m), plane
+/// (local z = 0, normal +z, infinite), heightfield (terrain, see HeightGrid;
+/// its pose has no roll or pitch).
+struct Shape {
+  std::string alias;
+  ShapeType type = ShapeType::cuboid;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< world frame
+  Eigen::Vector3d size_m = Eigen::Vector3d::Ones();         ///< cuboid extents, metres
+  double radius_m = 0.5;                                    ///< cylinder, cone, sphere
+  double height_m = 1.0;                                    ///< cylinder, cone
+  std::shared_ptr<const HeightGrid> terrain;                ///< heightfield only
+  bool is_static = true;     ///< false: a dynamic body of mass_kg
+  double mass_kg = 0.0;      ///< used when !is_static
+  double friction = 0.8;     ///< Coulomb friction coefficient
+  Color color;
+  std::string source;        ///< JSON pointer of the object or generator it came from
+};
+
+/// A named frame (V-REP "dummy"): goals, waypoints, start poses.
+struct Frame {
+  std::string alias;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< world frame
+};
+
+/// A shape moved kinematically along a polyline at constant speed.
+struct Mover {
+  Shape shape;                          ///< pose = pose at t = 0 (first path point)
+  std::vector<Eigen::Vector3d> path_m;  ///< world-frame points, >= 2
+  double speed_mps = 1.0;               ///< along the path
+  double start_time_s = 0.0;            ///< waits at the first point until then
+  bool loop = false;                    ///< restart from the first point at the end
+  /// Position of the shape's centre at simulation time t.
+  Eigen::Vector3d position_at(double t_s) const;
+};
+
+enum class VehicleType { quadrotor, rover };
+std::string_view to_string(VehicleType type);
+std::optional<VehicleType> vehicle_type_from_string(std::string_view name);
+
+/// A sensor mounted on a vehicle.
+struct SensorDef {
+  std::string alias;
+  LidarConfig lidar;
+};
+
+/// A mission waypoint, resolved to world coordinates at load time.
+struct Waypoint {
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  std::optional<double> heading_deg;  ///< required heading (Dubins routes), if any
+};
+
+struct PlannerSpec {
+  std::string name;            ///< registry name; empty = the vehicle's default
+  nlohmann::json params = nlohmann::json::object();  ///< checked by the planner
+};
+
+struct VehicleDef {
+  std::string alias;
+  VehicleType type = VehicleType::quadrotor;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< start pose, world frame
+  std::vector<SensorDef> sensors;
+  PlannerSpec planner;
+  std::vector<Waypoint> mission;  ///< ordered; the last one is the goal
+};
+
+/// Geodetic reference point of the local ENU frame (x east, y north, z up).
+struct GeoReference {
+  double latitude_deg = 0.0;   ///< [-90, 90]
+  double longitude_deg = 0.0;  ///< [-180, 180]
+  double altitude_m = 0.0;     ///< WGS84 ellipsoidal height
+};
+
+struct WorldConfig {
+  Eigen::Vector3d gravity_mps2{0.0, 0.0, -9.81};
+  double physics_step_s = 1.0 / 240.0;  ///< fixed Bullet step
+  double control_rate_hz = 60.0;        ///< controller and planner rate
+  double sensor_rate_hz = 10.0;         ///< default rate of sensors that set none
+  double time_limit_s = 600.0;          ///< an episode ends here with "timeout"
+  GeoReference geo_reference;
+  std::uint64_t seed = 0;               ///< master seed of everything random in a run
+};
+
+struct Scene {
+  std::string name;            ///< file stem, or "name" from the file
+  std::string source_path;     ///< file it was loaded from
+  std::string source_sha256;   ///< hash of the file bytes, for provenance
+  WorldConfig world;
+  std::vector<Shape> shapes;
+  std::vector<Frame> frames;
+  std::vector<Mover> movers;
+  std::vector<VehicleDef> vehicles;
+
+  const Shape* find_shape(std::string_view alias) const;
+  const Frame* find_frame(std::string_view alias) const;
+  const VehicleDef* find_vehicle(std::string_view alias) const;
+  /// Height of the highest heightfield or plane below (x, y) in the world
+  /// frame; nullopt where there is no ground.
+  std::optional<double> ground_height(double x, double y) const;
+};
+
+}  // namespace campo

@@ -1,0 +1,656 @@
+#include "sim/scene_loader.hpp"
+
+#include <array>
+#include <cmath>
+#include <map>
+
+#include <openssl/evp.h>
+
+#include "sim/generators.hpp"
+#include "sim/geodesy.hpp"
+#include "sim/heightfield_sources.hpp"
+
+namespace campo {
+
+namespace {
+
+constexpr std::string_view kTypes[] = {
+    "cuboid", "cylinder", "sphere", "cone", "plane", "heightfield", "dummy",
+    "rolling_terrain", "trees", "vineyard", "grid_obstacles", "mover", "quadrotor", "rover"};
+
+bool valid_alias(const std::string& alias) {
+  for (char c : alias) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-' || c == '.';
+    if (!ok) return false;
+  }
+  return !alias.empty() && alias.size() <= 64;
+}
+
+Color read_color(const JsonNode& node) {
+  const Eigen::Vector3d c = node.as_vector3(Range::closed(0.0, 1.0));
+  return {c.x(), c.y(), c.z()};
+}
+
+// Reads "[min, max]" with min <= max, each in `range`.
+Eigen::Vector2d read_interval(const JsonNode& node, const Range& range) {
+  const Eigen::Vector2d v = node.as_vector2(range);
+  if (v.x() > v.y()) node.fail("[min, max] with min <= max");
+  return v;
+}
+
+void read_interval(ObjectReader& r, std::string_view key, Eigen::Vector2d& out, const Range& range) {
+  if (auto v = r.optional(key)) out = read_interval(*v, range);
+}
+
+class Loader {
+ public:
+  Loader(const SceneLimits& limits, std::filesystem::path base_dir)
+      : limits_(limits), base_dir_(std::move(base_dir)) {}
+
+  Scene load(const JsonNode& root) {
+    ObjectReader r(root);
+    if (auto v = r.optional("campo_scene")) {
+      if (v->as_int(1, 1000) != 1) v->fail("format version 1");
+    }
+    r.read("name", scene_.name);
+    std::string description;
+    r.read("description", description);
+    if (auto world = r.optional("world")) read_world(*world);
+    read_objects(r.required("objects"), Eigen::Isometry3d::Identity(), 0);
+    r.finish();
+    // Missions last: they may name frames and grids declared anywhere.
+    for (auto& [vehicle_index, mission] : pending_missions_) {
+      scene_.vehicles[vehicle_index].mission = read_mission(mission);
+    }
+    return std::move(scene_);
+  }
+
+ private:
+  void read_world(const JsonNode& node) {
+    ObjectReader r(node);
+    WorldConfig& w = scene_.world;
+    r.read("gravity_mps2", w.gravity_mps2, Range::closed(-100.0, 100.0));
+    r.read("physics_step_s", w.physics_step_s, Range::closed(1e-5, 0.1));
+    r.read("control_rate_hz", w.control_rate_hz, Range::closed(0.1, 10000.0));
+    r.read("sensor_rate_hz", w.sensor_rate_hz, Range::closed(0.01, 10000.0));
+    r.read("time_limit_s", w.time_limit_s, {0.0, 1e6, true, false});
+    r.read_seed("seed", w.seed);
+    if (auto geo = r.optional("geo_reference")) {
+      ObjectReader g(*geo);
+      g.read("latitude_deg", w.geo_reference.latitude_deg, Range::closed(-90.0, 90.0));
+      g.read("longitude_deg", w.geo_reference.longitude_deg, Range::closed(-180.0, 180.0));
+      g.read("altitude_m", w.geo_reference.altitude_m, Range::closed(-1e4, 1e5));
+      g.finish();
+    }
+    r.finish();
+  }
+
+  void read_objects(const JsonNode& node, const Eigen::Isometry3d& parent, int depth) {
+    if (depth > limits_.max_child_depth) {
+      node.fail("children nested at most " + std::to_string(limits_.max_child_depth) + " deep");
+    }
+    for (const JsonNode& object : node.as_array(0, static_cast<std::size_t>(limits_.max_objects))) {
+      if (++object_count_ > limits_.max_objects) {
+        object.fail("at most " + std::to_string(limits_.max_objects) + " objects in a scene");
+      }
+      read_object(object, parent, depth);
+    }
+  }
+
+  std::string claim_alias(ObjectReader& r) {
+    const JsonNode node = r.required("alias");
+    const std::string alias = node.as_string();
+    if (!valid_alias(alias)) node.fail("an alias of 1-64 letters, digits, '_', '-' or '.'");
+    const auto [it, inserted] = alias_pointers_.emplace(alias, node.pointer());
+    if (!inserted) {
+      throw InputError(node.file(), node.pointer(),
+                       "duplicate alias \"" + alias + "\" (first used at " + it->second + ")");
+    }
+    return alias;
+  }
+
+  // World pose of an object: parent * local, with z optionally measured from the ground.
+  Eigen::Isometry3d read_pose(ObjectReader& r, const Eigen::Isometry3d& parent) {
+    auto node = r.optional("pose");
+    if (!node) return parent;
+    ObjectReader p(*node);
+    Pose pose;
+    p.read("position_m", pose.position_m, Range::closed(-1e6, 1e6));
+    p.read("rpy_deg", pose.rpy_deg, Range::closed(-360.0, 360.0));
+    bool above_ground = false;
+    p.read("above_ground", above_ground);
+    p.finish();
+    Eigen::Isometry3d world = parent * to_isometry(pose);
+    if (above_ground) {
+      const Eigen::Vector3d t = world.translation();
+      const auto ground = scene_.ground_height(t.x(), t.y());
+      if (!ground) {
+        throw InputError(node->file(), node->pointer() + "/above_ground",
+                         "no terrain below (" + std::to_string(t.x()) + ", " +
+                             std::to_string(t.y()) + "); declare the terrain before this object");
+      }
+      world.translation().z() = *ground + pose.position_m.z();
+    }
+    return world;
+  }
+
+  // Keys shared by every shape: static, mass, colour, friction.
+  void read_shape_properties(ObjectReader& r, Shape& shape) {
+    r.read("static", shape.is_static);
+    r.read("mass_kg", shape.mass_kg, Range::positive());
+    r.read("friction", shape.friction, Range::closed(0.0, 10.0));
+    if (auto c = r.optional("color")) shape.color = read_color(*c);
+    if (!shape.is_static && shape.mass_kg <= 0.0) {
+      throw InputError(r.node().file(), r.node().pointer(),
+                       "a non-static shape needs \"mass_kg\" > 0");
+    }
+  }
+
+  // Geometry keys of a primitive shape type.
+  void read_primitive(ObjectReader& r, Shape& shape) {
+    switch (shape.type) {
+      case ShapeType::cuboid:
+        shape.size_m = r.required("size_m").as_vector3(Range::positive());
+        break;
+      case ShapeType::cylinder:
+      case ShapeType::cone:
+        shape.radius_m = r.required("radius_m").as_number(Range::positive());
+        shape.height_m = r.required("height_m").as_number(Range::positive());
+        break;
+      case ShapeType::sphere:
+        shape.radius_m = r.required("radius_m").as_number(Range::positive());
+        break;
+      case ShapeType::plane:
+      case ShapeType::heightfield:
+        break;
+    }
+  }
+
+  void add_shape(Shape shape, const JsonNode& at) {
+    if (static_cast<long>(scene_.shapes.size()) >= limits_.max_shapes) {
+      at.fail("a scene of at most " + std::to_string(limits_.max_shapes) + " shapes");
+    }
+    if (shape.source.empty()) shape.source = at.pointer();
+    scene_.shapes.push_back(std::move(shape));
+  }
+
+  void add_generated(std::vector<Shape> shapes, const JsonNode& at,
+                     const Eigen::Isometry3d& placement = Eigen::Isometry3d::Identity()) {
+    if (static_cast<long>(scene_.shapes.size() + shapes.size()) > limits_.max_shapes) {
+      at.fail("a scene of at most " + std::to_string(limits_.max_shapes) + " shapes");
+    }
+    for (Shape& s : shapes) {
+      s.pose = placement * s.pose;
+      s.source = at.pointer();
+      scene_.shapes.push_back(std::move(s));
+    }
+  }
+
+  GroundFunction ground_function() const {
+    return [this](double x, double y) { return scene_.ground_height(x, y).value_or(0.0); };
+  }
+
+  void read_object(const JsonNode& node, const Eigen::Isometry3d& parent, int depth) {
+    ObjectReader r(node);
+    const std::string alias = claim_alias(r);
+    const JsonNode type_node = r.required("type");
+    const std::string type(kTypes[type_node.as_choice({std::begin(kTypes), std::end(kTypes)})]);
+
+    if (const auto shape_type = shape_type_from_string(type)) {
+      Shape shape;
+      shape.alias = alias;
+      shape.type = *shape_type;
+      shape.pose = read_pose(r, parent);
+      read_shape_properties(r, shape);
+      if (shape.type == ShapeType::heightfield) {
+        read_heightfield(r, shape);
+      } else {
+        read_primitive(r, shape);
+      }
+      if (!shape.is_static && (shape.type == ShapeType::plane || shape.type == ShapeType::heightfield)) {
+        throw InputError(node.file(), child_pointer(node.pointer(), "static"),
+                         "expected true: planes and heightfields are always static");
+      }
+      const Eigen::Isometry3d frame = shape.pose;
+      add_shape(std::move(shape), node);
+      if (auto children = r.optional("children")) read_objects(*children, frame, depth + 1);
+    } else if (type == "dummy") {
+      Frame frame{alias, read_pose(r, parent)};
+      scene_.frames.push_back(frame);
+      if (auto children = r.optional("children")) read_objects(*children, frame.pose, depth + 1);
+    } else if (type == "rolling_terrain") {
+      read_rolling_terrain(r, alias, parent);
+    } else if (type == "trees") {
+      read_trees(r, alias);
+    } else if (type == "vineyard") {
+      read_vineyard(r, alias, parent);
+    } else if (type == "grid_obstacles") {
+      read_grid_obstacles(r, alias);
+    } else if (type == "mover") {
+      read_mover(r, alias, parent);
+    } else {
+      read_vehicle(r, alias, *vehicle_type_from_string(type), parent);
+    }
+    r.finish();
+  }
+
+  void check_vertex_count(const JsonNode& at, const Eigen::Vector2d& size_m, double spacing_m) {
+    const double vertices = (std::round(size_m.x() / spacing_m) + 1) * (std::round(size_m.y() / spacing_m) + 1);
+    if (vertices > static_cast<double>(kMaxHeightfieldVertices)) {
+      at.fail("a grid of at most " + std::to_string(kMaxHeightfieldVertices) +
+              " vertices (size / spacing too fine)");
+    }
+  }
+
+  void read_heightfield(ObjectReader& r, Shape& shape) {
+    const JsonNode& node = r.node();
+    const Eigen::Vector3d rpy = rpy_deg_from_rotation(shape.pose.linear());
+    if (std::abs(rpy.x()) > 1e-9 || std::abs(rpy.y()) > 1e-9) {
+      throw InputError(node.file(), child_pointer(node.pointer(), "pose"),
+                       "expected a heightfield pose without roll or pitch");
+    }
+    const auto expression = r.optional("expression");
+    const auto csv = r.optional("csv");
+    const auto png = r.optional("png");
+    if (static_cast<int>(expression.has_value()) + csv.has_value() + png.has_value() != 1) {
+      throw InputError(node.file(), node.pointer(),
+                       "expected exactly one height source: \"expression\", \"csv\" or \"png\"");
+    }
+    Eigen::Vector2d size_m(100.0, 100.0);
+    double spacing_m = 1.0;
+    double height_scale_m = 1.0;
+    double min_height_m = 0.0;
+    try {
+      if (expression) {
+        r.read("size_m", size_m, Range::positive());
+        r.read("spacing_m", spacing_m, Range::positive());
+        check_vertex_count(node, size_m, spacing_m);
+        shape.terrain = std::make_shared<HeightGrid>(heightgrid_from_expression(
+            expression->as_string(), size_m, spacing_m, shape.pose));
+      } else if (csv) {
+        r.read("spacing_m", spacing_m, Range::positive());
+        shape.terrain = std::make_shared<HeightGrid>(
+            heightgrid_from_csv(resolve_path(*csv), spacing_m));
+      } else {
+        r.read("size_m", size_m, Range::positive());
+        r.read("height_scale_m", height_scale_m, Range::positive());
+        r.read("min_height_m", min_height_m, Range::closed(-1e4, 1e4));
+        shape.terrain = std::make_shared<HeightGrid>(
+            heightgrid_from_png(resolve_path(*png), size_m, height_scale_m, min_height_m));
+      }
+    } catch (const std::runtime_error& e) {
+      if (dynamic_cast<const InputError*>(&e)) throw;
+      const JsonNode& source = expression ? *expression : csv ? *csv : *png;
+      throw InputError(source.file(), source.pointer(), e.what());
+    }
+  }
+
+  std::filesystem::path resolve_path(const JsonNode& node) {
+    std::filesystem::path p = node.as_string();
+    if (p.is_relative()) p = base_dir_ / p;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) {
+      throw InputError(node.file(), node.pointer(),
+                       "expected a readable file, but \"" + p.string() + "\" does not exist");
+    }
+    return p;
+  }
+
+  void read_rolling_terrain(ObjectReader& r, const std::string& alias,
+                            const Eigen::Isometry3d& parent) {
+    RollingTerrainConfig c;
+    r.read("size_m", c.size_m, Range::positive());
+    r.read("spacing_m", c.spacing_m, Range::positive());
+    r.read("amplitude_m", c.amplitude_m, Range::closed(0.0, 1e4));
+    r.read("wavelength_m", c.wavelength_m, Range::positive());
+    r.read("waves", c.waves, 1, 32);
+    r.read_seed("seed", c.seed);
+    check_vertex_count(r.node(), c.size_m, c.spacing_m);
+    Shape shape;
+    shape.alias = alias;
+    shape.type = ShapeType::heightfield;
+    shape.pose = read_pose(r, parent);
+    const Eigen::Vector3d rpy = rpy_deg_from_rotation(shape.pose.linear());
+    if (std::abs(rpy.x()) > 1e-9 || std::abs(rpy.y()) > 1e-9) {
+      throw InputError(r.node().file(), child_pointer(r.node().pointer(), "pose"),
+                       "expected a terrain pose without roll or pitch");
+    }
+    shape.color = {0.45, 0.6, 0.3};
+    if (auto col = r.optional("color")) shape.color = read_color(*col);
+    r.read("friction", shape.friction, Range::closed(0.0, 10.0));
+    shape.terrain = std::make_shared<HeightGrid>(make_rolling_terrain(c));
+    add_shape(std::move(shape), r.node());
+  }
+
+  void read_trees(ObjectReader& r, const std::string& alias) {
+    TreesConfig c;
+    r.read("area_min_m", c.area_min_m, Range::closed(-1e6, 1e6));
+    r.read("area_max_m", c.area_max_m, Range::closed(-1e6, 1e6));
+    if ((c.area_max_m.array() <= c.area_min_m.array()).any()) {
+      r.fail("\"area_max_m\" greater than \"area_min_m\" in x and y");
+    }
+    r.read("count", c.count, 0, limits_.max_trees);
+    r.read("min_spacing_m", c.min_spacing_m, Range::non_negative());
+    read_interval(r, "trunk_radius_m", c.trunk_radius_m, Range::positive());
+    read_interval(r, "trunk_height_m", c.trunk_height_m, Range::positive());
+    if (auto crown = r.optional("crown")) {
+      c.crown = crown->as_choice({"sphere", "cone"}) == 0 ? CrownShape::sphere : CrownShape::cone;
+    }
+    read_interval(r, "crown_radius_m", c.crown_radius_m, Range::positive());
+    r.read("crown_height_ratio", c.crown_height_ratio, Range::positive());
+    if (auto keep_out = r.optional("keep_out")) {
+      for (const JsonNode& zone : keep_out->as_array(0, 1000)) {
+        ObjectReader z(zone);
+        const Eigen::Vector2d center = z.required("center_m").as_vector2(Range::closed(-1e6, 1e6));
+        const double radius = z.required("radius_m").as_number(Range::positive());
+        z.finish();
+        c.keep_out.emplace_back(center.x(), center.y(), radius);
+      }
+    }
+    r.read_seed("seed", c.seed);
+    try {
+      add_generated(make_trees(c, alias, ground_function()), r.node());
+    } catch (const std::runtime_error& e) {
+      throw InputError(r.node().file(), r.node().pointer(), e.what());
+    }
+  }
+
+  void read_vineyard(ObjectReader& r, const std::string& alias, const Eigen::Isometry3d& parent) {
+    VineyardConfig c;
+    r.read("field_size_m", c.field_size_m, Range::positive());
+    r.read("row_count", c.row_count, 1, 500);
+    r.read("row_spacing_m", c.row_spacing_m, Range::positive());
+    r.read("headland_m", c.headland_m, Range::non_negative());
+    r.read("post_spacing_m", c.post_spacing_m, Range::positive());
+    r.read("post_radius_m", c.post_radius_m, Range::positive());
+    r.read("post_height_m", c.post_height_m, Range::positive());
+    r.read("canopy_width_m", c.canopy_width_m, Range::positive());
+    r.read("canopy_bottom_m", c.canopy_bottom_m, Range::non_negative());
+    r.read("canopy_top_m", c.canopy_top_m, Range::positive());
+    r.read("fence_height_m", c.fence_height_m, Range::positive());
+    r.read("fence_thickness_m", c.fence_thickness_m, Range::positive());
+    r.read("obstacle_count", c.obstacle_count, 0, limits_.max_generated_obstacles);
+    read_interval(r, "obstacle_size_m", c.obstacle_size_m, Range::positive());
+    r.read_seed("seed", c.seed);
+    const double posts_per_row = std::floor(c.field_size_m.y() / c.post_spacing_m) + 2;
+    if (posts_per_row * c.row_count > static_cast<double>(limits_.max_vineyard_posts)) {
+      r.fail("at most " + std::to_string(limits_.max_vineyard_posts) +
+             " posts (row_count x row length / post_spacing_m)");
+    }
+    const Eigen::Isometry3d placement = read_pose(r, parent);
+    try {
+      add_generated(make_vineyard(c, alias), r.node(), placement);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(r.node().file(), r.node().pointer(), e.what());
+    }
+  }
+
+  // Reads "[first, last]" or a single index, 1-based, within [1, max].
+  std::pair<int, int> read_index_range(const JsonNode& node, int max) {
+    if (node.value().is_array()) {
+      const auto items = node.as_array(2, 2);
+      const int first = static_cast<int>(items[0].as_int(1, max));
+      const int last = static_cast<int>(items[1].as_int(first, max));
+      return {first, last};
+    }
+    const int index = static_cast<int>(node.as_int(1, max));
+    return {index, index};
+  }
+
+  void read_grid_obstacles(ObjectReader& r, const std::string& alias) {
+    GridObstaclesConfig c;
+    r.read("origin_m", c.origin_m, Range::closed(-1e6, 1e6));
+    r.read("cell_size_m", c.cell_size_m, Range::positive());
+    r.read("rows", c.rows, 1, limits_.max_grid_cells_per_axis);
+    r.read("cols", c.cols, 1, limits_.max_grid_cells_per_axis);
+    if (auto boxes = r.optional("boxes")) {
+      for (const JsonNode& box_node :
+           boxes->as_array(0, static_cast<std::size_t>(limits_.max_generated_obstacles))) {
+        ObjectReader b(box_node);
+        GridBox box;
+        std::tie(box.row_first, box.row_last) = read_index_range(b.required("rows"), c.rows);
+        std::tie(box.col_first, box.col_last) = read_index_range(b.required("cols"), c.cols);
+        box.height_m = b.required("height_m").as_number(Range::positive());
+        b.finish();
+        c.boxes.push_back(box);
+      }
+    }
+    add_generated(make_grid_obstacles(c, alias, ground_function()), r.node());
+    grids_.emplace(alias, c);
+  }
+
+  void read_mover(ObjectReader& r, const std::string& alias, const Eigen::Isometry3d& parent) {
+    Mover mover;
+    mover.shape.alias = alias;
+    mover.shape.pose = read_pose(r, parent);
+    {
+      const JsonNode shape_node = r.required("shape");
+      ObjectReader s(shape_node);
+      const auto type = s.required("type").as_choice({"cuboid", "cylinder", "sphere", "cone"});
+      mover.shape.type = *shape_type_from_string(std::array{"cuboid", "cylinder", "sphere", "cone"}[type]);
+      read_primitive(s, mover.shape);
+      if (auto c = s.optional("color")) mover.shape.color = read_color(*c);
+      s.finish();
+    }
+    for (const JsonNode& point : r.required("path_m").as_array(2, static_cast<std::size_t>(limits_.max_waypoints))) {
+      mover.path_m.push_back(parent * point.as_vector3(Range::closed(-1e6, 1e6)));
+    }
+    r.read("speed_mps", mover.speed_mps, Range::closed(1e-3, 100.0));
+    r.read("start_time_s", mover.start_time_s, Range::non_negative());
+    r.read("loop", mover.loop);
+    mover.shape.source = r.node().pointer();
+    mover.shape.pose.translation() = mover.path_m.front();
+    scene_.movers.push_back(std::move(mover));
+  }
+
+  void read_vehicle(ObjectReader& r, const std::string& alias, VehicleType type,
+                    const Eigen::Isometry3d& parent) {
+    if (static_cast<int>(scene_.vehicles.size()) >= limits_.max_vehicles) {
+      r.fail("at most " + std::to_string(limits_.max_vehicles) + " vehicles");
+    }
+    VehicleDef vehicle;
+    vehicle.alias = alias;
+    vehicle.type = type;
+    vehicle.pose = read_pose(r, parent);
+    if (auto sensors = r.optional("sensors")) {
+      std::map<std::string, std::string> sensor_aliases;
+      for (const JsonNode& s : sensors->as_array(0, static_cast<std::size_t>(limits_.max_sensors))) {
+        ObjectReader sr(s);
+        SensorDef sensor;
+        const JsonNode alias_node = sr.required("alias");
+        sensor.alias = alias_node.as_string();
+        if (!valid_alias(sensor.alias)) alias_node.fail("an alias of 1-64 letters, digits, '_', '-' or '.'");
+        if (!sensor_aliases.emplace(sensor.alias, alias_node.pointer()).second) {
+          throw InputError(alias_node.file(), alias_node.pointer(),
+                           "duplicate sensor alias \"" + sensor.alias + "\" on vehicle \"" + alias + "\"");
+        }
+        sensor.lidar = parse_lidar(s, limits_);
+        vehicle.sensors.push_back(std::move(sensor));
+      }
+    }
+    if (auto planner = r.optional("planner")) {
+      ObjectReader p(*planner);
+      vehicle.planner.name = p.required("name").as_string();
+      if (auto params = p.optional("params")) {
+        if (!params->value().is_object()) params->fail("an object");
+        vehicle.planner.params = params->value();
+      }
+      p.finish();
+    }
+    if (auto mission = r.optional("mission")) {
+      pending_missions_.emplace_back(scene_.vehicles.size(), *mission);
+    }
+    scene_.vehicles.push_back(std::move(vehicle));
+  }
+
+  std::vector<Waypoint> read_mission(const JsonNode& node) {
+    ObjectReader r(node);
+    const GridObstaclesConfig* grid = nullptr;
+    if (auto g = r.optional("grid")) {
+      const auto it = grids_.find(g->as_string());
+      if (it == grids_.end()) g->fail("the alias of a grid_obstacles object");
+      grid = &it->second;
+    }
+    std::vector<Waypoint> waypoints;
+    for (const JsonNode& wp :
+         r.required("waypoints").as_array(1, static_cast<std::size_t>(limits_.max_waypoints))) {
+      waypoints.push_back(read_waypoint(wp, grid));
+    }
+    r.finish();
+    return waypoints;
+  }
+
+  // A waypoint is exactly one of: position_m [x,y,z] | [x,y] with agl_m,
+  // frame (dummy alias), geodetic [lat, lon, alt], cell [row, col] with agl_m.
+  Waypoint read_waypoint(const JsonNode& node, const GridObstaclesConfig* grid) {
+    ObjectReader r(node);
+    Waypoint wp;
+    const auto position = r.optional("position_m");
+    const auto frame = r.optional("frame");
+    const auto geodetic = r.optional("geodetic");
+    const auto cell = r.optional("cell");
+    const auto agl = r.optional("agl_m");
+    if (static_cast<int>(position.has_value()) + frame.has_value() + geodetic.has_value() +
+            cell.has_value() != 1) {
+      r.fail("a waypoint with exactly one of \"position_m\", \"frame\", \"geodetic\", \"cell\"");
+    }
+    Eigen::Vector2d xy;
+    if (position) {
+      const auto items = position->as_array(2, 3);
+      if (items.size() == 3 && agl) agl->fail("no \"agl_m\" with a 3D position_m");
+      if (items.size() == 2 && !agl) position->fail("[x, y, z], or [x, y] with \"agl_m\"");
+      const Range coordinate = Range::closed(-1e6, 1e6);
+      wp.position_m = {items[0].as_number(coordinate), items[1].as_number(coordinate),
+                       items.size() == 3 ? items[2].as_number(coordinate) : 0.0};
+      xy = wp.position_m.head<2>();
+    } else if (frame) {
+      const Frame* f = scene_.find_frame(frame->as_string());
+      if (!f) frame->fail("the alias of a dummy object");
+      wp.position_m = f->pose.translation();
+      xy = wp.position_m.head<2>();
+    } else if (geodetic) {
+      const auto g = geodetic->as_array(3, 3);
+      const GeoReference& ref = scene_.world.geo_reference;
+      wp.position_m = geodetic_to_enu(
+          {g[0].as_number(Range::closed(-90.0, 90.0)), g[1].as_number(Range::closed(-180.0, 180.0)),
+           g[2].as_number(Range::closed(-1e4, 1e5))},
+          {ref.latitude_deg, ref.longitude_deg, ref.altitude_m});
+      xy = wp.position_m.head<2>();
+    } else {
+      if (!grid) cell->fail("a mission with \"grid\" naming a grid_obstacles object");
+      const auto rc = cell->as_array(2, 2);
+      xy = grid_cell_center(*grid, static_cast<int>(rc[0].as_int(1, grid->rows)),
+                            static_cast<int>(rc[1].as_int(1, grid->cols)));
+      if (!agl) cell->fail("a cell waypoint with \"agl_m\"");
+      wp.position_m.head<2>() = xy;
+    }
+    if (agl) {
+      if (frame || geodetic) agl->fail("no \"agl_m\" with a frame or geodetic waypoint");
+      const auto ground = scene_.ground_height(xy.x(), xy.y());
+      if (!ground) agl->fail("a waypoint above terrain (none below this point)");
+      wp.position_m.z() = *ground + agl->as_number(Range::closed(-1e4, 1e5));
+    }
+    if (auto heading = r.optional("heading_deg")) {
+      wp.heading_deg = heading->as_number(Range::closed(-360.0, 360.0));
+    }
+    r.finish();
+    return wp;
+  }
+
+  const SceneLimits& limits_;
+  std::filesystem::path base_dir_;
+  Scene scene_;
+  std::map<std::string, std::string> alias_pointers_;
+  std::map<std::string, GridObstaclesConfig> grids_;
+  std::vector<std::pair<std::size_t, JsonNode>> pending_missions_;
+  int object_count_ = 0;
+};
+
+}  // namespace
+
+LidarConfig parse_lidar(const JsonNode& node, const SceneLimits& limits) {
+  ObjectReader r(node);
+  r.accept("alias");
+  const JsonNode type = r.required("type");
+  type.as_choice({"lidar"});
+  LidarConfig c;
+  if (auto preset = r.optional("preset")) {
+    const auto names = lidar_preset_names();
+    std::vector<std::string_view> choices(names.begin(), names.end());
+    c = *lidar_preset(choices[preset->as_choice(choices)]);
+  }
+  if (auto fov = r.optional("fov_deg")) {
+    const auto items = fov->as_array(2, 2);
+    c.fov_h_deg = items[0].as_number({0.0, 360.0, true, false});
+    c.fov_v_deg = items[1].as_number({0.0, 180.0, false, true});
+  }
+  if (auto res = r.optional("resolution")) {
+    const auto items = res->as_array(2, 2);
+    c.cols = static_cast<int>(items[0].as_int(1, 65536));
+    c.rows = static_cast<int>(items[1].as_int(1, 65536));
+    if (static_cast<long>(c.cols) * c.rows > limits.max_beams) {
+      res->fail("at most " + std::to_string(limits.max_beams) + " beams (cols x rows)");
+    }
+  }
+  if (auto beams = r.optional("beams")) {
+    c.beams.clear();
+    for (const JsonNode& b : beams->as_array(1, static_cast<std::size_t>(limits.max_beams))) {
+      const Eigen::Vector2d ae = b.as_vector2();
+      if (std::abs(ae.x()) > 180.0) b.fail("[azimuth_deg in [-180, 180], elevation_deg in [-90, 90]]");
+      if (std::abs(ae.y()) > 90.0) b.fail("[azimuth_deg in [-180, 180], elevation_deg in [-90, 90]]");
+      c.beams.push_back({ae.x(), ae.y()});
+    }
+  }
+  if (auto range = r.optional("range_m")) {
+    const Eigen::Vector2d mm = range->as_vector2(Range::non_negative());
+    if (!(mm.x() < mm.y()) || mm.y() > 1e5) range->fail("[min, max] with 0 <= min < max <= 100000");
+    c.min_range_m = mm.x();
+    c.max_range_m = mm.y();
+  }
+  r.read("noise_stddev_m", c.noise_stddev_m, Range::closed(0.0, 100.0));
+  r.read("dropout_probability", c.dropout_probability, Range::closed(0.0, 1.0));
+  r.read("quantization_m", c.quantization_m, Range::closed(0.0, 100.0));
+  r.read("rate_hz", c.rate_hz, Range::closed(0.0, 10000.0));
+  r.read_seed("seed", c.seed);
+  if (auto mount = r.optional("mount")) {
+    ObjectReader m(*mount);
+    m.read("position_m", c.mount.position_m, Range::closed(-100.0, 100.0));
+    m.read("rpy_deg", c.mount.rpy_deg, Range::closed(-360.0, 360.0));
+    m.finish();
+  }
+  r.finish();
+  return c;
+}
+
+std::string sha256_hex(const std::string& bytes) {
+  std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
+  unsigned int length = 0;
+  EVP_Digest(bytes.data(), bytes.size(), digest.data(), &length, EVP_sha256(), nullptr);
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (unsigned int i = 0; i < length; ++i) {
+    out += kHex[digest[i] >> 4];
+    out += kHex[digest[i] & 0xf];
+  }
+  return out;
+}
+
+Scene parse_scene(const nlohmann::json& document, const std::string& source,
+                  const std::filesystem::path& base_dir, const std::string& source_sha256,
+                  const SceneLimits& limits) {
+  Loader loader(limits, base_dir);
+  Scene scene = loader.load(JsonNode(document, source, ""));
+  if (scene.name.empty()) scene.name = std::filesystem::path(source).stem().string();
+  scene.source_path = source;
+  scene.source_sha256 = source_sha256;
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& path, const SceneLimits& limits) {
+  const std::string bytes = read_text_file(path, limits.json);
+  const nlohmann::json document = parse_json_text(bytes, path.string(), limits.json);
+  return parse_scene(document, path.string(), path.parent_path(), sha256_hex(bytes), limits);
+}
+
+}  // namespace campo

@@ -1,0 +1,23 @@
+#pragma once
+/// The `campo` subcommands. Each registers its options on the app and returns
+/// the function that runs it; the function returns the process exit code.
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace campo::cli {
+
+/// Exit codes shared by every subcommand.
+enum ExitCode : int {
+  kOk = 0,            ///< the work completed (whatever a run's outcome)
+  kInternalError = 1, ///< a bug or an I/O failure
+  kBadInput = 2,      ///< invalid input; nothing was written
+};
+
+using Command = std::function<int()>;
+
+Command add_validate(CLI::App& app);
+Command add_scan(CLI::App& app);
+Command add_bench(CLI::App& app);
+
+}  // namespace campo::cli

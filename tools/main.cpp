@@ -1,0 +1,47 @@
+// campo: physics simulator with embedded planners for robot-navigation research.
+#include <iostream>
+#include <map>
+
+#include "sim/json_reader.hpp"
+#include "sim/provenance.hpp"
+#include "tools/commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "campo: a Bullet-based simulator of a quadrotor and a skid-steer rover with ray-cast LIDAR,\n"
+      "V-REP-like JSON scenes and embedded navigation planners.\n"
+      "Run 'campo SUBCOMMAND --help' for the options of each subcommand.",
+      "campo"};
+  app.set_version_flag("--version", campo::campo_version_string());
+  app.require_subcommand(1);
+  app.fallthrough(false);
+
+  std::map<CLI::App*, campo::cli::Command> commands;
+  const auto add = [&](campo::cli::Command (*adder)(CLI::App&), const char* name,
+                       const char* description) {
+    CLI::App* sub = app.add_subcommand(name, description);
+    commands[sub] = adder(*sub);
+  };
+  add(campo::cli::add_validate, "validate", "Check scene files strictly; report every error with its JSON path");
+  add(campo::cli::add_scan, "scan", "Cast one LIDAR scan in a scene and write ranges, hits, depth map and point cloud");
+  add(campo::cli::add_bench, "bench", "Measure LIDAR throughput on the bundled scenes");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : campo::cli::kBadInput;
+  }
+  try {
+    for (const auto& [sub, run] : commands) {
+      if (sub->parsed()) return run();
+    }
+  } catch (const campo::InputError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return campo::cli::kBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "internal error: " << e.what() << "\n";
+    return campo::cli::kInternalError;
+  }
+  return campo::cli::kInternalError;
+}

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Installs campo's Debian build dependencies when any is missing, then builds
+# everything (library, `campo`, tests, benchmarks) in Release under build/.
+# Idempotent and silent when there is nothing to do; safe to run on every use.
+#   tools/setup.sh                 install missing packages + build
+#   CAMPO_BUILD_DIR=dir tools/setup.sh   build elsewhere
+#   CAMPO_BUILD_TYPE=Debug tools/setup.sh
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build_dir="${CAMPO_BUILD_DIR:-$root/build}"
+build_type="${CAMPO_BUILD_TYPE:-Release}"
+
+packages=(
+  build-essential cmake pkg-config
+  libbullet-dev libeigen3-dev libopencv-dev libosmesa6-dev libcli11-dev
+  nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
+  libmuparser-dev libssl-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "campo setup: installing ${missing[*]}" >&2
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -qq >/dev/null
+  "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+if [ ! -f "$build_dir/CMakeCache.txt" ]; then
+  cmake -S "$root" -B "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" >/dev/null
+fi
+jobs="$(nproc 2>/dev/null || echo 2)"
+cmake --build "$build_dir" -j "$jobs" -- --no-print-directory -s >/dev/null \
+  || cmake --build "$build_dir" -j 1   # on failure, rebuild serially so the error is readable
