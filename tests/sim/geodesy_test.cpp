@@ -1,0 +1,63 @@
+#include "sim/geodesy.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+namespace campo {
+namespace {
+
+constexpr double kA = 6378137.0;
+constexpr double kF = 1.0 / 298.257223563;
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+TEST(Geodesy, EcefOfReferencePoints) {
+  EXPECT_TRUE(geodetic_to_ecef({0, 0, 0}).isApprox(Eigen::Vector3d(kA, 0, 0), 1e-12));
+  EXPECT_TRUE(geodetic_to_ecef({0, 90, 0}).isApprox(Eigen::Vector3d(0, kA, 0), 1e-12));
+  const Eigen::Vector3d pole = geodetic_to_ecef({90, 0, 100});
+  EXPECT_NEAR(pole.z(), kA * (1 - kF) + 100, 1e-6);
+  EXPECT_NEAR(pole.head<2>().norm(), 0.0, 1e-6);
+}
+
+TEST(Geodesy, EcefRoundTrip) {
+  for (double lat : {-89.0, -45.5, 0.0, 12.3, 40.821, 89.9}) {
+    for (double lon : {-179.0, -20.0, 0.0, 14.7035, 120.0}) {
+      for (double alt : {-100.0, 0.0, 8848.0}) {
+        const Geodetic g = ecef_to_geodetic(geodetic_to_ecef({lat, lon, alt}));
+        EXPECT_NEAR(g.latitude_deg, lat, 1e-9);
+        EXPECT_NEAR(g.longitude_deg, lon, 1e-9);
+        EXPECT_NEAR(g.altitude_m, alt, 1e-5);
+      }
+    }
+  }
+}
+
+TEST(Geodesy, SmallOffsetsMatchTheRadiiOfCurvature) {
+  const Geodetic origin{40.821, 14.7035, 0};
+  const double phi = origin.latitude_deg * kDeg;
+  const double e2 = kF * (2 - kF);
+  const double w = std::sqrt(1 - e2 * std::sin(phi) * std::sin(phi));
+  const double meridian = kA * (1 - e2) / (w * w * w);  // north-south radius
+  const double normal = kA / w;                         // east-west radius (times cos phi)
+  const double d = 1e-4;                                // degrees: ~11 m, curvature negligible
+  const Eigen::Vector3d north = geodetic_to_enu({origin.latitude_deg + d, origin.longitude_deg, 0}, origin);
+  EXPECT_NEAR(north.y(), meridian * d * kDeg, 1e-3);
+  EXPECT_NEAR(north.x(), 0.0, 1e-9);
+  const Eigen::Vector3d east = geodetic_to_enu({origin.latitude_deg, origin.longitude_deg + d, 0}, origin);
+  // The proper cos(latitude) factor that seed 001 left out.
+  EXPECT_NEAR(east.x(), normal * std::cos(phi) * d * kDeg, 1e-3);
+  EXPECT_NEAR(geodetic_to_enu({origin.latitude_deg, origin.longitude_deg, 25}, origin).z(), 25.0, 1e-6);
+}
+
+TEST(Geodesy, EnuRoundTrip) {
+  const Geodetic origin{40.821, 14.7035, 30};
+  for (const Eigen::Vector3d enu : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(150, -20, 42),
+                                    Eigen::Vector3d(-5000, 12000, -3)}) {
+    const Eigen::Vector3d back = geodetic_to_enu(enu_to_geodetic(enu, origin), origin);
+    EXPECT_NEAR((back - enu).norm(), 0.0, 1e-6);
+  }
+}
+
+}  // namespace
+}  // namespace campo

@@ -1,0 +1,318 @@
+#include "sim/scene_loader.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "sim/geodesy.hpp"
+#include "sim/generators.hpp"
+
+namespace campo {
+namespace {
+
+using ::testing::HasSubstr;
+
+Scene parse(const std::string& text, const SceneLimits& limits = {}) {
+  return parse_scene(parse_json_text(text, "inline.json", limits.json), "inline.json",
+                     std::filesystem::temp_directory_path(), "", limits);
+}
+
+// The message of the InputError that parsing `text` throws ("" if none).
+std::string error_of(const std::string& text, const SceneLimits& limits = {}) {
+  try {
+    parse(text, limits);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string with_objects(const std::string& objects) {
+  return R"({"objects": [)" + objects + "]}";
+}
+
+TEST(SceneLoader, ReadsPrimitivesWithDefaultsAndUnits) {
+  const Scene scene = parse(with_objects(R"(
+    {"alias": "box", "type": "cuboid", "size_m": [1, 2, 3],
+     "pose": {"position_m": [1, 2, 3], "rpy_deg": [0, 0, 90]}},
+    {"alias": "can", "type": "cylinder", "radius_m": 0.5, "height_m": 2, "static": false, "mass_kg": 3},
+    {"alias": "ball", "type": "sphere", "radius_m": 0.25, "color": [1, 0, 0]},
+    {"alias": "tip", "type": "cone", "radius_m": 1, "height_m": 2},
+    {"alias": "floor", "type": "plane"})"));
+  ASSERT_EQ(scene.shapes.size(), 5u);
+  const Shape& box = scene.shapes[0];
+  EXPECT_EQ(box.type, ShapeType::cuboid);
+  EXPECT_EQ(box.size_m, Eigen::Vector3d(1, 2, 3));
+  EXPECT_TRUE(box.pose.translation().isApprox(Eigen::Vector3d(1, 2, 3)));
+  // Yaw 90 deg turns local x into world y.
+  EXPECT_TRUE((box.pose.linear() * Eigen::Vector3d::UnitX()).isApprox(Eigen::Vector3d::UnitY()));
+  EXPECT_TRUE(box.is_static);
+  EXPECT_FALSE(scene.shapes[1].is_static);
+  EXPECT_DOUBLE_EQ(scene.shapes[1].mass_kg, 3.0);
+  EXPECT_DOUBLE_EQ(scene.shapes[2].color.r, 1.0);
+  EXPECT_EQ(scene.shapes[4].type, ShapeType::plane);
+  EXPECT_EQ(scene.name, "inline");
+  EXPECT_DOUBLE_EQ(scene.world.physics_step_s, 1.0 / 240.0);
+}
+
+TEST(SceneLoader, ChildPosesAreRelativeToTheParent) {
+  const Scene scene = parse(with_objects(R"(
+    {"alias": "base", "type": "dummy", "pose": {"position_m": [10, 0, 0], "rpy_deg": [0, 0, 90]},
+     "children": [{"alias": "arm", "type": "sphere", "radius_m": 1,
+                   "pose": {"position_m": [2, 0, 1]}}]})"));
+  ASSERT_EQ(scene.shapes.size(), 1u);
+  EXPECT_TRUE(scene.shapes[0].pose.translation().isApprox(Eigen::Vector3d(10, 2, 1)));
+  ASSERT_NE(scene.find_frame("base"), nullptr);
+}
+
+TEST(SceneLoader, AboveGroundPlacesOnTheTerrain) {
+  const Scene scene = parse(with_objects(R"(
+    {"alias": "hill", "type": "heightfield", "expression": "0.5*x", "size_m": [20, 20], "spacing_m": 1},
+    {"alias": "flag", "type": "dummy", "pose": {"position_m": [4, 1, 2], "above_ground": true}})"));
+  EXPECT_NEAR(scene.find_frame("flag")->pose.translation().z(), 0.5 * 4 + 2, 1e-12);
+}
+
+TEST(SceneLoader, ReadsWorldBlock) {
+  const Scene scene = parse(R"({"world": {"gravity_mps2": [0, 0, -3.7], "physics_step_s": 0.002,
+    "control_rate_hz": 100, "sensor_rate_hz": 5, "time_limit_s": 60, "seed": 42,
+    "geo_reference": {"latitude_deg": 40.821, "longitude_deg": 14.7035, "altitude_m": 12}},
+    "objects": []})");
+  EXPECT_DOUBLE_EQ(scene.world.gravity_mps2.z(), -3.7);
+  EXPECT_DOUBLE_EQ(scene.world.physics_step_s, 0.002);
+  EXPECT_EQ(scene.world.seed, 42u);
+  EXPECT_DOUBLE_EQ(scene.world.geo_reference.altitude_m, 12.0);
+}
+
+TEST(SceneLoader, ReadsVehicleSensorsAndMissionForms) {
+  const Scene scene = parse(R"({
+    "world": {"geo_reference": {"latitude_deg": 40.821, "longitude_deg": 14.7035}},
+    "objects": [
+      {"alias": "ground", "type": "heightfield", "expression": "sin(x/5)", "size_m": [150, 150],
+       "spacing_m": 1.5, "pose": {"position_m": [75, 75, 0]}},
+      {"alias": "grid", "type": "grid_obstacles", "cell_size_m": 1.5, "rows": 100, "cols": 100},
+      {"alias": "goal", "type": "dummy", "pose": {"position_m": [5, 6, 7]}},
+      {"alias": "uav", "type": "quadrotor", "pose": {"position_m": [1, 2, 3]},
+       "sensors": [{"alias": "front", "type": "lidar", "preset": "scanner3d", "resolution": [64, 32],
+                    "range_m": [0.2, 8], "noise_stddev_m": 0.01}],
+       "planner": {"name": "depthmap", "params": {"k": 2}},
+       "mission": {"grid": "grid", "waypoints": [
+         {"position_m": [1, 2, 3]}, {"frame": "goal"}, {"geodetic": [40.822, 14.7035, 10]},
+         {"cell": [1, 16], "agl_m": 42}, {"position_m": [30, 40], "agl_m": 5, "heading_deg": 90}]}}]})");
+  ASSERT_EQ(scene.vehicles.size(), 1u);
+  const VehicleDef& v = scene.vehicles[0];
+  EXPECT_EQ(v.type, VehicleType::quadrotor);
+  ASSERT_EQ(v.sensors.size(), 1u);
+  EXPECT_EQ(v.sensors[0].lidar.preset, "scanner3d");
+  EXPECT_EQ(v.sensors[0].lidar.cols, 64);
+  EXPECT_EQ(v.sensors[0].lidar.rows, 32);
+  EXPECT_DOUBLE_EQ(v.sensors[0].lidar.max_range_m, 8.0);
+  EXPECT_EQ(v.planner.name, "depthmap");
+  EXPECT_EQ(v.planner.params["k"], 2);
+  ASSERT_EQ(v.mission.size(), 5u);
+  EXPECT_EQ(v.mission[1].position_m, Eigen::Vector3d(5, 6, 7));
+  // 0.001 deg of latitude north is ~111 m.
+  EXPECT_NEAR(v.mission[2].position_m.y(), 111.0, 0.5);
+  EXPECT_NEAR(v.mission[2].position_m.x(), 0.0, 1e-6);
+  // Cell (1, 16): x = 15.5 * 1.5, y = 0.5 * 1.5, z = sin(x/5) + 42.
+  EXPECT_NEAR(v.mission[3].position_m.x(), 23.25, 1e-12);
+  EXPECT_NEAR(v.mission[3].position_m.y(), 0.75, 1e-12);
+  EXPECT_NEAR(v.mission[3].position_m.z(), std::sin(23.25 / 5) + 42, 1e-9);
+  EXPECT_NEAR(v.mission[4].position_m.z(), std::sin(30.0 / 5) + 5, 1e-2);
+  EXPECT_EQ(v.mission[4].heading_deg, 90.0);
+}
+
+TEST(SceneLoader, SameFileGivesTheSameScene) {
+  const std::string text = with_objects(R"(
+    {"alias": "t", "type": "rolling_terrain", "size_m": [30, 30], "seed": 5},
+    {"alias": "f", "type": "trees", "count": 10, "area_min_m": [-10, -10], "area_max_m": [10, 10], "seed": 9})");
+  const Scene a = parse(text), b = parse(text);
+  ASSERT_EQ(a.shapes.size(), b.shapes.size());
+  EXPECT_EQ(a.shapes[0].terrain->heights_m, b.shapes[0].terrain->heights_m);
+  for (std::size_t i = 0; i < a.shapes.size(); ++i) {
+    EXPECT_TRUE(a.shapes[i].pose.isApprox(b.shapes[i].pose, 0.0)) << i;
+  }
+}
+
+// --- every kind of validation error, with its message ---------------------
+
+TEST(SceneLoaderErrors, UnknownKeyNamesPointerAndAllowedKeys) {
+  const std::string e = error_of(with_objects(R"({"alias": "a", "type": "sphere", "radius_m": 1, "radius": 2})"));
+  EXPECT_THAT(e, HasSubstr("inline.json: /objects/0/radius: unknown key \"radius\"; expected one of:"));
+  EXPECT_THAT(e, HasSubstr("radius_m"));
+}
+
+TEST(SceneLoaderErrors, UnknownTopLevelAndNestedKeys) {
+  EXPECT_THAT(error_of(R"({"objects": [], "gravity": 1})"), HasSubstr("/gravity: unknown key"));
+  EXPECT_THAT(error_of(R"({"objects": [], "world": {"step": 1}})"), HasSubstr("/world/step: unknown key"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "dummy", "pose": {"xyz": [1,2,3]}})")),
+              HasSubstr("/objects/0/pose/xyz: unknown key"));
+}
+
+TEST(SceneLoaderErrors, WrongTypes) {
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "cuboid", "size_m": [1, "2", 3]})")),
+              HasSubstr("/objects/0/size_m/1: expected a number > 0, got \"2\""));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "cuboid", "size_m": [1, 2]})")),
+              HasSubstr("/objects/0/size_m: expected an array of 3 elements, got [1,2]"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": 7, "type": "sphere", "radius_m": 1})")),
+              HasSubstr("/objects/0/alias: expected a non-empty string, got 7"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "sphere", "radius_m": 1, "static": "yes"})")),
+              HasSubstr("/objects/0/static: expected true or false"));
+  EXPECT_THAT(error_of(R"({"objects": {}})"), HasSubstr("/objects: expected an array of 0 to"));
+  EXPECT_THAT(error_of(R"([1, 2])"), HasSubstr("inline.json: expected an object, got [1,2]"));
+}
+
+TEST(SceneLoaderErrors, OutOfRangeValues) {
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "cuboid", "size_m": [1, -1, 3]})")),
+              HasSubstr("/objects/0/size_m/1: expected a number > 0, got -1"));
+  EXPECT_THAT(error_of(R"({"objects": [], "world": {"physics_step_s": 0}})"),
+              HasSubstr("/world/physics_step_s: expected a number in [1e-05, 0.1], got 0"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "sphere", "radius_m": 1, "color": [0, 2, 0]})")),
+              HasSubstr("/objects/0/color/1: expected a number in [0, 1], got 2"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "trees", "count": -3})")),
+              HasSubstr("/objects/0/count: expected an integer in [0, 10000], got -3"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "trees", "trunk_radius_m": [0.5, 0.2]})")),
+              HasSubstr("/objects/0/trunk_radius_m: expected [min, max] with min <= max"));
+  EXPECT_THAT(error_of(R"({"objects": [], "world": {"seed": -1}})"),
+              HasSubstr("/world/seed: expected a non-negative integer seed, got -1"));
+}
+
+TEST(SceneLoaderErrors, UnknownTypeAndMissingKeys) {
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "torus"})")),
+              HasSubstr("/objects/0/type: expected one of \"cuboid\", \"cylinder\""));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "cuboid"})")),
+              HasSubstr("/objects/0: missing required key \"size_m\""));
+  EXPECT_THAT(error_of(with_objects(R"({"type": "plane"})")),
+              HasSubstr("/objects/0: missing required key \"alias\""));
+  EXPECT_THAT(error_of(R"({})"), HasSubstr("inline.json: missing required key \"objects\""));
+}
+
+TEST(SceneLoaderErrors, DuplicateAliasesNameBothPlaces) {
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "plane"},
+      {"alias": "b", "type": "dummy", "children": [{"alias": "a", "type": "dummy"}]})")),
+              HasSubstr("/objects/1/children/0/alias: duplicate alias \"a\" (first used at /objects/0/alias)"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "bad/name", "type": "plane"})")),
+              HasSubstr("/objects/0/alias: expected an alias of 1-64 letters"));
+}
+
+TEST(SceneLoaderErrors, DanglingReferences) {
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "rover",
+      "mission": {"waypoints": [{"frame": "nowhere"}]}})")),
+              HasSubstr("/objects/0/mission/waypoints/0/frame: expected the alias of a dummy object, got \"nowhere\""));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "rover",
+      "mission": {"grid": "missing", "waypoints": [{"cell": [1, 1], "agl_m": 1}]}})")),
+              HasSubstr("/objects/0/mission/grid: expected the alias of a grid_obstacles object"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "rover",
+      "mission": {"waypoints": [{"cell": [1, 1], "agl_m": 1}]}})")),
+              HasSubstr("/objects/0/mission/waypoints/0/cell: expected a mission with \"grid\""));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "quadrotor",
+      "sensors": [{"alias": "s", "type": "lidar", "preset": "kinect"}]})")),
+              HasSubstr("/objects/0/sensors/0/preset: expected one of \"scanner3d\""));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "d", "type": "dummy", "pose": {"position_m": [0, 0, 1], "above_ground": true}})")),
+              HasSubstr("/objects/0/pose/above_ground: no terrain below"));
+}
+
+TEST(SceneLoaderErrors, UnreadableDataFiles) {
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "heightfield", "csv": "no_such_file.csv"})")),
+              HasSubstr("/objects/0/csv: expected a readable file, but"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "heightfield"})")),
+              HasSubstr("/objects/0: expected exactly one height source"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "heightfield", "expression": "sin(x/"})")),
+              HasSubstr("/objects/0/expression: "));
+}
+
+TEST(SceneLoaderErrors, InconsistentValues) {
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "sphere", "radius_m": 1, "static": false})")),
+              HasSubstr("/objects/0: a non-static shape needs \"mass_kg\" > 0"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "rover", "sensors": [
+      {"alias": "s", "type": "lidar", "range_m": [5, 1]}]})")),
+              HasSubstr("/objects/0/sensors/0/range_m: expected [min, max] with 0 <= min < max"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "rover", "sensors": [
+      {"alias": "s", "type": "lidar"}, {"alias": "s", "type": "lidar"}]})")),
+              HasSubstr("/objects/0/sensors/1/alias: duplicate sensor alias \"s\""));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "g", "type": "grid_obstacles", "rows": 10, "cols": 10,
+      "boxes": [{"rows": [5, 3], "cols": 1, "height_m": 2}]})")),
+              HasSubstr("/objects/0/boxes/0/rows/1: expected an integer in [5, 10], got 3"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "heightfield", "expression": "x",
+      "pose": {"rpy_deg": [10, 0, 0]}})")),
+              HasSubstr("/objects/0/pose: expected a heightfield pose without roll or pitch"));
+}
+
+TEST(SceneLoaderErrors, SyntaxErrorsReportLineAndColumn) {
+  EXPECT_THAT(error_of("{\n  \"objects\": [\n    {\"alias\": \"a\",}\n  ]\n}"),
+              HasSubstr("inline.json: invalid JSON at line 3, column"));
+}
+
+TEST(SceneLoaderErrors, LimitsStopHostileFiles) {
+  SceneLimits limits;
+  limits.max_objects = 3;
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "plane"}, {"alias": "b", "type": "plane"},
+      {"alias": "c", "type": "plane"}, {"alias": "d", "type": "plane"})"), limits),
+              HasSubstr("expected an array of 0 to 3 elements"));
+  limits = {};
+  limits.max_child_depth = 2;
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "dummy", "children": [
+      {"alias": "b", "type": "dummy", "children": [{"alias": "c", "type": "dummy", "children": [
+      {"alias": "d", "type": "dummy"}]}]}]})"), limits),
+              HasSubstr("expected children nested at most 2 deep"));
+  EXPECT_THAT(error_of(std::string(100, '[') + std::string(100, ']')), HasSubstr("nesting deeper than 32 levels"));
+  limits = {};
+  limits.json.max_file_bytes = 64;
+  EXPECT_THAT(error_of(with_objects(std::string(100, ' ')), limits), HasSubstr("file too large"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "rolling_terrain", "size_m": [100000, 100000], "spacing_m": 0.1})")),
+              HasSubstr("/objects/0: expected a grid of at most 16777216 vertices"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "trees", "count": 20000})")),
+              HasSubstr("/objects/0/count: expected an integer in [0, 10000]"));
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "vineyard", "row_count": 400, "post_spacing_m": 0.01})")),
+              HasSubstr("/objects/0: expected at most 100000 posts"));
+  limits = {};
+  limits.max_shapes = 5;
+  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "trees", "count": 10, "min_spacing_m": 0.1})"), limits),
+              HasSubstr("/objects/0: expected a scene of at most 5 shapes"));
+}
+
+TEST(SceneLoaderErrors, MissingFileIsAnInputError) {
+  try {
+    load_scene("/nonexistent/scene.json");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("/nonexistent/scene.json: cannot read"));
+  }
+}
+
+TEST(SceneLoader, HashesTheFileBytes) {
+  const auto path = std::filesystem::temp_directory_path() / "campo_hash_test.json";
+  std::ofstream(path) << R"({"objects": []})";
+  const Scene scene = load_scene(path);
+  EXPECT_EQ(scene.source_sha256, sha256_hex(R"({"objects": []})"));
+  // SHA-256 of "abc" (FIPS 180-2 test vector).
+  EXPECT_EQ(sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace campo
+
+namespace campo {
+namespace {
+
+// The full example in docs/scene-format.md stays valid.
+TEST(SceneLoader, DocumentedExampleIsValid) {
+  std::ifstream in(std::string(CAMPO_SOURCE_DIR) + "/docs/scene-format.md");
+  std::stringstream doc;
+  doc << in.rdbuf();
+  const std::string text = doc.str();
+  const auto begin = text.find("```json\n");
+  ASSERT_NE(begin, std::string::npos);
+  const auto end = text.find("```", begin + 8);
+  const Scene scene = parse(text.substr(begin + 8, end - begin - 8));
+  EXPECT_EQ(scene.name, "example");
+  EXPECT_EQ(scene.vehicles.at(0).mission.size(), 4u);
+  EXPECT_EQ(scene.movers.size(), 1u);
+  EXPECT_NE(scene.find_shape("chimney"), nullptr);
+}
+
+}  // namespace
+}  // namespace campo

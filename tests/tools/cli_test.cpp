@@ -1,0 +1,160 @@
+// Runs the `campo` executable as a user would and checks exit codes and files.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <sys/wait.h>
+
+#include "sim/scene_loader.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+struct Result {
+  int exit_code;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("campo_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  Result campo(const std::string& args) {
+    const std::string command = std::string(CAMPO_BINARY) + " " + args + " >" + (dir_ / "stdout").string() +
+                                " 2>" + (dir_ / "stderr").string();
+    const int status = std::system(command.c_str());
+    return {WEXITSTATUS(status), slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
+  }
+
+  fs::path dir_;
+};
+
+std::vector<std::vector<double>> read_csv(const fs::path& path) {
+  std::vector<std::vector<double>> rows;
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::stringstream s(line);
+    std::string cell;
+    while (std::getline(s, cell, ',')) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST_F(Cli, VersionAndHelp) {
+  const Result version = campo("--version");
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_THAT(version.out, HasSubstr("campo 0."));
+  for (const char* sub : {"validate", "scan", "bench"}) {
+    const Result help = campo(std::string(sub) + " --help");
+    EXPECT_EQ(help.exit_code, 0) << sub;
+    EXPECT_THAT(help.out, HasSubstr("Usage")) << sub;
+  }
+}
+
+TEST_F(Cli, ValidatesEveryBundledScene) {
+  // The shell expands the glob; each file gets its "ok" line.
+  const Result all = campo("validate " + std::string(CAMPO_SOURCE_DIR) + "/scenes/*.json");
+  EXPECT_EQ(all.exit_code, 0) << all.err;
+  for (const char* name : {"two_barriers", "trees_rolling_terrain", "obstacle_field", "zigzag", "wall", "vineyard"}) {
+    EXPECT_THAT(all.out, HasSubstr(std::string("ok ") + CAMPO_SOURCE_DIR + "/scenes/" + name + ".json"));
+  }
+}
+
+TEST_F(Cli, InvalidSceneExitsTwoWithPointer) {
+  std::ofstream(dir_ / "bad.json") << R"({"objects": [{"alias": "a", "type": "cuboid", "size_m": [1, -2, 1]}]})";
+  const Result r = campo("validate " + (dir_ / "bad.json").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("bad.json: /objects/0/size_m/1: expected a number > 0, got -2"));
+}
+
+TEST_F(Cli, ScanWritesAllOutputsMatchingGeometry) {
+  const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json";
+  const fs::path out = dir_ / "scan";
+  const Result r = campo("scan " + scene + " --sensor scanner3d --res 32x16 --pose 0,0,1.5,0,0,0 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto ranges = read_csv(out / "ranges.csv");
+  const auto hits = read_csv(out / "hits.csv");
+  ASSERT_EQ(ranges.size(), 16u);
+  ASSERT_EQ(hits.size(), 16u);
+  for (const auto& row : ranges) ASSERT_EQ(row.size(), 32u);
+
+  // Pixel (col 15, row 7) looks at azimuth 1.40625 deg left, elevation 2.8125 deg up and hits
+  // the barrier face at x = 5.85: range = 5.85 / (cos(el) cos(az)).
+  const double deg = std::numbers::pi / 180.0;
+  const double az = (45.0 - 15.5 * 90.0 / 32.0) * deg, el = (45.0 - 7.5 * 90.0 / 16.0) * deg;
+  EXPECT_NEAR(ranges[7][15], 5.85 / (std::cos(el) * std::cos(az)), 1e-3);
+  EXPECT_EQ(hits[7][15], 1.0);
+  // Looking up at the sky (row 0) nothing is hit within 10 m: max range, hit 0.
+  EXPECT_EQ(hits[0][0], 0.0);
+  EXPECT_DOUBLE_EQ(ranges[0][0], 10.0);
+
+  const cv::Mat depth = cv::imread((out / "depth.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(depth.type(), CV_16U);
+  ASSERT_EQ(depth.cols, 32);
+  ASSERT_EQ(depth.rows, 16);
+  EXPECT_NEAR(depth.at<std::uint16_t>(7, 15), ranges[7][15] / 10.0 * 65535.0, 1.0 + 65535e-5);
+  EXPECT_EQ(depth.at<std::uint16_t>(0, 0), 65535);
+
+  int hit_count = 0;
+  for (const auto& row : hits) for (double h : row) hit_count += h == 1.0;
+  EXPECT_THAT(slurp(out / "points.ply"), HasSubstr("element vertex " + std::to_string(hit_count) + "\n"));
+
+  const auto record = nlohmann::json::parse(slurp(out / "scan.json"));
+  EXPECT_EQ(record["sensor"]["resolution"], nlohmann::json({32, 16}));
+  EXPECT_EQ(record["provenance"]["scene"]["sha256"], campo::sha256_hex(slurp(scene)));
+  EXPECT_EQ(record["hits"], hit_count);
+}
+
+TEST_F(Cli, ScanDefaultsToTheVehicleSensorAndIsDeterministic) {
+  const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/trees_rolling_terrain.json";
+  ASSERT_EQ(campo("scan " + scene + " --res 48x48 --out " + (dir_ / "a").string()).exit_code, 0);
+  ASSERT_EQ(campo("scan " + scene + " --res 48x48 --out " + (dir_ / "b").string()).exit_code, 0);
+  EXPECT_EQ(slurp(dir_ / "a" / "ranges.csv"), slurp(dir_ / "b" / "ranges.csv"));
+  EXPECT_EQ(slurp(dir_ / "a" / "scan.json"), slurp(dir_ / "b" / "scan.json"));
+  EXPECT_EQ(read_csv(dir_ / "a" / "ranges.csv").size(), 48u);
+}
+
+TEST_F(Cli, BadScanInputExitsTwoAndWritesNothing) {
+  const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json";
+  const fs::path out = dir_ / "never";
+  Result r = campo("scan " + scene + " --sensor scanner3d --res 32by16 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--res: expected COLSxROWS"));
+  r = campo("scan " + scene + " --sensor scanner3d --range 5,1 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("/range_m: expected [min, max]"));
+  r = campo("scan " + scene + " --sensor lidar9000 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  r = campo("scan " + (dir_ / "missing.json").string() + " --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
