@@ -132,7 +132,7 @@ std::int64_t JsonNode::as_int(std::int64_t min, std::int64_t max) const {
       "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
   if (value_->is_number_unsigned()) {
     const auto u = value_->get<std::uint64_t>();
-    if (u > static_cast<std::uint64_t>(max)) fail(expected);
+    if (u > static_cast<std::uint64_t>(max) || static_cast<std::int64_t>(u) < min) fail(expected);
     return static_cast<std::int64_t>(u);
   }
   if (!value_->is_number_integer()) fail(expected);

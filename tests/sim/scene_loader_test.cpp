@@ -35,13 +35,13 @@ std::string with_objects(const std::string& objects) {
 }
 
 TEST(SceneLoader, ReadsPrimitivesWithDefaultsAndUnits) {
-  const Scene scene = parse(with_objects(R"(
+  const Scene scene = parse(with_objects(R"j(
     {"alias": "box", "type": "cuboid", "size_m": [1, 2, 3],
      "pose": {"position_m": [1, 2, 3], "rpy_deg": [0, 0, 90]}},
     {"alias": "can", "type": "cylinder", "radius_m": 0.5, "height_m": 2, "static": false, "mass_kg": 3},
     {"alias": "ball", "type": "sphere", "radius_m": 0.25, "color": [1, 0, 0]},
     {"alias": "tip", "type": "cone", "radius_m": 1, "height_m": 2},
-    {"alias": "floor", "type": "plane"})"));
+    {"alias": "floor", "type": "plane"})j"));
   ASSERT_EQ(scene.shapes.size(), 5u);
   const Shape& box = scene.shapes[0];
   EXPECT_EQ(box.type, ShapeType::cuboid);
@@ -59,27 +59,27 @@ TEST(SceneLoader, ReadsPrimitivesWithDefaultsAndUnits) {
 }
 
 TEST(SceneLoader, ChildPosesAreRelativeToTheParent) {
-  const Scene scene = parse(with_objects(R"(
+  const Scene scene = parse(with_objects(R"j(
     {"alias": "base", "type": "dummy", "pose": {"position_m": [10, 0, 0], "rpy_deg": [0, 0, 90]},
      "children": [{"alias": "arm", "type": "sphere", "radius_m": 1,
-                   "pose": {"position_m": [2, 0, 1]}}]})"));
+                   "pose": {"position_m": [2, 0, 1]}}]})j"));
   ASSERT_EQ(scene.shapes.size(), 1u);
   EXPECT_TRUE(scene.shapes[0].pose.translation().isApprox(Eigen::Vector3d(10, 2, 1)));
   ASSERT_NE(scene.find_frame("base"), nullptr);
 }
 
 TEST(SceneLoader, AboveGroundPlacesOnTheTerrain) {
-  const Scene scene = parse(with_objects(R"(
+  const Scene scene = parse(with_objects(R"j(
     {"alias": "hill", "type": "heightfield", "expression": "0.5*x", "size_m": [20, 20], "spacing_m": 1},
-    {"alias": "flag", "type": "dummy", "pose": {"position_m": [4, 1, 2], "above_ground": true}})"));
+    {"alias": "flag", "type": "dummy", "pose": {"position_m": [4, 1, 2], "above_ground": true}})j"));
   EXPECT_NEAR(scene.find_frame("flag")->pose.translation().z(), 0.5 * 4 + 2, 1e-12);
 }
 
 TEST(SceneLoader, ReadsWorldBlock) {
-  const Scene scene = parse(R"({"world": {"gravity_mps2": [0, 0, -3.7], "physics_step_s": 0.002,
+  const Scene scene = parse(R"j({"world": {"gravity_mps2": [0, 0, -3.7], "physics_step_s": 0.002,
     "control_rate_hz": 100, "sensor_rate_hz": 5, "time_limit_s": 60, "seed": 42,
     "geo_reference": {"latitude_deg": 40.821, "longitude_deg": 14.7035, "altitude_m": 12}},
-    "objects": []})");
+    "objects": []})j");
   EXPECT_DOUBLE_EQ(scene.world.gravity_mps2.z(), -3.7);
   EXPECT_DOUBLE_EQ(scene.world.physics_step_s, 0.002);
   EXPECT_EQ(scene.world.seed, 42u);
@@ -87,11 +87,11 @@ TEST(SceneLoader, ReadsWorldBlock) {
 }
 
 TEST(SceneLoader, ReadsVehicleSensorsAndMissionForms) {
-  const Scene scene = parse(R"({
+  const Scene scene = parse(R"j({
     "world": {"geo_reference": {"latitude_deg": 40.821, "longitude_deg": 14.7035}},
     "objects": [
       {"alias": "ground", "type": "heightfield", "expression": "sin(x/5)", "size_m": [150, 150],
-       "spacing_m": 1.5, "pose": {"position_m": [75, 75, 0]}},
+       "spacing_m": 0.75, "pose": {"position_m": [75, 75, 0]}},
       {"alias": "grid", "type": "grid_obstacles", "cell_size_m": 1.5, "rows": 100, "cols": 100},
       {"alias": "goal", "type": "dummy", "pose": {"position_m": [5, 6, 7]}},
       {"alias": "uav", "type": "quadrotor", "pose": {"position_m": [1, 2, 3]},
@@ -100,7 +100,7 @@ TEST(SceneLoader, ReadsVehicleSensorsAndMissionForms) {
        "planner": {"name": "depthmap", "params": {"k": 2}},
        "mission": {"grid": "grid", "waypoints": [
          {"position_m": [1, 2, 3]}, {"frame": "goal"}, {"geodetic": [40.822, 14.7035, 10]},
-         {"cell": [1, 16], "agl_m": 42}, {"position_m": [30, 40], "agl_m": 5, "heading_deg": 90}]}}]})");
+         {"cell": [1, 16], "agl_m": 42}, {"position_m": [30, 40], "agl_m": 5, "heading_deg": 90}]}}]})j");
   ASSERT_EQ(scene.vehicles.size(), 1u);
   const VehicleDef& v = scene.vehicles[0];
   EXPECT_EQ(v.type, VehicleType::quadrotor);
@@ -116,7 +116,7 @@ TEST(SceneLoader, ReadsVehicleSensorsAndMissionForms) {
   // 0.001 deg of latitude north is ~111 m.
   EXPECT_NEAR(v.mission[2].position_m.y(), 111.0, 0.5);
   EXPECT_NEAR(v.mission[2].position_m.x(), 0.0, 1e-6);
-  // Cell (1, 16): x = 15.5 * 1.5, y = 0.5 * 1.5, z = sin(x/5) + 42.
+  // Cell (1, 16): x = 15.5 * 1.5, y = 0.5 * 1.5 (a terrain vertex), z = sin(x/5) + 42.
   EXPECT_NEAR(v.mission[3].position_m.x(), 23.25, 1e-12);
   EXPECT_NEAR(v.mission[3].position_m.y(), 0.75, 1e-12);
   EXPECT_NEAR(v.mission[3].position_m.z(), std::sin(23.25 / 5) + 42, 1e-9);
@@ -125,9 +125,9 @@ TEST(SceneLoader, ReadsVehicleSensorsAndMissionForms) {
 }
 
 TEST(SceneLoader, SameFileGivesTheSameScene) {
-  const std::string text = with_objects(R"(
+  const std::string text = with_objects(R"j(
     {"alias": "t", "type": "rolling_terrain", "size_m": [30, 30], "seed": 5},
-    {"alias": "f", "type": "trees", "count": 10, "area_min_m": [-10, -10], "area_max_m": [10, 10], "seed": 9})");
+    {"alias": "f", "type": "trees", "count": 10, "area_min_m": [-10, -10], "area_max_m": [10, 10], "seed": 9})j");
   const Scene a = parse(text), b = parse(text);
   ASSERT_EQ(a.shapes.size(), b.shapes.size());
   EXPECT_EQ(a.shapes[0].terrain->heights_m, b.shapes[0].terrain->heights_m);
@@ -139,104 +139,104 @@ TEST(SceneLoader, SameFileGivesTheSameScene) {
 // --- every kind of validation error, with its message ---------------------
 
 TEST(SceneLoaderErrors, UnknownKeyNamesPointerAndAllowedKeys) {
-  const std::string e = error_of(with_objects(R"({"alias": "a", "type": "sphere", "radius_m": 1, "radius": 2})"));
+  const std::string e = error_of(with_objects(R"j({"alias": "a", "type": "sphere", "radius_m": 1, "radius": 2})j"));
   EXPECT_THAT(e, HasSubstr("inline.json: /objects/0/radius: unknown key \"radius\"; expected one of:"));
   EXPECT_THAT(e, HasSubstr("radius_m"));
 }
 
 TEST(SceneLoaderErrors, UnknownTopLevelAndNestedKeys) {
-  EXPECT_THAT(error_of(R"({"objects": [], "gravity": 1})"), HasSubstr("/gravity: unknown key"));
-  EXPECT_THAT(error_of(R"({"objects": [], "world": {"step": 1}})"), HasSubstr("/world/step: unknown key"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "dummy", "pose": {"xyz": [1,2,3]}})")),
+  EXPECT_THAT(error_of(R"j({"objects": [], "gravity": 1})j"), HasSubstr("/gravity: unknown key"));
+  EXPECT_THAT(error_of(R"j({"objects": [], "world": {"step": 1}})j"), HasSubstr("/world/step: unknown key"));
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "dummy", "pose": {"xyz": [1,2,3]}})j")),
               HasSubstr("/objects/0/pose/xyz: unknown key"));
 }
 
 TEST(SceneLoaderErrors, WrongTypes) {
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "cuboid", "size_m": [1, "2", 3]})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "cuboid", "size_m": [1, "2", 3]})j")),
               HasSubstr("/objects/0/size_m/1: expected a number > 0, got \"2\""));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "cuboid", "size_m": [1, 2]})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "cuboid", "size_m": [1, 2]})j")),
               HasSubstr("/objects/0/size_m: expected an array of 3 elements, got [1,2]"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": 7, "type": "sphere", "radius_m": 1})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": 7, "type": "sphere", "radius_m": 1})j")),
               HasSubstr("/objects/0/alias: expected a non-empty string, got 7"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "sphere", "radius_m": 1, "static": "yes"})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "sphere", "radius_m": 1, "static": "yes"})j")),
               HasSubstr("/objects/0/static: expected true or false"));
-  EXPECT_THAT(error_of(R"({"objects": {}})"), HasSubstr("/objects: expected an array of 0 to"));
-  EXPECT_THAT(error_of(R"([1, 2])"), HasSubstr("inline.json: expected an object, got [1,2]"));
+  EXPECT_THAT(error_of(R"j({"objects": {}})j"), HasSubstr("/objects: expected an array of 0 to"));
+  EXPECT_THAT(error_of(R"j([1, 2])j"), HasSubstr("inline.json: expected an object, got [1,2]"));
 }
 
 TEST(SceneLoaderErrors, OutOfRangeValues) {
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "cuboid", "size_m": [1, -1, 3]})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "cuboid", "size_m": [1, -1, 3]})j")),
               HasSubstr("/objects/0/size_m/1: expected a number > 0, got -1"));
-  EXPECT_THAT(error_of(R"({"objects": [], "world": {"physics_step_s": 0}})"),
+  EXPECT_THAT(error_of(R"j({"objects": [], "world": {"physics_step_s": 0}})j"),
               HasSubstr("/world/physics_step_s: expected a number in [1e-05, 0.1], got 0"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "sphere", "radius_m": 1, "color": [0, 2, 0]})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "sphere", "radius_m": 1, "color": [0, 2, 0]})j")),
               HasSubstr("/objects/0/color/1: expected a number in [0, 1], got 2"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "trees", "count": -3})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "trees", "count": -3})j")),
               HasSubstr("/objects/0/count: expected an integer in [0, 10000], got -3"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "trees", "trunk_radius_m": [0.5, 0.2]})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "trees", "trunk_radius_m": [0.5, 0.2]})j")),
               HasSubstr("/objects/0/trunk_radius_m: expected [min, max] with min <= max"));
-  EXPECT_THAT(error_of(R"({"objects": [], "world": {"seed": -1}})"),
+  EXPECT_THAT(error_of(R"j({"objects": [], "world": {"seed": -1}})j"),
               HasSubstr("/world/seed: expected a non-negative integer seed, got -1"));
 }
 
 TEST(SceneLoaderErrors, UnknownTypeAndMissingKeys) {
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "torus"})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "torus"})j")),
               HasSubstr("/objects/0/type: expected one of \"cuboid\", \"cylinder\""));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "cuboid"})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "cuboid"})j")),
               HasSubstr("/objects/0: missing required key \"size_m\""));
-  EXPECT_THAT(error_of(with_objects(R"({"type": "plane"})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"type": "plane"})j")),
               HasSubstr("/objects/0: missing required key \"alias\""));
-  EXPECT_THAT(error_of(R"({})"), HasSubstr("inline.json: missing required key \"objects\""));
+  EXPECT_THAT(error_of(R"j({})j"), HasSubstr("inline.json: missing required key \"objects\""));
 }
 
 TEST(SceneLoaderErrors, DuplicateAliasesNameBothPlaces) {
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "plane"},
-      {"alias": "b", "type": "dummy", "children": [{"alias": "a", "type": "dummy"}]})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "plane"},
+      {"alias": "b", "type": "dummy", "children": [{"alias": "a", "type": "dummy"}]})j")),
               HasSubstr("/objects/1/children/0/alias: duplicate alias \"a\" (first used at /objects/0/alias)"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "bad/name", "type": "plane"})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "bad/name", "type": "plane"})j")),
               HasSubstr("/objects/0/alias: expected an alias of 1-64 letters"));
 }
 
 TEST(SceneLoaderErrors, DanglingReferences) {
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "rover",
-      "mission": {"waypoints": [{"frame": "nowhere"}]}})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "rover",
+      "mission": {"waypoints": [{"frame": "nowhere"}]}})j")),
               HasSubstr("/objects/0/mission/waypoints/0/frame: expected the alias of a dummy object, got \"nowhere\""));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "rover",
-      "mission": {"grid": "missing", "waypoints": [{"cell": [1, 1], "agl_m": 1}]}})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "rover",
+      "mission": {"grid": "missing", "waypoints": [{"cell": [1, 1], "agl_m": 1}]}})j")),
               HasSubstr("/objects/0/mission/grid: expected the alias of a grid_obstacles object"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "rover",
-      "mission": {"waypoints": [{"cell": [1, 1], "agl_m": 1}]}})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "rover",
+      "mission": {"waypoints": [{"cell": [1, 1], "agl_m": 1}]}})j")),
               HasSubstr("/objects/0/mission/waypoints/0/cell: expected a mission with \"grid\""));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "quadrotor",
-      "sensors": [{"alias": "s", "type": "lidar", "preset": "kinect"}]})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "quadrotor",
+      "sensors": [{"alias": "s", "type": "lidar", "preset": "kinect"}]})j")),
               HasSubstr("/objects/0/sensors/0/preset: expected one of \"scanner3d\""));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "d", "type": "dummy", "pose": {"position_m": [0, 0, 1], "above_ground": true}})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "d", "type": "dummy", "pose": {"position_m": [0, 0, 1], "above_ground": true}})j")),
               HasSubstr("/objects/0/pose/above_ground: no terrain below"));
 }
 
 TEST(SceneLoaderErrors, UnreadableDataFiles) {
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "heightfield", "csv": "no_such_file.csv"})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "heightfield", "csv": "no_such_file.csv"})j")),
               HasSubstr("/objects/0/csv: expected a readable file, but"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "heightfield"})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "heightfield"})j")),
               HasSubstr("/objects/0: expected exactly one height source"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "heightfield", "expression": "sin(x/"})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "heightfield", "expression": "sin(x/"})j")),
               HasSubstr("/objects/0/expression: "));
 }
 
 TEST(SceneLoaderErrors, InconsistentValues) {
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "sphere", "radius_m": 1, "static": false})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "sphere", "radius_m": 1, "static": false})j")),
               HasSubstr("/objects/0: a non-static shape needs \"mass_kg\" > 0"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "rover", "sensors": [
-      {"alias": "s", "type": "lidar", "range_m": [5, 1]}]})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "rover", "sensors": [
+      {"alias": "s", "type": "lidar", "range_m": [5, 1]}]})j")),
               HasSubstr("/objects/0/sensors/0/range_m: expected [min, max] with 0 <= min < max"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "rover", "sensors": [
-      {"alias": "s", "type": "lidar"}, {"alias": "s", "type": "lidar"}]})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "rover", "sensors": [
+      {"alias": "s", "type": "lidar"}, {"alias": "s", "type": "lidar"}]})j")),
               HasSubstr("/objects/0/sensors/1/alias: duplicate sensor alias \"s\""));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "g", "type": "grid_obstacles", "rows": 10, "cols": 10,
-      "boxes": [{"rows": [5, 3], "cols": 1, "height_m": 2}]})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "g", "type": "grid_obstacles", "rows": 10, "cols": 10,
+      "boxes": [{"rows": [5, 3], "cols": 1, "height_m": 2}]})j")),
               HasSubstr("/objects/0/boxes/0/rows/1: expected an integer in [5, 10], got 3"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "heightfield", "expression": "x",
-      "pose": {"rpy_deg": [10, 0, 0]}})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "heightfield", "expression": "x",
+      "pose": {"rpy_deg": [10, 0, 0]}})j")),
               HasSubstr("/objects/0/pose: expected a heightfield pose without roll or pitch"));
 }
 
@@ -248,28 +248,28 @@ TEST(SceneLoaderErrors, SyntaxErrorsReportLineAndColumn) {
 TEST(SceneLoaderErrors, LimitsStopHostileFiles) {
   SceneLimits limits;
   limits.max_objects = 3;
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "plane"}, {"alias": "b", "type": "plane"},
-      {"alias": "c", "type": "plane"}, {"alias": "d", "type": "plane"})"), limits),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "plane"}, {"alias": "b", "type": "plane"},
+      {"alias": "c", "type": "plane"}, {"alias": "d", "type": "plane"})j"), limits),
               HasSubstr("expected an array of 0 to 3 elements"));
   limits = {};
   limits.max_child_depth = 2;
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "a", "type": "dummy", "children": [
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "dummy", "children": [
       {"alias": "b", "type": "dummy", "children": [{"alias": "c", "type": "dummy", "children": [
-      {"alias": "d", "type": "dummy"}]}]}]})"), limits),
+      {"alias": "d", "type": "dummy"}]}]}]})j"), limits),
               HasSubstr("expected children nested at most 2 deep"));
   EXPECT_THAT(error_of(std::string(100, '[') + std::string(100, ']')), HasSubstr("nesting deeper than 32 levels"));
   limits = {};
   limits.json.max_file_bytes = 64;
   EXPECT_THAT(error_of(with_objects(std::string(100, ' ')), limits), HasSubstr("file too large"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "rolling_terrain", "size_m": [100000, 100000], "spacing_m": 0.1})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "rolling_terrain", "size_m": [100000, 100000], "spacing_m": 0.1})j")),
               HasSubstr("/objects/0: expected a grid of at most 16777216 vertices"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "trees", "count": 20000})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "trees", "count": 20000})j")),
               HasSubstr("/objects/0/count: expected an integer in [0, 10000]"));
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "v", "type": "vineyard", "row_count": 400, "post_spacing_m": 0.01})")),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "vineyard", "row_count": 400, "post_spacing_m": 0.01})j")),
               HasSubstr("/objects/0: expected at most 100000 posts"));
   limits = {};
   limits.max_shapes = 5;
-  EXPECT_THAT(error_of(with_objects(R"({"alias": "t", "type": "trees", "count": 10, "min_spacing_m": 0.1})"), limits),
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "trees", "count": 10, "min_spacing_m": 0.1})j"), limits),
               HasSubstr("/objects/0: expected a scene of at most 5 shapes"));
 }
 
@@ -284,9 +284,9 @@ TEST(SceneLoaderErrors, MissingFileIsAnInputError) {
 
 TEST(SceneLoader, HashesTheFileBytes) {
   const auto path = std::filesystem::temp_directory_path() / "campo_hash_test.json";
-  std::ofstream(path) << R"({"objects": []})";
+  std::ofstream(path) << R"j({"objects": []})j";
   const Scene scene = load_scene(path);
-  EXPECT_EQ(scene.source_sha256, sha256_hex(R"({"objects": []})"));
+  EXPECT_EQ(scene.source_sha256, sha256_hex(R"j({"objects": []})j"));
   // SHA-256 of "abc" (FIPS 180-2 test vector).
   EXPECT_EQ(sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
   std::filesystem::remove(path);

@@ -14,9 +14,9 @@ Scene parse(const std::string& text) {
   return parse_scene(nlohmann::json::parse(text), "inline.json", std::filesystem::temp_directory_path());
 }
 
-const char* kSineTerrain = R"({"objects": [
+const char* kSineTerrain = R"j({"objects": [
   {"alias": "ground", "type": "heightfield", "expression": "sin(x/5) + 0.3*cos(y/3)",
-   "size_m": [60, 40], "spacing_m": 0.5, "pose": {"position_m": [10, -5, 2]}}]})";
+   "size_m": [60, 40], "spacing_m": 0.5, "pose": {"position_m": [10, -5, 2]}}]})j";
 
 TEST(World, TerrainHeightMatchesTheExpressionAtVertices) {
   const Scene scene = parse(kSineTerrain);
@@ -59,9 +59,9 @@ TEST(World, BulletRayTestAgreesWithTerrainHeight) {
 }
 
 TEST(World, RayTestHitsPrimitivesAtAnalyticDistances) {
-  const Scene scene = parse(R"({"objects": [
+  const Scene scene = parse(R"j({"objects": [
     {"alias": "box", "type": "cuboid", "size_m": [2, 2, 2], "pose": {"position_m": [10, 0, 0]}},
-    {"alias": "ball", "type": "sphere", "radius_m": 1.5, "pose": {"position_m": [0, 10, 0]}}]})");
+    {"alias": "ball", "type": "sphere", "radius_m": 1.5, "pose": {"position_m": [0, 10, 0]}}]})j");
   const World world(scene);
   const auto box = world.ray_test({0, 0, 0}, {20, 0, 0});
   ASSERT_TRUE(box);
@@ -74,9 +74,9 @@ TEST(World, RayTestHitsPrimitivesAtAnalyticDistances) {
 }
 
 TEST(World, FreeFallFollowsSymplecticEuler) {
-  const Scene scene = parse(R"({"world": {"physics_step_s": 0.01},
+  const Scene scene = parse(R"j({"world": {"physics_step_s": 0.01},
     "objects": [{"alias": "ball", "type": "sphere", "radius_m": 0.1, "static": false, "mass_kg": 1,
-                 "pose": {"position_m": [0, 0, 100]}}]})");
+                 "pose": {"position_m": [0, 0, 100]}}]})j");
   World world(scene);
   for (int i = 0; i < 200; ++i) world.step();
   // v_{n+1} = v_n - g dt, z_{n+1} = z_n + v_{n+1} dt  =>  z_n = z_0 - g dt^2 n (n + 1) / 2.
@@ -88,10 +88,10 @@ TEST(World, FreeFallFollowsSymplecticEuler) {
 }
 
 TEST(World, BodiesComeToRestOnTheTerrain) {
-  const Scene scene = parse(R"({"objects": [
+  const Scene scene = parse(R"j({"objects": [
     {"alias": "ground", "type": "heightfield", "expression": "0", "size_m": [20, 20], "spacing_m": 1},
     {"alias": "crate", "type": "cuboid", "size_m": [1, 1, 1], "static": false, "mass_kg": 5,
-     "pose": {"position_m": [0.3, 0.2, 3]}}]})");
+     "pose": {"position_m": [0.3, 0.2, 3]}}]})j");
   World world(scene);
   for (int i = 0; i < 240 * 3; ++i) world.step();
   const BodyState s = world.shape_state(1);
@@ -100,9 +100,9 @@ TEST(World, BodiesComeToRestOnTheTerrain) {
 }
 
 TEST(World, MoversFollowTheirPath) {
-  const Scene scene = parse(R"({"objects": [
+  const Scene scene = parse(R"j({"objects": [
     {"alias": "walker", "type": "mover", "shape": {"type": "cylinder", "radius_m": 0.3, "height_m": 1.7},
-     "path_m": [[0, 0, 1], [10, 0, 1]], "speed_mps": 2}]})");
+     "path_m": [[0, 0, 1], [10, 0, 1]], "speed_mps": 2}]})j");
   World world(scene);
   for (int i = 0; i < 240; ++i) world.step();  // 1 s
   const auto hit = world.ray_test({2.0, -5.0, 1.0}, {2.0, 5.0, 1.0});
@@ -112,13 +112,13 @@ TEST(World, MoversFollowTheirPath) {
 }
 
 TEST(World, RebuildingFromTheSameSceneIsBitIdentical) {
-  const Scene scene = parse(R"({"objects": [
+  const Scene scene = parse(R"j({"objects": [
     {"alias": "ground", "type": "rolling_terrain", "size_m": [30, 30], "amplitude_m": 1, "seed": 3},
     {"alias": "a", "type": "sphere", "radius_m": 0.4, "static": false, "mass_kg": 1, "pose": {"position_m": [0.1, 0, 4]}},
     {"alias": "b", "type": "cuboid", "size_m": [0.5, 0.7, 0.3], "static": false, "mass_kg": 2,
      "pose": {"position_m": [0.3, 0.2, 6], "rpy_deg": [10, 20, 30]}},
     {"alias": "c", "type": "cylinder", "radius_m": 0.3, "height_m": 1, "static": false, "mass_kg": 1,
-     "pose": {"position_m": [-2, 1, 3], "rpy_deg": [80, 0, 0]}}]})");
+     "pose": {"position_m": [-2, 1, 3], "rpy_deg": [80, 0, 0]}}]})j");
   const auto run = [&scene] {
     World world(scene);
     for (int i = 0; i < 1200; ++i) world.step();
