@@ -43,6 +43,18 @@ void read_interval(ObjectReader& r, std::string_view key, Eigen::Vector2d& out, 
   if (auto v = r.optional(key)) out = read_interval(*v, range);
 }
 
+// Runs a generator; its complaints about the config become input errors at `at`.
+template <class Generate>
+auto generated(const JsonNode& at, Generate generate) -> decltype(generate()) {
+  try {
+    return generate();
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(at.file(), at.pointer(), e.what());
+  }
+}
+
 class Loader {
  public:
   Loader(const SceneLimits& limits, std::filesystem::path base_dir)
@@ -261,28 +273,26 @@ class Loader {
     double spacing_m = 1.0;
     double height_scale_m = 1.0;
     double min_height_m = 0.0;
-    try {
-      if (expression) {
-        r.read("size_m", size_m, Range::positive());
-        r.read("spacing_m", spacing_m, Range::positive());
-        check_vertex_count(node, size_m, spacing_m);
-        shape.terrain = std::make_shared<HeightGrid>(heightgrid_from_expression(
-            expression->as_string(), size_m, spacing_m, shape.pose));
-      } else if (csv) {
-        r.read("spacing_m", spacing_m, Range::positive());
-        shape.terrain = std::make_shared<HeightGrid>(
-            heightgrid_from_csv(resolve_path(*csv), spacing_m));
-      } else {
-        r.read("size_m", size_m, Range::positive());
-        r.read("height_scale_m", height_scale_m, Range::positive());
-        r.read("min_height_m", min_height_m, Range::closed(-1e4, 1e4));
-        shape.terrain = std::make_shared<HeightGrid>(
-            heightgrid_from_png(resolve_path(*png), size_m, height_scale_m, min_height_m));
-      }
-    } catch (const std::runtime_error& e) {
-      if (dynamic_cast<const InputError*>(&e)) throw;
-      const JsonNode& source = expression ? *expression : csv ? *csv : *png;
-      throw InputError(source.file(), source.pointer(), e.what());
+    const JsonNode& source = expression ? *expression : csv ? *csv : *png;
+    if (expression) {
+      r.read("size_m", size_m, Range::positive());
+      r.read("spacing_m", spacing_m, Range::positive());
+      check_vertex_count(node, size_m, spacing_m);
+      shape.terrain = std::make_shared<HeightGrid>(generated(source, [&] {
+        return heightgrid_from_expression(expression->as_string(), size_m, spacing_m, shape.pose);
+      }));
+    } else if (csv) {
+      r.read("spacing_m", spacing_m, Range::positive());
+      const auto path = resolve_path(*csv);
+      shape.terrain = std::make_shared<HeightGrid>(
+          generated(source, [&] { return heightgrid_from_csv(path, spacing_m); }));
+    } else {
+      r.read("size_m", size_m, Range::positive());
+      r.read("height_scale_m", height_scale_m, Range::positive());
+      r.read("min_height_m", min_height_m, Range::closed(-1e4, 1e4));
+      const auto path = resolve_path(*png);
+      shape.terrain = std::make_shared<HeightGrid>(generated(
+          source, [&] { return heightgrid_from_png(path, size_m, height_scale_m, min_height_m); }));
     }
   }
 
@@ -319,7 +329,7 @@ class Loader {
     shape.color = {0.45, 0.6, 0.3};
     if (auto col = r.optional("color")) shape.color = read_color(*col);
     r.read("friction", shape.friction, Range::closed(0.0, 10.0));
-    shape.terrain = std::make_shared<HeightGrid>(make_rolling_terrain(c));
+    shape.terrain = std::make_shared<HeightGrid>(generated(r.node(), [&] { return make_rolling_terrain(c); }));
     add_shape(std::move(shape), r.node());
   }
 
@@ -349,11 +359,7 @@ class Loader {
       }
     }
     r.read_seed("seed", c.seed);
-    try {
-      add_generated(make_trees(c, alias, ground_function()), r.node());
-    } catch (const std::runtime_error& e) {
-      throw InputError(r.node().file(), r.node().pointer(), e.what());
-    }
+    add_generated(generated(r.node(), [&] { return make_trees(c, alias, ground_function()); }), r.node());
   }
 
   void read_vineyard(ObjectReader& r, const std::string& alias, const Eigen::Isometry3d& parent) {
@@ -379,11 +385,7 @@ class Loader {
              " posts (row_count x row length / post_spacing_m)");
     }
     const Eigen::Isometry3d placement = read_pose(r, parent);
-    try {
-      add_generated(make_vineyard(c, alias), r.node(), placement);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(r.node().file(), r.node().pointer(), e.what());
-    }
+    add_generated(generated(r.node(), [&] { return make_vineyard(c, alias); }), r.node(), placement);
   }
 
   // Reads "[first, last]" or a single index, 1-based, within [1, max].
@@ -416,7 +418,8 @@ class Loader {
         c.boxes.push_back(box);
       }
     }
-    add_generated(make_grid_obstacles(c, alias, ground_function()), r.node());
+    add_generated(generated(r.node(), [&] { return make_grid_obstacles(c, alias, ground_function()); }),
+                  r.node());
     grids_.emplace(alias, c);
   }
 
