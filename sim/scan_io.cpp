@@ -54,8 +54,6 @@ nlohmann::json lidar_config_json(const LidarConfig& c) {
   nlohmann::json j = {
       {"type", "lidar"},
       {"preset", c.preset},
-      {"fov_deg", {c.fov_h_deg, c.fov_v_deg}},
-      {"resolution", {c.cols, c.rows}},
       {"range_m", {c.min_range_m, c.max_range_m}},
       {"noise_stddev_m", c.noise_stddev_m},
       {"dropout_probability", c.dropout_probability},
@@ -66,7 +64,11 @@ nlohmann::json lidar_config_json(const LidarConfig& c) {
        {{"position_m", {c.mount.position_m.x(), c.mount.position_m.y(), c.mount.position_m.z()}},
         {"rpy_deg", {c.mount.rpy_deg.x(), c.mount.rpy_deg.y(), c.mount.rpy_deg.z()}}}},
   };
-  if (!c.beams.empty()) {
+  // Explicit beams replace the grid, as in a scene file.
+  if (c.beams.empty()) {
+    j["fov_deg"] = {c.fov_h_deg, c.fov_v_deg};
+    j["resolution"] = {c.cols, c.rows};
+  } else {
     nlohmann::json beams = nlohmann::json::array();
     for (const Beam& b : c.beams) beams.push_back({b.azimuth_deg, b.elevation_deg});
     j["beams"] = beams;

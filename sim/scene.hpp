@@ -104,9 +104,18 @@ struct Waypoint {
   std::optional<double> heading_deg;  ///< required heading (Dubins routes), if any
 };
 
+/// Parameters that another module validates (vehicle presets, planners),
+/// kept with where they came from so its errors can name file and pointer.
+struct ParamsBlock {
+  nlohmann::json values = nlohmann::json::object();
+  std::string file;     ///< scene file
+  std::string pointer;  ///< JSON pointer of the block (where it would be, when absent)
+};
+
 struct PlannerSpec {
-  std::string name;            ///< registry name; empty = the vehicle's default
-  nlohmann::json params = nlohmann::json::object();  ///< checked by the planner
+  std::string name;          ///< registry name; empty = the default planner
+  std::string name_pointer;  ///< JSON pointer of "name" in params.file ("" when absent)
+  ParamsBlock params;        ///< checked by the planner
 };
 
 struct VehicleDef {
@@ -114,6 +123,7 @@ struct VehicleDef {
   VehicleType type = VehicleType::quadrotor;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< start pose, world frame
   std::vector<SensorDef> sensors;
+  ParamsBlock params;  ///< overrides of the vehicle preset, checked by vehicles/
   PlannerSpec planner;
   std::vector<Waypoint> mission;  ///< ordered; the last one is the goal
 };

@@ -472,19 +472,27 @@ class Loader {
         vehicle.sensors.push_back(std::move(sensor));
       }
     }
+    vehicle.planner.params = {nlohmann::json::object(), r.node().file(),
+                              child_pointer(child_pointer(r.node().pointer(), "planner"), "params")};
     if (auto planner = r.optional("planner")) {
       ObjectReader p(*planner);
-      vehicle.planner.name = p.required("name").as_string();
-      if (auto params = p.optional("params")) {
-        if (!params->value().is_object()) params->fail("an object");
-        vehicle.planner.params = params->value();
-      }
+      const JsonNode name = p.required("name");
+      vehicle.planner.name = name.as_string();
+      vehicle.planner.name_pointer = name.pointer();
+      if (auto params = p.optional("params")) vehicle.planner.params = read_params_block(*params);
       p.finish();
     }
+    vehicle.params = {nlohmann::json::object(), r.node().file(), child_pointer(r.node().pointer(), "params")};
+    if (auto params = r.optional("params")) vehicle.params = read_params_block(*params);
     if (auto mission = r.optional("mission")) {
       pending_missions_.emplace_back(scene_.vehicles.size(), *mission);
     }
     scene_.vehicles.push_back(std::move(vehicle));
+  }
+
+  static ParamsBlock read_params_block(const JsonNode& node) {
+    if (!node.value().is_object()) node.fail("an object");
+    return {node.value(), node.file(), node.pointer()};
   }
 
   std::vector<Waypoint> read_mission(const JsonNode& node) {
@@ -583,6 +591,11 @@ LidarConfig parse_lidar(const JsonNode& node, const SceneLimits& limits) {
     std::vector<std::string_view> choices(names.begin(), names.end());
     c = *lidar_preset(choices[preset->as_choice(choices)]);
   }
+  if (r.has("beams") && (r.has("fov_deg") || r.has("resolution"))) {
+    r.fail("either \"beams\" or a grid (\"fov_deg\", \"resolution\"), not both");
+  }
+  // A grid given here replaces a preset's explicit beams.
+  if (r.has("fov_deg") || r.has("resolution")) c.beams.clear();
   if (auto fov = r.optional("fov_deg")) {
     const auto items = fov->as_array(2, 2);
     c.fov_h_deg = items[0].as_number({0.0, 360.0, true, false});

@@ -88,6 +88,11 @@ struct World::Impl {
   btRigidBody* add_body(const Shape& shape, int tag, bool kinematic) {
     shapes.push_back(make_shape(shape));
     btCollisionShape* collision_shape = shapes.back().get();
+    // Bullet pads cylinders and cones with a collision margin (4 cm), which
+    // would make static obstacles fatter than what the LIDAR sees; moving
+    // bodies keep it for contact stability.
+    const bool padded = shape.type == ShapeType::cylinder || shape.type == ShapeType::cone;
+    if (padded && (shape.is_static || kinematic)) collision_shape->setMargin(0.0);
     const bool dynamic = !shape.is_static && !kinematic;
     const double mass = dynamic ? shape.mass_kg : 0.0;
     btVector3 inertia(0, 0, 0);

@@ -16,6 +16,10 @@ class btDiscreteDynamicsWorld;
 
 namespace campo {
 
+/// Bullet user index of bodies that belong to vehicles (scene shapes carry
+/// their index in Scene::shapes, movers -(1 + mover index)).
+inline constexpr int kVehicleBodyTag = -2000000000;
+
 /// State of one rigid body, world frame.
 struct BodyState {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();

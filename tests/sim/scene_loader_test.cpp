@@ -110,7 +110,8 @@ TEST(SceneLoader, ReadsVehicleSensorsAndMissionForms) {
   EXPECT_EQ(v.sensors[0].lidar.rows, 32);
   EXPECT_DOUBLE_EQ(v.sensors[0].lidar.max_range_m, 8.0);
   EXPECT_EQ(v.planner.name, "depthmap");
-  EXPECT_EQ(v.planner.params["k"], 2);
+  EXPECT_EQ(v.planner.params.values["k"], 2);
+  EXPECT_EQ(v.planner.params.pointer, "/objects/3/planner/params");
   ASSERT_EQ(v.mission.size(), 5u);
   EXPECT_EQ(v.mission[1].position_m, Eigen::Vector3d(5, 6, 7));
   // 0.001 deg of latitude north is ~111 m.
@@ -312,6 +313,24 @@ TEST(SceneLoader, DocumentedExampleIsValid) {
   EXPECT_EQ(scene.vehicles.at(0).mission.size(), 4u);
   EXPECT_EQ(scene.movers.size(), 1u);
   EXPECT_NE(scene.find_shape("chimney"), nullptr);
+}
+
+}  // namespace
+}  // namespace campo
+
+namespace campo {
+namespace {
+
+TEST(SceneLoader, GridKeysReplaceAPresetsBeams) {
+  const Scene scene = parse(R"({"objects": [{"alias": "r", "type": "rover", "sensors": [
+      {"alias": "a", "type": "lidar", "preset": "planar180"},
+      {"alias": "b", "type": "lidar", "preset": "planar180", "resolution": [361, 1]}]}]})");
+  EXPECT_EQ(scene.vehicles[0].sensors[0].lidar.beam_count(), 181);
+  EXPECT_TRUE(scene.vehicles[0].sensors[1].lidar.beams.empty());
+  EXPECT_EQ(scene.vehicles[0].sensors[1].lidar.beam_count(), 361);
+  EXPECT_THAT(error_of(R"({"objects": [{"alias": "r", "type": "rover", "sensors": [
+      {"alias": "a", "type": "lidar", "beams": [[0, 0]], "resolution": [4, 4]}]}]})"),
+              HasSubstr("/objects/0/sensors/0: expected either \"beams\" or a grid"));
 }
 
 }  // namespace
