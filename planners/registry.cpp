@@ -1,0 +1,31 @@
+#include "planners/registry.hpp"
+
+#include <array>
+
+#include "planners/straight.hpp"
+#include "sim/json_reader.hpp"
+
+namespace campo {
+
+namespace {
+
+constexpr std::array kPlanners{
+    PlannerEntry{"straight", "head for each mission waypoint in turn in a straight line", &make_straight_planner},
+};
+
+}  // namespace
+
+std::span<const PlannerEntry> planner_registry() { return kPlanners; }
+
+std::unique_ptr<Planner> create_planner(const PlannerSpec& spec, const PlannerContext& context) {
+  const std::string_view name = spec.name.empty() ? kDefaultPlanner : std::string_view(spec.name);
+  for (const PlannerEntry& entry : kPlanners) {
+    if (entry.name == name) return entry.create(spec.params, context);
+  }
+  std::string known;
+  for (const PlannerEntry& entry : kPlanners) known += (known.empty() ? "" : ", ") + std::string(entry.name);
+  throw InputError(spec.params.file, spec.name_pointer,
+                   "unknown planner \"" + std::string(name) + "\"; expected one of: " + known);
+}
+
+}  // namespace campo

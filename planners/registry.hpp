@@ -1,0 +1,31 @@
+#pragma once
+/// The one list of planners: name -> factory. Adding a planner is one file
+/// plus one line in registry.cpp.
+#include <memory>
+#include <span>
+#include <string_view>
+
+#include "sim/planner.hpp"
+
+namespace campo {
+
+/// Builds a planner from its parameters; throws InputError (naming the
+/// params block's file and pointer) for bad parameters.
+using PlannerFactory = std::unique_ptr<Planner> (*)(const ParamsBlock& params, const PlannerContext& context);
+
+struct PlannerEntry {
+  std::string_view name;
+  std::string_view description;
+  PlannerFactory create;
+};
+
+std::span<const PlannerEntry> planner_registry();
+
+/// Name of the planner used when a vehicle names none.
+inline constexpr std::string_view kDefaultPlanner = "straight";
+
+/// Creates the planner `spec` names (kDefaultPlanner when empty); an unknown
+/// name is an InputError at the planner's params file/pointer.
+std::unique_ptr<Planner> create_planner(const PlannerSpec& spec, const PlannerContext& context);
+
+}  // namespace campo

@@ -1,0 +1,173 @@
+#include "sim/episode.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+
+#include "sim/clearance.hpp"
+#include "sim/lidar.hpp"
+#include "sim/raycaster.hpp"
+
+namespace campo {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Steps between two events at `rate_hz` with physics step dt (at least 1).
+std::int64_t period_steps(double rate_hz, double dt) {
+  return std::max<std::int64_t>(1, std::llround(1.0 / (rate_hz * dt)));
+}
+
+struct MountedSensor {
+  const SensorDef* def;
+  Lidar lidar;
+  LidarScan scan;
+  std::int64_t period;
+  bool scanned = false;
+};
+
+}  // namespace
+
+std::string_view to_string(Outcome outcome) {
+  static constexpr std::string_view kNames[] = {"reached", "collision", "timeout", "aborted"};
+  return kNames[static_cast<int>(outcome)];
+}
+
+nlohmann::json to_json(const EpisodeMetrics& m) {
+  return {
+      {"outcome", to_string(m.outcome)},
+      {"reason", m.reason},
+      {"sim_time_s", m.sim_time_s},
+      {"wall_time_s", m.wall_time_s},
+      {"path_length_m", m.path_length_m},
+      {"path_ratio", m.path_ratio},
+      // null when the scene has no obstacles at all
+      {"min_clearance_m", std::isfinite(m.min_clearance_m) ? nlohmann::json(m.min_clearance_m) : nlohmann::json()},
+      {"collisions", m.collisions},
+      {"planner_calls", m.planner_calls},
+      {"planner_time_ms_mean", m.planner_time_ms_mean},
+      {"planner_time_ms_max", m.planner_time_ms_max},
+  };
+}
+
+EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, PlannerMaker make_planner,
+                          const EpisodeOptions& options) {
+  if (options.vehicle_index >= scene.vehicles.size()) {
+    throw std::invalid_argument("scene " + scene.name + " has no vehicle " + std::to_string(options.vehicle_index));
+  }
+  const VehicleDef& def = scene.vehicles[options.vehicle_index];
+  const double dt = scene.world.physics_step_s;
+  const auto wall_start = Clock::now();
+
+  World world(scene);
+  const std::unique_ptr<Vehicle> vehicle = make_vehicle(world, def);
+  const std::unique_ptr<Planner> planner = make_planner(def.planner, {def.type, &scene});
+  const ClearanceField clearance(scene);
+
+  std::optional<RayCaster> caster;
+  std::vector<MountedSensor> sensors;
+  sensors.reserve(def.sensors.size());
+  for (const SensorDef& s : def.sensors) {
+    if (!caster) caster.emplace(scene);
+    const double rate = s.lidar.rate_hz > 0.0 ? s.lidar.rate_hz : scene.world.sensor_rate_hz;
+    sensors.push_back({&s, Lidar(s.lidar, scene.world.seed), LidarScan{}, period_steps(rate, dt)});
+  }
+  std::vector<SensorReading> readings(sensors.size());
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    readings[i] = {sensors[i].def->alias, &sensors[i].def->lidar, nullptr, false};
+  }
+
+  EpisodeResult result;
+  result.vehicle_parameters = vehicle->parameters();
+  result.planner_parameters = planner->parameters();
+  EpisodeMetrics& m = result.metrics;
+  const std::int64_t control_period = period_steps(scene.world.control_rate_hz, dt);
+  const Eigen::Vector3d start = vehicle->state().position_m;
+  m.min_clearance_m = std::numeric_limits<double>::infinity();
+  double planner_ms_total = 0.0;
+  bool was_colliding = false;
+  std::optional<Outcome> outcome;
+  Eigen::Vector3d previous = start;
+
+  for (std::int64_t k = 0; !outcome; ++k) {
+    const double t = static_cast<double>(k) * dt;
+    // Sense.
+    for (std::size_t i = 0; i < sensors.size(); ++i) {
+      MountedSensor& s = sensors[i];
+      if (k % s.period != 0) continue;
+      caster->set_time(t);
+      s.lidar.scan(*caster, vehicle->state().pose() * to_isometry(s.def->lidar.mount), t, s.scan);
+      readings[i].scan = &s.scan;
+      readings[i].fresh = true;
+    }
+    // Plan and command.
+    if (k % control_period == 0) {
+      const VehicleState state = vehicle->state();
+      const Observation observation{t, def.type, state, vehicle->stable(), readings, def.mission};
+      const auto plan_start = Clock::now();
+      PlanResult plan = planner->plan(observation);
+      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - plan_start).count();
+      for (auto& r : readings) r.fresh = false;
+      ++m.planner_calls;
+      planner_ms_total += ms;
+      m.planner_time_ms_max = std::max(m.planner_time_ms_max, ms);
+      if (!plan.decisions.is_null()) result.events.push_back({t, std::move(plan.decisions)});
+      const double c = std::max(0.0, clearance.distance(state.position_m, t) - vehicle->bounding_radius_m());
+      m.min_clearance_m = std::min(m.min_clearance_m, c);
+      vehicle->command(plan.command);
+      result.trajectory.push_back({t, state, plan.command, c, vehicle->actuators()});
+      if (plan.status == PlanStatus::reached) {
+        outcome = Outcome::reached;
+        m.reason = plan.reason;
+        break;
+      }
+      if (plan.status != PlanStatus::running) {
+        outcome = Outcome::aborted;
+        m.reason = std::string(to_string(plan.status)) + (plan.reason.empty() ? "" : ": " + plan.reason);
+        break;
+      }
+    }
+    // Actuate and step.
+    vehicle->pre_step(dt);
+    world.step();
+    const Eigen::Vector3d position = vehicle->state().position_m;
+    m.path_length_m += (position - previous).norm();
+    previous = position;
+    const bool colliding = vehicle->in_collision();
+    if (colliding && !was_colliding) {
+      ++m.collisions;
+      if (options.stop_on_collision) {
+        outcome = Outcome::collision;
+        m.reason = "collision at t = " + std::to_string(world.time_s()) + " s";
+      }
+    }
+    was_colliding = colliding;
+    if (!outcome && world.time_s() >= scene.world.time_limit_s) {
+      outcome = Outcome::timeout;
+      m.reason = "time limit of " + std::to_string(scene.world.time_limit_s) + " s reached";
+    }
+  }
+
+  m.outcome = *outcome;
+  m.sim_time_s = world.time_s();
+  // The nominal route: straight legs from the start through every waypoint
+  // (for a single goal, the straight start-goal line).
+  double nominal = 0.0;
+  Eigen::Vector3d from = start;
+  for (const Waypoint& wp : def.mission) {
+    const Eigen::Vector3d leg = wp.position_m - from;
+    nominal += def.type == VehicleType::rover ? leg.head<2>().norm() : leg.norm();
+    from = wp.position_m;
+  }
+  m.path_ratio = nominal > 1e-9 ? m.path_length_m / nominal : 0.0;
+  m.planner_time_ms_mean = m.planner_calls > 0 ? planner_ms_total / m.planner_calls : 0.0;
+  m.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
+  result.final_state_hash = world.state_hash();
+  return result;
+}
+
+}  // namespace campo

@@ -1,0 +1,77 @@
+#pragma once
+/// The closed loop (SPEC §1): sense -> plan -> control -> actuate -> step,
+/// each at its own rate, until the mission ends, the time limit passes or the
+/// vehicle collides. Stepped from this one place; deterministic for a given
+/// Scene (including its world seed).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/planner.hpp"
+#include "sim/scene.hpp"
+#include "sim/vehicle.hpp"
+#include "sim/world.hpp"
+
+namespace campo {
+
+/// Builds the vehicle of a definition inside a world (vehicles/ provides make_vehicle).
+using VehicleFactory = std::unique_ptr<Vehicle> (*)(World& world, const VehicleDef& def);
+/// Builds a planner (planners/ provides create_planner).
+using PlannerMaker = std::unique_ptr<Planner> (*)(const PlannerSpec& spec, const PlannerContext& context);
+
+enum class Outcome { reached, collision, timeout, aborted };
+std::string_view to_string(Outcome outcome);
+
+/// Metrics of one run, named as in run.json.
+struct EpisodeMetrics {
+  Outcome outcome = Outcome::aborted;
+  std::string reason;
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;        ///< measured, so it differs between identical runs
+  double path_length_m = 0.0;      ///< flown/driven distance, integrated every physics step
+  double path_ratio = 0.0;         ///< path length / nominal route (straight legs start -> waypoints)
+  double min_clearance_m = 0.0;    ///< nearest approach of the vehicle's bounding sphere to an obstacle
+  int collisions = 0;
+  int planner_calls = 0;
+  double planner_time_ms_mean = 0.0;  ///< measured
+  double planner_time_ms_max = 0.0;   ///< measured
+};
+nlohmann::json to_json(const EpisodeMetrics& metrics);
+
+/// One row of trajectory.csv, taken at every planner call.
+struct TrajectorySample {
+  double time_s = 0.0;
+  VehicleState state;
+  Command command;
+  double clearance_m = 0.0;
+  nlohmann::json actuators;
+};
+
+/// A planner decision with the time it was taken (for run.json and figures).
+struct PlannerEvent {
+  double time_s = 0.0;
+  nlohmann::json decisions;
+};
+
+struct EpisodeResult {
+  EpisodeMetrics metrics;
+  std::vector<TrajectorySample> trajectory;
+  std::vector<PlannerEvent> events;
+  nlohmann::json vehicle_parameters;
+  nlohmann::json planner_parameters;
+  std::uint64_t final_state_hash = 0;  ///< World::state_hash at the end (determinism checks)
+};
+
+struct EpisodeOptions {
+  std::size_t vehicle_index = 0;  ///< which of the scene's vehicles runs the mission
+  bool stop_on_collision = true;  ///< end the run at the first collision
+};
+
+/// Runs one episode of `scene` to its end.
+EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, PlannerMaker make_planner,
+                          const EpisodeOptions& options = {});
+
+}  // namespace campo

@@ -1,0 +1,65 @@
+#pragma once
+/// The planner contract (SPEC §7): a planner receives observations at the
+/// control rate and returns a command with a typed status, plus the decisions
+/// it took for the record. Planners see plain data only, never Bullet.
+/// Implementations and the registry live in planners/.
+#include <span>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/lidar.hpp"
+#include "sim/scene.hpp"
+#include "sim/vehicle.hpp"
+
+namespace campo {
+
+/// Latest reading of one sensor.
+struct SensorReading {
+  std::string_view alias;
+  const LidarConfig* config = nullptr;
+  const LidarScan* scan = nullptr;  ///< null before the first scan
+  bool fresh = false;               ///< taken since the previous observation
+};
+
+struct Observation {
+  double time_s = 0.0;
+  VehicleType vehicle = VehicleType::quadrotor;
+  VehicleState state;
+  bool stable = false;                   ///< speeds below the vehicle's thresholds
+  std::span<const SensorReading> sensors;
+  std::span<const Waypoint> mission;
+};
+
+enum class PlanStatus {
+  running,        ///< keep going with the returned command
+  reached,        ///< the mission is complete
+  no_path,        ///< the goal cannot be reached
+  invalid_start,  ///< the planner cannot start from here
+  aborted,        ///< the planner gave up (reason says why)
+};
+std::string_view to_string(PlanStatus status);
+
+struct PlanResult {
+  PlanStatus status = PlanStatus::running;
+  Command command;
+  std::string reason;        ///< why, for any status but running
+  nlohmann::json decisions;  ///< what it decided this call (null when nothing to record)
+};
+
+/// What a planner may know when it is created.
+struct PlannerContext {
+  VehicleType vehicle = VehicleType::quadrotor;
+  const Scene* scene = nullptr;  ///< static map knowledge for global planners
+};
+
+class Planner {
+ public:
+  virtual ~Planner() = default;
+  virtual PlanResult plan(const Observation& observation) = 0;
+  /// The effective parameters, for provenance.
+  virtual nlohmann::json parameters() const = 0;
+};
+
+}  // namespace campo
