@@ -189,12 +189,17 @@ std::uint64_t World::state_hash() const {
     mix(v.y());
     mix(v.z());
   };
-  for (const auto& body : impl_->bodies) {
-    const btTransform& t = body->getWorldTransform();
+  // Every body in the dynamics world, vehicles' included, in insertion order.
+  const btCollisionObjectArray& objects = impl_->dynamics->getCollisionObjectArray();
+  for (int i = 0; i < objects.size(); ++i) {
+    const btCollisionObject* object = objects[i];
+    const btTransform& t = object->getWorldTransform();
     mix_vector(t.getOrigin());
     for (int r = 0; r < 3; ++r) mix_vector(t.getBasis().getRow(r));
-    mix_vector(body->getLinearVelocity());
-    mix_vector(body->getAngularVelocity());
+    if (const btRigidBody* body = btRigidBody::upcast(object)) {
+      mix_vector(body->getLinearVelocity());
+      mix_vector(body->getAngularVelocity());
+    }
   }
   return h;
 }

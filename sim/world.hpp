@@ -61,8 +61,8 @@ class World {
   /// State of the dynamic (non-static) scene shape `shape_index`.
   BodyState shape_state(int shape_index) const;
 
-  /// Deterministic digest of every body's state (positions, orientations,
-  /// velocities, bit patterns), for determinism checks.
+  /// Deterministic digest of the state of every body in the Bullet world,
+  /// vehicles included (positions, orientations, velocities, bit patterns).
   std::uint64_t state_hash() const;
 
   /// For the vehicles module: the underlying Bullet world.
