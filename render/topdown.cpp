@@ -76,12 +76,17 @@ cv::Mat draw_topdown(const Scene& scene, const std::vector<Eigen::Vector3d>& pat
   lo -= Eigen::Vector2d::Constant(style.margin_m);
   hi += Eigen::Vector2d::Constant(style.margin_m);
   const Eigen::Vector2d size = (hi - lo).cwiseMax(1.0);
-  const double px_per_m = style.width_px / size.x();
+  const double px_per_m = style.max_size_px / size.maxCoeff();
   const int legend_px = 60;
-  const int map_height = std::max(200, static_cast<int>(std::lround(size.y() * px_per_m)));
+  const int map_width = static_cast<int>(std::lround(size.x() * px_per_m));
+  const int map_height = static_cast<int>(std::lround(size.y() * px_per_m));
+  const int width = std::max(map_width, style.min_width_px);
+  // A narrow map is centred on the image, which is widened for the legend.
+  const double pad_m = 0.5 * (width - map_width) / px_per_m;
+  lo.x() -= pad_m;
   const MapFrame frame{lo, px_per_m, map_height};
 
-  cv::Mat image(map_height + legend_px, style.width_px, CV_8UC3, cv::Scalar(245, 245, 245));
+  cv::Mat image(map_height + legend_px, width, CV_8UC3, cv::Scalar(245, 245, 245));
   cv::Mat map = image.rowRange(0, map_height);
 
   // Terrain: height shading with contour-like banding every metre.
@@ -138,7 +143,7 @@ cv::Mat draw_topdown(const Scene& scene, const std::vector<Eigen::Vector3d>& pat
   const int y0 = map_height;
   cv::line(image, {0, y0}, {image.cols, y0}, cv::Scalar(180, 180, 180));
   cv::putText(image, style.title, {10, y0 + 22}, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(20, 20, 20), 1, cv::LINE_AA);
-  const double bar_m = nice_length(size.x());
+  const double bar_m = nice_length(width / px_per_m);
   const int bar_px = static_cast<int>(std::lround(bar_m * px_per_m));
   cv::line(image, {10, y0 + 45}, {10 + bar_px, y0 + 45}, cv::Scalar(20, 20, 20), 3);
   char label[32];

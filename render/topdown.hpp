@@ -12,7 +12,8 @@
 namespace campo {
 
 struct TopdownStyle {
-  int width_px = 1000;        ///< image width; the height follows the map's aspect
+  int max_size_px = 1200;     ///< the map's longer side; the other follows its aspect
+  int min_width_px = 720;     ///< room for the legend under narrow maps
   double margin_m = 3.0;      ///< around the path and waypoints
   std::string title;
 };

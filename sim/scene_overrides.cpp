@@ -40,7 +40,8 @@ void apply_override(nlohmann::json& document, const std::string& assignment) {
     const bool last = slash == std::string::npos;
     walked += "/" + segment;
     if (node->is_object()) {
-      if (!node->contains(segment) && !last) fail(assignment, "no key \"" + segment + "\" at " + walked);
+      // Missing keys are created (objects on the way); validation judges them after.
+      if (!node->contains(segment) && !last) (*node)[segment] = nlohmann::json::object();
       node = &(*node)[segment];
     } else if (node->is_array()) {
       std::size_t index = 0;

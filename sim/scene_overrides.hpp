@@ -9,7 +9,8 @@ namespace campo {
 /// Applies one "PATH=VALUE" assignment to a scene document. PATH is a JSON
 /// pointer ("/world/seed", "/objects/3/size_m/1"); inside an array of
 /// objects a segment may also be an alias ("/objects/drone/planner/params/speed_mps").
-/// The last segment may name a new key of an object. VALUE is JSON
+/// Missing object keys are created on the way (validation judges them
+/// afterwards, like anything in the file). VALUE is JSON
 /// ("0.8", "[1,2,3]", "true", "\"text\""); anything that does not parse as
 /// JSON is taken as a string. Errors are InputErrors naming "--set".
 void apply_override(nlohmann::json& document, const std::string& assignment);

@@ -17,6 +17,7 @@ enum ExitCode : int {
 using Command = std::function<int()>;
 
 Command add_validate(CLI::App& app);
+Command add_run(CLI::App& app);
 Command add_scan(CLI::App& app);
 Command add_bench(CLI::App& app);
 

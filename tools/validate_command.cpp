@@ -2,8 +2,10 @@
 #include <string>
 #include <vector>
 
+#include "planners/registry.hpp"
 #include "sim/scene_loader.hpp"
 #include "tools/commands.hpp"
+#include "vehicles/vehicle.hpp"
 
 namespace campo::cli {
 
@@ -12,13 +14,19 @@ Command add_validate(CLI::App& app) {
   app.add_option("files", *files, "Scene files (JSON) to check")->required();
   app.footer(
       "Every file is checked in full: unknown keys, wrong types, out-of-range values,\n"
-      "duplicate aliases, dangling references and unreadable data files are errors.\n"
+      "duplicate aliases, dangling references, unreadable data files, and vehicle and\n"
+      "planner parameters are errors.\n"
       "Prints one line per file; exits 0 if all are valid, 2 otherwise.");
   return [files] {
     int failures = 0;
     for (const auto& file : *files) {
       try {
         const Scene scene = load_scene(file);
+        // Parameters checked by vehicles/ and planners/ are part of the file too.
+        for (const VehicleDef& vehicle : scene.vehicles) {
+          validate_vehicle_params(vehicle);
+          create_planner(vehicle.planner, {vehicle.type, &scene});
+        }
         std::cout << "ok " << file << ": " << scene.shapes.size() << " shapes, "
                   << scene.frames.size() << " frames, " << scene.movers.size() << " movers, "
                   << scene.vehicles.size() << " vehicles\n";

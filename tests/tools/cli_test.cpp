@@ -71,7 +71,7 @@ TEST_F(Cli, VersionAndHelp) {
   const Result version = campo("--version");
   EXPECT_EQ(version.exit_code, 0);
   EXPECT_THAT(version.out, HasSubstr("campo 0."));
-  for (const char* sub : {"validate", "scan", "bench"}) {
+  for (const char* sub : {"run", "validate", "scan", "bench"}) {
     const Result help = campo(std::string(sub) + " --help");
     EXPECT_EQ(help.exit_code, 0) << sub;
     EXPECT_THAT(help.out, HasSubstr("Usage")) << sub;
@@ -154,6 +154,75 @@ TEST_F(Cli, BadScanInputExitsTwoAndWritesNothing) {
   EXPECT_EQ(r.exit_code, 2);
   r = campo("scan " + (dir_ / "missing.json").string() + " --out " + out.string());
   EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(fs::exists(out));
+}
+
+const char* const kBundled[] = {"two_barriers", "trees_rolling_terrain", "obstacle_field", "zigzag", "wall", "vineyard"};
+
+TEST_F(Cli, RunsEveryBundledSceneWithTheStraightPlanner) {
+  for (const char* name : kBundled) {
+    const fs::path out = dir_ / name;
+    const Result r = campo("run " + std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name +
+                           ".json --planner straight --set /world/time_limit_s=20 --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    for (const char* file : {"run.json", "trajectory.csv", "topdown.png"}) {
+      EXPECT_TRUE(fs::exists(out / file)) << name << "/" << file;
+    }
+    const auto run = nlohmann::json::parse(slurp(out / "run.json"));
+    const auto& m = run["metrics"];
+    for (const char* key : {"outcome", "reason", "sim_time_s", "wall_time_s", "path_length_m", "path_ratio",
+                            "min_clearance_m", "collisions", "planner_time_ms_mean", "planner_time_ms_max"}) {
+      EXPECT_TRUE(m.contains(key)) << name << ": " << key;
+    }
+    EXPECT_THAT((std::vector<std::string>{"reached", "collision", "timeout", "aborted"}),
+                ::testing::Contains(m["outcome"].get<std::string>()));
+    EXPECT_LE(m["sim_time_s"].get<double>(), 20.0 + 1e-9) << name;
+    EXPECT_EQ(run["parameters"]["planner"]["name"], "straight");
+    EXPECT_EQ(run["provenance"]["scene"]["sha256"],
+              campo::sha256_hex(slurp(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json")));
+    EXPECT_EQ(run["overrides"][0], "/world/time_limit_s=20");
+    EXPECT_EQ(cv::imread((out / "topdown.png").string()).empty(), false);
+  }
+}
+
+TEST_F(Cli, RunWithoutASceneUsesTheBundledDefault) {
+  const Result r = campo("run --set /world/time_limit_s=3 --out " + (dir_ / "default").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto run = nlohmann::json::parse(slurp(dir_ / "default" / "run.json"));
+  EXPECT_EQ(run["provenance"]["scene"]["name"], "two_barriers");
+}
+
+TEST_F(Cli, RunIsReproducibleAndRecordsTheSeed) {
+  const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/trees_rolling_terrain.json";
+  const std::string args = "run " + scene + " --seed 7 --set /world/time_limit_s=5 --out ";
+  ASSERT_EQ(campo(args + (dir_ / "a").string()).exit_code, 0);
+  ASSERT_EQ(campo(args + (dir_ / "b").string()).exit_code, 0);
+  EXPECT_EQ(slurp(dir_ / "a" / "trajectory.csv"), slurp(dir_ / "b" / "trajectory.csv"));
+  auto a = nlohmann::json::parse(slurp(dir_ / "a" / "run.json"));
+  auto b = nlohmann::json::parse(slurp(dir_ / "b" / "run.json"));
+  EXPECT_EQ(a["parameters"]["world"]["seed"], 7);
+  // Everything but the measured wall-clock figures is identical.
+  for (auto* j : {&a, &b}) {
+    for (const char* key : {"wall_time_s", "planner_time_ms_mean", "planner_time_ms_max"}) (*j)["metrics"].erase(key);
+  }
+  EXPECT_EQ(a, b);
+}
+
+TEST_F(Cli, BadRunInputExitsTwoAndWritesNothing) {
+  const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json";
+  const fs::path out = dir_ / "never";
+  Result r = campo("run " + scene + " --set /world/physics_step_s=-1 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("two_barriers.json: /world/physics_step_s: expected a number in [1e-05, 0.1], got -1"));
+  r = campo("run " + scene + " --set /objects/nobody/pose=1 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("no element with alias \"nobody\""));
+  r = campo("run " + scene + " --planner teleport --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("unknown planner \"teleport\""));
+  r = campo("run " + scene + " --set /objects/drone/params/mass_kg=-3 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("/objects/4/params/mass_kg"));
   EXPECT_FALSE(fs::exists(out));
 }
 

@@ -1,0 +1,86 @@
+// Whole episodes with the real vehicles and the registry's planners.
+#include <cstring>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "planners/registry.hpp"
+#include "sim/episode.hpp"
+#include "sim/scene_loader.hpp"
+#include "vehicles/vehicle.hpp"
+
+namespace campo {
+namespace {
+
+Scene bundled(const std::string& name, double time_limit_s) {
+  Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json");
+  scene.world.time_limit_s = time_limit_s;
+  return scene;
+}
+
+bool same_bits(const VehicleState& a, const VehicleState& b) {
+  return std::memcmp(a.position_m.data(), b.position_m.data(), 3 * sizeof(double)) == 0 &&
+         std::memcmp(a.orientation.coeffs().data(), b.orientation.coeffs().data(), 4 * sizeof(double)) == 0 &&
+         std::memcmp(a.linear_velocity_mps.data(), b.linear_velocity_mps.data(), 3 * sizeof(double)) == 0 &&
+         std::memcmp(a.angular_velocity_radps.data(), b.angular_velocity_radps.data(), 3 * sizeof(double)) == 0;
+}
+
+void expect_repeatable(const Scene& scene) {
+  const EpisodeResult a = run_episode(scene, &make_vehicle, &create_planner);
+  const EpisodeResult b = run_episode(scene, &make_vehicle, &create_planner);
+  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
+  for (std::size_t i = 0; i < a.trajectory.size(); ++i) {
+    ASSERT_TRUE(same_bits(a.trajectory[i].state, b.trajectory[i].state)) << "sample " << i;
+  }
+  EXPECT_EQ(a.final_state_hash, b.final_state_hash);
+  EXPECT_EQ(a.metrics.path_length_m, b.metrics.path_length_m);
+  EXPECT_EQ(a.metrics.min_clearance_m, b.metrics.min_clearance_m);
+  EXPECT_EQ(a.metrics.outcome, b.metrics.outcome);
+}
+
+TEST(ClosedLoop, QuadrotorEpisodeWithSensorIsBitIdenticalWhenRepeated) {
+  Scene scene = bundled("trees_rolling_terrain", 6.0);
+  scene.vehicles[0].sensors[0].lidar.noise_stddev_m = 0.02;  // noise is seeded too
+  expect_repeatable(scene);
+}
+
+TEST(ClosedLoop, RoverEpisodeIsBitIdenticalWhenRepeated) { expect_repeatable(bundled("vineyard", 6.0)); }
+
+TEST(ClosedLoop, StraightQuadrotorReachesAnOpenGoalAtTheSpeedLimit) {
+  // two_barriers without the barriers: a clear 12 m flight at 0.6 m/s.
+  Scene scene = bundled("two_barriers", 60.0);
+  std::erase_if(scene.shapes, [](const Shape& s) { return s.type == ShapeType::cuboid; });
+  const EpisodeResult r = run_episode(scene, &make_vehicle, &create_planner);
+  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+  // Reached on entering the 0.3 m tolerance: 11.7 m of the 12 m line, flown straight.
+  EXPECT_NEAR(r.metrics.path_length_m, 12.0 - 0.3, 0.05);
+  EXPECT_NEAR(r.metrics.path_ratio, 11.7 / 12.0, 0.005);
+  // 12 m at 0.6 m/s is 20 s, plus acceleration and braking.
+  EXPECT_GT(r.metrics.sim_time_s, 20.0);
+  EXPECT_LT(r.metrics.sim_time_s, 26.0);
+  for (const auto& s : r.trajectory) EXPECT_LE(s.state.linear_velocity_mps.norm(), 0.6 + 0.02);
+}
+
+TEST(ClosedLoop, StraightQuadrotorCollidesWithTheBarrier) {
+  const EpisodeResult r = run_episode(bundled("two_barriers", 60.0), &make_vehicle, &create_planner);
+  EXPECT_EQ(r.metrics.outcome, Outcome::collision);
+  EXPECT_EQ(r.metrics.collisions, 1);
+  // The barrier face is at x = 5.85; the body's half length 0.3 m touches it near x = 5.55.
+  EXPECT_NEAR(r.trajectory.back().state.position_m.x(), 5.55, 0.05);
+  EXPECT_NEAR(r.metrics.min_clearance_m, 0.0, 1e-9);
+}
+
+TEST(ClosedLoop, StraightRoverDrivesUpItsInterRow) {
+  Scene scene = bundled("vineyard", 40.0);
+  scene.movers.clear();
+  const EpisodeResult r = run_episode(scene, &make_vehicle, &create_planner);
+  EXPECT_EQ(r.metrics.outcome, Outcome::timeout);
+  // 0.5 m/s for 40 s, straight north along x = 0, between the canopies.
+  const VehicleState end = r.trajectory.back().state;
+  EXPECT_NEAR(end.position_m.y() - (-46.0), 20.0, 1.5);
+  EXPECT_NEAR(end.position_m.x(), 0.0, 0.1);
+  EXPECT_GT(r.metrics.min_clearance_m, 0.0);
+}
+
+}  // namespace
+}  // namespace campo

@@ -1,0 +1,445 @@
+#include "vehicles/rover.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <btBulletDynamicsCommon.h>
+
+#include "sim/json_reader.hpp"
+
+namespace campo {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDegToRad = kPi / 180.0;
+
+btVector3 to_bt(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+Eigen::Vector3d from_bt(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
+
+btTransform to_bt(const Eigen::Isometry3d& t) {
+  const Eigen::Matrix3d& r = t.linear();
+  btMatrix3x3 basis(r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2));
+  return btTransform(basis, to_bt(t.translation()));
+}
+
+double wrap_angle(double a) {
+  a = std::remainder(a, 2.0 * kPi);
+  return a <= -kPi ? a + 2.0 * kPi : a;
+}
+
+// One table of the scalar parameters serves parsing and printing.
+struct NumberField {
+  std::string_view key;
+  double RoverConfig::*member;
+  Range range;
+};
+
+const std::vector<NumberField>& number_fields() {
+  static const std::vector<NumberField> fields = {
+      {"chassis_mass_kg", &RoverConfig::chassis_mass_kg, Range::positive()},
+      {"chassis_friction", &RoverConfig::chassis_friction, Range::closed(0.0, 10.0)},
+      {"wheel_radius_m", &RoverConfig::wheel_radius_m, Range::positive()},
+      {"wheel_mass_kg", &RoverConfig::wheel_mass_kg, Range::positive()},
+      {"wheel_friction", &RoverConfig::wheel_friction, Range::closed(0.0, 10.0)},
+      {"half_track_m", &RoverConfig::half_track_m, Range::positive()},
+      {"wheelbase_m", &RoverConfig::wheelbase_m, Range::positive()},
+      {"axle_drop_m", &RoverConfig::axle_drop_m, Range{}},
+      {"max_wheel_torque_nm", &RoverConfig::max_wheel_torque_nm, Range::positive()},
+      {"max_wheel_speed_radps", &RoverConfig::max_wheel_speed_radps, Range::positive()},
+      {"max_wheel_accel_radps2", &RoverConfig::max_wheel_accel_radps2, Range::non_negative()},
+      {"hold_gain", &RoverConfig::hold_gain, Range::positive()},
+      {"speed_kp", &RoverConfig::speed_kp, Range::non_negative()},
+      {"speed_ki", &RoverConfig::speed_ki, Range::non_negative()},
+      {"speed_integral_max_mps", &RoverConfig::speed_integral_max_mps, Range::non_negative()},
+      {"yaw_rate_kp", &RoverConfig::yaw_rate_kp, Range::non_negative()},
+      {"yaw_rate_ki", &RoverConfig::yaw_rate_ki, Range::non_negative()},
+      {"yaw_rate_integral_max_radps", &RoverConfig::yaw_rate_integral_max_radps, Range::non_negative()},
+      {"heading_gain", &RoverConfig::heading_gain, Range::positive()},
+      {"max_yaw_rate_radps", &RoverConfig::max_yaw_rate_radps, Range::positive()},
+      {"approach_gain", &RoverConfig::approach_gain, Range::positive()},
+      {"turn_in_place_deg", &RoverConfig::turn_in_place_deg, Range{0.0, 180.0, true, false}},
+      {"arrival_radius_m", &RoverConfig::arrival_radius_m, Range::positive()},
+      {"face_tolerance_deg", &RoverConfig::face_tolerance_deg, Range::positive()},
+      {"stable_speed_mps", &RoverConfig::stable_speed_mps, Range::positive()},
+      {"stable_rate_radps", &RoverConfig::stable_rate_radps, Range::positive()},
+      {"bounding_radius_m", &RoverConfig::bounding_radius_m, Range::non_negative()},
+  };
+  return fields;
+}
+
+}  // namespace
+
+RoverConfig parse_rover_config(const ParamsBlock& params) {
+  RoverConfig c;
+  const JsonNode node(params.values, params.file, params.pointer);
+  ObjectReader reader(node);
+  reader.read("chassis_size_m", c.chassis_size_m, Range::positive());
+  for (const NumberField& f : number_fields()) reader.read(f.key, c.*f.member, f.range);
+  reader.read("joint_solver_iterations", c.joint_solver_iterations, 1, 1000);
+  reader.read("hold_solver_iterations", c.hold_solver_iterations, 1, 1000);
+  reader.finish();
+  if (c.axle_drop_m + c.wheel_radius_m <= 0.5 * c.chassis_size_m.z()) {
+    // The chassis would rest on its belly instead of on the wheels.
+    const auto at = reader.has("axle_drop_m") ? "axle_drop_m" : "wheel_radius_m";
+    throw InputError(params.file, child_pointer(params.pointer, at),
+                     "expected axle_drop_m + wheel_radius_m > half the chassis height (" +
+                         std::to_string(0.5 * c.chassis_size_m.z()) + " m)");
+  }
+  return c;
+}
+
+double rover_bounding_radius(const RoverConfig& c) {
+  if (c.bounding_radius_m > 0.0) return c.bounding_radius_m;
+  const Eigen::Vector3d half = 0.5 * c.chassis_size_m;
+  const double chassis = half.norm();
+  // Farthest point of a wheel sphere from the chassis centre.
+  const double wheel =
+      Eigen::Vector3d(0.5 * c.wheelbase_m, c.half_track_m, c.axle_drop_m).norm() + c.wheel_radius_m;
+  return std::max(chassis, wheel);
+}
+
+nlohmann::json to_json(const RoverConfig& c) {
+  nlohmann::json j = nlohmann::json::object();
+  j["chassis_size_m"] = {c.chassis_size_m.x(), c.chassis_size_m.y(), c.chassis_size_m.z()};
+  for (const NumberField& f : number_fields()) j[std::string(f.key)] = c.*f.member;
+  j["joint_solver_iterations"] = c.joint_solver_iterations;
+  j["hold_solver_iterations"] = c.hold_solver_iterations;
+  j["bounding_radius_m"] = rover_bounding_radius(c);
+  return j;
+}
+
+// The Bullet objects of one rover; declaration order makes the destructor
+// remove constraints before bodies and free bodies before their shapes.
+struct Rover::Bodies {
+  btDiscreteDynamicsWorld& world;
+  std::unique_ptr<btBoxShape> chassis_shape;
+  std::unique_ptr<btSphereShape> wheel_shape;
+  std::unique_ptr<btRigidBody> chassis;
+  std::array<std::unique_ptr<btRigidBody>, kWheels> wheels;
+  std::array<std::unique_ptr<btHingeConstraint>, kWheels> hinges;
+
+  explicit Bodies(btDiscreteDynamicsWorld& w) : world(w) {}
+  ~Bodies() {
+    for (auto& hinge : hinges) {
+      if (hinge) world.removeConstraint(hinge.get());
+    }
+    for (auto& wheel : wheels) {
+      if (wheel) world.removeRigidBody(wheel.get());
+    }
+    if (chassis) world.removeRigidBody(chassis.get());
+  }
+
+  bool owns(const btCollisionObject* object) const {
+    if (object == chassis.get()) return true;
+    return std::any_of(wheels.begin(), wheels.end(),
+                       [object](const auto& wheel) { return wheel.get() == object; });
+  }
+};
+
+namespace {
+
+std::unique_ptr<btRigidBody> make_body(btCollisionShape& shape, double mass, double friction,
+                                       const btTransform& pose) {
+  btVector3 inertia(0, 0, 0);
+  shape.calculateLocalInertia(mass, inertia);
+  btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, &shape, inertia);
+  info.m_startWorldTransform = pose;
+  info.m_friction = friction;
+  auto body = std::make_unique<btRigidBody>(info);
+  body->setUserIndex(kVehicleBodyTag);
+  body->setActivationState(DISABLE_DEACTIVATION);
+  return body;
+}
+
+// Wheel mounting points in the chassis frame, in Rover::Wheel order.
+std::array<Eigen::Vector3d, Rover::kWheels> wheel_mounts(const RoverConfig& c) {
+  const double x = 0.5 * c.wheelbase_m;
+  const double y = c.half_track_m;
+  const double z = -c.axle_drop_m;
+  return {{{x, y, z}, {x, -y, z}, {-x, y, z}, {-x, -y, z}}};
+}
+
+// The start pose, raised just enough that no wheel starts inside the ground
+// (judged from the ground height under each wheel's footprint); never lowered.
+Eigen::Isometry3d lifted_start(const World& world, const RoverConfig& c,
+                               const std::array<Eigen::Vector3d, Rover::kWheels>& mounts,
+                               const Eigen::Isometry3d& start) {
+  const double r = c.wheel_radius_m;
+  const Eigen::Vector2d footprint[] = {{0, 0}, {r, 0}, {-r, 0}, {0, r}, {0, -r}};
+  double lift = 0.0;
+  for (const Eigen::Vector3d& mount : mounts) {
+    const Eigen::Vector3d centre = start * mount;
+    for (const Eigen::Vector2d& d : footprint) {
+      if (const auto ground = world.terrain_height(centre.x() + d.x(), centre.y() + d.y())) {
+        lift = std::max(lift, *ground + r - centre.z());
+      }
+    }
+  }
+  Eigen::Isometry3d lifted = start;
+  lifted.translation().z() += lift;
+  return lifted;
+}
+
+// The values of each command that the rover uses are finite.
+bool is_finite(const command::Twist& t) { return std::isfinite(t.v_mps) && std::isfinite(t.w_radps); }
+bool is_finite(const command::GoTo& g) { return g.target_m.allFinite() && std::isfinite(g.speed_mps); }
+bool is_finite(const command::Face& f) { return f.point_m.allFinite(); }
+bool is_finite(const command::Hold&) { return true; }
+bool is_finite(const command::Altitude&) { return true; }
+
+bool is_left(int wheel) { return wheel == Rover::front_left || wheel == Rover::rear_left; }
+
+}  // namespace
+
+Rover::Rover(World& world, const RoverConfig& config, const Eigen::Isometry3d& start_pose)
+    : world_(world),
+      config_(config),
+      geometry_{config.wheel_radius_m, config.half_track_m},
+      bounding_radius_(rover_bounding_radius(config)),
+      bodies_(std::make_unique<Bodies>(world.bullet())),
+      command_(command::Hold{start_pose.translation(), std::nullopt}) {
+  Bodies& b = *bodies_;
+  b.chassis_shape = std::make_unique<btBoxShape>(to_bt(0.5 * config.chassis_size_m));
+  b.wheel_shape = std::make_unique<btSphereShape>(config.wheel_radius_m);
+  const auto mounts = wheel_mounts(config);
+  const btTransform chassis_pose = to_bt(lifted_start(world, config, mounts, start_pose));
+  b.chassis = make_body(*b.chassis_shape, config.chassis_mass_kg, config.chassis_friction, chassis_pose);
+  b.world.addRigidBody(b.chassis.get());
+
+  const btVector3 axle(0, 1, 0);  // wheels spin about the chassis y axis
+  for (int i = 0; i < kWheels; ++i) {
+    btTransform wheel_pose = chassis_pose;
+    wheel_pose.setOrigin(chassis_pose * to_bt(mounts[i]));
+    b.wheels[i] = make_body(*b.wheel_shape, config.wheel_mass_kg, config.wheel_friction, wheel_pose);
+    // A sphere's inertia is isotropic, so its gyroscopic torque is zero.
+    b.wheels[i]->setFlags(b.wheels[i]->getFlags() & ~BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
+    b.world.addRigidBody(b.wheels[i].get());
+    b.hinges[i] = std::make_unique<btHingeConstraint>(*b.chassis, *b.wheels[i], to_bt(mounts[i]),
+                                                      btVector3(0, 0, 0), axle, axle);
+    b.hinges[i]->enableAngularMotor(true, 0.0, 0.0);
+    // Fewer iterations than the contacts: the joints are the bulk of the solver's work.
+    b.hinges[i]->setOverrideNumSolverIterations(config.joint_solver_iterations);
+    // True: no collisions between the chassis and its wheels.
+    b.world.addConstraint(b.hinges[i].get(), true);
+  }
+  // Wheels of the same rover never collide with each other either.
+  for (int i = 0; i < kWheels; ++i) {
+    for (int j = i + 1; j < kWheels; ++j) {
+      b.wheels[i]->setIgnoreCollisionCheck(b.wheels[j].get(), true);
+      b.wheels[j]->setIgnoreCollisionCheck(b.wheels[i].get(), true);
+    }
+  }
+
+  const double yaw = std::atan2(start_pose.linear()(1, 0), start_pose.linear()(0, 0));
+  odometry_ = {start_pose.translation().x(), start_pose.translation().y(), yaw};
+}
+
+Rover::~Rover() = default;
+
+void Rover::command(const Command& c) {
+  if (std::holds_alternative<command::Altitude>(c)) {
+    throw std::invalid_argument("the rover cannot follow an altitude command");
+  }
+  // NaN or infinity would reach Bullet and ruin the whole world.
+  if (!std::visit([](const auto& x) { return is_finite(x); }, c)) {
+    throw std::invalid_argument("rover " + std::string(command_name(c)) + ": non-finite value");
+  }
+  if (const auto* go = std::get_if<command::GoTo>(&c); go && !(go->speed_mps > 0.0)) {
+    throw std::invalid_argument("rover go_to: speed_mps must be > 0");
+  }
+  // A repeated GoTo or Face to the same point keeps its "arrived" latch, so
+  // a planner may resend it every control tick.
+  const auto target = [](const Command& x) -> std::optional<Eigen::Vector3d> {
+    if (const auto* go = std::get_if<command::GoTo>(&x)) return go->target_m;
+    if (const auto* face = std::get_if<command::Face>(&x)) return face->point_m;
+    return std::nullopt;
+  };
+  const auto old_target = target(command_);
+  const auto new_target = target(c);
+  if (c.index() != command_.index() || !old_target || !new_target || *old_target != *new_target) {
+    arrived_ = false;
+  }
+  command_ = c;
+}
+
+std::optional<BodyTwist> Rover::behaviour_twist(const VehicleState& s) {
+  const auto heading_error = [&s](const Eigen::Vector3d& point) {
+    const Eigen::Vector2d d = (point - s.position_m).head<2>();
+    return wrap_angle(std::atan2(d.y(), d.x()) - s.yaw_rad());
+  };
+  const auto turn_rate = [this](double error) {
+    return std::clamp(config_.heading_gain * error, -config_.max_yaw_rate_radps,
+                      config_.max_yaw_rate_radps);
+  };
+  if (const auto* twist = std::get_if<command::Twist>(&command_)) {
+    return BodyTwist{twist->v_mps, twist->w_radps};
+  }
+  if (const auto* go = std::get_if<command::GoTo>(&command_)) {
+    const double distance = (go->target_m - s.position_m).head<2>().norm();
+    arrived_ = arrived_ || distance < config_.arrival_radius_m;
+    if (arrived_) return std::nullopt;
+    const double error = heading_error(go->target_m);
+    if (std::abs(error) > config_.turn_in_place_deg * kDegToRad) return BodyTwist{0.0, turn_rate(error)};
+    const double v_max = config_.max_wheel_speed_radps * config_.wheel_radius_m;
+    // Slow down near the target and while the heading is still off.
+    const double v = std::min({go->speed_mps, v_max, config_.approach_gain * distance}) *
+                     std::cos(error);
+    return BodyTwist{v, turn_rate(error)};
+  }
+  if (const auto* face = std::get_if<command::Face>(&command_)) {
+    const double error = heading_error(face->point_m);
+    arrived_ = arrived_ || std::abs(error) < config_.face_tolerance_deg * kDegToRad;
+    if (arrived_) return std::nullopt;
+    return BodyTwist{0.0, turn_rate(error)};
+  }
+  return std::nullopt;  // command::Hold (Altitude is never accepted)
+}
+
+void Rover::pre_step(double dt_s) {
+  odometry_ = integrate_odometry(odometry_, measured_side_speeds(), geometry_, dt_s);
+
+  const VehicleState s = state();
+  const std::optional<BodyTwist> reference = behaviour_twist(s);
+  const bool hold = !reference;
+  WheelSpeeds desired;  // zero when holding
+  double speed_error = 0.0;
+  double yaw_error = 0.0;
+  bool saturated = false;
+  if (hold) {
+    speed_integral_mps_ = 0.0;
+    yaw_integral_radps_ = 0.0;
+  } else {
+    // Kinematic feed-forward plus a PI correction of the measured body
+    // rates: skid steering slips, most of all when turning.
+    const Eigen::Matrix3d r = s.orientation.toRotationMatrix();
+    speed_error = reference->v_mps - s.linear_velocity_mps.dot(r.col(0));
+    yaw_error = reference->w_radps - s.angular_velocity_radps.dot(r.col(2));
+    const BodyTwist corrected{reference->v_mps + config_.speed_kp * speed_error + speed_integral_mps_,
+                              reference->w_radps + config_.yaw_rate_kp * yaw_error + yaw_integral_radps_};
+    const WheelSpeeds unlimited = wheel_speeds_from_twist(corrected, geometry_);
+    desired = saturate(unlimited, config_.max_wheel_speed_radps);
+    saturated = desired.left_radps != unlimited.left_radps || desired.right_radps != unlimited.right_radps;
+  }
+  const WheelSpeeds limited = rate_limit(side_targets_, desired, config_.max_wheel_accel_radps2, dt_s);
+  const bool rate_limited =
+      limited.left_radps != desired.left_radps || limited.right_radps != desired.right_radps;
+  // Anti-windup: the integrals stand still while the motors cannot follow.
+  if (!hold && !saturated && !rate_limited) {
+    const double speed_max = config_.speed_integral_max_mps;
+    const double yaw_max = config_.yaw_rate_integral_max_radps;
+    speed_integral_mps_ =
+        std::clamp(speed_integral_mps_ + config_.speed_ki * speed_error * dt_s, -speed_max, speed_max);
+    yaw_integral_radps_ =
+        std::clamp(yaw_integral_radps_ + config_.yaw_rate_ki * yaw_error * dt_s, -yaw_max, yaw_max);
+  }
+  side_targets_ = limited;
+
+  const bool lock = hold && !rate_limited;  // braked to zero under Hold
+  if (lock != wheels_locked_) lock_wheels(lock);
+  const double max_impulse = config_.max_wheel_torque_nm * dt_s;
+  for (int i = 0; i < kWheels; ++i) {
+    if (wheels_locked_) {
+      wheel_targets_[i] = -config_.hold_gain * wrap_angle(wheel_angle(i) - hold_angles_[i]);
+    } else {
+      wheel_targets_[i] = is_left(i) ? limited.left_radps : limited.right_radps;
+    }
+    // The hinge motor drives the chassis relative to the wheel: opposite sign.
+    bodies_->hinges[i]->enableAngularMotor(true, -wheel_targets_[i], max_impulse);
+  }
+}
+
+void Rover::lock_wheels(bool on) {
+  wheels_locked_ = on;
+  for (int i = 0; i < kWheels; ++i) {
+    if (on) hold_angles_[i] = wheel_angle(i);
+    btRigidBody& wheel = *bodies_->wheels[i];
+    const int flags = wheel.getCollisionFlags();
+    wheel.setCollisionFlags(on ? flags | btCollisionObject::CF_HAS_FRICTION_ANCHOR
+                               : flags & ~btCollisionObject::CF_HAS_FRICTION_ANCHOR);
+    bodies_->hinges[i]->setOverrideNumSolverIterations(on ? config_.hold_solver_iterations
+                                                          : config_.joint_solver_iterations);
+  }
+}
+
+double Rover::wheel_angle(int wheel) const {
+  // The hinge measures the chassis relative to the wheel (see the motor sign).
+  return -bodies_->hinges[wheel]->getHingeAngle();
+}
+
+VehicleState Rover::state() const {
+  const btRigidBody& body = *bodies_->chassis;
+  const btTransform& t = body.getWorldTransform();
+  const btQuaternion q = t.getRotation();
+  VehicleState s;
+  s.position_m = from_bt(t.getOrigin());
+  s.orientation = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z());
+  s.linear_velocity_mps = from_bt(body.getLinearVelocity());
+  s.angular_velocity_radps = from_bt(body.getAngularVelocity());
+  return s;
+}
+
+bool Rover::stable() const {
+  const btRigidBody& body = *bodies_->chassis;
+  return body.getLinearVelocity().length() < config_.stable_speed_mps &&
+         body.getAngularVelocity().length() < config_.stable_rate_radps;
+}
+
+std::array<double, Rover::kWheels> Rover::wheel_speeds_radps() const {
+  const btRigidBody& chassis = *bodies_->chassis;
+  const btVector3 axle = chassis.getWorldTransform().getBasis().getColumn(1);
+  std::array<double, kWheels> speeds{};
+  for (int i = 0; i < kWheels; ++i) {
+    speeds[i] = (bodies_->wheels[i]->getAngularVelocity() - chassis.getAngularVelocity()).dot(axle);
+  }
+  return speeds;
+}
+
+WheelSpeeds Rover::measured_side_speeds() const {
+  const auto w = wheel_speeds_radps();
+  return {0.5 * (w[front_left] + w[rear_left]), 0.5 * (w[front_right] + w[rear_right])};
+}
+
+bool Rover::in_collision() const {
+  const Scene& scene = world_.scene();
+  const auto is_ground = [&scene](const btCollisionObject* object) {
+    const int index = object->getUserIndex();
+    if (index < 0 || static_cast<std::size_t>(index) >= scene.shapes.size()) return false;
+    const ShapeType type = scene.shapes[static_cast<std::size_t>(index)].type;
+    return type == ShapeType::plane || type == ShapeType::heightfield;
+  };
+  // One pass over the contact manifolds for all five bodies.
+  constexpr double kTouchMargin = 1e-3;  // metres, as in touching_objects()
+  btDispatcher* dispatcher = world_.bullet().getDispatcher();
+  for (int i = 0; i < dispatcher->getNumManifolds(); ++i) {
+    const btPersistentManifold* m = dispatcher->getManifoldByIndexInternal(i);
+    const btCollisionObject* mine = m->getBody0();
+    const btCollisionObject* other = m->getBody1();
+    if (!bodies_->owns(mine)) std::swap(mine, other);
+    if (!bodies_->owns(mine) || bodies_->owns(other)) continue;
+    if (mine != bodies_->chassis.get() && is_ground(other)) continue;
+    for (int c = 0; c < m->getNumContacts(); ++c) {
+      if (m->getContactPoint(c).getDistance() <= kTouchMargin) return true;
+    }
+  }
+  return false;
+}
+
+nlohmann::json Rover::actuators() const {
+  static constexpr std::string_view kNames[kWheels] = {"front_left", "front_right", "rear_left",
+                                                       "rear_right"};
+  const auto measured = wheel_speeds_radps();
+  nlohmann::json j = nlohmann::json::object();
+  for (int i = 0; i < kWheels; ++i) {
+    j[std::string(kNames[i])] = {{"command_radps", wheel_targets_[i]}, {"speed_radps", measured[i]}};
+  }
+  return j;
+}
+
+}  // namespace campo
