@@ -1,5 +1,6 @@
 #include "sim/world.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <stdexcept>
@@ -23,6 +24,30 @@ btTransform to_bt(const Eigen::Isometry3d& t) {
 // Mover shapes are tagged with negative user indices so hits can name them.
 int mover_tag(std::size_t mover_index) { return -1 - static_cast<int>(mover_index); }
 
+// Compounds of static obstacles get tags far below movers and above vehicles.
+constexpr int kCompoundTagBase = -1000000000;
+int compound_tag(std::size_t k) { return kCompoundTagBase - static_cast<int>(k); }
+
+// Static obstacles are grouped into compounds per friction value and per
+// square cell of this size.
+constexpr double kCompoundCell_m = 8.0;
+struct CompoundKey {
+  double friction;
+  long cell_x;
+  long cell_y;
+  bool operator==(const CompoundKey&) const = default;
+};
+
+// Closest hit that also remembers which child of a compound was hit.
+struct ClosestRayWithChild : btCollisionWorld::ClosestRayResultCallback {
+  using ClosestRayResultCallback::ClosestRayResultCallback;
+  int child = -1;
+  btScalar addSingleResult(btCollisionWorld::LocalRayResult& r, bool normal_in_world) override {
+    child = r.m_localShapeInfo ? r.m_localShapeInfo->m_triangleIndex : -1;
+    return ClosestRayResultCallback::addSingleResult(r, normal_in_world);
+  }
+};
+
 }  // namespace
 
 struct World::Impl {
@@ -33,9 +58,15 @@ struct World::Impl {
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver solver;
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  // Static obstacles share compound bodies (one per friction value): Bullet
+  // walks every collision object each step, so hundreds of posts as separate
+  // bodies would cost more than the vehicle. Child i of compounds[k] is
+  // scene shape compound_children[k][i].
+  std::vector<std::unique_ptr<btCompoundShape>> compounds;
+  std::vector<std::vector<int>> compound_children;
   std::vector<std::unique_ptr<btDefaultMotionState>> motion_states;
   std::vector<std::unique_ptr<btRigidBody>> bodies;
-  std::vector<btRigidBody*> shape_bodies;  // by Scene::shapes index
+  std::vector<btRigidBody*> shape_bodies;  // by Scene::shapes index; null inside a compound
   std::vector<btRigidBody*> mover_bodies;  // by Scene::movers index
   std::unique_ptr<btDiscreteDynamicsWorld> dynamics;
   std::int64_t steps = 0;
@@ -43,6 +74,9 @@ struct World::Impl {
   Impl() {
     dynamics = std::make_unique<btDiscreteDynamicsWorld>(&dispatcher, &broadphase, &solver,
                                                          &collision_config);
+    // Static bodies never move: refresh only the bounding boxes of active ones
+    // (by default Bullet recomputes every box every step).
+    dynamics->setForceUpdateAllAabbs(false);
   }
   ~Impl() {
     for (auto& body : bodies) dynamics->removeRigidBody(body.get());
@@ -115,8 +149,40 @@ struct World::Impl {
 
 World::World(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()) {
   impl_->dynamics->setGravity(to_bt(scene.world.gravity_mps2));
+  Impl& d = *impl_;
+  d.shape_bodies.assign(scene.shapes.size(), nullptr);
+  std::vector<double> compound_friction;
+  std::vector<CompoundKey> compound_keys;
   for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
-    impl_->shape_bodies.push_back(impl_->add_body(scene.shapes[i], static_cast<int>(i), false));
+    const Shape& shape = scene.shapes[i];
+    const bool obstacle = shape.is_static && shape.type != ShapeType::plane && shape.type != ShapeType::heightfield;
+    if (!obstacle) {
+      d.shape_bodies[i] = d.add_body(shape, static_cast<int>(i), false);
+      continue;
+    }
+    // Group by friction and by a coarse grid cell of the position, so a
+    // vehicle's box overlaps few compounds with few children each.
+    const Eigen::Vector3d p = shape.pose.translation();
+    const CompoundKey key{shape.friction, static_cast<long>(std::floor(p.x() / kCompoundCell_m)),
+                          static_cast<long>(std::floor(p.y() / kCompoundCell_m))};
+    auto k = static_cast<std::size_t>(std::find(compound_keys.begin(), compound_keys.end(), key) - compound_keys.begin());
+    if (k == compound_keys.size()) {
+      compound_keys.push_back(key);
+      compound_friction.push_back(shape.friction);
+      d.compounds.push_back(std::make_unique<btCompoundShape>());
+      d.compound_children.emplace_back();
+    }
+    d.shapes.push_back(d.make_shape(shape));
+    if (shape.type == ShapeType::cylinder || shape.type == ShapeType::cone) d.shapes.back()->setMargin(0.0);
+    d.compounds[k]->addChildShape(to_bt(shape.pose), d.shapes.back().get());
+    d.compound_children[k].push_back(static_cast<int>(i));
+  }
+  for (std::size_t k = 0; k < d.compounds.size(); ++k) {
+    btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, d.compounds[k].get());
+    info.m_friction = compound_friction[k];
+    d.bodies.push_back(std::make_unique<btRigidBody>(info));
+    d.bodies.back()->setUserIndex(compound_tag(k));
+    d.dynamics->addRigidBody(d.bodies.back().get());
   }
   for (std::size_t i = 0; i < scene.movers.size(); ++i) {
     impl_->mover_bodies.push_back(impl_->add_body(scene.movers[i].shape, mover_tag(i), true));
@@ -151,7 +217,7 @@ std::optional<double> World::terrain_height(double x_m, double y_m) const {
 
 std::optional<WorldRayHit> World::ray_test(const Eigen::Vector3d& from,
                                            const Eigen::Vector3d& to) const {
-  btCollisionWorld::ClosestRayResultCallback callback(to_bt(from), to_bt(to));
+  ClosestRayWithChild callback(to_bt(from), to_bt(to));
   impl_->dynamics->rayTest(to_bt(from), to_bt(to), callback);
   if (!callback.hasHit()) return std::nullopt;
   WorldRayHit hit;
@@ -159,13 +225,23 @@ std::optional<WorldRayHit> World::ray_test(const Eigen::Vector3d& from,
   hit.normal = from_bt(callback.m_hitNormalWorld).normalized();
   hit.distance_m = (hit.point_m - from).norm();
   hit.shape = callback.m_collisionObject->getUserIndex();
+  if (hit.shape <= kCompoundTagBase && hit.shape > kVehicleBodyTag) {
+    const auto& children = impl_->compound_children[static_cast<std::size_t>(kCompoundTagBase - hit.shape)];
+    hit.shape = children.at(static_cast<std::size_t>(callback.child));
+  }
   return hit;
 }
 
 BodyState World::shape_state(int shape_index) const {
   const btRigidBody* body = impl_->shape_bodies.at(static_cast<std::size_t>(shape_index));
-  const btTransform& t = body->getWorldTransform();
   BodyState state;
+  if (!body) {  // a static obstacle: where the scene put it, at rest
+    const Eigen::Isometry3d& pose = scene_.shapes[static_cast<std::size_t>(shape_index)].pose;
+    state.position_m = pose.translation();
+    state.orientation = Eigen::Quaterniond(pose.linear());
+    return state;
+  }
+  const btTransform& t = body->getWorldTransform();
   state.position_m = from_bt(t.getOrigin());
   const btQuaternion q = t.getRotation();
   state.orientation = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z());

@@ -58,7 +58,7 @@ class World {
   /// Closest hit along the segment from `from` to `to` (Bullet ray test).
   std::optional<WorldRayHit> ray_test(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
 
-  /// State of the dynamic (non-static) scene shape `shape_index`.
+  /// State of scene shape `shape_index` (static shapes: their scene pose, at rest).
   BodyState shape_state(int shape_index) const;
 
   /// Deterministic digest of the state of every body in the Bullet world,
