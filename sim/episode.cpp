@@ -8,8 +8,6 @@
 #include <stdexcept>
 
 #include "sim/clearance.hpp"
-#include "sim/lidar.hpp"
-#include "sim/raycaster.hpp"
 
 namespace campo {
 
@@ -23,11 +21,9 @@ std::int64_t period_steps(double rate_hz, double dt) {
 }
 
 struct MountedSensor {
-  const SensorDef* def;
-  Lidar lidar;
+  std::unique_ptr<RangeSensor> sensor;
   LidarScan scan;
   std::int64_t period;
-  bool scanned = false;
 };
 
 }  // namespace
@@ -68,17 +64,15 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
   const std::unique_ptr<Planner> planner = make_planner(def.planner, {def.type, &scene});
   const ClearanceField clearance(scene);
 
-  std::optional<RayCaster> caster;
   std::vector<MountedSensor> sensors;
   sensors.reserve(def.sensors.size());
   for (const SensorDef& s : def.sensors) {
-    if (!caster) caster.emplace(scene);
     const double rate = s.lidar.rate_hz > 0.0 ? s.lidar.rate_hz : scene.world.sensor_rate_hz;
-    sensors.push_back({&s, Lidar(s.lidar, scene.world.seed), LidarScan{}, period_steps(rate, dt)});
+    sensors.push_back({options.make_sensor(scene, s, scene.world.seed), LidarScan{}, period_steps(rate, dt)});
   }
   std::vector<SensorReading> readings(sensors.size());
   for (std::size_t i = 0; i < sensors.size(); ++i) {
-    readings[i] = {sensors[i].def->alias, &sensors[i].def->lidar, nullptr, false};
+    readings[i] = {def.sensors[i].alias, &def.sensors[i].lidar, nullptr, false};
   }
 
   EpisodeResult result;
@@ -99,10 +93,10 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
     for (std::size_t i = 0; i < sensors.size(); ++i) {
       MountedSensor& s = sensors[i];
       if (k % s.period != 0) continue;
-      caster->set_time(t);
-      s.lidar.scan(*caster, vehicle->state().pose() * to_isometry(s.def->lidar.mount), t, s.scan);
+      s.sensor->scan(vehicle->state().pose() * to_isometry(def.sensors[i].lidar.mount), t, s.scan);
       readings[i].scan = &s.scan;
       readings[i].fresh = true;
+      if (options.on_scan) options.on_scan(i, s.scan);
     }
     // Plan and command.
     if (k % control_period == 0) {

@@ -4,6 +4,7 @@
 /// vehicle collides. Stepped from this one place; deterministic for a given
 /// Scene (including its world seed).
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/planner.hpp"
+#include "sim/range_sensor.hpp"
 #include "sim/scene.hpp"
 #include "sim/vehicle.hpp"
 #include "sim/world.hpp"
@@ -68,6 +70,10 @@ struct EpisodeResult {
 struct EpisodeOptions {
   std::size_t vehicle_index = 0;  ///< which of the scene's vehicles runs the mission
   bool stop_on_collision = true;  ///< end the run at the first collision
+  /// Builds the vehicle's sensors (render/ make_range_sensor adds depth cameras).
+  SensorFactory make_sensor = &make_lidar_sensor;
+  /// Called after every scan with the sensor index and its fresh scan (e.g. to record depth maps).
+  std::function<void(std::size_t sensor, const LidarScan& scan)> on_scan;
 };
 
 /// Runs one episode of `scene` to its end.

@@ -1,6 +1,7 @@
 #include "sim/run_record.hpp"
 
 #include <cstdio>
+#include <filesystem>
 
 #include "sim/provenance.hpp"
 #include "sim/scan_io.hpp"
@@ -58,6 +59,12 @@ void append(std::string& out, double v) {
   out.append(buffer, static_cast<std::size_t>(n));
 }
 
+// Relative data files of the scene (CSV/PNG terrain) resolve against this.
+nlohmann::json with_data_dir(nlohmann::json provenance, const Scene& scene) {
+  provenance["scene"]["data_dir"] = std::filesystem::absolute(std::filesystem::path(scene.source_path).parent_path()).string();
+  return provenance;
+}
+
 }  // namespace
 
 std::string trajectory_csv(const EpisodeResult& result) {
@@ -98,9 +105,7 @@ nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const E
   const VehicleDef& def = scene.vehicles.at(options.vehicle_index);
   nlohmann::json sensors = nlohmann::json::array();
   for (const SensorDef& s : def.sensors) {
-    nlohmann::json j = lidar_config_json(s.lidar);
-    j["alias"] = s.alias;
-    sensors.push_back(j);
+    sensors.push_back(sensor_json(s));
   }
   nlohmann::json mission = nlohmann::json::array();
   for (const Waypoint& wp : def.mission) {
@@ -113,7 +118,7 @@ nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const E
   for (const PlannerEvent& e : result.events) events.push_back({{"time_s", e.time_s}, {"decisions", e.decisions}});
   return {
       {"metrics", to_json(result.metrics)},
-      {"provenance", provenance(scene)},
+      {"provenance", with_data_dir(provenance(scene), scene)},
       {"overrides", overrides},
       {"parameters",
        {{"world",

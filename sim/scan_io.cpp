@@ -50,9 +50,10 @@ std::string points_ply(const LidarScan& scan) {
   return out;
 }
 
-nlohmann::json lidar_config_json(const LidarConfig& c) {
+nlohmann::json sensor_json(const SensorDef& sensor) {
+  const LidarConfig& c = sensor.lidar;
   nlohmann::json j = {
-      {"type", "lidar"},
+      {"type", to_string(sensor.type)},
       {"preset", c.preset},
       {"range_m", {c.min_range_m, c.max_range_m}},
       {"noise_stddev_m", c.noise_stddev_m},
@@ -73,6 +74,7 @@ nlohmann::json lidar_config_json(const LidarConfig& c) {
     for (const Beam& b : c.beams) beams.push_back({b.azimuth_deg, b.elevation_deg});
     j["beams"] = beams;
   }
+  if (!sensor.alias.empty()) j["alias"] = sensor.alias;
   return j;
 }
 

@@ -17,6 +17,6 @@ std::string hits_csv(const LidarScan& scan);
 /// ASCII PLY of the world-frame hit points.
 std::string points_ply(const LidarScan& scan);
 /// The sensor's effective parameters as JSON (the keys of a scene sensor block).
-nlohmann::json lidar_config_json(const LidarConfig& config);
+nlohmann::json sensor_json(const SensorDef& sensor);
 
 }  // namespace campo

@@ -92,10 +92,18 @@ enum class VehicleType { quadrotor, rover };
 std::string_view to_string(VehicleType type);
 std::optional<VehicleType> vehicle_type_from_string(std::string_view name);
 
-/// A sensor mounted on a vehicle.
+enum class SensorType {
+  lidar,         ///< ray-cast against the physics geometry (sim/lidar.hpp)
+  depth_camera,  ///< rendered off-screen with OSMesa (render/depth_camera.hpp)
+};
+std::string_view to_string(SensorType type);
+
+/// A sensor mounted on a vehicle. Both types produce the same range image and
+/// depth map over the same angular grid, so planners take either.
 struct SensorDef {
   std::string alias;
-  LidarConfig lidar;
+  SensorType type = SensorType::lidar;
+  LidarConfig lidar;  ///< angular grid, ranges, mount, rate (a depth camera has no explicit beams)
 };
 
 /// A mission waypoint, resolved to world coordinates at load time.

@@ -460,16 +460,14 @@ class Loader {
       std::map<std::string, std::string> sensor_aliases;
       for (const JsonNode& s : sensors->as_array(0, static_cast<std::size_t>(limits_.max_sensors))) {
         ObjectReader sr(s);
-        SensorDef sensor;
         const JsonNode alias_node = sr.required("alias");
-        sensor.alias = alias_node.as_string();
-        if (!valid_alias(sensor.alias)) alias_node.fail("an alias of 1-64 letters, digits, '_', '-' or '.'");
-        if (!sensor_aliases.emplace(sensor.alias, alias_node.pointer()).second) {
+        const std::string sensor_alias = alias_node.as_string();
+        if (!valid_alias(sensor_alias)) alias_node.fail("an alias of 1-64 letters, digits, '_', '-' or '.'");
+        if (!sensor_aliases.emplace(sensor_alias, alias_node.pointer()).second) {
           throw InputError(alias_node.file(), alias_node.pointer(),
-                           "duplicate sensor alias \"" + sensor.alias + "\" on vehicle \"" + alias + "\"");
+                           "duplicate sensor alias \"" + sensor_alias + "\" on vehicle \"" + alias + "\"");
         }
-        sensor.lidar = parse_lidar(s, limits_);
-        vehicle.sensors.push_back(std::move(sensor));
+        vehicle.sensors.push_back(parse_sensor(s, limits_));
       }
     }
     vehicle.planner.params = {nlohmann::json::object(), r.node().file(),
@@ -580,12 +578,13 @@ class Loader {
 
 }  // namespace
 
-LidarConfig parse_lidar(const JsonNode& node, const SceneLimits& limits) {
+SensorDef parse_sensor(const JsonNode& node, const SceneLimits& limits) {
   ObjectReader r(node);
-  r.accept("alias");
+  SensorDef sensor;
+  if (auto alias = r.optional("alias")) sensor.alias = alias->as_string();
   const JsonNode type = r.required("type");
-  type.as_choice({"lidar"});
-  LidarConfig c;
+  sensor.type = type.as_choice({"lidar", "depth_camera"}) == 0 ? SensorType::lidar : SensorType::depth_camera;
+  LidarConfig& c = sensor.lidar;
   if (auto preset = r.optional("preset")) {
     const auto names = lidar_preset_names();
     std::vector<std::string_view> choices(names.begin(), names.end());
@@ -635,8 +634,16 @@ LidarConfig parse_lidar(const JsonNode& node, const SceneLimits& limits) {
     m.read("rpy_deg", c.mount.rpy_deg, Range::closed(-360.0, 360.0));
     m.finish();
   }
+  if (sensor.type == SensorType::depth_camera) {
+    // One perspective render covers the grid: both angles well below 180 deg.
+    if (!c.beams.empty()) r.fail("a depth camera with a beam grid (\"fov_deg\", \"resolution\"), not explicit beams");
+    if (c.fov_h_deg > kMaxDepthCameraFov_deg || c.fov_v_deg > kMaxDepthCameraFov_deg) {
+      r.fail("a depth camera field of view of at most " + std::to_string(static_cast<int>(kMaxDepthCameraFov_deg)) +
+             " deg each way");
+    }
+  }
   r.finish();
-  return c;
+  return sensor;
 }
 
 std::string sha256_hex(const std::string& bytes) {

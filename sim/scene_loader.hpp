@@ -38,9 +38,12 @@ Scene parse_scene(const nlohmann::json& document, const std::string& source,
                   const std::filesystem::path& base_dir, const std::string& source_sha256 = "",
                   const SceneLimits& limits = {});
 
-/// Reads a LIDAR sensor block (also used by `campo scan` overrides): starts
-/// from the block's "preset" and applies the other keys.
-LidarConfig parse_lidar(const JsonNode& node, const SceneLimits& limits = {});
+/// Widest field of view a depth camera renders in one perspective view, degrees.
+inline constexpr double kMaxDepthCameraFov_deg = 150.0;
+
+/// Reads a sensor block (also used by `campo scan` overrides): its type, then
+/// the "preset" if any, then the other keys over it.
+SensorDef parse_sensor(const JsonNode& node, const SceneLimits& limits = {});
 
 /// Hex SHA-256 of a byte string (provenance of input files).
 std::string sha256_hex(const std::string& bytes);

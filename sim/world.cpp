@@ -1,4 +1,5 @@
 #include "sim/world.hpp"
+#include "sim/bullet_convert.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -11,15 +12,6 @@
 namespace campo {
 
 namespace {
-
-btVector3 to_bt(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-Eigen::Vector3d from_bt(const btVector3& v) { return {v.x(), v.y(), v.z()}; }
-
-btTransform to_bt(const Eigen::Isometry3d& t) {
-  const Eigen::Matrix3d& r = t.linear();
-  btMatrix3x3 basis(r(0, 0), r(0, 1), r(0, 2), r(1, 0), r(1, 1), r(1, 2), r(2, 0), r(2, 1), r(2, 2));
-  return btTransform(basis, to_bt(t.translation()));
-}
 
 // Mover shapes are tagged with negative user indices so hits can name them.
 int mover_tag(std::size_t mover_index) { return -1 - static_cast<int>(mover_index); }

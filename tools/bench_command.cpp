@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "planners/registry.hpp"
+#include "render/sensors.hpp"
 #include "sim/episode.hpp"
 #include "sim/lidar.hpp"
 #include "sim/provenance.hpp"
@@ -80,7 +81,7 @@ void bench_episodes(const BenchOptions& o) {
       VehicleDef& def = scene.vehicles.front();
       def.sensors.clear();
       if (resolution > 0) {
-        SensorDef sensor{"scanner", *lidar_preset("scanner3d")};
+        SensorDef sensor{"scanner", SensorType::lidar, *lidar_preset("scanner3d")};
         sensor.lidar.cols = sensor.lidar.rows = resolution;
         sensor.lidar.rate_hz = 10.0;
         def.sensors.push_back(sensor);
@@ -88,6 +89,7 @@ void bench_episodes(const BenchOptions& o) {
       def.planner.name = "straight";
       EpisodeOptions options;
       options.stop_on_collision = false;
+      options.make_sensor = &make_range_sensor;
       const EpisodeResult r = run_episode(scene, &make_vehicle, &create_planner, options);
       const double steps = r.metrics.sim_time_s / scene.world.physics_step_s;
       const double rtf = r.metrics.sim_time_s / r.metrics.wall_time_s;

@@ -18,6 +18,7 @@ using Command = std::function<int()>;
 
 Command add_validate(CLI::App& app);
 Command add_run(CLI::App& app);
+Command add_render(CLI::App& app);
 Command add_scan(CLI::App& app);
 Command add_bench(CLI::App& app);
 

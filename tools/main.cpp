@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
     commands[sub] = adder(*sub);
   };
   add(campo::cli::add_run, "run", "Run one closed-loop episode of a scene and write metrics, trajectory and a map");
+  add(campo::cli::add_render, "render", "Draw figures (map, side view, depth maps, snapshot, overlay) from recorded runs");
   add(campo::cli::add_validate, "validate", "Check scene files strictly; report every error with its JSON path");
   add(campo::cli::add_scan, "scan", "Cast one LIDAR scan in a scene and write ranges, hits, depth map and point cloud");
   add(campo::cli::add_bench, "bench", "Measure LIDAR throughput and closed-loop real-time factor on the bundled scenes");

@@ -3,10 +3,11 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
 
 #include "planners/registry.hpp"
-#include "render/topdown.hpp"
+#include "render/sensors.hpp"
+#include "render/depth_image.hpp"
+#include "render/run_files.hpp"
 #include "sim/episode.hpp"
 #include "sim/output_dir.hpp"
 #include "sim/run_record.hpp"
@@ -14,6 +15,7 @@
 #include "sim/scene_overrides.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
+#include "tools/figures.hpp"
 #include "vehicles/vehicle.hpp"
 
 namespace campo::cli {
@@ -29,6 +31,8 @@ struct RunOptions {
   std::string vehicle;
   std::string out = "out/run";
   bool continue_after_collision = false;
+  bool figures = true;
+  int record_depth_every = 0;
 };
 
 int run_run(const RunOptions& o) {
@@ -42,6 +46,7 @@ int run_run(const RunOptions& o) {
 
   EpisodeOptions options;
   options.stop_on_collision = !o.continue_after_collision;
+  options.make_sensor = &make_range_sensor;
   if (scene.vehicles.empty()) throw InputError(o.scene, "/objects", "expected a scene with a vehicle to run");
   if (!o.vehicle.empty()) {
     const VehicleDef* v = scene.find_vehicle(o.vehicle);
@@ -62,26 +67,39 @@ int run_run(const RunOptions& o) {
   validate_vehicle_params(def);
   create_planner(def.planner, {def.type, &scene});
 
-  const EpisodeResult result = run_episode(scene, &make_vehicle, &create_planner, options);
-
-  std::vector<Eigen::Vector3d> path;
-  for (const auto& s : result.trajectory) path.push_back(s.state.position_m);
-  TopdownStyle style;
-  style.title = scene.name + " - " + to_string(def.type).data() + " - " + def.planner.name + " - " +
-                std::string(to_string(result.metrics.outcome));
-  const cv::Mat picture = draw_topdown(scene, path, def.mission, style);
-
   StagedOutput out(o.out);
+  // Depth maps of every n-th scan, for `campo render --kind depth`.
+  std::vector<int> scans_seen(def.sensors.size(), 0);
+  if (o.record_depth_every > 0) {
+    std::filesystem::create_directories(out.path("depth"));
+    options.on_scan = [&](std::size_t i, const LidarScan& scan) {
+      if (scans_seen[i]++ % o.record_depth_every != 0) return;
+      char name[96];
+      std::snprintf(name, sizeof name, "%s_%08.3f.png", def.sensors[i].alias.c_str(), scan.time_s);
+      write_depth_png(depth_map(scan, def.sensors[i].lidar), out.path("depth") / name);
+    };
+  }
+  const EpisodeResult result = run_episode(scene, &make_vehicle, &create_planner, options);
+  const nlohmann::json record = run_json(scene, result, options, overrides);
+
   write_file_atomically(out.path("trajectory.csv"), trajectory_csv(result));
-  write_file_atomically(out.path("run.json"), run_json(scene, result, options, overrides).dump(2) + "\n");
-  if (!cv::imwrite(out.path("topdown.png").string(), picture)) {
-    throw std::runtime_error("cannot write " + out.path("topdown.png").string());
+  write_file_atomically(out.path("run.json"), record.dump(2) + "\n");
+  if (!document.contains("name")) document["name"] = scene.name;
+  write_file_atomically(out.path("scene.json"), document.dump(2) + "\n");
+  std::string written = "run.json, trajectory.csv, scene.json";
+  if (o.figures) {
+    // Drawn from the files just written, exactly as `campo render` would.
+    const std::filesystem::path staged = out.path("");
+    RecordedRun recorded = load_run_dir(staged);
+    recorded.view.label = std::filesystem::path(o.out).filename().string();
+    for (const std::string kind : {"map", "side"}) write_figure(recorded, kind, staged);
+    written += ", map.png, side.png";
   }
   out.commit();
   const EpisodeMetrics& m = result.metrics;
   std::cout << scene.name << ": " << to_string(m.outcome) << " (" << m.reason << ") after " << m.sim_time_s
             << " s simulated, path " << m.path_length_m << " m (ratio " << m.path_ratio << "), "
-            << m.wall_time_s << " s wall; wrote " << o.out << "/{run.json,trajectory.csv,topdown.png}\n";
+            << m.wall_time_s << " s wall; wrote " << written << " to " << o.out << "\n";
   return kOk;
 }
 
@@ -102,12 +120,17 @@ Command add_run(CLI::App& app) {
   app.add_option("--vehicle", o->vehicle, "Vehicle to run (default: the first)");
   app.add_flag("--continue-after-collision", o->continue_after_collision,
                "Count collisions but keep going until the mission ends or times out");
+  app.add_flag("!--no-figures", o->figures, "Do not draw map.png and side.png (for sweeps)");
+  app.add_option("--record-depth", o->record_depth_every,
+                 "Save the depth map of every N-th scan of each sensor under DIR/depth/ (0 = none)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--out", o->out, "Output directory (created if missing)")->capture_default_str();
   app.footer(
       "Runs one closed-loop episode: sense -> plan -> control -> actuate -> step, until the mission\n"
       "is complete (reached), the vehicle collides (collision), the time limit passes (timeout) or the\n"
       "planner gives up (aborted). Writes DIR/run.json (metrics, outcome, provenance, every effective\n"
-      "parameter), DIR/trajectory.csv (one row per planner call) and DIR/topdown.png.\n"
+      "parameter), DIR/trajectory.csv (one row per planner call), DIR/scene.json (the effective\n"
+      "scene) and the figures DIR/map.png and DIR/side.png (redraw with campo render).\n"
       "Exit 0 when the run completed, whatever its outcome; 2 on bad input; 1 on internal failure.");
   return [o] { return run_run(*o); };
 }

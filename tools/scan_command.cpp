@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "render/depth_image.hpp"
+#include "render/sensors.hpp"
 #include "sim/lidar.hpp"
 #include "sim/output_dir.hpp"
 #include "sim/provenance.hpp"
@@ -65,10 +66,13 @@ int run_scan(const ScanOptions& o) {
     vehicle = &scene.vehicles.front();
   }
   nlohmann::json sensor_block;
-  if (!o.sensor.empty()) {
+  if (o.sensor == "depth_camera") {
+    // The scanner3d frustum, rendered instead of ray-cast.
+    sensor_block = {{"type", "depth_camera"}, {"preset", "scanner3d"}};
+  } else if (!o.sensor.empty()) {
     sensor_block = {{"type", "lidar"}, {"preset", o.sensor}};
   } else if (vehicle && !vehicle->sensors.empty()) {
-    sensor_block = lidar_config_json(vehicle->sensors.front().lidar);
+    sensor_block = sensor_json(vehicle->sensors.front());
   } else {
     throw InputError("command line", "--sensor",
                      "a sensor preset: the scene has no vehicle with a sensor to default to");
@@ -89,7 +93,8 @@ int run_scan(const ScanOptions& o) {
     const auto v = parse_numbers(o.range, ',', 2, "--range", "MIN,MAX in metres, e.g. 0.1,10");
     sensor_block["range_m"] = {v[0], v[1]};
   }
-  const LidarConfig config = parse_lidar(JsonNode(sensor_block, "command line", ""));
+  const SensorDef sensor = parse_sensor(JsonNode(sensor_block, "command line", ""));
+  const LidarConfig& config = sensor.lidar;
 
   Eigen::Isometry3d sensor_pose;
   if (!o.pose.empty()) {
@@ -102,10 +107,9 @@ int run_scan(const ScanOptions& o) {
   }
 
   const std::uint64_t world_seed = o.seed_set ? o.seed : scene.world.seed;
-  RayCaster caster(scene);
-  Lidar lidar(config, world_seed);
+  const std::unique_ptr<RangeSensor> ranger = make_range_sensor(scene, sensor, world_seed);
   LidarScan scan;
-  lidar.scan(caster, sensor_pose, 0.0, scan);
+  ranger->scan(sensor_pose, 0.0, scan);
 
   const cv::Mat depth = depth_map(scan, config);
   StagedOutput out(o.out);
@@ -116,7 +120,7 @@ int run_scan(const ScanOptions& o) {
   const Eigen::Vector3d p = sensor_pose.translation();
   const Eigen::Vector3d rpy = rpy_deg_from_rotation(sensor_pose.linear());
   nlohmann::json record = {
-      {"sensor", lidar_config_json(config)},
+      {"sensor", sensor_json(sensor)},
       {"sensor_pose", {{"position_m", {p.x(), p.y(), p.z()}}, {"rpy_deg", {rpy.x(), rpy.y(), rpy.z()}}}},
       {"noise_seed", world_seed},
       {"rows", scan.rows},
@@ -141,7 +145,8 @@ Command add_scan(CLI::App& app) {
   std::string presets;
   for (auto name : lidar_preset_names()) presets += (presets.empty() ? "" : ", ") + std::string(name);
   app.add_option("--sensor", o->sensor,
-                 "LIDAR preset (" + presets + "); default: the first sensor of the vehicle");
+                 "LIDAR preset (" + presets + "), or depth_camera (the scanner3d frustum rendered with "
+                 "OSMesa); default: the first sensor of the vehicle");
   app.add_option("--vehicle", o->vehicle, "Vehicle whose pose and sensor are the defaults (default: the first)");
   app.add_option("--pose", o->pose,
                  "Sensor pose x,y,z,roll,pitch,yaw in metres and degrees, world frame; "

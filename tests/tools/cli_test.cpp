@@ -71,7 +71,7 @@ TEST_F(Cli, VersionAndHelp) {
   const Result version = campo("--version");
   EXPECT_EQ(version.exit_code, 0);
   EXPECT_THAT(version.out, HasSubstr("campo 0."));
-  for (const char* sub : {"run", "validate", "scan", "bench"}) {
+  for (const char* sub : {"run", "render", "validate", "scan", "bench"}) {
     const Result help = campo(std::string(sub) + " --help");
     EXPECT_EQ(help.exit_code, 0) << sub;
     EXPECT_THAT(help.out, HasSubstr("Usage")) << sub;
@@ -165,7 +165,7 @@ TEST_F(Cli, RunsEveryBundledSceneWithTheStraightPlanner) {
     const Result r = campo("run " + std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name +
                            ".json --planner straight --set /world/time_limit_s=20 --out " + out.string());
     ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
-    for (const char* file : {"run.json", "trajectory.csv", "topdown.png"}) {
+    for (const char* file : {"run.json", "trajectory.csv", "scene.json", "map.png", "side.png"}) {
       EXPECT_TRUE(fs::exists(out / file)) << name << "/" << file;
     }
     const auto run = nlohmann::json::parse(slurp(out / "run.json"));
@@ -181,7 +181,7 @@ TEST_F(Cli, RunsEveryBundledSceneWithTheStraightPlanner) {
     EXPECT_EQ(run["provenance"]["scene"]["sha256"],
               campo::sha256_hex(slurp(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json")));
     EXPECT_EQ(run["overrides"][0], "/world/time_limit_s=20");
-    EXPECT_EQ(cv::imread((out / "topdown.png").string()).empty(), false);
+    EXPECT_EQ(cv::imread((out / "map.png").string()).empty(), false);
   }
 }
 
@@ -224,6 +224,52 @@ TEST_F(Cli, BadRunInputExitsTwoAndWritesNothing) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("/objects/4/params/mass_kg"));
   EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, RenderRedrawsFiguresFromRunFilesAlone) {
+  const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json";
+  const fs::path a = dir_ / "run_a", b = dir_ / "run_b";
+  ASSERT_EQ(campo("run " + scene + " --set /world/time_limit_s=4 --record-depth 10 --out " + a.string()).exit_code, 0);
+  ASSERT_EQ(campo("run " + scene + " --seed 3 --no-figures --set /world/time_limit_s=3 --out " + b.string()).exit_code, 0);
+  EXPECT_FALSE(fs::exists(b / "map.png"));
+  EXPECT_TRUE(fs::exists(a / "depth"));
+
+  // The scene file may change or vanish: figures come from the run directory.
+  const fs::path redrawn = dir_ / "redrawn";
+  Result r = campo("render " + a.string() + " --kind map --kind side --kind depth --kind snapshot --out " + redrawn.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The same files give the same bytes as the figures campo run drew.
+  EXPECT_EQ(slurp(redrawn / "run_a" / "map.png"), slurp(a / "map.png"));
+  EXPECT_EQ(slurp(redrawn / "run_a" / "side.png"), slurp(a / "side.png"));
+  EXPECT_FALSE(cv::imread((redrawn / "run_a" / "snapshot.png").string()).empty());
+  EXPECT_FALSE(fs::is_empty(redrawn / "run_a" / "depth_figures"));
+
+  r = campo("render " + a.string() + " " + b.string() + " --kind overlay --out " + redrawn.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(cv::imread((redrawn / "overlay.png").string()).empty());
+
+  r = campo("render " + b.string() + " --kind depth --out " + redrawn.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("no recorded depth maps"));
+  r = campo("render " + (dir_ / "nothing").string());
+  EXPECT_EQ(r.exit_code, 2);
+}
+
+TEST_F(Cli, ScanWithTheDepthCameraMatchesTheLidar) {
+  const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json";
+  const std::string pose = " --res 64x64 --pose 0,0,1.5,0,0,0 --out ";
+  ASSERT_EQ(campo("scan " + scene + " --sensor scanner3d" + pose + (dir_ / "lidar").string()).exit_code, 0);
+  const Result r = campo("scan " + scene + " --sensor depth_camera" + pose + (dir_ / "camera").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto lidar = read_csv(dir_ / "lidar" / "ranges.csv");
+  const auto camera = read_csv(dir_ / "camera" / "ranges.csv");
+  ASSERT_EQ(camera.size(), 64u);
+  int close = 0;
+  for (int row = 0; row < 64; ++row) {
+    for (int col = 0; col < 64; ++col) close += std::abs(lidar[row][col] - camera[row][col]) < 0.05;
+  }
+  EXPECT_GT(close, 64 * 64 * 95 / 100);
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir_ / "camera" / "scan.json"))["sensor"]["type"], "depth_camera");
 }
 
 }  // namespace

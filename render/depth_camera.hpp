@@ -1,0 +1,16 @@
+#pragma once
+/// The OSMesa depth camera (SPEC §6, §9): the sensor's angular grid rendered
+/// off-screen from the scene mesh, producing the same range image and depth
+/// map as the ray-cast LIDAR (ranges along each pixel's ray, equiangular in
+/// azimuth and elevation), so planners take either source.
+#include <memory>
+
+#include "sim/range_sensor.hpp"
+
+namespace campo {
+
+/// A depth camera for `def` (type depth_camera). Throws std::runtime_error
+/// when no OSMesa context can be made.
+std::unique_ptr<RangeSensor> make_depth_camera(const Scene& scene, const SensorDef& def);
+
+}  // namespace campo

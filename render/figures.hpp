@@ -1,0 +1,141 @@
+#pragma once
+/// PNG figures for reports (SPEC §9), drawn with OpenCV from recorded run data
+/// alone: top-down map, side view, depth maps with planner overlays, and
+/// several runs overlaid. Anti-aliased, with title, axes in metres, scale bar
+/// and legend. Same inputs => same pixels.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "sim/scene.hpp"
+
+namespace campo {
+
+/// One recorded sample of a run (a row of trajectory.csv).
+struct TrackPoint {
+  double time_s = 0.0;
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  double speed_mps = 0.0;
+};
+
+/// What the figures need of one run, read from its files.
+struct RunView {
+  std::string label;                        ///< legend text (e.g. the run directory name)
+  std::vector<TrackPoint> track;            ///< flown/driven path in time order
+  std::vector<Waypoint> mission;            ///< operator waypoints (start excluded)
+  std::vector<int> reached;                 ///< indices into mission reached
+  std::vector<Eigen::Vector3d> planned;     ///< intermediate waypoints a planner set (reached or not)
+  std::vector<Eigen::Vector3d> discarded;   ///< intermediate waypoints a planner dropped
+  std::vector<Eigen::Vector3d> planned_path;///< a global planner's planned path, if any
+  std::string outcome;                      ///< run outcome, for titles
+};
+
+enum class TrackColoring { time, speed };
+
+struct FigureStyle {
+  int max_size_px = 1200;    ///< longer side of the plot area, in [200, 8000]
+  double margin_m = 3.0;     ///< around the runs' paths and waypoints, >= 0
+  std::string title;         ///< empty: one made from the run's label and outcome
+  TrackColoring coloring = TrackColoring::time;
+};
+
+/// Bands around the plot of map, overlay and side-view figures, pixels: the
+/// image is kFigureLeftPx + plot width + kFigurePanelPx wide (the panel on
+/// the right holds the legend, the colour bar, the scale bar and the north
+/// arrow) and kFigureTitlePx + plot height + kFigureBottomPx high.
+inline constexpr int kFigureTitlePx = 56;
+inline constexpr int kFigureLeftPx = 84;
+inline constexpr int kFigureBottomPx = 64;
+inline constexpr int kFigurePanelPx = 320;
+
+/// Where a figure puts its parts and how data maps to pixels, for callers
+/// that annotate a figure further and for tests. Maps: the plot's longer
+/// side is style.max_size_px and its aspect that of the bounds (the runs'
+/// paths, waypoints and planned paths plus margin_m, grown to whole obstacles
+/// within the margin), except that a flat plot grows in height to fit the
+/// legend column. Side views: the plot is style.max_size_px wide and
+/// max(240, 0.35 * style.max_size_px) high, or as high as the legend.
+struct FigureLayout {
+  cv::Size image_px;
+  cv::Rect title_px;             ///< band holding the title
+  cv::Rect plot_px;              ///< the map or the profile
+  cv::Rect legend_px;            ///< legend box
+  cv::Rect colorbar_px;          ///< colour bar; empty when the figure has none
+  cv::Rect scalebar_px;          ///< scale bar and north arrow; empty on side views
+  Eigen::Vector2d min = Eigen::Vector2d::Zero();  ///< data (x, y) at the plot's bottom-left corner, m
+  Eigen::Vector2d px_per_unit = Eigen::Vector2d::Ones();  ///< pixels per metre along x and y
+  /// Drawing coordinates of a data point: pixel (c, r) is centred on (c, r).
+  cv::Point2d to_px(const Eigen::Vector2d& p) const;
+};
+
+/// Top-down map (x east to the right, y north up, equal scales): terrain
+/// shading and contour lines, obstacle footprints, movers' paths, planned
+/// path, the track coloured by time or speed (with a colour bar), numbered
+/// mission waypoints (filled when reached), planned and discarded
+/// intermediate waypoints, start and goal, axes, scale bar, north arrow and
+/// a legend of the symbols present.
+cv::Mat draw_map(const Scene& scene, const RunView& run, const FigureStyle& style = {});
+FigureLayout map_layout(const Scene& scene, const RunView& run, const FigureStyle& style = {});
+
+/// Side view: altitude of the vehicle and of the terrain beneath it against
+/// the distance travelled along the track, with the vertical extent of the
+/// obstacles the track passes over, under or through, and the mission
+/// waypoints at the track's closest approach to them. Distances are
+/// horizontal, so that slopes show true.
+cv::Mat draw_side_view(const Scene& scene, const RunView& run, const FigureStyle& style = {});
+FigureLayout side_view_layout(const Scene& scene, const RunView& run, const FigureStyle& style = {});
+
+/// Several runs on one map (seed 000 Fig. 5.6), one colour per run (run_color),
+/// legend entries "label (outcome)"; shared start and goal markers.
+cv::Mat draw_overlay(const Scene& scene, const std::vector<RunView>& runs, const FigureStyle& style = {});
+FigureLayout overlay_layout(const Scene& scene, const std::vector<RunView>& runs, const FigureStyle& style = {});
+
+/// Colour of a run in overlays: a fixed qualitative palette, cycled (BGR).
+cv::Scalar run_color(std::size_t index);
+/// Sequential colour map of tracks (time, speed) and depth values (viridis,
+/// BGR); `fraction` is clamped to [0, 1]. Tracks map [first time, last time]
+/// or [0, top speed] onto it.
+cv::Vec3b sequential_color(double fraction);
+
+/// Planner overlays on a depth map (seed 000 Fig. 5.2), all optional.
+struct DepthOverlays {
+  cv::Mat dilated;                       ///< CV_32F like the depth map
+  cv::Mat thresholded;                   ///< CV_8U 0/255
+  std::optional<cv::Point> chosen_pixel; ///< the pixel a waypoint was chosen at
+  std::vector<cv::Point> scan_line;      ///< pixels considered for the choice
+};
+
+/// A depth map (CV_32F in [0, 1], SPEC §6) as a report figure: grey or
+/// colour-mapped, upscaled with visible pixels, with a value colour bar and
+/// the overlays when given (each panel side by side: depth, dilated, thresholded).
+/// Colour mode: sequential_color, with no return (1) light grey and below
+/// min range (0) black. Throws std::invalid_argument for an empty or
+/// non-CV_32F depth map or overlays of another size.
+cv::Mat draw_depth(const cv::Mat& depth, const DepthOverlays& overlays, bool colour, const std::string& title);
+
+/// Where draw_depth puts its parts: the title band (kFigureTitlePx high),
+/// the panels with their captions below, then a legend row (wrapped) of the
+/// overlays and, in colour, of the special values. Each panel is the depth
+/// map upscaled with nearest neighbours by the smallest integer factor that
+/// makes its longer side at least kDepthPanelMinPx. Panels are kDepthGapPx
+/// apart and from the left edge; the colour bar starts kDepthGapPx right of
+/// the last panel, and with its labels it takes kDepthColorbarPx.
+struct DepthFigureLayout {
+  cv::Size image_px;
+  cv::Rect title_px;
+  int scale = 1;                    ///< figure pixels per depth-map pixel
+  std::vector<cv::Rect> panels_px;  ///< depth, then dilated and thresholded when given
+  cv::Rect colorbar_px;
+  cv::Rect legend_px;               ///< legend rows; empty when there is nothing to explain
+  /// Drawing coordinates of the centre of depth-map pixel `pixel` in panel `panel`.
+  cv::Point2d to_px(std::size_t panel, cv::Point pixel) const;
+};
+inline constexpr int kDepthPanelMinPx = 256;
+inline constexpr int kDepthGapPx = 32;
+inline constexpr int kDepthColorbarPx = 120;
+DepthFigureLayout depth_layout(const cv::Mat& depth, const DepthOverlays& overlays, bool colour);
+
+}  // namespace campo

@@ -1,0 +1,94 @@
+#include "render/run_files.hpp"
+
+#include <charconv>
+#include <sstream>
+
+#include "sim/json_reader.hpp"
+#include "sim/scene_loader.hpp"
+
+namespace campo {
+
+namespace {
+
+Eigen::Vector3d vector3(const nlohmann::json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+
+// trajectory.csv: time, position and velocity columns by name.
+std::vector<TrackPoint> read_track(const std::filesystem::path& path) {
+  const std::string text = read_text_file(path, {256u << 20, 32});
+  std::istringstream in(text);
+  std::string line;
+  if (!std::getline(in, line)) throw InputError(path.string(), "", "empty file; expected a CSV header");
+  std::vector<std::string> header;
+  for (std::stringstream s(line); std::getline(s, line, ',');) header.push_back(line);
+  const auto column = [&](const std::string& name) {
+    for (std::size_t i = 0; i < header.size(); ++i) {
+      if (header[i] == name) return i;
+    }
+    throw InputError(path.string(), "", "missing column \"" + name + "\"");
+  };
+  const std::size_t t = column("time_s"), x = column("x_m"), y = column("y_m"), z = column("z_m");
+  const std::size_t vx = column("vx_mps"), vy = column("vy_mps"), vz = column("vz_mps");
+  std::vector<TrackPoint> track;
+  std::vector<double> fields;
+  for (int row = 2; std::getline(in, line); ++row) {
+    fields.clear();
+    std::size_t start = 0;
+    while (start <= line.size()) {
+      const std::size_t end = std::min(line.find(',', start), line.size());
+      double v = 0.0;
+      const auto [ptr, ec] = std::from_chars(line.data() + start, line.data() + end, v);
+      fields.push_back(ec == std::errc() ? v : 0.0);
+      start = end + 1;
+    }
+    if (fields.size() < header.size()) {
+      throw InputError(path.string(), "", "line " + std::to_string(row) + ": expected " +
+                                              std::to_string(header.size()) + " fields");
+    }
+    TrackPoint p;
+    p.time_s = fields[t];
+    p.position_m = {fields[x], fields[y], fields[z]};
+    p.speed_mps = Eigen::Vector3d(fields[vx], fields[vy], fields[vz]).norm();
+    track.push_back(p);
+  }
+  return track;
+}
+
+}  // namespace
+
+RecordedRun load_run_dir(const std::filesystem::path& dir) {
+  RecordedRun run;
+  run.dir = dir;
+  run.record = read_json_file(dir / "run.json", {64u << 20, 64});
+  const auto scene_path = dir / "scene.json";
+  const std::filesystem::path data_dir = run.record.value("/provenance/scene/data_dir"_json_pointer, std::string("."));
+  run.scene = parse_scene(read_json_file(scene_path), scene_path.string(), data_dir);
+  RunView& v = run.view;
+  v.label = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
+  v.outcome = run.record.value("/metrics/outcome"_json_pointer, std::string());
+  v.track = read_track(dir / "trajectory.csv");
+  try {
+    for (const auto& wp : run.record.at("parameters").at("mission")) {
+      Waypoint w;
+      w.position_m = vector3(wp.at("position_m"));
+      if (wp.contains("heading_deg")) w.heading_deg = wp["heading_deg"].get<double>();
+      v.mission.push_back(w);
+    }
+    // Planner decisions (docs/running.md): reached mission waypoints, intermediate
+    // waypoints set or dropped, a planned path.
+    for (const auto& event : run.record.value("events", nlohmann::json::array())) {
+      const auto& d = event.at("decisions");
+      for (const auto& i : d.value("reached_waypoints", nlohmann::json::array())) v.reached.push_back(i.get<int>());
+      if (d.contains("planned_waypoint")) v.planned.push_back(vector3(d["planned_waypoint"]));
+      if (d.contains("discarded_waypoint")) v.discarded.push_back(vector3(d["discarded_waypoint"]));
+      if (d.contains("planned_path")) {
+        v.planned_path.clear();
+        for (const auto& p : d["planned_path"]) v.planned_path.push_back(vector3(p));
+      }
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError((dir / "run.json").string(), "", std::string("malformed run record: ") + e.what());
+  }
+  return run;
+}
+
+}  // namespace campo

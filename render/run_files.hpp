@@ -1,0 +1,25 @@
+#pragma once
+/// Reading a recorded run directory (run.json, trajectory.csv, scene.json)
+/// back for figures, so every figure is reproducible from the files alone.
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "render/figures.hpp"
+#include "sim/scene.hpp"
+
+namespace campo {
+
+struct RecordedRun {
+  std::filesystem::path dir;
+  nlohmann::json record;  ///< run.json
+  Scene scene;            ///< from scene.json, the effective scene of the run
+  RunView view;           ///< track, mission and planner decisions
+};
+
+/// Loads a run directory written by `campo run`; InputError naming the file
+/// when something is missing or malformed.
+RecordedRun load_run_dir(const std::filesystem::path& dir);
+
+}  // namespace campo

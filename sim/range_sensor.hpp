@@ -1,0 +1,32 @@
+#pragma once
+/// A sensor that produces a range image over an angular grid: the ray-cast
+/// LIDAR here, the OSMesa depth camera in render/. The closed loop and
+/// `campo scan` take either through this interface.
+#include <cstdint>
+#include <memory>
+
+#include <Eigen/Geometry>
+
+#include "sim/lidar.hpp"
+#include "sim/scene.hpp"
+
+namespace campo {
+
+class RangeSensor {
+ public:
+  virtual ~RangeSensor() = default;
+  virtual const SensorDef& def() const = 0;
+  /// Fills `out` (ranges, hits, points; buffers reused) as seen from
+  /// `sensor_pose` (world frame) with the movers at time_s.
+  virtual void scan(const Eigen::Isometry3d& sensor_pose, double time_s, LidarScan& out) = 0;
+};
+
+/// Builds the sensor of a definition for a scene (which must outlive it).
+using SensorFactory = std::unique_ptr<RangeSensor> (*)(const Scene& scene, const SensorDef& def,
+                                                        std::uint64_t world_seed);
+
+/// The ray-cast LIDAR as a RangeSensor; throws std::invalid_argument for
+/// other sensor types (render/ builds those).
+std::unique_ptr<RangeSensor> make_lidar_sensor(const Scene& scene, const SensorDef& def, std::uint64_t world_seed);
+
+}  // namespace campo
