@@ -302,12 +302,15 @@ DepthCamera::DepthCamera(const Scene& scene, const SensorDef& def)
   inverse_depth_.resize(static_cast<std::size_t>(frustum_.width_px) * frustum_.height_px);
 
   const SceneMesh mesh = build_scene_mesh(scene);
+  constexpr std::uint32_t kChunkIndices = 3 * kCullChunkTriangles;
   for (const MeshPart& part : mesh.parts) {
-    for (std::uint32_t done = 0; done < part.index_count; done += 3 * kCullChunkTriangles) {
-      chunks_.push_back(bound(mesh, part.first_index + done, std::min(3 * kCullChunkTriangles, part.index_count - done)));
+    for (std::uint32_t done = 0; done < part.index_count; done += kChunkIndices) {
+      chunks_.push_back(bound(mesh, part.first_index + done, std::min(kChunkIndices, part.index_count - done)));
     }
   }
-  for (const MeshPart& part : mesh.mover_parts) mover_chunks_.push_back(bound(mesh, part.first_index, part.index_count));
+  for (const MeshPart& part : mesh.mover_parts) {
+    mover_chunks_.push_back(bound(mesh, part.first_index, part.index_count));
+  }
   mover_poses_.resize(mover_chunks_.size(), Eigen::Isometry3d::Identity());
   mover_model_views_.resize(mover_chunks_.size());
   visible_movers_.reserve(mover_chunks_.size());

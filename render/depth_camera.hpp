@@ -9,7 +9,9 @@
 
 namespace campo {
 
-/// A depth camera for `def` (type depth_camera). Throws std::runtime_error
+/// A depth camera for `def` (type depth_camera, validated by the scene loader).
+/// Throws std::invalid_argument for a definition it cannot render (explicit
+/// beams, noise or dropout, too wide a field of view) and std::runtime_error
 /// when no OSMesa context can be made.
 std::unique_ptr<RangeSensor> make_depth_camera(const Scene& scene, const SensorDef& def);
 

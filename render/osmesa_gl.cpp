@@ -8,20 +8,20 @@
 namespace campo {
 
 OsmesaContext::OsmesaContext() {
-  const int attributes[] = {OSMESA_FORMAT,
-                            OSMESA_RGBA,
-                            OSMESA_DEPTH_BITS,
-                            0,
-                            OSMESA_PROFILE,
-                            OSMESA_CORE_PROFILE,
-                            OSMESA_CONTEXT_MAJOR_VERSION,
-                            4,
-                            OSMESA_CONTEXT_MINOR_VERSION,
-                            5,
-                            0};
+  // (key, value) pairs; no depth buffer of its own: frame buffer objects have theirs.
+  const int attributes[] = {
+      OSMESA_FORMAT, OSMESA_RGBA,
+      OSMESA_DEPTH_BITS, 0,
+      OSMESA_PROFILE, OSMESA_CORE_PROFILE,
+      OSMESA_CONTEXT_MAJOR_VERSION, 4,
+      OSMESA_CONTEXT_MINOR_VERSION, 5,
+      0};
   context_ = OSMesaCreateContextAttribs(attributes, nullptr);
   if (!context_) throw std::runtime_error("OSMesa: cannot create an OpenGL 4.5 core context");
-  make_current();
+  if (!bind()) {
+    OSMesaDestroyContext(context_);
+    throw std::runtime_error("OSMesa: cannot make the context current");
+  }
 }
 
 OsmesaContext::~OsmesaContext() {
@@ -48,18 +48,20 @@ void check_gl(const char* what) {
 
 namespace {
 
-GLuint compile(GLenum stage, const char* source) {
-  const GLuint shader = glCreateShader(stage);
-  glShaderSource(shader, 1, &source, nullptr);
-  glCompileShader(shader);
+// A shader object; once attached, the program keeps it alive.
+using GlShader = GlName<&glDeleteShader>;
+
+GlShader compile(GLenum stage, const char* source) {
+  GlShader shader(glCreateShader(stage));
+  glShaderSource(shader.id(), 1, &source, nullptr);
+  glCompileShader(shader.id());
   GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
   if (!ok) {
     GLint length = 0;
-    glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    glGetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-    glGetShaderInfoLog(shader, length, nullptr, log.data());
-    glDeleteShader(shader);
+    glGetShaderInfoLog(shader.id(), length, nullptr, log.data());
     throw std::runtime_error("OpenGL: shader does not compile: " + log);
   }
   return shader;
@@ -68,21 +70,12 @@ GLuint compile(GLenum stage, const char* source) {
 }  // namespace
 
 GlProgram make_program(const char* vertex_source, const char* fragment_source) {
+  const GlShader vertex = compile(GL_VERTEX_SHADER, vertex_source);
+  const GlShader fragment = compile(GL_FRAGMENT_SHADER, fragment_source);
   GlProgram program(glCreateProgram());
-  const GLuint vertex = compile(GL_VERTEX_SHADER, vertex_source);
-  GLuint fragment = 0;
-  try {
-    fragment = compile(GL_FRAGMENT_SHADER, fragment_source);
-  } catch (...) {
-    glDeleteShader(vertex);
-    throw;
-  }
-  glAttachShader(program.id(), vertex);
-  glAttachShader(program.id(), fragment);
+  glAttachShader(program.id(), vertex.id());
+  glAttachShader(program.id(), fragment.id());
   glLinkProgram(program.id());
-  // Flagged for deletion; they go when the program does.
-  glDeleteShader(vertex);
-  glDeleteShader(fragment);
   GLint ok = GL_FALSE;
   glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
   if (!ok) {

@@ -4,7 +4,9 @@
 /// buffers and a SceneMesh on the GPU. Every GL call needs the owning
 /// context current on the calling thread; an owner of GL names makes its
 /// context current in its destructor so the names are deleted there.
-#define GL_GLEXT_PROTOTYPES 1
+#ifndef GL_GLEXT_PROTOTYPES
+#define GL_GLEXT_PROTOTYPES 1  // libOSMesa exports the GL 4.5 entry points
+#endif
 #include <GL/osmesa.h>
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -67,13 +69,12 @@ inline void gl_delete_buffer(GLuint id) { glDeleteBuffers(1, &id); }
 inline void gl_delete_vertex_array(GLuint id) { glDeleteVertexArrays(1, &id); }
 inline void gl_delete_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
 inline void gl_delete_renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
-inline void gl_delete_program(GLuint id) { glDeleteProgram(id); }
 
 using GlBuffer = GlName<&gl_delete_buffer>;
 using GlVertexArray = GlName<&gl_delete_vertex_array>;
 using GlFramebuffer = GlName<&gl_delete_framebuffer>;
 using GlRenderbuffer = GlName<&gl_delete_renderbuffer>;
-using GlProgram = GlName<&gl_delete_program>;
+using GlProgram = GlName<&glDeleteProgram>;
 
 /// Throws std::runtime_error naming `what` if GL has recorded an error.
 void check_gl(const char* what);

@@ -134,8 +134,12 @@ void validate(const SnapshotCamera& c) {
   if (!(view.normalized().cross(c.up).norm() > 1e-9)) {
     throw std::invalid_argument("snapshot camera: 'up' is zero or along the line of sight");
   }
-  if (!(c.fov_deg > 0.0 && c.fov_deg < 180.0)) throw std::invalid_argument("snapshot camera: fov_deg must be in (0, 180)");
-  if (c.width_px < 1 || c.height_px < 1) throw std::invalid_argument("snapshot camera: width_px and height_px must be >= 1");
+  if (!(c.fov_deg > 0.0 && c.fov_deg < 180.0)) {
+    throw std::invalid_argument("snapshot camera: fov_deg must be in (0, 180)");
+  }
+  if (c.width_px < 1 || c.height_px < 1) {
+    throw std::invalid_argument("snapshot camera: width_px and height_px must be >= 1");
+  }
 }
 
 }  // namespace
@@ -153,8 +157,9 @@ cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const Snapsho
     Shape box;
     box.type = ShapeType::cuboid;
     box.pose = *vehicle_pose;
-    box.size_m = vehicle_type == VehicleType::quadrotor ? Eigen::Vector3d(0.6, 0.6, 0.12) : Eigen::Vector3d(1.5, 1.0, 0.35);
-    box.color = vehicle_type == VehicleType::quadrotor ? kQuadrotor : kRover;
+    const bool quadrotor = vehicle_type == VehicleType::quadrotor;
+    box.size_m = quadrotor ? Eigen::Vector3d(0.6, 0.6, 0.12) : Eigen::Vector3d(1.5, 1.0, 0.35);
+    box.color = quadrotor ? kQuadrotor : kRover;
     marker_scene.shapes.push_back(box);
   }
   const SceneMesh marker = build_scene_mesh(marker_scene);
@@ -200,15 +205,16 @@ cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const Snapsho
   Eigen::Vector3d back = camera.eye_m - camera.target_m;
   back.z() = 0.0;
   back = back.norm() > 1e-9 ? back.normalized() : Eigen::Vector3d::UnitX();
-  const Eigen::Vector3f sun =
-      (0.55 * back + 0.3 * Eigen::Vector3d::UnitZ().cross(back) + 0.8 * Eigen::Vector3d::UnitZ()).normalized().cast<float>();
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3f sun = (0.55 * back + 0.3 * up.cross(back) + 0.8 * up).normalized().cast<float>();
   glUniform3f(8, sun.x(), sun.y(), sun.z());
 
   const auto draw = [](const MeshPart& part, const Eigen::Isometry3d& model, float ambient,
                        const Eigen::Vector2f& tint_heights) {
     const Eigen::Matrix4f m = model.matrix().cast<float>();
     glUniformMatrix4fv(0, 1, GL_FALSE, m.data());
-    glUniform3f(2, static_cast<float>(part.color.r), static_cast<float>(part.color.g), static_cast<float>(part.color.b));
+    const Eigen::Vector3f colour = Eigen::Vector3d(part.color.r, part.color.g, part.color.b).cast<float>();
+    glUniform3f(2, colour.x(), colour.y(), colour.z());
     glUniform1f(3, ambient);
     glUniform2f(4, tint_heights.x(), tint_heights.y());
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(part.index_count), GL_UNSIGNED_INT,

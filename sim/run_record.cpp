@@ -61,7 +61,8 @@ void append(std::string& out, double v) {
 
 // Relative data files of the scene (CSV/PNG terrain) resolve against this.
 nlohmann::json with_data_dir(nlohmann::json provenance, const Scene& scene) {
-  provenance["scene"]["data_dir"] = std::filesystem::absolute(std::filesystem::path(scene.source_path).parent_path()).string();
+  const std::filesystem::path dir = std::filesystem::path(scene.source_path).parent_path();
+  provenance["scene"]["data_dir"] = std::filesystem::absolute(dir.empty() ? std::filesystem::path(".") : dir).string();
   return provenance;
 }
 

@@ -637,6 +637,9 @@ SensorDef parse_sensor(const JsonNode& node, const SceneLimits& limits) {
   if (sensor.type == SensorType::depth_camera) {
     // One perspective render covers the grid: both angles well below 180 deg.
     if (!c.beams.empty()) r.fail("a depth camera with a beam grid (\"fov_deg\", \"resolution\"), not explicit beams");
+    if (c.noise_stddev_m > 0.0 || c.dropout_probability > 0.0) {
+      r.fail("a depth camera without \"noise_stddev_m\" or \"dropout_probability\" (only the LIDAR models them)");
+    }
     if (c.fov_h_deg > kMaxDepthCameraFov_deg || c.fov_v_deg > kMaxDepthCameraFov_deg) {
       r.fail("a depth camera field of view of at most " + std::to_string(static_cast<int>(kMaxDepthCameraFov_deg)) +
              " deg each way");

@@ -246,13 +246,12 @@ TEST(DepthCamera, TwoCamerasWorkSideBySide) {
   auto second = make_depth_camera(far_wall, camera_def(48, 16, 60.0, 20.0));
   LidarScan a, b;
   const auto straight_ahead = [](const LidarScan& scan) {
-    // Mean of the four pixels around the optical axis, each range times its cosine.
+    // Mean distance along the optical axis of the four pixels around it.
     double sum = 0.0;
     for (const int row : {scan.rows / 2 - 1, scan.rows / 2}) {
       for (const int col : {scan.cols / 2 - 1, scan.cols / 2}) {
         const std::size_t i = static_cast<std::size_t>(row) * scan.cols + col;
-        const Eigen::Vector3d p = scan.points[i].cast<double>();
-        sum += p.x();
+        sum += scan.points[i].x();
       }
     }
     return sum / 4.0;

@@ -335,3 +335,25 @@ TEST(SceneLoader, GridKeysReplaceAPresetsBeams) {
 
 }  // namespace
 }  // namespace campo
+
+namespace campo {
+namespace {
+
+TEST(SceneLoader, DepthCamerasTakeAGridWithoutNoise) {
+  const Scene scene = parse(R"({"objects": [{"alias": "d", "type": "quadrotor", "sensors": [
+      {"alias": "cam", "type": "depth_camera", "preset": "scanner3d", "resolution": [64, 48]}]}]})");
+  EXPECT_EQ(scene.vehicles[0].sensors[0].type, SensorType::depth_camera);
+  EXPECT_EQ(scene.vehicles[0].sensors[0].lidar.cols, 64);
+  EXPECT_THAT(error_of(R"({"objects": [{"alias": "d", "type": "quadrotor", "sensors": [
+      {"alias": "cam", "type": "depth_camera", "preset": "planar180"}]}]})"),
+              HasSubstr("/objects/0/sensors/0: expected a depth camera with a beam grid"));
+  EXPECT_THAT(error_of(R"({"objects": [{"alias": "d", "type": "quadrotor", "sensors": [
+      {"alias": "cam", "type": "depth_camera", "fov_deg": [170, 90]}]}]})"),
+              HasSubstr("expected a depth camera field of view of at most 150 deg"));
+  EXPECT_THAT(error_of(R"({"objects": [{"alias": "d", "type": "quadrotor", "sensors": [
+      {"alias": "cam", "type": "depth_camera", "noise_stddev_m": 0.01}]}]})"),
+              HasSubstr("expected a depth camera without \"noise_stddev_m\""));
+}
+
+}  // namespace
+}  // namespace campo

@@ -31,7 +31,7 @@ Shape heightfield(const Eigen::Vector3d& position, double yaw_deg) {
   grid->spacing_x_m = 0.5;
   grid->spacing_y_m = 0.75;
   for (int r = 0; r < grid->rows; ++r) {
-    for (int c = 0; c < grid->cols; ++c) grid->heights_m.push_back(std::sin(0.7 * c) + 0.3 * std::cos(1.3 * r));
+    for (int c = 0; c < grid->cols; ++c) grid->heights_m.push_back(std::sin(0.7 * c) * std::cos(1.3 * r));
   }
   Shape s = make_shape(ShapeType::heightfield, position, {0.0, 0.0, yaw_deg});
   s.terrain = grid;
