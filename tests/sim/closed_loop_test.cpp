@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "planners/registry.hpp"
+#include "render/sensors.hpp"
 #include "sim/episode.hpp"
 #include "sim/scene_loader.hpp"
 #include "vehicles/vehicle.hpp"
@@ -80,6 +81,32 @@ TEST(ClosedLoop, StraightRoverDrivesUpItsInterRow) {
   EXPECT_NEAR(end.position_m.y() - (-46.0), 20.0, 1.5);
   EXPECT_NEAR(end.position_m.x(), 0.0, 0.1);
   EXPECT_GT(r.metrics.min_clearance_m, 0.0);
+}
+
+TEST(ClosedLoop, DepthCameraAndLidarGiveTheSameEpisode) {
+  // The same frustum from either source: the straight planner ignores it, but the
+  // scans are taken from the physics state at the same times and must agree.
+  Scene scene = bundled("two_barriers", 3.0);
+  scene.vehicles[0].sensors[0].lidar.cols = scene.vehicles[0].sensors[0].lidar.rows = 32;
+  Scene camera_scene = scene;
+  camera_scene.vehicles[0].sensors[0].type = SensorType::depth_camera;
+  std::vector<LidarScan> lidar_scans, camera_scans;
+  EpisodeOptions options;
+  options.make_sensor = &make_range_sensor;
+  options.on_scan = [&](std::size_t, const LidarScan& s) { lidar_scans.push_back(s); };
+  const EpisodeResult a = run_episode(scene, &make_vehicle, &create_planner, options);
+  options.on_scan = [&](std::size_t, const LidarScan& s) { camera_scans.push_back(s); };
+  const EpisodeResult b = run_episode(camera_scene, &make_vehicle, &create_planner, options);
+  EXPECT_EQ(a.final_state_hash, b.final_state_hash);
+  ASSERT_EQ(lidar_scans.size(), camera_scans.size());
+  ASSERT_EQ(lidar_scans.size(), 30u);  // 10 Hz for 3 s: t = 0, 0.1, ..., 2.9
+  for (std::size_t i = 0; i < lidar_scans.size(); ++i) {
+    int close = 0;
+    for (std::size_t k = 0; k < lidar_scans[i].ranges_m.size(); ++k) {
+      close += std::abs(lidar_scans[i].ranges_m[k] - camera_scans[i].ranges_m[k]) < 0.05f;
+    }
+    EXPECT_GE(close, 32 * 32 * 95 / 100) << "scan " << i;
+  }
 }
 
 }  // namespace
