@@ -254,7 +254,7 @@ void validate(const SensorDef& def) {
 
 class DepthCamera final : public RangeSensor {
  public:
-  DepthCamera(const Scene& scene, const SensorDef& def);
+  DepthCamera(const Scene& scene, const SceneMesh& mesh, const SensorDef& def);
   ~DepthCamera() override { context_.bind(); }
   DepthCamera(const DepthCamera&) = delete;
   DepthCamera& operator=(const DepthCamera&) = delete;
@@ -294,14 +294,13 @@ class DepthCamera final : public RangeSensor {
   Framebuffer target_;
 };
 
-DepthCamera::DepthCamera(const Scene& scene, const SensorDef& def)
+DepthCamera::DepthCamera(const Scene& scene, const SceneMesh& mesh, const SensorDef& def)
     : scene_(scene), def_(def), frustum_(make_frustum(def.lidar)) {
   const LidarConfig& c = def_.lidar;
   taps_ = make_taps(c, frustum_);
   for (const Beam& beam : lidar_beams(c)) directions_.push_back(beam_direction(beam));
   inverse_depth_.resize(static_cast<std::size_t>(frustum_.width_px) * frustum_.height_px);
 
-  const SceneMesh mesh = build_scene_mesh(scene);
   constexpr std::uint32_t kChunkIndices = 3 * kCullChunkTriangles;
   for (const MeshPart& part : mesh.parts) {
     for (std::uint32_t done = 0; done < part.index_count; done += kChunkIndices) {
@@ -506,9 +505,13 @@ void DepthCamera::scan(const Eigen::Isometry3d& sensor_pose, double time_s, Lida
 
 }  // namespace
 
-std::unique_ptr<RangeSensor> make_depth_camera(const Scene& scene, const SensorDef& def) {
+std::unique_ptr<RangeSensor> make_depth_camera(const Scene& scene, const SceneMesh& mesh, const SensorDef& def) {
   validate(def);
-  return std::make_unique<DepthCamera>(scene, def);
+  return std::make_unique<DepthCamera>(scene, mesh, def);
+}
+
+std::unique_ptr<RangeSensor> make_depth_camera(const Scene& scene, const SensorDef& def) {
+  return make_depth_camera(scene, build_scene_mesh(scene), def);
 }
 
 }  // namespace campo

@@ -6,13 +6,17 @@
 #include <memory>
 
 #include "sim/range_sensor.hpp"
+#include "sim/scene_mesh.hpp"
 
 namespace campo {
 
-/// A depth camera for `def` (type depth_camera, validated by the scene loader).
+/// A depth camera for `def` (type depth_camera, validated by the scene loader)
+/// rendering `mesh`, the mesh of `scene` (uploaded once; not kept).
 /// Throws std::invalid_argument for a definition it cannot render (explicit
 /// beams, noise or dropout, too wide a field of view) and std::runtime_error
 /// when no OSMesa context can be made.
+std::unique_ptr<RangeSensor> make_depth_camera(const Scene& scene, const SceneMesh& mesh, const SensorDef& def);
+/// The same, building the scene's mesh for this camera alone.
 std::unique_ptr<RangeSensor> make_depth_camera(const Scene& scene, const SensorDef& def);
 
 }  // namespace campo

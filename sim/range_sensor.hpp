@@ -3,6 +3,7 @@
 /// LIDAR here, the OSMesa depth camera in render/. The closed loop and
 /// `campo scan` take either through this interface.
 #include <cstdint>
+#include <functional>
 #include <memory>
 
 #include <Eigen/Geometry>
@@ -22,8 +23,8 @@ class RangeSensor {
 };
 
 /// Builds the sensor of a definition for a scene (which must outlive it).
-using SensorFactory = std::unique_ptr<RangeSensor> (*)(const Scene& scene, const SensorDef& def,
-                                                        std::uint64_t world_seed);
+using SensorFactory =
+    std::function<std::unique_ptr<RangeSensor>(const Scene& scene, const SensorDef& def, std::uint64_t world_seed)>;
 
 /// The ray-cast LIDAR as a RangeSensor; throws std::invalid_argument for
 /// other sensor types (render/ builds those).

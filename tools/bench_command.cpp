@@ -89,7 +89,7 @@ void bench_episodes(const BenchOptions& o) {
       def.planner.name = "straight";
       EpisodeOptions options;
       options.stop_on_collision = false;
-      options.make_sensor = &make_range_sensor;
+      options.make_sensor = range_sensor_factory();
       const EpisodeResult r = run_episode(scene, &make_vehicle, &create_planner, options);
       const double steps = r.metrics.sim_time_s / scene.world.physics_step_s;
       const double rtf = r.metrics.sim_time_s / r.metrics.wall_time_s;

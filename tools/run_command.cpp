@@ -46,7 +46,7 @@ int run_run(const RunOptions& o) {
 
   EpisodeOptions options;
   options.stop_on_collision = !o.continue_after_collision;
-  options.make_sensor = &make_range_sensor;
+  options.make_sensor = range_sensor_factory();
   if (scene.vehicles.empty()) throw InputError(o.scene, "/objects", "expected a scene with a vehicle to run");
   if (!o.vehicle.empty()) {
     const VehicleDef* v = scene.find_vehicle(o.vehicle);

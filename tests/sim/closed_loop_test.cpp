@@ -92,7 +92,7 @@ TEST(ClosedLoop, DepthCameraAndLidarGiveTheSameEpisode) {
   camera_scene.vehicles[0].sensors[0].type = SensorType::depth_camera;
   std::vector<LidarScan> lidar_scans, camera_scans;
   EpisodeOptions options;
-  options.make_sensor = &make_range_sensor;
+  options.make_sensor = range_sensor_factory();
   options.on_scan = [&](std::size_t, const LidarScan& s) { lidar_scans.push_back(s); };
   const EpisodeResult a = run_episode(scene, &make_vehicle, &create_planner, options);
   options.on_scan = [&](std::size_t, const LidarScan& s) { camera_scans.push_back(s); };
