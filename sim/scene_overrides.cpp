@@ -12,11 +12,18 @@ namespace {
   throw InputError("command line", "--set " + assignment, message);
 }
 
-std::string unescape(std::string segment) {
-  for (std::size_t i = 0; (i = segment.find('~', i)) != std::string::npos; ++i) {
-    segment.replace(i, 2, segment.compare(i, 2, "~1") == 0 ? "/" : "~");
+// JSON pointer escapes: "~1" is '/', "~0" is '~'.
+std::string unescape(const std::string& segment) {
+  std::string out;
+  for (std::size_t i = 0; i < segment.size(); ++i) {
+    if (segment[i] == '~' && i + 1 < segment.size()) {
+      out += segment[i + 1] == '1' ? '/' : '~';
+      ++i;
+    } else {
+      out += segment[i];
+    }
   }
-  return segment;
+  return out;
 }
 
 }  // namespace

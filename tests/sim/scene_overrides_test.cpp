@@ -52,3 +52,15 @@ TEST(SceneOverrides, ReportsBadPaths) {
 
 }  // namespace
 }  // namespace campo
+
+namespace campo {
+namespace {
+
+TEST(SceneOverrides, UnescapesPointerSegments) {
+  nlohmann::json d = nlohmann::json::parse(R"({"a/b": {"c~d": 1}})");
+  apply_override(d, "/a~1b/c~0d=2");
+  EXPECT_EQ(d["a/b"]["c~d"], 2);
+}
+
+}  // namespace
+}  // namespace campo
