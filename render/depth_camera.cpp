@@ -466,18 +466,9 @@ void DepthCamera::render(const Eigen::Isometry3d& sensor_pose, double time_s) {
 void DepthCamera::fill(const Eigen::Isometry3d& sensor_pose, double time_s, LidarScan& out) const {
   const LidarConfig& c = def_.lidar;
   const std::size_t n = taps_.size();
-  out.rows = c.rows;
-  out.cols = c.cols;
-  out.time_s = time_s;
-  out.sensor_pose = sensor_pose;
-  out.ranges_m.resize(n);
-  out.hits.resize(n);
-  out.points.clear();
-  out.points.reserve(n);
-
+  begin_scan(out, c.rows, c.cols, n, time_s, sensor_pose);
   const auto near_far = static_cast<float>(frustum_.near_m * frustum_.far_m);
   const auto max_range = static_cast<float>(c.max_range_m);
-  const double q = c.quantization_m;
   const auto width = static_cast<std::size_t>(frustum_.width_px);
   const Eigen::Matrix3f rotation = sensor_pose.linear().cast<float>();
   const Eigen::Vector3d origin = sensor_pose.translation();
@@ -490,9 +481,8 @@ void DepthCamera::fill(const Eigen::Isometry3d& sensor_pose, double time_s, Lida
       out.hits[i] = 0;
       continue;
     }
-    double r = range;
-    if (q > 0.0) r = std::clamp(std::round(r / q) * q, 0.0, c.max_range_m);
-    out.ranges_m[i] = static_cast<float>(r);
+    const float r = reported_range(range, c);
+    out.ranges_m[i] = r;
     out.hits[i] = 1;
     out.points.push_back((origin + r * (rotation * directions_[i]).cast<double>()).cast<float>());
   }

@@ -65,18 +65,10 @@ void Lidar::scan(const RayCaster& caster, const Eigen::Isometry3d& sensor_pose, 
   caster.cast(sensor_pose.translation(), directions_world_, static_cast<float>(config_.min_range_m),
               max_range, hits_);
 
-  out.rows = config_.beams.empty() ? config_.rows : 1;
-  out.cols = config_.beams.empty() ? config_.cols : static_cast<int>(n);
-  out.time_s = time_s;
-  out.sensor_pose = sensor_pose;
-  out.ranges_m.resize(n);
-  out.hits.resize(n);
-  out.points.clear();
-  out.points.reserve(n);
-
+  begin_scan(out, config_.beams.empty() ? config_.rows : 1,
+             config_.beams.empty() ? config_.cols : static_cast<int>(n), n, time_s, sensor_pose);
   const bool dropout = config_.dropout_probability > 0.0;
   const bool noise = config_.noise_stddev_m > 0.0;
-  const double q = config_.quantization_m;
   for (std::size_t i = 0; i < n; ++i) {
     // Draws are made for every beam, hit or not, so one beam's noise does not
     // depend on what the other beams see.
@@ -87,17 +79,31 @@ void Lidar::scan(const RayCaster& caster, const Eigen::Isometry3d& sensor_pose, 
       out.hits[i] = 0;
       continue;
     }
-    double range = hits_[i].distance_m + error;
-    if (q > 0.0) range = std::round(range / q) * q;
-    // A real sensor reports neither negative ranges nor ranges beyond its
-    // maximum, so noise and rounding are clamped to [0, max_range_m]. A
-    // noisy range may fall below min_range_m; the depth map then reads 0.
-    const auto r = static_cast<float>(std::clamp(range, 0.0, config_.max_range_m));
+    // A noisy range may fall below min_range_m; the depth map then reads 0.
+    const float r = reported_range(hits_[i].distance_m + error, config_);
     out.ranges_m[i] = r;
     out.hits[i] = 1;
     out.points.push_back(
         (sensor_pose.translation() + r * directions_world_[i].cast<double>()).cast<float>());
   }
+}
+
+void begin_scan(LidarScan& out, int rows, int cols, std::size_t beams, double time_s,
+                const Eigen::Isometry3d& sensor_pose) {
+  out.rows = rows;
+  out.cols = cols;
+  out.time_s = time_s;
+  out.sensor_pose = sensor_pose;
+  out.ranges_m.resize(beams);
+  out.hits.resize(beams);
+  out.points.clear();
+  out.points.reserve(beams);
+}
+
+float reported_range(double range_m, const LidarConfig& config) {
+  const double q = config.quantization_m;
+  if (q > 0.0) range_m = std::round(range_m / q) * q;
+  return static_cast<float>(std::clamp(range_m, 0.0, config.max_range_m));
 }
 
 cv::Mat depth_map(const LidarScan& scan, const LidarConfig& config) {

@@ -46,6 +46,15 @@ class Lidar {
   std::vector<RayHit> hits_;                       // scratch, reused
 };
 
+/// Sets a scan's header and sizes its buffers for `beams` beams (points
+/// emptied, capacity kept); shared by every RangeSensor.
+void begin_scan(LidarScan& out, int rows, int cols, std::size_t beams, double time_s,
+                const Eigen::Isometry3d& sensor_pose);
+/// A measured range as reported: rounded to the config's quantization step
+/// (if any) and clamped to [0, max_range_m], as a real sensor reports neither
+/// negative ranges nor ranges beyond its maximum.
+float reported_range(double range_m, const LidarConfig& config);
+
 /// Unit direction of a beam in the sensor frame (x forward, y left, z up).
 Eigen::Vector3f beam_direction(const Beam& beam);
 /// The beams of a config in beam order (explicit list, or the grid row-major).
