@@ -1,6 +1,7 @@
 #include "render/run_files.hpp"
 
 #include <charconv>
+#include <cstdio>
 #include <sstream>
 
 #include "sim/json_reader.hpp"
@@ -89,6 +90,12 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
     throw InputError((dir / "run.json").string(), "", std::string("malformed run record: ") + e.what());
   }
   return run;
+}
+
+std::string replan_depth_file(int index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "replan_%04d.png", index);
+  return name;
 }
 
 }  // namespace campo

@@ -22,4 +22,8 @@ struct RecordedRun {
 /// when something is missing or malformed.
 RecordedRun load_run_dir(const std::filesystem::path& dir);
 
+/// File name, under the run's replans/ directory, of the depth map that
+/// replanning `index` used (16-bit PNG, depth_image.hpp).
+std::string replan_depth_file(int index);
+
 }  // namespace campo

@@ -26,6 +26,26 @@ struct MountedSensor {
   std::int64_t period;
 };
 
+// Counts the decisions of planner.hpp's keys into the metrics.
+void count_decisions(const std::vector<PlannerEvent>& events, EpisodeMetrics& m) {
+  std::vector<double> replan_ms;
+  for (const PlannerEvent& e : events) {
+    if (!e.decisions.is_object()) continue;
+    m.waypoints_planned += e.decisions.contains("planned_waypoint");
+    m.waypoints_reached += e.decisions.contains("reached_intermediate");
+    m.waypoints_discarded += e.decisions.contains("discarded_waypoint");
+    if (const auto replan = e.decisions.find("replan"); replan != e.decisions.end()) {
+      replan_ms.push_back(replan->value("time_ms", 0.0));
+    }
+  }
+  m.replans = static_cast<int>(replan_ms.size());
+  if (replan_ms.empty()) return;
+  std::sort(replan_ms.begin(), replan_ms.end());
+  const std::size_t n = replan_ms.size();
+  m.replan_time_ms_median = n % 2 ? replan_ms[n / 2] : 0.5 * (replan_ms[n / 2 - 1] + replan_ms[n / 2]);
+  m.replan_time_ms_max = replan_ms.back();
+}
+
 }  // namespace
 
 std::string_view to_string(Outcome outcome) {
@@ -47,6 +67,12 @@ nlohmann::json to_json(const EpisodeMetrics& m) {
       {"planner_calls", m.planner_calls},
       {"planner_time_ms_mean", m.planner_time_ms_mean},
       {"planner_time_ms_max", m.planner_time_ms_max},
+      {"waypoints_planned", m.waypoints_planned},
+      {"waypoints_reached", m.waypoints_reached},
+      {"waypoints_discarded", m.waypoints_discarded},
+      {"replans", m.replans},
+      {"replan_time_ms_median", m.replan_time_ms_median},
+      {"replan_time_ms_max", m.replan_time_ms_max},
   };
 }
 
@@ -105,6 +131,7 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
       const auto plan_start = Clock::now();
       PlanResult plan = planner->plan(observation);
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - plan_start).count();
+      if (options.on_plan) options.on_plan(observation, plan);
       for (auto& r : readings) r.fresh = false;
       ++m.planner_calls;
       planner_ms_total += ms;
@@ -158,6 +185,7 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
     from = wp.position_m;
   }
   m.path_ratio = nominal > 1e-9 ? m.path_length_m / nominal : 0.0;
+  count_decisions(result.events, m);
   m.planner_time_ms_mean = m.planner_calls > 0 ? planner_ms_total / m.planner_calls : 0.0;
   m.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
   result.final_state_hash = world.state_hash();

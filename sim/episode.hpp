@@ -40,6 +40,13 @@ struct EpisodeMetrics {
   int planner_calls = 0;
   double planner_time_ms_mean = 0.0;  ///< measured
   double planner_time_ms_max = 0.0;   ///< measured
+  // From the planner's decisions (planner.hpp keys); zero for planners that do not set them.
+  int waypoints_planned = 0;    ///< intermediate waypoints set ("planned_waypoint")
+  int waypoints_reached = 0;    ///< intermediate waypoints reached ("reached_intermediate")
+  int waypoints_discarded = 0;  ///< intermediate waypoints dropped ("discarded_waypoint")
+  int replans = 0;              ///< replanning steps ("replan")
+  double replan_time_ms_median = 0.0;  ///< measured ("replan"/"time_ms")
+  double replan_time_ms_max = 0.0;     ///< measured
 };
 nlohmann::json to_json(const EpisodeMetrics& metrics);
 
@@ -74,6 +81,9 @@ struct EpisodeOptions {
   SensorFactory make_sensor = &make_lidar_sensor;
   /// Called after every scan with the sensor index and its fresh scan (e.g. to record depth maps).
   std::function<void(std::size_t sensor, const LidarScan& scan)> on_scan;
+  /// Called after every planner call with what the planner saw and decided
+  /// (e.g. to record the depth map a replanning used).
+  std::function<void(const Observation& observation, const PlanResult& plan)> on_plan;
 };
 
 /// Runs one episode of `scene` to its end.

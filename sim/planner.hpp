@@ -45,7 +45,13 @@ struct PlanResult {
   PlanStatus status = PlanStatus::running;
   Command command;
   std::string reason;        ///< why, for any status but running
-  nlohmann::json decisions;  ///< what it decided this call (null when nothing to record)
+  /// What it decided this call, null when nothing to record. Keys the
+  /// metrics and figures understand: "reached_waypoints" (indices of mission
+  /// waypoints reached), "planned_waypoint" / "reached_intermediate" /
+  /// "discarded_waypoint" ([x, y, z] of an intermediate waypoint set, reached,
+  /// dropped), "planned_path" (list of [x, y, z]), "replan" (object with
+  /// "index", "sensor" and "time_ms" for each replanning step).
+  nlohmann::json decisions;
 };
 
 /// What a planner may know when it is created.

@@ -1,22 +1,11 @@
-#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
 
-
 #include "planners/registry.hpp"
-#include "render/sensors.hpp"
-#include "render/depth_image.hpp"
-#include "render/run_files.hpp"
-#include "sim/episode.hpp"
-#include "sim/output_dir.hpp"
-#include "sim/run_record.hpp"
-#include "sim/scene_loader.hpp"
-#include "sim/scene_overrides.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
-#include "tools/figures.hpp"
-#include "vehicles/vehicle.hpp"
+#include "tools/run_execution.hpp"
 
 namespace campo::cli {
 
@@ -33,73 +22,24 @@ struct RunOptions {
   bool continue_after_collision = false;
   bool figures = true;
   int record_depth_every = 0;
+  bool record_replans = true;
 };
 
 int run_run(const RunOptions& o) {
-  // Overrides are applied to the document, then validated like the file itself.
-  const std::string bytes = read_text_file(o.scene);
-  nlohmann::json document = parse_json_text(bytes, o.scene);
-  std::vector<std::string> overrides = o.sets;
-  if (o.seed_set) overrides.push_back("/world/seed=" + std::to_string(o.seed));
-  for (const auto& assignment : overrides) apply_override(document, assignment);
-  Scene scene = parse_scene(document, o.scene, std::filesystem::path(o.scene).parent_path(), sha256_hex(bytes));
-
-  EpisodeOptions options;
-  options.stop_on_collision = !o.continue_after_collision;
-  options.make_sensor = range_sensor_factory();
-  if (scene.vehicles.empty()) throw InputError(o.scene, "/objects", "expected a scene with a vehicle to run");
-  if (!o.vehicle.empty()) {
-    const VehicleDef* v = scene.find_vehicle(o.vehicle);
-    if (!v) throw InputError("command line", "--vehicle", "no vehicle \"" + o.vehicle + "\" in " + o.scene);
-    options.vehicle_index = static_cast<std::size_t>(v - scene.vehicles.data());
-  }
-  VehicleDef& def = scene.vehicles[options.vehicle_index];
-  if (!o.planner.empty()) {
-    def.planner.name = o.planner;
-    def.planner.name_pointer = "";
-    def.planner.params.file = "command line";
-  }
-  if (def.planner.name.empty()) def.planner.name = std::string(kDefaultPlanner);
-  if (def.mission.empty()) {
-    throw InputError(o.scene, "/objects", "expected vehicle \"" + def.alias + "\" to have a mission");
-  }
-  // Validate every parameter before anything runs.
-  validate_vehicle_params(def);
-  create_planner(def.planner, {def.type, &scene});
-
-  StagedOutput out(o.out);
-  // Depth maps of every n-th scan, for `campo render --kind depth`.
-  std::vector<int> scans_seen(def.sensors.size(), 0);
-  if (o.record_depth_every > 0) {
-    std::filesystem::create_directories(out.path("depth"));
-    options.on_scan = [&](std::size_t i, const LidarScan& scan) {
-      if (scans_seen[i]++ % o.record_depth_every != 0) return;
-      char name[96];
-      std::snprintf(name, sizeof name, "%s_%08.3f.png", def.sensors[i].alias.c_str(), scan.time_s);
-      write_depth_png(depth_map(scan, def.sensors[i].lidar), out.path("depth") / name);
-    };
-  }
-  const EpisodeResult result = run_episode(scene, &make_vehicle, &create_planner, options);
-  const nlohmann::json record = run_json(scene, result, options, overrides);
-
-  write_file_atomically(out.path("trajectory.csv"), trajectory_csv(result));
-  write_file_atomically(out.path("run.json"), record.dump(2) + "\n");
-  if (!document.contains("name")) document["name"] = scene.name;
-  write_file_atomically(out.path("scene.json"), document.dump(2) + "\n");
-  std::string written = "run.json, trajectory.csv, scene.json";
-  if (o.figures) {
-    // Drawn from the files just written, exactly as `campo render` would.
-    const std::filesystem::path staged = out.path("");
-    RecordedRun recorded = load_run_dir(staged);
-    recorded.view.label = std::filesystem::path(o.out).filename().string();
-    for (const std::string kind : {"map", "side"}) write_figure(recorded, kind, staged);
-    written += ", map.png, side.png";
-  }
-  out.commit();
-  const EpisodeMetrics& m = result.metrics;
-  std::cout << scene.name << ": " << to_string(m.outcome) << " (" << m.reason << ") after " << m.sim_time_s
-            << " s simulated, path " << m.path_length_m << " m (ratio " << m.path_ratio << "), "
-            << m.wall_time_s << " s wall; wrote " << written << " to " << o.out << "\n";
+  RunRequest request;
+  request.scene = o.scene;
+  request.overrides = o.sets;
+  if (o.seed_set) request.overrides.push_back("/world/seed=" + std::to_string(o.seed));
+  request.planner = o.planner;
+  request.vehicle = o.vehicle;
+  request.out = o.out;
+  request.continue_after_collision = o.continue_after_collision;
+  request.figures = o.figures;
+  request.record_depth_every = o.record_depth_every;
+  request.record_replans = o.record_replans;
+  const nlohmann::json record = execute_run(request);
+  std::cout << run_summary_line(record) << "; wrote run.json, trajectory.csv, scene.json"
+            << (o.figures ? ", map.png, side.png" : "") << " to " << o.out << "\n";
   return kOk;
 }
 
@@ -124,6 +64,8 @@ Command add_run(CLI::App& app) {
   app.add_option("--record-depth", o->record_depth_every,
                  "Save the depth map of every N-th scan of each sensor under DIR/depth/ (0 = none)")
       ->check(CLI::NonNegativeNumber);
+  app.add_flag("!--no-replan-depth", o->record_replans,
+               "Do not save the depth map of every replanning under DIR/replans/ (for sweeps)");
   app.add_option("--out", o->out, "Output directory (created if missing)")->capture_default_str();
   app.footer(
       "Runs one closed-loop episode: sense -> plan -> control -> actuate -> step, until the mission\n"

@@ -1,0 +1,106 @@
+#include "tools/run_execution.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+#include "planners/registry.hpp"
+#include "render/depth_image.hpp"
+#include "render/run_files.hpp"
+#include "render/sensors.hpp"
+#include "sim/episode.hpp"
+#include "sim/json_reader.hpp"
+#include "sim/output_dir.hpp"
+#include "sim/run_record.hpp"
+#include "sim/scene_loader.hpp"
+#include "sim/scene_overrides.hpp"
+#include "tools/figures.hpp"
+#include "vehicles/vehicle.hpp"
+
+namespace campo::cli {
+
+nlohmann::json execute_run(const RunRequest& request) {
+  const std::string scene_file = request.scene.string();
+  // Overrides are applied to the document, then validated like the file itself.
+  const std::string bytes = read_text_file(scene_file);
+  nlohmann::json document = parse_json_text(bytes, scene_file);
+  for (const auto& assignment : request.overrides) apply_override(document, assignment);
+  Scene scene = parse_scene(document, scene_file, request.scene.parent_path(), sha256_hex(bytes));
+
+  EpisodeOptions options;
+  options.stop_on_collision = !request.continue_after_collision;
+  options.make_sensor = range_sensor_factory();
+  if (scene.vehicles.empty()) throw InputError(scene_file, "/objects", "expected a scene with a vehicle to run");
+  if (!request.vehicle.empty()) {
+    const VehicleDef* v = scene.find_vehicle(request.vehicle);
+    if (!v) throw InputError("command line", "--vehicle", "no vehicle \"" + request.vehicle + "\" in " + scene_file);
+    options.vehicle_index = static_cast<std::size_t>(v - scene.vehicles.data());
+  }
+  VehicleDef& def = scene.vehicles[options.vehicle_index];
+  if (!request.planner.empty()) {
+    def.planner.name = request.planner;
+    def.planner.name_pointer = "";
+    def.planner.params.file = "command line";
+  }
+  if (def.planner.name.empty()) def.planner.name = std::string(kDefaultPlanner);
+  if (def.mission.empty()) {
+    throw InputError(scene_file, "/objects", "expected vehicle \"" + def.alias + "\" to have a mission");
+  }
+  // Validate every parameter before anything runs.
+  validate_vehicle_params(def);
+  create_planner(def.planner, {def.type, &scene});
+
+  StagedOutput out(request.out);
+  // Depth maps of every n-th scan, for `campo render --kind depth`.
+  std::vector<int> scans_seen(def.sensors.size(), 0);
+  if (request.record_depth_every > 0) {
+    std::filesystem::create_directories(out.path("depth"));
+    options.on_scan = [&](std::size_t i, const LidarScan& scan) {
+      if (scans_seen[i]++ % request.record_depth_every != 0) return;
+      char name[96];
+      std::snprintf(name, sizeof name, "%s_%08.3f.png", def.sensors[i].alias.c_str(), scan.time_s);
+      write_depth_png(depth_map(scan, def.sensors[i].lidar), out.path("depth") / name);
+    };
+  }
+  // The depth map each replanning used, for `campo render --kind depth --step K`.
+  if (request.record_replans) {
+    options.on_plan = [&](const Observation& observation, const PlanResult& plan) {
+      if (!plan.decisions.is_object() || !plan.decisions.contains("replan")) return;
+      const nlohmann::json& replan = plan.decisions["replan"];
+      const std::string sensor = replan.value("sensor", "");
+      for (const SensorReading& reading : observation.sensors) {
+        if (reading.alias != sensor || !reading.scan) continue;
+        std::filesystem::create_directories(out.path("replans"));
+        write_depth_png(depth_map(*reading.scan, *reading.config),
+                        out.path("replans") / replan_depth_file(replan.at("index").get<int>()));
+      }
+    };
+  }
+  const EpisodeResult result = run_episode(scene, &make_vehicle, &create_planner, options);
+  const nlohmann::json record = run_json(scene, result, options, request.overrides);
+
+  write_file_atomically(out.path("trajectory.csv"), trajectory_csv(result));
+  write_file_atomically(out.path("run.json"), record.dump(2) + "\n");
+  if (!document.contains("name")) document["name"] = scene.name;
+  write_file_atomically(out.path("scene.json"), document.dump(2) + "\n");
+  if (request.figures) {
+    // Drawn from the files just written, exactly as `campo render` would.
+    const std::filesystem::path staged = out.path("");
+    RecordedRun recorded = load_run_dir(staged);
+    recorded.view.label = request.label.empty() ? request.out.filename().string() : request.label;
+    for (const std::string kind : {"map", "side"}) write_figure(recorded, kind, staged);
+  }
+  out.commit();
+  return record;
+}
+
+std::string run_summary_line(const nlohmann::json& record) {
+  const nlohmann::json& m = record.at("metrics");
+  std::ostringstream line;
+  line << record.at("provenance").at("scene").value("name", "scene") << ": " << m.at("outcome").get<std::string>()
+       << " (" << m.at("reason").get<std::string>() << ") after " << m.at("sim_time_s").get<double>()
+       << " s simulated, path " << m.at("path_length_m").get<double>() << " m (ratio "
+       << m.at("path_ratio").get<double>() << "), " << m.at("wall_time_s").get<double>() << " s wall";
+  return line.str();
+}
+
+}  // namespace campo::cli
