@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "planners/depth_reactive.hpp"
 #include "planners/straight.hpp"
 #include "sim/json_reader.hpp"
 
@@ -11,6 +12,8 @@ namespace {
 
 constexpr std::array kPlanners{
     PlannerEntry{"straight", "head for each mission waypoint in turn in a straight line", &make_straight_planner},
+    PlannerEntry{"depth_reactive", "seed 000: reactive quadrotor navigation on dilated depth maps (TrovaWP, wall following)",
+                 &make_depth_reactive_planner},
 };
 
 }  // namespace

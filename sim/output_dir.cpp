@@ -21,7 +21,11 @@ StagedOutput::~StagedOutput() {
 
 void StagedOutput::commit() {
   for (const auto& entry : std::filesystem::directory_iterator(staging_)) {
-    std::filesystem::rename(entry.path(), dir_ / entry.path().filename());
+    const std::filesystem::path target = dir_ / entry.path().filename();
+    // A directory left by an earlier run into the same place is replaced whole,
+    // so no stale files (an older run's depth maps) mix with the new ones.
+    if (entry.is_directory() && std::filesystem::is_directory(target)) std::filesystem::remove_all(target);
+    std::filesystem::rename(entry.path(), target);
   }
   committed_ = true;
 }

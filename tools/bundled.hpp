@@ -1,11 +1,10 @@
 #pragma once
-/// Where the bundled scenes are: ./scenes when run from the repository root,
-/// else the scenes folder beside the build directory holding the executable.
-#include <filesystem>
-#include <string>
+/// The bundled scenes, for the commands (the lookup lives in sweep/, which
+/// resolves scene names in sweep specs too).
+#include "sweep/bundled.hpp"
 
 namespace campo::cli {
 
-std::filesystem::path bundled_scene(const std::string& name);
+using campo::bundled_scene;
 
 }  // namespace campo::cli

@@ -21,5 +21,7 @@ Command add_run(CLI::App& app);
 Command add_render(CLI::App& app);
 Command add_scan(CLI::App& app);
 Command add_bench(CLI::App& app);
+Command add_sweep(CLI::App& app);
+Command add_table(CLI::App& app);
 
 }  // namespace campo::cli

@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
   add(campo::cli::add_render, "render", "Draw figures (map, side view, depth maps, snapshot, overlay) from recorded runs");
   add(campo::cli::add_validate, "validate", "Check scene files strictly; report every error with its JSON path");
   add(campo::cli::add_scan, "scan", "Cast one LIDAR scan in a scene and write ranges, hits, depth map and point cloud");
+  add(campo::cli::add_sweep, "sweep", "Run every combination of scenes, parameter values and seeds of a sweep spec");
+  add(campo::cli::add_table, "table", "Summarize a sweep as a table (Markdown, CSV, LaTeX) and a chart");
   add(campo::cli::add_bench, "bench", "Measure LIDAR throughput and closed-loop real-time factor on the bundled scenes");
 
   try {

@@ -2,10 +2,9 @@
 #include <string>
 #include <vector>
 
-#include "planners/registry.hpp"
 #include "sim/scene_loader.hpp"
 #include "tools/commands.hpp"
-#include "vehicles/vehicle.hpp"
+#include "tools/scene_checks.hpp"
 
 namespace campo::cli {
 
@@ -23,10 +22,7 @@ Command add_validate(CLI::App& app) {
       try {
         const Scene scene = load_scene(file);
         // Parameters checked by vehicles/ and planners/ are part of the file too.
-        for (const VehicleDef& vehicle : scene.vehicles) {
-          validate_vehicle_params(vehicle);
-          create_planner(vehicle.planner, {vehicle.type, &scene});
-        }
+        check_vehicles_and_planners(scene);
         std::cout << "ok " << file << ": " << scene.shapes.size() << " shapes, "
                   << scene.frames.size() << " frames, " << scene.movers.size() << " movers, "
                   << scene.vehicles.size() << " vehicles\n";

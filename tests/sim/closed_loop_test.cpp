@@ -13,9 +13,11 @@
 namespace campo {
 namespace {
 
+// A bundled scene flown by the straight planner (these tests are about the loop, not the planners).
 Scene bundled(const std::string& name, double time_limit_s) {
   Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json");
   scene.world.time_limit_s = time_limit_s;
+  for (VehicleDef& v : scene.vehicles) v.planner = PlannerSpec{"straight", "", {nlohmann::json::object(), "test", ""}};
   return scene;
 }
 

@@ -1,6 +1,6 @@
-#include "tools/bundled.hpp"
+#include "sweep/bundled.hpp"
 
-namespace campo::cli {
+namespace campo {
 
 std::filesystem::path bundled_scene(const std::string& name) {
   const std::filesystem::path file = name + ".json";
@@ -16,4 +16,4 @@ std::filesystem::path bundled_scene(const std::string& name) {
   return here;  // missing: the loader reports it
 }
 
-}  // namespace campo::cli
+}  // namespace campo

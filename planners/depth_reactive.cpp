@@ -1,0 +1,418 @@
+#include "planners/depth_reactive.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "sim/json_reader.hpp"
+#include "sim/lidar.hpp"
+
+namespace campo {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kDegToRad = M_PI / 180.0;
+constexpr double kAltitudeTolerance_m = 0.1;  // an altitude change is done within this
+
+double wrap_angle(double a) { return std::remainder(a, 2.0 * M_PI); }
+
+double elapsed_ms(Clock::time_point since) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
+}
+
+nlohmann::json to_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json to_json(const Eigen::Vector2d& v) { return {v.x(), v.y()}; }
+nlohmann::json to_json(const Eigen::Vector2i& v) { return {v.x(), v.y()}; }
+
+// A point far along heading `yaw` at the height of `from`, to face with command::Face.
+Eigen::Vector3d point_at_yaw(const Eigen::Vector3d& from, double yaw) {
+  return from + 100.0 * Eigen::Vector3d(std::cos(yaw), std::sin(yaw), 0.0);
+}
+
+class DepthReactivePlanner final : public Planner {
+ public:
+  explicit DepthReactivePlanner(const DepthReactiveConfig& config) : config_(config) {}
+
+  PlanResult plan(const Observation& o) override {
+    PlanResult result;
+    const SensorReading* reading = depth_source(o);
+    if (!reading) {
+      result.status = PlanStatus::invalid_start;
+      result.reason = config_.sensor.empty() ? "the vehicle has no grid range sensor to read depth maps from"
+                                             : "the vehicle has no grid range sensor \"" + config_.sensor + "\"";
+      result.command = command::Hold{o.state.position_m, std::nullopt};
+      return result;
+    }
+    if (!command_) command_ = command::Hold{o.state.position_m, o.state.yaw_rad()};
+
+    // Pop every waypoint already reached.
+    for (;;) {
+      if (stack_.empty()) {
+        if (next_target_ >= o.mission.size()) {
+          result.status = PlanStatus::reached;
+          result.reason = "all " + std::to_string(o.mission.size()) + " waypoints reached";
+          result.command = command::Hold{o.state.position_m, std::nullopt};
+          return result;
+        }
+        stack_.push_back({o.mission[next_target_].position_m, false});
+      }
+      const StackEntry& top = stack_.back();
+      if ((o.state.position_m - top.position_m).norm() > config_.tolerance_m) break;
+      discarded_.clear();  // from a new place the same waypoints may be worth proposing again
+      if (top.temporary) {
+        decide(result, "reached_intermediate", to_json(top.position_m));
+      } else {
+        result.decisions["reached_waypoints"].push_back(next_target_++);
+      }
+      stack_.pop_back();
+      enter(Phase::align, o);
+    }
+
+    settle(o);
+    switch (phase_) {
+      case Phase::fly: monitor(o, *reading, result); break;
+      case Phase::align: align(o, *reading, result); break;
+      case Phase::wall_look: wall_look(o, *reading, result); break;
+    }
+    if (result.status == PlanStatus::running) result.command = *command_;
+    return result;
+  }
+
+  nlohmann::json parameters() const override {
+    const DepthReactiveConfig& c = config_;
+    return {{"sensor", c.sensor},
+            {"speed_mps", c.speed_mps},
+            {"tolerance_m", c.tolerance_m},
+            {"safety_radius_m", c.safety_radius_m},
+            {"vehicle_radius_m", c.vehicle_radius_m},
+            {"layers", c.layers},
+            {"structuring_element", c.structuring_element == StructuringShape::square ? "square" : "disc"},
+            {"layer_radii", c.layer_radii == LayerRadii::margin ? "margin" : "as_printed"},
+            {"dilation_margin_m", c.dilation_margin_m},
+            {"dilation_radius_deg", c.dilation_radius_deg},
+            {"altitude_penalty", c.altitude_penalty},
+            {"threshold_cap", c.threshold_cap},
+            {"min_waypoint_distance_m", c.min_waypoint_distance_m},
+            {"max_candidates", c.max_candidates},
+            {"yaw_tolerance_deg", c.yaw_tolerance_deg},
+            {"max_elevation_deg", c.max_elevation_deg},
+            {"monitor_min_range_m", c.monitor_min_range_m},
+            {"wall_scan_deg", c.wall_scan_deg},
+            {"wall_turn_step_deg", c.wall_turn_step_deg},
+            {"wall_sector_deg", c.wall_sector_deg},
+            {"wall_band_deg", c.wall_band_deg},
+            {"wall_free_fraction", c.wall_free_fraction},
+            {"wall_step_m", c.wall_step_m},
+            {"max_replans", c.max_replans}};
+  }
+
+ private:
+  enum class Phase {
+    align,      ///< ControllaAltitudine, ControllaRotazione, hover still, then decide
+    fly,        ///< VaiVerso: fly to the waypoint, watching for occlusion
+    wall_look,  ///< wall following: look around for free space
+  };
+  struct StackEntry {
+    Eigen::Vector3d position_m;
+    bool temporary = true;  ///< false for the target (a mission waypoint)
+  };
+  struct WallFollowing {
+    Eigen::Vector3d origin_m = Eigen::Vector3d::Zero();  ///< where it started
+    double goal_yaw = 0.0;          ///< heading toward the target when it started
+    double offset = 0.0;            ///< current look direction relative to goal_yaw, radians
+    int side = 0;                   ///< chosen turn direction (+1 left, -1 right), 0 while scanning
+    double free_left = 0.0;
+    double free_right = 0.0;
+  };
+
+  // The reading of the configured sensor, or of the first grid sensor.
+  const SensorReading* depth_source(const Observation& o) const {
+    for (const SensorReading& r : o.sensors) {
+      const bool grid = r.config && r.config->beams.empty() && r.config->rows > 1;
+      if (grid && (config_.sensor.empty() || r.alias == config_.sensor)) return &r;
+    }
+    return nullptr;
+  }
+
+  void decide(PlanResult& result, const char* key, nlohmann::json value) { result.decisions[key] = std::move(value); }
+
+  void set_command(const Command& c) { command_ = c; }
+
+  void enter(Phase phase, const Observation& o) {
+    phase_ = phase;
+    settled_since_s_.reset();
+    phase_start_s_ = o.time_s;
+  }
+
+  // Tracks since when the vehicle has been hovering still.
+  void settle(const Observation& o) {
+    if (!o.stable) {
+      settled_since_s_.reset();
+    } else if (!settled_since_s_) {
+      settled_since_s_ = o.time_s;
+    }
+  }
+
+  // A scan taken after the vehicle settled: what a decision may read.
+  bool settled_scan(const SensorReading& reading) const {
+    return settled_since_s_ && reading.scan && reading.scan->time_s >= *settled_since_s_;
+  }
+
+  // Turns toward `yaw` while holding position; true once aligned, still and scanned.
+  bool look(const Observation& o, const SensorReading& reading, double yaw) {
+    if (std::abs(wrap_angle(yaw - o.state.yaw_rad())) > config_.yaw_tolerance_deg * kDegToRad) {
+      const command::Face face{point_at_yaw(wall_.origin_m, yaw)};
+      const auto* current = std::get_if<command::Face>(&*command_);
+      if (!current || current->point_m != face.point_m) set_command(face);
+      return false;
+    }
+    return settled_scan(reading);
+  }
+
+  void align(const Observation& o, const SensorReading& reading, PlanResult& result) {
+    const Eigen::Vector3d w = stack_.back().position_m;
+    const Eigen::Vector3d delta = w - o.state.position_m;
+    // ControllaAltitudine: the least altitude change that brings W within max_elevation_deg.
+    const double allowed_dz = std::tan(config_.max_elevation_deg * kDegToRad) * delta.head<2>().norm();
+    if (std::abs(delta.z()) > allowed_dz + kAltitudeTolerance_m) {
+      const double z = w.z() - std::copysign(allowed_dz, delta.z());
+      const auto* current = std::get_if<command::Altitude>(&*command_);
+      if (!current || std::abs(current->z_m - z) > kAltitudeTolerance_m) set_command(command::Altitude{z});
+      return;
+    }
+    // ControllaRotazione, then hover still until a scan taken at rest arrives.
+    const double yaw = delta.head<2>().norm() > 1e-6 ? std::atan2(delta.y(), delta.x()) : o.state.yaw_rad();
+    if (std::abs(wrap_angle(yaw - o.state.yaw_rad())) > config_.yaw_tolerance_deg * kDegToRad) {
+      const auto* current = std::get_if<command::Face>(&*command_);
+      if (!current || current->point_m != w) set_command(command::Face{w});
+      return;
+    }
+    if (!settled_scan(reading)) return;
+    evaluate(o, reading, result);
+  }
+
+  // One replanning step: DilataMappa, ControllaVisibilita and what Algorithm 3 does with the result.
+  void evaluate(const Observation& o, const SensorReading& reading, PlanResult& result) {
+    const auto start = Clock::now();
+    const LidarScan& scan = *reading.scan;
+    const DepthGrid grid = DepthGrid::of(*reading.config);
+    const cv::Mat depth = depth_map(scan, *reading.config);
+    const cv::Mat dilated = dilate_depth_map(depth, dilation_params(config_, grid));
+    const double dilation_ms = elapsed_ms(start);
+    const StackEntry entry = stack_.back();
+    const Eigen::Isometry3d to_sensor = scan.sensor_pose.inverse();
+    const VisibilityCheck check = check_visibility(dilated, grid, to_sensor * entry.position_m, config_.safety_radius_m);
+
+    nlohmann::json replan = replan_record(reading, scan, entry, check);
+    std::string action;
+    if (check.visibility == Visibility::visible) {
+      action = "fly";
+      set_command(command::GoTo{entry.position_m, config_.speed_mps, true});
+      enter(Phase::fly, o);
+    } else if (entry.temporary) {
+      action = "discard";
+      discard(o, result);
+    } else if (check.visibility == Visibility::unreachable) {
+      action = "abort";
+      result.status = PlanStatus::no_path;
+      result.reason = "target unreachable: an obstacle " + std::to_string(check.obstacle_range_m) +
+                      " m away lies within the safety radius of the target, " +
+                      std::to_string(check.waypoint_range_m) + " m away";
+    } else {
+      const auto search_start = Clock::now();
+      std::vector<Eigen::Vector3d> avoid;
+      for (const Eigen::Vector3d& d : discarded_) avoid.push_back(to_sensor * d);
+      const WaypointSearch search =
+          find_waypoint(dilated, grid, check.pixel, check.waypoint_range_m / grid.max_range_m,
+                        check.obstacle_range_m / grid.max_range_m, find_waypoint_params(config_), avoid);
+      replan["search_ms"] = elapsed_ms(search_start);
+      replan["threshold"] = search.threshold;
+      replan["candidates"] = search.candidates;
+      if (search.found) {
+        const FoundWaypoint& f = *search.found;
+        const Eigen::Vector3d waypoint = scan.sensor_pose * (f.direction_sensor * f.range_m);
+        replan["chosen_pixel"] = to_json(f.pixel);
+        replan["edge_pixel"] = to_json(f.edge_pixel);
+        replan["waypoint_pixel"] = to_json(f.waypoint_pixel);
+        replan["edge_range_m"] = f.edge_range_m;
+        replan["new_waypoint_range_m"] = f.range_m;
+        replan["tried"] = f.tried;
+        action = "new_waypoint";
+        stack_.push_back({waypoint, true});
+        decide(result, "planned_waypoint", to_json(waypoint));
+        enter(Phase::align, o);
+      } else {
+        action = "wall_following";
+        wall_ = WallFollowing{o.state.position_m, o.state.yaw_rad(), config_.wall_scan_deg * kDegToRad, 0, 0.0, 0.0};
+        enter(Phase::wall_look, o);
+      }
+    }
+    replan["action"] = action;
+    replan["dilation_ms"] = dilation_ms;
+    replan["time_ms"] = elapsed_ms(start);
+    decide(result, "replan", std::move(replan));
+    if (result.status == PlanStatus::running && replans_ >= config_.max_replans) {
+      result.status = PlanStatus::aborted;
+      result.reason = "gave up after " + std::to_string(replans_) + " replanning steps";
+    }
+  }
+
+  nlohmann::json replan_record(const SensorReading& reading, const LidarScan& scan, const StackEntry& entry,
+                               const VisibilityCheck& check) {
+    return {{"index", replans_++},
+            {"sensor", reading.alias},
+            {"scan_time_s", scan.time_s},
+            {"waypoint", to_json(entry.position_m)},
+            {"role", entry.temporary ? "intermediate" : "target"},
+            {"visibility", to_string(check.visibility)},
+            {"pixel", to_json(check.pixel)},
+            {"radius_px", to_json(Eigen::Vector2d(check.radius_x_px, check.radius_y_px))},
+            {"waypoint_range_m", check.waypoint_range_m},
+            {"obstacle_range_m", check.obstacle_range_m}};
+  }
+
+  void discard(const Observation& o, PlanResult& result) {
+    discarded_.push_back(stack_.back().position_m);
+    decide(result, "discarded_waypoint", to_json(stack_.back().position_m));
+    stack_.pop_back();
+    enter(Phase::align, o);
+  }
+
+  // VaiVerso: keep flying; at every fresh scan check that the waypoint is still visible.
+  void monitor(const Observation& o, const SensorReading& reading, PlanResult& result) {
+    const StackEntry& entry = stack_.back();
+    if (!reading.fresh || !reading.scan || reading.scan->time_s <= phase_start_s_) return;
+    if ((entry.position_m - o.state.position_m).norm() < config_.monitor_min_range_m) return;
+    const auto start = Clock::now();
+    const DepthGrid grid = DepthGrid::of(*reading.config);
+    const cv::Mat dilated = dilate_depth_map(depth_map(*reading.scan, *reading.config), dilation_params(config_, grid));
+    const VisibilityCheck check = check_visibility(dilated, grid, reading.scan->sensor_pose.inverse() * entry.position_m,
+                                                   config_.safety_radius_m);
+    if (check.visibility == Visibility::visible) return;
+    // Occluded on the way: stop here and decide again once still.
+    nlohmann::json replan = replan_record(reading, *reading.scan, entry, check);
+    replan["action"] = "stop";
+    replan["time_ms"] = elapsed_ms(start);
+    decide(result, "replan", std::move(replan));
+    set_command(command::Hold{o.state.position_m, o.state.yaw_rad()});
+    enter(Phase::align, o);
+  }
+
+  // Wall following (000 §4.4.3): look wall_scan_deg either side of the goal,
+  // turn toward the freer side until the navigable sector is free enough,
+  // then set a waypoint wall_step_m ahead.
+  void wall_look(const Observation& o, const SensorReading& reading, PlanResult& result) {
+    if (!look(o, reading, wall_.goal_yaw + wall_.offset)) return;
+    const DepthGrid grid = DepthGrid::of(*reading.config);
+    const cv::Mat dilated = dilate_depth_map(depth_map(*reading.scan, *reading.config), dilation_params(config_, grid));
+    const double free_value = (config_.wall_step_m + config_.safety_radius_m) / grid.max_range_m;
+    const double fraction = free_fraction(dilated, navigable_region(grid, config_.wall_sector_deg, config_.wall_band_deg),
+                                          free_value);
+    nlohmann::json record = {{"offset_deg", wall_.offset / kDegToRad}, {"free_fraction", fraction}};
+    const double scan_offset = config_.wall_scan_deg * kDegToRad;
+    if (wall_.side == 0 && wall_.offset > 0.0) {
+      wall_.free_left = fraction;  // looked left; now look right
+      wall_.offset = -scan_offset;
+    } else if (wall_.side == 0) {
+      wall_.free_right = fraction;  // looked both ways: turn toward the freer side
+      wall_.side = wall_.free_left > wall_.free_right ? 1 : -1;
+      wall_.offset = wall_.side * scan_offset;
+      record["side"] = wall_.side > 0 ? "left" : "right";
+    } else if (fraction >= config_.wall_free_fraction) {
+      place_wall_waypoint(o, dilated, grid, result, record);
+      return;
+    } else {
+      wall_.offset += wall_.side * config_.wall_turn_step_deg * kDegToRad;
+      if (std::abs(wall_.offset) > M_PI) {
+        result.status = PlanStatus::aborted;
+        result.reason = "cannot get around the obstacle: no free sector within 180 deg of the goal";
+      }
+    }
+    decide(result, "wall_following", std::move(record));
+  }
+
+  void place_wall_waypoint(const Observation& o, const cv::Mat& dilated,
+                           const DepthGrid& grid, PlanResult& result, nlohmann::json& record) {
+    const Eigen::Vector2d ahead = grid.project(Eigen::Vector3d::UnitX());
+    const double range = clear_range(dilated, grid, ahead, config_.wall_step_m, config_.safety_radius_m, 0.0, 1.5).value_or(0.0);
+    const double yaw = o.state.yaw_rad();
+    const Eigen::Vector3d waypoint = o.state.position_m + range * Eigen::Vector3d(std::cos(yaw), std::sin(yaw), 0.0);
+    record["waypoint"] = to_json(waypoint);
+    decide(result, "wall_following", record);
+    decide(result, "planned_waypoint", to_json(waypoint));
+    stack_.push_back({waypoint, true});
+    enter(Phase::align, o);
+  }
+
+  DepthReactiveConfig config_;
+  std::vector<StackEntry> stack_;     // NavigazioneLocale's stack: the target, then at most one temporary waypoint
+  std::size_t next_target_ = 0;       // mission waypoint the target is
+  std::vector<Eigen::Vector3d> discarded_;  // since the last waypoint reached: not proposed again
+  Phase phase_ = Phase::align;
+  double phase_start_s_ = 0.0;
+  std::optional<double> settled_since_s_;
+  std::optional<Command> command_;
+  WallFollowing wall_;
+  int replans_ = 0;
+};
+
+}  // namespace
+
+DepthReactiveConfig parse_depth_reactive_config(const ParamsBlock& params) {
+  DepthReactiveConfig c;
+  ObjectReader r(JsonNode(params.values, params.file, params.pointer));
+  r.read("sensor", c.sensor);
+  r.read("speed_mps", c.speed_mps, Range::closed(0.01, 20.0));
+  r.read("tolerance_m", c.tolerance_m, Range::positive());
+  r.read("safety_radius_m", c.safety_radius_m, Range::positive());
+  r.read("vehicle_radius_m", c.vehicle_radius_m, Range::non_negative());
+  r.read("layers", c.layers, 1, 64);
+  if (const auto shape = r.optional("structuring_element")) {
+    c.structuring_element = shape->as_choice({"square", "disc"}) == 0 ? StructuringShape::square : StructuringShape::disc;
+  }
+  if (const auto rule = r.optional("layer_radii")) {
+    c.layer_radii = rule->as_choice({"margin", "as_printed"}) == 0 ? LayerRadii::margin : LayerRadii::as_printed;
+  }
+  r.read("dilation_margin_m", c.dilation_margin_m, Range::non_negative());
+  r.read("dilation_radius_deg", c.dilation_radius_deg, Range::closed(0.0, 90.0));
+  r.read("altitude_penalty", c.altitude_penalty, Range::non_negative());
+  r.read("threshold_cap", c.threshold_cap, Range::closed(0.05, 1.0));
+  r.read("min_waypoint_distance_m", c.min_waypoint_distance_m, Range::non_negative());
+  r.read("max_candidates", c.max_candidates, 1, 1'000'000);
+  r.read("yaw_tolerance_deg", c.yaw_tolerance_deg, Range::closed(0.1, 45.0));
+  r.read("max_elevation_deg", c.max_elevation_deg, Range::closed(1.0, 80.0));
+  r.read("monitor_min_range_m", c.monitor_min_range_m, Range::non_negative());
+  r.read("wall_scan_deg", c.wall_scan_deg, Range::closed(1.0, 180.0));
+  r.read("wall_turn_step_deg", c.wall_turn_step_deg, Range::closed(1.0, 180.0));
+  r.read("wall_sector_deg", c.wall_sector_deg, Range::closed(1.0, 360.0));
+  r.read("wall_band_deg", c.wall_band_deg, Range::closed(0.0, 90.0));
+  r.read("wall_free_fraction", c.wall_free_fraction, Range::closed(0.0, 1.0));
+  r.read("wall_step_m", c.wall_step_m, Range::positive());
+  r.read("max_replans", c.max_replans, 1, 1'000'000);
+  r.finish();
+  return c;
+}
+
+DilationParams dilation_params(const DepthReactiveConfig& c, const DepthGrid& grid) {
+  return {c.structuring_element,
+          c.layer_radii == LayerRadii::margin
+              ? margin_layer_radii(c.layers, c.dilation_margin_m, grid)
+              : printed_layer_radii(c.layers, c.dilation_radius_deg / grid.deg_per_col(),
+                                    c.dilation_radius_deg / grid.deg_per_row())};
+}
+
+FindWaypointParams find_waypoint_params(const DepthReactiveConfig& c) {
+  return {c.altitude_penalty, c.threshold_cap, c.vehicle_radius_m, c.safety_radius_m, c.min_waypoint_distance_m,
+          c.max_candidates};
+}
+
+std::unique_ptr<Planner> make_depth_reactive_planner(const ParamsBlock& params, const PlannerContext& context) {
+  if (context.vehicle != VehicleType::quadrotor) {
+    throw InputError(params.file, params.pointer, "planner depth_reactive flies a quadrotor only");
+  }
+  return std::make_unique<DepthReactivePlanner>(parse_depth_reactive_config(params));
+}
+
+}  // namespace campo

@@ -1,0 +1,220 @@
+#include "sweep/sweep_spec.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "sim/json_reader.hpp"
+#include "sweep/bundled.hpp"
+#include "sweep/table.hpp"
+
+namespace campo {
+
+namespace {
+
+bool label_char(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-' ||
+         c == '.';
+}
+
+SweepScene read_scene(const JsonNode& node, const std::filesystem::path& spec_file) {
+  const std::string entry = node.as_string();
+  SweepScene scene;
+  scene.origin = node.pointer();
+  if (entry.ends_with(".json")) {
+    const std::filesystem::path path(entry);
+    scene.file = path.is_absolute() ? path : spec_file.parent_path() / path;
+    scene.label = path.stem().string();
+  } else {
+    scene.file = bundled_scene(entry);
+    scene.label = entry;
+  }
+  const bool valid = !scene.label.empty() && scene.label.front() != '.' &&
+                     std::all_of(scene.label.begin(), scene.label.end(), label_char);
+  if (!valid) node.fail("a bundled scene name or a path to a \".json\" file named with letters, digits, '_', '-' or '.'");
+  return scene;
+}
+
+// A JSON pointer into a scene: "/..." without '=', which ends the pointer of a "--set" assignment.
+std::string read_pointer(const JsonNode& node) {
+  const std::string pointer = node.as_string();
+  if (pointer.size() < 2 || pointer.front() != '/' || pointer.find('=') != std::string::npos) {
+    node.fail("a JSON pointer into the scene such as \"/objects/drone/planner/name\" (without '=')");
+  }
+  return pointer;
+}
+
+// An axis value: a scalar or a flat array of scalars, which has a label.
+nlohmann::json read_axis_value(const JsonNode& node) {
+  const nlohmann::json& v = node.value();
+  const auto scalar = [](const nlohmann::json& x) { return x.is_number() || x.is_string() || x.is_boolean(); };
+  const bool valid = scalar(v) || (v.is_array() && !v.empty() && std::all_of(v.begin(), v.end(), scalar));
+  if (!valid) node.fail("a number, string or boolean, or a non-empty array of them");
+  return v;
+}
+
+StartJitter read_start_jitter(const JsonNode& node) {
+  ObjectReader r(node);
+  StartJitter jitter;
+  jitter.origin = node.pointer();
+  jitter.vehicle = r.required("vehicle").as_string();
+  jitter.radius_m = r.required("radius_m").as_number({0.0, 1e3, true, false});
+  r.finish();
+  return jitter;
+}
+
+class SpecParser {
+ public:
+  SpecParser(const std::filesystem::path& file, const SweepLimits& limits) : file_(file), limits_(limits) {}
+
+  SweepSpec parse(const nlohmann::json& document) {
+    SweepSpec spec;
+    spec.file = file_;
+    spec.document = document;
+    spec.name = file_.stem().string();
+    ObjectReader r(JsonNode(document, file_.string(), ""));
+    const JsonNode version = r.required("campo_sweep");
+    if (version.as_int(1, 1000) != 1) version.fail("format version 1");
+    r.read("name", spec.name);
+    r.read("description", spec.description);
+
+    std::set<std::string> labels;
+    for (const JsonNode& node : r.required("scenes").as_array(1, limits_.max_scenes)) {
+      spec.scenes.push_back(read_scene(node, file_));
+      if (!labels.insert(spec.scenes.back().label).second) {
+        node.fail("scenes with distinct names (\"" + spec.scenes.back().label + "\" appears twice)");
+      }
+    }
+    // The seeds own the world seed.
+    writers_.emplace("/world/seed", "/seeds");
+    if (auto set = r.optional("set")) {
+      ObjectReader s(*set);
+      if (set->value().size() > limits_.max_pointers) {
+        set->fail("at most " + std::to_string(limits_.max_pointers) + " overrides");
+      }
+      // Keys come sorted, so a pointer is applied before the pointers below it.
+      for (const auto& [key, value] : set->value().items()) {
+        const JsonNode node = *s.optional(key);
+        read_pointer(JsonNode(nlohmann::json(key), node.file(), node.pointer()));
+        claim(key, node);
+        spec.set.push_back({key, value, node.pointer()});
+      }
+    }
+    if (auto axes = r.optional("axes")) {
+      for (const JsonNode& node : axes->as_array(0, limits_.max_axes)) {
+        SweepAxis axis = read_axis(node);
+        for (const SweepAxis& other : spec.axes) {
+          if (other.name == axis.name) node.fail("axes with distinct names (\"" + axis.name + "\" appears twice)");
+        }
+        spec.axes.push_back(std::move(axis));
+      }
+    }
+    if (auto seeds = r.optional("seeds")) {
+      ObjectReader s(*seeds);
+      s.read_seed("first", spec.first_seed);
+      s.read("count", spec.seed_count, 1, limits_.max_seeds);
+      s.finish();
+      if (spec.first_seed > std::numeric_limits<std::uint64_t>::max() - static_cast<std::uint64_t>(spec.seed_count)) {
+        seeds->fail("seeds that fit in 64 bits");
+      }
+    }
+    if (auto jitter = r.optional("start_jitter")) {
+      spec.start_jitter = read_start_jitter(*jitter);
+      claim("/objects/" + spec.start_jitter->vehicle + "/pose/position_m", *jitter);
+    }
+    r.finish();
+
+    std::size_t runs = spec.scenes.size() * static_cast<std::size_t>(spec.seed_count);
+    for (const SweepAxis& axis : spec.axes) {
+      runs *= axis.values.size();
+      if (runs > limits_.max_runs) {
+        throw InputError(file_.string(), "", "expands to more than " + std::to_string(limits_.max_runs) + " runs");
+      }
+    }
+    return spec;
+  }
+
+ private:
+  // Every scene pointer is written by one source only, so no value silently replaces another.
+  void claim(const std::string& pointer, const JsonNode& at) {
+    const auto [it, inserted] = writers_.emplace(pointer, at.pointer());
+    if (!inserted) at.fail("a pointer set in one place only (\"" + pointer + "\" is also set at " + it->second + ")");
+  }
+
+  SweepAxis read_axis(const JsonNode& node) {
+    ObjectReader r(node);
+    SweepAxis axis;
+    axis.origin = node.pointer();
+    const JsonNode name = r.required("name");
+    axis.name = name.as_string();
+    const bool valid_name = axis.name.size() <= 32 && axis.name.front() >= 'a' && axis.name.front() <= 'z' &&
+                            std::all_of(axis.name.begin(), axis.name.end(), [](char c) {
+                              return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+                            });
+    if (!valid_name) name.fail("an axis name of up to 32 lower-case letters, digits and '_', starting with a letter");
+    const auto stats = table_stat_columns();
+    if (axis.name == "scene" || std::find(stats.begin(), stats.end(), axis.name) != stats.end()) {
+      name.fail("an axis name that is not also a table column");
+    }
+    std::set<std::string> labels;
+    for (const JsonNode& value : r.required("values").as_array(1, limits_.max_values)) {
+      axis.values.push_back(read_axis_value(value));
+      // Distinct in run IDs, so no two runs share a directory.
+      if (!labels.insert(value_id_label(axis.values.back())).second) {
+        value.fail("values with distinct labels in run IDs (\"" + value_id_label(axis.values.back()) +
+                   "\" appears twice)");
+      }
+    }
+    for (const JsonNode& pointer : r.required("set").as_array(1, limits_.max_pointers)) {
+      axis.pointers.push_back(read_pointer(pointer));
+      claim(axis.pointers.back(), pointer);
+    }
+    r.finish();
+    return axis;
+  }
+
+  std::filesystem::path file_;
+  SweepLimits limits_;
+  std::map<std::string, std::string> writers_;  // scene pointer -> spec pointer that sets it
+};
+
+}  // namespace
+
+std::string value_label(const nlohmann::json& value) {
+  if (value.is_string()) return value.get<std::string>();
+  if (value.is_number_float()) {
+    char text[32];
+    const auto [end, ec] = std::to_chars(text, text + sizeof text, value.get<double>());
+    return std::string(text, end);
+  }
+  if (value.is_array()) {
+    std::string label;
+    for (const auto& element : value) {
+      if (!label.empty()) label += 'x';
+      label += value_label(element);
+    }
+    return label;
+  }
+  return value.dump();  // integers and booleans
+}
+
+std::string value_id_label(const nlohmann::json& value) {
+  std::string label = value_label(value);
+  for (char& c : label) {
+    if (!label_char(c) && c != '+') c = '_';
+  }
+  return label;
+}
+
+SweepSpec read_sweep_spec(const std::filesystem::path& file, const SweepLimits& limits) {
+  return parse_sweep_spec(read_json_file(file), file, limits);
+}
+
+SweepSpec parse_sweep_spec(const nlohmann::json& document, const std::filesystem::path& file,
+                           const SweepLimits& limits) {
+  return SpecParser(file, limits).parse(document);
+}
+
+}  // namespace campo

@@ -1,0 +1,86 @@
+#pragma once
+/// Sweep spec files (docs/sweeps.md): which scenes, which fixed overrides,
+/// which parameters to sweep over which values, how many seeds. Read strictly:
+/// every error names the file, the JSON pointer and what was expected.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace campo {
+
+/// A scene-document override: `value` written at the JSON `pointer` (aliases
+/// may stand for array indices, as with `campo run --set`).
+struct SweepOverride {
+  std::string pointer;    ///< e.g. "/objects/drone/planner/name"
+  nlohmann::json value;   ///< any JSON
+  std::string origin;     ///< JSON pointer in the spec file it came from (for errors)
+};
+
+/// One scene of the sweep.
+struct SweepScene {
+  std::string label;           ///< run IDs and the table's scene column: bundled name or file stem
+  std::filesystem::path file;  ///< the scene file
+  std::string origin;          ///< JSON pointer in the spec file
+};
+
+/// One swept parameter: each value in turn is written to every pointer.
+struct SweepAxis {
+  std::string name;                   ///< [a-z][a-z0-9_]*, the table column and the ID label
+  std::vector<nlohmann::json> values; ///< scalars or flat arrays, distinct, in spec order
+  std::vector<std::string> pointers;  ///< JSON pointers into the scene
+  std::string origin;                 ///< JSON pointer of the axis in the spec file
+};
+
+/// Moves a vehicle's start to a point uniformly distributed in a horizontal
+/// disc around its scene start, drawn from the run's seed.
+struct StartJitter {
+  std::string vehicle;    ///< alias of a vehicle at the top level of the scene's "objects"
+  double radius_m = 0.0;  ///< disc radius, > 0
+  std::string origin;     ///< JSON pointer in the spec file
+};
+
+/// A validated sweep spec.
+struct SweepSpec {
+  std::filesystem::path file;            ///< the spec file
+  nlohmann::json document;               ///< the spec as read
+  std::string name;                      ///< default: the file stem
+  std::string description;
+  std::vector<SweepScene> scenes;        ///< at least one, distinct labels
+  std::vector<SweepOverride> set;        ///< fixed overrides, by pointer (parents before children)
+  std::vector<SweepAxis> axes;           ///< cartesian product, the first axis outermost
+  std::uint64_t first_seed = 1;          ///< run seeds first_seed .. first_seed + seed_count - 1
+  int seed_count = 1;                    ///< >= 1
+  std::optional<StartJitter> start_jitter;
+};
+
+/// Limits that stop a spec from expanding beyond reason.
+struct SweepLimits {
+  std::size_t max_scenes = 100;
+  std::size_t max_axes = 8;
+  std::size_t max_values = 1000;    ///< per axis
+  std::size_t max_pointers = 64;    ///< per `set` and per axis
+  int max_seeds = 100000;
+  std::size_t max_runs = 100000;    ///< after expansion
+};
+
+/// Reads and validates a spec file. Scene entries ending in ".json" are paths
+/// relative to the spec file; others name bundled scenes (sweep/bundled.hpp).
+SweepSpec read_sweep_spec(const std::filesystem::path& file, const SweepLimits& limits = {});
+
+/// Validates an already-parsed spec document; `file` names it in errors and
+/// resolves relative scene paths.
+SweepSpec parse_sweep_spec(const nlohmann::json& document, const std::filesystem::path& file,
+                           const SweepLimits& limits = {});
+
+/// The label of a parameter value in run IDs and tables: numbers in their
+/// shortest form, strings as they are, arrays joined with 'x' ("256x256").
+std::string value_label(const nlohmann::json& value);
+/// value_label() made filesystem-safe for run IDs: characters other than
+/// letters, digits, '.', '_', '+' and '-' become '_'.
+std::string value_id_label(const nlohmann::json& value);
+
+}  // namespace campo

@@ -1,0 +1,305 @@
+#include "planners/depth_reactive_steps.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "sim/lidar.hpp"
+#include "sim/random.hpp"
+
+namespace campo {
+namespace {
+
+cv::Mat free_map(int size) { return cv::Mat(size, size, CV_32F, cv::Scalar(1.0f)); }
+
+DepthGrid grid64() { return {64, 64, 90.0, 90.0, 10.0}; }
+
+// Reference DilataMappa straight from the definition: every pixel takes the
+// smallest value among the obstacle pixels whose structuring element covers it.
+cv::Mat brute_force_dilation(const cv::Mat& depth, const DilationParams& p) {
+  cv::Mat out(depth.size(), CV_32F, cv::Scalar(1.0f));
+  for (int qy = 0; qy < depth.rows; ++qy) {
+    for (int qx = 0; qx < depth.cols; ++qx) {
+      const float v = depth.at<float>(qy, qx);
+      if (v >= 1.0f) continue;
+      const int n = static_cast<int>(p.layer_radius_px.size());
+      const int s = std::clamp(static_cast<int>(std::ceil(v * n)), 1, n);
+      const cv::Size r = p.layer_radius_px[s - 1];
+      for (int dy = -r.height; dy <= r.height; ++dy) {
+        for (int dx = -r.width; dx <= r.width; ++dx) {
+          if (p.shape == StructuringShape::disc) {
+            const double ex = r.width > 0 ? static_cast<double>(dx) / r.width : 0.0;
+            const double ey = r.height > 0 ? static_cast<double>(dy) / r.height : 0.0;
+            if ((r.width == 0 && dx != 0) || (r.height == 0 && dy != 0) || ex * ex + ey * ey > 1.0 + 1e-12) continue;
+          }
+          const int x = qx + dx, y = qy + dy;
+          if (x < 0 || y < 0 || x >= depth.cols || y >= depth.rows) continue;
+          out.at<float>(y, x) = std::min(out.at<float>(y, x), v);
+        }
+      }
+    }
+  }
+  return out;
+}
+
+TEST(DepthGrid, ProjectionInvertsPixelDirectionsAndMatchesTheLidarBeams) {
+  LidarConfig config;
+  config.cols = 16;
+  config.rows = 8;
+  config.fov_h_deg = 90.0;
+  config.fov_v_deg = 60.0;
+  const DepthGrid grid = DepthGrid::of(config);
+  const std::vector<Beam> beams = lidar_beams(config);
+  for (int row = 0; row < config.rows; ++row) {
+    for (int col = 0; col < config.cols; ++col) {
+      const Eigen::Vector3d d = grid.direction({col, row});
+      const Eigen::Vector3f beam = beam_direction(beams[row * config.cols + col]);
+      EXPECT_LT((d.cast<float>() - beam).norm(), 1e-6f);
+      const Eigen::Vector2d back = grid.project(3.7 * d);
+      EXPECT_NEAR(back.x(), col, 1e-9);
+      EXPECT_NEAR(back.y(), row, 1e-9);
+    }
+  }
+  // Straight ahead is the centre of the image; left is toward column 0, up toward row 0.
+  EXPECT_NEAR(grid.project(Eigen::Vector3d::UnitX()).x(), 7.5, 1e-12);
+  EXPECT_NEAR(grid.project(Eigen::Vector3d::UnitX()).y(), 3.5, 1e-12);
+  EXPECT_LT(grid.project({1.0, 0.5, 0.0}).x(), 7.5);
+  EXPECT_LT(grid.project({1.0, 0.0, 0.5}).y(), 3.5);
+}
+
+// Radii r_s = scale * (n + 1 - s): nearer layers larger.
+std::vector<cv::Size> descending_radii(int n, int scale) {
+  std::vector<cv::Size> radii;
+  for (int s = 1; s <= n; ++s) radii.emplace_back(scale * (n + 1 - s), scale * (n + 1 - s));
+  return radii;
+}
+
+TEST(DilataMappa, LayerRadiiAsPrintedAndForAMargin) {
+  // Algorithm 1 as printed: r s / n.
+  EXPECT_EQ(printed_layer_radii(4, 8.0, 4.0), (std::vector<cv::Size>{{2, 1}, {4, 2}, {6, 3}, {8, 4}}));
+  // A 0.45 m margin over 9 layers of 10 m on a 64 px, 90 deg grid (1.40625 deg/px):
+  // layer 1 from 0.556 m: 39.0 deg = 27.7 px; layer 5 from 4.44 m: 5.79 deg = 4.1 px; layer 9 from 8.89 m: 2.06 px.
+  const std::vector<cv::Size> margin = margin_layer_radii(9, 0.45, grid64());
+  ASSERT_EQ(margin.size(), 9u);
+  EXPECT_EQ(margin[0], cv::Size(28, 28));
+  EXPECT_EQ(margin[4], cv::Size(4, 4));
+  EXPECT_EQ(margin[8], cv::Size(2, 2));
+  for (std::size_t s = 1; s < margin.size(); ++s) EXPECT_LE(margin[s].width, margin[s - 1].width);
+}
+
+TEST(DilataMappa, ASingleObstacleLayerDilatesByExactlyItsRadius) {
+  for (const StructuringShape shape : {StructuringShape::square, StructuringShape::disc}) {
+    cv::Mat depth = free_map(41);
+    depth.at<float>(20, 20) = 0.95f;  // layer 9 of 9
+    DilationParams p;
+    p.layer_radius_px = std::vector<cv::Size>(9, cv::Size(4, 4));
+    p.shape = shape;
+    const cv::Mat out = dilate_depth_map(depth, p);
+    for (int y = 0; y < 41; ++y) {
+      for (int x = 0; x < 41; ++x) {
+        const int dx = x - 20, dy = y - 20;
+        const bool covered = shape == StructuringShape::square ? std::max(std::abs(dx), std::abs(dy)) <= 4
+                                                               : dx * dx + dy * dy <= 16;
+        EXPECT_EQ(out.at<float>(y, x), covered ? 0.95f : 1.0f) << "shape " << static_cast<int>(shape) << " at " << x << "," << y;
+      }
+    }
+  }
+}
+
+TEST(DilataMappa, NearerLayersOverwriteFartherOnes) {
+  cv::Mat depth = free_map(40);
+  // A far obstacle (layer 8 of 9) and, beside it, a near one (layer 2).
+  depth(cv::Rect(10, 10, 6, 6)).setTo(0.85f);
+  depth.at<float>(12, 18) = 0.15f;
+  DilationParams p;
+  p.layer_radius_px = descending_radii(9, 1);  // layer 2: 8 px, layer 8: 2 px
+  const cv::Mat out = dilate_depth_map(depth, p);
+  // The near obstacle's element covers part of the far obstacle: nearer wins there.
+  EXPECT_EQ(out.at<float>(12, 12), 0.15f);
+  EXPECT_EQ(out.at<float>(4, 18), 0.15f);   // 8 px above the near pixel
+  EXPECT_EQ(out.at<float>(3, 18), 1.0f);    // 9 px: outside
+  // Far pixels outside the near element keep the far value; the far element reaches 2 px.
+  EXPECT_EQ(out.at<float>(17, 8), 0.85f);
+  EXPECT_EQ(out.at<float>(17, 7), 1.0f);
+  EXPECT_EQ(out.at<float>(18, 8), 1.0f);
+  // The far layer never overwrites the near obstacle itself.
+  EXPECT_EQ(out.at<float>(12, 18), 0.15f);
+}
+
+TEST(DilataMappa, InsideALayerTheNearestValueWinsAndZerosAreTheNearestLayer) {
+  cv::Mat depth = free_map(21);
+  depth.at<float>(10, 8) = 0.95f;
+  depth.at<float>(10, 12) = 0.92f;
+  depth.at<float>(2, 2) = 0.0f;  // nearer than the sensor's minimum range
+  DilationParams p;
+  p.layer_radius_px = descending_radii(9, 3);  // layer 9: 3 px; layer 1: 27 px
+  const cv::Mat out = dilate_depth_map(depth, p);
+  EXPECT_EQ(out.at<float>(20, 20), 0.0f);  // the zero covers everything within 27 px
+  cv::Mat far_only = free_map(21);
+  far_only.at<float>(10, 8) = 0.95f;
+  far_only.at<float>(10, 12) = 0.92f;
+  const cv::Mat far = dilate_depth_map(far_only, p);
+  EXPECT_EQ(far.at<float>(10, 10), 0.92f);  // covered by both: the nearer value
+  EXPECT_EQ(far.at<float>(10, 6), 0.95f);
+  EXPECT_EQ(far.at<float>(10, 4), 1.0f);
+}
+
+TEST(DilataMappa, MatchesTheDefinitionOnRandomMaps) {
+  Rng rng(42);
+  for (int trial = 0; trial < 6; ++trial) {
+    cv::Mat depth = free_map(48);
+    for (int i = 0; i < 40; ++i) {
+      const int x = static_cast<int>(rng.uniform(0.0, 48.0));
+      const int y = static_cast<int>(rng.uniform(0.0, 48.0));
+      depth.at<float>(y, x) = static_cast<float>(rng.uniform(0.0, 0.999));
+    }
+    DilationParams p;
+    for (int s = 0; s <= trial; ++s) {
+      p.layer_radius_px.emplace_back(static_cast<int>(rng.uniform_int(0, 9)), static_cast<int>(rng.uniform_int(0, 6)));
+    }
+    p.shape = trial % 2 ? StructuringShape::disc : StructuringShape::square;
+    const cv::Mat fast = dilate_depth_map(depth, p);
+    const cv::Mat reference = brute_force_dilation(depth, p);
+    EXPECT_EQ(cv::countNonZero(fast != reference), 0) << "trial " << trial;
+  }
+}
+
+TEST(DilataMappa, NoReturnIsFreeSpace) {
+  const cv::Mat out = dilate_depth_map(free_map(16), DilationParams{StructuringShape::square, descending_radii(9, 2)});
+  EXPECT_EQ(cv::countNonZero(out != 1.0f), 0);
+}
+
+TEST(ControllaVisibilita, ClassifiesEachOutcome) {
+  const DepthGrid grid = grid64();
+  const Eigen::Vector3d ahead(5.0, 0.0, 0.0);
+  const double r = 0.5;
+  const auto classify = [&](const cv::Mat& map, const Eigen::Vector3d& w) { return check_visibility(map, grid, w, r); };
+
+  EXPECT_EQ(classify(free_map(64), ahead).visibility, Visibility::visible);             // m = d_max
+  EXPECT_EQ(classify(cv::Mat(64, 64, CV_32F, cv::Scalar(0.8f)), ahead).visibility, Visibility::visible);  // 8 - 5 > r
+  const VisibilityCheck blocked = classify(cv::Mat(64, 64, CV_32F, cv::Scalar(0.3f)), ahead);
+  EXPECT_EQ(blocked.visibility, Visibility::invisible);                                 // 5 - 3 > r
+  EXPECT_NEAR(blocked.obstacle_range_m, 3.0, 1e-6);
+  EXPECT_NEAR(blocked.waypoint_range_m, 5.0, 1e-12);
+  EXPECT_EQ(classify(cv::Mat(64, 64, CV_32F, cv::Scalar(0.52f)), ahead).visibility, Visibility::unreachable);
+  EXPECT_EQ(classify(cv::Mat(64, 64, CV_32F, cv::Scalar(0.46f)), ahead).visibility, Visibility::unreachable);
+
+  // The neighbourhood is the projected safety sphere: asin(0.5 / 5) = 5.74 deg = 4.08 px.
+  const VisibilityCheck c = classify(free_map(64), ahead);
+  EXPECT_NEAR(c.radius_x_px, std::asin(0.1) * 180.0 / M_PI / (90.0 / 64), 1e-9);
+  EXPECT_NEAR(c.pixel.x(), 31.5, 1e-9);
+  cv::Mat post = free_map(64);
+  post.col(37).setTo(0.2f);  // 5.5 px right of W': outside the neighbourhood
+  EXPECT_EQ(classify(post, ahead).visibility, Visibility::visible);
+  post.col(35).setTo(0.2f);  // 3.5 px: inside
+  EXPECT_EQ(classify(post, ahead).visibility, Visibility::invisible);
+
+  // Behind the sensor: out of view.
+  const VisibilityCheck behind = classify(free_map(64), {-5.0, 0.0, 0.0});
+  EXPECT_EQ(behind.visibility, Visibility::invisible);
+  EXPECT_FALSE(behind.in_view);
+  // Within the safety radius: the vehicle is there.
+  EXPECT_EQ(classify(cv::Mat(64, 64, CV_32F, cv::Scalar(0.01f)), {0.3, 0.0, 0.0}).visibility, Visibility::visible);
+}
+
+TEST(TrovaWP, PicksThePixelBesideTheBarrierNearestTheTarget) {
+  const DepthGrid grid = grid64();
+  // A barrier 4 m ahead over columns 0..40, free to the right of it.
+  cv::Mat depth = free_map(64);
+  depth(cv::Rect(0, 0, 41, 64)).setTo(0.4f);
+  DilationParams dp;
+  dp.layer_radius_px = std::vector<cv::Size>(10, cv::Size(7, 7));
+  const cv::Mat dilated = dilate_depth_map(depth, dp);
+  ASSERT_EQ(dilated.at<float>(31, 47), 0.4f);
+  ASSERT_EQ(dilated.at<float>(31, 48), 1.0f);
+
+  FindWaypointParams p;
+  const Eigen::Vector2d target(31.5, 31.5);  // 8 m straight ahead
+  const WaypointSearch s = find_waypoint(dilated, grid, target, 0.8, 0.4, p);
+  EXPECT_NEAR(s.threshold, 0.6, 1e-12);
+  EXPECT_EQ(s.candidates, 64);  // column 48, every row
+  ASSERT_TRUE(s.found);
+  // Rows 31 and 32 cost the same; the upper row comes first.
+  EXPECT_EQ(s.found->pixel, Eigen::Vector2i(48, 31));
+  EXPECT_EQ(s.found->edge_pixel, Eigen::Vector2i(47, 31));
+  EXPECT_NEAR(s.found->edge_range_m, 4.0, 1e-6);
+  // Edge + vehicle radius.
+  EXPECT_NEAR(s.found->range_m, 4.0 + p.vehicle_radius_m, 1e-6);
+  // The sphere of 0.5 m at 4.45 m projects to 4.59 px (+1.5 px margin): the
+  // waypoint's pixel moves right from P until the dilated barrier (up to
+  // column 47) is outside it: 54 - 47 = 7 > 6.09.
+  EXPECT_EQ(s.found->waypoint_pixel, Eigen::Vector2i(54, 31));
+  EXPECT_LT((s.found->direction_sensor - grid.direction({54, 31})).norm(), 1e-12);
+  // So the new waypoint passes ControllaVisibilita on the same map.
+  EXPECT_EQ(check_visibility(dilated, grid, s.found->direction_sensor * s.found->range_m, p.safety_radius_m).visibility,
+            Visibility::visible);
+  EXPECT_EQ(s.found->tried, 1);
+}
+
+TEST(TrovaWP, TheAltitudePenaltyTradesClimbingForGoingAround) {
+  const DepthGrid grid = grid64();
+  // A block 4 m ahead: columns 0..50, rows 25..63. Over it is 7 px up, around it 20 px right.
+  cv::Mat depth = free_map(64);
+  depth(cv::Rect(0, 25, 51, 39)).setTo(0.4f);
+  const Eigen::Vector2d target(31.0, 31.0);
+  FindWaypointParams p;
+  p.vehicle_radius_m = 0.0;
+  p.safety_radius_m = 0.01;
+  p.altitude_penalty = 0.0;
+  const WaypointSearch over = find_waypoint(depth, grid, target, 0.8, 0.4, p);
+  ASSERT_TRUE(over.found);
+  EXPECT_EQ(over.found->pixel, Eigen::Vector2i(31, 24));
+  p.altitude_penalty = 2.0;  // 7 + 2 * 7 = 21 > 20
+  const WaypointSearch around = find_waypoint(depth, grid, target, 0.8, 0.4, p);
+  ASSERT_TRUE(around.found);
+  EXPECT_EQ(around.found->pixel, Eigen::Vector2i(51, 31));
+}
+
+TEST(TrovaWP, FindsNothingWhenTheDilatedMapIsFull) {
+  const cv::Mat near(64, 64, CV_32F, cv::Scalar(0.1f));
+  const WaypointSearch s = find_waypoint(near, grid64(), {31.5, 31.5}, 0.8, 0.1, FindWaypointParams{});
+  EXPECT_EQ(s.candidates, 0);
+  EXPECT_FALSE(s.found);
+}
+
+TEST(TrovaWP, SkipsWaypointsAlreadyDiscarded) {
+  const DepthGrid grid = grid64();
+  cv::Mat depth = free_map(64);
+  depth(cv::Rect(0, 0, 41, 64)).setTo(0.4f);
+  FindWaypointParams p;
+  p.vehicle_radius_m = 0.0;
+  const WaypointSearch first = find_waypoint(depth, grid, {31.5, 31.5}, 0.8, 0.4, p);
+  ASSERT_TRUE(first.found);
+  const Eigen::Vector3d discarded = first.found->direction_sensor * first.found->range_m;
+  const WaypointSearch second = find_waypoint(depth, grid, {31.5, 31.5}, 0.8, 0.4, p, {&discarded, 1});
+  ASSERT_TRUE(second.found);
+  EXPECT_GE((second.found->direction_sensor * second.found->range_m - discarded).norm(), p.safety_radius_m);
+  EXPECT_GT(second.found->tried, 1);
+}
+
+TEST(TrovaWP, ThresholdIsCapped) {
+  const WaypointSearch s = find_waypoint(free_map(8), {8, 8, 90.0, 90.0, 10.0}, {3.5, 3.5}, 2.3, 0.5,
+                                         FindWaypointParams{});
+  EXPECT_NEAR(s.threshold, 0.9, 1e-12);
+}
+
+TEST(PixelSegment, RunsFromTheStartTowardAPointOutsideTheImage) {
+  const auto pixels = pixel_segment({10, 10}, {2, 5}, {1000.0, 5.0});
+  ASSERT_EQ(pixels.size(), 8u);
+  EXPECT_EQ(pixels.front(), Eigen::Vector2i(2, 5));
+  EXPECT_EQ(pixels.back(), Eigen::Vector2i(9, 5));
+}
+
+TEST(WallFollowing, FreeFractionOfTheNavigableSector) {
+  const DepthGrid grid = grid64();
+  const cv::Rect region = navigable_region(grid, 60.0, 10.0);
+  // 60 of 90 deg: 42.7 columns around 31.5; +-10 deg: +-7.1 rows.
+  EXPECT_EQ(region, cv::Rect(11, 25, 42, 14));
+  cv::Mat map = free_map(64);
+  EXPECT_DOUBLE_EQ(free_fraction(map, region, 0.5), 1.0);
+  map(cv::Rect(0, 0, 32, 64)).setTo(0.2f);  // left half blocked
+  EXPECT_DOUBLE_EQ(free_fraction(map, region, 0.5), 21.0 / 42.0);
+}
+
+}  // namespace
+}  // namespace campo
