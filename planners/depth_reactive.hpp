@@ -27,12 +27,12 @@ struct DepthReactiveConfig {
   std::string sensor;                 ///< alias of the depth source; empty: the vehicle's first grid sensor
   double speed_mps = 0.6;             ///< cruise speed (seed 000 flew at 0.6 m/s)
   double tolerance_m = 0.3;           ///< a waypoint counts as reached within this distance
-  double safety_radius_m = 0.5;       ///< r of ControllaVisibilita: kept free around every waypoint
+  double safety_radius_m = 0.25;      ///< r of ControllaVisibilita: kept free around every waypoint, beyond the dilation margin
   double vehicle_radius_m = 0.45;     ///< added to the obstacle-edge distance in TrovaWP
-  int layers = 9;                     ///< n of DilataMappa
+  int layers = 18;                    ///< n of DilataMappa (0.56 m deep each over 10 m)
   StructuringShape structuring_element = StructuringShape::square;
   LayerRadii layer_radii = LayerRadii::margin;
-  double dilation_margin_m = 0.45;    ///< margin kept around obstacles (layer_radii margin)
+  double dilation_margin_m = 0.4;     ///< margin kept around obstacles (layer_radii margin): about the vehicle's half-width
   double dilation_radius_deg = 17.2;  ///< r as an angle (layer_radii as_printed; seed 000: 49 px at 256 px over 90 deg)
   double altitude_penalty = 1.0;      ///< k of TrovaWP's cost, per pixel of altitude change
   double threshold_cap = 0.9;         ///< cap of TrovaWP's threshold t

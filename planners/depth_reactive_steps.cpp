@@ -120,7 +120,7 @@ std::vector<cv::Size> printed_layer_radii(int layers, double max_radius_x_px, do
 std::vector<cv::Size> margin_layer_radii(int layers, double margin_m, const DepthGrid& grid) {
   std::vector<cv::Size> radii;
   for (int s = 1; s <= layers; ++s) {
-    const double near_m = (s == 1 ? 0.5 : s - 1.0) / layers * grid.max_range_m;
+    const double near_m = (s - 0.5) / layers * grid.max_range_m;
     const double deg = std::atan2(margin_m, near_m) * kRadToDeg;
     radii.emplace_back(static_cast<int>(std::lround(deg / grid.deg_per_col())),
                        static_cast<int>(std::lround(deg / grid.deg_per_row())));

@@ -50,8 +50,8 @@ struct DilationParams {
 /// so the farthest layer is dilated most.
 std::vector<cv::Size> printed_layer_radii(int layers, double max_radius_x_px, double max_radius_y_px);
 /// Layer radii that keep `margin_m` around every obstacle: layer s spans the
-/// angle of the margin seen from its near edge (s - 1) / n d_max (layer 1 from
-/// half its depth), so near layers are dilated most, as 000 §4.2.1 asks.
+/// angle of the margin seen from the layer's middle depth (s - 1/2) / n d_max,
+/// so near layers are dilated most, as 000 §4.2.1 asks.
 std::vector<cv::Size> margin_layer_radii(int layers, double margin_m, const DepthGrid& grid);
 
 /// DilataMappa: layer s holds the pixels with value in ((s-1)/n, s/n] (layer

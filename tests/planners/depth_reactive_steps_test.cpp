@@ -77,8 +77,9 @@ std::vector<cv::Size> descending_radii(int n, int scale) {
 TEST(DilataMappa, LayerRadiiAsPrintedAndForAMargin) {
   // Algorithm 1 as printed: r s / n.
   EXPECT_EQ(printed_layer_radii(4, 8.0, 4.0), (std::vector<cv::Size>{{2, 1}, {4, 2}, {6, 3}, {8, 4}}));
-  // A 0.45 m margin over 9 layers of 10 m on a 64 px, 90 deg grid (1.40625 deg/px):
-  // layer 1 from 0.556 m: 39.0 deg = 27.7 px; layer 5 from 4.44 m: 5.79 deg = 4.1 px; layer 9 from 8.89 m: 2.06 px.
+  // A 0.45 m margin over 9 layers of 10 m on a 64 px, 90 deg grid (1.40625 deg/px), seen
+  // from each layer's middle: layer 1 from 0.556 m: 39.0 deg = 27.7 px; layer 5 from
+  // 5.0 m: 5.14 deg = 3.66 px; layer 9 from 9.44 m: 2.73 deg = 1.94 px.
   const std::vector<cv::Size> margin = margin_layer_radii(9, 0.45, grid64());
   ASSERT_EQ(margin.size(), 9u);
   EXPECT_EQ(margin[0], cv::Size(28, 28));
