@@ -20,6 +20,14 @@ constexpr float kEmpty = std::numeric_limits<float>::max();
 // shifts by a fraction of a pixel and the sensor, ahead of the body centre, moves).
 constexpr double kClearMarginPx = 1.5;
 
+// Minimum filter of `image` with a (2 rx + 1) x (2 ry + 1) rectangle, in
+// place: erosion, so the nearest value wins; nothing beyond the border.
+void erode_square(cv::Mat& image, const cv::Size& r) {
+  if (r.width == 0 && r.height == 0) return;
+  cv::erode(image, image, cv::getStructuringElement(cv::MORPH_RECT, {2 * r.width + 1, 2 * r.height + 1}),
+            cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(kEmpty));
+}
+
 // Min filter of a layer image with an elliptical disc of semi-axes (rx, ry):
 // the disc is the union of horizontal runs of half-width w(dy), so the filter
 // is the minimum over dy of row-wise minima of width w(dy), which grow as |dy|
@@ -130,44 +138,60 @@ std::vector<cv::Size> margin_layer_radii(int layers, double margin_m, const Dept
 
 cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
   const int n = static_cast<int>(p.layer_radius_px.size());
-  CV_Assert(depth.type() == CV_32F && n >= 1);
-  // Layer of every pixel (0 = free) and the bounding box of each layer.
-  cv::Mat layer_of(depth.size(), CV_32S);
-  std::vector<cv::Rect> boxes(n + 1);
-  for (int y = 0; y < depth.rows; ++y) {
-    const float* v = depth.ptr<float>(y);
-    int* s_row = layer_of.ptr<int>(y);
-    for (int x = 0; x < depth.cols; ++x) {
-      const int s = v[x] >= 1.0f ? 0 : std::clamp(static_cast<int>(std::ceil(v[x] * n)), 1, n);
-      s_row[x] = s;
-      if (s == 0) continue;
-      cv::Rect& b = boxes[s];
-      b = b.empty() ? cv::Rect(x, y, 1, 1) : (b | cv::Rect(x, y, 1, 1));
-    }
+  CV_Assert(depth.type() == CV_32F && depth.isContinuous() && n >= 1);
+  // The pixels of each layer, by a counting sort on the layer (0 = free space).
+  const int pixels = static_cast<int>(depth.total());
+  const float* value = depth.ptr<float>();
+  std::vector<int> layer(pixels);
+  std::vector<int> start(n + 2, 0);
+  for (int i = 0; i < pixels; ++i) {
+    layer[i] = value[i] >= 1.0f ? 0 : std::clamp(static_cast<int>(std::ceil(value[i] * n)), 1, n);
+    ++start[layer[i] + 1];
+  }
+  for (int s = 1; s <= n + 1; ++s) start[s] += start[s - 1];
+  std::vector<int> order(pixels);
+  std::vector<int> next(start.begin(), start.end() - 1);
+  for (int i = 0; i < pixels; ++i) order[next[layer[i]]++] = i;
+  const auto layer_pixels = [&](int s) { return std::span<const int>(order.data() + start[s], order.data() + start[s + 1]); };
+
+  bool nested = p.shape == StructuringShape::square;
+  for (int s = 1; s < n; ++s) {
+    nested = nested && p.layer_radius_px[s].width <= p.layer_radius_px[s - 1].width &&
+             p.layer_radius_px[s].height <= p.layer_radius_px[s - 1].height;
   }
   cv::Mat out(depth.size(), CV_32F, cv::Scalar(1.0f));
+  if (nested) {
+    // Square elements that shrink with depth nest: eroding by R_s is eroding by
+    // R_s - R_(s+1), then ... then by R_n; and erosion commutes with the
+    // minimum. So every layer shares one chain of small erosions (Horner):
+    // erode_Rn(min(L_n, ... erode_(R1-R2)(L_1))), about one erosion's cost.
+    cv::Mat acc(depth.size(), CV_32F, cv::Scalar(kEmpty));
+    float* a = acc.ptr<float>();
+    bool any = false;
+    for (int s = 1; s <= n; ++s) {
+      if (any && s > 1) erode_square(acc, p.layer_radius_px[s - 2] - p.layer_radius_px[s - 1]);
+      for (const int i : layer_pixels(s)) a[i] = std::min(a[i], value[i]);
+      any = any || start[s + 1] > start[s];
+    }
+    if (any) erode_square(acc, p.layer_radius_px[n - 1]);
+    cv::min(acc, 1.0, out);
+    return out;
+  }
   const cv::Rect image(0, 0, depth.cols, depth.rows);
   for (int s = 1; s <= n; ++s) {
-    if (boxes[s].empty()) continue;
+    const std::span<const int> members = layer_pixels(s);
+    if (members.empty()) continue;
+    cv::Rect box;
+    for (const int i : members) box |= cv::Rect(i % depth.cols, i / depth.cols, 1, 1);
     const cv::Size r = p.layer_radius_px[s - 1];
-    const cv::Rect roi = cv::Rect(boxes[s].x - r.width, boxes[s].y - r.height, boxes[s].width + 2 * r.width,
-                                  boxes[s].height + 2 * r.height) & image;
-    cv::Mat layer(roi.size(), CV_32F, cv::Scalar(kEmpty));
-    for (int y = 0; y < roi.height; ++y) {
-      const float* v = depth.ptr<float>(roi.y + y) + roi.x;
-      const int* s_row = layer_of.ptr<int>(roi.y + y) + roi.x;
-      float* dst = layer.ptr<float>(y);
-      for (int x = 0; x < roi.width; ++x) {
-        if (s_row[x] == s) dst[x] = v[x];
-      }
-    }
-    cv::Mat dilated;
+    const cv::Rect roi =
+        cv::Rect(box.x - r.width, box.y - r.height, box.width + 2 * r.width, box.height + 2 * r.height) & image;
+    cv::Mat dilated(roi.size(), CV_32F, cv::Scalar(kEmpty));
+    for (const int i : members) dilated.at<float>(i / depth.cols - roi.y, i % depth.cols - roi.x) = value[i];
     if (p.shape == StructuringShape::square) {
-      // Erosion is the minimum filter: the nearest value of the layer wins.
-      cv::erode(layer, dilated, cv::getStructuringElement(cv::MORPH_RECT, {2 * r.width + 1, 2 * r.height + 1}),
-                cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(kEmpty));
+      erode_square(dilated, r);
     } else {
-      dilated = erode_disc(layer, r.width, r.height);
+      dilated = erode_disc(dilated, r.width, r.height);
     }
     // Nearer layers hold smaller values, so "nearer overwrites farther" is the minimum.
     cv::Mat target = out(roi);

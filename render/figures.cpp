@@ -24,7 +24,7 @@ cv::Point2d FigureLayout::to_px(const Eigen::Vector2d& p) const {
           plot_px.y + plot_px.height - 0.5 - (p.y() - min.y()) * px_per_unit.y()};
 }
 
-cv::Point2d DepthFigureLayout::to_px(std::size_t panel, cv::Point pixel) const {
+cv::Point2d DepthFigureLayout::to_px(std::size_t panel, cv::Point2d pixel) const {
   const cv::Rect& r = panels_px.at(panel);
   return {r.x + (pixel.x + 0.5) * scale - 0.5, r.y + (pixel.y + 0.5) * scale - 0.5};
 }
@@ -701,6 +701,7 @@ const cv::Scalar kNoReturn = rgb(238, 238, 238);
 const cv::Scalar kTooNear = rgb(0, 0, 0);
 const cv::Scalar kRing = rgb(230, 25, 25);
 const cv::Scalar kScanLine = rgb(255, 150, 0);
+const cv::Scalar kProjection = rgb(220, 0, 220);  // W' and its safety ellipse
 constexpr int kDepthCaptionPx = 36;
 
 void check_depth(const cv::Mat& depth, const DepthOverlays& overlays) {
@@ -726,14 +727,53 @@ void draw_ring(cv::Mat& image, cv::Point2d c, double radius) {
   cv::circle(image, figure::fixed(c), r, kRing, 2, cv::LINE_AA, figure::kShift);
 }
 
+// W' as a plus on a white halo.
+void draw_projection(cv::Mat& image, cv::Point2d c) {
+  for (int pass = 0; pass < 2; ++pass) {
+    for (const cv::Point2d d : {cv::Point2d(7, 0), cv::Point2d(0, 7)}) {
+      cv::line(image, figure::fixed(c - d), figure::fixed(c + d), pass == 0 ? figure::kWhite : kProjection,
+               pass == 0 ? 5 : 2, cv::LINE_AA, figure::kShift);
+    }
+  }
+}
+
+// An ellipse of half-axes `axes` (figure pixels) around `c`, on a white halo.
+void draw_ellipse(cv::Mat& image, cv::Point2d c, cv::Size2d axes) {
+  const cv::Size fixed_axes(static_cast<int>(std::lround(axes.width * (1 << figure::kShift))),
+                            static_cast<int>(std::lround(axes.height * (1 << figure::kShift))));
+  cv::ellipse(image, figure::fixed(c), fixed_axes, 0.0, 0.0, 360.0, figure::kWhite, 4, cv::LINE_AA, figure::kShift);
+  cv::ellipse(image, figure::fixed(c), fixed_axes, 0.0, 0.0, 360.0, kProjection, 2, cv::LINE_AA, figure::kShift);
+}
+
+std::string pixel_text(cv::Point2d p, double step) {
+  return "column " + figure::format_number(p.x, step) + ", row " + figure::format_number(p.y, step);
+}
+
+bool has_ellipse(const DepthOverlays& overlays) {
+  return overlays.safety_ellipse_px.width > 0.0 && overlays.safety_ellipse_px.height > 0.0;
+}
+
 std::vector<LegendEntry> depth_legend(const DepthOverlays& overlays, bool colour) {
   std::vector<LegendEntry> legend;
+  if (overlays.waypoint_projection) {
+    const bool ellipse = has_ellipse(overlays);
+    legend.push_back(marker_entry(
+        [ellipse](cv::Mat& m, cv::Point2d p) {
+          if (ellipse) draw_ellipse(m, p, {13.0, 8.0});
+          draw_projection(m, p);
+        },
+        "W' (" + pixel_text(*overlays.waypoint_projection, 0.1) + ")" + (ellipse ? ", safety sphere" : "")));
+  }
   if (overlays.chosen_pixel) {
     const cv::Point c = *overlays.chosen_pixel;
     legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d p) { draw_ring(m, p, 7.0); },
                                   "chosen pixel (column " + std::to_string(c.x) + ", row " + std::to_string(c.y) + ")"));
   }
   if (!overlays.scan_line.empty()) legend.push_back(line_entry(kScanLine, 2, "scan line"));
+  if (overlays.new_waypoint_pixel) {
+    legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d p) { figure::diamond_marker(m, p, kPlannedWaypoint); },
+                                  "new waypoint (" + pixel_text(*overlays.new_waypoint_pixel, 1.0) + ")"));
+  }
   if (colour) {
     legend.push_back(patch_entry(kNoReturn, figure::kMutedInk, "no return (1)"));
     legend.push_back(patch_entry(kTooNear, figure::kMutedInk, "below min range (0)"));
@@ -853,7 +893,11 @@ cv::Mat draw_depth(const cv::Mat& depth, const DepthOverlays& overlays, bool col
   cv::Mat image(l.image_px, CV_8UC3, figure::kWhite);
   std::vector<std::pair<const cv::Mat*, std::string>> panels{{&depth, "depth map"}};
   if (!overlays.dilated.empty()) panels.emplace_back(&overlays.dilated, "dilated");
-  if (!overlays.thresholded.empty()) panels.emplace_back(&overlays.thresholded, "thresholded");
+  if (!overlays.thresholded.empty()) {
+    panels.emplace_back(&overlays.thresholded,
+                        overlays.threshold ? "thresholded at t = " + figure::format_number(*overlays.threshold, 0.001)
+                                           : "thresholded");
+  }
   for (std::size_t i = 0; i < panels.size(); ++i) {
     const cv::Rect& r = l.panels_px[i];
     depth_panel(*panels[i].first, colour, l.scale).copyTo(image(r));
@@ -868,7 +912,15 @@ cv::Mat draw_depth(const cv::Mat& depth, const DepthOverlays& overlays, bool col
     std::vector<cv::Point2d> scan;
     for (const auto& p : overlays.scan_line) scan.push_back(l.to_px(i, p) - origin);
     figure::polyline(view, scan, kScanLine, 2);
+    if (overlays.waypoint_projection) {
+      const cv::Point2d c = l.to_px(i, *overlays.waypoint_projection) - origin;
+      if (has_ellipse(overlays)) draw_ellipse(view, c, overlays.safety_ellipse_px * double(l.scale));
+      draw_projection(view, c);
+    }
     if (overlays.chosen_pixel) draw_ring(view, l.to_px(i, *overlays.chosen_pixel) - origin, ring_radius(l.scale));
+    if (overlays.new_waypoint_pixel) {
+      figure::diamond_marker(view, l.to_px(i, *overlays.new_waypoint_pixel) - origin, kPlannedWaypoint);
+    }
   }
   figure::draw_colorbar(image, l.colorbar_px, 0.0, 1.0, "", colour ? sequential_color : grey);
   figure::put_text_vertical(image, "range / max range", {l.colorbar_px.x + 86.0, l.colorbar_px.y + 0.5 * l.colorbar_px.height},

@@ -100,18 +100,29 @@ cv::Scalar run_color(std::size_t index);
 /// or [0, top speed] onto it.
 cv::Vec3b sequential_color(double fraction);
 
-/// Planner overlays on a depth map (seed 000 Fig. 5.2), all optional.
+/// Planner overlays on a depth map (seed 000 Fig. 5.2), all optional. Pixel
+/// positions are depth-map pixels (column, row); continuous ones have
+/// integers at pixel centres.
 struct DepthOverlays {
   cv::Mat dilated;                       ///< CV_32F like the depth map
   cv::Mat thresholded;                   ///< CV_8U 0/255
+  std::optional<double> threshold;       ///< the threshold t behind `thresholded`, for its caption
   std::optional<cv::Point> chosen_pixel; ///< the pixel a waypoint was chosen at
   std::vector<cv::Point> scan_line;      ///< pixels considered for the choice
+  /// W', the projection of the waypoint being checked (continuous; may lie
+  /// outside the map, where only the legend gives it).
+  std::optional<cv::Point2d> waypoint_projection;
+  /// Half-axes, pixels across and down, of W's projected safety sphere
+  /// around W' (the neighbourhood ControllaVisibilita reads); 0: not drawn.
+  cv::Size2d safety_ellipse_px;
+  std::optional<cv::Point> new_waypoint_pixel;  ///< where a new waypoint was placed
 };
 
 /// A depth map (CV_32F in [0, 1], SPEC §6) as a report figure: grey or
 /// colour-mapped, upscaled with visible pixels, with a value colour bar and
-/// the overlays when given (each panel side by side: depth, dilated, thresholded).
-/// Colour mode: sequential_color, with no return (1) light grey and below
+/// the overlays when given (each panel side by side: depth, dilated,
+/// thresholded; the markers on every panel: scan line, W' with its safety
+/// ellipse, chosen pixel ringed, new waypoint as a diamond). Colour mode: sequential_color, with no return (1) light grey and below
 /// min range (0) black. Throws std::invalid_argument for an empty or
 /// non-CV_32F depth map or overlays of another size.
 cv::Mat draw_depth(const cv::Mat& depth, const DepthOverlays& overlays, bool colour, const std::string& title);
@@ -130,8 +141,9 @@ struct DepthFigureLayout {
   std::vector<cv::Rect> panels_px;  ///< depth, then dilated and thresholded when given
   cv::Rect colorbar_px;
   cv::Rect legend_px;               ///< legend rows; empty when there is nothing to explain
-  /// Drawing coordinates of the centre of depth-map pixel `pixel` in panel `panel`.
-  cv::Point2d to_px(std::size_t panel, cv::Point pixel) const;
+  /// Drawing coordinates of depth-map position `pixel` (continuous, integers
+  /// at pixel centres) in panel `panel`.
+  cv::Point2d to_px(std::size_t panel, cv::Point2d pixel) const;
 };
 inline constexpr int kDepthPanelMinPx = 256;
 inline constexpr int kDepthGapPx = 32;

@@ -1,10 +1,13 @@
 #include "tools/figures.hpp"
 
 #include <algorithm>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "planners/depth_reactive.hpp"
 #include "render/snapshot.hpp"
 #include "sim/json_reader.hpp"
 #include "sim/scene_mesh.hpp"
@@ -25,6 +28,83 @@ std::string title_of(const RecordedRun& run, const std::string& what) {
   const auto& p = run.record.at("parameters");
   return run.scene.name + " - " + p.at("vehicle").at("type").get<std::string>() + " - " +
          p.at("planner").at("name").get<std::string>() + " - " + run.view.outcome + " - " + what;
+}
+
+std::string record_file(const RecordedRun& run) { return (run.dir / "run.json").string(); }
+
+// A recorded depth map (16-bit PNG, render/depth_image.hpp) back as CV_32F in [0, 1].
+cv::Mat read_depth_png(const std::filesystem::path& file) {
+  const cv::Mat gray16 = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
+  if (gray16.type() != CV_16U) throw InputError(file.string(), "", "expected a 16-bit grey depth map");
+  cv::Mat depth;
+  gray16.convertTo(depth, CV_32F, 1.0 / 65535.0);
+  return depth;
+}
+
+// A depth figure grey and colour-mapped: out_dir/depth_figures/<stem>_grey.png and _colour.png.
+std::vector<std::filesystem::path> write_depth_pair(const cv::Mat& depth, const DepthOverlays& overlays,
+                                                    const std::string& title, const std::filesystem::path& out_dir,
+                                                    const std::string& stem) {
+  const auto dir = out_dir / "depth_figures";
+  std::filesystem::create_directories(dir);
+  return {write_png(draw_depth(depth, overlays, false, title + " (grey)"), dir / (stem + "_grey.png")),
+          write_png(draw_depth(depth, overlays, true, title + " (colour)"), dir / (stem + "_colour.png"))};
+}
+
+// The angular grid of sensor `alias` as run.json's parameters.sensors recorded it.
+DepthGrid recorded_grid(const RecordedRun& run, const std::string& alias) {
+  for (const auto& s : run.record.at("parameters").at("sensors")) {
+    if (s.value("alias", "") != alias) continue;
+    const auto& resolution = s.at("resolution");
+    const auto& fov = s.at("fov_deg");
+    return {resolution.at(0).get<int>(), resolution.at(1).get<int>(), fov.at(0).get<double>(), fov.at(1).get<double>(),
+            s.at("range_m").at(1).get<double>()};
+  }
+  throw InputError(record_file(run), "/parameters/sensors", "no sensor \"" + alias + "\", which replanning read");
+}
+
+cv::Point2d point2d(const nlohmann::json& j) { return {j.at(0).get<double>(), j.at(1).get<double>()}; }
+Eigen::Vector2i vector2i(const nlohmann::json& j) { return {j.at(0).get<int>(), j.at(1).get<int>()}; }
+cv::Point to_cv(const Eigen::Vector2i& p) { return {p.x(), p.y()}; }
+
+// The overlays of one replanning step, recomputed as depth_reactive.cpp computes
+// them. The 16-bit file rounds values by at most 1 / 131070, so the maps match
+// the planner's except, rarely, at a pixel that close to a layer boundary or t.
+DepthOverlays replan_overlays(const cv::Mat& depth, const nlohmann::json& replan, const DepthReactiveConfig& config,
+                              const DepthGrid& grid) {
+  DepthOverlays o;
+  o.dilated = dilate_depth_map(depth, dilation_params(config, grid));
+  const cv::Point2d projection = point2d(replan.at("pixel"));
+  const cv::Point2d radius = point2d(replan.at("radius_px"));
+  o.waypoint_projection = projection;
+  o.safety_ellipse_px = {radius.x, radius.y};
+  if (replan.contains("threshold")) {
+    o.threshold = replan["threshold"].get<double>();
+    o.thresholded = threshold_free(o.dilated, *o.threshold);
+  }
+  if (replan.contains("chosen_pixel")) {
+    const Eigen::Vector2i chosen = vector2i(replan["chosen_pixel"]);
+    const Eigen::Vector2i edge = vector2i(replan.at("edge_pixel"));
+    o.chosen_pixel = to_cv(chosen);
+    // TrovaWP's scan from the chosen pixel toward W', up to the obstacle edge;
+    // an edge at the chosen pixel itself means the scan met none and ran on.
+    for (const Eigen::Vector2i& q : pixel_segment(depth.size(), chosen, {projection.x, projection.y})) {
+      o.scan_line.push_back(to_cv(q));
+      if (q == edge && edge != chosen) break;
+    }
+    o.new_waypoint_pixel = to_cv(vector2i(replan.at("waypoint_pixel")));
+  }
+  return o;
+}
+
+// "two_barriers - replan 3 at 12.4 s - target invisible -> new waypoint".
+std::string replan_title(const RecordedRun& run, const ReplanStep& step) {
+  std::string action = step.record.value("action", "");
+  std::replace(action.begin(), action.end(), '_', ' ');
+  std::ostringstream title;
+  title << run.scene.name << " - replan " << step.index << " at " << std::fixed << std::setprecision(1) << step.time_s
+        << " s - " << step.record.value("role", "") << " " << step.record.value("visibility", "") << " -> " << action;
+  return title.str();
 }
 
 }  // namespace
@@ -64,19 +144,89 @@ std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const st
     if (frames.empty()) {
       throw InputError(depth_dir.string(), "", "no recorded depth maps; run with --record-depth N");
     }
-    std::filesystem::create_directories(out_dir / "depth_figures");
     for (const auto& frame : frames) {
-      const cv::Mat gray16 = cv::imread(frame.string(), cv::IMREAD_UNCHANGED);
-      if (gray16.type() != CV_16U) throw InputError(frame.string(), "", "expected a 16-bit grey depth map");
-      cv::Mat depth;
-      gray16.convertTo(depth, CV_32F, 1.0 / 65535.0);
       const std::string stem = frame.stem().string();
-      written.push_back(write_png(draw_depth(depth, {}, false, stem + " (grey)"), out_dir / "depth_figures" / (stem + "_grey.png")));
-      written.push_back(write_png(draw_depth(depth, {}, true, stem + " (colour)"), out_dir / "depth_figures" / (stem + "_colour.png")));
+      for (auto& file : write_depth_pair(read_depth_png(frame), {}, stem, out_dir, stem)) written.push_back(std::move(file));
     }
     return written;
   }
   throw std::invalid_argument("unknown figure kind " + kind);
+}
+
+std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::optional<std::vector<int>>& indices) {
+  const std::string file = record_file(run);
+  const std::string planner = run.record.value("/parameters/planner/name"_json_pointer, std::string());
+  if (planner != "depth_reactive") {
+    throw InputError(file, "/parameters/planner/name",
+                     "expected \"depth_reactive\", whose replanning steps --step draws, got \"" + planner + "\"");
+  }
+  std::vector<ReplanStep> recorded;
+  try {
+    const nlohmann::json& events = run.record.at("events");
+    for (std::size_t e = 0; e < events.size(); ++e) {
+      const nlohmann::json& decisions = events[e].at("decisions");
+      if (!decisions.contains("replan")) continue;
+      ReplanStep step;
+      step.record = decisions["replan"];
+      step.index = step.record.at("index").get<int>();
+      step.time_s = events[e].at("time_s").get<double>();
+      step.depth_file = run.dir / "replans" / replan_depth_file(step.index);
+      recorded.push_back(std::move(step));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file, "/events", std::string("malformed run record: ") + e.what());
+  }
+  std::vector<ReplanStep> steps;
+  if (!indices) {
+    if (recorded.empty()) throw InputError(file, "/events", "no replanning steps recorded");
+    steps = recorded;
+  }
+  for (const int k : indices.value_or(std::vector<int>{})) {
+    const auto it = std::find_if(recorded.begin(), recorded.end(), [k](const ReplanStep& s) { return s.index == k; });
+    if (it == recorded.end()) {
+      const std::string held = recorded.empty() ? "none" : "steps " + std::to_string(recorded.front().index) + " to " +
+                                                               std::to_string(recorded.back().index);
+      throw InputError(file, "/events", "no replanning step " + std::to_string(k) + " (the run recorded " + held + ")");
+    }
+    steps.push_back(*it);
+  }
+  for (const ReplanStep& step : steps) {
+    if (!std::filesystem::is_regular_file(step.depth_file)) {
+      throw InputError(step.depth_file.string(), "",
+                       "missing: expected the depth map replanning step " + std::to_string(step.index) +
+                           " read (was the run made with --no-replan-depth?)");
+    }
+  }
+  return steps;
+}
+
+std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, const std::vector<ReplanStep>& steps,
+                                                        const std::filesystem::path& out_dir) {
+  const std::string file = record_file(run);
+  const auto params = "/parameters/planner/parameters"_json_pointer;
+  if (!run.record.contains(params)) throw InputError(file, params.to_string(), "missing; expected the planner's parameters");
+  const DepthReactiveConfig config = parse_depth_reactive_config({run.record.at(params), file, params.to_string()});
+  std::vector<std::filesystem::path> written;
+  for (const ReplanStep& step : steps) {
+    DepthOverlays overlays;
+    cv::Mat depth;
+    try {
+      const std::string sensor = step.record.at("sensor").get<std::string>();
+      const DepthGrid grid = recorded_grid(run, sensor);
+      depth = read_depth_png(step.depth_file);
+      if (depth.cols != grid.cols || depth.rows != grid.rows) {
+        throw InputError(step.depth_file.string(), "",
+                         "expected a " + std::to_string(grid.cols) + " x " + std::to_string(grid.rows) +
+                             " depth map, the resolution of sensor \"" + sensor + "\"");
+      }
+      overlays = replan_overlays(depth, step.record, config, grid);
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(file, "/events", "malformed replanning step " + std::to_string(step.index) + ": " + e.what());
+    }
+    const std::string stem = std::filesystem::path(replan_depth_file(step.index)).stem().string();
+    for (auto& f : write_depth_pair(depth, overlays, replan_title(run, step), out_dir, stem)) written.push_back(std::move(f));
+  }
+  return written;
 }
 
 std::filesystem::path write_overlay(const std::vector<RecordedRun>& runs, const std::filesystem::path& out_dir) {

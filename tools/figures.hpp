@@ -1,6 +1,7 @@
 #pragma once
 /// Writing the figures of recorded runs (shared by `campo run` and `campo render`).
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,29 @@ inline const std::vector<std::string> kRunFigureKinds{"map", "side", "depth", "s
 /// out_dir; returns the files written.
 std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const std::string& kind,
                                                 const std::filesystem::path& out_dir);
+
+/// One replanning step of a depth_reactive run (docs/running.md, "replan").
+struct ReplanStep {
+  int index = 0;
+  double time_s = 0.0;                  ///< when the planner decided, simulated seconds
+  nlohmann::json record;                ///< its events[].decisions.replan object
+  std::filesystem::path depth_file;     ///< the depth map it read, replans/replan_KKKK.png
+};
+
+/// The replanning steps `indices` of a run, in the order given (every
+/// recorded step when nullopt), checked before anything is drawn: the
+/// planner must be depth_reactive and each step and its depth map must have
+/// been recorded; InputError naming the file and what was expected otherwise.
+std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::optional<std::vector<int>>& indices);
+
+/// For each step, the depth map it read with the planner's overlays,
+/// recomputed from the recorded files alone (DilataMappa with the recorded
+/// planner parameters and sensor grid, TrovaWP's thresholded map, W' with its
+/// safety ellipse, chosen pixel, scan line to the obstacle edge, new
+/// waypoint), written to out_dir/depth_figures/replan_KKKK_grey.png and
+/// _colour.png; returns the files written.
+std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, const std::vector<ReplanStep>& steps,
+                                                        const std::filesystem::path& out_dir);
 
 /// Several runs on one map, written to out_dir/overlay.png.
 std::filesystem::path write_overlay(const std::vector<RecordedRun>& runs, const std::filesystem::path& out_dir);

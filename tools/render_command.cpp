@@ -1,7 +1,11 @@
+#include <algorithm>
+#include <charconv>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "sim/json_reader.hpp"
 #include "tools/commands.hpp"
 #include "tools/figures.hpp"
 
@@ -12,13 +16,38 @@ namespace {
 struct RenderOptions {
   std::vector<std::string> runs;
   std::vector<std::string> kinds{"map", "side"};
+  std::vector<std::string> steps;  // --step: replanning step numbers or "all"
   std::string out;
 };
 
+// --step values: whole numbers, or "all" for every replanning step (nullopt).
+std::optional<std::vector<int>> parse_steps(const std::vector<std::string>& values) {
+  std::vector<int> steps;
+  for (const std::string& v : values) {
+    if (v == "all") return std::nullopt;
+    int k = -1;
+    const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), k);
+    if (ec != std::errc() || end != v.data() + v.size() || k < 0) {
+      throw InputError("command line", "--step", "expected a replanning step (0, 1, ...) or \"all\", got \"" + v + "\"");
+    }
+    steps.push_back(k);
+  }
+  return steps;
+}
+
 int run_render(const RenderOptions& o) {
-  // Load every run first: a bad directory stops before anything is drawn.
+  const bool replan_steps = !o.steps.empty();
+  if (replan_steps && std::find(o.kinds.begin(), o.kinds.end(), "depth") == o.kinds.end()) {
+    throw InputError("command line", "--step", "draws replanning steps of --kind depth; add --kind depth");
+  }
+  const std::optional<std::vector<int>> step_indices = replan_steps ? parse_steps(o.steps) : std::nullopt;
+  // Load every run first, and find the steps asked for: bad input stops before anything is drawn.
   std::vector<RecordedRun> runs;
   for (const auto& dir : o.runs) runs.push_back(load_run_dir(dir));
+  std::vector<std::vector<ReplanStep>> steps;
+  if (replan_steps) {
+    for (const RecordedRun& run : runs) steps.push_back(find_replan_steps(run, step_indices));
+  }
   for (const std::string& kind : o.kinds) {
     if (kind == "overlay") {
       const std::filesystem::path out = o.out.empty() ? std::filesystem::path(".") : std::filesystem::path(o.out);
@@ -26,10 +55,13 @@ int run_render(const RenderOptions& o) {
       std::cout << "wrote " << write_overlay(runs, out).string() << "\n";
       continue;
     }
-    for (const RecordedRun& run : runs) {
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const RecordedRun& run = runs[i];
       const std::filesystem::path out = o.out.empty() ? run.dir : std::filesystem::path(o.out) / run.dir.filename();
       std::filesystem::create_directories(out);
-      for (const auto& file : write_figure(run, kind, out)) std::cout << "wrote " << file.string() << "\n";
+      const auto files = kind == "depth" && replan_steps ? write_replan_figures(run, steps[i], out)
+                                                         : write_figure(run, kind, out);
+      for (const auto& file : files) std::cout << "wrote " << file.string() << "\n";
     }
   }
   return kOk;
@@ -43,15 +75,22 @@ Command add_render(CLI::App& app) {
   app.add_option("--kind", o->kinds, "Figures to draw: map, side, depth, snapshot, overlay (repeatable)")
       ->check(CLI::IsMember({"map", "side", "depth", "snapshot", "overlay"}))
       ->capture_default_str();
+  app.add_option("--step", o->steps,
+                 "With --kind depth: draw replanning step K of a depth_reactive run instead of the recorded depth "
+                 "maps (repeatable; \"all\" for every step)");
   app.add_option("--out", o->out,
                  "Output directory (default: each run's own directory; for overlay, the current directory)");
   app.footer(
       "Draws figures from recorded run files alone (run.json, trajectory.csv, scene.json), without\n"
       "simulating again. map: top-down map with terrain contours, obstacles, the path coloured by time,\n"
       "waypoints reached and discarded. side: altitude over the terrain profile. depth: the depth maps\n"
-      "recorded with campo run --record-depth N, grey and colour-mapped. snapshot: a perspective colour\n"
-      "view rendered off-screen with OSMesa. overlay: every run given on one map, one colour each.\n"
-      "Example: campo render out/run1 out/run2 out/run3 --kind overlay --out figures");
+      "recorded with campo run --record-depth N, grey and colour-mapped; with --step K, the depth map\n"
+      "replanning step K read (replans/), next to the dilated and thresholded maps recomputed from the\n"
+      "recorded planner parameters, with W', its safety sphere, the chosen pixel, the scan line and the\n"
+      "new waypoint. snapshot: a perspective colour view rendered off-screen with OSMesa. overlay: every\n"
+      "run given on one map, one colour each.\n"
+      "Examples: campo render out/run1 out/run2 out/run3 --kind overlay --out figures\n"
+      "          campo render out/run1 --kind depth --step 0 --step 3");
   return [o] { return run_render(*o); };
 }
 

@@ -299,7 +299,7 @@ TEST(DepthCamera, SingleRowWithoutVerticalFieldOfView) {
   const Scene scene = bundled("trees_rolling_terrain");
   SensorDef def = camera_def(181, 1, 120.0, 0.0);
   def.lidar.max_range_m = 20.0;
-  const Eigen::Isometry3d pose = scene.vehicles.front().pose * to_isometry(Pose{{0.0, 0.0, -1.0}, {0.0, 0.0, 0.0}});
+  const Eigen::Isometry3d pose = scene.vehicles.front().pose * to_isometry(Pose{{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}});
   expect_matches_lidar(scene, def, pose, 0.0);
   def.lidar.fov_v_deg = 0.3;
   expect_matches_lidar(scene, def, pose, 0.0);

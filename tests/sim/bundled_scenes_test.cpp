@@ -98,7 +98,7 @@ TEST(BundledScenes, TreesStartAndGoalAre23_27MetresApart) {
     EXPECT_LT(c.z() - 0.5 * s.height_m, ground);
     EXPECT_GT(c.z() + 0.5 * s.height_m, ground + 1.0);
   }
-  EXPECT_EQ(trunks, 30);
+  EXPECT_EQ(trunks, 20);
 }
 
 TEST(BundledScenes, TwoBarriersBlockTheStraightLineButLeaveAGap) {
