@@ -1,0 +1,191 @@
+#include "planners/depth_reactive.hpp"
+
+#include <cmath>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "planners/registry.hpp"
+#include "render/sensors.hpp"
+#include "sim/episode.hpp"
+#include "sim/json_reader.hpp"
+#include "sim/scene_loader.hpp"
+#include "vehicles/vehicle.hpp"
+
+namespace campo {
+namespace {
+
+using ::testing::HasSubstr;
+
+ParamsBlock params(nlohmann::json values) { return {std::move(values), "scene.json", "/objects/4/planner/params"}; }
+
+// A hovering drone at (0, 0, 1.5) facing +x whose 32 x 32 scanner reads `range_m` everywhere.
+struct Hover {
+  LidarConfig config = *lidar_preset("scanner3d");
+  LidarScan scan;
+  std::vector<SensorReading> readings;
+  std::vector<Waypoint> mission;
+  Observation observation;
+
+  Hover(float range_m, const Eigen::Vector3d& target) {
+    config.cols = config.rows = 32;
+    config.mount = Pose{};
+    begin_scan(scan, 32, 32, 32 * 32, 0.0, Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, 1.5)));
+    std::fill(scan.ranges_m.begin(), scan.ranges_m.end(), range_m);
+    std::fill(scan.hits.begin(), scan.hits.end(), range_m < config.max_range_m ? 1 : 0);
+    readings = {SensorReading{"scanner", &config, &scan, true}};
+    mission = {Waypoint{target, std::nullopt}};
+    observation.vehicle = VehicleType::quadrotor;
+    observation.state.position_m = {0.0, 0.0, 1.5};
+    observation.stable = true;
+    observation.sensors = readings;
+    observation.mission = mission;
+  }
+};
+
+std::unique_ptr<Planner> planner() { return make_depth_reactive_planner(params(nlohmann::json::object()), {}); }
+
+TEST(DepthReactive, ParametersAreStrict) {
+  EXPECT_NO_THROW(make_depth_reactive_planner(params({{"layers", 9}, {"structuring_element", "disc"}}), {}));
+  try {
+    make_depth_reactive_planner(params({{"layer", 9}}), {});
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("scene.json: /objects/4/planner/params/layer: unknown key"));
+  }
+  EXPECT_THROW(make_depth_reactive_planner(params({{"layer_radii", "linear"}}), {}), InputError);
+  EXPECT_THROW(make_depth_reactive_planner(params({{"safety_radius_m", 0.0}}), {}), InputError);
+  EXPECT_THROW(make_depth_reactive_planner(params(nlohmann::json::object()), {VehicleType::rover, nullptr}), InputError);
+  const nlohmann::json effective = planner()->parameters();
+  EXPECT_EQ(effective["layers"], 18);
+  EXPECT_EQ(effective["layer_radii"], "margin");
+}
+
+TEST(DepthReactive, FliesToAVisibleTarget) {
+  Hover hover(10.0f, {6.0, 0.0, 1.5});  // nothing in range
+  const PlanResult r = planner()->plan(hover.observation);
+  EXPECT_EQ(r.status, PlanStatus::running);
+  const auto* go = std::get_if<command::GoTo>(&r.command);
+  ASSERT_NE(go, nullptr);
+  EXPECT_EQ(go->target_m, Eigen::Vector3d(6.0, 0.0, 1.5));
+  EXPECT_EQ(r.decisions["replan"]["visibility"], "visible");
+  EXPECT_EQ(r.decisions["replan"]["action"], "fly");
+  EXPECT_EQ(r.decisions["replan"]["index"], 0);
+}
+
+TEST(DepthReactive, WaitsForAScanTakenAtRest) {
+  Hover hover(10.0f, {6.0, 0.0, 1.5});
+  hover.observation.stable = false;
+  const auto p = planner();
+  EXPECT_TRUE(std::holds_alternative<command::Hold>(p->plan(hover.observation).command));
+  hover.observation.time_s = 0.05;
+  hover.observation.stable = true;  // still since 0.05 s; the scan is from 0 s
+  EXPECT_TRUE(std::holds_alternative<command::Hold>(p->plan(hover.observation).command));
+  hover.scan.time_s = 0.1;
+  hover.observation.time_s = 0.1;
+  EXPECT_TRUE(std::holds_alternative<command::GoTo>(p->plan(hover.observation).command));
+}
+
+TEST(DepthReactive, TurnsTowardTheTargetFirst) {
+  Hover hover(10.0f, {0.0, 6.0, 1.5});  // to the left
+  const PlanResult r = planner()->plan(hover.observation);
+  const auto* face = std::get_if<command::Face>(&r.command);
+  ASSERT_NE(face, nullptr);
+  EXPECT_EQ(face->point_m, Eigen::Vector3d(0.0, 6.0, 1.5));
+  EXPECT_TRUE(r.decisions.is_null());
+}
+
+TEST(DepthReactive, ClimbsWhenTheTargetIsFarAboveTheFieldOfView) {
+  Hover hover(10.0f, {2.0, 0.0, 6.0});  // 66 deg up; 20 deg allowed: climb to 6 - 2 tan 20
+  const PlanResult r = planner()->plan(hover.observation);
+  const auto* altitude = std::get_if<command::Altitude>(&r.command);
+  ASSERT_NE(altitude, nullptr);
+  EXPECT_NEAR(altitude->z_m, 6.0 - 2.0 * std::tan(20.0 * M_PI / 180.0), 1e-9);
+}
+
+TEST(DepthReactive, AnUnreachableTargetEndsTheRun) {
+  Hover hover(5.1f, {5.0, 0.0, 1.5});  // a wall 0.1 m behind the target: within the 0.25 m safety radius
+  const PlanResult r = planner()->plan(hover.observation);
+  EXPECT_EQ(r.status, PlanStatus::no_path);
+  EXPECT_THAT(r.reason, HasSubstr("target unreachable"));
+  EXPECT_EQ(r.decisions["replan"]["visibility"], "unreachable");
+}
+
+TEST(DepthReactive, WallFollowingWhenTheDilatedMapIsFull) {
+  Hover hover(1.0f, {8.0, 0.0, 1.5});  // a wall 1 m ahead fills the whole map
+  const auto p = planner();
+  const PlanResult first = p->plan(hover.observation);
+  EXPECT_EQ(first.status, PlanStatus::running);
+  EXPECT_EQ(first.decisions["replan"]["visibility"], "invisible");
+  EXPECT_EQ(first.decisions["replan"]["candidates"], 0);
+  EXPECT_EQ(first.decisions["replan"]["action"], "wall_following");
+  // Then it looks 60 deg to the left of the goal direction.
+  hover.observation.time_s = 1.0 / 60.0;
+  const PlanResult second = p->plan(hover.observation);
+  const auto* face = std::get_if<command::Face>(&second.command);
+  ASSERT_NE(face, nullptr);
+  const Eigen::Vector3d look = face->point_m - hover.observation.state.position_m;
+  EXPECT_NEAR(std::atan2(look.y(), look.x()), 60.0 * M_PI / 180.0, 1e-9);
+}
+
+TEST(DepthReactive, FindsAWaypointBesideABarrier) {
+  // A barrier 4 m ahead over the left part of the view (columns 0..19 of 32, y > 0 side).
+  Hover hover(10.0f, {9.0, 0.0, 1.5});
+  for (int row = 0; row < 32; ++row) {
+    for (int col = 0; col < 20; ++col) {
+      hover.scan.ranges_m[row * 32 + col] = 4.0f;
+      hover.scan.hits[row * 32 + col] = 1;
+    }
+  }
+  const PlanResult r = planner()->plan(hover.observation);
+  EXPECT_EQ(r.decisions["replan"]["action"], "new_waypoint");
+  ASSERT_TRUE(r.decisions.contains("planned_waypoint"));
+  const Eigen::Vector3d w(r.decisions["planned_waypoint"][0], r.decisions["planned_waypoint"][1],
+                          r.decisions["planned_waypoint"][2]);
+  EXPECT_LT(w.y(), 0.0);           // to the right, where it is free
+  EXPECT_GT(w.x(), 4.0);           // beyond the barrier's edge
+  EXPECT_NEAR(w.z(), 1.5, 0.3);    // about level: climbing costs more
+}
+
+// Closed loop on the seed 000 scenes at coarse resolutions.
+EpisodeResult fly(const std::string& name, int resolution, SensorType source = SensorType::lidar) {
+  Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json");
+  SensorDef& sensor = scene.vehicles.front().sensors.front();
+  sensor.lidar.cols = sensor.lidar.rows = resolution;
+  sensor.type = source;
+  EpisodeOptions options;
+  options.make_sensor = range_sensor_factory();
+  return run_episode(scene, &make_vehicle, &create_planner, options);
+}
+
+void expect_solved(const EpisodeResult& r, const char* what) {
+  SCOPED_TRACE(what);
+  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+  EXPECT_EQ(r.metrics.collisions, 0);
+  EXPECT_GE(r.metrics.waypoints_planned, 1);  // the straight line is blocked
+  EXPECT_LT(r.metrics.path_ratio, 1.25);  // a sanity bound; the 1.10 target is the sweep table's
+  EXPECT_GT(r.metrics.min_clearance_m, 0.0);
+}
+
+TEST(DepthReactiveClosedLoop, TwoBarriersThroughTheGap) {
+  for (const int resolution : {16, 32}) {
+    const EpisodeResult r = fly("two_barriers", resolution);
+    expect_solved(r, resolution == 16 ? "16 x 16" : "32 x 32");
+    // Through the gap (y in 0.5..2.5 at the barriers' x = 6), not around either barrier.
+    for (const TrajectorySample& s : r.trajectory) {
+      if (std::abs(s.state.position_m.x() - 6.0) < 0.2) {
+        EXPECT_GT(s.state.position_m.y(), 0.5);
+        EXPECT_LT(s.state.position_m.y(), 2.5);
+      }
+    }
+  }
+}
+
+TEST(DepthReactiveClosedLoop, TreesOnRollingTerrain) { expect_solved(fly("trees_rolling_terrain", 32), "32 x 32"); }
+
+TEST(DepthReactiveClosedLoop, TwoBarriersWithTheDepthCamera) {
+  expect_solved(fly("two_barriers", 32, SensorType::depth_camera), "OSMesa depth camera 32 x 32");
+}
+
+}  // namespace
+}  // namespace campo
