@@ -82,8 +82,7 @@ class DepthReactivePlanner final : public Planner {
 
   nlohmann::json parameters() const override {
     const DepthReactiveConfig& c = config_;
-    return {{"sensor", c.sensor},
-            {"speed_mps", c.speed_mps},
+    nlohmann::json p = {{"speed_mps", c.speed_mps},
             {"tolerance_m", c.tolerance_m},
             {"safety_radius_m", c.safety_radius_m},
             {"vehicle_radius_m", c.vehicle_radius_m},
@@ -106,6 +105,9 @@ class DepthReactivePlanner final : public Planner {
             {"wall_free_fraction", c.wall_free_fraction},
             {"wall_step_m", c.wall_step_m},
             {"max_replans", c.max_replans}};
+    // In the form parse_depth_reactive_config reads: no sensor key when none was chosen.
+    if (!c.sensor.empty()) p["sensor"] = c.sensor;
+    return p;
   }
 
  private:

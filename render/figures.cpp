@@ -730,7 +730,7 @@ void draw_ring(cv::Mat& image, cv::Point2d c, double radius) {
 // W' as a plus on a white halo.
 void draw_projection(cv::Mat& image, cv::Point2d c) {
   for (int pass = 0; pass < 2; ++pass) {
-    for (const cv::Point2d d : {cv::Point2d(7, 0), cv::Point2d(0, 7)}) {
+    for (const cv::Point2d d : {cv::Point2d(5, 0), cv::Point2d(0, 5)}) {
       cv::line(image, figure::fixed(c - d), figure::fixed(c + d), pass == 0 ? figure::kWhite : kProjection,
                pass == 0 ? 5 : 2, cv::LINE_AA, figure::kShift);
     }

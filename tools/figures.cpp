@@ -205,11 +205,7 @@ std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, 
   const std::string file = record_file(run);
   const auto params = "/parameters/planner/parameters"_json_pointer;
   if (!run.record.contains(params)) throw InputError(file, params.to_string(), "missing; expected the planner's parameters");
-  nlohmann::json values = run.record.at(params);
-  // The record writes an unset sensor as "", which the parser rejects; every
-  // step names the sensor it read anyway.
-  if (values.is_object() && values.value("sensor", "-").empty()) values.erase("sensor");
-  const DepthReactiveConfig config = parse_depth_reactive_config({std::move(values), file, params.to_string()});
+  const DepthReactiveConfig config = parse_depth_reactive_config({run.record.at(params), file, params.to_string()});
   std::vector<std::filesystem::path> written;
   for (const ReplanStep& step : steps) {
     DepthOverlays overlays;

@@ -59,6 +59,9 @@ TEST(DepthReactive, ParametersAreStrict) {
   const nlohmann::json effective = planner()->parameters();
   EXPECT_EQ(effective["layers"], 18);
   EXPECT_EQ(effective["layer_radii"], "margin");
+  // The effective parameters read back as they are.
+  const nlohmann::json again = make_depth_reactive_planner(params(effective), {})->parameters();
+  EXPECT_EQ(again, effective);
 }
 
 TEST(DepthReactive, FliesToAVisibleTarget) {

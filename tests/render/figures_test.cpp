@@ -377,6 +377,28 @@ TEST(FiguresDepth, DrawsTheChosenPixelAsARingAtItsScaledPosition) {
   EXPECT_FALSE(is_ring_red(at(image, layout.to_px(0, {14, 2}))));
 }
 
+TEST(FiguresDepth, DrawsTheProjectedWaypointWithItsSafetyEllipseAndTheNewWaypoint) {
+  const cv::Mat depth = test_depth();
+  DepthOverlays overlays = test_overlays(depth);
+  overlays.waypoint_projection = cv::Point2d(10.5, 4.0);
+  overlays.safety_ellipse_px = {3.0, 2.0};
+  overlays.new_waypoint_pixel = cv::Point(3, 12);
+  const DepthFigureLayout layout = depth_layout(depth, overlays, false);
+  const cv::Mat image = draw_depth(depth, overlays, false, "Depth");
+  ASSERT_EQ(layout.scale, 16);
+  const cv::Vec3b magenta(220, 0, 220), blue(180, 119, 31);  // W' and planned-waypoint colours, BGR
+  for (std::size_t panel = 0; panel < layout.panels_px.size(); ++panel) {
+    const cv::Point2d w = layout.to_px(panel, *overlays.waypoint_projection);
+    EXPECT_LT(nearest_colour(image, w, magenta), 30) << "panel " << panel;  // the plus on W'
+    // The ellipse: 3 x 2 depth-map pixels, scaled, around W' and nothing between.
+    for (const cv::Point2d d : {cv::Point2d(48, 0), cv::Point2d(-48, 0), cv::Point2d(0, 32), cv::Point2d(0, -32)}) {
+      EXPECT_LT(nearest_colour(image, w + d, magenta), 30) << "panel " << panel << " offset " << d;
+    }
+    EXPECT_GT(nearest_colour(image, w + cv::Point2d(24, 0), magenta), 100) << "panel " << panel;
+    EXPECT_LT(colour_distance(at(image, layout.to_px(panel, *overlays.new_waypoint_pixel)), blue), 30) << "panel " << panel;
+  }
+}
+
 TEST(FiguresDepth, MarksSpecialValuesInColour) {
   const cv::Mat depth = test_depth();
   const DepthFigureLayout layout = depth_layout(depth, {}, true);

@@ -262,6 +262,53 @@ TEST_F(Cli, RenderRedrawsFiguresFromRunFilesAlone) {
   EXPECT_EQ(r.exit_code, 2);
 }
 
+TEST_F(Cli, RenderDrawsAReplanningStepFromItsRecordedDepthMap) {
+  const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json";
+  const fs::path run = dir_ / "run";
+  Result r = campo("run " + scene + " --set \"/objects/drone/sensors/scanner/resolution=[32,32]\"" +
+                   " --set /world/time_limit_s=8 --no-figures --out " + run.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(run / "replans" / "replan_0000.png"));
+
+  r = campo("render " + run.string() + " --kind depth --step 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* name : {"replan_0000_grey.png", "replan_0000_colour.png"}) {
+    const fs::path file = run / "depth_figures" / name;
+    EXPECT_THAT(r.out, HasSubstr(file.string()));
+    const cv::Mat image = cv::imread(file.string());
+    ASSERT_FALSE(image.empty()) << name;
+    EXPECT_GT(image.cols, 3 * 256) << name;  // depth, dilated and thresholded panels
+  }
+  // Step 0 found a new waypoint: its figure shows the thresholded map too. The
+  // same files give the same bytes.
+  const std::string first = slurp(run / "depth_figures" / "replan_0000_colour.png");
+  r = campo("render " + run.string() + " --kind depth --step all --out " + (dir_ / "all").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(dir_ / "all" / "run" / "depth_figures" / "replan_0000_colour.png"), first);
+
+  r = campo("render " + run.string() + " --kind depth --step 999");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("run.json: /events: no replanning step 999"));
+  r = campo("render " + run.string() + " --kind depth --step -1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--step: expected a replanning step"));
+  r = campo("render " + run.string() + " --kind map --step 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("add --kind depth"));
+  fs::remove(run / "replans" / "replan_0001.png");
+  r = campo("render " + run.string() + " --kind depth --step 1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("replan_0001.png: missing"));
+
+  // Only depth_reactive records replanning steps to draw.
+  const fs::path straight = dir_ / "straight";
+  ASSERT_EQ(campo("run " + scene + " --planner straight --no-figures --set /world/time_limit_s=1 --out " +
+                  straight.string()).exit_code, 0);
+  r = campo("render " + straight.string() + " --kind depth --step 0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("/parameters/planner/name: expected \"depth_reactive\""));
+}
+
 TEST_F(Cli, ScanWithTheDepthCameraMatchesTheLidar) {
   const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json";
   const std::string pose = " --res 64x64 --pose 0,0,1.5,0,0,0 --out ";
