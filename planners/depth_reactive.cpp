@@ -45,7 +45,10 @@ class DepthReactivePlanner final : public Planner {
       result.command = command::Hold{o.state.position_m, std::nullopt};
       return result;
     }
-    if (!command_) command_ = command::Hold{o.state.position_m, o.state.yaw_rad()};
+    if (!started_) {
+      command_ = command::Hold{o.state.position_m, o.state.yaw_rad()};
+      started_ = true;
+    }
 
     // Pop every waypoint already reached.
     for (;;) {
@@ -76,7 +79,7 @@ class DepthReactivePlanner final : public Planner {
       case Phase::align: align(o, *reading, result); break;
       case Phase::wall_look: wall_look(o, *reading, result); break;
     }
-    if (result.status == PlanStatus::running) result.command = *command_;
+    if (result.status == PlanStatus::running) result.command = command_;
     return result;
   }
 
@@ -140,8 +143,6 @@ class DepthReactivePlanner final : public Planner {
 
   void decide(PlanResult& result, const char* key, nlohmann::json value) { result.decisions[key] = std::move(value); }
 
-  void set_command(const Command& c) { command_ = c; }
-
   void enter(Phase phase, const Observation& o) {
     phase_ = phase;
     settled_since_s_.reset();
@@ -166,8 +167,8 @@ class DepthReactivePlanner final : public Planner {
   bool look(const Observation& o, const SensorReading& reading, double yaw) {
     if (std::abs(wrap_angle(yaw - o.state.yaw_rad())) > config_.yaw_tolerance_deg * kDegToRad) {
       const command::Face face{point_at_yaw(wall_.origin_m, yaw)};
-      const auto* current = std::get_if<command::Face>(&*command_);
-      if (!current || current->point_m != face.point_m) set_command(face);
+      const auto* current = std::get_if<command::Face>(&command_);
+      if (!current || current->point_m != face.point_m) command_ = face;
       return false;
     }
     return settled_scan(reading);
@@ -180,15 +181,15 @@ class DepthReactivePlanner final : public Planner {
     const double allowed_dz = std::tan(config_.max_elevation_deg * kDegToRad) * delta.head<2>().norm();
     if (std::abs(delta.z()) > allowed_dz + kAltitudeTolerance_m) {
       const double z = w.z() - std::copysign(allowed_dz, delta.z());
-      const auto* current = std::get_if<command::Altitude>(&*command_);
-      if (!current || std::abs(current->z_m - z) > kAltitudeTolerance_m) set_command(command::Altitude{z});
+      const auto* current = std::get_if<command::Altitude>(&command_);
+      if (!current || std::abs(current->z_m - z) > kAltitudeTolerance_m) command_ = command::Altitude{z};
       return;
     }
     // ControllaRotazione, then hover still until a scan taken at rest arrives.
     const double yaw = delta.head<2>().norm() > 1e-6 ? std::atan2(delta.y(), delta.x()) : o.state.yaw_rad();
     if (std::abs(wrap_angle(yaw - o.state.yaw_rad())) > config_.yaw_tolerance_deg * kDegToRad) {
-      const auto* current = std::get_if<command::Face>(&*command_);
-      if (!current || current->point_m != w) set_command(command::Face{w});
+      const auto* current = std::get_if<command::Face>(&command_);
+      if (!current || current->point_m != w) command_ = command::Face{w};
       return;
     }
     if (!settled_scan(reading)) return;
@@ -211,7 +212,7 @@ class DepthReactivePlanner final : public Planner {
     std::string action;
     if (check.visibility == Visibility::visible) {
       action = "fly";
-      set_command(command::GoTo{entry.position_m, config_.speed_mps, true});
+      command_ = command::GoTo{entry.position_m, config_.speed_mps, true};
       enter(Phase::fly, o);
     } else if (entry.temporary) {
       action = "discard";
@@ -298,7 +299,7 @@ class DepthReactivePlanner final : public Planner {
     replan["action"] = "stop";
     replan["time_ms"] = elapsed_ms(start);
     decide(result, "replan", std::move(replan));
-    set_command(command::Hold{o.state.position_m, o.state.yaw_rad()});
+    command_ = command::Hold{o.state.position_m, o.state.yaw_rad()};
     enter(Phase::align, o);
   }
 
@@ -355,7 +356,8 @@ class DepthReactivePlanner final : public Planner {
   Phase phase_ = Phase::align;
   double phase_start_s_ = 0.0;
   std::optional<double> settled_since_s_;
-  std::optional<Command> command_;
+  Command command_;       // the behaviour the vehicle follows until a decision changes it
+  bool started_ = false;
   WallFollowing wall_;
   int replans_ = 0;
 };
