@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <sys/wait.h>
+#include "tests/cli_support.hpp"
 
 namespace {
 
@@ -18,25 +18,9 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-struct Result {
-  int exit_code;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream s(text);
-  for (std::string line; std::getline(s, line);) lines.push_back(line);
-  return lines;
-}
+using campo::testing::Result;
+using campo::testing::lines_of;
+using campo::testing::slurp;
 
 // Two barriers with the straight planner, the scanner at 16 and 32 columns, one seed, 5 s.
 constexpr const char* kTinySpec = R"({
@@ -51,25 +35,12 @@ constexpr const char* kTinySpec = R"({
   "start_jitter": { "vehicle": "drone", "radius_m": 0.25 }
 })";
 
-class SweepCli : public ::testing::Test {
+class SweepCli : public campo::testing::CliTest {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("campo_sweep_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    std::ofstream(dir_ / "tiny.json") << kTinySpec;
+    CliTest::SetUp();
+    write("tiny.json", kTinySpec);
   }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  Result campo(const std::string& args) {
-    const std::string command = std::string(CAMPO_BINARY) + " " + args + " >" + (dir_ / "stdout").string() +
-                                " 2>" + (dir_ / "stderr").string();
-    const int status = std::system(command.c_str());
-    return {WEXITSTATUS(status), slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
-  }
-
-  fs::path dir_;
 };
 
 TEST_F(SweepCli, RunsEveryRunThenTabulatesAndCharts) {

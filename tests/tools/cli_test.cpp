@@ -14,44 +14,16 @@
 #include <sys/wait.h>
 
 #include "sim/scene_loader.hpp"
+#include "tests/cli_support.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-struct Result {
-  int exit_code;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class Cli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("campo_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  Result campo(const std::string& args) {
-    const std::string command = std::string(CAMPO_BINARY) + " " + args + " >" + (dir_ / "stdout").string() +
-                                " 2>" + (dir_ / "stderr").string();
-    const int status = std::system(command.c_str());
-    return {WEXITSTATUS(status), slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
-  }
-
-  fs::path dir_;
-};
+using campo::testing::Result;
+using campo::testing::slurp;
+using Cli = campo::testing::CliTest;
 
 std::vector<std::vector<double>> read_csv(const fs::path& path) {
   std::vector<std::vector<double>> rows;

@@ -9,64 +9,29 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
+#include "tests/cli_support.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-struct Result {
-  int exit_code;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::vector<std::string> lines(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) out.push_back(line);
-  return out;
-}
+using campo::testing::Result;
+using campo::testing::lines_of;
+using campo::testing::slurp;
 
 const std::string kData = std::string(CAMPO_SOURCE_DIR) + "/tests/data/movingai/";
 
-class PlanCli : public ::testing::Test {
+// Runs `campo plan ARGS`.
+class PlanCli : public campo::testing::CliTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("campo_plan_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  Result campo(const std::string& args) {
-    const std::string command = std::string(CAMPO_BINARY) + " plan " + args + " >" + (dir_ / "stdout").string() +
-                                " 2>" + (dir_ / "stderr").string();
-    const int status = std::system(command.c_str());
-    return {WEXITSTATUS(status), slurp(dir_ / "stdout"), slurp(dir_ / "stderr")};
-  }
-
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-    return (dir_ / name).string();
-  }
-
-  fs::path dir_;
+  Result plan(const std::string& args) const { return campo("plan " + args); }
 };
 
 TEST_F(PlanCli, OneProblemPrintsOneLine) {
   // arena.map.scen line 4: (1,13) -> (4,12), optimal 3.41421.
   for (const char* planner : {"astar", "dstar_lite"}) {
-    const Result r = campo(std::string("--planner ") + planner + " --map " + kData + "arena.map --start 1,13 --goal 4,12");
+    const Result r = plan(std::string("--planner ") + planner + " --map " + kData + "arena.map --start 1,13 --goal 4,12");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(std::regex_match(r.out, std::regex("cost=3\\.41421356 steps=3 expansions=[0-9]+ time_ms=[0-9]+\\.[0-9]{3}\n")))
         << r.out;
@@ -75,17 +40,17 @@ TEST_F(PlanCli, OneProblemPrintsOneLine) {
 
 TEST_F(PlanCli, NoPathPrintsCostMinusOne) {
   const std::string map = write("walled.map", "type octile\nheight 3\nwidth 5\nmap\n..@..\n..@..\n..@..\n");
-  const Result r = campo("--map " + map + " --start 0,0 --goal 4,2");
+  const Result r = plan("--map " + map + " --start 0,0 --goal 4,2");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, ::testing::StartsWith("cost=-1 steps=0 expansions=6 "));
 }
 
 TEST_F(PlanCli, ScenarioPrintsCsvWithEveryProblemMatching) {
   for (const char* planner : {"astar", "dstar_lite"}) {
-    const Result r = campo(std::string("--planner ") + planner + " --map " + kData + "arena.map --scen " + kData +
+    const Result r = plan(std::string("--planner ") + planner + " --map " + kData + "arena.map --scen " + kData +
                            "arena.map.scen");
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    const auto rows = lines(r.out);
+    const auto rows = lines_of(r.out);
     ASSERT_EQ(rows.size(), 161u);
     EXPECT_EQ(rows[0], "index,start_x,start_y,goal_x,goal_y,optimal,cost,match");
     EXPECT_EQ(rows[3], "2,1,13,4,12,3.41421000,3.41421356,1");
@@ -96,9 +61,9 @@ TEST_F(PlanCli, ScenarioPrintsCsvWithEveryProblemMatching) {
 
 TEST_F(PlanCli, AWrongOptimalLengthIsAMismatch) {
   const std::string scen = write("wrong.scen", "version 1\n0\tarena.map\t49\t49\t1\t13\t4\t12\t3.5\n");
-  const Result r = campo("--map " + kData + "arena.map --scen " + scen);
+  const Result r = plan("--map " + kData + "arena.map --scen " + scen);
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(lines(r.out).at(1), "0,1,13,4,12,3.50000000,3.41421356,0");
+  EXPECT_EQ(lines_of(r.out).at(1), "0,1,13,4,12,3.50000000,3.41421356,0");
   EXPECT_THAT(r.err, HasSubstr("0 of 1 problems"));
 }
 
@@ -121,7 +86,7 @@ TEST_F(PlanCli, BadInputExitsTwoNamingTheProblem) {
            Case{" --map " + kData + "missing.map --start 0,0 --goal 1,0", "missing.map: cannot read the file"},
            Case{arena + " --planner rrt --start 1,13 --goal 4,12", "--planner"},
        }) {
-    const Result r = campo(c.args);
+    const Result r = plan(c.args);
     EXPECT_EQ(r.exit_code, 2) << c.args;
     EXPECT_THAT(r.err, HasSubstr(c.message)) << c.args;
     EXPECT_EQ(r.out, "") << c.args;
@@ -129,7 +94,7 @@ TEST_F(PlanCli, BadInputExitsTwoNamingTheProblem) {
 }
 
 TEST_F(PlanCli, HelpExplainsFormatAndOutput) {
-  const Result r = campo("--help");
+  const Result r = plan("--help");
   EXPECT_EQ(r.exit_code, 0);
   for (const char* text : {"type octile", "cost=C steps=S expansions=E time_ms=T", "-1 when no path",
                            "index,start_x,start_y,goal_x,goal_y,optimal,cost,match", "no corner cutting", "dstar_lite"}) {
