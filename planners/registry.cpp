@@ -3,6 +3,7 @@
 #include <array>
 
 #include "planners/depth_reactive.hpp"
+#include "planners/dstar_lite_3d.hpp"
 #include "planners/straight.hpp"
 #include "sim/json_reader.hpp"
 
@@ -14,6 +15,7 @@ constexpr std::array kPlanners{
     PlannerEntry{"straight", "head for each mission waypoint in turn in a straight line", &make_straight_planner},
     PlannerEntry{"depth_reactive", "seed 000: reactive quadrotor navigation on dilated depth maps (TrovaWP, wall following)",
                  &make_depth_reactive_planner},
+    PlannerEntry{"dstar_lite_3d", "seed 001: D* Lite on a LIDAR-mapped 3D grid, flying cell to cell", &make_dstar_lite_3d_planner},
 };
 
 }  // namespace

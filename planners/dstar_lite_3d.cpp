@@ -1,0 +1,244 @@
+#include "planners/dstar_lite_3d.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "grid/dstar_lite.hpp"
+#include "sim/json_reader.hpp"
+
+namespace campo {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+nlohmann::json to_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json to_json(const grid::Cell& c) { return {c.x, c.y, c.z}; }
+
+class DStarLite3dPlanner final : public Planner {
+ public:
+  explicit DStarLite3dPlanner(const DStarLite3dConfig& config) : config_(config) {}
+
+  PlanResult plan(const Observation& o) override {
+    PlanResult result;
+    result.command = command::Hold{o.state.position_m, std::nullopt};
+    const SensorReading* lidar = sensor(o);
+    if (!lidar) {
+      result.status = PlanStatus::invalid_start;
+      result.reason = config_.sensor.empty() ? "the vehicle has no sensor to map with"
+                                             : "the vehicle has no sensor \"" + config_.sensor + "\"";
+      return result;
+    }
+    if (!map_) {
+      // The vehicle starts on the ground: its height is take-off ground level (within a level's rounding).
+      map_.emplace(grid_map_config(config_, o.state.position_m.z()));
+      graph_ = std::make_unique<grid::GridGraph>(map_->size(), config_.connectivity);
+    }
+
+    // Mission waypoints already reached.
+    while (next_ < o.mission.size() && (o.state.position_m - o.mission[next_].position_m).norm() <= config_.tolerance_m) {
+      result.decisions["reached_waypoints"].push_back(next_++);
+      leg_started_ = false;
+    }
+    if (next_ >= o.mission.size()) {
+      result.status = PlanStatus::reached;
+      result.reason = "all " + std::to_string(o.mission.size()) + " waypoints reached";
+      return result;
+    }
+
+    const auto started = Clock::now();
+    // Map the fresh scan; only cells that changed go to the search.
+    std::vector<grid::CellChange> changes;
+    if (lidar->fresh && lidar->scan) {
+      for (const Eigen::Vector3f& point : lidar->scan->points) {
+        const std::vector<grid::CellChange> marked = map_->mark_hit(point.cast<double>());
+        changes.insert(changes.end(), marked.begin(), marked.end());
+      }
+    }
+
+    const std::optional<grid::Cell> start = start_cell(o.state.position_m);
+    if (!start) {
+      result.status = PlanStatus::aborted;
+      result.reason = "the vehicle left the grid or its whole column is blocked at " + to_json(o.state.position_m).dump();
+      return result;
+    }
+    const grid::Cell goal = map_->cell_of(o.mission[next_].position_m);
+    if (!map_->contains(goal)) {
+      result.status = PlanStatus::no_path;
+      result.reason = "mission waypoint " + std::to_string(next_) + " lies outside the grid";
+      return result;
+    }
+
+    bool replan = !changes.empty();
+    if (!leg_started_) {
+      // A new start/goal pair: the search starts over on the map known so far.
+      for (const grid::CellChange& change : changes) graph_->set_state(change.cell, change.state);
+      if (search_) {
+        search_->reset(*start, goal);
+      } else {
+        search_ = std::make_unique<grid::DStarLite>(*graph_, *start, goal);
+      }
+      leg_started_ = true;
+      replan = true;
+    } else {
+      search_->set_cells(changes);
+      if (!(search_->start() == *start)) {
+        search_->move_start(*start);
+        replan = true;
+      }
+    }
+
+    if (replan) {
+      grid::SearchResult found = search_->plan();
+      const double time_ms = std::chrono::duration<double, std::milli>(Clock::now() - started).count();
+      result.decisions["replan"] = {{"index", replans_++},
+                                    {"sensor", std::string(lidar->alias)},
+                                    {"start_cell", to_json(*start)},
+                                    {"goal_cell", to_json(goal)},
+                                    {"changed_cells", changes.size()},
+                                    {"expansions", found.expansions},
+                                    {"time_ms", time_ms}};
+      if (found.status != grid::SearchStatus::found) {
+        result.status = PlanStatus::no_path;
+        result.reason = "no path from cell " + to_json(*start).dump() + " to mission waypoint " +
+                        std::to_string(next_) + " at cell " + to_json(goal).dump() + " on the mapped grid";
+        return result;
+      }
+      // A path that only lost the cell just left is the same plan.
+      const bool moved_along = path_.size() == found.path.size() + 1 &&
+                               std::equal(found.path.begin(), found.path.end(), path_.begin() + 1);
+      const bool changed = !moved_along && found.path != path_;
+      path_ = std::move(found.path);
+      if (changed) record_path(o.mission[next_].position_m, result);
+    }
+
+    const Eigen::Vector3d target = next_target(o.mission[next_].position_m);
+    if (target != target_m_) {
+      target_m_ = target;
+      result.decisions["planned_waypoint"] = to_json(target);
+    }
+    result.command = command::GoTo{target_m_, config_.speed_mps, true};
+    return result;
+  }
+
+  nlohmann::json parameters() const override {
+    const DStarLite3dConfig& c = config_;
+    nlohmann::json p = {{"columns", c.columns},
+                        {"rows", c.rows},
+                        {"levels", c.levels},
+                        {"cell_size_m", c.cell_size_m},
+                        {"level_spacing_m", c.level_spacing_m},
+                        {"ground_level", c.ground_level},
+                        {"origin_m", {c.origin_m.x(), c.origin_m.y()}},
+                        {"connectivity", c.connectivity == grid::Connectivity::six ? "six" : "twenty_six"},
+                        {"speed_mps", c.speed_mps},
+                        {"tolerance_m", c.tolerance_m},
+                        {"lookahead_cells", c.lookahead_cells},
+                        {"cell_reached_m", c.cell_reached_m}};
+    // In the form parse_dstar_lite_3d_config reads: no sensor key when none was chosen.
+    if (!c.sensor.empty()) p["sensor"] = c.sensor;
+    return p;
+  }
+
+ private:
+  const SensorReading* sensor(const Observation& o) const {
+    for (const SensorReading& r : o.sensors) {
+      if (config_.sensor.empty() || r.alias == config_.sensor) return &r;
+    }
+    return nullptr;
+  }
+
+  // Where the search starts: the vehicle's cell once it is near that cell's
+  // centre (entering a cell early would let the next move cut the corner past
+  // an obstacle), else the cell it last reached. At the start of a leg, the
+  // vehicle's cell. On the ground (take-off) the vehicle's cell is blocked once
+  // scanned, so the lowest free cell above it.
+  std::optional<grid::Cell> start_cell(const Eigen::Vector3d& position_m) const {
+    grid::Cell cell = map_->cell_of(position_m);
+    cell.z = std::max(cell.z, 0);
+    if (!map_->contains(cell)) return std::nullopt;
+    const bool reached = (position_m - map_->center(cell)).norm() <= config_.cell_reached_m;
+    if (leg_started_ && !reached && map_->state(search_->start()) != grid::CellState::blocked) {
+      return search_->start();
+    }
+    while (map_->state(cell) == grid::CellState::blocked) {
+      if (++cell.z >= config_.levels) return std::nullopt;
+    }
+    return cell;
+  }
+
+  // World points of a path, the goal cell replaced by the waypoint itself.
+  Eigen::Vector3d point(std::size_t i, const Eigen::Vector3d& waypoint_m) const {
+    return i + 1 == path_.size() ? waypoint_m : map_->center(path_[i]);
+  }
+
+  void record_path(const Eigen::Vector3d& waypoint_m, PlanResult& result) const {
+    nlohmann::json points = nlohmann::json::array();
+    for (std::size_t i = 0; i < path_.size(); ++i) points.push_back(to_json(point(i, waypoint_m)));
+    result.decisions["planned_path"] = std::move(points);
+  }
+
+  // The next cell of the path, or a few cells ahead along a straight run of it.
+  Eigen::Vector3d next_target(const Eigen::Vector3d& waypoint_m) const {
+    if (path_.size() < 2) return waypoint_m;
+    const auto step = [&](std::size_t i) {
+      return grid::Cell{path_[i + 1].x - path_[i].x, path_[i + 1].y - path_[i].y, path_[i + 1].z - path_[i].z};
+    };
+    std::size_t ahead = 1;
+    while (ahead + 1 < path_.size() && static_cast<int>(ahead) < config_.lookahead_cells && step(ahead) == step(0)) {
+      ++ahead;
+    }
+    return point(ahead, waypoint_m);
+  }
+
+  DStarLite3dConfig config_;
+  std::optional<GridMap3d> map_;             ///< created at the first observation (take-off ground level)
+  std::unique_ptr<grid::GridGraph> graph_;   ///< the map as the search sees it
+  std::unique_ptr<grid::DStarLite> search_;  ///< searches graph_, reset for every leg
+  std::size_t next_ = 0;                     ///< mission waypoint being flown to
+  bool leg_started_ = false;                 ///< search_ is set up for the leg to next_
+  std::vector<grid::Cell> path_;             ///< current plan, start cell first
+  Eigen::Vector3d target_m_ = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  int replans_ = 0;
+};
+
+}  // namespace
+
+GridMap3dConfig grid_map_config(const DStarLite3dConfig& c, double ground_z_m) {
+  return {c.columns, c.rows, c.levels, c.cell_size_m, c.level_spacing_m, c.ground_level, c.origin_m, ground_z_m};
+}
+
+DStarLite3dConfig parse_dstar_lite_3d_config(const ParamsBlock& params) {
+  DStarLite3dConfig c;
+  ObjectReader r(JsonNode(params.values, params.file, params.pointer));
+  r.read("sensor", c.sensor);
+  r.read("columns", c.columns, 1, 4000);
+  r.read("rows", c.rows, 1, 4000);
+  r.read("levels", c.levels, 1, 1000);
+  r.read("cell_size_m", c.cell_size_m, Range::positive());
+  r.read("level_spacing_m", c.level_spacing_m, Range::positive());
+  r.read("ground_level", c.ground_level, 0, c.levels - 1);
+  r.read("origin_m", c.origin_m);
+  if (const auto connectivity = r.optional("connectivity")) {
+    c.connectivity = connectivity->as_choice({"six", "twenty_six"}) == 0 ? grid::Connectivity::six
+                                                                          : grid::Connectivity::twenty_six;
+  }
+  r.read("speed_mps", c.speed_mps, Range::closed(0.01, 20.0));
+  r.read("tolerance_m", c.tolerance_m, Range::positive());
+  r.read("lookahead_cells", c.lookahead_cells, 1, 100);
+  r.read("cell_reached_m", c.cell_reached_m, Range::positive());
+  r.finish();
+  return c;
+}
+
+std::unique_ptr<Planner> make_dstar_lite_3d_planner(const ParamsBlock& params, const PlannerContext& context) {
+  if (context.vehicle != VehicleType::quadrotor) {
+    throw InputError(params.file, params.pointer, "planner dstar_lite_3d flies a quadrotor only");
+  }
+  return std::make_unique<DStarLite3dPlanner>(parse_dstar_lite_3d_config(params));
+}
+
+}  // namespace campo

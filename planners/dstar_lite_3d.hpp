@@ -1,0 +1,44 @@
+#pragma once
+/// `dstar_lite_3d`: seed 001's LIDAR-mapped 3D grid navigation (001 §4.2,
+/// SPEC §7.2). Each consecutive pair of mission waypoints, starting from the
+/// vehicle's start, is a start/goal; D* Lite searches the 3D grid of
+/// GridMap3d (unknown cells assumed free) from the goal to the vehicle's cell,
+/// and the drone flies cell to cell along the path. Every fresh scan's hits
+/// block their cells and the cells below them; only the cells that changed go
+/// to D* Lite, which moves its start (k_m) and repairs the search.
+#include <memory>
+#include <string>
+
+#include "grid/grid_graph.hpp"
+#include "planners/grid_map3d.hpp"
+#include "sim/planner.hpp"
+
+namespace campo {
+
+struct DStarLite3dConfig {
+  std::string sensor;               ///< alias of the LIDAR; empty: the vehicle's first sensor
+  int columns = 100;                ///< grid cells along x (east)
+  int rows = 100;                   ///< grid cells along y (north)
+  int levels = 9;                   ///< grid levels along z (001: 9, from -14 m to +42 m)
+  double cell_size_m = 1.5;         ///< horizontal cell side (001: 1.5 m)
+  double level_spacing_m = 7.0;     ///< vertical distance between levels (001: 7 m)
+  int ground_level = 2;             ///< level at take-off ground height (001: 2)
+  Eigen::Vector2d origin_m{0.0, 0.0};  ///< world x, y of the grid's south-west corner
+  grid::Connectivity connectivity = grid::Connectivity::twenty_six;  ///< six or twenty_six
+  double speed_mps = 1.0;           ///< cruise speed (001 flew at 1 m/s)
+  double tolerance_m = 0.5;         ///< a mission waypoint counts as reached within this distance
+  int lookahead_cells = 3;          ///< fly up to this many cells ahead along a straight run of the path
+  double cell_reached_m = 0.5;      ///< the search's start moves to the vehicle's cell within this distance of its centre
+};
+
+std::unique_ptr<Planner> make_dstar_lite_3d_planner(const ParamsBlock& params, const PlannerContext& context);
+
+/// The configuration of `params` (keys as DStarLite3dConfig's fields;
+/// connectivity "six" | "twenty_six"); InputError naming the file and JSON
+/// pointer otherwise.
+DStarLite3dConfig parse_dstar_lite_3d_config(const ParamsBlock& params);
+
+/// The map geometry of a configuration, with take-off ground at `ground_z_m`.
+GridMap3dConfig grid_map_config(const DStarLite3dConfig& config, double ground_z_m);
+
+}  // namespace campo

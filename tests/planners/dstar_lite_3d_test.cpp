@@ -1,0 +1,200 @@
+#include "planners/dstar_lite_3d.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "planners/registry.hpp"
+#include "sim/episode.hpp"
+#include "sim/json_reader.hpp"
+#include "sim/scene_loader.hpp"
+#include "vehicles/vehicle.hpp"
+
+namespace campo {
+namespace {
+
+using ::testing::HasSubstr;
+
+ParamsBlock params(nlohmann::json values) { return {std::move(values), "scene.json", "/objects/2/planner/params"}; }
+
+Eigen::Vector3d vec(const nlohmann::json& j) { return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()}; }
+
+// Synthetic observations on seed 001's grid with take-off ground at z = 0:
+// cell (x, y, z) has its centre at (0.75 + 1.5 x, 0.75 + 1.5 y, 7 (z - 2)).
+Eigen::Vector3d center(int x, int y, int z) { return {0.75 + 1.5 * x, 0.75 + 1.5 * y, 7.0 * (z - 2)}; }
+
+struct Feed {
+  std::vector<Waypoint> mission;
+  LidarScan scan;
+  std::vector<SensorReading> sensors{{"leddar", nullptr, nullptr, false}};
+
+  Observation at(const Eigen::Vector3d& p, std::vector<Eigen::Vector3f> hits = {}) {
+    scan.points = std::move(hits);
+    sensors[0].scan = &scan;
+    sensors[0].fresh = !scan.points.empty();
+    Observation o;
+    o.state.position_m = p;
+    o.sensors = sensors;
+    o.mission = mission;
+    return o;
+  }
+};
+
+Eigen::Vector3d goto_target(const PlanResult& r) {
+  EXPECT_TRUE(std::holds_alternative<command::GoTo>(r.command));
+  return std::get<command::GoTo>(r.command).target_m;
+}
+
+TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
+  Feed feed;
+  feed.mission = {{center(0, 0, 4), {}}, {center(6, 0, 4), {}}};
+  auto planner = make_dstar_lite_3d_planner({}, {VehicleType::quadrotor, nullptr});
+
+  // Take-off: straight up two levels to the first waypoint, itself the target.
+  PlanResult r = planner->plan(feed.at(center(0, 0, 2)));
+  EXPECT_EQ(r.status, PlanStatus::running);
+  EXPECT_EQ(goto_target(r), center(0, 0, 4));
+  EXPECT_DOUBLE_EQ(std::get<command::GoTo>(r.command).speed_mps, 1.0);
+  EXPECT_EQ(r.decisions["replan"]["index"], 0);
+  EXPECT_EQ(r.decisions["replan"]["sensor"], "leddar");
+  EXPECT_EQ(r.decisions["planned_path"].size(), 3u);
+
+  // Waypoint 0 reached: the next leg runs east along level 4, three cells ahead at a time.
+  r = planner->plan(feed.at(center(0, 0, 4) + Eigen::Vector3d(0.1, 0.0, 0.2)));
+  EXPECT_EQ(r.decisions["reached_waypoints"], nlohmann::json({0}));
+  EXPECT_EQ(goto_target(r), center(3, 0, 4));
+  EXPECT_EQ(r.decisions["planned_path"].size(), 7u);
+
+  // A hit on a roof at level 4 in column (2, 0) blocks levels 0..4 there: only
+  // those five cells go to D* Lite, and the new path avoids them.
+  r = planner->plan(feed.at(center(0, 0, 4), {Eigen::Vector3f(3.0f, 0.75f, 14.5f)}));
+  EXPECT_EQ(r.decisions["replan"]["index"], 2);
+  EXPECT_EQ(r.decisions["replan"]["changed_cells"], 5);
+  EXPECT_GT(r.decisions["replan"]["expansions"].get<int>(), 0);
+  EXPECT_GE(r.decisions["replan"]["time_ms"].get<double>(), 0.0);
+  ASSERT_TRUE(r.decisions.contains("planned_path"));
+  for (const nlohmann::json& p : r.decisions["planned_path"]) {
+    const Eigen::Vector3d point = vec(p);
+    EXPECT_FALSE((point - Eigen::Vector3d(3.75, 0.75, point.z())).norm() < 0.1 && point.z() < 15.0) << p;
+  }
+  EXPECT_EQ(vec(r.decisions["planned_path"].back()), center(6, 0, 4));
+
+  const nlohmann::json path = r.decisions["planned_path"];
+
+  // The same hit again changes nothing: no replan while the vehicle stays in its cell.
+  r = planner->plan(feed.at(center(0, 0, 4), {Eigen::Vector3f(3.0f, 0.75f, 14.5f)}));
+  EXPECT_TRUE(r.decisions.is_null() || !r.decisions.contains("replan"));
+
+  // Moving one cell along the path moves D* Lite's start (k_m); the rest of
+  // the plan holds, so no new path is recorded.
+  r = planner->plan(feed.at(vec(path[1])));
+  EXPECT_EQ(r.decisions["replan"]["index"], 3);
+  EXPECT_EQ(r.decisions["replan"]["changed_cells"], 0);
+  EXPECT_FALSE(r.decisions.contains("planned_path"));
+}
+
+TEST(DStarLite3d, ReportsNoPathWhenTheGoalColumnIsBlocked) {
+  Feed feed;
+  feed.mission = {{center(5, 5, 4), {}}};
+  auto planner = make_dstar_lite_3d_planner({}, {VehicleType::quadrotor, nullptr});
+  EXPECT_EQ(planner->plan(feed.at(center(5, 0, 2))).status, PlanStatus::running);
+  const PlanResult r = planner->plan(feed.at(center(5, 0, 2), {Eigen::Vector3f(8.25f, 8.25f, 14.0f)}));
+  EXPECT_EQ(r.status, PlanStatus::no_path);
+  EXPECT_THAT(r.reason, HasSubstr("no path from cell [5,0,2] to mission waypoint 0 at cell [5,5,4]"));
+  EXPECT_TRUE(std::holds_alternative<command::Hold>(r.command));
+}
+
+TEST(DStarLite3d, NeedsItsSensorAndReachesTheLastWaypoint) {
+  Feed feed;
+  feed.mission = {{center(1, 1, 3), {}}};
+  auto planner = make_dstar_lite_3d_planner(params({{"sensor", "lidar2"}}), {VehicleType::quadrotor, nullptr});
+  PlanResult r = planner->plan(feed.at(center(1, 1, 3)));
+  EXPECT_EQ(r.status, PlanStatus::invalid_start);
+  EXPECT_THAT(r.reason, HasSubstr("no sensor \"lidar2\""));
+  planner = make_dstar_lite_3d_planner({}, {VehicleType::quadrotor, nullptr});
+  r = planner->plan(feed.at(center(1, 1, 3)));
+  EXPECT_EQ(r.status, PlanStatus::reached);
+  EXPECT_EQ(r.decisions["reached_waypoints"], nlohmann::json({0}));
+}
+
+TEST(DStarLite3d, ParsesParamsStrictly) {
+  const DStarLite3dConfig c = parse_dstar_lite_3d_config(
+      params({{"connectivity", "six"}, {"levels", 12}, {"ground_level", 3}, {"origin_m", {-75.0, -75.0}}}));
+  EXPECT_EQ(c.connectivity, grid::Connectivity::six);
+  EXPECT_EQ(c.levels, 12);
+  EXPECT_EQ(c.ground_level, 3);
+  EXPECT_EQ(c.origin_m, Eigen::Vector2d(-75.0, -75.0));
+  const DStarLite3dConfig defaults = parse_dstar_lite_3d_config(params(nlohmann::json::object()));
+  EXPECT_EQ(defaults.connectivity, grid::Connectivity::twenty_six);
+  EXPECT_DOUBLE_EQ(defaults.speed_mps, 1.0);
+  auto planner = make_dstar_lite_3d_planner(params({{"speed_mps", 2.0}}), {VehicleType::quadrotor, nullptr});
+  EXPECT_EQ(planner->parameters()["speed_mps"], 2.0);
+  EXPECT_EQ(parse_dstar_lite_3d_config(params(planner->parameters())).speed_mps, 2.0);
+
+  const auto expect_error = [](nlohmann::json values, const std::string& message) {
+    try {
+      parse_dstar_lite_3d_config(params(std::move(values)));
+      ADD_FAILURE() << "accepted: " << message;
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(message));
+    }
+  };
+  expect_error({{"connectivity", "eight"}}, "scene.json: /objects/2/planner/params/connectivity");
+  expect_error({{"ground_level", 9}}, "/objects/2/planner/params/ground_level");
+  expect_error({{"speed", 1.0}}, "/objects/2/planner/params");
+  EXPECT_THROW(make_dstar_lite_3d_planner({}, {VehicleType::rover, nullptr}), InputError);
+}
+
+// Closed loop on seed 001's scenes (each a fraction of a second in Release).
+EpisodeResult fly(const std::string& name) {
+  Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json");
+  EXPECT_EQ(scene.vehicles.front().planner.name, "dstar_lite_3d");
+  return run_episode(scene, &make_vehicle, &create_planner);
+}
+
+int waypoints_reached(const EpisodeResult& r) {
+  int reached = 0;
+  for (const PlannerEvent& e : r.events) {
+    if (e.decisions.contains("reached_waypoints")) reached += static_cast<int>(e.decisions["reached_waypoints"].size());
+  }
+  return reached;
+}
+
+void expect_solved(const EpisodeResult& r, int waypoints, const char* what) {
+  SCOPED_TRACE(what);
+  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+  EXPECT_EQ(r.metrics.collisions, 0);
+  EXPECT_GT(r.metrics.min_clearance_m, 0.2);
+  EXPECT_EQ(waypoints_reached(r), waypoints);
+  EXPECT_LT(r.metrics.path_ratio, 1.25);
+  EXPECT_GT(r.metrics.replans, 0);
+}
+
+TEST(DStarLite3dClosedLoop, ObstacleField) {
+  const EpisodeResult r = fly("obstacle_field");
+  expect_solved(r, 9, "obstacle_field");
+  // At 28 m above ground the tall blocks on the route were mapped and avoided: the path changed on the way.
+  int changed_paths = 0;
+  for (const PlannerEvent& e : r.events) changed_paths += e.decisions.contains("planned_path") ? 1 : 0;
+  EXPECT_GT(changed_paths, 9);
+}
+
+// Vertical moves cost one cell like horizontal ones, so on the way back at 28 m
+// the cheapest path climbs over the buildings rather than weaving between them.
+TEST(DStarLite3dClosedLoop, Zigzag) { expect_solved(fly("zigzag"), 4, "zigzag"); }
+
+TEST(DStarLite3dClosedLoop, WallClimbedOver) {
+  const EpisodeResult r = fly("wall");
+  expect_solved(r, 4, "wall");
+  // Both ways (north at 42 m, back south at 28 m) the drone crosses the wall (rows 20-22: y 28.5..33) above its top.
+  bool crossed = false;
+  for (const TrajectorySample& s : r.trajectory) {
+    if (s.state.position_m.y() > 28.5 && s.state.position_m.y() < 33.0) {
+      crossed = true;
+      EXPECT_GT(s.state.position_m.z(), 35.0);
+    }
+  }
+  EXPECT_TRUE(crossed);
+}
+
+}  // namespace
+}  // namespace campo
