@@ -68,7 +68,9 @@ nlohmann::json execute_run(const RunRequest& request) {
       const nlohmann::json& replan = plan.decisions["replan"];
       const std::string sensor = replan.value("sensor", "");
       for (const SensorReading& reading : observation.sensors) {
-        if (reading.alias != sensor || !reading.scan) continue;
+        // Only image sensors give a depth map worth drawing (not a leddar's single row).
+        const bool image = reading.config->beams.empty() && reading.config->rows > 1;
+        if (reading.alias != sensor || !reading.scan || !image) continue;
         std::filesystem::create_directories(out.path("replans"));
         write_depth_png(depth_map(*reading.scan, *reading.config),
                         out.path("replans") / replan_depth_file(replan.at("index").get<int>()));
