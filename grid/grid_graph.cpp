@@ -1,6 +1,7 @@
 #include "grid/grid_graph.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -31,6 +32,18 @@ int max_nonzero(Connectivity connectivity) {
   return 0;
 }
 
+// Fixed-point cost of a move by (dx, dy, dz) cells, a level `level_step` cells
+// high. The unit-step costs are the shared constants, so 2D costs and the
+// unit-step 3D heuristic stay exactly the same integers.
+Cost move_cost(int dx, int dy, int dz, double level_step) {
+  const int horizontal = dx * dx + dy * dy;
+  if (dz == 0 || level_step == 1.0) {
+    const int nonzero = (dx != 0) + (dy != 0) + (dz != 0);
+    return nonzero == 1 ? kStraightCost : nonzero == 2 ? kDiagonalCost : kCornerCost;
+  }
+  return std::llround(std::sqrt(horizontal + level_step * level_step) * static_cast<double>(kCostScale));
+}
+
 }  // namespace
 
 double to_cells(Cost cost) {
@@ -55,7 +68,8 @@ bool is_3d(Connectivity connectivity) {
   return connectivity == Connectivity::six || connectivity == Connectivity::twenty_six;
 }
 
-GridGraph::GridGraph(GridSize size, Connectivity connectivity) : size_(size), connectivity_(connectivity) {
+GridGraph::GridGraph(GridSize size, Connectivity connectivity, double level_step_cells)
+    : size_(size), connectivity_(connectivity), level_step_cells_(level_step_cells) {
   for (const int n : {size.width, size.height, size.depth}) {
     if (n < 1 || n > kMaxDimension) {
       throw std::invalid_argument("grid dimensions must be in 1.." + std::to_string(kMaxDimension));
@@ -65,6 +79,10 @@ GridGraph::GridGraph(GridSize size, Connectivity connectivity) : size_(size), co
   if (!three_d && size.depth != 1) {
     throw std::invalid_argument("connectivity " + std::string(to_string(connectivity)) + " is 2D: depth must be 1");
   }
+  if (!(level_step_cells > 0.0 && level_step_cells <= 1000.0) || (!three_d && level_step_cells != 1.0)) {
+    throw std::invalid_argument("the level step must be in (0, 1000] cells, and 1 in 2D");
+  }
+  vertical_cost_ = move_cost(0, 0, 1, level_step_cells);
   border_z_ = three_d ? 1 : 0;
   const std::int64_t nx = size.width + 2, ny = size.height + 2, nz = size.depth + 2 * border_z_;
   if (nx * ny * nz > kMaxCells) throw std::invalid_argument("grid too large: at most 2^28 cells");
@@ -100,7 +118,7 @@ GridGraph::GridGraph(GridSize size, Connectivity connectivity) : size_(size), co
         if (nonzero == 0 || nonzero > max_nonzero(connectivity)) continue;
         Move move;
         move.offset = offset(dx, dy, dz);
-        move.cost = nonzero == 1 ? kStraightCost : nonzero == 2 ? kDiagonalCost : kCornerCost;
+        move.cost = move_cost(dx, dy, dz, level_step_cells);
         // Every cell of the box but u itself: (a, b, c) with a in {0, dx}, b in {0, dy}, c in {0, dz}.
         for (const int bx : {0, dx}) {
           for (const int by : {0, dy}) {

@@ -77,12 +77,17 @@ class GridGraph {
   static constexpr int kMaxDimension = 32000;           ///< coordinates are stored as int16
   static constexpr std::int64_t kMaxCells = 1 << 28;    ///< cells including the border
 
-  /// All cells start unknown. Throws std::invalid_argument for a size out of
-  /// range or a 2D connectivity with depth > 1.
-  GridGraph(GridSize size, Connectivity connectivity);
+  /// All cells start unknown. `level_step_cells` is the length of a vertical
+  /// move in horizontal cell sides (a 3D grid's level spacing over its cell
+  /// size): moves cost their Euclidean length, so a climb costs what it
+  /// measures. Throws std::invalid_argument for a size out of range, a 2D
+  /// connectivity with depth > 1, or a level step that is not positive
+  /// (or not 1 in 2D).
+  GridGraph(GridSize size, Connectivity connectivity, double level_step_cells = 1.0);
 
   const GridSize& size() const { return size_; }
   Connectivity connectivity() const { return connectivity_; }
+  double level_step_cells() const { return level_step_cells_; }
   bool contains(const Cell& cell) const;
 
   /// Id of a cell inside the grid (contains(cell) must hold).
@@ -103,19 +108,25 @@ class GridGraph {
 
   /// Admissible and consistent lower bound on the path cost from `a` to `b`:
   /// the cost of the cheapest obstacle-free path under the connectivity
-  /// (Manhattan, octile, or its 3D form).
+  /// (Manhattan, octile, or its 3D form); with 26-connectivity and a level
+  /// step other than 1, the larger of the horizontal octile cost and the
+  /// vertical moves' cost (each move pays at least its share of both).
   /// Built from the same integer move costs, so it is exactly consistent.
   Cost heuristic(CellId a, CellId b) const {
     const Coord& p = coords_[a];
     const Coord& q = coords_[b];
     int d1 = std::abs(p.x - q.x), d2 = std::abs(p.y - q.y), d3 = std::abs(p.z - q.z);
     switch (connectivity_) {
-      case Connectivity::four:
-      case Connectivity::six: return (d1 + d2 + d3) * kStraightCost;
+      case Connectivity::four: return (d1 + d2) * kStraightCost;
+      case Connectivity::six: return (d1 + d2) * kStraightCost + d3 * vertical_cost_;
       case Connectivity::eight:
         if (d1 < d2) std::swap(d1, d2);
         return d2 * kDiagonalCost + (d1 - d2) * kStraightCost;
       case Connectivity::twenty_six:
+        if (vertical_cost_ != kStraightCost) {
+          if (d1 < d2) std::swap(d1, d2);
+          return std::max(d2 * kDiagonalCost + (d1 - d2) * kStraightCost, d3 * vertical_cost_);
+        }
         // Sorted d1 >= d2 >= d3: d3 corner moves, d2 - d3 face diagonals, the rest straight.
         if (d1 < d2) std::swap(d1, d2);
         if (d2 < d3) std::swap(d2, d3);
@@ -154,12 +165,14 @@ class GridGraph {
   };
   struct Move {
     CellId offset = 0;           ///< id delta from u to v
-    Cost cost = 0;               ///< kCostScale x 1, sqrt2 or sqrt3
+    Cost cost = 0;               ///< kCostScale x the move's length in cells
     std::uint32_t box_mask = 0;  ///< bits of probes_ that must be traversable
   };
 
   GridSize size_;
   Connectivity connectivity_;
+  double level_step_cells_ = 1.0;
+  Cost vertical_cost_ = kStraightCost;  ///< cost of a move straight up or down
   std::array<CellId, 3> stride_{};  ///< id delta of +1 in x, y, z
   int border_z_ = 0;                ///< 1 in 3D (a blocked level below and above), 0 in 2D
   std::vector<CellState> state_;

@@ -35,7 +35,11 @@ class DStarLite3dPlanner final : public Planner {
     if (!map_) {
       // The vehicle starts on the ground: its height is take-off ground level (within a level's rounding).
       map_.emplace(grid_map_config(config_, o.state.position_m.z()));
-      graph_ = std::make_unique<grid::GridGraph>(map_->size(), config_.connectivity);
+      // Moves cost their length: a 7 m climb costs 4.7 cells of 1.5 m, not one,
+      // so the drone weaves between buildings at its altitude rather than
+      // climbing over every one it has mapped.
+      graph_ = std::make_unique<grid::GridGraph>(map_->size(), config_.connectivity,
+                                                 config_.level_spacing_m / config_.cell_size_m);
     }
 
     // Mission waypoints already reached.

@@ -14,6 +14,7 @@ struct RandomCase {
   GridSize size;
   double blocked;
   int maps;
+  double level_step = 1.0;  ///< cells; 7 m levels over 1.5 m cells is seed 001's grid
 };
 
 // A* finds the cost a plain Dijkstra finds, on many random maps of every connectivity.
@@ -21,8 +22,10 @@ TEST(AStar, MatchesDijkstraOnRandomMaps) {
   for (const RandomCase& c : {RandomCase{Connectivity::four, {30, 25, 1}, 0.3, 40},
                               RandomCase{Connectivity::eight, {30, 25, 1}, 0.35, 40},
                               RandomCase{Connectivity::six, {12, 10, 8}, 0.35, 25},
-                              RandomCase{Connectivity::twenty_six, {12, 10, 8}, 0.4, 25}}) {
-    GridGraph graph(c.size, c.connectivity);
+                              RandomCase{Connectivity::twenty_six, {12, 10, 8}, 0.4, 25},
+                              RandomCase{Connectivity::six, {12, 10, 8}, 0.35, 25, 7.0 / 1.5},
+                              RandomCase{Connectivity::twenty_six, {12, 10, 8}, 0.4, 25, 7.0 / 1.5}}) {
+    GridGraph graph(c.size, c.connectivity, c.level_step);
     AStar astar(graph);
     int found = 0;
     for (int map = 0; map < c.maps; ++map) {
@@ -32,7 +35,8 @@ TEST(AStar, MatchesDijkstraOnRandomMaps) {
         const Cell start = test::random_open_cell(graph, rng), goal = test::random_open_cell(graph, rng);
         const SearchResult result = astar.plan(start, goal);
         const double expected = test::dijkstra(graph, start, goal);
-        SCOPED_TRACE(std::string(to_string(c.connectivity)) + " map " + std::to_string(map));
+        SCOPED_TRACE(std::string(to_string(c.connectivity)) + " level step " + std::to_string(c.level_step) +
+                     " map " + std::to_string(map));
         if (expected < 0.0) {
           EXPECT_EQ(result.status, SearchStatus::no_path);
           EXPECT_EQ(to_cells(result.cost), -1.0);

@@ -145,6 +145,42 @@ TEST(GridGraph, HeuristicIsExactOnAnEmptyGridAndConsistentOnRandomMaps) {
   }
 }
 
+// Levels taller than cells: every move costs its Euclidean length in cells,
+// and the heuristic stays a consistent lower bound (exact when 6-connected).
+TEST(GridGraph, TallLevelsCostTheirHeight) {
+  const double step = 7.0 / 1.5;
+  for (const Connectivity connectivity : {Connectivity::six, Connectivity::twenty_six}) {
+    GridGraph graph({9, 8, 7}, connectivity, step);
+    EXPECT_NEAR(to_cells(graph.edge_cost({4, 4, 3}, {4, 4, 4})), step, 1e-9);
+    EXPECT_NEAR(to_cells(graph.edge_cost({4, 4, 3}, {5, 4, 3})), 1.0, 1e-9);
+    if (connectivity == Connectivity::twenty_six) {
+      EXPECT_NEAR(to_cells(graph.edge_cost({4, 4, 3}, {5, 4, 4})), std::sqrt(1.0 + step * step), 1e-9);
+      EXPECT_NEAR(to_cells(graph.edge_cost({4, 4, 3}, {5, 5, 2})), std::sqrt(2.0 + step * step), 1e-9);
+      EXPECT_NEAR(to_cells(graph.edge_cost({4, 4, 3}, {5, 5, 3})), std::sqrt(2.0), 1e-9);
+    }
+    Rng rng(11);
+    for (int i = 0; i < 30; ++i) {
+      const Cell a = test::random_cell(graph, rng), b = test::random_cell(graph, rng);
+      const double h = to_cells(graph.heuristic(graph.id(a), graph.id(b)));
+      const double shortest = test::dijkstra(graph, a, b);
+      if (connectivity == Connectivity::six) {
+        // Manhattan with tall levels, by hand: |dx| + |dy| + step |dz|.
+        EXPECT_NEAR(h, std::abs(a.x - b.x) + std::abs(a.y - b.y) + step * std::abs(a.z - b.z), 1e-6);
+        EXPECT_NEAR(h, shortest, 1e-6);
+      } else {
+        EXPECT_LE(h, shortest + 1e-9);
+      }
+    }
+    test::fill_random(graph, rng, 0.3);
+    const CellId goal = graph.id(test::random_cell(graph, rng));
+    for (CellId u = 0; u < graph.id_count(); ++u) {
+      graph.for_each_neighbour(u, [&](CellId v, Cost c) { EXPECT_LE(graph.heuristic(u, goal), c + graph.heuristic(v, goal)); });
+    }
+  }
+  EXPECT_THROW(GridGraph({5, 5, 1}, Connectivity::eight, 2.0), std::invalid_argument);
+  EXPECT_THROW(GridGraph({5, 5, 5}, Connectivity::six, 0.0), std::invalid_argument);
+}
+
 TEST(GridGraph, ConnectivityNamesRoundTrip) {
   for (const Connectivity c : {Connectivity::four, Connectivity::eight, Connectivity::six, Connectivity::twenty_six}) {
     EXPECT_EQ(connectivity_from_string(to_string(c)), c);

@@ -43,9 +43,9 @@ inline Cell random_open_cell(const GridGraph& graph, Rng& rng) {
   }
 }
 
-/// Cheapest path cost in cells by Dijkstra, -1 when unreachable. A move of
-/// k nonzero unit components costs sqrt(k) and needs every cell of the box
-/// between its ends unblocked.
+/// Cheapest path cost in cells by Dijkstra, -1 when unreachable. A move costs
+/// its Euclidean length (sqrt(k) for k unit components when levels are one
+/// cell high) and needs every cell of the box between its ends unblocked.
 inline double dijkstra(const GridGraph& graph, const Cell& start, const Cell& goal) {
   const GridSize& n = graph.size();
   const int max_nonzero = graph.connectivity() == Connectivity::four || graph.connectivity() == Connectivity::six ? 1
@@ -84,7 +84,9 @@ inline double dijkstra(const GridGraph& graph, const Cell& start, const Cell& go
                 clear = clear && open(u.x + bx, u.y + by, u.z + bz);
           if (!clear) continue;
           const Cell v{u.x + dx, u.y + dy, u.z + dz};
-          const double nd = d + std::sqrt(static_cast<double>(k));
+          // Euclidean move length, a level being level_step_cells() cells high.
+          const double rise = dz * graph.level_step_cells();
+          const double nd = d + std::sqrt(static_cast<double>(dx * dx + dy * dy) + rise * rise);
           if (nd < dist[index(v)]) {
             dist[index(v)] = nd;
             queue.push({nd, index(v)});

@@ -17,6 +17,7 @@ struct Setting {
   Connectivity connectivity;
   GridSize size;
   double blocked;  ///< initial density
+  double level_step = 1.0;  ///< cells per level (3D)
 };
 
 const Setting kFlat{Connectivity::eight, {32, 24, 1}, 0.25};
@@ -40,7 +41,7 @@ std::vector<CellChange> sweep_changes(const GridGraph& graph, Rng& rng, const Ce
 // vehicle between moves; D* Lite must match A* from scratch at every replan.
 // Returns the number of replans that found a path.
 int dstar_episode(const Setting& setting, std::uint64_t seed, int replans) {
-  GridGraph graph(setting.size, setting.connectivity);
+  GridGraph graph(setting.size, setting.connectivity, setting.level_step);
   Rng rng(seed);
   test::fill_random(graph, rng, setting.blocked);
   const Cell goal = test::random_open_cell(graph, rng);
@@ -80,6 +81,16 @@ TEST(DStarLite, MatchesAStarAfterEveryBatchOfChanges3D) {
   int found = 0;
   for (std::uint64_t seed = 100; seed < 200; ++seed) found += dstar_episode(kCube, seed, 20);
   EXPECT_GT(found, 400);
+}
+
+// Seed 001's grid: a level 7 m high over 1.5 m cells, so climbing costs 4.67 cells.
+TEST(DStarLite, MatchesAStarWithTallLevels) {
+  int found = 0;
+  for (std::uint64_t seed = 300; seed < 360; ++seed) {
+    found += dstar_episode({Connectivity::six, {16, 14, 8}, 0.25, 7.0 / 1.5}, seed, 15);
+    found += dstar_episode({Connectivity::twenty_six, {16, 14, 8}, 0.3, 7.0 / 1.5}, seed, 15);
+  }
+  EXPECT_GT(found, 300);
 }
 
 TEST(DStarLite, MatchesAStarWithFourAndSixConnectivity) {
