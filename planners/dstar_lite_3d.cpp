@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -35,6 +36,10 @@ class DStarLite3dPlanner final : public Planner {
     if (!map_) {
       // The vehicle starts on the ground: its height is take-off ground level (within a level's rounding).
       map_.emplace(grid_map_config(config_, o.state.position_m.z()));
+      result.decisions["height_map_grid"] = {{"origin_m", {config_.origin_m.x(), config_.origin_m.y()}},
+                                             {"cell_size_m", config_.cell_size_m},
+                                             {"columns", config_.columns},
+                                             {"rows", config_.rows}};
       // Moves cost their length: a 7 m climb costs 4.7 cells of 1.5 m, not one,
       // so the drone weaves between buildings at its altitude rather than
       // climbing over every one it has mapped.
@@ -62,6 +67,8 @@ class DStarLite3dPlanner final : public Planner {
         changes.insert(changes.end(), marked.begin(), marked.end());
       }
     }
+    const double mapping_ms = std::chrono::duration<double, std::milli>(Clock::now() - started).count();
+    if (lidar->fresh && lidar->scan) record_mapping(*lidar->scan, changes, result);
 
     const std::optional<grid::Cell> start = start_cell(o.state.position_m);
     if (!start) {
@@ -104,6 +111,7 @@ class DStarLite3dPlanner final : public Planner {
                                     {"goal_cell", to_json(goal)},
                                     {"changed_cells", changes.size()},
                                     {"expansions", found.expansions},
+                                    {"mapping_ms", mapping_ms},
                                     {"time_ms", time_ms}};
       if (found.status != grid::SearchStatus::found) {
         result.status = PlanStatus::no_path;
@@ -177,6 +185,25 @@ class DStarLite3dPlanner final : public Planner {
   // World points of a path, the goal cell replaced by the waypoint itself.
   Eigen::Vector3d point(std::size_t i, const Eigen::Vector3d& waypoint_m) const {
     return i + 1 == path_.size() ? waypoint_m : map_->center(path_[i]);
+  }
+
+  // For the figures: the scan's hits (to the centimetre) and the new top of
+  // every column whose reconstructed height rose.
+  void record_mapping(const LidarScan& scan, const std::vector<grid::CellChange>& changes, PlanResult& result) const {
+    const auto cm = [](float v) { return std::round(static_cast<double>(v) * 100.0) / 100.0; };
+    nlohmann::json hits = nlohmann::json::array();
+    for (const Eigen::Vector3f& p : scan.points) hits.push_back({cm(p.x()), cm(p.y()), cm(p.z())});
+    if (!hits.empty()) result.decisions["lidar_hits"] = std::move(hits);
+    nlohmann::json columns = nlohmann::json::array();
+    for (std::size_t i = 0; i < changes.size(); ++i) {
+      const grid::Cell& c = changes[i].cell;
+      const bool listed = std::any_of(changes.begin(), changes.begin() + static_cast<std::ptrdiff_t>(i),
+                                      [&](const grid::CellChange& e) { return e.cell.x == c.x && e.cell.y == c.y; });
+      if (listed) continue;
+      const int top = *map_->top_blocked_level(c.x, c.y);
+      columns.push_back({c.x, c.y, map_->center({c.x, c.y, top}).z()});
+    }
+    if (!columns.empty()) result.decisions["height_map_columns"] = std::move(columns);
   }
 
   void record_path(const Eigen::Vector3d& waypoint_m, PlanResult& result) const {

@@ -54,6 +54,7 @@ const cv::Scalar kTrackHalo = rgb(40, 40, 40);
 const cv::Scalar kPlannedWaypoint = rgb(31, 119, 180);
 const cv::Scalar kDiscardedWaypoint = rgb(200, 40, 120);
 const cv::Scalar kPlannedPath = rgb(60, 60, 60);
+const cv::Scalar kSensorHit = rgb(214, 39, 40);
 const cv::Scalar kVehicleLine = rgb(31, 119, 180);
 const cv::Scalar kNeutralMarker = rgb(120, 120, 120);  // legend symbols whose colour is the run's
 constexpr int kMinColorbarPx = 160;
@@ -122,6 +123,10 @@ LegendEntry gradient_entry(std::string text) {
           std::move(text)};
 }
 
+void sensor_hit_marker(cv::Mat& image, cv::Point2d c) {
+  cv::circle(image, figure::fixed(c), 2 << figure::kShift, kSensorHit, cv::FILLED, cv::LINE_AA, figure::kShift);
+}
+
 // ---------------------------------------------------------------- maps
 
 // Everything a map shows, decided before the layout because the legend's size depends on it.
@@ -143,6 +148,7 @@ struct MapPlan {
   double value_lo = 0.0, value_hi = 1.0;    // range of the track colouring
   std::string colorbar_caption;
   std::vector<LegendEntry> legend;
+  const HeightMapView* height_map = nullptr;  // a height-map figure: cells coloured, obstacles outlined
 };
 
 Eigen::AlignedBox2d map_bounds(const std::vector<const RunView*>& runs, const std::vector<Footprint>& solids,
@@ -179,14 +185,18 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
   const auto any = [&](auto member) {
     return std::any_of(plan.runs.begin(), plan.runs.end(), [&](const RunView* r) { return !(r->*member).empty(); });
   };
-  if (std::any_of(plan.runs.begin(), plan.runs.end(), [](const RunView* r) { return r->planned_path.size() >= 2; })) {
+  // A height map shows what was mapped and flown, not the planner's steps.
+  const bool steps = !plan.height_map;
+  if (steps && std::any_of(plan.runs.begin(), plan.runs.end(), [](const RunView* r) { return r->planned_path.size() >= 2; })) {
     legend.push_back(line_entry(overlay ? kNeutralMarker : kPlannedPath, 1, "planned path", true));
   }
   if (!plan.movers.empty()) {
     const cv::Scalar c = figure::shade(to_bgr(scene.movers[plan.movers.front()].shape.color), 0.7);
     legend.push_back(line_entry(c, 2, "moving obstacle path", true));
   }
-  if (!plan.footprints.empty()) {
+  if (plan.height_map) {
+    if (!plan.footprints.empty()) legend.push_back(line_entry(figure::kInk, 1, "obstacle in the scene"));
+  } else if (!plan.footprints.empty()) {
     // The colour of the largest obstacle stands for all.
     const auto area = [](const Footprint& f) { return f.box_m.volume(); };
     const Footprint& largest = *std::max_element(plan.footprints.begin(), plan.footprints.end(),
@@ -225,13 +235,16 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
   }
   const cv::Scalar planned = overlay ? kNeutralMarker : kPlannedWaypoint;
   const cv::Scalar discarded = overlay ? kNeutralMarker : kDiscardedWaypoint;
-  if (any(&RunView::planned)) {
+  if (steps && any(&RunView::planned)) {
     legend.push_back(marker_entry([planned](cv::Mat& m, cv::Point2d c) { figure::diamond_marker(m, c, planned); },
                                   "planned waypoint"));
   }
-  if (any(&RunView::discarded)) {
+  if (steps && any(&RunView::discarded)) {
     legend.push_back(marker_entry([discarded](cv::Mat& m, cv::Point2d c) { figure::cross_marker(m, c, discarded); },
                                   "discarded waypoint"));
+  }
+  if (!overlay && steps && any(&RunView::sensor_hits)) {
+    legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d c) { sensor_hit_marker(m, c); }, "LIDAR hit"));
   }
 }
 
@@ -417,6 +430,20 @@ void draw_mission(cv::Mat& plot, const PlotMapper& to, const MapPlan& plan) {
   }
 }
 
+// Mapped cells as filled squares coloured by height; unmapped cells keep the ground.
+void paint_height_map(cv::Mat& plot, const PlotMapper& to, const HeightMapView& map, double lo, double hi) {
+  for (int row = 0; row < map.rows; ++row) {
+    for (int col = 0; col < map.columns; ++col) {
+      const double top = map.top_m[static_cast<std::size_t>(row) * map.columns + col];
+      if (std::isnan(top)) continue;
+      const Eigen::Vector2d sw = map.origin_m + map.cell_size_m * Eigen::Vector2d(col, row);
+      const cv::Point2d a = to(sw), b = to(Eigen::Vector2d(sw + Eigen::Vector2d::Constant(map.cell_size_m)));
+      cv::rectangle(plot, figure::fixed(a), figure::fixed(b), to_scalar(sequential_color((top - lo) / (hi - lo))),
+                    cv::FILLED, cv::LINE_8, figure::kShift);
+    }
+  }
+}
+
 cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLayout& layout,
                         const std::string& title) {
   cv::Mat image(layout.image_px, CV_8UC3, figure::kWhite);
@@ -426,7 +453,14 @@ cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLay
 
   const Eigen::Vector2d top_left = layout.min + Eigen::Vector2d(0.5, layout.plot_px.height - 0.5) / px_per_m;
   plan.ground.paint(plot, top_left, px_per_m, plan.contour_interval_m);
-  for (const auto& f : plan.footprints) draw_footprint(plot, to, f, to_bgr(f.shape->color));
+  if (plan.height_map) {
+    paint_height_map(plot, to, *plan.height_map, plan.value_lo, plan.value_hi);
+    for (const auto& f : plan.footprints) {
+      cv::polylines(plot, figure::fixed(to.all(f.outline_m)), true, figure::kInk, 1, cv::LINE_AA, figure::kShift);
+    }
+  } else {
+    for (const auto& f : plan.footprints) draw_footprint(plot, to, f, to_bgr(f.shape->color));
+  }
   for (std::size_t k = 0; k < plan.movers.size(); ++k) {
     const Mover& m = scene.movers[plan.movers[k]];
     const cv::Scalar c = to_bgr(m.shape.color);
@@ -437,15 +471,17 @@ cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLay
   for (std::size_t i = 0; i < plan.runs.size(); ++i) {
     const RunView& run = *plan.runs[i];
     const cv::Scalar own = run_color(i);
-    figure::dashed_polyline(plot, to.all(run.planned_path), plan.overlay ? own : kPlannedPath, 1, 7.0, 5.0);
+    if (!plan.height_map) {
+      figure::dashed_polyline(plot, to.all(run.planned_path), plan.overlay ? own : kPlannedPath, 1, 7.0, 5.0);
+    }
     std::vector<cv::Point2d> track;
     for (const auto& p : run.track) track.push_back(to(p.position_m));
     const std::vector<std::size_t> kept = thin_out(track);
     std::vector<cv::Point2d> line;
     for (std::size_t k : kept) line.push_back(track[k]);
-    if (plan.overlay) {
+    if (plan.overlay || plan.height_map) {
       figure::polyline(plot, line, figure::kWhite, 5);
-      figure::polyline(plot, line, own, 3);
+      figure::polyline(plot, line, plan.height_map ? kTrackHalo : own, plan.height_map ? 2 : 3);
       continue;
     }
     figure::polyline(plot, line, kTrackHalo, 5);
@@ -457,8 +493,12 @@ cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLay
                cv::LINE_AA, figure::kShift);
     }
   }
+  if (!plan.overlay && !plan.height_map) {
+    for (const auto& p : plan.runs.front()->sensor_hits) sensor_hit_marker(plot, to(p));
+  }
   for (std::size_t i = 0; i < plan.runs.size(); ++i) {
     const RunView& run = *plan.runs[i];
+    if (plan.height_map) break;  // the height map shows what was mapped, not the planner's steps
     for (const auto& p : run.planned) {
       figure::diamond_marker(plot, to(p), plan.overlay ? run_color(i) : kPlannedWaypoint);
     }
@@ -840,6 +880,29 @@ FigureLayout map_layout(const Scene& scene, const RunView& run, const FigureStyl
 cv::Mat draw_map(const Scene& scene, const RunView& run, const FigureStyle& style) {
   const MapPlan plan = plan_map(scene, {&run}, style, false);
   return draw_map_figure(scene, plan, layout_map(plan, style), run_title(style, run, "map"));
+}
+
+cv::Mat draw_height_map(const Scene& scene, const RunView& run, const FigureStyle& style) {
+  if (run.height_map.empty()) throw std::invalid_argument("the run recorded no height map");
+  MapPlan plan = plan_map(scene, {&run}, style, false);
+  plan.height_map = &run.height_map;
+  plan.value_lo = std::numeric_limits<double>::infinity();
+  plan.value_hi = -plan.value_lo;
+  for (const double top : run.height_map.top_m) {
+    if (std::isnan(top)) continue;
+    plan.value_lo = std::min(plan.value_lo, top);
+    plan.value_hi = std::max(plan.value_hi, top);
+  }
+  if (!(plan.value_hi > plan.value_lo)) {
+    plan.value_lo = std::isfinite(plan.value_lo) ? plan.value_lo : 0.0;
+    plan.value_hi = plan.value_lo + 1.0;
+  }
+  plan.colorbar = true;
+  plan.colorbar_caption = "mapped top, z (m)";
+  plan.legend.clear();
+  plan.legend.push_back(line_entry(kTrackHalo, 2, "track"));
+  add_symbol_entries(plan, scene);
+  return draw_map_figure(scene, plan, layout_map(plan, style), run_title(style, run, "reconstructed height map"));
 }
 
 FigureLayout overlay_layout(const Scene& scene, const std::vector<RunView>& runs, const FigureStyle& style) {

@@ -21,6 +21,17 @@ struct TrackPoint {
   double speed_mps = 0.0;
 };
 
+/// A planner's reconstructed height map (decisions "height_map_grid", then
+/// "height_map_columns" as columns rise): the top of what it mapped per cell.
+struct HeightMapView {
+  Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();  ///< south-west corner of cell (0, 0)
+  double cell_size_m = 1.0;
+  int columns = 0;
+  int rows = 0;
+  std::vector<double> top_m;  ///< row-major from the south-west corner; NaN where nothing was mapped
+  bool empty() const { return top_m.empty(); }
+};
+
 /// What the figures need of one run, read from its files.
 struct RunView {
   std::string label;                        ///< legend text (e.g. the run directory name)
@@ -30,6 +41,8 @@ struct RunView {
   std::vector<Eigen::Vector3d> planned;     ///< intermediate waypoints a planner set (reached or not)
   std::vector<Eigen::Vector3d> discarded;   ///< intermediate waypoints a planner dropped
   std::vector<Eigen::Vector3d> planned_path;///< a global planner's planned path, if any
+  std::vector<Eigen::Vector3d> sensor_hits; ///< range-sensor hits a mapping planner recorded ("lidar_hits")
+  HeightMapView height_map;                 ///< what a mapping planner reconstructed, if any
   std::string outcome;                      ///< run outcome, for titles
 };
 
@@ -75,8 +88,8 @@ struct FigureLayout {
 /// shading and contour lines, obstacle footprints, movers' paths, planned
 /// path, the track coloured by time or speed (with a colour bar), numbered
 /// mission waypoints (filled when reached), planned and discarded
-/// intermediate waypoints, start and goal, axes, scale bar, north arrow and
-/// a legend of the symbols present.
+/// intermediate waypoints, recorded sensor hits, start and goal, axes, scale
+/// bar, north arrow and a legend of the symbols present.
 cv::Mat draw_map(const Scene& scene, const RunView& run, const FigureStyle& style = {});
 FigureLayout map_layout(const Scene& scene, const RunView& run, const FigureStyle& style = {});
 
@@ -85,6 +98,12 @@ FigureLayout map_layout(const Scene& scene, const RunView& run, const FigureStyl
 /// obstacles the track passes over, under or through, and the mission
 /// waypoints at the track's closest approach to them. Distances are
 /// horizontal, so that slopes show true.
+/// The run's reconstructed height map (run.height_map must not be empty):
+/// mapped cells coloured by height above the take-off ground, with a colour
+/// bar, the scene's obstacles as outlines for comparison, the track and the
+/// mission, on the same frame as draw_map.
+cv::Mat draw_height_map(const Scene& scene, const RunView& run, const FigureStyle& style = {});
+
 cv::Mat draw_side_view(const Scene& scene, const RunView& run, const FigureStyle& style = {});
 FigureLayout side_view_layout(const Scene& scene, const RunView& run, const FigureStyle& style = {});
 

@@ -1,7 +1,9 @@
 #include "render/run_files.hpp"
 
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "sim/json_reader.hpp"
@@ -81,6 +83,29 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
       for (const auto& i : d.value("reached_waypoints", nlohmann::json::array())) v.reached.push_back(i.get<int>());
       if (d.contains("planned_waypoint")) v.planned.push_back(vector3(d["planned_waypoint"]));
       if (d.contains("discarded_waypoint")) v.discarded.push_back(vector3(d["discarded_waypoint"]));
+      if (d.contains("lidar_hits")) {
+        for (const auto& p : d["lidar_hits"]) v.sensor_hits.push_back(vector3(p));
+      }
+      if (d.contains("height_map_grid")) {
+        const auto& g = d["height_map_grid"];
+        HeightMapView& h = v.height_map;
+        h.origin_m = {g.at("origin_m").at(0).get<double>(), g.at("origin_m").at(1).get<double>()};
+        h.cell_size_m = g.at("cell_size_m").get<double>();
+        h.columns = g.at("columns").get<int>();
+        h.rows = g.at("rows").get<int>();
+        if (h.columns < 1 || h.rows < 1 || static_cast<std::int64_t>(h.columns) * h.rows > (1 << 26)) {
+          throw InputError((dir / "run.json").string(), "", "height_map_grid: bad size");
+        }
+        h.top_m.assign(static_cast<std::size_t>(h.columns) * h.rows, std::numeric_limits<double>::quiet_NaN());
+      }
+      for (const auto& c : d.value("height_map_columns", nlohmann::json::array())) {
+        HeightMapView& h = v.height_map;
+        const int x = c.at(0).get<int>(), y = c.at(1).get<int>();
+        if (x < 0 || y < 0 || x >= h.columns || y >= h.rows) {
+          throw InputError((dir / "run.json").string(), "", "height_map_columns: column outside the height_map_grid");
+        }
+        h.top_m[static_cast<std::size_t>(y) * h.columns + x] = c.at(2).get<double>();
+      }
       if (d.contains("planned_path")) {
         v.planned_path.clear();
         for (const auto& p : d["planned_path"]) v.planned_path.push_back(vector3(p));

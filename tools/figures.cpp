@@ -120,6 +120,13 @@ std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const st
     style.title = title_of(run, "side view");
     return {write_png(draw_side_view(run.scene, run.view, style), out_dir / "side.png")};
   }
+  if (kind == "heightmap") {
+    if (run.view.height_map.empty()) {
+      throw InputError(record_file(run), "/events", "no height map: only mapping planners (dstar_lite_3d) record one");
+    }
+    style.title = title_of(run, "reconstructed height map");
+    return {write_png(draw_height_map(run.scene, run.view, style), out_dir / "heightmap.png")};
+  }
   if (kind == "snapshot") {
     std::vector<Eigen::Vector3d> path;
     for (const TrackPoint& p : run.view.track) path.push_back(p.position_m);

@@ -72,8 +72,8 @@ int run_render(const RenderOptions& o) {
 Command add_render(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   app.add_option("runs", o->runs, "Run directories written by campo run")->required()->check(CLI::ExistingDirectory);
-  app.add_option("--kind", o->kinds, "Figures to draw: map, side, depth, snapshot, overlay (repeatable)")
-      ->check(CLI::IsMember({"map", "side", "depth", "snapshot", "overlay"}))
+  app.add_option("--kind", o->kinds, "Figures to draw: map, side, heightmap (mapping planners), depth, snapshot, overlay (repeatable)")
+      ->check(CLI::IsMember({"map", "side", "heightmap", "depth", "snapshot", "overlay"}))
       ->capture_default_str();
   app.add_option("--step", o->steps,
                  "With --kind depth: draw replanning step K of a depth_reactive run instead of the recorded depth "

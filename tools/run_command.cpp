@@ -1,3 +1,4 @@
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -38,8 +39,9 @@ int run_run(const RunOptions& o) {
   request.record_depth_every = o.record_depth_every;
   request.record_replans = o.record_replans;
   const nlohmann::json record = execute_run(request);
+  const bool height_map = o.figures && std::filesystem::exists(std::filesystem::path(o.out) / "heightmap.png");
   std::cout << run_summary_line(record) << "; wrote run.json, trajectory.csv, scene.json"
-            << (o.figures ? ", map.png, side.png" : "") << " to " << o.out << "\n";
+            << (o.figures ? ", map.png, side.png" : "") << (height_map ? ", heightmap.png" : "") << " to " << o.out << "\n";
   return kOk;
 }
 
@@ -72,7 +74,8 @@ Command add_run(CLI::App& app) {
       "is complete (reached), the vehicle collides (collision), the time limit passes (timeout) or the\n"
       "planner gives up (aborted). Writes DIR/run.json (metrics, outcome, provenance, every effective\n"
       "parameter), DIR/trajectory.csv (one row per planner call), DIR/scene.json (the effective\n"
-      "scene) and the figures DIR/map.png and DIR/side.png (redraw with campo render).\n"
+      "scene) and the figures DIR/map.png and DIR/side.png, plus DIR/heightmap.png for mapping\n"
+      "planners (redraw with campo render).\n"
       "Exit 0 when the run completed, whatever its outcome; 2 on bad input; 1 on internal failure.");
   return [o] { return run_run(*o); };
 }

@@ -90,6 +90,7 @@ nlohmann::json execute_run(const RunRequest& request) {
     RecordedRun recorded = load_run_dir(staged);
     recorded.view.label = request.label.empty() ? request.out.filename().string() : request.label;
     for (const std::string kind : {"map", "side"}) write_figure(recorded, kind, staged);
+    if (!recorded.view.height_map.empty()) write_figure(recorded, "heightmap", staged);
   }
   out.commit();
   return record;
