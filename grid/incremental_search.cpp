@@ -31,6 +31,11 @@ void IncrementalSearch::reset(const Cell& source, const Cell& target) {
   rhs_.assign(static_cast<std::size_t>(graph_.id_count()), kInfiniteCost);
   visited_.assign(static_cast<std::size_t>(graph_.id_count()), 0);
   visit_ = 0;
+  on_path_.assign(static_cast<std::size_t>(graph_.id_count()), 0);
+  path_index_.assign(static_cast<std::size_t>(graph_.id_count()), 0);
+  path_stamp_ = 0;
+  path_valid_ = false;
+  path_.clear();
   open_.clear();
   rhs_[source_] = 0;
   update_vertex(source_);
@@ -65,6 +70,7 @@ void IncrementalSearch::set_cells(std::span<const CellChange> changes) {
   for (const CellId b : changed_) {
     for (const CellId offset : graph_.around_offsets()) {
       const CellId s = b + offset;
+      if (on_path_[s] == path_stamp_) path_valid_ = false;
       if (s == source_ || visited_[s] == visit_) continue;
       visited_[s] = visit_;
       // When cells were only blocked, costs only rose: an infinite rhs stays infinite.
@@ -97,7 +103,21 @@ SearchResult IncrementalSearch::compute() {
       expand(u);
     }
   }
+  SearchResult result;
+  if (reuse_path(result)) return result;
   return trace_path();
+}
+
+bool IncrementalSearch::reuse_path(SearchResult& result) const {
+  if (expansions_ != 0 || !path_valid_ || on_path_[target_] != path_stamp_) return false;
+  result.expansions = 0;
+  result.status = SearchStatus::found;
+  const auto first = static_cast<std::size_t>(path_index_[target_]);
+  result.cost = path_rest_cost_[first];
+  for (std::size_t i = first; i < path_.size(); ++i) {
+    result.path.push_back(graph_.cell(path_[i]));
+  }
+  return true;
 }
 
 Key IncrementalSearch::key(CellId s) const {
@@ -150,9 +170,17 @@ void IncrementalSearch::expand(CellId u) {
   }
 }
 
-SearchResult IncrementalSearch::trace_path() const {
+SearchResult IncrementalSearch::trace_path() {
   SearchResult result;
   result.expansions = expansions_;
+  // A new stamp forgets the previous path's cells.
+  if (++path_stamp_ == 0) {
+    std::fill(on_path_.begin(), on_path_.end(), 0);
+    path_stamp_ = 1;
+  }
+  path_.clear();
+  path_rest_cost_.clear();
+  path_valid_ = false;
   if (rhs_[target_] >= kInfiniteCost) return result;
 
   // From the target, always step to the neighbour v minimizing c + g(v)
@@ -174,9 +202,19 @@ SearchResult IncrementalSearch::trace_path() const {
       throw std::logic_error("incremental search: no consistent path to trace");
     }
     result.cost += step;
+    path_rest_cost_.push_back(step);  // the step costs, summed from the end below
     result.path.push_back(graph_.cell(next));
     s = next;
   }
+  path_rest_cost_.push_back(0);
+  for (std::size_t i = path_rest_cost_.size() - 1; i-- > 0;) path_rest_cost_[i] += path_rest_cost_[i + 1];
+  for (const Cell& c : result.path) {
+    const CellId id = graph_.id(c);
+    on_path_[id] = path_stamp_;
+    path_index_[id] = static_cast<std::int32_t>(path_.size());
+    path_.push_back(id);
+  }
+  path_valid_ = true;
   return result;
 }
 

@@ -37,6 +37,10 @@ class IncrementalSearch {
 
   /// Brings the search up to date and returns the cheapest path from the
   /// target to the source (target first), with the expansions of this call.
+  /// When nothing was expanded, the target lies on the last path and no map
+  /// change touched a cell of it, that path's rest is returned without
+  /// tracing: no g changed and no move out of a path cell did, so tracing
+  /// would step exactly the same way.
   SearchResult compute();
 
   const GridGraph& graph() const { return graph_; }
@@ -50,7 +54,9 @@ class IncrementalSearch {
   /// min over neighbours v of c(s, v) + g(v).
   Cost best_rhs(CellId s) const;
   void expand(CellId u);
-  SearchResult trace_path() const;
+  SearchResult trace_path();
+  /// The last path from the target on, if still valid (see compute()).
+  bool reuse_path(SearchResult& result) const;
 
   GridGraph& graph_;
   Cell source_cell_;
@@ -66,6 +72,14 @@ class IncrementalSearch {
   std::vector<CellId> changed_;          ///< scratch for set_cells()
   std::vector<std::uint32_t> visited_;   ///< stamp: rhs already updated in this set_cells()
   std::uint32_t visit_ = 0;
+  // The last traced path (target first, source last) with each of its cells'
+  // index in it, valid where on_path_ equals path_stamp_.
+  std::vector<CellId> path_;
+  std::vector<Cost> path_rest_cost_;  ///< cost from path_[i] to the source
+  std::vector<std::uint32_t> on_path_;
+  std::vector<std::int32_t> path_index_;
+  std::uint32_t path_stamp_ = 0;
+  bool path_valid_ = false;  ///< no change touched path_ since it was traced
 };
 
 }  // namespace campo::grid

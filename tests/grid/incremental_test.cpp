@@ -151,6 +151,32 @@ TEST(DStarLite, KeyModifierKeepsReplansExactAfterLongMoves) {
   test::expect_valid_path(graph, detour, start, goal);
 }
 
+// With no expansion and no change next to the path, the rest of the last
+// path is returned as it was (not traced again); a change next to it, even
+// one that only forbids a diagonal's corner, forces a fresh trace.
+TEST(DStarLite, KeepsThePathWhenNoChangeTouchesIt) {
+  GridGraph graph({30, 30, 1}, Connectivity::eight);
+  const Cell goal{25, 25, 0};
+  Cell start{2, 2, 0};
+  DStarLite dstar(graph, start, goal);
+  AStar astar(graph);
+  const SearchResult first = dstar.plan();  // the diagonal (2,2) -> (25,25)
+  start = first.path[3];
+  dstar.move_start(start);
+  dstar.set_cells(std::vector<CellChange>{{{20, 3, 0}, CellState::blocked}});
+  const SearchResult kept = dstar.plan();
+  EXPECT_EQ(kept.expansions, 0);
+  EXPECT_EQ(kept.path, std::vector<Cell>(first.path.begin() + 3, first.path.end()));
+  EXPECT_EQ(kept.cost, astar.plan(start, goal).cost);
+  test::expect_valid_path(graph, kept, start, goal);
+  // (10, 9) is beside the diagonal: the move (9,9) -> (10,10) would cut its corner.
+  dstar.set_cells(std::vector<CellChange>{{{10, 9, 0}, CellState::blocked}});
+  const SearchResult moved = dstar.plan();
+  EXPECT_EQ(moved.cost, astar.plan(start, goal).cost);
+  test::expect_valid_path(graph, moved, start, goal);
+  EXPECT_NE(moved.path, kept.path);
+}
+
 TEST(DStarLite, GoalCutOffThenReopened) {
   GridGraph graph({10, 10, 1}, Connectivity::eight);
   const Cell start{0, 0, 0}, goal{8, 8, 0};
