@@ -882,7 +882,9 @@ cv::Mat draw_map(const Scene& scene, const RunView& run, const FigureStyle& styl
   return draw_map_figure(scene, plan, layout_map(plan, style), run_title(style, run, "map"));
 }
 
-cv::Mat draw_height_map(const Scene& scene, const RunView& run, const FigureStyle& style) {
+namespace {
+
+MapPlan plan_height_map(const Scene& scene, const RunView& run, const FigureStyle& style) {
   if (run.height_map.empty()) throw std::invalid_argument("the run recorded no height map");
   MapPlan plan = plan_map(scene, {&run}, style, false);
   plan.height_map = &run.height_map;
@@ -902,6 +904,17 @@ cv::Mat draw_height_map(const Scene& scene, const RunView& run, const FigureStyl
   plan.legend.clear();
   plan.legend.push_back(line_entry(kTrackHalo, 2, "track"));
   add_symbol_entries(plan, scene);
+  return plan;
+}
+
+}  // namespace
+
+FigureLayout height_map_layout(const Scene& scene, const RunView& run, const FigureStyle& style) {
+  return layout_map(plan_height_map(scene, run, style), style);
+}
+
+cv::Mat draw_height_map(const Scene& scene, const RunView& run, const FigureStyle& style) {
+  const MapPlan plan = plan_height_map(scene, run, style);
   return draw_map_figure(scene, plan, layout_map(plan, style), run_title(style, run, "reconstructed height map"));
 }
 

@@ -103,6 +103,7 @@ FigureLayout map_layout(const Scene& scene, const RunView& run, const FigureStyl
 /// bar, the scene's obstacles as outlines for comparison, the track and the
 /// mission, on the same frame as draw_map.
 cv::Mat draw_height_map(const Scene& scene, const RunView& run, const FigureStyle& style = {});
+FigureLayout height_map_layout(const Scene& scene, const RunView& run, const FigureStyle& style = {});
 
 cv::Mat draw_side_view(const Scene& scene, const RunView& run, const FigureStyle& style = {});
 FigureLayout side_view_layout(const Scene& scene, const RunView& run, const FigureStyle& style = {});

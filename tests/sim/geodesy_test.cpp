@@ -20,6 +20,21 @@ TEST(Geodesy, EcefOfReferencePoints) {
   EXPECT_NEAR(pole.head<2>().norm(), 0.0, 1e-6);
 }
 
+// The worked examples of IOGP/EPSG Guidance Note 7-2 (WGS 84): geographic
+// 3D to geocentric (method 9602) and geocentric to topocentric (method 9836).
+TEST(Geodesy, PublishedEpsgExamples) {
+  const auto dms = [](double d, double m, double s) { return d + m / 60.0 + s / 3600.0; };
+  const Geodetic point{dms(53, 48, 33.820), dms(2, 7, 46.380), 73.0};
+  const Eigen::Vector3d ecef = geodetic_to_ecef(point);
+  EXPECT_NEAR(ecef.x(), 3771793.968, 1e-3);
+  EXPECT_NEAR(ecef.y(), 140253.342, 1e-3);
+  EXPECT_NEAR(ecef.z(), 5124304.349, 1e-3);
+  const Eigen::Vector3d enu = geodetic_to_enu(point, {55.0, 5.0, 200.0});
+  EXPECT_NEAR(enu.x(), -189013.869, 1e-3);
+  EXPECT_NEAR(enu.y(), -128642.040, 1e-3);
+  EXPECT_NEAR(enu.z(), -4220.171, 1e-3);
+}
+
 TEST(Geodesy, EcefRoundTrip) {
   for (double lat : {-89.0, -45.5, 0.0, 12.3, 40.821, 89.9}) {
     for (double lon : {-179.0, -20.0, 0.0, 14.7035, 120.0}) {
