@@ -1,0 +1,116 @@
+#include "planners/follow_the_gap.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "planners/pure_pursuit.hpp"
+
+namespace campo {
+
+int bubble_half_width(double radius_m, double nearest_range_m, double increment_rad) {
+  // Touching (or a reading below zero): every sector; callers clip to the scan.
+  constexpr int kAll = std::numeric_limits<int>::max() / 2;
+  if (!(nearest_range_m > 0.0)) return kAll;
+  const double sectors = radius_m / (nearest_range_m * std::abs(increment_rad));
+  if (!(sectors < kAll)) return kAll;
+  // A hair of tolerance so an exact quotient is not pushed up by rounding.
+  return static_cast<int>(std::ceil(sectors - 1e-9));
+}
+
+FollowTheGapStep follow_the_gap_step(const FollowTheGapConfig& config, FollowTheGapState& state,
+                                     const PlanarScanView& scan, double goal_bearing_rad, double robot_heading_rad) {
+  FollowTheGapStep step;
+  step.heading_rad = goal_bearing_rad;
+  const int beams = static_cast<int>(scan.ranges_m.size());
+  const auto saturated = static_cast<float>(config.max_range_m + 1.0);
+
+  // Saturate no-returns so they stand apart from readings just inside the range.
+  std::vector<float> ranges(scan.ranges_m.begin(), scan.ranges_m.end());
+  for (float& r : ranges) {
+    if (!std::isfinite(r) || r >= config.max_range_m) r = saturated;
+  }
+  if (beams == 0) return step;
+  const auto nearest = std::min_element(ranges.begin(), ranges.end());
+  step.nearest_beam = static_cast<int>(nearest - ranges.begin());
+  step.nearest_range_m = *nearest;
+  step.active = step.nearest_range_m < config.activation_range_m;
+  if (!step.active) {
+    state.has_previous = false;
+    return step;
+  }
+
+  // Safety bubble: the rover as a point, the nearest obstacle grown by R.
+  const double d_min = step.nearest_range_m;
+  step.bubble_half_width = bubble_half_width(config.bubble_radius_m, d_min, scan.increment_rad);
+  step.bubble_first_beam = std::max(0, step.nearest_beam - step.bubble_half_width);
+  step.bubble_last_beam = std::min(beams - 1, step.nearest_beam + step.bubble_half_width);
+  std::fill(ranges.begin() + step.bubble_first_beam, ranges.begin() + step.bubble_last_beam + 1, 0.0f);
+
+  // Gaps: maximal runs of unblocked beams without a range step above the threshold.
+  const double w = config.alpha_m / d_min;
+  for (int i = 0; i < beams;) {
+    if (ranges[i] <= 0.0f) {
+      ++i;
+      continue;
+    }
+    ScanGap g;
+    g.first_beam = i;
+    double sum = ranges[i];
+    while (i + 1 < beams && ranges[i + 1] > 0.0f && std::abs(ranges[i + 1] - ranges[i]) <= config.gap_jump_m) {
+      sum += ranges[++i];
+    }
+    g.last_beam = i++;
+    const double r1 = ranges[g.first_beam];
+    const double r2 = ranges[g.last_beam];
+    const double spread = scan.angle(g.last_beam) - scan.angle(g.first_beam);
+    g.width_m = std::sqrt(std::max(0.0, r1 * r1 + r2 * r2 - 2.0 * r1 * r2 * std::cos(spread)));
+    g.mean_range = sum / (g.last_beam - g.first_beam + 1) / config.max_range_m;
+    g.center_rad = 0.5 * (scan.angle(g.first_beam) + scan.angle(g.last_beam));
+    // Near obstacles (large a / d_min) pull the heading toward the gap's centre, far ones toward the goal.
+    g.heading_rad = (w * g.center_rad + goal_bearing_rad) / (w + 1.0);
+    g.score = config.k_width * g.width_m * g.mean_range +
+              config.k_heading * (M_PI - std::abs(g.heading_rad - goal_bearing_rad));
+    step.gaps.push_back(g);
+  }
+
+  // Hysteresis: the gap sharing most of the previous choice's sectors (at
+  // least half a beam, compared in angle) gets the bonus.
+  const double dalpha = std::abs(scan.increment_rad);
+  const auto half_width = [&](const ScanGap& g) { return 0.5 * (g.last_beam - g.first_beam + 1) * dalpha; };
+  if (state.has_previous) {
+    const double previous_center = wrap_to_pi(state.previous_center_world_rad - robot_heading_rad);
+    double best_overlap = 0.5 * dalpha;
+    ScanGap* favoured = nullptr;
+    for (ScanGap& g : step.gaps) {
+      const double overlap = std::min(
+          {half_width(g) + state.previous_half_width_rad - std::abs(wrap_to_pi(g.center_rad - previous_center)),
+           2.0 * half_width(g), 2.0 * state.previous_half_width_rad});
+      if (overlap > best_overlap) {
+        best_overlap = overlap;
+        favoured = &g;
+      }
+    }
+    if (favoured != nullptr) {
+      favoured->score += config.hysteresis_bonus;
+      favoured->previous = true;
+    }
+  }
+
+  const auto best = std::max_element(step.gaps.begin(), step.gaps.end(),
+                                     [](const ScanGap& a, const ScanGap& b) { return a.score < b.score; });
+  if (best == step.gaps.end()) {
+    state.has_previous = false;
+  } else {
+    step.chosen = static_cast<int>(best - step.gaps.begin());
+    step.heading_rad = best->heading_rad;
+    state.has_previous = true;
+    state.previous_center_world_rad = wrap_to_pi(best->center_rad + robot_heading_rad);
+    state.previous_half_width_rad = half_width(*best);
+  }
+  step.ranges_m = std::move(ranges);
+  return step;
+}
+
+}  // namespace campo

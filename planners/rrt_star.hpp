@@ -1,0 +1,74 @@
+#pragma once
+/// RRT* (Karaman & Frazzoli 2011; seed 003 §2.2.3, SPEC §7.3) on an
+/// OccupancyGrid: the rover's sampling-based alternative global planner.
+/// Deterministic: the samples come from a seeded generator and the budget is
+/// an iteration count, never the wall clock, so the same inputs give the
+/// same tree and path.
+#include <cstdint>
+#include <limits>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "grid/movingai.hpp"
+#include "sim/occupancy_grid.hpp"
+
+namespace campo {
+
+struct RrtStarConfig {
+  std::uint64_t seed = 0;        ///< of the sampler (campo::Rng, mt19937_64)
+  double step_m = 2.0;           ///< lambda: the farthest a new node lies from its nearest node, > 0
+  /// > 0: fixed rewiring radius. 0: shrinking radius
+  /// min(gamma (log n / n)^(1/2), lambda), n the number of nodes.
+  double rewire_radius_m = 0.0;
+  /// gamma of the shrinking radius; 0: Karaman & Frazzoli's bound for the
+  /// plane, 2 (1.5 A_free / pi)^(1/2), A_free the grid's free area. >= 0.
+  double rewire_gamma_m = 0.0;
+  double goal_radius_m = 1.0;    ///< a node this near the goal solves the problem, > 0
+  double goal_bias = 0.05;       ///< probability of sampling the goal itself, [0, 1]
+  int max_iterations = 5000;     ///< the budget, [0, 10'000'000]
+};
+
+/// Throws std::invalid_argument naming the first field out of range.
+void validate(const RrtStarConfig& config);
+
+enum class RrtStarStatus {
+  solved,         ///< a path reaches the goal region
+  no_solution,    ///< none within the iteration budget
+  invalid_start,  ///< the start's cell is occupied (or outside the grid)
+  invalid_goal,   ///< the goal's cell is occupied (or outside the grid)
+};
+std::string_view to_string(RrtStarStatus status);
+
+struct RrtStarResult {
+  RrtStarStatus status = RrtStarStatus::no_solution;
+  std::vector<Eigen::Vector2d> path_m;  ///< start .. a node inside the goal region; empty unless solved
+  double cost_m = std::numeric_limits<double>::infinity();  ///< length of path_m
+  int first_solution_iteration = -1;  ///< 1-based iteration that first reached the goal region; 0: start inside it
+  int iterations = 0;                 ///< iterations run
+  std::size_t nodes = 0;              ///< tree size at the end
+  /// Best cost after each iteration (index i: after iteration i + 1); +inf
+  /// before the first solution. Never increases: rewiring only lowers costs.
+  std::vector<double> best_cost_by_iteration;
+};
+
+/// Grows the tree from `start_m` for config.max_iterations iterations:
+/// sample (the goal with probability goal_bias, else uniform over the grid),
+/// steer from the nearest node by at most lambda, keep the new node when the
+/// segment is free (OccupancyGrid::segment_free), connect it through the
+/// cheapest free neighbour within the rewiring radius, then rewire the
+/// neighbours through it when that is cheaper. The path is the cheapest
+/// tree path to a node inside the goal region. Throws std::invalid_argument
+/// for a bad config.
+RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m, const Eigen::Vector2d& goal_m,
+                       const RrtStarConfig& config = {});
+
+/// A MovingAI map as an occupancy grid of 1 m cells, origin (0, 0): map
+/// cell (x, y), y counted from the top row, becomes grid cell
+/// (x, height - 1 - y); impassable cells are occupied.
+OccupancyGrid to_occupancy_grid(const grid::MovingAiMap& map);
+/// Centre of a MovingAI map cell in that grid's world coordinates.
+Eigen::Vector2d movingai_cell_centre(const grid::MovingAiMap& map, const grid::Cell& cell);
+
+}  // namespace campo

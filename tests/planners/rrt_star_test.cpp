@@ -1,0 +1,180 @@
+#include "planners/rrt_star.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace campo {
+namespace {
+
+/// 20 m x 20 m of 0.25 m cells with a wall across y = 10 (x < 14) and a
+/// post field, so straight lines from start to goal are blocked.
+OccupancyGrid walled_field() {
+  OccupancyGrid grid;
+  grid.cols = grid.rows = 80;
+  grid.resolution_m = 0.25;
+  grid.occupied.assign(80 * 80, 0);
+  const auto occupy = [&](double x0, double y0, double x1, double y1) {
+    for (int row = 0; row < grid.rows; ++row) {
+      for (int col = 0; col < grid.cols; ++col) {
+        const Eigen::Vector2d c = grid.centre_of(col, row);
+        if (c.x() > x0 && c.x() < x1 && c.y() > y0 && c.y() < y1) grid.occupied[static_cast<std::size_t>(row) * 80 + col] = 1;
+      }
+    }
+  };
+  occupy(0.0, 9.5, 14.0, 10.5);
+  occupy(15.0, 4.0, 16.0, 5.0);
+  occupy(5.0, 14.0, 6.0, 17.0);
+  return grid;
+}
+
+const Eigen::Vector2d kStart(2.0, 2.0);
+const Eigen::Vector2d kGoal(3.0, 18.0);
+
+double path_length(const std::vector<Eigen::Vector2d>& path) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < path.size(); ++i) length += (path[i] - path[i - 1]).norm();
+  return length;
+}
+
+void expect_valid_solution(const OccupancyGrid& grid, const RrtStarResult& result, const Eigen::Vector2d& start,
+                           const Eigen::Vector2d& goal, const RrtStarConfig& config) {
+  ASSERT_EQ(result.status, RrtStarStatus::solved);
+  ASSERT_GE(result.path_m.size(), 2u);
+  EXPECT_EQ(result.path_m.front(), start);
+  EXPECT_LE((result.path_m.back() - goal).norm(), config.goal_radius_m);
+  for (std::size_t i = 1; i < result.path_m.size(); ++i) {
+    EXPECT_TRUE(grid.segment_free(result.path_m[i - 1], result.path_m[i])) << i;
+    EXPECT_LE((result.path_m[i] - result.path_m[i - 1]).norm(), std::max(config.step_m, config.rewire_radius_m) + 1e-9);
+  }
+  EXPECT_NEAR(result.cost_m, path_length(result.path_m), 1e-9);
+}
+
+TEST(RrtStar, CostNeverIncreasesAndPathsStayCollisionFreeOverSeeds) {
+  const OccupancyGrid grid = walled_field();
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    SCOPED_TRACE(seed);
+    RrtStarConfig config;
+    config.seed = seed;
+    config.max_iterations = 3000;
+    const RrtStarResult result = rrt_star(grid, kStart, kGoal, config);
+    expect_valid_solution(grid, result, kStart, kGoal, config);
+    ASSERT_EQ(result.best_cost_by_iteration.size(), 3000u);
+    ASSERT_GT(result.first_solution_iteration, 0);
+    for (int i = 0; i < 3000; ++i) {
+      const double cost = result.best_cost_by_iteration[static_cast<std::size_t>(i)];
+      EXPECT_EQ(std::isinf(cost), i + 1 < result.first_solution_iteration) << i;
+      if (i > 0) {
+        EXPECT_LE(cost, result.best_cost_by_iteration[static_cast<std::size_t>(i - 1)]) << i;
+      }
+    }
+    EXPECT_EQ(result.best_cost_by_iteration.back(), result.cost_m);
+    // Round the wall's east end: the shortest path into the goal region is
+    // 14.15 + 1 + 13.31 - 1 = 27.46 m.
+    EXPECT_GT(result.cost_m, 27.4);
+    EXPECT_LT(result.cost_m, 29.5);
+  }
+}
+
+TEST(RrtStar, MoreIterationsGiveCheaperPaths) {
+  const OccupancyGrid grid = walled_field();
+  double first_total = 0.0, final_total = 0.0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    RrtStarConfig config;
+    config.seed = seed;
+    config.max_iterations = 4000;
+    const RrtStarResult result = rrt_star(grid, kStart, kGoal, config);
+    ASSERT_EQ(result.status, RrtStarStatus::solved);
+    first_total += result.best_cost_by_iteration[static_cast<std::size_t>(result.first_solution_iteration - 1)];
+    final_total += result.cost_m;
+  }
+  EXPECT_LT(final_total, first_total);
+}
+
+TEST(RrtStar, SameSeedSamePath) {
+  const OccupancyGrid grid = walled_field();
+  RrtStarConfig config;
+  config.seed = 42;
+  config.max_iterations = 1500;
+  const RrtStarResult a = rrt_star(grid, kStart, kGoal, config);
+  const RrtStarResult b = rrt_star(grid, kStart, kGoal, config);
+  ASSERT_EQ(a.status, RrtStarStatus::solved);
+  EXPECT_EQ(a.path_m, b.path_m);
+  EXPECT_EQ(a.cost_m, b.cost_m);
+  EXPECT_EQ(a.first_solution_iteration, b.first_solution_iteration);
+  EXPECT_EQ(a.nodes, b.nodes);
+  config.seed = 43;
+  EXPECT_NE(rrt_star(grid, kStart, kGoal, config).path_m, a.path_m);
+}
+
+TEST(RrtStar, FixedRewiringRadiusAlsoConverges) {
+  const OccupancyGrid grid = walled_field();
+  RrtStarConfig config;
+  config.rewire_radius_m = 3.0;
+  config.max_iterations = 2000;
+  const RrtStarResult result = rrt_star(grid, kStart, kGoal, config);
+  expect_valid_solution(grid, result, kStart, kGoal, config);
+  EXPECT_LT(result.cost_m, 29.5);
+}
+
+TEST(RrtStar, TypedStatusForImpossibleInput) {
+  OccupancyGrid grid = walled_field();
+  EXPECT_EQ(rrt_star(grid, {5.0, 10.0}, kGoal).status, RrtStarStatus::invalid_start);
+  EXPECT_EQ(rrt_star(grid, kStart, {5.0, 15.0}).status, RrtStarStatus::invalid_goal);
+  EXPECT_EQ(rrt_star(grid, kStart, {25.0, 5.0}).status, RrtStarStatus::invalid_goal);  // outside
+  // Close the gap: the goal side is unreachable.
+  for (int row = 0; row < grid.rows; ++row) {
+    for (int col = 0; col < grid.cols; ++col) {
+      const double y = grid.centre_of(col, row).y();
+      if (y > 9.5 && y < 10.5) grid.occupied[static_cast<std::size_t>(row) * grid.cols + col] = 1;
+    }
+  }
+  RrtStarConfig config;
+  config.max_iterations = 500;
+  const RrtStarResult blocked = rrt_star(grid, kStart, kGoal, config);
+  EXPECT_EQ(blocked.status, RrtStarStatus::no_solution);
+  EXPECT_TRUE(blocked.path_m.empty());
+  EXPECT_EQ(blocked.first_solution_iteration, -1);
+  EXPECT_EQ(blocked.iterations, 500);
+  // Start already inside the goal region.
+  const RrtStarResult there = rrt_star(grid, kStart, kStart + Eigen::Vector2d(0.5, 0.0));
+  EXPECT_EQ(there.status, RrtStarStatus::solved);
+  EXPECT_EQ(there.first_solution_iteration, 0);
+  EXPECT_EQ(there.cost_m, 0.0);
+  config.goal_bias = 1.5;
+  EXPECT_THROW(rrt_star(grid, kStart, kGoal, config), std::invalid_argument);
+  EXPECT_EQ(to_string(RrtStarStatus::no_solution), "no_solution");
+}
+
+TEST(RrtStar, MovingAiMapsBecomeOneMetreGrids) {
+  const grid::MovingAiMap map =
+      grid::read_movingai_map(std::string(CAMPO_SOURCE_DIR) + "/tests/data/movingai/arena.map");
+  const OccupancyGrid grid = to_occupancy_grid(map);
+  ASSERT_EQ(grid.cols, map.width);
+  ASSERT_EQ(grid.rows, map.height);
+  EXPECT_EQ(grid.resolution_m, 1.0);
+  for (int y = 0; y < map.height; ++y) {
+    for (int x = 0; x < map.width; ++x) {
+      const Eigen::Vector2d centre = movingai_cell_centre(map, {x, y, 0});
+      ASSERT_EQ(grid.is_occupied(centre), !map.is_passable(x, y)) << x << ", " << y;
+    }
+  }
+  // The map's top row is the grid's north edge.
+  EXPECT_TRUE(movingai_cell_centre(map, {0, 0, 0}).isApprox(Eigen::Vector2d(0.5, 48.5)));
+
+  // A long arena problem (octile optimum 62.15 cells); any-angle paths may be shorter.
+  const Eigen::Vector2d start = movingai_cell_centre(map, {1, 7, 0});
+  const Eigen::Vector2d goal = movingai_cell_centre(map, {47, 46, 0});
+  RrtStarConfig config;
+  config.max_iterations = 4000;
+  const RrtStarResult result = rrt_star(grid, start, goal, config);
+  expect_valid_solution(grid, result, start, goal, config);
+  EXPECT_GT(result.cost_m, (goal - start).norm() - config.goal_radius_m);
+  EXPECT_LT(result.cost_m, 62.15 * 1.1);
+}
+
+}  // namespace
+}  // namespace campo
