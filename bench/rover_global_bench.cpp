@@ -1,13 +1,18 @@
 // The rover's alternative planners (SPEC §7.3): RRT* on the MovingAI arena
 // map (iterations to the first solution, cost after a fixed budget, averaged
-// over seeds), the occupancy grid of the bundled vineyard (100 m x 100 m at
+// over seeds; time to the first solution and cost after 1 s of wall time),
+// the occupancy grid of the bundled vineyard (100 m x 100 m at
 // 0.1 m, about a million cells), one VFH+ step between its rows, and the
 // smoothing of an RRT* path into a drivable one.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <chrono>
 #include <numbers>
 #include <string>
+#include <vector>
 
+#include "grid/astar.hpp"
 #include "grid/movingai.hpp"
 #include "planners/path_smoothing.hpp"
 #include "planners/rrt_star.hpp"
@@ -26,13 +31,17 @@ struct ArenaProblem {
   OccupancyGrid grid;
   Eigen::Vector2d start;
   Eigen::Vector2d goal;
+  double astar_optimum = 0.0;  ///< octile cost in cells (= metres) of the same problem
 };
 
 const ArenaProblem& arena() {
   static const ArenaProblem problem = [] {
     const grid::MovingAiMap map = grid::read_movingai_map(kSourceDir + "/tests/data/movingai/arena.map");
-    return ArenaProblem{to_occupancy_grid(map), movingai_cell_centre(map, {1, 7, 0}),
-                        movingai_cell_centre(map, {47, 46, 0})};
+    const grid::Cell start{1, 7, 0}, goal{47, 46, 0};
+    grid::GridGraph graph = grid::to_grid_graph(map);
+    const double optimum = grid::to_cells(grid::AStar(graph).plan(start, goal).cost);
+    return ArenaProblem{to_occupancy_grid(map), movingai_cell_centre(map, start), movingai_cell_centre(map, goal),
+                        optimum};
   }();
   return problem;
 }
@@ -67,6 +76,58 @@ void BM_RrtStarArena(benchmark::State& state) {
     state.counters["final_cost_m"] = final_cost / solved;
   }
   state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+
+/// Time to the first solution and cost after 1 s of wall time, seed 0,
+/// default config. rrt_star's budget is iterations, and the first k
+/// iterations of a run are the same for any budget >= k, so: runs of doubling
+/// budgets (1000, 2000, ...) until one takes >= 1 s; the iteration count
+/// reached at 1 s is interpolated linearly in time between the last two runs,
+/// and the cost there is read from the last run's best_cost_by_iteration.
+/// The first solution's time is that of one run stopped at its iteration.
+/// Costs end within goal_radius_m (1 m) of the goal's centre, as in
+/// BM_RrtStarArena; astar_optimum is the octile optimum, centre to centre.
+void BM_RrtStarCostAfterOneSecond(benchmark::State& state) {
+  using Clock = std::chrono::steady_clock;
+  const ArenaProblem& problem = arena();
+  const auto timed = [&](int iterations, RrtStarResult& result) {
+    RrtStarConfig config;
+    config.max_iterations = iterations;
+    const auto t0 = Clock::now();
+    result = rrt_star(problem.grid, problem.start, problem.goal, config);
+    benchmark::DoNotOptimize(result.cost_m);
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+  };
+  constexpr int kMaxIterations = 10'000'000;  // rrt_star's limit
+  double iterations_in_1s = 0.0, cost_after_1s = 0.0, first_solution_ms = 0.0, first_solution = -1.0, last_s = 0.0;
+  for (auto _ : state) {
+    RrtStarResult result;
+    int previous = 0, budget = 1000;
+    double previous_s = 0.0, seconds = 0.0;
+    for (;;) {
+      seconds = timed(budget, result);
+      if (seconds >= 1.0 || budget >= kMaxIterations) break;
+      previous = budget;
+      previous_s = seconds;
+      budget = std::min(2 * budget, kMaxIterations);
+    }
+    last_s = seconds;
+    const double fraction = seconds >= 1.0 ? (1.0 - previous_s) / (seconds - previous_s) : 1.0;
+    const int reached = std::clamp(static_cast<int>(previous + fraction * (budget - previous)), 1, budget);
+    iterations_in_1s = reached;
+    cost_after_1s = result.best_cost_by_iteration[static_cast<std::size_t>(reached - 1)];
+    first_solution = result.first_solution_iteration;
+    if (result.first_solution_iteration > 0) {
+      RrtStarResult first;
+      first_solution_ms = 1e3 * timed(result.first_solution_iteration, first);
+    }
+  }
+  state.counters["iterations_in_1s"] = iterations_in_1s;
+  state.counters["cost_after_1s_m"] = cost_after_1s;
+  state.counters["first_solution_iteration"] = first_solution;
+  state.counters["first_solution_ms"] = first_solution_ms;
+  state.counters["astar_optimum_m"] = problem.astar_optimum;
+  state.counters["last_run_s"] = last_s;
 }
 
 void BM_OccupancyGridVineyard(benchmark::State& state) {
@@ -119,6 +180,7 @@ void BM_SmoothRrtStarPath(benchmark::State& state) {
 }
 
 BENCHMARK(BM_RrtStarArena)->Arg(500)->Arg(2000)->Arg(8000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RrtStarCostAfterOneSecond)->Iterations(1)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OccupancyGridVineyard)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_InflateVineyard)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_VfhPlusStep)->Unit(benchmark::kMicrosecond);

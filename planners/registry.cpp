@@ -4,6 +4,7 @@
 
 #include "planners/depth_reactive.hpp"
 #include "planners/dstar_lite_3d.hpp"
+#include "planners/rover_route.hpp"
 #include "planners/straight.hpp"
 #include "sim/json_reader.hpp"
 
@@ -16,6 +17,8 @@ constexpr std::array kPlanners{
     PlannerEntry{"depth_reactive", "seed 000: reactive quadrotor navigation on dilated depth maps (TrovaWP, wall following)",
                  &make_depth_reactive_planner},
     PlannerEntry{"dstar_lite_3d", "seed 001: D* Lite on a LIDAR-mapped 3D grid, flying cell to cell", &make_dstar_lite_3d_planner},
+    PlannerEntry{"rover_route", "seed 003: Dubins (or A*/RRT*) route, pure pursuit, follow-the-gap (or VFH+) avoidance",
+                 &make_rover_route_planner},
 };
 
 }  // namespace

@@ -57,6 +57,8 @@ const cv::Scalar kPlannedPath = rgb(60, 60, 60);
 const cv::Scalar kSensorHit = rgb(214, 39, 40);
 const cv::Scalar kVehicleLine = rgb(31, 119, 180);
 const cv::Scalar kNeutralMarker = rgb(120, 120, 120);  // legend symbols whose colour is the run's
+const cv::Scalar kAvoiding = rgb(255, 196, 100);  // pale amber band under the track while avoiding
+constexpr int kAvoidingBandPx = 15;               // its width: 5 px of amber each side of the track's halo
 constexpr int kMinColorbarPx = 160;
 constexpr int kMaxColorbarPx = 320;
 constexpr int kLegendGapPx = 24;  // between the plot and the legend
@@ -85,6 +87,30 @@ bool contains_near(const std::vector<Eigen::Vector3d>& points, const Eigen::Vect
 
 bool is_reached(const RunView& run, std::size_t index) {
   return std::find(run.reached.begin(), run.reached.end(), static_cast<int>(index)) != run.reached.end();
+}
+
+// The track's positions from time `from` to `to`, interpolated at both ends; empty when
+// the track is or the interval is inverted.
+std::vector<Eigen::Vector3d> track_between(const std::vector<TrackPoint>& track, double from, double to) {
+  std::vector<Eigen::Vector3d> out;
+  if (track.empty() || !(from <= to)) return out;
+  const auto by_time = [](const TrackPoint& p, double t) { return p.time_s < t; };
+  const auto at = [&](double t) -> Eigen::Vector3d {
+    const auto next = std::lower_bound(track.begin(), track.end(), t, by_time);
+    if (next == track.begin()) return next->position_m;
+    if (next == track.end()) return track.back().position_m;
+    const TrackPoint& a = *(next - 1);
+    const double span = next->time_s - a.time_s;
+    const double f = span > 0.0 ? (t - a.time_s) / span : 1.0;
+    return a.position_m + f * (next->position_m - a.position_m);
+  };
+  out.push_back(at(from));
+  for (auto it = std::upper_bound(track.begin(), track.end(), from, [](double t, const TrackPoint& p) { return t < p.time_s; });
+       it != track.end() && it->time_s < to; ++it) {
+    out.push_back(it->position_m);
+  }
+  out.push_back(at(to));
+  return out;
 }
 
 // ---------------------------------------------------------------- legend symbols
@@ -298,6 +324,7 @@ MapPlan plan_map(const Scene& scene, std::vector<const RunView*> runs, const Fig
     }
     if (!(plan.value_hi - plan.value_lo > 1e-9)) plan.value_hi = plan.value_lo + 1.0;
     plan.legend.push_back(gradient_entry(style.coloring == TrackColoring::time ? "track, by time" : "track, by speed"));
+    if (!plan.runs.front()->avoiding_s.empty()) plan.legend.push_back(line_entry(kAvoiding, 11, "avoiding obstacle"));
   }
   if (overlay) {
     for (std::size_t i = 0; i < plan.runs.size(); ++i) {
@@ -471,6 +498,16 @@ cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLay
   for (std::size_t i = 0; i < plan.runs.size(); ++i) {
     const RunView& run = *plan.runs[i];
     const cv::Scalar own = run_color(i);
+    if (!plan.overlay && !plan.height_map) {
+      // Under everything else of the run, so the planned path and the track stay visible.
+      for (const auto& [from, until] : run.avoiding_s) {
+        const std::vector<cv::Point2d> band = to.all(track_between(run.track, from, until));
+        std::vector<cv::Point2d> thinned;
+        for (std::size_t k : thin_out(band)) thinned.push_back(band[k]);
+        if (thinned.size() == 1) thinned.push_back(thinned.front());  // a single spot: a round blob
+        figure::polyline(plot, thinned, kAvoiding, kAvoidingBandPx);
+      }
+    }
     if (!plan.height_map) {
       figure::dashed_polyline(plot, to.all(run.planned_path), plan.overlay ? own : kPlannedPath, 1, 7.0, 5.0);
     }

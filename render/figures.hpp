@@ -5,6 +5,7 @@
 /// and legend. Same inputs => same pixels.
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -43,6 +44,10 @@ struct RunView {
   std::vector<Eigen::Vector3d> planned_path;///< a global planner's planned path, if any
   std::vector<Eigen::Vector3d> sensor_hits; ///< range-sensor hits a mapping planner recorded ("lidar_hits")
   HeightMapView height_map;                 ///< what a mapping planner reconstructed, if any
+  /// Time intervals [start, end] of local obstacle avoidance, s (decisions
+  /// "avoiding": true, then false; one still open at the end closes at the
+  /// last track time), highlighted on the map.
+  std::vector<std::pair<double, double>> avoiding_s;
   std::string outcome;                      ///< run outcome, for titles
 };
 
@@ -86,7 +91,8 @@ struct FigureLayout {
 
 /// Top-down map (x east to the right, y north up, equal scales): terrain
 /// shading and contour lines, obstacle footprints, movers' paths, planned
-/// path, the track coloured by time or speed (with a colour bar), numbered
+/// path, the track coloured by time or speed (with a colour bar) over an
+/// amber band where the planner was avoiding an obstacle, numbered
 /// mission waypoints (filled when reached), planned and discarded
 /// intermediate waypoints, recorded sensor hits, start and goal, axes, scale
 /// bar, north arrow and a legend of the symbols present.

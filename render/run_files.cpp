@@ -1,5 +1,6 @@
 #include "render/run_files.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
@@ -77,9 +78,17 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
       v.mission.push_back(w);
     }
     // Planner decisions (docs/running.md): reached mission waypoints, intermediate
-    // waypoints set or dropped, a planned path.
+    // waypoints set or dropped, a planned path, obstacle avoidance switched on and off.
+    bool avoiding = false;
+    double avoiding_since = 0.0;
     for (const auto& event : run.record.value("events", nlohmann::json::array())) {
       const auto& d = event.at("decisions");
+      if (const auto a = d.find("avoiding"); a != d.end() && a->is_boolean()) {
+        const double t = event.at("time_s").get<double>();
+        if (a->get<bool>() && !avoiding) avoiding_since = t;
+        if (!a->get<bool>() && avoiding) v.avoiding_s.emplace_back(avoiding_since, t);
+        avoiding = a->get<bool>();
+      }
       for (const auto& i : d.value("reached_waypoints", nlohmann::json::array())) v.reached.push_back(i.get<int>());
       if (d.contains("planned_waypoint")) v.planned.push_back(vector3(d["planned_waypoint"]));
       if (d.contains("discarded_waypoint")) v.discarded.push_back(vector3(d["discarded_waypoint"]));
@@ -110,6 +119,10 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
         v.planned_path.clear();
         for (const auto& p : d["planned_path"]) v.planned_path.push_back(vector3(p));
       }
+    }
+    if (avoiding) {  // still on at the end: up to the last sample
+      v.avoiding_s.emplace_back(avoiding_since, v.track.empty() ? avoiding_since
+                                                                : std::max(avoiding_since, v.track.back().time_s));
     }
   } catch (const nlohmann::json::exception& e) {
     throw InputError((dir / "run.json").string(), "", std::string("malformed run record: ") + e.what());

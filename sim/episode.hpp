@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -33,7 +34,7 @@ struct EpisodeMetrics {
   std::string reason;
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;        ///< measured, so it differs between identical runs
-  double path_length_m = 0.0;      ///< flown/driven distance, integrated every physics step
+  double path_length_m = 0.0;      ///< distance travelled (flown/driven), integrated every physics step
   double path_ratio = 0.0;         ///< path length / nominal route (straight legs start -> waypoints)
   double min_clearance_m = 0.0;    ///< nearest approach of the vehicle's bounding sphere to an obstacle
   int collisions = 0;
@@ -47,6 +48,16 @@ struct EpisodeMetrics {
   int replans = 0;              ///< replanning steps ("replan")
   double replan_time_ms_median = 0.0;  ///< measured ("replan"/"time_ms")
   double replan_time_ms_max = 0.0;     ///< measured
+  /// Horizontal (x, y) distance of the vehicle, at every trajectory sample,
+  /// to the route in force then: the latest "planned_path" recorded at or
+  /// before the sample, as a polyline. Root mean square and maximum over the
+  /// samples that have a route (cross_track_error); zero when the planner
+  /// records no planned path.
+  double cross_track_rms_m = 0.0;
+  double cross_track_max_m = 0.0;
+  /// Simulated time spent in local obstacle avoidance: from each "avoiding":
+  /// true to the next "avoiding": false, or to the end of the run (avoiding_time).
+  double avoiding_time_s = 0.0;
 };
 nlohmann::json to_json(const EpisodeMetrics& metrics);
 
@@ -64,6 +75,27 @@ struct PlannerEvent {
   double time_s = 0.0;
   nlohmann::json decisions;
 };
+
+/// Cross-track error of a trajectory against the routes its planner recorded.
+struct CrossTrack {
+  double rms_m = 0.0;
+  double max_m = 0.0;
+  std::size_t samples = 0;  ///< samples measured: those with a route in force
+};
+
+/// The cross-track metrics of EpisodeMetrics from the samples and the events,
+/// both in time order. A "planned_path" decision (list of [x, y, z]; z is
+/// ignored) becomes the route for the samples at or after its time until the
+/// next one; an empty list leaves no route (samples skipped until the next),
+/// a single point is a route of one point. Samples before the first planned
+/// path are skipped; with none measured, everything is zero. Exact (the
+/// distance to the nearest segment), in about log(route segments) per sample.
+CrossTrack cross_track_error(std::span<const TrajectorySample> trajectory, std::span<const PlannerEvent> events);
+
+/// Total time between each "avoiding": true decision and the next "avoiding":
+/// false (repeated values change nothing); an avoidance still on at the end
+/// counts up to `end_time_s`. Events in time order.
+double avoiding_time(std::span<const PlannerEvent> events, double end_time_s);
 
 struct EpisodeResult {
   EpisodeMetrics metrics;

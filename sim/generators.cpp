@@ -183,10 +183,12 @@ void validate(const VineyardConfig& c) {
     // The widest footprint of a yawed box of edge e is its diagonal, sqrt(2) e.
     const double widest = std::sqrt(2.0) * c.obstacle_size_m[1];
     const double gap = c.row_spacing_m - 2.0 * half_width;
-    require(gap >= widest + 2.0 * kObstacleRowClearance_m,
+    const double needed = widest + kObstacleRowClearance_m + std::max(kObstacleRowClearance_m, c.obstacle_passage_m);
+    require(gap >= needed,
             "vineyard: the " + str(gap) + " m between rows cannot hold obstacles up to " + str(c.obstacle_size_m[1]) +
-                " m with " + str(kObstacleRowClearance_m) + " m clearance on each side (needs " +
-                str(widest + 2.0 * kObstacleRowClearance_m) + " m)");
+                " m with " + str(kObstacleRowClearance_m) + " m clearance on one side and a passage of " +
+                str(std::max(kObstacleRowClearance_m, c.obstacle_passage_m)) + " m on the other (needs " + str(needed) +
+                " m)");
     require(row_length >= widest, "vineyard: rows of " + str(row_length) + " m are shorter than obstacles up to " +
                                       str(widest) + " m across");
   }
@@ -386,7 +388,17 @@ std::vector<Shape> make_vineyard(const VineyardConfig& config, const std::string
     const double half_x = 0.5 * (c * size.x() + s * size.y());
     const double half_y = 0.5 * (s * size.x() + c * size.y());
     const double margin_x = half_width + kObstacleRowClearance_m + half_x;
-    const double x = rng.uniform(row_x(config, gap) + margin_x, row_x(config, gap + 1) - margin_x);
+    double lo = row_x(config, gap) + margin_x, hi = row_x(config, gap + 1) - margin_x;
+    if (config.obstacle_passage_m > kObstacleRowClearance_m) {
+      // Against one row or the other, leaving the passage on the far side.
+      const double shrink = config.obstacle_passage_m - kObstacleRowClearance_m;
+      if (rng.bernoulli(0.5)) {
+        hi -= shrink;
+      } else {
+        lo += shrink;
+      }
+    }
+    const double x = rng.uniform(lo, hi);
     const double y = rng.uniform(-0.5 * row_length + half_y, 0.5 * row_length - half_y);
 
     Shape obstacle;

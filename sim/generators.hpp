@@ -71,6 +71,10 @@ struct VineyardConfig {
   double fence_thickness_m = 0.1;
   int obstacle_count = 6;               ///< random boxes between rows, [0, 10000]
   Eigen::Vector2d obstacle_size_m{0.3, 0.8};  ///< edge length range (x, y, z alike)
+  /// Each obstacle leaves a free passage at least this wide between itself
+  /// and one of its rows (0: anywhere between the rows), so a vehicle of
+  /// that width can get past.
+  double obstacle_passage_m = 0.0;
   std::uint64_t seed = 1;
 };
 /// Shapes in the vineyard's local frame (z = 0 ground), aliased

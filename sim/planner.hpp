@@ -49,8 +49,12 @@ struct PlanResult {
   /// metrics and figures understand: "reached_waypoints" (indices of mission
   /// waypoints reached), "planned_waypoint" / "reached_intermediate" /
   /// "discarded_waypoint" ([x, y, z] of an intermediate waypoint set, reached,
-  /// dropped), "planned_path" (list of [x, y, z]), "replan" (object with
-  /// "index", "sensor" and "time_ms" for each replanning step).
+  /// dropped), "planned_path" (list of [x, y, z]: the global route, recorded
+  /// when it is set or changes; the cross-track metrics measure against it),
+  /// "avoiding" (bool, recorded when local obstacle avoidance switches on
+  /// (true) or off (false): the avoiding time, highlighted on the map),
+  /// "replan" (object with "index", "sensor" and "time_ms" for each
+  /// replanning step).
   nlohmann::json decisions;
 };
 

@@ -378,6 +378,7 @@ class Loader {
     r.read("fence_thickness_m", c.fence_thickness_m, Range::positive());
     r.read("obstacle_count", c.obstacle_count, 0, limits_.max_generated_obstacles);
     read_interval(r, "obstacle_size_m", c.obstacle_size_m, Range::positive());
+    r.read("obstacle_passage_m", c.obstacle_passage_m, Range::non_negative());
     r.read_seed("seed", c.seed);
     const double posts_per_row = std::floor(c.field_size_m.y() / c.post_spacing_m) + 2;
     if (posts_per_row * c.row_count > static_cast<double>(limits_.max_vineyard_posts)) {

@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
   add(campo::cli::add_scan, "scan", "Cast one LIDAR scan in a scene and write ranges, hits, depth map and point cloud");
   add(campo::cli::add_sweep, "sweep", "Run every combination of scenes, parameter values and seeds of a sweep spec");
   add(campo::cli::add_table, "table", "Summarize a sweep as a table (Markdown, CSV, LaTeX) and a chart");
-  add(campo::cli::add_plan, "plan", "Plan on a 2D grid map (MovingAI format) with A* or D* Lite");
+  add(campo::cli::add_plan, "plan", "Plan on a 2D grid map (MovingAI format) with A*, D* Lite, LPA* or RRT*, or a Dubins path between two poses");
   add(campo::cli::add_bench, "bench", "Measure LIDAR throughput and closed-loop real-time factor on the bundled scenes");
 
   try {

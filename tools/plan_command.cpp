@@ -1,17 +1,26 @@
 #include <array>
 #include <charconv>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <functional>
+#include <initializer_list>
 #include <iostream>
+#include <memory>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "grid/astar.hpp"
 #include "grid/dstar_lite.hpp"
 #include "grid/lpa_star.hpp"
 #include "grid/movingai.hpp"
+#include "planners/dubins.hpp"
+#include "planners/rrt_star.hpp"
 #include "sim/json_reader.hpp"
 #include "tools/commands.hpp"
 
@@ -25,6 +34,21 @@ struct PlanOptions {
   std::string start;
   std::string goal;
   std::string scen;
+  std::string from;
+  std::string to;
+  std::string radius;
+  std::string seed;
+  std::string iterations;
+  std::string step;
+  // Set by add_plan: which options the command line gave.
+  std::vector<std::pair<std::string, const CLI::Option*>> given;
+
+  bool has(std::string_view name) const {
+    for (const auto& [option, cli] : given) {
+      if (option == name) return cli->count() > 0;
+    }
+    return false;
+  }
 };
 
 enum class GridPlanner { astar, dstar_lite, lpa_star };
@@ -38,12 +62,34 @@ constexpr std::array<GridPlannerName, 3> kGridPlanners{{
     {GridPlanner::dstar_lite, "dstar_lite"},
     {GridPlanner::lpa_star, "lpa_star"},
 }};
+constexpr std::string_view kDubins = "dubins";
+constexpr std::string_view kRrtStar = "rrt_star";
+
+// RRT* on the command line: the defaults of --iterations and --step, the
+// goal region (the goal cell's centre itself: the goal is sampled with
+// probability goal_bias and steered onto exactly, and the node there is
+// rewired like any other, so the cost is centre to centre like the octile
+// optimum's) and the tolerance of `match` in scenario CSV.
+constexpr int kRrtDefaultIterations = 20000;
+constexpr double kRrtDefaultStep = 5.0;
+constexpr double kRrtGoalRadius = 1e-6;
+constexpr double kRrtMatchTolerance = 0.10;
 
 GridPlanner planner_from_name(std::string_view name) {
   for (const auto& entry : kGridPlanners) {
     if (entry.name == name) return entry.planner;
   }
   throw InputError("command line", "--planner", "no grid planner \"" + std::string(name) + "\"");
+}
+
+// Options that the planner does not take are errors, not silently ignored.
+void reject(const PlanOptions& o, std::initializer_list<std::string_view> options) {
+  for (const std::string_view option : options) {
+    if (o.has(option)) {
+      throw InputError("command line", std::string(option),
+                       "does not apply to --planner " + o.planner + " (see campo plan --help)");
+    }
+  }
 }
 
 // One planner over one map, reusing its buffers from problem to problem.
@@ -105,19 +151,28 @@ std::string format_cost(double cells) {
   return buffer;
 }
 
-struct Timed {
-  grid::SearchResult result;
+std::string format_ms(double ms) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3f", ms);
+  return buffer;
+}
+
+double elapsed_ms(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// One solved scenario problem: the cost in cells (-1 when unsolved) and the
+// time spent planning.
+struct Solved {
+  double cost = -1.0;
   double time_ms = 0.0;
 };
 
-Timed timed_solve(Solver& solver, const grid::Cell& start, const grid::Cell& goal) {
-  const auto t0 = std::chrono::steady_clock::now();
-  Timed timed{solver.solve(start, goal)};
-  timed.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  return timed;
-}
-
-int run_scenario(const PlanOptions& o, const grid::MovingAiMap& map, Solver& solver) {
+// Solves every problem of --scen and prints the CSV; `match` decides the last
+// column, `what` names the criterion in the summary on stderr.
+int run_scenario(const PlanOptions& o, const grid::MovingAiMap& map,
+                 const std::function<Solved(const grid::Cell&, const grid::Cell&)>& solve,
+                 const std::function<bool(double cost, double optimal)>& match, const std::string& what) {
   const auto problems = grid::read_movingai_scenario(o.scen);
   grid::check_scenario(o.scen, problems, map);
   std::cout << "index,start_x,start_y,goal_x,goal_y,optimal,cost,match\n";
@@ -125,46 +180,211 @@ int run_scenario(const PlanOptions& o, const grid::MovingAiMap& map, Solver& sol
   double total_ms = 0.0;
   for (std::size_t i = 0; i < problems.size(); ++i) {
     const grid::MovingAiProblem& p = problems[i];
-    const Timed t = timed_solve(solver, p.start, p.goal);
-    const double cost = grid::to_cells(t.result.cost);
-    const bool match = grid::matches_optimal(cost, p.optimal_length);
-    mismatches += match ? 0 : 1;
-    total_ms += t.time_ms;
+    const Solved s = solve(p.start, p.goal);
+    const bool matched = match(s.cost, p.optimal_length);
+    mismatches += matched ? 0 : 1;
+    total_ms += s.time_ms;
     std::cout << i << ',' << p.start.x << ',' << p.start.y << ',' << p.goal.x << ',' << p.goal.y << ','
-              << format_cost(p.optimal_length) << ',' << format_cost(cost) << ',' << (match ? 1 : 0) << '\n';
+              << format_cost(p.optimal_length) << ',' << format_cost(s.cost) << ',' << (matched ? 1 : 0) << '\n';
   }
   char searching[64];
   std::snprintf(searching, sizeof searching, "%.1f ms searching", total_ms);
-  std::cerr << problems.size() - mismatches << " of " << problems.size() << " problems at the optimal length ("
-            << o.planner << ", " << searching << ")\n";
+  std::cerr << problems.size() - mismatches << " of " << problems.size() << " problems " << what << " (" << o.planner
+            << ", " << searching << ")\n";
   return mismatches == 0 ? kOk : kInternalError;
 }
 
-int run_plan(const PlanOptions& o) {
-  const GridPlanner planner = planner_from_name(o.planner);
-  const bool single = !o.start.empty() || !o.goal.empty();
-  if (single == !o.scen.empty()) {
+// Either --start and --goal (true) or --scen (false), never both or neither.
+bool single_problem(const PlanOptions& o) {
+  if (!o.has("--map")) {
+    throw InputError("command line", "--map", "expected --map FILE.map with --planner " + o.planner);
+  }
+  const bool single = o.has("--start") || o.has("--goal");
+  if (single == o.has("--scen")) {
     throw InputError("command line", "--scen", "expected either --start X,Y and --goal X,Y, or --scen FILE.scen");
   }
-  if (single && (o.start.empty() || o.goal.empty())) {
-    throw InputError("command line", o.start.empty() ? "--start" : "--goal", "expected both --start X,Y and --goal X,Y");
+  if (single && !(o.has("--start") && o.has("--goal"))) {
+    throw InputError("command line", o.has("--start") ? "--goal" : "--start",
+                     "expected both --start X,Y and --goal X,Y");
   }
-  try {
-    const grid::MovingAiMap map = grid::read_movingai_map(o.map);
-    grid::GridGraph graph = grid::to_grid_graph(map);
-    Solver solver(graph, planner);
-    if (!single) return run_scenario(o, map, solver);
+  return single;
+}
 
-    const grid::Cell start = parse_cell(o.start, "--start", map), goal = parse_cell(o.goal, "--goal", map);
-    const Timed t = timed_solve(solver, start, goal);
-    char time[32];
-    std::snprintf(time, sizeof time, "%.3f", t.time_ms);
-    std::cout << "cost=" << format_cost(grid::to_cells(t.result.cost)) << " steps=" << t.result.steps()
-              << " expansions=" << t.result.expansions << " time_ms=" << time << "\n";
-    return kOk;
+// Map and scenario format errors as InputErrors naming the file and line.
+template <class F>
+int with_format_errors(F&& run) {
+  try {
+    return run();
   } catch (const grid::FormatError& e) {
     throw InputError(e.file(), e.line() > 0 ? "line " + std::to_string(e.line()) : "", e.message());
   }
+}
+
+int run_grid(const PlanOptions& o) {
+  const GridPlanner planner = planner_from_name(o.planner);
+  reject(o, {"--from", "--to", "--radius", "--seed", "--iterations", "--step"});
+  const bool single = single_problem(o);
+  return with_format_errors([&] {
+    const grid::MovingAiMap map = grid::read_movingai_map(o.map);
+    grid::GridGraph graph = grid::to_grid_graph(map);
+    Solver solver(graph, planner);
+    if (!single) {
+      return run_scenario(
+          o, map,
+          [&](const grid::Cell& start, const grid::Cell& goal) {
+            const auto t0 = std::chrono::steady_clock::now();
+            const grid::SearchResult result = solver.solve(start, goal);
+            return Solved{grid::to_cells(result.cost), elapsed_ms(t0)};
+          },
+          [](double cost, double optimal) { return grid::matches_optimal(cost, optimal); }, "at the optimal length");
+    }
+    const grid::Cell start = parse_cell(o.start, "--start", map), goal = parse_cell(o.goal, "--goal", map);
+    const auto t0 = std::chrono::steady_clock::now();
+    const grid::SearchResult result = solver.solve(start, goal);
+    const double time_ms = elapsed_ms(t0);
+    std::cout << "cost=" << format_cost(grid::to_cells(result.cost)) << " steps=" << result.steps()
+              << " expansions=" << result.expansions << " time_ms=" << format_ms(time_ms) << "\n";
+    return static_cast<int>(kOk);
+  });
+}
+
+// ---- numbers on the command line ----
+
+std::optional<double> to_number(std::string_view text) {
+  double value = 0.0;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(value)) {
+    return std::nullopt;
+  }
+  return value;
+}
+
+double parse_positive(const std::string& text, const std::string& option, const std::string& what) {
+  const auto value = to_number(text);
+  if (!value || !(*value > 0.0)) {
+    throw InputError("command line", option, "expected " + what + ", a number > 0, got \"" + text + "\"");
+  }
+  return *value;
+}
+
+template <class Int>
+Int parse_integer(const std::string& text, const std::string& option, Int min, Int max) {
+  Int value{};
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || value < min || value > max) {
+    throw InputError("command line", option,
+                     "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "], got \"" +
+                         text + "\"");
+  }
+  return value;
+}
+
+// "X,Y,HEADING" (metres, metres, degrees counter-clockwise from +x).
+dubins::Pose2 parse_pose(const std::string& text, const std::string& option) {
+  std::array<double, 3> v{};
+  std::size_t begin = 0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::size_t comma = i < 2 ? text.find(',', begin) : text.size();
+    const auto value = comma == std::string::npos ? std::nullopt
+                                                  : to_number(std::string_view(text).substr(begin, comma - begin));
+    if (!value || (i == 2 && text.find(',', begin) != std::string::npos)) {
+      throw InputError("command line", option,
+                       "expected X,Y,HEADING (metres, metres, degrees counter-clockwise from +x; finite numbers), "
+                       "got \"" + text + "\"");
+    }
+    v[i] = *value;
+    begin = comma + 1;
+  }
+  return {v[0], v[1], v[2] * std::numbers::pi / 180.0};
+}
+
+std::string fixed6(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.6f", value);
+  return buffer;
+}
+
+int run_dubins(const PlanOptions& o) {
+  reject(o, {"--map", "--start", "--goal", "--scen", "--seed", "--iterations", "--step"});
+  for (const char* option : {"--from", "--to", "--radius"}) {
+    if (!o.has(option)) {
+      throw InputError("command line", option,
+                       "expected --from X,Y,HEADING --to X,Y,HEADING --radius R with --planner dubins");
+    }
+  }
+  const dubins::Pose2 from = parse_pose(o.from, "--from"), to = parse_pose(o.to, "--to");
+  const double radius = parse_positive(o.radius, "--radius", "the turning radius in metres");
+  const dubins::Path path = dubins::shortest_path(from, to, radius);
+  std::cout << "word=" << dubins::to_string(path.word) << " length=" << fixed6(path.length_m()) << " segments="
+            << fixed6(path.segment_lengths_m[0]) << ',' << fixed6(path.segment_lengths_m[1]) << ','
+            << fixed6(path.segment_lengths_m[2]) << "\n";
+  return kOk;
+}
+
+// One RRT* problem on the map's 1 m grid. The tree's path ends within
+// kRrtGoalRadius of the goal cell's centre; a last straight to the centre
+// (when not already there) completes it.
+struct RrtRun {
+  RrtStarResult result;
+  double time_ms = 0.0;
+  double cost = -1.0;  ///< cells (= metres), -1 when unsolved
+};
+
+RrtRun solve_rrt(const OccupancyGrid& occupancy, const grid::MovingAiMap& map, const grid::Cell& start,
+                 const grid::Cell& goal, const RrtStarConfig& config) {
+  const Eigen::Vector2d goal_m = movingai_cell_centre(map, goal);
+  const auto t0 = std::chrono::steady_clock::now();
+  RrtRun run{rrt_star(occupancy, movingai_cell_centre(map, start), goal_m, config)};
+  run.time_ms = elapsed_ms(t0);
+  if (run.result.status == RrtStarStatus::solved) {
+    run.cost = run.result.cost_m;
+    const double last = (goal_m - run.result.path_m.back()).norm();
+    if (last > 0.0) {
+      run.result.path_m.push_back(goal_m);
+      run.cost += last;
+    }
+  }
+  return run;
+}
+
+int run_rrt_star(const PlanOptions& o) {
+  reject(o, {"--from", "--to", "--radius"});
+  const bool single = single_problem(o);
+  RrtStarConfig config;
+  config.seed = o.has("--seed") ? parse_integer<std::uint64_t>(o.seed, "--seed", 0, UINT64_MAX) : 0;
+  config.max_iterations =
+      o.has("--iterations") ? parse_integer<int>(o.iterations, "--iterations", 1, 10'000'000) : kRrtDefaultIterations;
+  config.step_m = o.has("--step") ? parse_positive(o.step, "--step", "the step in cells") : kRrtDefaultStep;
+  config.goal_radius_m = kRrtGoalRadius;
+  return with_format_errors([&] {
+    const grid::MovingAiMap map = grid::read_movingai_map(o.map);
+    const OccupancyGrid occupancy = to_occupancy_grid(map);
+    if (!single) {
+      return run_scenario(
+          o, map,
+          [&](const grid::Cell& start, const grid::Cell& goal) {
+            const RrtRun run = solve_rrt(occupancy, map, start, goal, config);
+            return Solved{run.cost, run.time_ms};
+          },
+          [](double cost, double optimal) {
+            return cost >= 0.0 && cost <= (1.0 + kRrtMatchTolerance) * optimal + 1e-3;
+          },
+          "at most 10 % longer than the optimal length");
+    }
+    const grid::Cell start = parse_cell(o.start, "--start", map), goal = parse_cell(o.goal, "--goal", map);
+    const RrtRun run = solve_rrt(occupancy, map, start, goal, config);
+    const std::size_t steps = run.result.path_m.empty() ? 0 : run.result.path_m.size() - 1;
+    std::cout << "cost=" << format_cost(run.cost) << " steps=" << steps << " iterations=" << run.result.iterations
+              << " first_solution=" << run.result.first_solution_iteration << " time_ms=" << format_ms(run.time_ms)
+              << "\n";
+    return static_cast<int>(kOk);
+  });
+}
+
+int run_plan(const PlanOptions& o) {
+  if (o.planner == kDubins) return run_dubins(o);
+  if (o.planner == kRrtStar) return run_rrt_star(o);
+  return run_grid(o);
 }
 
 }  // namespace
@@ -173,17 +393,35 @@ Command add_plan(CLI::App& app) {
   auto o = std::make_shared<PlanOptions>();
   std::vector<std::string> names;
   for (const auto& entry : kGridPlanners) names.emplace_back(entry.name);
-  app.add_option("--planner", o->planner, "Planner (D* Lite and LPA*: their first plan)")
+  names.emplace_back(kRrtStar);
+  names.emplace_back(kDubins);
+  const auto add = [&](const char* name, std::string& value, const char* description) {
+    o->given.emplace_back(name, app.add_option(name, value, description));
+  };
+  app.add_option("--planner", o->planner,
+                 "Planner: astar, dstar_lite, lpa_star (grid searches; D* Lite and LPA*: their first plan), "
+                 "rrt_star (sampling, on the map's 1 m cells), dubins (no map)")
       ->capture_default_str()
       ->check(CLI::IsMember(names));
-  app.add_option("--map", o->map, "Grid map in the MovingAI .map format")->required();
-  app.add_option("--start", o->start, "Start cell X,Y (column, row; 0,0 is the top-left cell)");
-  app.add_option("--goal", o->goal, "Goal cell X,Y");
-  app.add_option("--scen", o->scen, "MovingAI scenario file: solve every problem in it, print CSV");
+  add("--map", o->map, "Grid map in the MovingAI .map format (grid planners and rrt_star)");
+  add("--start", o->start, "Start cell X,Y (column, row; 0,0 is the top-left cell)");
+  add("--goal", o->goal, "Goal cell X,Y");
+  add("--scen", o->scen, "MovingAI scenario file: solve every problem in it, print CSV");
+  add("--seed", o->seed, "rrt_star: seed of the sampler (default 0)");
+  add("--iterations", o->iterations, "rrt_star: iterations, 1 to 10000000 (default 20000)");
+  add("--step", o->step, "rrt_star: farthest a new node lies from the tree, cells > 0 (default 5)");
+  add("--from", o->from, "dubins: start pose X,Y,HEADING (metres, metres, degrees CCW from +x)");
+  add("--to", o->to, "dubins: goal pose X,Y,HEADING");
+  add("--radius", o->radius, "dubins: minimum turning radius in metres, > 0");
   app.footer(
-      "Plans on a 2D grid map, 8-connected: straight moves cost 1, diagonal moves sqrt(2), and a\n"
-      "diagonal needs both orthogonal neighbours free (no corner cutting), as the MovingAI\n"
-      "benchmark defines.\n"
+      "  campo plan [--planner astar|dstar_lite|lpa_star] --map FILE.map (--start X,Y --goal X,Y | --scen FILE.scen)\n"
+      "  campo plan --planner rrt_star --map FILE.map (--start X,Y --goal X,Y | --scen FILE.scen)\n"
+      "             [--seed N] [--iterations N] [--step CELLS]\n"
+      "  campo plan --planner dubins --from X,Y,HEADING --to X,Y,HEADING --radius R\n"
+      "\n"
+      "Grid planners plan on a 2D grid map, 8-connected: straight moves cost 1, diagonal moves\n"
+      "sqrt(2), and a diagonal needs both orthogonal neighbours free (no corner cutting), as the\n"
+      "MovingAI benchmark defines.\n"
       "FILE.map: 'type octile', 'height H', 'width W', 'map', then H rows of W cells: '.' 'G' 'S'\n"
       "passable, '@' 'O' 'T' 'W' blocked; x is the column, y the row, (0,0) the top-left cell.\n"
       "With --start X,Y --goal X,Y prints one line:\n"
@@ -195,8 +433,29 @@ Command add_plan(CLI::App& app) {
       "  index,start_x,start_y,goal_x,goal_y,optimal,cost,match\n"
       "with match 1 when the cost equals the file's optimal length (within 1e-3, or 1e-4 relative),\n"
       "and a summary on stderr.\n"
+      "\n"
+      "rrt_star: RRT* in the plane of the map's cells taken as 1 m squares, from the centre of the\n"
+      "start cell to the centre of the goal cell, straight segments through free cells only. Its\n"
+      "paths are any-angle and may pass a blocked cell at its corner, so they can be shorter than\n"
+      "the 8-connected optimum. Deterministic: the same seed gives the same path (the budget is\n"
+      "iterations, not time). With --start and --goal prints one line:\n"
+      "  cost=C steps=S iterations=I first_solution=K time_ms=T\n"
+      "with C the path length in cells (= metres; -1 when no path was found within the iterations),\n"
+      "S the segments, I the iterations run and K the iteration that first reached the goal (-1:\n"
+      "never). With --scen prints the same CSV, with match 1 when a path was found and its cost is\n"
+      "at most 10 % longer than the file's optimal length (RRT* is asymptotically optimal, not\n"
+      "exact), and a summary on stderr.\n"
+      "\n"
+      "dubins: the shortest path forward-only with a minimum turning radius between two poses (no\n"
+      "map, no obstacles); HEADING in degrees, counter-clockwise from +x. Prints one line:\n"
+      "  word=LSL length=L segments=A,B,C\n"
+      "with the word (L left arc, R right arc, S straight), the length and the three segment\n"
+      "lengths in metres, 6 decimals; a segment that is not needed has length 0.\n"
+      "\n"
+      "Options that do not apply to the planner are errors.\n"
       "Exit 0 when done (with --scen: every cost matched), 1 when a cost did not match or on an\n"
-      "internal failure, 2 on bad input (the error names the file, the line and what was expected).");
+      "internal failure, 2 on bad input (the error names the option or the file, the line and\n"
+      "what was expected).");
   return [o] { return run_plan(*o); };
 }
 

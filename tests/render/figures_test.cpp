@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "render/run_files.hpp"
 #include "sim/scene_loader.hpp"
 
 namespace campo {
@@ -183,6 +185,89 @@ TEST(FiguresMap, DrawsObstaclesWaypointsLegendTitleAndColourBar) {
   // Tick labels left of and below the plot.
   EXPECT_GT(non_background(image, {0, layout.plot_px.y, kFigureLeftPx - 2, layout.plot_px.height}), 300);
   EXPECT_GT(non_background(image, {layout.plot_px.x, layout.plot_px.br().y + 2, layout.plot_px.width, kFigureBottomPx - 4}), 300);
+}
+
+// Distance of `p` to the segment a-b, pixels.
+double segment_distance(cv::Point2d p, cv::Point2d a, cv::Point2d b) {
+  const cv::Point2d d = b - a;
+  const double t = std::clamp((p - a).dot(d) / d.dot(d), 0.0, 1.0);
+  return cv::norm(a + t * d - p);
+}
+
+TEST(FiguresMap, HighlightsTheTrackWhileAvoiding) {
+  const Scene scene = test_scene();
+  const RunView plain = test_run();
+  RunView run = plain;
+  run.avoiding_s = {{9.0, 12.0}};  // x from 1 to 4 along y = 0
+  FigureStyle style = small_style();
+  style.max_size_px = 2000;  // the legend column then needs no extra height: both maps share their frame
+  const FigureLayout layout = map_layout(scene, run, style), plain_layout = map_layout(scene, plain, style);
+  ASSERT_EQ(layout.plot_px, plain_layout.plot_px);
+  ASSERT_EQ(layout.min, plain_layout.min);
+  const cv::Mat image = draw_map(scene, run, style), before = draw_map(scene, plain, style);
+  const cv::Vec3b amber(100, 196, 255);
+  // Beside the track line (its halo is 5 px wide, the band 15 px), on both sides, all along the interval.
+  for (double x = 1.2; x <= 3.8; x += 0.2) {
+    for (const double side : {-5.0, 5.0}) {
+      const cv::Point2d p = layout.to_px({x, 0.0}) + cv::Point2d(0.0, side);
+      EXPECT_LT(colour_distance(at(image, p), amber), 12) << "x = " << x << ", side " << side;
+    }
+  }
+  // The track line itself is drawn over the band, in its time colour.
+  EXPECT_LT(nearest_colour(image, layout.to_px({2.5, 0.0}), sequential_color(10.5 / 16.0), 1), 24);
+  // Nothing else changed in the plot: every changed pixel lies within the band around the part of the
+  // track driven while avoiding (half its width plus two pixels of anti-aliasing).
+  const cv::Point2d a = layout.to_px({1.0, 0.0}), b = layout.to_px({4.0, 0.0});
+  int changed = 0;
+  const cv::Rect& plot = layout.plot_px;
+  for (int r = plot.y; r < plot.y + plot.height; ++r) {
+    for (int c = plot.x; c < plot.x + plot.width; ++c) {
+      if (image.at<cv::Vec3b>(r, c) == before.at<cv::Vec3b>(r, c)) continue;
+      ++changed;
+      ASSERT_LE(segment_distance({double(c), double(r)}, a, b), 7.5 + 2.0) << "pixel " << c << ", " << r;
+    }
+  }
+  EXPECT_GT(changed, static_cast<int>(10.0 * (b.x - a.x)));
+  // Elsewhere beside the track: no amber.
+  for (const double x : {-6.0, -3.0, 0.0, 5.5, 7.0}) {
+    for (const double side : {-5.0, 5.0}) {
+      EXPECT_GT(colour_distance(at(image, layout.to_px({x, 0.0}) + cv::Point2d(0.0, side)), amber), 60) << "x = " << x;
+    }
+  }
+  // One more legend entry, whose symbol is the band's colour.
+  EXPECT_GT(layout.legend_px.height, plain_layout.legend_px.height);
+  int amber_in_legend = 0;
+  const cv::Mat legend = image(layout.legend_px);
+  for (auto it = legend.begin<cv::Vec3b>(); it != legend.end<cv::Vec3b>(); ++it) amber_in_legend += colour_distance(*it, amber) < 12;
+  EXPECT_GT(amber_in_legend, 100);
+  // Overlays do not highlight.
+  EXPECT_EQ(png(draw_overlay(scene, {run}, style)), png(draw_overlay(scene, {plain}, style)));
+}
+
+TEST(FiguresMap, ReadsAvoidanceIntervalsFromTheRunRecord) {
+  const auto dir = std::filesystem::temp_directory_path() / "campo_figures_avoiding";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "scene.json") << R"j({"objects": []})j";
+  {
+    std::ofstream csv(dir / "trajectory.csv");
+    csv << "time_s,x_m,y_m,z_m,vx_mps,vy_mps,vz_mps\n";
+    for (int i = 0; i <= 10; ++i) csv << i << "," << i << ",0,0,1,0,0\n";
+  }
+  const nlohmann::json record = {
+      {"metrics", {{"outcome", "reached"}}},
+      {"parameters", {{"mission", nlohmann::json::array({{{"position_m", {10, 0, 0}}}})}}},
+      {"events",
+       {{{"time_s", 1.0}, {"decisions", {{"avoiding", true}}}},
+        {{"time_s", 2.0}, {"decisions", {{"avoiding", true}}}},  // still on
+        {{"time_s", 3.5}, {"decisions", {{"avoiding", false}}}},
+        {{"time_s", 4.0}, {"decisions", {{"avoiding", false}}}},  // already off
+        {{"time_s", 6.0}, {"decisions", {{"avoiding", true}}}}}},  // open: closes at the last track time
+  };
+  std::ofstream(dir / "run.json") << record.dump();
+  const RecordedRun run = load_run_dir(dir);
+  const std::vector<std::pair<double, double>> want{{1.0, 3.5}, {6.0, 10.0}};
+  EXPECT_EQ(run.view.avoiding_s, want);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(FiguresMap, IsDeterministic) {

@@ -1,0 +1,559 @@
+#include "planners/rover_route.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <unordered_set>
+#include <vector>
+
+#include "grid/astar.hpp"
+#include "planners/dubins.hpp"
+#include "sim/json_reader.hpp"
+#include "sim/random.hpp"
+
+namespace campo {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// ---------------------------------------------------------------- parameters
+
+// One list of fields per nested configuration serves reading and writing.
+struct FieldReader {
+  ObjectReader& r;
+  void operator()(std::string_view key, double& v, const Range& range) { r.read(key, v, range); }
+  void operator()(std::string_view key, int& v, std::int64_t lo, std::int64_t hi) { r.read(key, v, lo, hi); }
+  void operator()(std::string_view key, std::uint64_t& v) { r.read_seed(key, v); }
+};
+
+struct FieldWriter {
+  nlohmann::json& j;
+  void operator()(std::string_view key, double v, const Range&) { j[std::string(key)] = v; }
+  void operator()(std::string_view key, int v, std::int64_t, std::int64_t) { j[std::string(key)] = v; }
+  void operator()(std::string_view key, std::uint64_t v) { j[std::string(key)] = v; }
+};
+
+template <class Visit>
+void fields(PurePursuitConfig& c, Visit&& f) {
+  f("lookahead_m", c.lookahead_m, Range::positive());
+  f("turn_gain_per_s", c.turn_gain_per_s, Range::positive());
+  f("max_yaw_rate_rad_s", c.max_yaw_rate_rad_s, Range::positive());
+  f("max_speed_m_s", c.max_speed_m_s, Range::closed(0.01, 10.0));
+  f("min_speed_m_s", c.min_speed_m_s, Range::closed(0.0, 10.0));
+  f("slowdown_turn_error_rad", c.slowdown_turn_error_rad, Range::positive());
+  f("goal_tolerance_m", c.goal_tolerance_m, Range::positive());
+}
+
+template <class Visit>
+void fields(FollowTheGapConfig& c, Visit&& f) {
+  f("activation_range_m", c.activation_range_m, Range::positive());
+  f("bubble_radius_m", c.bubble_radius_m, Range::positive());
+  f("gap_jump_m", c.gap_jump_m, Range::positive());
+  f("alpha_m", c.alpha_m, Range::non_negative());
+  f("k_width", c.k_width, Range::non_negative());
+  f("k_heading", c.k_heading, Range::non_negative());
+  f("hysteresis_bonus", c.hysteresis_bonus, Range::non_negative());
+}
+
+template <class Visit>
+void fields(VfhPlusConfig& c, Visit&& f) {
+  f("sectors", c.sectors, 4, 3600);
+  f("window_radius_m", c.window_radius_m, Range::positive());
+  f("magnitude_a", c.magnitude_a, Range{1.0});
+  f("robot_radius_m", c.robot_radius_m, Range::non_negative());
+  f("safety_distance_m", c.safety_distance_m, Range::non_negative());
+  f("threshold_low", c.threshold_low, Range::non_negative());
+  f("threshold_high", c.threshold_high, Range::non_negative());
+  f("min_turning_radius_m", c.min_turning_radius_m, Range::non_negative());
+  f("wide_opening_sectors", c.wide_opening_sectors, 1, 3600);
+  f("mu_target", c.mu_target, Range::non_negative());
+  f("mu_heading", c.mu_heading, Range::non_negative());
+  f("mu_previous", c.mu_previous, Range::non_negative());
+}
+
+template <class Visit>
+void fields(RrtStarConfig& c, Visit&& f) {
+  f("seed", c.seed);
+  f("step_m", c.step_m, Range::positive());
+  f("rewire_radius_m", c.rewire_radius_m, Range::non_negative());
+  f("rewire_gamma_m", c.rewire_gamma_m, Range::non_negative());
+  f("goal_radius_m", c.goal_radius_m, Range::positive());
+  f("goal_bias", c.goal_bias, Range::closed(0.0, 1.0));
+  f("max_iterations", c.max_iterations, 0, 10'000'000);
+}
+
+template <class Config>
+void read_nested(ObjectReader& r, std::string_view key, Config& c) {
+  if (const auto node = r.optional(key)) {
+    ObjectReader nested(*node);
+    fields(c, FieldReader{nested});
+    nested.finish();
+  }
+}
+
+template <class Config>
+nlohmann::json write_nested(Config c) {
+  nlohmann::json j = nlohmann::json::object();
+  fields(c, FieldWriter{j});
+  return j;
+}
+
+constexpr std::array<std::string_view, 3> kGlobalNames{"dubins", "astar", "rrt_star"};
+constexpr std::array<std::string_view, 3> kLocalNames{"follow_the_gap", "vfh_plus", "none"};
+
+// ---------------------------------------------------------------- routes
+
+nlohmann::json to_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+// Poses the route passes: the vehicle's start (unless the first waypoint is
+// there) and the mission waypoints, headed as given or toward the next one.
+std::vector<dubins::Pose2> route_poses(const Observation& o, double tolerance_m) {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<std::optional<double>> headings;
+  const Eigen::Vector2d start = o.state.position_m.head<2>();
+  if (o.mission.empty() || (o.mission.front().position_m.head<2>() - start).norm() > tolerance_m) {
+    points.push_back(start);
+    headings.push_back(o.state.yaw_rad());
+  }
+  for (const Waypoint& w : o.mission) {
+    points.push_back(w.position_m.head<2>());
+    headings.push_back(w.heading_deg ? std::optional(*w.heading_deg * M_PI / 180.0) : std::nullopt);
+  }
+  std::vector<dubins::Pose2> poses;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    double heading = 0.0;
+    if (headings[i]) {
+      heading = *headings[i];
+    } else {
+      const Eigen::Vector2d d = i + 1 < points.size() ? points[i + 1] - points[i] : points[i] - points[i - 1];
+      heading = std::atan2(d.y(), d.x());
+    }
+    poses.push_back({points[i].x(), points[i].y(), heading});
+  }
+  return poses;
+}
+
+std::vector<Eigen::Vector2d> dubins_route(const std::vector<dubins::Pose2>& poses, const RoverRouteConfig& c) {
+  std::vector<Eigen::Vector2d> out;
+  const std::vector<dubins::Path> paths = dubins::route(poses, c.turning_radius_m);
+  for (const dubins::Pose2& p : dubins::sample_route(paths, c.route_step_m)) out.emplace_back(p.x_m, p.y_m);
+  return out;
+}
+
+// A* (8-connected, no corner cutting) on the inflated occupancy grid, leg by leg.
+std::optional<std::vector<Eigen::Vector2d>> astar_route(const OccupancyGrid& grid,
+                                                        const std::vector<dubins::Pose2>& poses) {
+  grid::GridGraph graph({grid.cols, grid.rows, 1}, grid::Connectivity::eight);
+  for (int row = 0; row < grid.rows; ++row) {
+    for (int col = 0; col < grid.cols; ++col) {
+      if (grid.is_occupied(col, row)) graph.set_state({col, row, 0}, grid::CellState::blocked);
+    }
+  }
+  grid::AStar astar(graph);
+  std::vector<Eigen::Vector2d> path;
+  for (std::size_t i = 0; i + 1 < poses.size(); ++i) {
+    const Eigen::Vector2i a = grid.cell_of({poses[i].x_m, poses[i].y_m});
+    const Eigen::Vector2i b = grid.cell_of({poses[i + 1].x_m, poses[i + 1].y_m});
+    if (!grid.contains(a.x(), a.y()) || !grid.contains(b.x(), b.y())) return std::nullopt;
+    const grid::SearchResult leg = astar.plan({a.x(), a.y(), 0}, {b.x(), b.y(), 0});
+    if (leg.status != grid::SearchStatus::found) return std::nullopt;
+    for (std::size_t k = path.empty() ? 0 : 1; k < leg.path.size(); ++k) {
+      path.push_back(grid.centre_of(leg.path[k].x, leg.path[k].y));
+    }
+  }
+  return path;
+}
+
+std::optional<std::vector<Eigen::Vector2d>> rrt_star_route(const OccupancyGrid& grid,
+                                                           const std::vector<dubins::Pose2>& poses,
+                                                           const RrtStarConfig& config) {
+  std::vector<Eigen::Vector2d> path;
+  for (std::size_t i = 0; i + 1 < poses.size(); ++i) {
+    RrtStarConfig leg_config = config;
+    leg_config.seed = Rng::derive_seed(config.seed, i);
+    const RrtStarResult leg = rrt_star(grid, {poses[i].x_m, poses[i].y_m}, {poses[i + 1].x_m, poses[i + 1].y_m}, leg_config);
+    if (leg.status != RrtStarStatus::solved) return std::nullopt;
+    for (std::size_t k = path.empty() ? 0 : 1; k < leg.path_m.size(); ++k) path.push_back(leg.path_m[k]);
+    // The tree stops inside the goal region: end on the waypoint itself.
+    path.emplace_back(poses[i + 1].x_m, poses[i + 1].y_m);
+  }
+  return path;
+}
+
+// ---------------------------------------------------------------- the planner
+
+class RoverRoutePlanner final : public Planner {
+ public:
+  RoverRoutePlanner(const RoverRouteConfig& config, const PlannerContext& context)
+      : config_(config), scene_(context.scene) {}
+
+  PlanResult plan(const Observation& o) override {
+    PlanResult result;
+    result.command = command::Hold{o.state.position_m, std::nullopt};
+    const SensorReading* scanner = sensor(o);
+    if (config_.local != LocalAvoidance::none && !scanner) {
+      result.status = PlanStatus::invalid_start;
+      result.reason = config_.sensor.empty() ? "the vehicle has no sensor for obstacle avoidance"
+                                             : "the vehicle has no sensor \"" + config_.sensor + "\"";
+      return result;
+    }
+    if (route_.empty() && !build_route(o, result)) return result;
+
+    const Eigen::Vector2d position = o.state.position_m.head<2>();
+    const double heading = o.state.yaw_rad();
+    // A waypoint is passed within tolerance, or once pursuit is past the
+    // route point nearest it (a smoothed route may cut its corner).
+    while (next_ < o.mission.size() &&
+           ((o.mission[next_].position_m.head<2>() - position).norm() <= config_.waypoint_tolerance_m ||
+            pursuit_.last_found_index >= waypoint_route_index_[next_])) {
+      result.decisions["reached_waypoints"].push_back(next_++);
+    }
+
+    if (scanner && scanner->fresh && scanner->scan) {
+      remember(*scanner->scan, *scanner->config, position);
+      assess_scan(*scanner, position, heading);
+    }
+    if (avoiding_ != last_avoiding_) {
+      result.decisions["avoiding"] = avoiding_;
+      last_avoiding_ = avoiding_;
+      // Back on the route: pursue from the route point nearest the rover, ahead of where it left.
+      if (!avoiding_) rejoin(position);
+    }
+
+    const PurePursuitStep step = pure_pursuit_step(config_.pure_pursuit, pursuit_, position, heading, route_);
+    if (step.end_reached && next_ >= o.mission.size()) {
+      result.status = PlanStatus::reached;
+      result.reason = "route complete: all " + std::to_string(o.mission.size()) + " waypoints passed";
+      return result;
+    }
+    double v = step.speed_m_s, w = step.yaw_rate_rad_s;
+    if (avoiding_) {
+      // Steer for the local planner's heading, slower, turning in place when blocked close ahead.
+      const double error = wrap_to_pi(avoid_heading_rad_);
+      w = std::clamp(config_.avoid_turn_gain * error, -config_.pure_pursuit.max_yaw_rate_rad_s,
+                     config_.pure_pursuit.max_yaw_rate_rad_s);
+      v = config_.avoid_speed_mps * std::max(0.0, std::cos(error));
+      if (blocked_ahead_ || std::abs(error) > M_PI / 3.0) v = 0.0;
+    }
+    result.command = guarded(v, w, position, heading);
+    return result;
+  }
+
+  nlohmann::json parameters() const override {
+    const RoverRouteConfig& c = config_;
+    nlohmann::json p = {{"global", kGlobalNames[static_cast<std::size_t>(c.global)]},
+                        {"local", kLocalNames[static_cast<std::size_t>(c.local)]},
+                        {"turning_radius_m", c.turning_radius_m},
+                        {"route_step_m", c.route_step_m},
+                        {"waypoint_tolerance_m", c.waypoint_tolerance_m},
+                        {"clearance_m", c.clearance_m},
+                        {"occupancy_resolution_m", c.occupancy_resolution_m},
+                        {"corridor_half_width_m", c.corridor_half_width_m},
+                        {"release_margin_m", c.release_margin_m},
+                        {"avoid_speed_mps", c.avoid_speed_mps},
+                        {"avoid_turn_gain", c.avoid_turn_gain},
+                        {"stop_distance_m", c.stop_distance_m},
+                        {"footprint_half_length_m", c.footprint_half_length_m},
+                        {"footprint_half_width_m", c.footprint_half_width_m},
+                        {"guard_horizon_s", c.guard_horizon_s},
+                        {"pure_pursuit", write_nested(c.pure_pursuit)},
+                        {"follow_the_gap", write_nested(c.follow_the_gap)},
+                        {"vfh_plus", write_nested(c.vfh_plus)},
+                        {"rrt_star", write_nested(c.rrt_star)}};
+    if (!c.sensor.empty()) p["sensor"] = c.sensor;
+    return p;
+  }
+
+ private:
+  const SensorReading* sensor(const Observation& o) const {
+    for (const SensorReading& r : o.sensors) {
+      if (config_.sensor.empty() || r.alias == config_.sensor) return &r;
+    }
+    return nullptr;
+  }
+
+  bool build_route(const Observation& o, PlanResult& result) {
+    const auto started = Clock::now();
+    const std::vector<dubins::Pose2> poses = route_poses(o, config_.waypoint_tolerance_m);
+    if (poses.size() < 2) {
+      result.status = PlanStatus::reached;
+      result.reason = "no mission waypoint to drive to";
+      return false;
+    }
+    if (config_.global == GlobalRoute::dubins) {
+      route_ = dubins_route(poses, config_);
+    } else {
+      if (!scene_) {
+        result.status = PlanStatus::invalid_start;
+        result.reason = "global route " + std::string(kGlobalNames[static_cast<std::size_t>(config_.global)]) +
+                        " needs the scene's map";
+        return false;
+      }
+      OccupancyConfig occupancy;
+      occupancy.resolution_m = config_.occupancy_resolution_m;
+      const OccupancyGrid grid = inflate(build_occupancy_grid(*scene_, occupancy), config_.clearance_m);
+      const auto raw = config_.global == GlobalRoute::astar ? astar_route(grid, poses)
+                                                            : rrt_star_route(grid, poses, config_.rrt_star);
+      if (!raw) {
+        result.status = PlanStatus::no_path;
+        result.reason = "no " + std::string(kGlobalNames[static_cast<std::size_t>(config_.global)]) +
+                        " route through the mission waypoints on the occupancy grid inflated by " +
+                        std::to_string(config_.clearance_m) + " m";
+        return false;
+      }
+      PathSmoothingConfig smoothing;
+      smoothing.min_turning_radius_m = config_.turning_radius_m;
+      smoothing.max_turning_radius_m = std::max(smoothing.max_turning_radius_m, config_.turning_radius_m);
+      smoothing.step_m = config_.route_step_m;
+      route_ = smooth_path(grid, *raw, smoothing).points_m;
+    }
+    // Each mission waypoint's nearest route point, in order along the route.
+    std::size_t from = 0;
+    for (const Waypoint& w : o.mission) {
+      std::size_t best = from;
+      for (std::size_t i = from; i < route_.size(); ++i) {
+        if ((route_[i] - w.position_m.head<2>()).squaredNorm() < (route_[best] - w.position_m.head<2>()).squaredNorm()) {
+          best = i;
+        }
+      }
+      waypoint_route_index_.push_back(static_cast<int>(best));
+      from = best;
+    }
+    // The route as planned, every 0.25 m (a chord error under 4 mm on 2 m arcs), at the rover's height.
+    nlohmann::json points = nlohmann::json::array();
+    const auto every = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.25 / config_.route_step_m)));
+    for (std::size_t i = 0; i < route_.size(); i += every) {
+      points.push_back(to_json(Eigen::Vector3d(route_[i].x(), route_[i].y(), o.state.position_m.z())));
+    }
+    if ((route_.size() - 1) % every != 0) {
+      points.push_back(to_json(Eigen::Vector3d(route_.back().x(), route_.back().y(), o.state.position_m.z())));
+    }
+    result.decisions["planned_path"] = std::move(points);
+    result.decisions["replan"] = {
+        {"index", 0},
+        {"global", kGlobalNames[static_cast<std::size_t>(config_.global)]},
+        {"route_points", route_.size()},
+        {"time_ms", std::chrono::duration<double, std::milli>(Clock::now() - started).count()}};
+    return true;
+  }
+
+  // Whether an obstacle is in the way, and the local planner's heading if so.
+  void assess_scan(const SensorReading& reading, const Eigen::Vector2d& position, double heading) {
+    const LidarScan& scan = *reading.scan;
+    const LidarConfig& lidar = *reading.config;
+    const double sensor_x = lidar.mount.position_m.x();
+    // Nearest obstacle ahead in the corridor, and in the corridor widened for release.
+    double nearest_ahead = std::numeric_limits<double>::infinity(), nearest_wide = nearest_ahead;
+    for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+      if (!scan.hits[i]) continue;
+      const double a = lidar.beams.empty() ? 0.0 : lidar.beams[i].azimuth_deg * M_PI / 180.0;
+      const double r = scan.ranges_m[i];
+      const double ahead = r * std::cos(a), lateral = std::abs(r * std::sin(a) + lidar.mount.position_m.y());
+      if (ahead < 0.0) continue;
+      if (lateral <= config_.corridor_half_width_m) nearest_ahead = std::min(nearest_ahead, ahead);
+      if (lateral <= config_.corridor_half_width_m + config_.release_margin_m) nearest_wide = std::min(nearest_wide, ahead);
+    }
+    const double activation = config_.local == LocalAvoidance::vfh_plus ? config_.vfh_plus.window_radius_m
+                                                                        : config_.follow_the_gap.activation_range_m;
+    avoiding_ = config_.local != LocalAvoidance::none &&
+                (nearest_ahead < activation || (avoiding_ && nearest_wide < activation));
+    blocked_ahead_ = nearest_ahead < config_.stop_distance_m;
+    if (!avoiding_) return;
+
+    // The pure-pursuit goal point is where the local planner should head.
+    PurePursuitState probe = pursuit_;
+    const PurePursuitStep step = pure_pursuit_step(config_.pure_pursuit, probe, position, heading, route_);
+    if (config_.local == LocalAvoidance::follow_the_gap) {
+      // Bearings from the sensor, which sits on the centre line ahead of the body centre.
+      const Eigen::Vector2d sensor_at = position + sensor_x * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+      const Eigen::Vector2d to_goal = step.goal - sensor_at;
+      const double goal_bearing = wrap_to_pi(std::atan2(to_goal.y(), to_goal.x()) - heading);
+      FollowTheGapConfig ftg = config_.follow_the_gap;
+      ftg.max_range_m = lidar.max_range_m;
+      ftg.activation_range_m = std::numeric_limits<double>::infinity();  // the corridor test decided
+      PlanarScanView view{scan.ranges_m, M_PI / 2.0, -M_PI / 180.0};
+      if (!lidar.beams.empty() && lidar.beams.size() > 1) {
+        view.first_angle_rad = lidar.beams.front().azimuth_deg * M_PI / 180.0;
+        view.increment_rad = (lidar.beams[1].azimuth_deg - lidar.beams[0].azimuth_deg) * M_PI / 180.0;
+      }
+      const FollowTheGapStep gap = follow_the_gap_step(ftg, gap_state_, view, goal_bearing, heading);
+      avoid_heading_rad_ = gap.heading_rad;
+      blocked_ahead_ = blocked_ahead_ || gap.chosen < 0;
+    } else {
+      // VFH+ on a local grid of this scan's hits around the rover.
+      const OccupancyGrid local = scan_grid(scan, position, config_.vfh_plus.window_radius_m + 1.0);
+      const VfhPlusResult vfh = vfh_plus_step(local, position, heading, step.goal, config_.vfh_plus, vfh_state_);
+      if (vfh.direction_rad) {
+        avoid_heading_rad_ = wrap_to_pi(*vfh.direction_rad - heading);
+      } else {
+        blocked_ahead_ = true;
+      }
+    }
+  }
+
+  // The first of (v, w), (v/2, w), (0, w), (-kReverseMps, 0), (0, 0) whose motion over the
+  // horizon keeps the footprint off every point of the latest scan.
+  command::Twist guarded(double v, double w, const Eigen::Vector2d& position, double heading) const {
+    if (recent_points_.empty()) return {v, w};
+    const auto touches = [&](double cv, double cw) {
+      constexpr double kDt = 0.1;
+      Eigen::Vector2d p = position;
+      double th = heading;
+      for (double t = kDt; t <= config_.guard_horizon_s + 1e-9; t += kDt) {
+        p += cv * kDt * Eigen::Vector2d(std::cos(th + 0.5 * cw * kDt), std::sin(th + 0.5 * cw * kDt));
+        th += cw * kDt;
+        const double c = std::cos(th), s = std::sin(th);
+        for (const Eigen::Vector2d& q : recent_points_) {
+          const double dx = q.x() - p.x(), dy = q.y() - p.y();
+          if (std::abs(c * dx + s * dy) <= config_.footprint_half_length_m &&
+              std::abs(-s * dx + c * dy) <= config_.footprint_half_width_m) {
+            return true;
+          }
+        }
+      }
+      return false;
+    };
+    // Last, back off slowly (remembered hits cover what the sensor cannot see behind).
+    for (const auto& [cv, cw] : {std::pair{v, w}, std::pair{0.5 * v, w}, std::pair{0.0, w}, std::pair{-kReverseMps, 0.0}}) {
+      if (!touches(cv, cw)) return {cv, cw};
+    }
+    return {0.0, 0.0};
+  }
+
+  // Hits near the rover from earlier scans: the sensor looks ahead, so an
+  // obstacle being passed is only in earlier scans. A remembered hit the new
+  // scan sees through (a longer range on its beam) is gone — the trail a
+  // moving obstacle leaves; one out of the sensor's view stays.
+  void remember(const LidarScan& scan, const LidarConfig& lidar, const Eigen::Vector2d& position) {
+    const double reach = config_.footprint_half_length_m + config_.guard_horizon_s * config_.pure_pursuit.max_speed_m_s + 1.0;
+    const Eigen::Vector2d sensor = scan.sensor_pose.translation().head<2>();
+    const double sensor_yaw = std::atan2(scan.sensor_pose.linear()(1, 0), scan.sensor_pose.linear()(0, 0));
+    const bool fan = lidar.beams.size() > 1 && scan.ranges_m.size() == lidar.beams.size();
+    const double first = fan ? lidar.beams.front().azimuth_deg : 0.0;
+    const double step = fan ? lidar.beams[1].azimuth_deg - first : 1.0;
+    const auto seen_through = [&](const Eigen::Vector2d& q) {
+      if (!fan) return true;  // no fan to test against: keep only this scan's hits
+      const Eigen::Vector2d d = q - sensor;
+      const double beam = std::round((wrap_to_pi(std::atan2(d.y(), d.x()) - sensor_yaw) * 180.0 / M_PI - first) / step);
+      if (beam < 0.0 || beam >= static_cast<double>(scan.ranges_m.size())) return false;
+      return scan.ranges_m[static_cast<std::size_t>(beam)] > d.norm() + 0.2;
+    };
+    // One point per 5 cm cell, so a rover standing still does not pile up copies.
+    const auto key = [](const Eigen::Vector2d& q) {
+      return (static_cast<std::int64_t>(std::floor(q.x() / 0.05)) << 32) ^
+             static_cast<std::int64_t>(static_cast<std::uint32_t>(std::floor(q.y() / 0.05)));
+    };
+    cells_.clear();
+    std::size_t kept = 0;
+    for (const Eigen::Vector2d& q : recent_points_) {
+      if ((q - position).norm() > reach || seen_through(q) || !cells_.insert(key(q)).second) continue;
+      recent_points_[kept++] = q;
+    }
+    recent_points_.resize(kept);
+    for (const Eigen::Vector3f& p : scan.points) {
+      const Eigen::Vector2d q = p.head<2>().cast<double>();
+      if ((q - position).norm() <= reach && cells_.insert(key(q)).second) recent_points_.push_back(q);
+    }
+  }
+
+  OccupancyGrid scan_grid(const LidarScan& scan, const Eigen::Vector2d& centre, double half_size_m) const {
+    OccupancyGrid g;
+    g.resolution_m = 0.1;
+    g.cols = g.rows = static_cast<int>(std::ceil(2.0 * half_size_m / g.resolution_m));
+    g.origin_m = centre - Eigen::Vector2d::Constant(half_size_m);
+    g.occupied.assign(static_cast<std::size_t>(g.cols) * g.rows, 0);
+    for (const Eigen::Vector3f& p : scan.points) {
+      const Eigen::Vector2i c = g.cell_of(p.head<2>().cast<double>());
+      if (g.contains(c.x(), c.y())) g.occupied[static_cast<std::size_t>(c.y()) * g.cols + c.x()] = 1;
+    }
+    return g;
+  }
+
+  // The nearest route point within 30 m ahead of the last one pursued.
+  void rejoin(const Eigen::Vector2d& position) {
+    const auto first = static_cast<std::size_t>(pursuit_.last_found_index);
+    const std::size_t window = static_cast<std::size_t>(std::lround(30.0 / config_.route_step_m));
+    std::size_t best = first;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = first; i < route_.size() && i <= first + window; ++i) {
+      const double d = (route_[i] - position).squaredNorm();
+      if (d < best_d) {
+        best_d = d;
+        best = i;
+      }
+    }
+    pursuit_.last_found_index = static_cast<int>(best);
+  }
+
+  RoverRouteConfig config_;
+  const Scene* scene_ = nullptr;
+  std::vector<Eigen::Vector2d> route_;
+  std::vector<int> waypoint_route_index_;  ///< per mission waypoint: its nearest route point
+  PurePursuitState pursuit_;
+  FollowTheGapState gap_state_;
+  VfhPlusState vfh_state_;
+  std::size_t next_ = 0;             ///< next mission waypoint to pass
+  bool avoiding_ = false;            ///< the local planner steers (from the latest scan)
+  bool last_avoiding_ = false;       ///< as last recorded
+  bool blocked_ahead_ = false;       ///< stop and turn in place
+  double avoid_heading_rad_ = 0.0;   ///< robot frame, from the latest scan
+  static constexpr double kReverseMps = 0.2;
+  std::vector<Eigen::Vector2d> recent_points_;  ///< scan hits near the rover, world frame
+  std::unordered_set<std::int64_t> cells_;      ///< scratch: 5 cm cells of recent_points_
+};
+
+}  // namespace
+
+RoverRouteConfig parse_rover_route_config(const ParamsBlock& params) {
+  RoverRouteConfig c;
+  ObjectReader r(JsonNode(params.values, params.file, params.pointer));
+  r.read("sensor", c.sensor);
+  if (const auto global = r.optional("global")) {
+    c.global = static_cast<GlobalRoute>(global->as_choice(std::vector<std::string_view>(kGlobalNames.begin(), kGlobalNames.end())));
+  }
+  if (const auto local = r.optional("local")) {
+    c.local = static_cast<LocalAvoidance>(local->as_choice(std::vector<std::string_view>(kLocalNames.begin(), kLocalNames.end())));
+  }
+  r.read("turning_radius_m", c.turning_radius_m, Range::closed(0.05, 100.0));
+  r.read("route_step_m", c.route_step_m, Range::closed(0.01, 5.0));
+  r.read("waypoint_tolerance_m", c.waypoint_tolerance_m, Range::positive());
+  r.read("clearance_m", c.clearance_m, Range::non_negative());
+  r.read("occupancy_resolution_m", c.occupancy_resolution_m, Range::closed(0.01, 10.0));
+  r.read("corridor_half_width_m", c.corridor_half_width_m, Range::positive());
+  r.read("release_margin_m", c.release_margin_m, Range::non_negative());
+  r.read("avoid_speed_mps", c.avoid_speed_mps, Range::closed(0.0, 10.0));
+  r.read("avoid_turn_gain", c.avoid_turn_gain, Range::positive());
+  r.read("stop_distance_m", c.stop_distance_m, Range::non_negative());
+  r.read("footprint_half_length_m", c.footprint_half_length_m, Range::positive());
+  r.read("footprint_half_width_m", c.footprint_half_width_m, Range::positive());
+  r.read("guard_horizon_s", c.guard_horizon_s, Range::closed(0.0, 10.0));
+  read_nested(r, "pure_pursuit", c.pure_pursuit);
+  read_nested(r, "follow_the_gap", c.follow_the_gap);
+  read_nested(r, "vfh_plus", c.vfh_plus);
+  read_nested(r, "rrt_star", c.rrt_star);
+  r.finish();
+  try {
+    validate(c.vfh_plus);
+    validate(c.rrt_star);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(params.file, params.pointer, e.what());
+  }
+  return c;
+}
+
+std::unique_ptr<Planner> make_rover_route_planner(const ParamsBlock& params, const PlannerContext& context) {
+  if (context.vehicle != VehicleType::rover) {
+    throw InputError(params.file, params.pointer, "planner rover_route drives a rover only");
+  }
+  RoverRouteConfig config = parse_rover_route_config(params);
+  if (context.scene && !params.values.contains("rrt_star")) {
+    config.rrt_star.seed = context.scene->world.seed;  // seeded from the world unless given
+  }
+  return std::make_unique<RoverRoutePlanner>(config, context);
+}
+
+}  // namespace campo

@@ -1,0 +1,66 @@
+#pragma once
+/// `rover_route`: seed 003's rover navigation (003 §3, SPEC §7.3). A global
+/// route through the mission waypoints — Dubins paths through their headings
+/// (straight along the rows, arcs to switch rows), or A* / RRT* on the
+/// scene's occupancy grid smoothed to a drivable path — followed by pure
+/// pursuit, with a local planner (follow-the-gap or VFH+) taking over while
+/// an obstacle stands in the rover's way within the activation range; pure
+/// pursuit resumes from the route point nearest the rover afterwards.
+#include <memory>
+#include <string>
+
+#include "planners/follow_the_gap.hpp"
+#include "planners/path_smoothing.hpp"
+#include "planners/pure_pursuit.hpp"
+#include "planners/rrt_star.hpp"
+#include "planners/vfh_plus.hpp"
+#include "sim/occupancy_grid.hpp"
+#include "sim/planner.hpp"
+
+namespace campo {
+
+enum class GlobalRoute { dubins, astar, rrt_star };
+enum class LocalAvoidance { follow_the_gap, vfh_plus, none };
+
+struct RoverRouteConfig {
+  std::string sensor;            ///< alias of the planar LIDAR; empty: the vehicle's first sensor
+  GlobalRoute global = GlobalRoute::dubins;
+  LocalAvoidance local = LocalAvoidance::follow_the_gap;
+  double turning_radius_m = 2.0;     ///< Dubins radius and the smallest fillet of A*/RRT* routes
+  double route_step_m = 0.1;         ///< spacing of the route polyline pure pursuit follows
+  double waypoint_tolerance_m = 1.0; ///< a mission waypoint counts as passed within this distance
+  double clearance_m = 0.8;          ///< A*/RRT*: obstacles inflated by this (half the rover's width + margin)
+  double occupancy_resolution_m = 0.1;  ///< A*/RRT* occupancy grid cell
+  /// An obstacle is "in the way" when a scan point lies ahead of the sensor
+  /// within the activation range and within this lateral distance of the
+  /// rover's centre line: vine rows alongside the route are not in the way.
+  double corridor_half_width_m = 0.65;
+  /// Avoidance ends only once the corridor widened by this is clear too, so
+  /// the rover does not turn back to the route while the obstacle is beside it.
+  double release_margin_m = 0.4;
+  double avoid_speed_mps = 0.4;      ///< forward speed while avoiding, before slowing in turns
+  double avoid_turn_gain = 1.5;      ///< yaw rate per radian of heading error while avoiding, 1/s
+  double stop_distance_m = 0.3;      ///< nearer than this ahead (from the sensor): stop and turn in place
+  /// Safety guard: every command is checked by driving it for guard_horizon_s
+  /// against the latest scan's points with the rover's footprint (a
+  /// rectangle about the body centre); a command that would touch one is
+  /// slowed, then reduced to turning in place, then to stopping.
+  double footprint_half_length_m = 0.85;  ///< 003's chassis is 1.5 m long, plus a margin
+  double footprint_half_width_m = 0.6;    ///< and 1.0 m wide, plus a margin
+  double guard_horizon_s = 1.0;
+  PurePursuitConfig pure_pursuit;
+  FollowTheGapConfig follow_the_gap;
+  VfhPlusConfig vfh_plus;
+  RrtStarConfig rrt_star;
+};
+
+std::unique_ptr<Planner> make_rover_route_planner(const ParamsBlock& params, const PlannerContext& context);
+
+/// The configuration of `params` (keys as RoverRouteConfig's fields; global
+/// "dubins" | "astar" | "rrt_star"; local "follow_the_gap" | "vfh_plus" |
+/// "none"; nested objects "pure_pursuit", "follow_the_gap", "vfh_plus",
+/// "rrt_star" with their configs' fields); InputError naming the file and
+/// JSON pointer otherwise.
+RoverRouteConfig parse_rover_route_config(const ParamsBlock& params);
+
+}  // namespace campo

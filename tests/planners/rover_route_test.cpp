@@ -1,0 +1,132 @@
+#include "planners/rover_route.hpp"
+
+#include <fstream>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "planners/registry.hpp"
+#include "sim/episode.hpp"
+#include "sim/json_reader.hpp"
+#include "sim/scene_loader.hpp"
+#include "sim/scene_overrides.hpp"
+#include "vehicles/vehicle.hpp"
+
+namespace campo {
+namespace {
+
+using ::testing::HasSubstr;
+
+ParamsBlock params(nlohmann::json values) { return {std::move(values), "scene.json", "/objects/3/planner/params"}; }
+
+TEST(RoverRoute, ParsesParamsStrictlyAndRoundTrips) {
+  const RoverRouteConfig defaults = parse_rover_route_config(params(nlohmann::json::object()));
+  EXPECT_EQ(defaults.global, GlobalRoute::dubins);
+  EXPECT_EQ(defaults.local, LocalAvoidance::follow_the_gap);
+  EXPECT_DOUBLE_EQ(defaults.follow_the_gap.activation_range_m, 3.5);  // 003 §3.6
+
+  const RoverRouteConfig c = parse_rover_route_config(params(
+      {{"global", "rrt_star"}, {"local", "vfh_plus"}, {"turning_radius_m", 3.0},
+       {"pure_pursuit", {{"lookahead_m", 2.5}}}, {"rrt_star", {{"seed", 9}, {"max_iterations", 100}}}}));
+  EXPECT_EQ(c.global, GlobalRoute::rrt_star);
+  EXPECT_EQ(c.local, LocalAvoidance::vfh_plus);
+  EXPECT_DOUBLE_EQ(c.pure_pursuit.lookahead_m, 2.5);
+  EXPECT_EQ(c.rrt_star.seed, 9u);
+  EXPECT_EQ(c.rrt_star.max_iterations, 100);
+
+  // The effective parameters read back as the same configuration.
+  auto planner = make_rover_route_planner(params({{"turning_radius_m", 3.0}, {"follow_the_gap", {{"k_width", 2.0}}}}),
+                                          {VehicleType::rover, nullptr});
+  const RoverRouteConfig back = parse_rover_route_config(params(planner->parameters()));
+  EXPECT_DOUBLE_EQ(back.turning_radius_m, 3.0);
+  EXPECT_DOUBLE_EQ(back.follow_the_gap.k_width, 2.0);
+
+  const auto expect_error = [](nlohmann::json values, const std::string& message) {
+    try {
+      parse_rover_route_config(params(std::move(values)));
+      ADD_FAILURE() << "accepted: " << message;
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr(message));
+    }
+  };
+  expect_error({{"global", "prm"}}, "/objects/3/planner/params/global");
+  expect_error({{"pure_pursuit", {{"lookahead", 2.0}}}}, "/objects/3/planner/params/pure_pursuit");
+  expect_error({{"turning_radius_m", 0.0}}, "/objects/3/planner/params/turning_radius_m");
+  expect_error({{"vfh_plus", {{"mu_target", 1.0}}}}, "mu");  // mu1 > mu2 + mu3
+  EXPECT_THROW(make_rover_route_planner({}, {VehicleType::quadrotor, nullptr}), InputError);
+}
+
+// The bundled vineyard with --set style overrides, in closed loop (1-2 s each in Release).
+EpisodeResult drive(const std::vector<std::string>& overrides) {
+  const std::string file = std::string(CAMPO_SOURCE_DIR) + "/scenes/vineyard.json";
+  nlohmann::json document = nlohmann::json::parse(std::ifstream(file));
+  for (const std::string& assignment : overrides) apply_override(document, assignment);
+  const Scene scene = parse_scene(document, file, std::filesystem::path(file).parent_path());
+  EXPECT_EQ(scene.vehicles.front().planner.name, "rover_route");
+  return run_episode(scene, &make_vehicle, &create_planner);
+}
+
+int waypoints_passed(const EpisodeResult& r) {
+  int passed = 0;
+  for (const PlannerEvent& e : r.events) {
+    if (e.decisions.contains("reached_waypoints")) passed += static_cast<int>(e.decisions["reached_waypoints"].size());
+  }
+  return passed;
+}
+
+// min_clearance_m is measured from the rover's bounding sphere (0.9 m, its
+// half-diagonal), so a route 0.8 m from the rows reads as 0 without touching.
+void expect_route_driven(const EpisodeResult& r, const char* what, double min_clearance_m = 0.1) {
+  SCOPED_TRACE(what);
+  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+  EXPECT_EQ(r.metrics.collisions, 0);
+  EXPECT_EQ(waypoints_passed(r), 6);
+  // Row by row: three 89 m rows and two 4 m row switches, about 272 m.
+  EXPECT_GT(r.metrics.path_length_m, 260.0);
+  EXPECT_LT(r.metrics.path_ratio, 1.05);
+  EXPECT_GE(r.metrics.min_clearance_m, min_clearance_m);
+}
+
+const char* kNoStaticObstacles = "/objects/field/obstacle_count=0";
+const char* kWalkerAway = R"(/objects/walker/path_m=[[-30, -60, 0.85], [-31, -60, 0.85]])";
+
+// Dubins route + pure pursuit along the rows, no obstacle in the way: the
+// rover stays on the route (the Dubins arcs are drivable at 2 m radius).
+TEST(RoverRouteClosedLoop, FollowsTheDubinsRouteRowByRow) {
+  const EpisodeResult r = drive({kNoStaticObstacles, kWalkerAway});
+  expect_route_driven(r, "no obstacles");
+  EXPECT_LT(r.metrics.cross_track_rms_m, 0.1);
+  EXPECT_LT(r.metrics.cross_track_max_m, 0.4);
+}
+
+// Seed 003 Fig. 46: a walker crosses the first inter-row left to right in
+// front of the rover; follow-the-gap steers round it, then pure pursuit resumes.
+TEST(RoverRouteClosedLoop, AvoidsTheWalkerCrossingItsPath) {
+  const EpisodeResult r = drive({kNoStaticObstacles});
+  expect_route_driven(r, "walker");
+  EXPECT_GT(r.metrics.avoiding_time_s, 1.0);
+  bool avoided_near_walker = false;
+  double t_on = -1.0;
+  for (const PlannerEvent& e : r.events) {
+    if (!e.decisions.contains("avoiding")) continue;
+    if (e.decisions["avoiding"].get<bool>()) t_on = e.time_s;
+    else if (t_on >= 0.0) {
+      // The walker crosses y = 20 from t = 58 s.
+      avoided_near_walker = avoided_near_walker || (t_on > 55.0 && t_on < 75.0);
+    }
+  }
+  EXPECT_TRUE(avoided_near_walker);
+}
+
+TEST(RoverRouteClosedLoop, VfhPlusAsTheLocalPlanner) {
+  expect_route_driven(drive({kNoStaticObstacles, "/objects/rover/planner/params/local=vfh_plus"}), "vfh_plus");
+}
+
+TEST(RoverRouteClosedLoop, RrtStarAsTheGlobalPlanner) {
+  const EpisodeResult r = drive({kNoStaticObstacles, kWalkerAway, "/objects/rover/planner/params/global=rrt_star"});
+  expect_route_driven(r, "rrt_star", 0.0);  // its route keeps clearance_m = 0.8 m from the rows
+  EXPECT_EQ(r.events.front().decisions["replan"]["global"], "rrt_star");
+}
+
+}  // namespace
+}  // namespace campo
