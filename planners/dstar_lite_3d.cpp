@@ -26,7 +26,7 @@ class DStarLite3dPlanner final : public Planner {
   PlanResult plan(const Observation& o) override {
     PlanResult result;
     result.command = command::Hold{o.state.position_m, std::nullopt};
-    const SensorReading* lidar = sensor(o);
+    const SensorReading* lidar = o.sensor(config_.sensor);
     if (!lidar) {
       result.status = PlanStatus::invalid_start;
       result.reason = config_.sensor.empty() ? "the vehicle has no sensor to map with"
@@ -156,13 +156,6 @@ class DStarLite3dPlanner final : public Planner {
   }
 
  private:
-  const SensorReading* sensor(const Observation& o) const {
-    for (const SensorReading& r : o.sensors) {
-      if (config_.sensor.empty() || r.alias == config_.sensor) return &r;
-    }
-    return nullptr;
-  }
-
   // Where the search starts: the vehicle's cell once it is near that cell's
   // centre (entering a cell early would let the next move cut the corner past
   // an obstacle), else the cell it last reached. At the start of a leg, the

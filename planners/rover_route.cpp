@@ -194,7 +194,7 @@ class RoverRoutePlanner final : public Planner {
   PlanResult plan(const Observation& o) override {
     PlanResult result;
     result.command = command::Hold{o.state.position_m, std::nullopt};
-    const SensorReading* scanner = sensor(o);
+    const SensorReading* scanner = o.sensor(config_.sensor);
     if (config_.local != LocalAvoidance::none && !scanner) {
       result.status = PlanStatus::invalid_start;
       result.reason = config_.sensor.empty() ? "the vehicle has no sensor for obstacle avoidance"
@@ -269,13 +269,6 @@ class RoverRoutePlanner final : public Planner {
   }
 
  private:
-  const SensorReading* sensor(const Observation& o) const {
-    for (const SensorReading& r : o.sensors) {
-      if (config_.sensor.empty() || r.alias == config_.sensor) return &r;
-    }
-    return nullptr;
-  }
-
   bool build_route(const Observation& o, PlanResult& result) {
     const auto started = Clock::now();
     const std::vector<dubins::Pose2> poses = route_poses(o, config_.waypoint_tolerance_m);

@@ -7,4 +7,11 @@ std::string_view to_string(PlanStatus status) {
   return kNames[static_cast<int>(status)];
 }
 
+const SensorReading* Observation::sensor(std::string_view alias) const {
+  for (const SensorReading& r : sensors) {
+    if (alias.empty() || r.alias == alias) return &r;
+  }
+  return nullptr;
+}
+
 }  // namespace campo

@@ -30,6 +30,10 @@ struct Observation {
   bool stable = false;                   ///< speeds below the vehicle's thresholds
   std::span<const SensorReading> sensors;
   std::span<const Waypoint> mission;
+
+  /// The reading of the sensor named `alias`, or the first one when `alias`
+  /// is empty; null when there is none.
+  const SensorReading* sensor(std::string_view alias) const;
 };
 
 enum class PlanStatus {
