@@ -52,7 +52,8 @@ Command add_run(CLI::App& app) {
   app.add_option("scene", o->scene, "Scene file (JSON); default: the bundled two_barriers");
   std::string planners;
   for (const auto& entry : planner_registry()) planners += (planners.empty() ? "" : ", ") + std::string(entry.name);
-  app.add_option("--planner", o->planner, "Planner (" + planners + "); default: the scene's, else straight");
+  app.add_option("--planner", o->planner,
+                 "Planner (" + planners + "); default: the scene's, else straight. Another planner than the scene's runs with its default parameters");
   app.add_option("--set", o->sets,
                  "Override a scene field: PATH=VALUE with PATH a JSON pointer; inside arrays of objects an "
                  "alias may stand for the index (e.g. --set /objects/drone/planner/params/speed_mps=1.0). "

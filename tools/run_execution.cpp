@@ -37,6 +37,8 @@ nlohmann::json execute_run(const RunRequest& request) {
   }
   VehicleDef& def = scene.vehicles[options.vehicle_index];
   if (!request.planner.empty()) {
+    // The scene's planner parameters are another planner's: --set them anew for this one.
+    if (request.planner != def.planner.name) def.planner.params.values = nlohmann::json::object();
     def.planner.name = request.planner;
     def.planner.name_pointer = "";
     def.planner.params.file = "command line";
