@@ -304,6 +304,12 @@ class RoverRoutePlanner final : public Planner {
       smoothing.step_m = config_.route_step_m;
       route_ = smooth_path(grid, *raw, smoothing).points_m;
     }
+    if (route_.size() < 2) {
+      result.status = PlanStatus::no_path;
+      result.reason = "the route through the mission waypoints is empty";
+      route_.clear();
+      return false;
+    }
     // Each mission waypoint's nearest route point, in order along the route.
     std::size_t from = 0;
     for (const Waypoint& w : o.mission) {
@@ -453,7 +459,7 @@ class RoverRoutePlanner final : public Planner {
     }
   }
 
-  OccupancyGrid scan_grid(const LidarScan& scan, const Eigen::Vector2d& centre, double half_size_m) const {
+  static OccupancyGrid scan_grid(const LidarScan& scan, const Eigen::Vector2d& centre, double half_size_m) {
     OccupancyGrid g;
     g.resolution_m = 0.1;
     g.cols = g.rows = static_cast<int>(std::ceil(2.0 * half_size_m / g.resolution_m));

@@ -1,17 +1,12 @@
 #include "planners/dstar_lite_3d.hpp"
 
 #include <algorithm>
-#include <fstream>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "planners/registry.hpp"
-#include "sim/episode.hpp"
+#include "closed_loop_support.hpp"
 #include "sim/json_reader.hpp"
-#include "sim/scene_loader.hpp"
-#include "sim/scene_overrides.hpp"
-#include "vehicles/vehicle.hpp"
 
 namespace campo {
 namespace {
@@ -151,21 +146,10 @@ TEST(DStarLite3d, ParsesParamsStrictly) {
 // Closed loop on seed 001's scenes (each a fraction of a second in Release),
 // with optional --set style overrides.
 EpisodeResult fly(const std::string& name, const std::vector<std::string>& overrides = {}) {
-  const std::string file = std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json";
-  nlohmann::json document = nlohmann::json::parse(std::ifstream(file));
-  for (const std::string& assignment : overrides) apply_override(document, assignment);
-  const Scene scene = parse_scene(document, file, std::filesystem::path(file).parent_path());
-  EXPECT_EQ(scene.vehicles.front().planner.name, "dstar_lite_3d");
-  return run_episode(scene, &make_vehicle, &create_planner);
+  return testing::run_bundled(name, "dstar_lite_3d", overrides);
 }
 
-int waypoints_reached(const EpisodeResult& r) {
-  int reached = 0;
-  for (const PlannerEvent& e : r.events) {
-    if (e.decisions.contains("reached_waypoints")) reached += static_cast<int>(e.decisions["reached_waypoints"].size());
-  }
-  return reached;
-}
+using testing::waypoints_reached;
 
 void expect_solved(const EpisodeResult& r, int waypoints, const char* what, double max_path_ratio = 1.25,
                    double min_clearance_m = 0.2) {

@@ -1,16 +1,10 @@
 #include "planners/rover_route.hpp"
 
-#include <fstream>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "planners/registry.hpp"
-#include "sim/episode.hpp"
+#include "closed_loop_support.hpp"
 #include "sim/json_reader.hpp"
-#include "sim/scene_loader.hpp"
-#include "sim/scene_overrides.hpp"
-#include "vehicles/vehicle.hpp"
 
 namespace campo {
 namespace {
@@ -58,20 +52,7 @@ TEST(RoverRoute, ParsesParamsStrictlyAndRoundTrips) {
 
 // The bundled vineyard with --set style overrides, in closed loop (1-2 s each in Release).
 EpisodeResult drive(const std::vector<std::string>& overrides) {
-  const std::string file = std::string(CAMPO_SOURCE_DIR) + "/scenes/vineyard.json";
-  nlohmann::json document = nlohmann::json::parse(std::ifstream(file));
-  for (const std::string& assignment : overrides) apply_override(document, assignment);
-  const Scene scene = parse_scene(document, file, std::filesystem::path(file).parent_path());
-  EXPECT_EQ(scene.vehicles.front().planner.name, "rover_route");
-  return run_episode(scene, &make_vehicle, &create_planner);
-}
-
-int waypoints_passed(const EpisodeResult& r) {
-  int passed = 0;
-  for (const PlannerEvent& e : r.events) {
-    if (e.decisions.contains("reached_waypoints")) passed += static_cast<int>(e.decisions["reached_waypoints"].size());
-  }
-  return passed;
+  return testing::run_bundled("vineyard", "rover_route", overrides);
 }
 
 // min_clearance_m is measured from the rover's bounding sphere (0.9 m, its
@@ -81,7 +62,7 @@ void expect_route_driven(const EpisodeResult& r, const char* what, double min_cl
   SCOPED_TRACE(what);
   EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
   EXPECT_EQ(r.metrics.collisions, 0);
-  EXPECT_EQ(waypoints_passed(r), 6);
+  EXPECT_EQ(testing::waypoints_reached(r), 6);
   // Row by row: three 89 m rows and two 4 m row switches, about 272 m.
   EXPECT_GT(r.metrics.path_length_m, 260.0);
   EXPECT_LT(r.metrics.path_ratio, max_path_ratio);

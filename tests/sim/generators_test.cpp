@@ -308,16 +308,18 @@ TEST(GeneratorsVineyard, RowsAreEquispacedCentredAndPostedAtBothEnds) {
   }
 }
 
-TEST(GeneratorsVineyard, ObstaclesLieBetweenRowsClearOfCanopies) {
-  const VineyardConfig config = small_vineyard(9);
+// Every obstacle lies between two canopies with 0.3 m clearance on both
+// sides, and a passage at least `passage_m` wide on one side.
+void expect_obstacles_between_rows(const VineyardConfig& config, double passage_m) {
   const auto shapes = make_vineyard(config, "vy");
   const auto canopies = select(shapes, "/canopy");
   const auto obstacles = select(shapes, "/obstacle");
+  ASSERT_EQ(obstacles.size(), static_cast<std::size_t>(config.obstacle_count));
   for (const Shape& obstacle : obstacles) {
     SCOPED_TRACE(obstacle.alias);
     for (int k = 0; k < 3; ++k) {
-      EXPECT_GE(obstacle.size_m[k], 0.3);
-      EXPECT_LE(obstacle.size_m[k], 0.8);
+      EXPECT_GE(obstacle.size_m[k], config.obstacle_size_m[0]);
+      EXPECT_LE(obstacle.size_m[k], config.obstacle_size_m[1]);
     }
     EXPECT_NEAR(obstacle.pose.translation().z(), 0.5 * obstacle.size_m.z(), 1e-12);
     const auto corners = footprint(obstacle);
@@ -329,13 +331,32 @@ TEST(GeneratorsVineyard, ObstaclesLieBetweenRowsClearOfCanopies) {
     ASSERT_NE(right, canopies.end());
     const double left_side = std::prev(right)->pose.translation().x() + 0.5 * config.canopy_width_m;
     const double right_side = right->pose.translation().x() - 0.5 * config.canopy_width_m;
+    double min_x = right_side, max_x = left_side;
     for (const Eigen::Vector2d& corner : corners) {
       EXPECT_GE(corner.x(), left_side + 0.3 - 1e-9);
       EXPECT_LE(corner.x(), right_side - 0.3 + 1e-9);
       EXPECT_GE(corner.y(), -15.0 - 1e-9);
       EXPECT_LE(corner.y(), 15.0 + 1e-9);
+      min_x = std::min(min_x, corner.x());
+      max_x = std::max(max_x, corner.x());
     }
+    EXPECT_GE(std::max(min_x - left_side, right_side - max_x), passage_m - 1e-9);
   }
+}
+
+TEST(GeneratorsVineyard, ObstaclesLieBetweenRowsClearOfCanopies) {
+  expect_obstacles_between_rows(small_vineyard(9), 0.3);
+}
+
+// 3 m rows with 0.6 m canopies leave 2.4 m: 0.8 m boxes (1.13 m across when
+// yawed) + 0.3 m clearance fit a 0.95 m passage on the other side.
+TEST(GeneratorsVineyard, ObstaclesLeaveThePassageAskedFor) {
+  VineyardConfig config = small_vineyard(4);
+  config.obstacle_passage_m = 0.95;
+  expect_obstacles_between_rows(config, 0.95);
+  config.obstacle_passage_m = 1.2;
+  EXPECT_THAT([&] { make_vineyard(config, "v"); },
+              ThrowsMessage<std::invalid_argument>(HasSubstr("a passage of 1.2 m on the other")));
 }
 
 TEST(GeneratorsVineyard, FenceEnclosesEverything) {
