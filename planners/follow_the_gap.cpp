@@ -19,6 +19,13 @@ int bubble_half_width(double radius_m, double nearest_range_m, double increment_
   return static_cast<int>(std::ceil(sectors - 1e-9));
 }
 
+double free_distance(double range_m, double offset_rad, double radius_m) {
+  const double along = range_m * std::cos(offset_rad);
+  const double lateral = range_m * std::sin(offset_rad);
+  if (std::abs(lateral) > radius_m || (along < 0.0 && range_m > radius_m)) return std::numeric_limits<double>::infinity();
+  return std::max(0.0, along - std::sqrt(radius_m * radius_m - lateral * lateral));
+}
+
 FollowTheGapStep follow_the_gap_step(const FollowTheGapConfig& config, FollowTheGapState& state,
                                      const PlanarScanView& scan, double goal_bearing_rad, double robot_heading_rad) {
   FollowTheGapStep step;
@@ -42,13 +49,39 @@ FollowTheGapStep follow_the_gap_step(const FollowTheGapConfig& config, FollowThe
   }
 
   // Safety bubble: the rover as a point, the nearest obstacle grown by R.
+  const std::vector<float> saturated_ranges = ranges;
   const double d_min = step.nearest_range_m;
   step.bubble_half_width = bubble_half_width(config.bubble_radius_m, d_min, scan.increment_rad);
   step.bubble_first_beam = std::max(0, step.nearest_beam - step.bubble_half_width);
   step.bubble_last_beam = std::min(beams - 1, step.nearest_beam + step.bubble_half_width);
   std::fill(ranges.begin() + step.bubble_first_beam, ranges.begin() + step.bubble_last_beam + 1, 0.0f);
 
-  // Gaps: maximal runs of unblocked beams without a range step above the threshold.
+  // Free space: the bubble grows only the nearest reading by R, so other
+  // near readings (a wall beside, the far side of a passage) would still
+  // leave rays a point could take but the rover could not.
+  const bool free_space = config.free_range_m > 0.0;
+  const double dalpha = std::abs(scan.increment_rad);
+  if (free_space) {
+    std::vector<float> free = ranges;
+    const double radius = config.bubble_radius_m;
+    for (int j = 0; j < beams; ++j) {
+      const double d = saturated_ranges[j];
+      if (!(d < config.free_range_m + radius)) continue;  // farther ones cannot shorten a beam below free_range_m
+      const double half = d <= radius ? M_PI / 2.0 : std::asin(radius / d);
+      const int reach = static_cast<int>(std::ceil(half / dalpha));
+      for (int k = std::max(0, j - reach); k <= std::min(beams - 1, j + reach); ++k) {
+        const double t = free_distance(d, scan.angle(k) - scan.angle(j), radius);
+        if (t < free[k]) free[k] = static_cast<float>(t);
+      }
+    }
+    // A beam is free when the rover can drive past free_range_m along it; the rest blocks.
+    for (float& r : free) {
+      if (!(r > config.free_range_m)) r = 0.0f;
+    }
+    ranges = std::move(free);
+  }
+
+  // Gaps: maximal runs of unblocked beams, split (003 only) at range steps above the threshold.
   const double w = config.alpha_m / d_min;
   for (int i = 0; i < beams;) {
     if (ranges[i] <= 0.0f) {
@@ -58,7 +91,8 @@ FollowTheGapStep follow_the_gap_step(const FollowTheGapConfig& config, FollowThe
     ScanGap g;
     g.first_beam = i;
     double sum = ranges[i];
-    while (i + 1 < beams && ranges[i + 1] > 0.0f && std::abs(ranges[i + 1] - ranges[i]) <= config.gap_jump_m) {
+    while (i + 1 < beams && ranges[i + 1] > 0.0f &&
+           (free_space || std::abs(ranges[i + 1] - ranges[i]) <= config.gap_jump_m)) {
       sum += ranges[++i];
     }
     g.last_beam = i++;
@@ -70,6 +104,11 @@ FollowTheGapStep follow_the_gap_step(const FollowTheGapConfig& config, FollowThe
     g.center_rad = 0.5 * (scan.angle(g.first_beam) + scan.angle(g.last_beam));
     // Near obstacles (large a / d_min) pull the heading toward the gap's centre, far ones toward the goal.
     g.heading_rad = (w * g.center_rad + goal_bearing_rad) / (w + 1.0);
+    if (free_space) {
+      // A goal behind an obstacle would otherwise pull the heading out of the gap, onto the obstacle.
+      const double a1 = scan.angle(g.first_beam), a2 = scan.angle(g.last_beam);
+      g.heading_rad = std::clamp(g.heading_rad, std::min(a1, a2), std::max(a1, a2));
+    }
     g.score = config.k_width * g.width_m * g.mean_range +
               config.k_heading * (M_PI - std::abs(g.heading_rad - goal_bearing_rad));
     step.gaps.push_back(g);
@@ -77,7 +116,6 @@ FollowTheGapStep follow_the_gap_step(const FollowTheGapConfig& config, FollowThe
 
   // Hysteresis: the gap sharing most of the previous choice's sectors (at
   // least half a beam, compared in angle) gets the bonus.
-  const double dalpha = std::abs(scan.increment_rad);
   const auto half_width = [&](const ScanGap& g) { return 0.5 * (g.last_beam - g.first_beam + 1) * dalpha; };
   if (state.has_previous) {
     const double previous_center = wrap_to_pi(state.previous_center_world_rad - robot_heading_rad);

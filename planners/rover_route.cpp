@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <functional>
+#include <memory>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -53,6 +55,7 @@ void fields(FollowTheGapConfig& c, Visit&& f) {
   f("activation_range_m", c.activation_range_m, Range::positive());
   f("bubble_radius_m", c.bubble_radius_m, Range::positive());
   f("gap_jump_m", c.gap_jump_m, Range::positive());
+  f("free_range_m", c.free_range_m, Range::non_negative());
   f("alpha_m", c.alpha_m, Range::non_negative());
   f("k_width", c.k_width, Range::non_negative());
   f("k_heading", c.k_heading, Range::non_negative());
@@ -144,44 +147,80 @@ std::vector<Eigen::Vector2d> dubins_route(const std::vector<dubins::Pose2>& pose
   return out;
 }
 
-// A* (8-connected, no corner cutting) on the inflated occupancy grid, leg by leg.
-std::optional<std::vector<Eigen::Vector2d>> astar_route(const OccupancyGrid& grid,
-                                                        const std::vector<dubins::Pose2>& poses) {
-  grid::GridGraph graph({grid.cols, grid.rows, 1}, grid::Connectivity::eight);
-  for (int row = 0; row < grid.rows; ++row) {
-    for (int col = 0; col < grid.cols; ++col) {
-      if (grid.is_occupied(col, row)) graph.set_state({col, row, 0}, grid::CellState::blocked);
-    }
-  }
-  grid::AStar astar(graph);
+// One leg of a grid route between two free points: a polyline from a to b, or nothing.
+using LegPlanner = std::function<std::optional<std::vector<Eigen::Vector2d>>(
+    std::size_t leg, const Eigen::Vector2d& a, const Eigen::Vector2d& b)>;
+
+// Grid route through the poses, leg by leg, each leg leaving its waypoint and
+// reaching the next one straight along their headings for `lead_m` (where that
+// stretch is free): a search between the waypoints themselves would round the
+// headland corner over the row end, too tight to drive. Each leg is shortcut
+// on its own, so the leads stay; collinear points are dropped so the fillets
+// get the whole straight runs.
+std::optional<std::vector<Eigen::Vector2d>> grid_route(const OccupancyGrid& grid, const std::vector<dubins::Pose2>& poses,
+                                                      double lead_m, const LegPlanner& plan_leg) {
+  const auto at = [](const dubins::Pose2& p) { return Eigen::Vector2d(p.x_m, p.y_m); };
+  const auto ahead = [](const dubins::Pose2& p) { return Eigen::Vector2d(std::cos(p.heading_rad), std::sin(p.heading_rad)); };
   std::vector<Eigen::Vector2d> path;
   for (std::size_t i = 0; i + 1 < poses.size(); ++i) {
-    const Eigen::Vector2i a = grid.cell_of({poses[i].x_m, poses[i].y_m});
-    const Eigen::Vector2i b = grid.cell_of({poses[i + 1].x_m, poses[i + 1].y_m});
-    if (!grid.contains(a.x(), a.y()) || !grid.contains(b.x(), b.y())) return std::nullopt;
-    const grid::SearchResult leg = astar.plan({a.x(), a.y(), 0}, {b.x(), b.y(), 0});
-    if (leg.status != grid::SearchStatus::found) return std::nullopt;
-    for (std::size_t k = path.empty() ? 0 : 1; k < leg.path.size(); ++k) {
-      path.push_back(grid.centre_of(leg.path[k].x, leg.path[k].y));
+    const Eigen::Vector2d a = at(poses[i]), b = at(poses[i + 1]);
+    Eigen::Vector2d a_lead = a + lead_m * ahead(poses[i]), b_lead = b - lead_m * ahead(poses[i + 1]);
+    if (!grid.segment_free(a, a_lead)) a_lead = a;
+    if (!grid.segment_free(b_lead, b)) b_lead = b;
+    const auto leg = plan_leg(i, a_lead, b_lead);
+    if (!leg) return std::nullopt;
+    std::vector<Eigen::Vector2d> piece{a};
+    const std::vector<Eigen::Vector2d> middle = shortcut_path(grid, *leg);
+    piece.insert(piece.end(), middle.begin(), middle.end());
+    piece.push_back(b);
+    for (const Eigen::Vector2d& q : piece) {
+      if (!path.empty() && (q - path.back()).norm() <= 1e-9) continue;
+      // Drop the last point when it lies on the straight line from its predecessor to q.
+      if (path.size() >= 2) {
+        const Eigen::Vector2d u = path.back() - path[path.size() - 2], v = q - path.back();
+        if (std::abs(u.x() * v.y() - u.y() * v.x()) <= 1e-9 * u.norm() * v.norm() && u.dot(v) > 0.0) path.pop_back();
+      }
+      path.push_back(q);
     }
   }
   return path;
 }
 
-std::optional<std::vector<Eigen::Vector2d>> rrt_star_route(const OccupancyGrid& grid,
-                                                           const std::vector<dubins::Pose2>& poses,
-                                                           const RrtStarConfig& config) {
-  std::vector<Eigen::Vector2d> path;
-  for (std::size_t i = 0; i + 1 < poses.size(); ++i) {
+// A* (8-connected, no corner cutting) on the inflated occupancy grid.
+LegPlanner astar_legs(const OccupancyGrid& grid) {
+  auto graph = std::make_shared<grid::GridGraph>(grid::GridSize{grid.cols, grid.rows, 1}, grid::Connectivity::eight);
+  for (int row = 0; row < grid.rows; ++row) {
+    for (int col = 0; col < grid.cols; ++col) {
+      if (grid.is_occupied(col, row)) graph->set_state({col, row, 0}, grid::CellState::blocked);
+    }
+  }
+  return [&grid, graph](std::size_t, const Eigen::Vector2d& from, const Eigen::Vector2d& to)
+             -> std::optional<std::vector<Eigen::Vector2d>> {
+    const Eigen::Vector2i a = grid.cell_of(from), b = grid.cell_of(to);
+    if (!grid.contains(a.x(), a.y()) || !grid.contains(b.x(), b.y())) return std::nullopt;
+    grid::AStar astar(*graph);
+    const grid::SearchResult leg = astar.plan({a.x(), a.y(), 0}, {b.x(), b.y(), 0});
+    if (leg.status != grid::SearchStatus::found) return std::nullopt;
+    // From and to themselves rather than their cells' centres.
+    std::vector<Eigen::Vector2d> path{from};
+    for (std::size_t k = 1; k + 1 < leg.path.size(); ++k) path.push_back(grid.centre_of(leg.path[k].x, leg.path[k].y));
+    path.push_back(to);
+    return path;
+  };
+}
+
+LegPlanner rrt_star_legs(const OccupancyGrid& grid, const RrtStarConfig& config) {
+  return [&grid, config](std::size_t i, const Eigen::Vector2d& from, const Eigen::Vector2d& to)
+             -> std::optional<std::vector<Eigen::Vector2d>> {
     RrtStarConfig leg_config = config;
     leg_config.seed = Rng::derive_seed(config.seed, i);
-    const RrtStarResult leg = rrt_star(grid, {poses[i].x_m, poses[i].y_m}, {poses[i + 1].x_m, poses[i + 1].y_m}, leg_config);
+    const RrtStarResult leg = rrt_star(grid, from, to, leg_config);
     if (leg.status != RrtStarStatus::solved) return std::nullopt;
-    for (std::size_t k = path.empty() ? 0 : 1; k < leg.path_m.size(); ++k) path.push_back(leg.path_m[k]);
-    // The tree stops inside the goal region: end on the waypoint itself.
-    path.emplace_back(poses[i + 1].x_m, poses[i + 1].y_m);
-  }
-  return path;
+    std::vector<Eigen::Vector2d> path = leg.path_m;
+    // The tree stops inside the goal region: end on the goal itself.
+    path.push_back(to);
+    return path;
+  };
 }
 
 // ---------------------------------------------------------------- the planner
@@ -289,8 +328,8 @@ class RoverRoutePlanner final : public Planner {
       OccupancyConfig occupancy;
       occupancy.resolution_m = config_.occupancy_resolution_m;
       const OccupancyGrid grid = inflate(build_occupancy_grid(*scene_, occupancy), config_.clearance_m);
-      const auto raw = config_.global == GlobalRoute::astar ? astar_route(grid, poses)
-                                                            : rrt_star_route(grid, poses, config_.rrt_star);
+      const LegPlanner legs = config_.global == GlobalRoute::astar ? astar_legs(grid) : rrt_star_legs(grid, config_.rrt_star);
+      const auto raw = grid_route(grid, poses, config_.turning_radius_m, legs);
       if (!raw) {
         result.status = PlanStatus::no_path;
         result.reason = "no " + std::string(kGlobalNames[static_cast<std::size_t>(config_.global)]) +
@@ -302,7 +341,7 @@ class RoverRoutePlanner final : public Planner {
       smoothing.min_turning_radius_m = config_.turning_radius_m;
       smoothing.max_turning_radius_m = std::max(smoothing.max_turning_radius_m, config_.turning_radius_m);
       smoothing.step_m = config_.route_step_m;
-      route_ = smooth_path(grid, *raw, smoothing).points_m;
+      route_ = fillet_corners(grid, *raw, smoothing).points_m;
     }
     if (route_.size() < 2) {
       result.status = PlanStatus::no_path;
@@ -345,21 +384,32 @@ class RoverRoutePlanner final : public Planner {
     const LidarScan& scan = *reading.scan;
     const LidarConfig& lidar = *reading.config;
     const double sensor_x = lidar.mount.position_m.x();
-    // Nearest obstacle ahead in the corridor, and in the corridor widened for release.
-    double nearest_ahead = std::numeric_limits<double>::infinity(), nearest_wide = nearest_ahead;
+    // Nearest obstacle straight ahead of the sensor, close enough to stop for.
+    double nearest_ahead = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
       if (!scan.hits[i]) continue;
       const double a = lidar.beams.empty() ? 0.0 : lidar.beams[i].azimuth_deg * M_PI / 180.0;
       const double r = scan.ranges_m[i];
       const double ahead = r * std::cos(a), lateral = std::abs(r * std::sin(a) + lidar.mount.position_m.y());
-      if (ahead < 0.0) continue;
-      if (lateral <= config_.corridor_half_width_m) nearest_ahead = std::min(nearest_ahead, ahead);
-      if (lateral <= config_.corridor_half_width_m + config_.release_margin_m) nearest_wide = std::min(nearest_wide, ahead);
+      if (ahead >= 0.0 && lateral <= config_.corridor_half_width_m) nearest_ahead = std::min(nearest_ahead, ahead);
     }
+    // In the way: a hit near the route ahead, from the rover's route point on for the
+    // activation range, not merely ahead of the rover — in a headland turn the row
+    // ends lie ahead of the rover but beside the route.
     const double activation = config_.local == LocalAvoidance::vfh_plus ? config_.vfh_plus.window_radius_m
                                                                         : config_.follow_the_gap.activation_range_m;
-    avoiding_ = config_.local != LocalAvoidance::none &&
-                (nearest_ahead < activation || (avoiding_ && nearest_wide < activation));
+    const std::size_t from = nearest_route_point(position);
+    const std::size_t to = std::min(route_.size(), from + 1 + static_cast<std::size_t>(std::ceil(activation / config_.route_step_m)));
+    bool in_way = false, in_wide = false;
+    for (const Eigen::Vector3f& p : scan.points) {
+      const Eigen::Vector2d q = p.head<2>().cast<double>();
+      double d2 = std::numeric_limits<double>::infinity();
+      for (std::size_t k = from; k < to; ++k) d2 = std::min(d2, (route_[k] - q).squaredNorm());
+      const double d = std::sqrt(d2);
+      in_way = in_way || d <= config_.corridor_half_width_m;
+      in_wide = in_wide || d <= config_.corridor_half_width_m + config_.release_margin_m;
+    }
+    avoiding_ = config_.local != LocalAvoidance::none && (in_way || (avoiding_ && in_wide));
     blocked_ahead_ = nearest_ahead < config_.stop_distance_m;
     if (!avoiding_) return;
 
@@ -394,8 +444,9 @@ class RoverRoutePlanner final : public Planner {
     }
   }
 
-  // The first of (v, w), (v/2, w), (0, w), (-kReverseMps, 0), (0, 0) whose motion over the
-  // horizon keeps the footprint off every point of the latest scan.
+  // The first of (v, w), (v/2, w), (v, 0), (0, w), (-kReverseMps, 0), (0, 0) whose motion over
+  // the horizon keeps the footprint off every point of the latest scan. Straight on comes before
+  // turning in place: a turn refused while passing an obstacle is usually possible just past it.
   command::Twist guarded(double v, double w, const Eigen::Vector2d& position, double heading) const {
     if (recent_points_.empty()) return {v, w};
     const auto touches = [&](double cv, double cw) {
@@ -417,7 +468,7 @@ class RoverRoutePlanner final : public Planner {
       return false;
     };
     // Last, back off slowly (remembered hits cover what the sensor cannot see behind).
-    for (const auto& [cv, cw] : {std::pair{v, w}, std::pair{0.5 * v, w}, std::pair{0.0, w}, std::pair{-kReverseMps, 0.0}}) {
+    for (const auto& [cv, cw] : {std::pair{v, w}, std::pair{0.5 * v, w}, std::pair{v, 0.0}, std::pair{0.0, w}, std::pair{-kReverseMps, 0.0}}) {
       if (!touches(cv, cw)) return {cv, cw};
     }
     return {0.0, 0.0};
@@ -470,6 +521,23 @@ class RoverRoutePlanner final : public Planner {
       if (g.contains(c.x(), c.y())) g.occupied[static_cast<std::size_t>(c.y()) * g.cols + c.x()] = 1;
     }
     return g;
+  }
+
+  // The route point nearest the rover, within 5 m of route back and 30 m ahead of the last one pursued.
+  std::size_t nearest_route_point(const Eigen::Vector2d& position) const {
+    const auto pursued = static_cast<std::size_t>(pursuit_.last_found_index);
+    const auto back = static_cast<std::size_t>(std::lround(5.0 / config_.route_step_m));
+    const auto window = static_cast<std::size_t>(std::lround(30.0 / config_.route_step_m));
+    std::size_t best = pursued;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = pursued > back ? pursued - back : 0; i < route_.size() && i <= pursued + window; ++i) {
+      const double d = (route_[i] - position).squaredNorm();
+      if (d < best_d) {
+        best_d = d;
+        best = i;
+      }
+    }
+    return best;
   }
 
   // The nearest route point within 30 m ahead of the last one pursued.

@@ -26,14 +26,18 @@ struct RoverRouteConfig {
   std::string sensor;            ///< alias of the planar LIDAR; empty: the vehicle's first sensor
   GlobalRoute global = GlobalRoute::dubins;
   LocalAvoidance local = LocalAvoidance::follow_the_gap;
-  double turning_radius_m = 2.0;     ///< Dubins radius and the smallest fillet of A*/RRT* routes
+  /// Dubins radius and the smallest fillet of A*/RRT* routes, which also
+  /// leave and reach each waypoint straight along its heading for this long
+  double turning_radius_m = 2.0;
   double route_step_m = 0.1;         ///< spacing of the route polyline pure pursuit follows
   double waypoint_tolerance_m = 1.0; ///< a mission waypoint counts as passed within this distance
   double clearance_m = 0.8;          ///< A*/RRT*: obstacles inflated by this (half the rover's width + margin)
   double occupancy_resolution_m = 0.1;  ///< A*/RRT* occupancy grid cell
-  /// An obstacle is "in the way" when a scan point lies ahead of the sensor
-  /// within the activation range and within this lateral distance of the
-  /// rover's centre line: vine rows alongside the route are not in the way.
+  /// An obstacle is "in the way" when a scan point lies within this distance
+  /// of the route ahead, from the rover's nearest route point on for the
+  /// activation range: vine rows alongside the route, and row ends beside a
+  /// headland turn, are not in the way. Also the width of the stop check
+  /// straight ahead of the sensor (stop_distance_m).
   double corridor_half_width_m = 0.65;
   /// Avoidance ends only once the corridor widened by this is clear too, so
   /// the rover does not turn back to the route while the obstacle is beside it.
@@ -44,7 +48,8 @@ struct RoverRouteConfig {
   /// Safety guard: every command is checked by driving it for guard_horizon_s
   /// against the latest scan's points with the rover's footprint (a
   /// rectangle about the body centre); a command that would touch one is
-  /// slowed, then reduced to turning in place, then to stopping.
+  /// slowed, then driven straight on, then reduced to turning in place, to
+  /// backing off, then to stopping.
   double footprint_half_length_m = 0.85;  ///< 003's chassis is 1.5 m long, plus a margin
   double footprint_half_width_m = 0.6;    ///< and 1.0 m wide, plus a margin
   double guard_horizon_s = 1.0;

@@ -1,5 +1,6 @@
 #include "planners/follow_the_gap.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -17,6 +18,7 @@ constexpr int kBeams = 181;      // planar180: +90 deg .. -90 deg, beam i at 90 
 constexpr float kNoHit = 20.0f;  // planar180 reads its maximum where nothing is hit
 
 int beam_at(double azimuth_deg) { return static_cast<int>(std::lround(90.0 - azimuth_deg)); }
+double scan_angle(int beam) { return (90.0 - beam) * kDeg; }
 
 // A scan of the robot turned `heading_deg` left in a world whose range at
 // each world azimuth (deg) is `range_at`.
@@ -43,8 +45,12 @@ std::vector<float> wall_scan(double distance_m, const std::vector<std::pair<doub
   });
 }
 
+// 003's gaps (every unblocked run between range steps): the synthetic
+// openings below are slits a point robot takes, narrower than a rover.
+constexpr FollowTheGapConfig k003{.free_range_m = 0.0};
+
 FollowTheGapStep step_on(const std::vector<float>& ranges, double goal_bearing_rad,
-                         const FollowTheGapConfig& config = {}) {
+                         const FollowTheGapConfig& config = k003) {
   FollowTheGapState state;
   return follow_the_gap_step(config, state, PlanarScanView{ranges}, goal_bearing_rad, 0.0);
 }
@@ -55,7 +61,7 @@ TEST(FollowTheGap, InactiveWhenEverythingIsBeyondTheActivationRange) {
   std::vector<float> ranges(kBeams, 3.6f);
   ranges[40] = 3.51f;
   FollowTheGapState state{true, 0.3, 0.1};
-  const FollowTheGapStep step = follow_the_gap_step({}, state, PlanarScanView{ranges}, 0.25, 0.0);
+  const FollowTheGapStep step = follow_the_gap_step(k003, state, PlanarScanView{ranges}, 0.25, 0.0);
   EXPECT_FALSE(step.active);
   EXPECT_EQ(step.heading_rad, 0.25);
   EXPECT_EQ(step.chosen, -1);
@@ -98,7 +104,7 @@ TEST(FollowTheGap, BubbleHalfWidthIsRadiusOverRangeTimesIncrement) {
 TEST(FollowTheGap, BubbleZeroesExactlyNSectorsEachSideOfTheNearestReading) {
   std::vector<float> ranges(kBeams, kNoHit);
   ranges[90] = 2.0f;  // straight ahead
-  FollowTheGapConfig config;
+  FollowTheGapConfig config = k003;
   config.bubble_radius_m = 0.8;  // N = 23
   const FollowTheGapStep step = step_on(ranges, 0.0, config);
   ASSERT_TRUE(step.active);
@@ -172,7 +178,7 @@ TEST(FollowTheGap, NearerObstaclesPullTheHeadingTowardTheGapCentre) {
   EXPECT_NEAR(step_on(wall_scan(3.0, opening), 0.0).heading_rad, 10.0 * kDeg, 1e-6);
   EXPECT_NEAR(step_on(wall_scan(2.0, opening), 0.0).heading_rad, 40.0 / 3.0 * kDeg, 1e-6);
   // a = 0 follows the goal; a large a heads for the centre.
-  FollowTheGapConfig config;
+  FollowTheGapConfig config = k003;
   config.alpha_m = 0.0;
   EXPECT_NEAR(step_on(wall_scan(3.0, opening), 0.0, config).heading_rad, 0.0, 1e-12);
   config.alpha_m = 1e6;
@@ -195,7 +201,7 @@ TEST(FollowTheGap, GoalOnOneSidePicksTheOpeningOnThatSide) {
   // when k2 weighs alignment with the goal enough more.
   const std::vector<float> wide_right = wall_scan(3.0, {{20.0, 30.0}, {-40.0, -20.0}});
   EXPECT_LT(chosen(step_on(wide_right, 60.0 * kDeg)).center_rad, 0.0);
-  FollowTheGapConfig config;
+  FollowTheGapConfig config = k003;
   config.k_heading = 30.0;
   EXPECT_GT(chosen(step_on(wide_right, 60.0 * kDeg, config)).center_rad, 0.0);
 }
@@ -204,7 +210,7 @@ TEST(FollowTheGap, HysteresisKeepsTheChoiceUntilAnotherGapIsClearlyBetter) {
   // Two equal openings symmetric about the goal (Fig. 44).
   const std::vector<float> ranges = wall_scan(3.0, {{20.0, 30.0}, {-30.0, -20.0}});
   const PlanarScanView scan{ranges};
-  FollowTheGapConfig config;
+  FollowTheGapConfig config = k003;
   config.hysteresis_bonus = 0.2;
   FollowTheGapState state;
   // Goal slightly right: the right opening wins and is remembered.
@@ -235,7 +241,7 @@ TEST(FollowTheGap, HysteresisFollowsTheGapWhileTheRobotTurns) {
     if (inside(azimuth_deg, {{20.0, 30.0}, {-30.0, -20.0}})) return static_cast<double>(kNoHit);
     return std::abs(azimuth_deg) < 0.5 ? 3.0 : 5.0;
   };
-  FollowTheGapConfig config;
+  FollowTheGapConfig config = k003;
   config.hysteresis_bonus = 0.2;
   FollowTheGapState state;
   const FollowTheGapStep before = follow_the_gap_step(config, state, PlanarScanView{scan_of(world)}, -0.02, 0.0);
@@ -268,6 +274,89 @@ TEST(FollowTheGap, SmallRangeNoiseDoesNotFlipTheChoice) {
     EXPECT_GE(gap.first_beam, expected.first_beam) << "trial " << trial;
     EXPECT_EQ(gap.last_beam, expected.last_beam) << "trial " << trial;
   }
+}
+
+
+// ---------------------------------------------------------------- free-space gaps (campo)
+
+TEST(FollowTheGap, FreeDistanceOfADiscAlongARay) {
+  EXPECT_DOUBLE_EQ(free_distance(2.0, 0.0, 0.5), 1.5);
+  // 10 deg off: 2 cos 10 - sqrt(0.5^2 - (2 sin 10)^2).
+  const double lateral = 2.0 * std::sin(10.0 * kDeg);
+  EXPECT_NEAR(free_distance(2.0, 10.0 * kDeg, 0.5), 2.0 * std::cos(10.0 * kDeg) - std::sqrt(0.25 - lateral * lateral), 1e-12);
+  EXPECT_TRUE(std::isinf(free_distance(2.0, 20.0 * kDeg, 0.5)));  // 0.68 m off the line
+  EXPECT_TRUE(std::isinf(free_distance(2.0, M_PI, 0.5)));         // behind
+  EXPECT_EQ(free_distance(0.4, 30.0 * kDeg, 0.5), 0.0);           // already touching
+}
+
+// Range along a ray from the sensor (x forward, y left) to the nearest of
+// axis-aligned boxes {x0, x1, y0, y1}, kNoHit where it hits none.
+float box_range(double azimuth_deg, const std::vector<std::array<double, 4>>& boxes) {
+  const double dx = std::cos(azimuth_deg * kDeg), dy = std::sin(azimuth_deg * kDeg);
+  double best = kNoHit;
+  for (const auto& [x0, x1, y0, y1] : boxes) {
+    double lo = 0.0, hi = kNoHit;
+    for (const auto& [d, a, b] : {std::array{dx, x0, x1}, std::array{dy, y0, y1}}) {
+      if (std::abs(d) < 1e-12) {
+        if (a > 0.0 || b < 0.0) hi = -1.0;
+        continue;
+      }
+      const double t0 = a / d, t1 = b / d;
+      lo = std::max(lo, std::min(t0, t1));
+      hi = std::min(hi, std::max(t0, t1));
+    }
+    if (lo <= hi) best = std::min(best, lo);
+  }
+  return static_cast<float>(best);
+}
+
+// Between two canopy walls 1.7 m either side (a 3.4 m inter-row), a box 3 m
+// ahead from 0.3 m right of the centre line to 1.0 m right: the passage, 2 m
+// wide, is on the left (a 0.8 m disc fits 0.5-0.9 m left of the centre line).
+std::vector<float> inter_row_with_box() {
+  const std::vector<std::array<double, 4>> scene{
+      {-1.0, 30.0, 1.7, 2.3}, {-1.0, 30.0, -2.3, -1.7}, {3.0, 3.75, -1.0, -0.3}};
+  return scan_of([&](double azimuth_deg) { return box_range(azimuth_deg, scene); });
+}
+
+TEST(FollowTheGap, FreeSpaceGapsFindThePassageBesideABoxBetweenRows) {
+  const std::vector<float> ranges = inter_row_with_box();
+  const FollowTheGapStep step = step_on(ranges, 0.0, FollowTheGapConfig{});
+  ASSERT_TRUE(step.active);
+  // One gap: the passage. The canopy walls seen at a grazing angle are no gaps.
+  ASSERT_EQ(step.gaps.size(), 1u);
+  const ScanGap& gap = chosen(step);
+  EXPECT_GT(scan_angle(gap.last_beam), 0.0);
+  // The goal straight ahead, behind the box, is outside the gap: the heading
+  // is held at the gap's edge rather than blended onto the box.
+  EXPECT_NEAR(step.heading_rad, scan_angle(gap.last_beam), 1e-12);
+  // Along that heading a 0.8 m disc clears the box's corner at (3, -0.3)...
+  const double off = step.heading_rad - std::atan2(-0.3, 3.0);
+  EXPECT_GE(std::hypot(3.0, 0.3) * std::sin(off), 0.8);
+  // ...where 003's gaps split the walls into runs at every range step.
+  EXPECT_GT(step_on(ranges, 0.0).gaps.size(), 5u);
+}
+
+TEST(FollowTheGap, FreeSpaceRejectsAnOpeningNarrowerThanTheRover) {
+  // A wall 3 m ahead with a 0.6 m slit straight ahead (point robots pass, a 1.6 m disc does not)...
+  const double slit_deg = std::atan(0.3 / 3.0) / kDeg;
+  const FollowTheGapStep narrow = step_on(wall_scan(3.0, {{-slit_deg, slit_deg}}), 0.0, FollowTheGapConfig{});
+  for (const ScanGap& g : narrow.gaps) EXPECT_GT(std::abs(g.center_rad), 45.0 * kDeg) << g.first_beam;
+  // ...and a 3 m opening, which it does: the gap through it spans the
+  // directions keeping the disc 0.8 m off both edges, about 13 deg each side
+  // (the bubble, ceil(R / (d_min dalpha)) sectors, may take one beam more on the nearest edge's side).
+  const double wide_deg = std::atan(1.5 / 3.0) / kDeg;
+  const FollowTheGapStep wide = step_on(wall_scan(3.0, {{-wide_deg, wide_deg}}), 0.0, FollowTheGapConfig{});
+  bool through = false;
+  for (const ScanGap& g : wide.gaps) {
+    if (g.first_beam > beam_at(0.0) || g.last_beam < beam_at(0.0)) continue;
+    through = true;
+    EXPECT_GE(g.first_beam, beam_at(13.0));
+    EXPECT_LE(g.first_beam, beam_at(12.0));
+    EXPECT_LE(g.last_beam, beam_at(-13.0));
+    EXPECT_GE(g.last_beam, beam_at(-12.0));
+  }
+  EXPECT_TRUE(through);
 }
 
 }  // namespace

@@ -84,21 +84,25 @@ TEST(RoverRouteClosedLoop, FollowsTheDubinsRouteRowByRow) {
 
 // Seed 003 Fig. 46: a walker crosses the first inter-row left to right in
 // front of the rover; follow-the-gap steers round it, then pure pursuit resumes.
+// Whether an avoidance episode started between t0 and t1 (s) and ended.
+bool avoided_between(const EpisodeResult& r, double t0, double t1) {
+  double t_on = -1.0;
+  for (const PlannerEvent& e : r.events) {
+    if (!e.decisions.contains("avoiding")) continue;
+    if (e.decisions["avoiding"].get<bool>()) {
+      t_on = e.time_s;
+    } else if (t_on > t0 && t_on < t1) {
+      return true;
+    }
+  }
+  return false;
+}
+
 TEST(RoverRouteClosedLoop, AvoidsTheWalkerCrossingItsPath) {
   const EpisodeResult r = drive({kNoStaticObstacles, kFollowTheGap});
   expect_route_driven(r, "walker");
   EXPECT_GT(r.metrics.avoiding_time_s, 1.0);
-  bool avoided_near_walker = false;
-  double t_on = -1.0;
-  for (const PlannerEvent& e : r.events) {
-    if (!e.decisions.contains("avoiding")) continue;
-    if (e.decisions["avoiding"].get<bool>()) t_on = e.time_s;
-    else if (t_on >= 0.0) {
-      // The walker crosses y = 20 from t = 58 s.
-      avoided_near_walker = avoided_near_walker || (t_on > 55.0 && t_on < 75.0);
-    }
-  }
-  EXPECT_TRUE(avoided_near_walker);
+  EXPECT_TRUE(avoided_between(r, 55.0, 75.0));  // the walker crosses y = 20 from t = 58 s
 }
 
 // The bundled scene as it is: 12 random boxes between the rows and the
@@ -110,10 +114,44 @@ TEST(RoverRouteClosedLoop, VfhPlusGetsPastTheStaticObstaclesAndTheWalker) {
   EXPECT_GT(r.metrics.avoiding_time_s, 10.0);
 }
 
+// The same with follow-the-gap: its free-space gaps (free_range_m) head for
+// the 2 m passage beside each box at once. 003's gaps (free_range_m = 0)
+// split the canopy walls into gaps and stand off behind the boxes for
+// minutes (343 s avoiding in all).
+void expect_boxes_passed_by_follow_the_gap(const EpisodeResult& r, const char* what) {
+  expect_route_driven(r, what, 0.0, 1.25);
+  EXPECT_GT(r.metrics.avoiding_time_s, 10.0);
+  EXPECT_LT(r.metrics.avoiding_time_s, 100.0);
+}
+
+// Slowed by the first box, the rover reaches y = 20 at 72 s, when the walker
+// (from 58 s) is turning at its far end; starting at 65 s it crosses in front.
+TEST(RoverRouteClosedLoop, FollowTheGapGetsPastTheStaticObstaclesAndTheWalker) {
+  const EpisodeResult r = drive({kFollowTheGap, "/objects/walker/start_time_s=65"});
+  expect_boxes_passed_by_follow_the_gap(r, "boxes and walker, follow-the-gap");
+  EXPECT_TRUE(avoided_between(r, 64.0, 75.0));  // after the first box (52-62 s)
+}
+
+TEST(RoverRouteClosedLoop, FollowTheGapGetsPastTheStaticObstacles) {
+  expect_boxes_passed_by_follow_the_gap(drive({kFollowTheGap, kWalkerAway}), "boxes, follow-the-gap");
+}
+
 TEST(RoverRouteClosedLoop, RrtStarAsTheGlobalPlanner) {
   const EpisodeResult r = drive({kNoStaticObstacles, kWalkerAway, kFollowTheGap, "/objects/rover/planner/params/global=rrt_star"});
   expect_route_driven(r, "rrt_star", 0.0);  // its route keeps clearance_m = 0.8 m from the rows
   EXPECT_EQ(r.events.front().decisions["replan"]["global"], "rrt_star");
+}
+
+// Each A* leg leaves its waypoint and reaches the next straight along their
+// headings, so the headland turns are the Dubins half circles round the row
+// ends; searched between the waypoints themselves, the route cut over the row
+// ends, the rover's bounding sphere touching them (min_clearance_m 0).
+TEST(RoverRouteClosedLoop, AStarAsTheGlobalPlanner) {
+  const EpisodeResult r = drive({kNoStaticObstacles, kWalkerAway, kFollowTheGap, "/objects/rover/planner/params/global=astar"});
+  expect_route_driven(r, "astar", 0.5);
+  EXPECT_LT(r.metrics.cross_track_rms_m, 0.1);
+  EXPECT_LT(r.metrics.cross_track_max_m, 0.4);
+  EXPECT_EQ(r.events.front().decisions["replan"]["global"], "astar");
 }
 
 }  // namespace
