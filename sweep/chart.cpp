@@ -11,21 +11,33 @@
 #include "render/figures.hpp"
 #include "sim/output_dir.hpp"
 #include "sweep/sweep_spec.hpp"
+#include "sweep/table.hpp"
 
 namespace campo {
 
 namespace {
 
 using figure::Align;
+using figure::Font;
 using figure::PlotFrame;
 
-// Layout, pixels: two plots side by side, the legend to their right.
-constexpr int kHeight = 580;
-constexpr int kTitleBandPx = 50;
-constexpr int kPlotTop = 90, kPlotHeight = 410, kPlotWidth = 430;
-constexpr int kLeftPlotX = 95, kRightPlotX = 640;
-constexpr int kLegendX = 1100, kMinLegendWidth = 170, kMaxLegendWidth = 400;
-constexpr double kDodgePx = 5.0;  ///< horizontal offset between series, so error bars do not overlap
+// Fonts and sizes of one kind of chart; every chart is drawn with the helpers below.
+struct ChartStyle {
+  Font title, label, tick, legend, note;
+  int line_px;          ///< series lines
+  double marker_px;     ///< marker radius
+  double cap_px;        ///< half width of error bar caps
+  double tick_px;       ///< tick mark length
+  double dodge_px;      ///< horizontal offset between line series, so error bars do not overlap
+  int legend_row_px;
+};
+// The summary chart of `campo table`: small panels.
+const ChartStyle kPanelStyle{figure::kTitleFont, figure::kLabelFont, figure::kTickFont, figure::kLegendFont,
+                             figure::kSmallFont, 2, 4.0, 4.0, 5.0, 5.0, 24};
+// `campo plot`: one large plot whose text stays legible scaled down to a column of a paper.
+const ChartStyle kPaperStyle{{cv::FONT_HERSHEY_DUPLEX, 1.3, 2}, {cv::FONT_HERSHEY_SIMPLEX, 1.0, 2},
+                             {cv::FONT_HERSHEY_SIMPLEX, 0.85, 2}, {cv::FONT_HERSHEY_SIMPLEX, 0.9, 2},
+                             {cv::FONT_HERSHEY_SIMPLEX, 0.75, 1}, 3, 7.0, 9.0, 9.0, 9.0, 44};
 
 struct Tick {
   double value;
@@ -48,6 +60,18 @@ std::vector<Tick> linear_ticks(double lo, double hi, double target_count) {
   return ticks;
 }
 
+std::vector<Tick> percent_ticks() {
+  std::vector<Tick> ticks;
+  for (int v = 0; v <= 100; v += 20) ticks.push_back({double(v), std::to_string(v)});
+  return ticks;
+}
+
+void put_title(cv::Mat& image, const std::string& title, const cv::Rect& band, Font font) {
+  while (font.scale > 0.45 && figure::text_size(title, font).width > band.width - 24) font.scale *= 0.92;
+  figure::put_text(image, title, {band.x + 0.5 * band.width, band.y + 0.5 * band.height}, font, figure::kInk,
+                   Align::centre);
+}
+
 void draw_grid(cv::Mat& image, const PlotFrame& frame, const std::vector<Tick>& x_ticks,
                const std::vector<Tick>& y_ticks) {
   const cv::Rect& p = frame.plot_px;
@@ -65,61 +89,144 @@ void draw_grid(cv::Mat& image, const PlotFrame& frame, const std::vector<Tick>& 
 
 // Frame, ticks with labels (an x label that would overlap the previous one is left out) and axis titles.
 void draw_axes(cv::Mat& image, const PlotFrame& frame, const std::vector<Tick>& x_ticks,
-               const std::vector<Tick>& y_ticks, const std::string& x_label, const std::string& y_label) {
+               const std::vector<Tick>& y_ticks, const std::string& x_label, const std::string& y_label,
+               const ChartStyle& style) {
   const cv::Rect& p = frame.plot_px;
   cv::rectangle(image, {p.x - 1, p.y - 1}, {p.x + p.width, p.y + p.height}, figure::kInk, 1, cv::LINE_8);
   const double bottom = p.y + p.height;
+  const double tick_text = figure::text_size("0", style.tick).height;
+  const double label_text = figure::text_size("0", style.label).height;
   double free_from = -1e9;  // x where the next tick label may start
   for (const Tick& t : x_ticks) {
     const double x = frame.to_px(t.value, frame.y0).x;
-    cv::line(image, figure::fixed({x, bottom}), figure::fixed({x, bottom + 5.0}), figure::kInk, 1, cv::LINE_AA,
-             figure::kShift);
-    const double half = 0.5 * figure::text_size(t.label, figure::kTickFont).width;
+    cv::line(image, figure::fixed({x, bottom}), figure::fixed({x, bottom + style.tick_px}), figure::kInk, 1,
+             cv::LINE_AA, figure::kShift);
+    const double half = 0.5 * figure::text_size(t.label, style.tick).width;
     if (x - half < free_from) continue;
-    figure::put_text(image, t.label, {x, bottom + 17.0}, figure::kTickFont, figure::kInk, Align::centre);
+    figure::put_text(image, t.label, {x, bottom + style.tick_px + 6.0 + 0.5 * tick_text}, style.tick, figure::kInk,
+                     Align::centre);
     free_from = x + half + 8.0;
   }
   int widest = 0;
   for (const Tick& t : y_ticks) {
     const double y = frame.to_px(frame.x0, t.value).y;
-    cv::line(image, figure::fixed({p.x - 6.0, y}), figure::fixed({p.x - 1.0, y}), figure::kInk, 1, cv::LINE_AA,
-             figure::kShift);
-    figure::put_text(image, t.label, {p.x - 10.0, y}, figure::kTickFont, figure::kInk, Align::right);
-    widest = std::max(widest, figure::text_size(t.label, figure::kTickFont).width);
+    cv::line(image, figure::fixed({p.x - 1.0 - style.tick_px, y}), figure::fixed({p.x - 1.0, y}), figure::kInk, 1,
+             cv::LINE_AA, figure::kShift);
+    figure::put_text(image, t.label, {p.x - style.tick_px - 5.0, y}, style.tick, figure::kInk, Align::right);
+    widest = std::max(widest, figure::text_size(t.label, style.tick).width);
   }
-  figure::put_text(image, x_label, {p.x + 0.5 * p.width, bottom + 42.0}, figure::kLabelFont, figure::kInk,
-                   Align::centre);
-  figure::put_text_vertical(image, y_label, {p.x - 10.0 - widest - 16.0, p.y + 0.5 * p.height},
-                            figure::kLabelFont, figure::kInk);
+  figure::put_text(image, x_label,
+                   {p.x + 0.5 * p.width, bottom + style.tick_px + 6.0 + tick_text + 18.0 + 0.5 * label_text},
+                   style.label, figure::kInk, Align::centre);
+  figure::put_text_vertical(image, y_label,
+                            {p.x - style.tick_px - 5.0 - widest - 16.0 - 0.5 * label_text, p.y + 0.5 * p.height},
+                            style.label, figure::kInk);
 }
 
-// One point of a series: x in plot units, y, and the half height of its error bar.
+// One point of a line series: x in plot units, y and its error bar (none when lo == hi == y).
 struct Point {
-  double x, y, error;
+  double x, y, lo, hi;
 };
 
-void draw_series(cv::Mat& image, const PlotFrame& frame, const std::vector<Point>& points, double dodge_px,
-                 const cv::Scalar& color) {
-  const auto px = [&](double x, double y) { return frame.to_px(x, y) + cv::Point2d(dodge_px, 0.0); };
-  std::vector<cv::Point2d> line;
-  for (const Point& p : points) line.push_back(px(p.x, p.y));
-  figure::polyline(image, line, color, 2);
-  for (const Point& p : points) {
-    if (p.error <= 0.0) continue;
-    const cv::Point2d lo = px(p.x, p.y - p.error), hi = px(p.x, p.y + p.error);
-    cv::line(image, figure::fixed(lo), figure::fixed(hi), color, 1, cv::LINE_AA, figure::kShift);
-    for (const cv::Point2d& end : {lo, hi}) {
-      cv::line(image, figure::fixed(end - cv::Point2d(4, 0)), figure::fixed(end + cv::Point2d(4, 0)), color, 1,
-               cv::LINE_AA, figure::kShift);
-    }
-  }
-  for (const cv::Point2d& p : line) {
-    cv::circle(image, figure::fixed(p), 6 << figure::kShift, figure::kWhite, cv::FILLED, cv::LINE_AA, figure::kShift);
-    cv::circle(image, figure::fixed(p), 4 << figure::kShift, color, cv::FILLED, cv::LINE_AA, figure::kShift);
+void draw_error_bar(cv::Mat& image, cv::Point2d lo, cv::Point2d hi, const cv::Scalar& color, const ChartStyle& style) {
+  const int thickness = std::max(1, style.line_px - 1);
+  cv::line(image, figure::fixed(lo), figure::fixed(hi), color, thickness, cv::LINE_AA, figure::kShift);
+  for (const cv::Point2d& end : {lo, hi}) {
+    cv::line(image, figure::fixed(end - cv::Point2d(style.cap_px, 0)), figure::fixed(end + cv::Point2d(style.cap_px, 0)),
+             color, thickness, cv::LINE_AA, figure::kShift);
   }
 }
 
-// The table as series: one per scene, in order of first appearance.
+void draw_marker(cv::Mat& image, cv::Point2d p, const cv::Scalar& color, const ChartStyle& style) {
+  const auto radius = [](double px) { return static_cast<int>(std::lround(px * (1 << figure::kShift))); };
+  cv::circle(image, figure::fixed(p), radius(style.marker_px + 2.0), figure::kWhite, cv::FILLED, cv::LINE_AA,
+             figure::kShift);
+  cv::circle(image, figure::fixed(p), radius(style.marker_px), color, cv::FILLED, cv::LINE_AA, figure::kShift);
+}
+
+// Error bars, then the line through the points (unless `connect` is false), then markers on top.
+void draw_series(cv::Mat& image, const PlotFrame& frame, const std::vector<Point>& points, double dodge_px,
+                 const cv::Scalar& color, const ChartStyle& style, bool connect = true) {
+  const auto px = [&](double x, double y) { return frame.to_px(x, y) + cv::Point2d(dodge_px, 0.0); };
+  for (const Point& p : points) {
+    if (p.hi > p.lo) draw_error_bar(image, px(p.x, p.lo), px(p.x, p.hi), color, style);
+  }
+  std::vector<cv::Point2d> line;
+  for (const Point& p : points) line.push_back(px(p.x, p.y));
+  if (connect) figure::polyline(image, line, color, style.line_px);
+  for (const cv::Point2d& p : line) draw_marker(image, p, color, style);
+}
+
+// A legend row: a symbol drawn around a centre, then the text.
+struct LegendRow {
+  std::function<void(cv::Mat&, cv::Point2d)> symbol;
+  std::string text;
+};
+
+int legend_width(const std::vector<LegendRow>& rows, const std::string& heading, const ChartStyle& style,
+                 int min_px, int max_px) {
+  int width = figure::text_size(heading, style.legend).width + 30;
+  for (const LegendRow& row : rows) width = std::max(width, figure::text_size(row.text, style.legend).width + 3 * style.legend_row_px);
+  return std::clamp(width, min_px, max_px);
+}
+
+// A white box with a border: an optional heading, then one row per entry.
+void draw_legend(cv::Mat& image, cv::Point top_left, int width, const std::vector<LegendRow>& rows,
+                 const std::string& heading, const ChartStyle& style) {
+  const int pad = style.legend_row_px / 3;
+  const int heading_rows = heading.empty() ? 0 : 1;
+  const cv::Rect box(top_left.x, top_left.y, width,
+                     2 * pad + static_cast<int>(rows.size() + heading_rows) * style.legend_row_px);
+  cv::rectangle(image, box, figure::kWhite, cv::FILLED);
+  cv::rectangle(image, box, figure::kMutedInk, 1, cv::LINE_8);
+  const double row_px = style.legend_row_px;
+  if (heading_rows) {
+    figure::put_text(image, heading, {box.x + 0.5 * row_px, box.y + pad + 0.5 * row_px}, style.legend, figure::kInk);
+  }
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const double cy = box.y + pad + row_px * (i + heading_rows + 0.5);
+    rows[i].symbol(image, {box.x + row_px, cy});
+    figure::put_text(image, rows[i].text, {box.x + 2.2 * row_px, cy}, style.legend, figure::kInk);
+  }
+}
+
+// A line with a marker: the symbol of a line series.
+LegendRow line_row(const cv::Scalar& color, const std::string& text, const ChartStyle& style) {
+  return {[color, &style](cv::Mat& m, cv::Point2d c) {
+            const double half = 0.6 * style.legend_row_px;
+            figure::polyline(m, {c - cv::Point2d(half, 0), c + cv::Point2d(half, 0)}, color, style.line_px);
+            draw_marker(m, c, color, style);
+          },
+          text};
+}
+
+// The x axis of numeric values: log2 when all are powers of two; ticked at the values.
+struct NumericAxis {
+  bool log2 = false;
+  std::vector<Tick> ticks;  ///< ascending
+  double to_x(double v) const { return log2 ? std::log2(v) : v; }
+};
+
+NumericAxis numeric_axis(const std::vector<nlohmann::json>& values) {
+  NumericAxis axis;
+  axis.log2 = std::all_of(values.begin(), values.end(), [](const nlohmann::json& v) { return power_of_two(v.get<double>()); });
+  for (const nlohmann::json& v : values) {
+    const double x = axis.to_x(v.get<double>());
+    if (std::none_of(axis.ticks.begin(), axis.ticks.end(), [&](const Tick& t) { return t.value == x; })) {
+      axis.ticks.push_back({x, value_label(v)});
+    }
+  }
+  std::sort(axis.ticks.begin(), axis.ticks.end(), [](const Tick& a, const Tick& b) { return a.value < b.value; });
+  return axis;
+}
+
+// Data range [lo, hi] with a margin, so no point sits on the frame.
+std::pair<double, double> padded(double lo, double hi, double min_pad) {
+  const double pad = std::max(0.08 * (hi - lo), min_pad);
+  return {lo - pad, hi + pad};
+}
+
+// The summary table as series: one per scene, in order of first appearance.
 struct Series {
   std::string scene;
   std::vector<Point> path_ratio;  ///< rows with completed runs only
@@ -136,58 +243,53 @@ bool chartable(const SweepTable& table) {
 
 cv::Mat draw_sweep_chart(const SweepTable& table) {
   if (!chartable(table)) throw std::invalid_argument("draw_sweep_chart: expected one numeric axis");
+  // Layout, pixels: two plots side by side, the legend to their right.
+  constexpr int kHeight = 580, kTitleBandPx = 50;
+  constexpr int kPlotTop = 90, kPlotHeight = 410, kPlotWidth = 430;
+  constexpr int kLeftPlotX = 95, kRightPlotX = 640, kLegendX = 1100;
+  const ChartStyle& style = kPanelStyle;
   const std::string& axis = table.axes.front();
-  const bool log2_x = std::all_of(table.rows.begin(), table.rows.end(),
-                                  [](const TableRow& row) { return power_of_two(row.params.front().get<double>()); });
-  const auto to_x = [&](double v) { return log2_x ? std::log2(v) : v; };
+  std::vector<nlohmann::json> values;
+  for (const TableRow& row : table.rows) values.push_back(row.params.front());
+  const NumericAxis x_axis = numeric_axis(values);
 
   std::vector<Series> series;
-  std::vector<Tick> x_ticks;
   double ratio_lo = 1.0, ratio_hi = 1.0;  // the ideal ratio 1 is always in view
   for (const TableRow& row : table.rows) {
     auto it = std::find_if(series.begin(), series.end(), [&](const Series& s) { return s.scene == row.scene; });
     if (it == series.end()) it = series.insert(series.end(), Series{row.scene, {}, {}});
-    const double x = to_x(row.params.front().get<double>());
+    const double x = x_axis.to_x(row.params.front().get<double>());
     if (row.path_ratio) {
-      it->path_ratio.push_back({x, row.path_ratio->mean, row.path_ratio->sd});
-      ratio_lo = std::min(ratio_lo, row.path_ratio->mean - row.path_ratio->sd);
-      ratio_hi = std::max(ratio_hi, row.path_ratio->mean + row.path_ratio->sd);
+      const MeanSd& r = *row.path_ratio;
+      it->path_ratio.push_back({x, r.mean, r.mean - r.sd, r.mean + r.sd});
+      ratio_lo = std::min(ratio_lo, r.mean - r.sd);
+      ratio_hi = std::max(ratio_hi, r.mean + r.sd);
     }
-    it->success.push_back({x, 100.0 * row.success_rate, 0.0});
-    if (std::none_of(x_ticks.begin(), x_ticks.end(), [&](const Tick& t) { return t.value == x; })) {
-      x_ticks.push_back({x, value_label(row.params.front())});
-    }
+    it->success.push_back({x, 100.0 * row.success_rate, 100.0 * row.success_rate, 100.0 * row.success_rate});
   }
   for (Series& s : series) {
     for (auto* points : {&s.path_ratio, &s.success}) {
       std::sort(points->begin(), points->end(), [](const Point& a, const Point& b) { return a.x < b.x; });
     }
   }
-  std::sort(x_ticks.begin(), x_ticks.end(), [](const Tick& a, const Tick& b) { return a.value < b.value; });
 
-  // Data ranges with a margin, so no point sits on the frame.
-  const double x_min = x_ticks.front().value, x_max = x_ticks.back().value;
-  const double x_pad = x_max > x_min ? 0.08 * (x_max - x_min) : 1.0;
-  const double ratio_pad = std::max(0.08 * (ratio_hi - ratio_lo), 0.02);
-  const PlotFrame ratio_frame{{kLeftPlotX, kPlotTop, kPlotWidth, kPlotHeight}, x_min - x_pad, x_max + x_pad,
-                              ratio_lo - ratio_pad, ratio_hi + ratio_pad};
-  const PlotFrame success_frame{{kRightPlotX, kPlotTop, kPlotWidth, kPlotHeight}, x_min - x_pad, x_max + x_pad,
-                                -5.0, 105.0};
+  const double x_min = x_axis.ticks.front().value, x_max = x_axis.ticks.back().value;
+  const auto [x0, x1] = x_max > x_min ? padded(x_min, x_max, 0.0) : std::pair{x_min - 1.0, x_max + 1.0};
+  const auto [r0, r1] = padded(ratio_lo, ratio_hi, 0.02);
+  const PlotFrame ratio_frame{{kLeftPlotX, kPlotTop, kPlotWidth, kPlotHeight}, x0, x1, r0, r1};
+  const PlotFrame success_frame{{kRightPlotX, kPlotTop, kPlotWidth, kPlotHeight}, x0, x1, -5.0, 105.0};
 
+  std::vector<LegendRow> legend;
+  for (std::size_t i = 0; i < series.size(); ++i) legend.push_back(line_row(run_color(i), series[i].scene, style));
   // The legend is as wide as the longest scene name needs (within limits); the image ends after it.
-  int legend_width = kMinLegendWidth;
-  for (const Series& s : series) {
-    legend_width = std::max(legend_width, figure::text_size(s.scene, figure::kLegendFont).width + 72);
-  }
-  legend_width = std::min(legend_width, kMaxLegendWidth);
-  const int width = kLegendX + legend_width + 15;
+  const int legend_px = legend_width(legend, "", style, 170, 400);
+  const int width = kLegendX + legend_px + 15;
 
   cv::Mat image(kHeight, width, CV_8UC3, figure::kWhite);
-  figure::put_title(image, table.name + ": path length and success rate vs " + axis, {0, 0, width, kTitleBandPx});
-  const std::string x_label = axis + (log2_x ? " (log2 scale)" : "");
+  put_title(image, table.name + ": path length and success rate vs " + axis, {0, 0, width, kTitleBandPx}, style.title);
+  const std::string x_label = axis + (x_axis.log2 ? " (log2 scale)" : "");
   const auto ratio_y = linear_ticks(ratio_frame.y0, ratio_frame.y1, kPlotHeight / figure::kTickSpacingPx);
-  std::vector<Tick> success_y;
-  for (int v = 0; v <= 100; v += 20) success_y.push_back({double(v), std::to_string(v)});
+  const auto success_y = percent_ticks();
 
   const struct {
     const PlotFrame& frame;
@@ -202,37 +304,200 @@ cv::Mat draw_sweep_chart(const SweepTable& table) {
   };
   for (const auto& panel : panels) {
     const cv::Rect& p = panel.frame.plot_px;
-    draw_grid(image, panel.frame, x_ticks, panel.y_ticks);
+    draw_grid(image, panel.frame, x_axis.ticks, panel.y_ticks);
     if (panel.reference_y) {
       const double y = panel.frame.to_px(panel.frame.x0, *panel.reference_y).y;
       figure::dashed_polyline(image, {{p.x - 0.5, y}, {p.x + p.width - 0.5, y}}, figure::kMutedInk, 1, 6.0, 4.0);
     }
-    figure::put_text(image, panel.subtitle, {p.x + 0.5 * p.width, p.y - 18.0}, figure::kLabelFont, figure::kInk,
+    figure::put_text(image, panel.subtitle, {p.x + 0.5 * p.width, p.y - 18.0}, style.label, figure::kInk,
                      Align::centre);
     for (std::size_t i = 0; i < series.size(); ++i) {
-      const double dodge = (static_cast<double>(i) - 0.5 * (series.size() - 1.0)) * kDodgePx;
-      draw_series(image, panel.frame, series[i].*panel.points, dodge, run_color(i));
+      const double dodge = (static_cast<double>(i) - 0.5 * (series.size() - 1.0)) * style.dodge_px;
+      draw_series(image, panel.frame, series[i].*panel.points, dodge, run_color(i), style);
     }
-    draw_axes(image, panel.frame, x_ticks, panel.y_ticks, x_label, panel.y_label);
+    draw_axes(image, panel.frame, x_axis.ticks, panel.y_ticks, x_label, panel.y_label, style);
   }
-
-  std::vector<figure::LegendEntry> entries;
-  for (std::size_t i = 0; i < series.size(); ++i) {
-    const cv::Scalar color = run_color(i);
-    entries.push_back({[color](cv::Mat& m, cv::Point2d c) {
-                         figure::polyline(m, {c - cv::Point2d(14, 0), c + cv::Point2d(14, 0)}, color, 2);
-                         cv::circle(m, figure::fixed(c), 4 << figure::kShift, color, cv::FILLED, cv::LINE_AA,
-                                    figure::kShift);
-                       },
-                       series[i].scene});
-  }
-  figure::draw_legend(image, {kLegendX, kPlotTop, legend_width, figure::legend_height(entries.size())}, entries);
+  draw_legend(image, {kLegendX, kPlotTop}, legend_px, legend, "", style);
   return image;
 }
 
 void write_sweep_chart(const SweepTable& table, const std::filesystem::path& png) {
+  write_png(draw_sweep_chart(table), png);
+}
+
+cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& layout, const PlotRequest& request,
+                        const PlotConfig& config) {
+  const std::string cli = "command line";
+  check_field(request.x, layout.axes, cli, "--x");
+  const MetricKind kind = check_metric(request.y, runs, cli, "--y");
+  std::vector<std::string> fields{request.x};
+  if (!request.group.empty()) {
+    check_field(request.group, layout.axes, cli, "--group");
+    if (request.group == request.x) throw InputError(cli, "--group", "a field other than --x (\"" + request.x + "\")");
+    fields.push_back(request.group);
+  }
+  if (config.width_px < 800 || config.height_px < 500) {
+    throw std::invalid_argument("draw_sweep_plot: expected at least 800 x 500 pixels");
+  }
+  const std::vector<RunGroup> groups = group_runs(runs, layout, fields);
+  if (groups.empty()) throw InputError(cli, "DIR", "results with at least one run to plot");
+
+  // X values and series (group values) in the sweep's expansion order.
+  std::vector<nlohmann::json> xs, series;
+  const auto index_in = [](std::vector<nlohmann::json>& values, const nlohmann::json& value) {
+    const auto it = std::find(values.begin(), values.end(), value);
+    if (it != values.end()) return static_cast<std::size_t>(it - values.begin());
+    values.push_back(value);
+    return values.size() - 1;
+  };
+  for (const RunGroup& g : groups) {
+    index_in(xs, g.key[0]);
+    index_in(series, g.key.size() > 1 ? g.key[1] : nlohmann::json());
+  }
+  const bool numeric_x = std::all_of(xs.begin(), xs.end(), [](const nlohmann::json& v) { return v.is_number(); });
+  if (request.kind == PlotKind::line && !numeric_x) {
+    throw InputError(cli, "--kind", "line needs numeric values of --x \"" + request.x + "\"; use --kind box");
+  }
+  const bool line = request.kind == PlotKind::line || (request.kind == PlotKind::automatic && numeric_x);
+  // Box plots list numeric categories in ascending order too.
+  if (numeric_x) {
+    std::stable_sort(xs.begin(), xs.end(), [](const auto& a, const auto& b) { return a.template get<double>() < b.template get<double>(); });
+  }
+  const bool rate = kind == MetricKind::rate;
+  const double scale = rate ? 100.0 : 1.0;  // rates in percent
+  const NumericAxis x_axis = line ? numeric_axis(xs) : NumericAxis{};
+  const auto x_of = [&](const nlohmann::json& v) {
+    return line ? x_axis.to_x(v.get<double>()) : static_cast<double>(index_in(xs, v));
+  };
+
+  // Statistics per group, and the data range.
+  struct Mark {
+    std::size_t series;
+    double x;
+    std::optional<Summary> summary;  ///< line plots and rates
+    std::optional<BoxStats> box;     ///< box plots of numbers
+  };
+  std::vector<Mark> marks;
+  double y_lo = HUGE_VAL, y_hi = -HUGE_VAL;
+  int run_count = 0, failed = 0;
+  for (const RunGroup& g : groups) {
+    run_count += static_cast<int>(g.runs.size());
+    failed += static_cast<int>(std::count_if(g.runs.begin(), g.runs.end(), [](const RunResult* r) { return !r->completed; }));
+    Mark mark{index_in(series, g.key.size() > 1 ? g.key[1] : nlohmann::json()), x_of(g.key[0]), std::nullopt, std::nullopt};
+    if (line || rate) {
+      mark.summary = summarize_metric(g.runs, request.y, kind);
+      if (!mark.summary) continue;
+      const Summary& s = *mark.summary;
+      y_lo = std::min({y_lo, scale * s.mean, s.ci95 ? scale * s.ci95->low : HUGE_VAL});
+      y_hi = std::max({y_hi, scale * s.mean, s.ci95 ? scale * s.ci95->high : -HUGE_VAL});
+    } else {
+      std::vector<double> values;
+      for (const RunResult* r : g.runs) {
+        if (const auto v = metric_value(*r, request.y)) values.push_back(*v);
+      }
+      if (values.empty()) continue;
+      mark.box = box_stats(values);
+      y_lo = std::min({y_lo, mark.box->whisker_low, mark.box->outliers.empty() ? HUGE_VAL : mark.box->outliers.front()});
+      y_hi = std::max({y_hi, mark.box->whisker_high, mark.box->outliers.empty() ? -HUGE_VAL : mark.box->outliers.back()});
+    }
+    marks.push_back(std::move(mark));
+  }
+  if (marks.empty()) throw InputError(cli, "--y", "a metric with values: no run has \"" + request.y + "\"");
+
+  // Layout: title and note on top, the legend right of the plot.
+  const ChartStyle& style = kPaperStyle;
+  const std::string series_label = request.group.empty() ? metric_label(request.y) : "";
+  std::vector<LegendRow> legend;
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    const cv::Scalar color = run_color(i);
+    const std::string text = request.group.empty() ? series_label : (series[i].is_null() ? "-" : value_label(series[i]));
+    if (line || rate) {
+      legend.push_back(line_row(color, text, style));
+    } else {
+      legend.push_back({[color, &style](cv::Mat& m, cv::Point2d c) {
+                          const cv::Point2d half(0.5 * style.legend_row_px, 0.3 * style.legend_row_px);
+                          cv::rectangle(m, figure::fixed(c - half), figure::fixed(c + half), figure::lighten(color, 0.55),
+                                        cv::FILLED, cv::LINE_AA, figure::kShift);
+                          cv::rectangle(m, figure::fixed(c - half), figure::fixed(c + half), color, 2, cv::LINE_AA,
+                                        figure::kShift);
+                        },
+                        text});
+    }
+  }
+  const std::string legend_heading = request.group.empty() ? "" : field_heading(request.group);
+  const int legend_px = legend_width(legend, legend_heading, style, 220, config.width_px / 4);
+  const int left = 170, top = 150, bottom_margin = 130;
+  const cv::Rect plot_px(left, top, config.width_px - left - legend_px - 70, config.height_px - top - bottom_margin);
+
+  double x0 = -0.5, x1 = xs.size() - 0.5;
+  if (line) {
+    const double x_min = x_axis.ticks.front().value, x_max = x_axis.ticks.back().value;
+    std::tie(x0, x1) = x_max > x_min ? padded(x_min, x_max, 0.0) : std::pair{x_min - 1.0, x_max + 1.0};
+  }
+  const auto [y0, y1] = rate ? std::pair{-5.0, 105.0} : padded(y_lo, y_hi, y_hi > y_lo ? 0.0 : std::max(std::abs(y_hi) * 0.1, 0.5));
+  const PlotFrame frame{plot_px, x0, x1, y0, y1};
+  const std::vector<Tick> y_ticks = rate ? percent_ticks() : linear_ticks(y0, y1, plot_px.height / figure::kTickSpacingPx);
+  std::vector<Tick> x_ticks = x_axis.ticks;
+  if (!line) {
+    for (std::size_t i = 0; i < xs.size(); ++i) x_ticks.push_back({double(i), xs[i].is_null() ? "-" : value_label(xs[i])});
+  }
+
+  cv::Mat image(config.height_px, config.width_px, CV_8UC3, figure::kWhite);
+  const std::string y_label = metric_label(request.y);
+  const std::string title = request.title.empty() ? layout.name + ": " + y_label + " vs " + request.x : request.title;
+  put_title(image, title, {0, 10, config.width_px, 60}, style.title);
+  const std::string spread = rate ? "rate with 95% Wilson interval"
+                             : line ? "mean with 95% confidence interval (Student t)"
+                                    : "median, quartiles, whiskers at 1.5 IQR, outliers";
+  const std::string note = spread + "; " + std::to_string(run_count) + " runs" +
+                           (failed > 0 ? ", " + std::to_string(failed) + " failed" : "");
+  figure::put_text(image, note, {config.width_px * 0.5, 95.0}, style.note, figure::kMutedInk, Align::centre);
+
+  draw_grid(image, frame, line ? x_ticks : std::vector<Tick>{}, y_ticks);
+  // Series side by side within a category (box) or slightly apart (line).
+  const double slot_px = line ? style.dodge_px : 0.8 * plot_px.width / xs.size() / series.size();
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    const cv::Scalar color = run_color(i);
+    const double dodge = (static_cast<double>(i) - 0.5 * (series.size() - 1.0)) * slot_px;
+    std::vector<Point> points;
+    for (const Mark& m : marks) {
+      if (m.series != i) continue;
+      if (m.summary) {
+        const Summary& s = *m.summary;
+        points.push_back({m.x, scale * s.mean, s.ci95 ? scale * s.ci95->low : scale * s.mean,
+                          s.ci95 ? scale * s.ci95->high : scale * s.mean});
+        continue;
+      }
+      // A box: whiskers, the box from Q1 to Q3, the median, outliers.
+      const BoxStats& b = *m.box;
+      const double cx = frame.to_px(m.x, 0.0).x + dodge;
+      const double half = std::min(0.4 * slot_px, 45.0);
+      const auto y_px = [&](double v) { return frame.to_px(m.x, v).y; };
+      draw_error_bar(image, {cx, y_px(b.whisker_low)}, {cx, y_px(b.q1)}, color, style);
+      draw_error_bar(image, {cx, y_px(b.q3)}, {cx, y_px(b.whisker_high)}, color, style);
+      const cv::Point2d a(cx - half, y_px(b.q3)), c(cx + half, y_px(b.q1));
+      cv::rectangle(image, figure::fixed(a), figure::fixed(c), figure::lighten(color, 0.55), cv::FILLED, cv::LINE_AA,
+                    figure::kShift);
+      cv::rectangle(image, figure::fixed(a), figure::fixed(c), color, 2, cv::LINE_AA, figure::kShift);
+      cv::line(image, figure::fixed({cx - half, y_px(b.median)}), figure::fixed({cx + half, y_px(b.median)}),
+               figure::shade(color, 0.55), style.line_px + 1, cv::LINE_AA, figure::kShift);
+      for (double v : b.outliers) {
+        cv::circle(image, figure::fixed({cx, y_px(v)}), static_cast<int>(style.marker_px) << figure::kShift, color, 2,
+                   cv::LINE_AA, figure::kShift);
+      }
+    }
+    std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return a.x < b.x; });
+    draw_series(image, frame, points, dodge, color, style, line);
+  }
+  const std::string x_label = field_heading(request.x) + (x_axis.log2 ? " (log2 scale)" : "");
+  draw_axes(image, frame, x_ticks, y_ticks, x_label, y_label, style);
+  draw_legend(image, {plot_px.x + plot_px.width + 40, plot_px.y}, legend_px, legend, legend_heading, style);
+  return image;
+}
+
+void write_png(const cv::Mat& image, const std::filesystem::path& png) {
   std::vector<uchar> bytes;
-  if (!cv::imencode(".png", draw_sweep_chart(table), bytes)) throw std::runtime_error("cannot encode the chart");
+  if (!cv::imencode(".png", image, bytes)) throw std::runtime_error("cannot encode " + png.string());
   write_file_atomically(png, std::string(bytes.begin(), bytes.end()));
 }
 

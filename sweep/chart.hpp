@@ -1,7 +1,9 @@
 #pragma once
-/// The sweep chart (SPEC §9): how a planner degrades along one numeric
-/// parameter. Two panels, normalized path length (mean with ± sd error bars)
-/// and success rate (%), one coloured series per scene.
+/// Charts of sweep results (SPEC §9), drawn with OpenCV, the same pixels for
+/// the same results. The summary chart of `campo table`: two panels,
+/// normalized path length (mean with ± sd error bars) and success rate (%)
+/// against one numeric axis, one coloured series per scene. The plots of
+/// `campo plot`: any metric against any field, as lines or box plots.
 #include <filesystem>
 #include <string>
 
@@ -21,5 +23,34 @@ cv::Mat draw_sweep_chart(const SweepTable& table);
 
 /// Draws the chart and writes it as PNG.
 void write_sweep_chart(const SweepTable& table, const std::filesystem::path& png);
+
+enum class PlotKind {
+  automatic,  ///< line when every x value is a number, else box
+  line,       ///< x numeric (log2 when all are powers of two): mean and 95 % interval per x, lines through the means
+  box,        ///< x as categories: median, quartiles, whiskers at 1.5 IQR, outliers (rates: the rate and its interval)
+};
+
+/// What `campo plot` draws: metric `y` against field `x`.
+struct PlotRequest {
+  std::string x;       ///< a field (check_field): "scene", "planner", "seed" or an axis
+  std::string y;       ///< a metric (check_metric), "success" for the success rate
+  std::string group;   ///< a field other than x: one coloured series per value; empty: one series
+  PlotKind kind = PlotKind::automatic;
+  std::string title;   ///< empty: "<sweep>: <metric label> vs <x>"
+};
+
+/// Size of a plot; the fonts suit it (a figure for a paper).
+struct PlotConfig {
+  int width_px = 1600;   ///< >= 800
+  int height_px = 1000;  ///< >= 500
+};
+
+/// The plot of `runs` (BGR). Checks the request first: InputError naming the
+/// option (--x, --y, --group, --kind) and what was expected.
+cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& layout, const PlotRequest& request,
+                        const PlotConfig& config = {});
+
+/// Writes `image` as PNG, atomically.
+void write_png(const cv::Mat& image, const std::filesystem::path& png);
 
 }  // namespace campo

@@ -1,9 +1,12 @@
 #include "sweep/expansion.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <numeric>
 #include <string_view>
 
+#include "planners/registry.hpp"
 #include "sim/json_reader.hpp"
 #include "sim/random.hpp"
 #include "sim/scene_loader.hpp"
@@ -40,6 +43,42 @@ std::pair<const nlohmann::json*, std::size_t> top_level_object(const nlohmann::j
   return {nullptr, 0};
 }
 
+// One point of the parameter space: a value per axis, and how runs name it.
+struct AxisPoint {
+  std::vector<nlohmann::json> values;  // one per axis
+  std::vector<std::string> origins;    // spec pointer of each value, for errors
+  std::string label;                   // "__resolution-256" or "__sample-3"
+};
+
+std::vector<AxisPoint> axis_points(const SweepSpec& spec) {
+  std::vector<AxisPoint> points;
+  if (spec.sampling) {
+    const auto samples = sample_axes(spec);
+    for (std::size_t s = 0; s < samples.size(); ++s) {
+      AxisPoint point{samples[s], {}, "__sample-" + std::to_string(s + 1)};
+      for (const SweepAxis& axis : spec.axes) point.origins.push_back(axis.origin);
+      points.push_back(std::move(point));
+    }
+    return points;
+  }
+  // Odometer over the axes' value indices, the last axis turning fastest.
+  std::vector<std::size_t> index(spec.axes.size(), 0);
+  while (true) {
+    AxisPoint point;
+    for (std::size_t a = 0; a < spec.axes.size(); ++a) {
+      const SweepAxis& axis = spec.axes[a];
+      point.values.push_back(axis.values[index[a]]);
+      point.origins.push_back(child_pointer(axis.origin + "/values", index[a]));
+      point.label += "__" + axis.name + "-" + value_id_label(axis.values[index[a]]);
+    }
+    points.push_back(std::move(point));
+    std::size_t a = spec.axes.size();
+    while (a > 0 && ++index[a - 1] == spec.axes[a - 1].values.size()) index[--a] = 0;
+    if (a == 0) break;
+  }
+  return points;
+}
+
 // Builds the runs of one scene, each with its document validated.
 class SceneExpander {
  public:
@@ -48,43 +87,59 @@ class SceneExpander {
     try {
       bytes_ = read_text_file(scene.file);
       document_ = parse_json_text(bytes_, scene_file_);
+      // Planners go to the first vehicle, as `campo run` drives it.
+      const Scene base = parse_scene(document_, scene_file_, scene.file.parent_path(), "");
+      if (!base.vehicles.empty()) {
+        vehicle_ = base.vehicles.front().alias;
+        planner_ = base.vehicles.front().planner.name;
+      }
     } catch (const InputError& e) {
       throw InputError(spec_file_, scene.origin, std::string("cannot load the scene: ") + e.what());
     }
     sha256_ = sha256_hex(bytes_);
+    if (!spec.planners.empty() && !top_level_object(document_, vehicle_).first) {
+      throw InputError(spec_file_, "/planners",
+                       "expected a scene whose first vehicle is at the top level of \"objects\" (scene " + scene.label + ")");
+    }
   }
 
-  /// The run with the value values[axis][index[axis]] of every axis and this seed.
-  SweepRun run(const std::vector<std::size_t>& index, std::uint64_t seed) const {
+  /// The run of this planner (null: the scene's), axis point and seed.
+  SweepRun run(const SweepPlanner* planner, const AxisPoint& point, std::uint64_t seed) const {
     SweepRun run;
     run.scene = scene_.label;
+    if (planner) run.planner = planner->label;
     run.scene_file = scene_.file;
     run.seed = seed;
     run.scene_sha256 = sha256_;
     run.params = nlohmann::json::object();
-    run.id = scene_.label;
-    for (std::size_t a = 0; a < spec_.axes.size(); ++a) {
-      const SweepAxis& axis = spec_.axes[a];
-      run.params[axis.name] = axis.values[index[a]];
-      run.id += "__" + axis.name + "-" + value_id_label(axis.values[index[a]]);
-    }
-    run.id += "__seed-" + std::to_string(seed);
+    run.name = scene_.label + (planner ? "__" + planner->label : "") + point.label + "__seed-" + std::to_string(seed);
 
     nlohmann::json document = document_;
+    if (planner) apply_planner(document, run, *planner);
     for (const SweepOverride& o : spec_.set) apply(document, run, o.pointer, o.value, o.origin);
     for (std::size_t a = 0; a < spec_.axes.size(); ++a) {
       const SweepAxis& axis = spec_.axes[a];
-      const std::string origin = child_pointer(axis.origin + "/values", index[a]);
-      for (const std::string& pointer : axis.pointers) apply(document, run, pointer, axis.values[index[a]], origin);
+      run.params[axis.name] = point.values[a];
+      for (const std::string& pointer : axis.pointers) apply(document, run, pointer, point.values[a], point.origins[a]);
     }
     apply(document, run, "/world/seed", seed, "/seeds");
     if (spec_.start_jitter) apply_start_jitter(document, run, *spec_.start_jitter);
 
     const Scene scene = validated(document, run);
+    if (!planner) {
+      // The scene's planner as the overrides left it.
+      const std::string& name = scene.vehicles.empty() ? std::string() : scene.vehicles.front().planner.name;
+      run.planner = name.empty() ? std::string(kDefaultPlanner) : name;
+    }
     if (spec_.start_jitter && !scene.find_vehicle(spec_.start_jitter->vehicle)) {
       throw InputError(spec_file_, spec_.start_jitter->origin + "/vehicle",
                        "expected a vehicle of scene " + scene_.label + ", got \"" + spec_.start_jitter->vehicle + "\"");
     }
+    // What the run is, not where it sits in the spec: its name (scene,
+    // planner, values, seed) and effective document give the same ID in any
+    // order or shard, and the name keeps identical documents apart (a scene
+    // under two names, a value drawn twice).
+    run.id = sha256_hex(std::string(CAMPO_VERSION) + "\n" + run.name + "\n" + document.dump()).substr(0, 16);
     return run;
   }
 
@@ -96,7 +151,7 @@ class SceneExpander {
       if (check_) check_(scene);
       return scene;
     } catch (const InputError& e) {
-      throw InputError(spec_file_, scene_.origin, "run " + run.id + ": " + e.what());
+      throw InputError(spec_file_, scene_.origin, "run " + run.name + ": " + e.what());
     }
   }
 
@@ -110,6 +165,19 @@ class SceneExpander {
       throw InputError(spec_file_, origin, "in scene " + scene_.label + ": " + message_of(e));
     }
     run.overrides.push_back(assignment);
+  }
+
+  // The planner of the first vehicle: its parameters on top of the scene's
+  // when it is the scene's planner, alone otherwise (the scene's belong to another planner).
+  void apply_planner(nlohmann::json& document, SweepRun& run, const SweepPlanner& planner) const {
+    const std::string base = "/objects/" + vehicle_ + "/planner";
+    if (planner.name != planner_) {
+      apply(document, run, base, {{"name", planner.name}, {"params", planner.params}}, planner.origin);
+      return;
+    }
+    for (const auto& [key, value] : planner.params.items()) {
+      apply(document, run, base + "/params/" + key, value, planner.origin + "/params/" + key);
+    }
   }
 
   // The start moved within the disc, from the vehicle's position in the document so far.
@@ -139,24 +207,63 @@ class SceneExpander {
   std::string bytes_;
   nlohmann::json document_;
   std::string sha256_;
+  std::string vehicle_;  // alias of the first vehicle
+  std::string planner_;  // its planner in the scene file
 };
 
 }  // namespace
 
+std::vector<std::vector<nlohmann::json>> sample_axes(const SweepSpec& spec) {
+  if (!spec.sampling) return {};
+  const auto n = static_cast<std::size_t>(spec.sampling->samples);
+  const bool latin = spec.sampling->method == SweepSampling::Method::latin_hypercube;
+  std::vector<std::vector<nlohmann::json>> samples(n);
+  for (std::size_t a = 0; a < spec.axes.size(); ++a) {
+    // One stream per axis, so adding an axis does not change the others' draws.
+    Rng rng(Rng::derive_seed(spec.sampling->seed, fnv1a(spec.axes[a].name)));
+    std::vector<std::size_t> slice(n);
+    std::iota(slice.begin(), slice.end(), std::size_t{0});
+    if (latin) {
+      for (std::size_t i = n; i > 1; --i) std::swap(slice[i - 1], slice[rng.uniform_int(0, static_cast<std::int64_t>(i - 1))]);
+    }
+    const SweepAxis& axis = spec.axes[a];
+    for (std::size_t s = 0; s < n; ++s) {
+      const double u = latin ? (static_cast<double>(slice[s]) + rng.uniform01()) / static_cast<double>(n) : rng.uniform01();
+      if (axis.interval) {
+        const auto [from, to] = *axis.interval;
+        samples[s].emplace_back(round_significant(from + u * (to - from), 6));
+      } else {
+        const auto k = std::min(static_cast<std::size_t>(u * static_cast<double>(axis.values.size())), axis.values.size() - 1);
+        samples[s].push_back(axis.values[k]);
+      }
+    }
+  }
+  return samples;
+}
+
 std::vector<SweepRun> expand_sweep(const SweepSpec& spec, const SceneCheck& check) {
+  const std::vector<AxisPoint> points = axis_points(spec);
+  std::vector<const SweepPlanner*> planners;
+  for (const SweepPlanner& p : spec.planners) planners.push_back(&p);
+  if (planners.empty()) planners.push_back(nullptr);  // each scene's own
   std::vector<SweepRun> runs;
   for (const SweepScene& scene : spec.scenes) {
     const SceneExpander expander(spec, scene, check);
-    // Odometer over the axes' value indices, the last axis turning fastest.
-    std::vector<std::size_t> index(spec.axes.size(), 0);
-    while (true) {
-      for (int k = 0; k < spec.seed_count; ++k) runs.push_back(expander.run(index, spec.first_seed + k));
-      std::size_t a = spec.axes.size();
-      while (a > 0 && ++index[a - 1] == spec.axes[a - 1].values.size()) index[--a] = 0;
-      if (a == 0) break;
+    for (const SweepPlanner* planner : planners) {
+      for (const AxisPoint& point : points) {
+        for (int k = 0; k < spec.seed_count; ++k) runs.push_back(expander.run(planner, point, spec.first_seed + k));
+      }
     }
   }
   return runs;
+}
+
+std::vector<SweepRun> shard_of(const std::vector<SweepRun>& runs, int index, int count) {
+  std::vector<SweepRun> shard;
+  for (std::size_t i = static_cast<std::size_t>(index - 1); i < runs.size(); i += static_cast<std::size_t>(count)) {
+    shard.push_back(runs[i]);
+  }
+  return shard;
 }
 
 Eigen::Vector2d start_jitter_offset(std::uint64_t seed, double radius_m) {
@@ -167,17 +274,22 @@ Eigen::Vector2d start_jitter_offset(std::uint64_t seed, double radius_m) {
   return {r * std::cos(angle), r * std::sin(angle)};
 }
 
+nlohmann::json manifest_entry(const SweepRun& run) {
+  return {{"id", run.id},         {"name", run.name},           {"scene", run.scene},
+          {"planner", run.planner}, {"params", run.params},     {"seed", run.seed},
+          {"overrides", run.overrides}, {"scene_file", run.scene_file.string()}};
+}
+
 nlohmann::json sweep_manifest(const SweepSpec& spec, const std::vector<SweepRun>& runs) {
   nlohmann::json list = nlohmann::json::array();
-  for (const SweepRun& run : runs) {
-    list.push_back({{"id", run.id},
-                    {"scene", run.scene},
-                    {"scene_file", run.scene_file.string()},
-                    {"params", run.params},
-                    {"seed", run.seed},
-                    {"overrides", run.overrides}});
-  }
-  return {{"spec_file", spec.file.string()}, {"spec", spec.document}, {"runs", list}};
+  for (const SweepRun& run : runs) list.push_back(manifest_entry(run));
+  return {{"spec_file", spec.file.string()},
+          {"spec", spec.document},
+          {"spec_sha256", spec_sha256(spec)},
+          {"campo_version", CAMPO_VERSION},
+          {"runs", list}};
 }
+
+std::string spec_sha256(const SweepSpec& spec) { return sha256_hex(spec.document.dump()); }
 
 }  // namespace campo

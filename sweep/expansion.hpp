@@ -16,12 +16,17 @@ namespace campo {
 
 /// One run of a sweep.
 struct SweepRun {
-  std::string id;                      ///< stable and filesystem-safe: "two_barriers__resolution-256__seed-1"
+  /// 16 hex digits of the SHA-256 of the campo version and the run's
+  /// effective scene document (scene, every override, the seed): the same run
+  /// has the same ID in every spec, order and shard.
+  std::string id;
+  std::string name;                    ///< readable and filesystem-safe: "two_barriers__resolution-256__seed-1"
   std::string scene;                   ///< the scene's label
+  std::string planner;                 ///< the planner's label (the scene's planner name without "planners")
   std::filesystem::path scene_file;
   nlohmann::json params;               ///< axis name -> value
   std::uint64_t seed = 0;              ///< written to /world/seed
-  std::vector<std::string> overrides;  ///< "POINTER=JSON", in order: set, axes, seed, start jitter
+  std::vector<std::string> overrides;  ///< "POINTER=JSON", in order: planner, set, axes, seed, start jitter
   std::string scene_sha256;            ///< of the scene file's bytes
 };
 
@@ -29,8 +34,15 @@ struct SweepRun {
 /// which live outside sim/); throws InputError.
 using SceneCheck = std::function<void(const Scene&)>;
 
-/// Expands the spec in order: scenes, then the axes' values (first axis
-/// outermost), then seeds. Every run's scene is loaded with its overrides and
+/// The sampled axis values of a spec with "sampling": samples x axes, the same
+/// for every scene and planner. Random: each value uniform; Latin hypercube:
+/// each axis cut into `samples` equal slices, each slice drawn once, in an
+/// order shuffled per axis. Intervals give numbers rounded to 6 significant
+/// digits; value lists are sliced by index. Deterministic in the sampling seed.
+std::vector<std::vector<nlohmann::json>> sample_axes(const SweepSpec& spec);
+
+/// Expands the spec in order: scenes, then planners, then the axes' values
+/// (first axis outermost) or the samples, then seeds. Every run's scene is loaded with its overrides and
 /// validated (parse_scene, then `check` if given); any error is an InputError
 /// naming the spec file, the spec's JSON pointer and the run.
 std::vector<SweepRun> expand_sweep(const SweepSpec& spec, const SceneCheck& check = {});
@@ -40,8 +52,18 @@ std::vector<SweepRun> expand_sweep(const SweepSpec& spec, const SceneCheck& chec
 /// seed (so the values are compared from the same starts).
 Eigen::Vector2d start_jitter_offset(std::uint64_t seed, double radius_m);
 
-/// sweep.json: {"spec_file", "spec" (as read), "runs": [{id, scene,
-/// scene_file, params, seed, overrides}]}.
+/// The run's line of the manifest: {id, name, scene, planner, params, seed, overrides, scene_file}.
+nlohmann::json manifest_entry(const SweepRun& run);
+
+/// sweep.json: {"spec_file", "spec" (as read), "spec_sha256" (of the spec
+/// as read, canonical), "campo_version", "runs": [manifest_entry...]}.
 nlohmann::json sweep_manifest(const SweepSpec& spec, const std::vector<SweepRun>& runs);
+
+/// The spec's identity in results and merges: SHA-256 of its canonical JSON.
+std::string spec_sha256(const SweepSpec& spec);
+
+/// Shard `index` (1-based) of `count`: runs i with i mod count == index - 1,
+/// so the shards are disjoint, cover the manifest, and differ in size by at most one.
+std::vector<SweepRun> shard_of(const std::vector<SweepRun>& runs, int index, int count);
 
 }  // namespace campo

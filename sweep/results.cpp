@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <set>
 
 #include "sim/json_reader.hpp"
 
@@ -13,9 +14,9 @@ namespace {
 
 // The fields every line has, whatever its status.
 nlohmann::json result_line(const SweepRun& run, const std::string& status) {
-  return {{"id", run.id},         {"scene", run.scene},         {"params", run.params},
-          {"seed", run.seed},     {"status", status},           {"overrides", run.overrides},
-          {"run_dir", run_dir(run.id)}};
+  return {{"id", run.id},     {"name", run.name},     {"scene", run.scene},       {"planner", run.planner},
+          {"params", run.params}, {"seed", run.seed}, {"status", status},      {"overrides", run.overrides},
+          {"run_dir", nullptr}};
 }
 
 RunMetrics read_metrics(const JsonNode& node) {
@@ -39,7 +40,10 @@ RunResult read_result(const JsonNode& node) {
   ObjectReader r(node);
   RunResult result;
   result.id = r.required("id").as_string();
+  result.name = result.id;
+  r.read("name", result.name);
   result.scene = r.required("scene").as_string();
+  r.read("planner", result.planner);
   const JsonNode params = r.required("params");
   if (!params.value().is_object()) params.fail("an object of axis values");
   result.params = params.value();
@@ -48,29 +52,19 @@ RunResult read_result(const JsonNode& node) {
   for (const JsonNode& o : r.required("overrides").as_array(0, 100000)) result.overrides.push_back(o.as_string());
   const JsonNode metrics = r.required("metrics");
   if (result.completed) {
+    if (!metrics.value().is_object()) metrics.fail("the metrics object of a completed run");
     result.metrics = read_metrics(metrics);
+    result.metrics_json = metrics.value();
   } else {
     result.reason = r.required("reason").as_string();
     if (!metrics.value().is_null()) metrics.fail("null for a failed run");
   }
-  // Provenance is for people and scripts; the table does not use it.
-  for (const char* key : {"run_dir", "campo_version", "git_rev", "scene_sha256"}) r.accept(key);
+  if (auto dir = r.optional("run_dir"); dir && !dir->value().is_null()) dir->as_string();
+  if (auto triage = r.optional("triage"); triage && !triage->value().is_object()) triage->fail("an object");
+  // Provenance and timing are for people and scripts; tables and plots do not use them.
+  for (const char* key : {"campo_version", "git_rev", "scene_sha256", "spec_sha256", "wall_time_s"}) r.accept(key);
   r.finish();
   return result;
-}
-
-MeanSd mean_sd(const std::vector<double>& values) {
-  const double n = static_cast<double>(values.size());
-  const double mean = std::accumulate(values.begin(), values.end(), 0.0) / n;
-  double squares = 0.0;
-  for (double v : values) squares += (v - mean) * (v - mean);
-  return {mean, values.size() > 1 ? std::sqrt(squares / (n - 1.0)) : 0.0};
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 // Mean and sd of one metric over the completed runs; empty when there are none.
@@ -79,7 +73,8 @@ std::optional<MeanSd> spread(const std::vector<const RunResult*>& completed, Met
   if (completed.empty()) return std::nullopt;
   std::vector<double> values;
   for (const RunResult* r : completed) values.push_back(metric(r->metrics));
-  return mean_sd(values);
+  const Summary s = summarize_values(values);
+  return MeanSd{s.mean, s.sd};
 }
 
 TableRow summarize(const std::vector<const RunResult*>& group, const std::vector<std::string>& axes) {
@@ -110,7 +105,7 @@ TableRow summarize(const std::vector<const RunResult*>& group, const std::vector
   row.path_ratio = spread(completed, [](const RunMetrics& m) { return m.path_ratio; });
   row.time_s = spread(completed, [](const RunMetrics& m) { return m.time_s; });
   if (!replan_medians.empty()) {
-    row.replan_ms_median = median(replan_medians);
+    row.replan_ms_median = box_stats(replan_medians).median;
     row.replan_ms_max = *std::max_element(replan_maxima.begin(), replan_maxima.end());
   }
   return row;
@@ -118,7 +113,7 @@ TableRow summarize(const std::vector<const RunResult*>& group, const std::vector
 
 }  // namespace
 
-std::string run_dir(const std::string& id) { return "runs/" + id; }
+std::string run_dir(const std::string& name) { return "runs/" + name; }
 
 nlohmann::json completed_result(const SweepRun& run, const nlohmann::json& run_record) {
   const nlohmann::json& provenance = run_record.at("provenance");
@@ -166,11 +161,10 @@ void ResultsLog::append(const nlohmann::json& line) {
   if (!out_) throw std::runtime_error("cannot append to results.jsonl");
 }
 
-ResultsFile read_results(const std::filesystem::path& path) {
+std::vector<ResultLine> read_result_lines(const std::filesystem::path& path, std::vector<std::string>& warnings) {
   const std::string file = path.string();
   const std::string text = read_text_file(path, {.max_file_bytes = std::uintmax_t{1} << 32});
-  ResultsFile results;
-  std::map<std::string, std::size_t> index_of;  // id -> position in results.runs
+  std::vector<ResultLine> lines;
   std::size_t start = 0;
   for (int number = 1; start < text.size(); ++number) {
     const std::size_t newline = text.find('\n', start);
@@ -179,16 +173,22 @@ ResultsFile read_results(const std::filesystem::path& path) {
     start = last ? text.size() : newline + 1;
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
     const std::string source = file + " line " + std::to_string(number);
-    nlohmann::json value;
     try {
-      value = parse_json_text(line, source);
+      lines.push_back({parse_json_text(line, source), source});
     } catch (const InputError&) {
       // A sweep killed mid-write leaves a partial last line without its newline.
       if (!last) throw;
-      results.warnings.push_back(source + " is incomplete (an interrupted sweep?) and was ignored");
-      continue;
+      warnings.push_back(source + " is incomplete (an interrupted sweep?) and was ignored");
     }
-    RunResult result = read_result(JsonNode(value, source, ""));
+  }
+  return lines;
+}
+
+ResultsFile read_results(const std::filesystem::path& path) {
+  ResultsFile results;
+  std::map<std::string, std::size_t> index_of;  // id -> position in results.runs
+  for (const ResultLine& line : read_result_lines(path, results.warnings)) {
+    RunResult result = read_result(JsonNode(line.value, line.source, ""));
     const auto [it, inserted] = index_of.emplace(result.id, results.runs.size());
     if (inserted) {
       results.runs.push_back(std::move(result));
@@ -199,23 +199,41 @@ ResultsFile read_results(const std::filesystem::path& path) {
   return results;
 }
 
+TableRequest read_table_request(const JsonNode& node) {
+  ObjectReader r(node);
+  TableRequest request;
+  request.file = node.file();
+  request.rows_at = child_pointer(node.pointer(), "rows");
+  request.cols_at = child_pointer(node.pointer(), "cols");
+  request.metrics_at = child_pointer(node.pointer(), "metrics");
+  request.rows = r.required("rows").as_string();
+  r.read("cols", request.cols);
+  for (const JsonNode& metric : r.required("metrics").as_array(1, 100)) request.metrics.push_back(metric.as_string());
+  r.finish();
+  return request;
+}
+
 TableLayout table_layout(const std::filesystem::path& dir, const std::vector<RunResult>& runs) {
   TableLayout layout;
   const std::filesystem::path manifest = dir / "sweep.json";
   if (std::filesystem::exists(manifest)) {
+    // campo sweep validated the spec and wrote this file: read only what the table needs, so a sweep
+    // directory stays readable wherever it is copied (scene files elsewhere) and as the format grows.
     const nlohmann::json document = read_json_file(manifest);
     ObjectReader r(JsonNode(document, manifest.string(), ""));
-    const std::string spec_file = r.required("spec_file").as_string();
-    const SweepSpec spec = parse_sweep_spec(r.required("spec").value(), spec_file);
-    layout.name = spec.name;
-    for (const SweepAxis& axis : spec.axes) layout.axes.push_back(axis.name);
-    for (const JsonNode& run : r.required("runs").as_array(0, SweepLimits{}.max_runs)) {
-      ObjectReader entry(run);
-      layout.run_order.push_back(entry.required("id").as_string());
-      for (const char* key : {"scene", "scene_file", "params", "seed", "overrides"}) entry.accept(key);
-      entry.finish();
+    const JsonNode spec = r.required("spec");
+    ObjectReader s(spec);
+    layout.name = std::filesystem::path(r.required("spec_file").as_string()).stem().string();
+    s.read("name", layout.name);
+    if (auto axes = s.optional("axes")) {
+      for (const JsonNode& axis : axes->as_array(0, SweepLimits{}.max_axes)) {
+        layout.axes.push_back(ObjectReader(axis).required("name").as_string());
+      }
     }
-    r.finish();
+    if (auto table = s.optional("table")) layout.table = read_table_request(*table);
+    for (const JsonNode& run : r.required("runs").as_array(0, SweepLimits{}.max_runs)) {
+      layout.run_order.push_back(ObjectReader(run).required("id").as_string());
+    }
     return layout;
   }
   layout.name = dir.filename().string();
@@ -227,31 +245,111 @@ TableLayout table_layout(const std::filesystem::path& dir, const std::vector<Run
   return layout;
 }
 
-SweepTable aggregate(const std::vector<RunResult>& runs, const TableLayout& layout) {
+nlohmann::json field_value(const RunResult& run, const std::string& field) {
+  if (field == "scene") return run.scene;
+  if (field == "planner") return run.planner.empty() ? nlohmann::json() : nlohmann::json(run.planner);
+  if (field == "seed") return run.seed;
+  return run.params.value(field, nlohmann::json());
+}
+
+void check_field(const std::string& field, const std::vector<std::string>& axes, const std::string& file,
+                 const std::string& where) {
+  std::string known;
+  for (std::string_view f : kRunFields) (known += known.empty() ? "" : ", ") += f;
+  for (const std::string& axis : axes) known += ", " + axis;
+  const bool found = std::find(kRunFields.begin(), kRunFields.end(), field) != kRunFields.end() ||
+                     std::find(axes.begin(), axes.end(), field) != axes.end();
+  if (!found) throw InputError(file, where, "expected a field of the runs (" + known + "), got \"" + field + "\"");
+}
+
+std::vector<std::string> available_metrics(const std::vector<RunResult>& runs) {
+  std::set<std::string> names;
+  for (const RunResult& run : runs) {
+    if (!run.completed) continue;
+    for (const auto& [key, value] : run.metrics_json.items()) {
+      if (value.is_number() || value.is_boolean()) names.insert(key);
+    }
+  }
+  std::vector<std::string> metrics{"success"};
+  metrics.insert(metrics.end(), names.begin(), names.end());
+  return metrics;
+}
+
+MetricKind check_metric(const std::string& metric, const std::vector<RunResult>& runs, const std::string& file,
+                        const std::string& where) {
+  if (metric == "success" || metric == "outcome") return MetricKind::rate;
+  bool completed = false, number = false, boolean = false;
+  for (const RunResult& run : runs) {
+    if (!run.completed) continue;
+    completed = true;
+    const nlohmann::json value = run.metrics_json.value(metric, nlohmann::json());
+    number = number || value.is_number();
+    boolean = boolean || value.is_boolean();
+  }
+  if (completed && !number && !boolean) {
+    std::string known;
+    for (const std::string& m : available_metrics(runs)) (known += known.empty() ? "" : ", ") += m;
+    throw InputError(file, where, "expected a metric of the runs (" + known + "), got \"" + metric + "\"");
+  }
+  return boolean && !number ? MetricKind::rate : MetricKind::number;
+}
+
+std::optional<double> metric_value(const RunResult& run, const std::string& metric) {
+  if (metric == "success" || metric == "outcome") return run.completed && run.metrics.outcome == "reached" ? 1.0 : 0.0;
+  if (!run.completed) return std::nullopt;
+  const nlohmann::json value = run.metrics_json.value(metric, nlohmann::json());
+  if (value.is_boolean()) return value.get<bool>() ? 1.0 : 0.0;
+  if (value.is_number()) return value.get<double>();
+  return std::nullopt;
+}
+
+std::optional<Summary> summarize_metric(const std::vector<const RunResult*>& runs, const std::string& metric,
+                                        MetricKind kind) {
+  std::vector<double> values;
+  for (const RunResult* run : runs) {
+    if (const auto v = metric_value(*run, metric)) values.push_back(*v);
+  }
+  if (values.empty()) return std::nullopt;
+  if (kind == MetricKind::number) return summarize_values(values);
+  const auto successes = std::count(values.begin(), values.end(), 1.0);
+  return summarize_rate(static_cast<int>(successes), static_cast<int>(values.size()));
+}
+
+std::vector<RunGroup> group_runs(const std::vector<RunResult>& runs, const TableLayout& layout,
+                                 const std::vector<std::string>& fields) {
   // A run's rank: its place in the expansion, else after all of them in order of appearance.
   std::map<std::string, std::size_t> rank_of;
   for (std::size_t i = 0; i < layout.run_order.size(); ++i) rank_of.emplace(layout.run_order[i], i);
-  struct Group {
-    std::size_t rank;
-    std::vector<const RunResult*> runs;
-  };
-  std::map<std::string, Group> groups;  // key: scene and axis values
+  std::vector<RunGroup> groups;
+  std::vector<std::size_t> ranks;                 // per group: its first run's rank
+  std::map<std::string, std::size_t> index_of;    // key as JSON text -> group
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const RunResult& run = runs[i];
-    nlohmann::json key = nlohmann::json::array({run.scene});
-    for (const std::string& axis : layout.axes) key.push_back(run.params.value(axis, nlohmann::json()));
+    std::vector<nlohmann::json> key;
+    for (const std::string& field : fields) key.push_back(field_value(run, field));
     const auto it = rank_of.find(run.id);
     const std::size_t rank = it != rank_of.end() ? it->second : layout.run_order.size() + i;
-    auto [group, inserted] = groups.try_emplace(key.dump(), Group{rank, {}});
-    group->second.rank = std::min(group->second.rank, rank);
-    group->second.runs.push_back(&run);
+    const auto [group, inserted] = index_of.try_emplace(nlohmann::json(key).dump(), groups.size());
+    if (inserted) {
+      groups.push_back({std::move(key), {}});
+      ranks.push_back(rank);
+    }
+    groups[group->second].runs.push_back(&run);
+    ranks[group->second] = std::min(ranks[group->second], rank);
   }
-  std::vector<const Group*> ordered;
-  for (const auto& [key, group] : groups) ordered.push_back(&group);
-  std::sort(ordered.begin(), ordered.end(), [](const Group* a, const Group* b) { return a->rank < b->rank; });
+  std::vector<std::size_t> order(groups.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return ranks[a] < ranks[b]; });
+  std::vector<RunGroup> ordered;
+  for (std::size_t i : order) ordered.push_back(std::move(groups[i]));
+  return ordered;
+}
 
+SweepTable aggregate(const std::vector<RunResult>& runs, const TableLayout& layout) {
+  std::vector<std::string> fields{"scene"};
+  fields.insert(fields.end(), layout.axes.begin(), layout.axes.end());
   SweepTable table{layout.name, layout.axes, {}};
-  for (const Group* group : ordered) table.rows.push_back(summarize(group->runs, layout.axes));
+  for (const RunGroup& group : group_runs(runs, layout, fields)) table.rows.push_back(summarize(group.runs, layout.axes));
   return table;
 }
 

@@ -1,26 +1,32 @@
 #pragma once
 /// DIR/results.jsonl of a sweep: one JSON object per run, appended and
 /// flushed line by line so a killed sweep keeps every finished run; read back
-/// and aggregated per scene and axis values (seed 000's Table 5.1).
+/// and aggregated per scene and axis values (seed 000's Table 5.1), or per
+/// any fields and metrics (tables and plots).
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "sim/json_reader.hpp"
 #include "sweep/expansion.hpp"
+#include "sweep/statistics.hpp"
 
 namespace campo {
 
-/// A run's directory inside the sweep directory: "runs/<id>".
-std::string run_dir(const std::string& id);
+/// A run's directory inside the sweep directory: "runs/<name>".
+std::string run_dir(const std::string& name);
 
 /// The results.jsonl line of a run that completed, from its run.json:
-/// {id, scene, params, seed, status: "completed", overrides, run_dir,
-/// metrics, campo_version, git_rev, scene_sha256}.
+/// {id, name, scene, planner, params, seed, status: "completed", overrides,
+/// run_dir (null; the sweep sets it when it keeps the run's files), metrics,
+/// campo_version, git_rev, scene_sha256}.
 nlohmann::json completed_result(const SweepRun& run, const nlohmann::json& run_record);
 /// The line of a run that failed (threw) before writing its record: status
 /// "failed", its `reason`, metrics null.
@@ -57,14 +63,17 @@ struct RunMetrics {
 
 /// One line of results.jsonl, read back.
 struct RunResult {
-  std::string id;
+  std::string id;                      ///< unique per run (results before names were recorded: the name)
+  std::string name;                    ///< readable, "two_barriers__resolution-256__seed-1"
   std::string scene;
+  std::string planner;                 ///< empty in results written before planners were recorded
   nlohmann::json params;               ///< axis name -> value
   std::uint64_t seed = 0;
   bool completed = false;              ///< false: the run failed before producing its record
   std::string reason;                  ///< why it failed
   std::vector<std::string> overrides;
   RunMetrics metrics;                  ///< completed runs only
+  nlohmann::json metrics_json;         ///< the run's metrics object as recorded; null for a failed run
 };
 
 struct ResultsFile {
@@ -72,20 +81,95 @@ struct ResultsFile {
   std::vector<std::string> warnings;  ///< e.g. a truncated last line that was ignored
 };
 
+/// One line of results.jsonl as JSON, and where it came from ("FILE line N").
+struct ResultLine {
+  nlohmann::json value;
+  std::string source;
+};
+
+/// The lines of a results.jsonl, in file order, parsed but not checked. A
+/// truncated last line (a sweep killed mid-write) is skipped with a warning;
+/// any other line that is not JSON is an InputError naming the file and line.
+std::vector<ResultLine> read_result_lines(const std::filesystem::path& path, std::vector<std::string>& warnings);
+
 /// Reads results.jsonl strictly (InputError naming the file, line and JSON
 /// pointer), except a truncated last line, which is ignored with a warning.
 ResultsFile read_results(const std::filesystem::path& path);
+
+/// A table of chosen metrics (`campo table --rows`): one row per value of
+/// the `rows` field, one column group per value of `cols`, the metrics' mean
+/// and spread in each cell.
+struct TableRequest {
+  std::string rows;                  ///< a field: "scene", "planner", "seed" or an axis name
+  std::string cols;                  ///< a field other than `rows`; empty: one column group
+  std::vector<std::string> metrics;  ///< metric names (run.json metrics, or "success"), at least one
+  // Where each part was given, for errors: a file, then a JSON pointer or an option.
+  std::string file = "command line";
+  std::string rows_at = "--rows", cols_at = "--cols", metrics_at = "--metrics";
+};
+
+/// Reads a spec's "table" object strictly: {"rows": FIELD, "cols": FIELD
+/// (optional), "metrics": [METRIC, ...]}. Names are checked against the runs
+/// at table time (check_field, check_metric).
+TableRequest read_table_request(const JsonNode& node);
 
 /// How to lay out the table: the axes and the expansion order of the runs.
 struct TableLayout {
   std::string name;                    ///< the sweep's name (chart title)
   std::vector<std::string> axes;       ///< in spec order
   std::vector<std::string> run_order;  ///< run IDs in expansion order
+  std::optional<TableRequest> table;   ///< the spec's default table, if it has one
 };
 
 /// From DIR/sweep.json when it exists; otherwise the axes are the params'
 /// keys and the order is that of results.jsonl.
 TableLayout table_layout(const std::filesystem::path& dir, const std::vector<RunResult>& runs);
+
+/// Fields of every run that tables and plots group by, besides the axes.
+inline constexpr std::array<std::string_view, 3> kRunFields{"scene", "planner", "seed"};
+
+/// A run's value of `field` (kRunFields, else an axis: null when the run lacks it or its planner is unknown).
+nlohmann::json field_value(const RunResult& run, const std::string& field);
+
+/// Throws InputError(file, where, ...) listing the fields unless `field` is
+/// one of kRunFields or `axes`.
+void check_field(const std::string& field, const std::vector<std::string>& axes, const std::string& file,
+                 const std::string& where);
+
+/// How a metric is summarized: numbers as mean and spread; "success" and
+/// boolean metrics as the rate of true.
+enum class MetricKind { number, rate };
+
+/// "success", then every metric with a number or boolean value in some completed run, sorted.
+std::vector<std::string> available_metrics(const std::vector<RunResult>& runs);
+
+/// The kind of `metric`; throws InputError(file, where, ...) listing the
+/// available metrics when no completed run has it as a number or boolean
+/// (any name passes while no run has completed). "outcome" is "success".
+MetricKind check_metric(const std::string& metric, const std::vector<RunResult>& runs, const std::string& file,
+                        const std::string& where);
+
+/// A run's value of `metric`: for "success" (and "outcome"), 1 when the run
+/// completed with outcome "reached", else 0 (failed runs included); otherwise
+/// the completed run's number, or 1/0 for a boolean; empty when it has none.
+std::optional<double> metric_value(const RunResult& run, const std::string& metric);
+
+/// The metric over `runs`, over those that have a value (the Summary's n);
+/// empty when none has.
+std::optional<Summary> summarize_metric(const std::vector<const RunResult*>& runs, const std::string& metric,
+                                        MetricKind kind);
+
+/// Runs sharing the values of some fields.
+struct RunGroup {
+  std::vector<nlohmann::json> key;     ///< the values of the fields, in their order
+  std::vector<const RunResult*> runs;  ///< in the order of `runs`
+};
+
+/// Groups `runs` (which must outlive the result) by the values of `fields`;
+/// groups in the sweep's expansion order (their first run's place in
+/// layout.run_order), then in order of appearance.
+std::vector<RunGroup> group_runs(const std::vector<RunResult>& runs, const TableLayout& layout,
+                                 const std::vector<std::string>& fields);
 
 /// Mean and sample standard deviation (n - 1; 0 for one value).
 struct MeanSd {

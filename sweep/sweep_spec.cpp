@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <map>
 #include <set>
 
 #include "sim/json_reader.hpp"
 #include "sweep/bundled.hpp"
+#include "sweep/results.hpp"
 #include "sweep/table.hpp"
 
 namespace campo {
@@ -55,6 +59,84 @@ nlohmann::json read_axis_value(const JsonNode& node) {
   return v;
 }
 
+// A planner entry: "name", or {"name", "label", "params"}.
+SweepPlanner read_planner(const JsonNode& node) {
+  SweepPlanner planner;
+  planner.origin = node.pointer();
+  planner.params = nlohmann::json::object();
+  if (node.value().is_string()) {
+    planner.name = node.as_string();
+  } else {
+    if (!node.value().is_object()) node.fail("a planner name or an object {\"name\", \"label\", \"params\"}");
+    ObjectReader r(node);
+    planner.name = r.required("name").as_string();
+    if (auto params = r.optional("params")) {
+      if (!params->value().is_object()) params->fail("an object of planner parameters");
+      planner.params = params->value();
+    }
+    planner.label = planner.name;
+    r.read("label", planner.label);
+    r.finish();
+  }
+  if (planner.label.empty()) planner.label = planner.name;
+  if (!std::all_of(planner.label.begin(), planner.label.end(), label_char)) {
+    node.fail("a planner label of letters, digits, '_', '-' or '.' (it names runs)");
+  }
+  return planner;
+}
+
+SweepSampling read_sampling(const JsonNode& node, int max_samples) {
+  ObjectReader r(node);
+  SweepSampling sampling;
+  sampling.method = r.required("method").as_choice({"random", "latin_hypercube"}) == 0
+                        ? SweepSampling::Method::random
+                        : SweepSampling::Method::latin_hypercube;
+  sampling.samples = static_cast<int>(r.required("samples").as_int(1, max_samples));
+  r.read_seed("seed", sampling.seed);
+  r.finish();
+  return sampling;
+}
+
+// "range": {"from", "to", "step" | "count"} as values, or without either an interval to sample.
+void read_range(const JsonNode& node, SweepAxis& axis, std::size_t max_values) {
+  ObjectReader r(node);
+  const JsonNode from_node = r.required("from");
+  const JsonNode to_node = r.required("to");
+  const double from = from_node.as_number();
+  const double to = to_node.as_number();
+  if (!(to > from)) to_node.fail("a number > from (" + value_label(from_node.value()) + ")");
+  const auto step = r.optional("step");
+  const auto count = r.optional("count");
+  r.finish();
+  if (step && count) node.fail("either \"step\" or \"count\", not both");
+  if (!step && !count) {
+    axis.interval = std::pair{from, to};
+    return;
+  }
+  // Integers stay integers when every value is one (resolutions, counts).
+  const bool integers = from_node.value().is_number_integer() && to_node.value().is_number_integer() &&
+                        (!step || step->value().is_number_integer());
+  std::size_t n = 0;
+  double delta = 0.0;
+  if (step) {
+    delta = step->as_number(Range::positive());
+    n = static_cast<std::size_t>(std::floor((to - from) / delta * (1.0 + 1e-12))) + 1;
+    if (n > max_values) step->fail("a step giving at most " + std::to_string(max_values) + " values");
+  } else {
+    n = static_cast<std::size_t>(count->as_int(2, static_cast<std::int64_t>(max_values)));
+    delta = (to - from) / static_cast<double>(n - 1);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    // 12 significant digits, so stepped values read as written (0.3, not 0.30000000000000004).
+    const double v = round_significant(from + static_cast<double>(i) * delta, 12);
+    if (integers && std::rint(v) == v) {
+      axis.values.emplace_back(static_cast<std::int64_t>(v));
+    } else {
+      axis.values.emplace_back(v);
+    }
+  }
+}
+
 StartJitter read_start_jitter(const JsonNode& node) {
   ObjectReader r(node);
   StartJitter jitter;
@@ -85,6 +167,15 @@ class SpecParser {
       spec.scenes.push_back(read_scene(node, file_));
       if (!labels.insert(spec.scenes.back().label).second) {
         node.fail("scenes with distinct names (\"" + spec.scenes.back().label + "\" appears twice)");
+      }
+    }
+    if (auto planners = r.optional("planners")) {
+      std::set<std::string> planner_labels;
+      for (const JsonNode& node : planners->as_array(1, limits_.max_planners)) {
+        spec.planners.push_back(read_planner(node));
+        if (!planner_labels.insert(spec.planners.back().label).second) {
+          node.fail("planners with distinct labels (\"" + spec.planners.back().label + "\" appears twice)");
+        }
       }
     }
     // The seeds own the world seed.
@@ -124,13 +215,37 @@ class SpecParser {
       spec.start_jitter = read_start_jitter(*jitter);
       claim("/objects/" + spec.start_jitter->vehicle + "/pose/position_m", *jitter);
     }
+    if (auto sampling = r.optional("sampling")) {
+      spec.sampling = read_sampling(*sampling, static_cast<int>(limits_.max_runs));
+      if (spec.axes.empty()) sampling->fail("a sampling of at least one axis (\"axes\" is empty)");
+    } else {
+      for (const SweepAxis& axis : spec.axes) {
+        if (axis.interval) {
+          throw InputError(file_.string(), axis.origin + "/range",
+                           "expected a \"step\" or \"count\" (a range without them is an interval, only for \"sampling\")");
+        }
+      }
+    }
+    r.read("time_limit_s", spec.time_limit_s, Range::positive());
+    // Read by `campo table`, which checks its fields against the results.
+    if (auto table = r.optional("table")) read_table_request(*table);
     r.finish();
 
-    std::size_t runs = spec.scenes.size() * static_cast<std::size_t>(spec.seed_count);
-    for (const SweepAxis& axis : spec.axes) {
-      runs *= axis.values.size();
+    std::size_t runs = spec.scenes.size() * static_cast<std::size_t>(spec.seed_count) *
+                       std::max<std::size_t>(spec.planners.size(), 1);
+    const auto check_runs = [&] {
       if (runs > limits_.max_runs) {
         throw InputError(file_.string(), "", "expands to more than " + std::to_string(limits_.max_runs) + " runs");
+      }
+    };
+    check_runs();
+    if (spec.sampling) {
+      runs *= static_cast<std::size_t>(spec.sampling->samples);
+      check_runs();
+    } else {
+      for (const SweepAxis& axis : spec.axes) {
+        runs *= axis.values.size();
+        check_runs();
       }
     }
     return spec;
@@ -155,13 +270,19 @@ class SpecParser {
                             });
     if (!valid_name) name.fail("an axis name of up to 32 lower-case letters, digits and '_', starting with a letter");
     const auto stats = table_stat_columns();
-    if (axis.name == "scene" || std::find(stats.begin(), stats.end(), axis.name) != stats.end()) {
-      name.fail("an axis name that is not also a table column");
+    // Runs have these fields of their own.
+    const bool run_field = axis.name == "scene" || axis.name == "planner" || axis.name == "seed";
+    if (run_field || std::find(stats.begin(), stats.end(), axis.name) != stats.end()) {
+      name.fail("an axis name that is not also a run field (scene, planner, seed) or a table column");
     }
+    const auto values = r.optional("values");
+    const auto range = r.optional("range");
+    if (values.has_value() == range.has_value()) node.fail("an axis with either \"values\" or \"range\"");
+    if (range) read_range(*range, axis, limits_.max_values);
     std::set<std::string> labels;
-    for (const JsonNode& value : r.required("values").as_array(1, limits_.max_values)) {
+    for (const JsonNode& value : values ? values->as_array(1, limits_.max_values) : std::vector<JsonNode>{}) {
       axis.values.push_back(read_axis_value(value));
-      // Distinct in run IDs, so no two runs share a directory.
+      // Distinct in run names, so no two runs share a directory.
       if (!labels.insert(value_id_label(axis.values.back())).second) {
         value.fail("values with distinct labels in run IDs (\"" + value_id_label(axis.values.back()) +
                    "\" appears twice)");
@@ -198,6 +319,12 @@ std::string value_label(const nlohmann::json& value) {
     return label;
   }
   return value.dump();  // integers and booleans
+}
+
+double round_significant(double value, int digits) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.*g", digits, value);
+  return std::strtod(text, nullptr);
 }
 
 std::string value_id_label(const nlohmann::json& value) {

@@ -27,12 +27,32 @@ struct SweepScene {
   std::string origin;          ///< JSON pointer in the spec file
 };
 
+/// One planner of the sweep, given to the scene's first vehicle.
+struct SweepPlanner {
+  std::string label;         ///< run names and the table's planner field: `label`, default the name
+  std::string name;          ///< registry name
+  nlohmann::json params;     ///< object: parameters set on top of the scene's (or alone, for another planner)
+  std::string origin;        ///< JSON pointer in the spec file
+};
+
 /// One swept parameter: each value in turn is written to every pointer.
 struct SweepAxis {
   std::string name;                   ///< [a-z][a-z0-9_]*, the table column and the ID label
-  std::vector<nlohmann::json> values; ///< scalars or flat arrays, distinct, in spec order
+  std::vector<nlohmann::json> values; ///< scalars or flat arrays, distinct, in spec order (from "values" or a stepped "range")
+  /// A "range" without step or count: sampled uniformly in [from, to] (sampling only).
+  std::optional<std::pair<double, double>> interval;
   std::vector<std::string> pointers;  ///< JSON pointers into the scene
   std::string origin;                 ///< JSON pointer of the axis in the spec file
+};
+
+/// Instead of every combination of the axes' values, `samples` points drawn
+/// from them: each axis independently uniform (random) or stratified into
+/// `samples` equal slices visited once each (Latin hypercube).
+struct SweepSampling {
+  enum class Method { random, latin_hypercube };
+  Method method = Method::latin_hypercube;
+  int samples = 1;          ///< >= 1
+  std::uint64_t seed = 1;   ///< of the draws (not of the runs, which have their own seeds)
 };
 
 /// Moves a vehicle's start to a point uniformly distributed in a horizontal
@@ -50,11 +70,14 @@ struct SweepSpec {
   std::string name;                      ///< default: the file stem
   std::string description;
   std::vector<SweepScene> scenes;        ///< at least one, distinct labels
+  std::vector<SweepPlanner> planners;    ///< empty: each scene's own planner
   std::vector<SweepOverride> set;        ///< fixed overrides, by pointer (parents before children)
   std::vector<SweepAxis> axes;           ///< cartesian product, the first axis outermost
   std::uint64_t first_seed = 1;          ///< run seeds first_seed .. first_seed + seed_count - 1
   int seed_count = 1;                    ///< >= 1
   std::optional<StartJitter> start_jitter;
+  std::optional<SweepSampling> sampling;
+  double time_limit_s = 3600.0;          ///< wall-clock limit of one run, after which it is stopped and recorded as failed
 };
 
 /// Limits that stop a spec from expanding beyond reason.
@@ -62,6 +85,7 @@ struct SweepLimits {
   std::size_t max_scenes = 100;
   std::size_t max_axes = 8;
   std::size_t max_values = 1000;    ///< per axis
+  std::size_t max_planners = 100;
   std::size_t max_pointers = 64;    ///< per `set` and per axis
   int max_seeds = 100000;
   std::size_t max_runs = 100000;    ///< after expansion
@@ -79,6 +103,8 @@ SweepSpec parse_sweep_spec(const nlohmann::json& document, const std::filesystem
 /// The label of a parameter value in run IDs and tables: numbers in their
 /// shortest form, strings as they are, arrays joined with 'x' ("256x256").
 std::string value_label(const nlohmann::json& value);
+/// `value` printed with `digits` significant digits and read back: short labels for computed values.
+double round_significant(double value, int digits);
 /// value_label() made filesystem-safe for run IDs: characters other than
 /// letters, digits, '.', '_', '+' and '-' become '_'.
 std::string value_id_label(const nlohmann::json& value);

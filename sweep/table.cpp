@@ -1,8 +1,10 @@
 #include "sweep/table.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 
@@ -87,14 +89,35 @@ struct HumanStyle {
   std::string missing;     ///< a statistic without runs
 };
 
-// Header and body cells shared by Markdown and LaTeX.
+const HumanStyle kMarkdownStyle{[](const std::string& text) {
+                                  std::string out;
+                                  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+                                  return out;
+                                },
+                                " ± ", "%", "–"};
+
+const HumanStyle kLatexStyle{[](const std::string& text) {
+                               std::string out;
+                               for (char c : text) {
+                                 switch (c) {
+                                   case '\\': out += "\\textbackslash{}"; break;
+                                   case '~': out += "\\textasciitilde{}"; break;
+                                   case '^': out += "\\textasciicircum{}"; break;
+                                   case '&': case '%': case '$': case '#': case '_': case '{': case '}':
+                                     out += '\\';
+                                     out += c;
+                                     break;
+                                   default: out += c;
+                                 }
+                               }
+                               return out;
+                             },
+                             " $\\pm$ ", "\\%", "--"};
+
+// Header and body cells of the summary table, shared by Markdown and LaTeX.
 std::vector<std::vector<std::string>> human_cells(const SweepTable& table, const HumanStyle& style) {
   std::vector<std::string> header{"Scene"};
-  for (std::string axis : table.axes) {
-    for (char& c : axis) c = c == '_' ? ' ' : c;
-    axis.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(axis.front())));
-    header.push_back(axis);
-  }
+  for (const std::string& axis : table.axes) header.push_back(field_heading(axis));
   for (const char* h : {"Runs", "Success"}) header.emplace_back(h);
   for (const SpreadColumn& column : kSpreadColumns) header.emplace_back(column.header);
   for (const char* h : {"Collisions", "Replanning (ms, median)", "Failed"}) header.emplace_back(h);
@@ -119,20 +142,13 @@ std::vector<std::vector<std::string>> human_cells(const SweepTable& table, const
   return cells;
 }
 
-std::string markdown(const SweepTable& table) {
-  const HumanStyle style{[](const std::string& text) {
-                           std::string out;
-                           for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
-                           return out;
-                         },
-                         " ± ", "%", "–"};
-  const auto cells = human_cells(table, style);
+// A Markdown table: the first row is the header; the first column text (left), the others numbers (right).
+std::string markdown_grid(const std::vector<std::vector<std::string>>& cells) {
   std::string out;
   for (std::size_t r = 0; r < cells.size(); ++r) {
     for (const std::string& cell : cells[r]) out += "| " + cell + " ";
     out += "|\n";
     if (r == 0) {
-      // Text columns left, numbers right.
       out += "| --- ";
       for (std::size_t c = 1; c < cells[r].size(); ++c) out += "| ---: ";
       out += "|\n";
@@ -141,26 +157,9 @@ std::string markdown(const SweepTable& table) {
   return out;
 }
 
-std::string latex(const SweepTable& table) {
-  const HumanStyle style{[](const std::string& text) {
-                           std::string out;
-                           for (char c : text) {
-                             switch (c) {
-                               case '\\': out += "\\textbackslash{}"; break;
-                               case '~': out += "\\textasciitilde{}"; break;
-                               case '^': out += "\\textasciicircum{}"; break;
-                               case '&': case '%': case '$': case '#': case '_': case '{': case '}':
-                                 out += '\\';
-                                 out += c;
-                                 break;
-                               default: out += c;
-                             }
-                           }
-                           return out;
-                         },
-                         " $\\pm$ ", "\\%", "--"};
-  const auto cells = human_cells(table, style);
-  std::string out = "\\begin{tabular}{l" + std::string(cells.front().size() - 1, 'r') + "}\n\\hline\n";
+// A LaTeX tabular; `heading` (complete lines) goes above the first row, which is the header.
+std::string latex_tabular(const std::vector<std::vector<std::string>>& cells, const std::string& heading = "") {
+  std::string out = "\\begin{tabular}{l" + std::string(cells.front().size() - 1, 'r') + "}\n\\hline\n" + heading;
   for (std::size_t r = 0; r < cells.size(); ++r) {
     for (std::size_t c = 0; c < cells[r].size(); ++c) out += (c == 0 ? "" : " & ") + cells[r][c];
     out += " \\\\\n";
@@ -169,17 +168,200 @@ std::string latex(const SweepTable& table) {
   return out + "\\hline\n\\end{tabular}\n";
 }
 
+// Label of a row or column value; `missing` for null (a run without that axis or planner).
+std::string value_text(const nlohmann::json& value, const std::string& missing) {
+  return value.is_null() ? missing : value_label(value);
+}
+
+// Decimals showing three significant digits of a metric's largest |mean| (0 to 3).
+int metric_decimals(const MetricTable& table, std::size_t metric) {
+  double largest = 0.0;
+  for (const auto& row : table.cells) {
+    for (const MetricCell& cell : row) {
+      if (cell.runs > 0 && cell.metrics[metric]) largest = std::max(largest, std::abs(cell.metrics[metric]->mean));
+    }
+  }
+  return largest > 0.0 ? std::clamp(2 - static_cast<int>(std::floor(std::log10(largest))), 0, 3) : 0;
+}
+
+std::string human_cell(const MetricCell& cell, std::size_t metric, MetricKind kind, int decimals,
+                       const HumanStyle& style) {
+  if (cell.runs == 0) return style.missing;
+  const std::optional<Summary>& s = cell.metrics[metric];
+  const std::string counts = " (n=" + std::to_string(s ? s->n : 0) +
+                             (cell.failed > 0 ? ", " + std::to_string(cell.failed) + " failed" : "") + ")";
+  if (!s) return style.missing + counts;
+  if (kind == MetricKind::rate) {
+    return fixed(100.0 * s->mean, 0) + style.percent + " [" + fixed(100.0 * s->ci95->low, 0) + ", " +
+           fixed(100.0 * s->ci95->high, 0) + "]" + counts;
+  }
+  std::string text = fixed(s->mean, decimals);
+  if (s->ci95) {
+    text += style.plus_minus + fixed(s->sd, decimals) + " [" + fixed(s->ci95->low, decimals) + ", " +
+            fixed(s->ci95->high, decimals) + "]";
+  }
+  return text + counts;
+}
+
+std::string capitalized(std::string text) {
+  if (!text.empty()) text.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(text.front())));
+  return text;
+}
+
+// Header and body cells of a metric table; `grouped_header`: column values above (LaTeX), not in each header cell.
+std::vector<std::vector<std::string>> metric_cells(const MetricTable& table, const HumanStyle& style,
+                                                   bool grouped_header) {
+  const std::size_t metrics = table.request.metrics.size();
+  std::vector<std::string> header{style.escape(field_heading(table.request.rows))};
+  for (const nlohmann::json& col : table.cols) {
+    for (const std::string& metric : table.request.metrics) {
+      const std::string label = capitalized(metric_label(metric));
+      header.push_back(style.escape(col.is_null() || grouped_header ? label
+                                                                   : value_label(col) + ": " + label));
+    }
+  }
+  std::vector<int> decimals;
+  for (std::size_t m = 0; m < metrics; ++m) decimals.push_back(metric_decimals(table, m));
+  std::vector<std::vector<std::string>> cells{header};
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    std::vector<std::string> line{style.escape(value_text(table.rows[r], style.missing))};
+    for (const MetricCell& cell : table.cells[r]) {
+      for (std::size_t m = 0; m < metrics; ++m) line.push_back(human_cell(cell, m, table.kinds[m], decimals[m], style));
+    }
+    cells.push_back(line);
+  }
+  return cells;
+}
+
+std::string metric_csv(const MetricTable& table) {
+  const bool has_cols = !table.request.cols.empty();
+  std::string out = csv_field(table.request.rows) + (has_cols ? "," + csv_field(table.request.cols) : "") +
+                    ",metric,kind,runs,failed,n,mean,sd,ci95_low,ci95_high\n";
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    for (std::size_t c = 0; c < table.cols.size(); ++c) {
+      const MetricCell& cell = table.cells[r][c];
+      if (cell.runs == 0) continue;
+      for (std::size_t m = 0; m < table.request.metrics.size(); ++m) {
+        const std::optional<Summary>& s = cell.metrics[m];
+        out += csv_field(value_text(table.rows[r], "")) + (has_cols ? "," + csv_field(value_text(table.cols[c], "")) : "");
+        out += "," + csv_field(table.request.metrics[m]) + (table.kinds[m] == MetricKind::rate ? ",rate," : ",mean,");
+        out += std::to_string(cell.runs) + "," + std::to_string(cell.failed) + "," + std::to_string(s ? s->n : 0);
+        out += "," + (s ? exact(s->mean) : "") + "," + (s ? exact(s->sd) : "");
+        out += "," + (s && s->ci95 ? exact(s->ci95->low) : "") + "," + (s && s->ci95 ? exact(s->ci95->high) : "");
+        out += "\n";
+      }
+    }
+  }
+  return out;
+}
+
+std::string metric_latex(const MetricTable& table) {
+  std::string heading;
+  if (!table.request.cols.empty()) {
+    // One \multicolumn group per column value over its metrics.
+    for (const nlohmann::json& col : table.cols) {
+      heading += " & \\multicolumn{" + std::to_string(table.request.metrics.size()) + "}{c}{" +
+                 kLatexStyle.escape(value_text(col, kLatexStyle.missing)) + "}";
+    }
+    heading += " \\\\\n";
+  }
+  return latex_tabular(metric_cells(table, kLatexStyle, true), heading);
+}
+
 }  // namespace
 
 std::span<const std::string_view> table_stat_columns() { return kStatColumns; }
 
 std::string format_table(const SweepTable& table, TableFormat format) {
   switch (format) {
-    case TableFormat::markdown: return markdown(table);
+    case TableFormat::markdown: return markdown_grid(human_cells(table, kMarkdownStyle));
     case TableFormat::csv: return csv(table);
-    case TableFormat::latex: return latex(table);
+    case TableFormat::latex: return latex_tabular(human_cells(table, kLatexStyle));
   }
   return {};
+}
+
+MetricTable tabulate(const std::vector<RunResult>& runs, const TableLayout& layout, const TableRequest& request) {
+  check_field(request.rows, layout.axes, request.file, request.rows_at);
+  std::vector<std::string> fields{request.rows};
+  if (!request.cols.empty()) {
+    check_field(request.cols, layout.axes, request.file, request.cols_at);
+    if (request.cols == request.rows) {
+      throw InputError(request.file, request.cols_at, "a field other than the rows' (\"" + request.rows + "\")");
+    }
+    fields.push_back(request.cols);
+  }
+  if (request.metrics.empty()) throw InputError(request.file, request.metrics_at, "at least one metric");
+  MetricTable table{layout.name, request, {}, {}, {}, {}};
+  for (std::size_t m = 0; m < request.metrics.size(); ++m) {
+    const std::string& metric = request.metrics[m];
+    if (std::find(request.metrics.begin(), request.metrics.begin() + m, metric) != request.metrics.begin() + m) {
+      throw InputError(request.file, request.metrics_at, "each metric once (\"" + metric + "\" appears twice)");
+    }
+    table.kinds.push_back(check_metric(metric, runs, request.file, request.metrics_at));
+  }
+
+  const std::vector<RunGroup> groups = group_runs(runs, layout, fields);
+  // Row and column values in the order of the groups: the sweep's expansion order.
+  const auto index_in = [](std::vector<nlohmann::json>& values, const nlohmann::json& value) {
+    const auto it = std::find(values.begin(), values.end(), value);
+    if (it != values.end()) return static_cast<std::size_t>(it - values.begin());
+    values.push_back(value);
+    return values.size() - 1;
+  };
+  for (const RunGroup& group : groups) {
+    index_in(table.rows, group.key[0]);
+    index_in(table.cols, group.key.size() > 1 ? group.key[1] : nlohmann::json());
+  }
+  table.cells.assign(table.rows.size(), std::vector<MetricCell>(table.cols.size()));
+  for (const RunGroup& group : groups) {
+    MetricCell& cell = table.cells[index_in(table.rows, group.key[0])]
+                                  [index_in(table.cols, group.key.size() > 1 ? group.key[1] : nlohmann::json())];
+    cell.runs = static_cast<int>(group.runs.size());
+    cell.failed = static_cast<int>(
+        std::count_if(group.runs.begin(), group.runs.end(), [](const RunResult* r) { return !r->completed; }));
+    for (std::size_t m = 0; m < request.metrics.size(); ++m) {
+      cell.metrics.push_back(summarize_metric(group.runs, request.metrics[m], table.kinds[m]));
+    }
+  }
+  return table;
+}
+
+std::string format_metric_table(const MetricTable& table, TableFormat format) {
+  switch (format) {
+    case TableFormat::markdown: return markdown_grid(metric_cells(table, kMarkdownStyle, false));
+    case TableFormat::csv: return metric_csv(table);
+    case TableFormat::latex: return metric_latex(table);
+  }
+  return {};
+}
+
+std::string metric_label(const std::string& metric) {
+  if (metric == "success" || metric == "outcome") return "success rate (%)";
+  if (metric == "path_ratio") return "normalized path length";
+  // Unit suffixes of run.json's metric names, wherever they stand after the first word.
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 7> kUnits{{
+      {"m", "m"}, {"s", "s"}, {"ms", "ms"}, {"mps", "m/s"}, {"radps", "rad/s"}, {"deg", "deg"}, {"hz", "Hz"}}};
+  std::string words, unit;
+  std::size_t start = 0;
+  for (bool first = true; start <= metric.size(); first = false) {
+    const std::size_t end = std::min(metric.find('_', start), metric.size());
+    const std::string_view word(metric.data() + start, end - start);
+    const auto u = std::find_if(kUnits.begin(), kUnits.end(), [&](const auto& entry) { return entry.first == word; });
+    if (!first && unit.empty() && u != kUnits.end()) {
+      unit = u->second;
+    } else if (!word.empty()) {
+      (words += words.empty() ? "" : " ") += word;
+    }
+    start = end + 1;
+  }
+  return unit.empty() ? words : words + " (" + unit + ")";
+}
+
+std::string field_heading(const std::string& field) {
+  std::string heading = field;
+  for (char& c : heading) c = c == '_' ? ' ' : c;
+  return capitalized(heading);
 }
 
 }  // namespace campo

@@ -1,8 +1,12 @@
 #pragma once
-/// The sweep table as text: Markdown, CSV or LaTeX.
+/// Sweep tables as text: Markdown, CSV or LaTeX. The summary table (one row
+/// per scene and axis values, fixed statistics) and tables of chosen metrics
+/// (rows and column groups by any fields, mean, spread and 95 % intervals).
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "sweep/results.hpp"
 
@@ -10,13 +14,53 @@ namespace campo {
 
 enum class TableFormat { markdown, csv, latex };
 
-/// CSV columns after "scene" and the axes: runs, success_rate,
-/// waypoints_reached_mean ... replan_ms_max, failed.
+/// CSV columns of the summary table after "scene" and the axes: runs,
+/// success_rate, waypoints_reached_mean ... replan_ms_max, failed.
 std::span<const std::string_view> table_stat_columns();
 
-/// Markdown: "mean ± sd" cells under human headers. CSV: one header line of
-/// snake_case names, then one line per row, numbers in full precision, empty
-/// cells where a statistic has no runs. LaTeX: a tabular.
+/// The summary table. Markdown: "mean ± sd" cells under human headers. CSV:
+/// one header line of snake_case names, then one line per row, numbers in
+/// full precision, empty cells where a statistic has no runs. LaTeX: a tabular.
 std::string format_table(const SweepTable& table, TableFormat format);
+
+/// The runs of one row value and one column value.
+struct MetricCell {
+  int runs = 0;                                 ///< all of them, failed ones included; 0: no such runs
+  int failed = 0;                               ///< runs that failed rather than completed
+  std::vector<std::optional<Summary>> metrics;  ///< per requested metric; empty when no run has a value
+};
+
+/// A table of chosen metrics.
+struct MetricTable {
+  std::string name;                          ///< the sweep's name
+  TableRequest request;
+  std::vector<MetricKind> kinds;             ///< per metric
+  std::vector<nlohmann::json> rows;          ///< values of the rows field, in expansion order
+  std::vector<nlohmann::json> cols;          ///< values of the cols field; one null without cols
+  std::vector<std::vector<MetricCell>> cells;  ///< [row][col]
+};
+
+/// Groups the runs by the request's fields and summarizes each metric per
+/// cell (summarize_metric). Checks the request's fields and metrics first
+/// (InputError naming where they were given).
+MetricTable tabulate(const std::vector<RunResult>& runs, const TableLayout& layout, const TableRequest& request);
+
+/// Markdown: one row per row value, one column per column value and metric,
+/// cells "mean ± sd [ci95 low, high] (n=N, F failed)" or, for rates,
+/// "67% [21, 94] (n=3)"; three significant digits of each metric's largest
+/// mean. LaTeX: the same as a tabular, column values as \multicolumn groups.
+/// CSV (tidy, one line per row x column x metric with runs):
+/// <rows>,[<cols>,]metric,kind,runs,failed,n,mean,sd,ci95_low,ci95_high with
+/// kind "mean" or "rate" (mean a fraction) and numbers in full precision.
+std::string format_metric_table(const MetricTable& table, TableFormat format);
+
+/// A metric's name for people, with its unit from the name's suffix:
+/// "path_length_m" -> "path length (m)", "replan_time_ms_median" -> "replan
+/// time median (ms)", "path_ratio" -> "normalized path length", "success" ->
+/// "success rate (%)".
+std::string metric_label(const std::string& metric);
+
+/// A field's name as a heading: "resolution" -> "Resolution", "start_gap" -> "Start gap".
+std::string field_heading(const std::string& field);
 
 }  // namespace campo

@@ -23,6 +23,8 @@ Command add_scan(CLI::App& app);
 Command add_bench(CLI::App& app);
 Command add_sweep(CLI::App& app);
 Command add_table(CLI::App& app);
+Command add_plot(CLI::App& app);
+Command add_merge(CLI::App& app);
 Command add_plan(CLI::App& app);
 
 }  // namespace campo::cli

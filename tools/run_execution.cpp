@@ -1,6 +1,8 @@
 #include "tools/run_execution.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <stdexcept>
 #include <sstream>
 
 #include "planners/registry.hpp"
@@ -9,6 +11,7 @@
 #include "render/sensors.hpp"
 #include "sim/episode.hpp"
 #include "sim/json_reader.hpp"
+#include "sim/pose.hpp"
 #include "sim/output_dir.hpp"
 #include "sim/run_record.hpp"
 #include "sim/scene_loader.hpp"
@@ -18,13 +21,15 @@
 
 namespace campo::cli {
 
-nlohmann::json execute_run(const RunRequest& request) {
+SimulatedRun simulate_run(const RunRequest& request, StagedOutput* out) {
   const std::string scene_file = request.scene.string();
   // Overrides are applied to the document, then validated like the file itself.
   const std::string bytes = read_text_file(scene_file);
-  nlohmann::json document = parse_json_text(bytes, scene_file);
-  for (const auto& assignment : request.overrides) apply_override(document, assignment);
-  Scene scene = parse_scene(document, scene_file, request.scene.parent_path(), sha256_hex(bytes));
+  SimulatedRun run;
+  run.document = parse_json_text(bytes, scene_file);
+  for (const auto& assignment : request.overrides) apply_override(run.document, assignment);
+  run.scene = parse_scene(run.document, scene_file, request.scene.parent_path(), sha256_hex(bytes));
+  Scene& scene = run.scene;
 
   EpisodeOptions options;
   options.stop_on_collision = !request.continue_after_collision;
@@ -35,6 +40,7 @@ nlohmann::json execute_run(const RunRequest& request) {
     if (!v) throw InputError("command line", "--vehicle", "no vehicle \"" + request.vehicle + "\" in " + scene_file);
     options.vehicle_index = static_cast<std::size_t>(v - scene.vehicles.data());
   }
+  run.vehicle_index = options.vehicle_index;
   VehicleDef& def = scene.vehicles[options.vehicle_index];
   if (!request.planner.empty()) {
     // The scene's planner parameters are another planner's: --set them anew for this one.
@@ -51,16 +57,18 @@ nlohmann::json execute_run(const RunRequest& request) {
   validate_vehicle_params(def);
   create_planner(def.planner, {def.type, &scene});
 
-  StagedOutput out(request.out);
+  if ((request.record_depth_every > 0 || request.record_replans) && !out) {
+    throw std::logic_error("simulate_run: depth maps asked for without an output directory");
+  }
   // Depth maps of every n-th scan, for `campo render --kind depth`.
   std::vector<int> scans_seen(def.sensors.size(), 0);
   if (request.record_depth_every > 0) {
-    std::filesystem::create_directories(out.path("depth"));
+    std::filesystem::create_directories(out->path("depth"));
     options.on_scan = [&](std::size_t i, const LidarScan& scan) {
       if (scans_seen[i]++ % request.record_depth_every != 0) return;
       char name[96];
       std::snprintf(name, sizeof name, "%s_%08.3f.png", def.sensors[i].alias.c_str(), scan.time_s);
-      write_depth_png(depth_map(scan, def.sensors[i].lidar), out.path("depth") / name);
+      write_depth_png(depth_map(scan, def.sensors[i].lidar), out->path("depth") / name);
     };
   }
   // The depth map each replanning used, for `campo render --kind depth --step K`.
@@ -73,19 +81,22 @@ nlohmann::json execute_run(const RunRequest& request) {
         // Only image sensors give a depth map worth drawing (not a leddar's single row).
         const bool image = reading.config->beams.empty() && reading.config->rows > 1;
         if (reading.alias != sensor || !reading.scan || !image) continue;
-        std::filesystem::create_directories(out.path("replans"));
+        std::filesystem::create_directories(out->path("replans"));
         write_depth_png(depth_map(*reading.scan, *reading.config),
-                        out.path("replans") / replan_depth_file(replan.at("index").get<int>()));
+                        out->path("replans") / replan_depth_file(replan.at("index").get<int>()));
       }
     };
   }
-  const EpisodeResult result = run_episode(scene, &make_vehicle, &create_planner, options);
-  const nlohmann::json record = run_json(scene, result, options, request.overrides);
+  run.result = run_episode(scene, &make_vehicle, &create_planner, options);
+  run.record = run_json(scene, run.result, options, request.overrides);
+  if (!run.document.contains("name")) run.document["name"] = scene.name;
+  return run;
+}
 
-  write_file_atomically(out.path("trajectory.csv"), trajectory_csv(result));
-  write_file_atomically(out.path("run.json"), record.dump(2) + "\n");
-  if (!document.contains("name")) document["name"] = scene.name;
-  write_file_atomically(out.path("scene.json"), document.dump(2) + "\n");
+void write_run_files(const SimulatedRun& run, const RunRequest& request, const StagedOutput& out) {
+  write_file_atomically(out.path("trajectory.csv"), trajectory_csv(run.result));
+  write_file_atomically(out.path("run.json"), run.record.dump(2) + "\n");
+  write_file_atomically(out.path("scene.json"), run.document.dump(2) + "\n");
   if (request.figures) {
     // Drawn from the files just written, exactly as `campo render` would.
     const std::filesystem::path staged = out.path("");
@@ -94,8 +105,34 @@ nlohmann::json execute_run(const RunRequest& request) {
     for (const std::string kind : {"map", "side"}) write_figure(recorded, kind, staged);
     if (!recorded.view.height_map.empty()) write_figure(recorded, "heightmap", staged);
   }
+}
+
+nlohmann::json execute_run(const RunRequest& request) {
+  StagedOutput out(request.out);
+  const SimulatedRun run = simulate_run(request, &out);
+  write_run_files(run, request, out);
   out.commit();
-  return record;
+  return run.record;
+}
+
+void write_final_depth(const SimulatedRun& run, const std::filesystem::path& png) {
+  const VehicleDef& vehicle = run.scene.vehicles[run.vehicle_index];
+  if (run.result.trajectory.empty()) throw std::runtime_error("no recorded pose to draw a depth map from");
+  const auto image = std::find_if(vehicle.sensors.begin(), vehicle.sensors.end(), [](const SensorDef& s) {
+    return s.lidar.beams.empty() && s.lidar.rows > 1;
+  });
+  SensorDef sensor;
+  if (image != vehicle.sensors.end()) {
+    sensor = *image;
+  } else {
+    sensor = parse_sensor(JsonNode(nlohmann::json{{"type", "depth_camera"}, {"preset", "scanner3d"}}, "triage", ""));
+    if (!vehicle.sensors.empty()) sensor.lidar.mount = vehicle.sensors.front().lidar.mount;
+  }
+  const TrajectorySample& last = run.result.trajectory.back();
+  const std::unique_ptr<RangeSensor> ranger = make_range_sensor(run.scene, sensor, run.scene.world.seed);
+  LidarScan scan;
+  ranger->scan(last.state.pose() * to_isometry(sensor.lidar.mount), last.time_s, scan);
+  write_depth_png(depth_map(scan, sensor.lidar), png);
 }
 
 std::string run_summary_line(const nlohmann::json& record) {

@@ -8,6 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sim/episode.hpp"
+#include "sim/output_dir.hpp"
+#include "sim/scene.hpp"
+
 namespace campo::cli {
 
 struct RunRequest {
@@ -23,10 +27,31 @@ struct RunRequest {
   bool record_replans = true;           ///< the depth map of every replanning under out/replans/
 };
 
-/// Validates every input (InputError naming the file and JSON path), runs the
-/// episode and writes run.json, trajectory.csv, scene.json and the requested
-/// figures and depth maps into `request.out` all-or-nothing. Returns run.json.
+/// A run simulated, its files not yet written.
+struct SimulatedRun {
+  Scene scene;                   ///< with the overrides
+  nlohmann::json document;       ///< the effective scene document
+  EpisodeResult result;
+  std::size_t vehicle_index = 0;
+  nlohmann::json record;         ///< run.json
+};
+
+/// Validates every input (InputError naming the file and JSON path) and runs
+/// the episode. Depth maps asked for by the request are written into `out`,
+/// which may be null when the request asks for none.
+SimulatedRun simulate_run(const RunRequest& request, StagedOutput* out);
+
+/// Writes run.json, trajectory.csv, scene.json and the requested figures into `out`.
+void write_run_files(const SimulatedRun& run, const RunRequest& request, const StagedOutput& out);
+
+/// simulate_run() and write_run_files() into `request.out`, all-or-nothing. Returns run.json.
 nlohmann::json execute_run(const RunRequest& request);
+
+/// The depth map the vehicle would see at the end of the run (the failure
+/// step of a collision): its first image sensor, else the scanner3d depth
+/// camera on its first sensor's mount, cast from the last recorded pose with
+/// the movers where they were then. Written as a 16-bit PNG.
+void write_final_depth(const SimulatedRun& run, const std::filesystem::path& png);
 
 /// One line for the terminal: outcome, reason, times and path.
 std::string run_summary_line(const nlohmann::json& record);

@@ -1,12 +1,21 @@
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <map>
-#include <vector>
+#include <set>
 #include <string>
+#include <thread>
+#include <vector>
+
+#include <sched.h>
+#include <unistd.h>
 
 #include "sim/json_reader.hpp"
 #include "sim/output_dir.hpp"
 #include "sweep/expansion.hpp"
+#include "sweep/process_pool.hpp"
+#include "sweep/progress.hpp"
 #include "sweep/results.hpp"
 #include "sweep/sweep_spec.hpp"
 #include "tools/commands.hpp"
@@ -18,55 +27,176 @@ namespace campo::cli {
 namespace {
 
 namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
 
 struct SweepOptions {
   std::string spec;
   std::string out;
+  bool list = false;
+  int jobs = 0;               ///< 0: every core this process may use
+  std::string shard;          ///< "K/N"
+  double time_limit_s = 0.0;  ///< 0: the spec's
+  bool keep_runs = false;
   bool figures = false;
-  bool dry_run = false;
+  bool triage = false;
+  bool retry_failed = false;
+  double progress_every_s = 10.0;
 };
 
-// What makes two manifests the same sweep: run IDs and their overrides (scene
-// paths may differ with the working directory).
-nlohmann::json sweep_identity(const nlohmann::json& manifest) {
-  nlohmann::json identity = nlohmann::json::array();
-  for (const auto& run : manifest.value("runs", nlohmann::json::array())) {
-    identity.push_back({run.value("id", ""), run.value("overrides", nlohmann::json())});
+struct Shard {
+  int index = 1;
+  int count = 1;
+};
+
+Shard parse_shard(const std::string& text) {
+  Shard shard;
+  char rest = 0;
+  if (text.empty()) return shard;
+  if (std::sscanf(text.c_str(), "%d/%d%c", &shard.index, &shard.count, &rest) != 2 || shard.count < 1 ||
+      shard.index < 1 || shard.index > shard.count) {
+    throw InputError("command line", "--shard", "expected K/N with 1 <= K <= N (e.g. 2/8), got \"" + text + "\"");
   }
-  return identity;
+  return shard;
 }
 
-// A directory holds one sweep: it may be resumed, not mixed with another.
+int available_cores() {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+// A directory holds one sweep (one shard of it): it may be resumed, not mixed with another.
 void check_same_sweep(const fs::path& manifest_file, const nlohmann::json& manifest) {
   if (!fs::exists(manifest_file)) return;
-  if (sweep_identity(read_json_file(manifest_file)) != sweep_identity(manifest)) {
-    throw InputError(manifest_file.string(), "/runs",
-                     "the directory holds a different sweep (other runs or overrides); expected the same "
-                     "spec to resume it, or use a new --out directory");
+  const nlohmann::json existing = read_json_file(manifest_file);
+  for (const char* key : {"spec_sha256", "campo_version", "shard"}) {
+    if (existing.value(key, nlohmann::json()) != manifest.value(key, nlohmann::json())) {
+      throw InputError(manifest_file.string(), std::string("/") + key,
+                       "expected the sweep this directory holds (to resume it), but its " + std::string(key) +
+                           " was " + existing.value(key, nlohmann::json()).dump() +
+                           "; use a new --out directory for another spec, campo version or shard");
+    }
   }
 }
 
-// run_summary_line() without its leading scene name, which the run ID already gives.
-std::string outcome_summary(const nlohmann::json& record) {
-  const std::string line = run_summary_line(record);
-  const std::string scene = record.at("provenance").at("scene").value("name", "") + ": ";
-  return line.starts_with(scene) ? line.substr(scene.size()) : line;
+// One shell word: single-quoted unless plainly safe.
+std::string shell_word(const std::string& word) {
+  const bool safe = !word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                           "0123456789/._-+=,:") == std::string::npos;
+  if (safe) return word;
+  std::string quoted = "'";
+  for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
 }
+
+// The one command that runs this run alone, as `campo run` would.
+std::string repro_command(const SweepRun& run, const std::string& triage_dir) {
+  std::string command = "campo run " + shell_word(fs::absolute(run.scene_file).lexically_normal().string());
+  for (const std::string& o : run.overrides) command += " --set " + shell_word(o);
+  return command + " --out " + shell_word(triage_dir + "/rerun");
+}
+
+std::string triage_dir(const SweepRun& run) { return "triage/" + run.name; }
+
+// In the run's process: simulate, write what was asked for, return the results line.
+std::string run_one(const SweepRun& run, const fs::path& dir, const SweepOptions& o) {
+  RunRequest request;
+  request.scene = run.scene_file;
+  request.overrides = run.overrides;
+  request.out = dir / run_dir(run.name);
+  request.label = run.name;
+  request.figures = o.figures;
+  request.record_replans = false;
+  nlohmann::json line;
+  try {
+    const SimulatedRun simulated = simulate_run(request, nullptr);
+    line = completed_result(run, simulated.record);
+    if (o.keep_runs || o.figures) {
+      StagedOutput out(request.out);
+      write_run_files(simulated, request, out);
+      out.commit();
+      line["run_dir"] = run_dir(run.name);
+    }
+    if (o.triage && simulated.record.at("metrics").at("outcome") != "reached") {
+      // What a person needs to see why: the map, the depth map at the last step, the run's files.
+      RunRequest figures = request;
+      figures.out = dir / triage_dir(run);
+      figures.figures = true;
+      StagedOutput out(figures.out);
+      write_run_files(simulated, figures, out);
+      write_final_depth(simulated, out.path("depth.png"));
+      out.commit();
+    }
+  } catch (const std::exception& e) {
+    line = failed_result(run, e.what());
+  }
+  return line.dump();
+}
+
+// In the sweep's process: the repro command of a failed or unsuccessful run.
+void add_triage(nlohmann::json& line, const SweepRun& run, const fs::path& dir) {
+  const bool reached = line["status"] == "completed" && line["metrics"].value("outcome", "") == "reached";
+  if (reached) return;
+  const std::string where = triage_dir(run);
+  const std::string command = repro_command(run, fs::absolute(dir / where).lexically_normal().string());
+  fs::create_directories(dir / where);
+  write_file_atomically(dir / where / "repro.sh", "#!/bin/sh\n# " + run.name + " (" + run.id + ")\n" + command + "\n");
+  line["triage"] = {{"dir", where}, {"repro", command}};
+}
+
+// Terminal: one bar line redrawn in place. Otherwise: a plain line now and then.
+class ProgressReport {
+ public:
+  ProgressReport(std::size_t total, double every_s) : tty_(::isatty(STDERR_FILENO) == 1), every_s_(every_s) {
+    p_.total = total;
+  }
+  SweepProgress& counts() { return p_; }
+  void start() { start_ = last_ = Clock::now(); }
+  void tick(bool force = false) {
+    p_.elapsed_s = std::chrono::duration<double>(Clock::now() - start_).count();
+    if (tty_) {
+      std::cerr << "\r" << progress_bar(p_) << "\033[K" << std::flush;
+    } else if (force || std::chrono::duration<double>(Clock::now() - last_).count() >= every_s_) {
+      last_ = Clock::now();
+      std::cerr << progress_line(p_) << "\n";
+    }
+  }
+  /// A line of its own, above the bar.
+  void say(const std::string& text) {
+    if (tty_) std::cerr << "\r\033[K";
+    std::cerr << text << "\n";
+    if (tty_) tick();
+  }
+  void finish() {
+    tick(true);
+    if (tty_) std::cerr << "\n";
+  }
+
+ private:
+  bool tty_;
+  double every_s_;
+  SweepProgress p_;
+  Clock::time_point start_, last_;
+};
 
 int run_sweep(const SweepOptions& o) {
   // Everything is validated before anything is written.
+  const Shard shard = parse_shard(o.shard);
   const SweepSpec spec = read_sweep_spec(o.spec);
-  const std::vector<SweepRun> runs = expand_sweep(spec, [](const Scene& scene) {
+  const std::vector<SweepRun> all_runs = expand_sweep(spec, [](const Scene& scene) {
     check_vehicles_and_planners(scene);
     check_runnable(scene);
   });
-  const nlohmann::json manifest = sweep_manifest(spec, runs);
-  if (o.dry_run) {
-    std::cout << manifest.dump(2) << "\n";
-    std::cerr << spec.name << ": " << runs.size() << " runs, all valid; nothing was run\n";
+  const std::vector<SweepRun> runs = shard_of(all_runs, shard.index, shard.count);
+  if (o.list) {
+    for (const SweepRun& run : runs) std::cout << manifest_entry(run).dump() << "\n";
+    std::cerr << spec.name << ": " << runs.size() << " runs" << (o.shard.empty() ? "" : " in shard " + o.shard)
+              << ", all valid; nothing was run\n";
     return kOk;
   }
-  if (o.out.empty()) throw InputError("command line", "--out", "expected an output directory (or --dry-run)");
+  if (o.out.empty()) throw InputError("command line", "--out", "expected an output directory (or --list)");
+  nlohmann::json manifest = sweep_manifest(spec, all_runs);
+  if (!o.shard.empty()) manifest["shard"] = {{"index", shard.index}, {"count", shard.count}};
   const fs::path dir = o.out;
   check_same_sweep(dir / "sweep.json", manifest);
   fs::create_directories(dir);
@@ -75,45 +205,79 @@ int run_sweep(const SweepOptions& o) {
   const fs::path results_file = dir / "results.jsonl";
   ResultsLog log(results_file);
   if (log.cut_partial_line()) std::cerr << "warning: cut off the incomplete last line of " << results_file << "\n";
-  // Resuming: runs already completed with the same overrides are not redone.
-  std::map<std::string, std::vector<std::string>> done;  // id -> overrides
+  // Resuming: runs already recorded are not redone (failed ones only with --retry-failed).
+  std::set<std::string> recorded;
   for (const RunResult& r : read_results(results_file).runs) {
-    if (r.completed) done.emplace(r.id, r.overrides);
+    if (r.completed || !o.retry_failed) recorded.insert(r.id);
   }
+  std::vector<const SweepRun*> pending;
+  for (const SweepRun& run : runs) {
+    if (!recorded.contains(run.id)) pending.push_back(&run);
+  }
+  const std::size_t skipped = runs.size() - pending.size();
 
-  int completed = 0, failed = 0, skipped = 0;
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    const SweepRun& run = runs[i];
-    std::cerr << "[" << i + 1 << "/" << runs.size() << "] " << run.id << ": ";
-    if (const auto it = done.find(run.id); it != done.end() && it->second == run.overrides) {
-      std::cerr << "already completed, skipped\n";
-      ++skipped;
-      continue;
-    }
-    RunRequest request;
-    request.scene = run.scene_file;
-    request.overrides = run.overrides;
-    request.out = dir / run_dir(run.id);
-    request.label = run.id;
-    request.figures = o.figures;
-    request.record_replans = false;
-    nlohmann::json line;
-    // A run that throws is recorded as failed and the sweep goes on.
-    try {
-      const nlohmann::json record = execute_run(request);
-      line = completed_result(run, record);
-      ++completed;
-      std::cerr << outcome_summary(record) << "\n";
-    } catch (const std::exception& e) {
-      line = failed_result(run, e.what());
-      ++failed;
-      std::cerr << "failed: " << e.what() << "\n";
-    }
-    log.append(line);
+  ProcessPoolConfig pool;
+  pool.jobs = o.jobs > 0 ? o.jobs : available_cores();
+  pool.time_limit_s = o.time_limit_s > 0.0 ? o.time_limit_s : spec.time_limit_s;
+  const std::string spec_hash = spec_sha256(spec);
+  std::cerr << spec.name << ": " << pending.size() << " runs to do" << (o.shard.empty() ? "" : " in shard " + o.shard)
+            << " (" << skipped << " already recorded), " << pool.jobs << " at a time\n";
+
+  ProgressReport progress(pending.size(), o.progress_every_s);
+  double overhead_s = 0.0;
+  std::size_t returned = 0;
+  progress.start();
+  run_isolated(
+      pending.size(), [&](std::size_t i) { return run_one(*pending[i], dir, o); },
+      [&](std::size_t i, const JobOutcome& outcome) {
+        const SweepRun& run = *pending[i];
+        nlohmann::json line;
+        if (outcome.ok) {
+          line = nlohmann::json::parse(outcome.output);
+          overhead_s += outcome.wall_time_s - outcome.work_time_s;
+          ++returned;
+        } else {
+          // Crashed, hung or threw outside the run: the last thing it said helps.
+          std::string reason = outcome.reason;
+          if (!outcome.stderr_tail.empty()) {
+            const std::string last = outcome.stderr_tail.substr(outcome.stderr_tail.rfind('\n') + 1);
+            reason += "; last output: " + last;
+          }
+          line = failed_result(run, reason);
+        }
+        line["wall_time_s"] = outcome.wall_time_s;
+        line["spec_sha256"] = spec_hash;
+        if (o.triage) add_triage(line, run, dir);
+        log.append(line);
+        SweepProgress& counts = progress.counts();
+        ++counts.done;
+        if (line["status"] == "failed") {
+          ++counts.failed;
+          progress.say("failed: " + run.name + " (" + run.id + "): " + line["reason"].get<std::string>());
+        }
+        counts.running = std::min(pool.jobs, static_cast<int>(pending.size() - counts.done));
+        progress.tick();
+      },
+      pool, [&] {
+        progress.counts().running = std::min(pool.jobs, static_cast<int>(pending.size() - progress.counts().done));
+        progress.tick();
+      });
+  progress.finish();
+
+  // The sweep's state on disk, this invocation's runs and earlier ones alike.
+  std::set<std::string> ids;
+  for (const SweepRun& run : runs) ids.insert(run.id);
+  std::size_t completed = 0, failed = 0;
+  for (const RunResult& r : read_results(results_file).runs) {
+    if (ids.contains(r.id)) ++(r.completed ? completed : failed);
   }
-  std::cout << spec.name << ": " << completed << " runs completed, " << failed << " failed, "
-            << skipped << " already done; results in " << results_file.string() << " (campo table "
-            << dir.string() << ")\n";
+  if (returned > 0) {
+    std::cerr << "sweep overhead: " << 1000.0 * overhead_s / static_cast<double>(returned)
+              << " ms per run (process start, result transport)\n";
+  }
+  std::cout << spec.name << ": " << completed << " of " << runs.size() << " runs completed, " << failed
+            << " failed (" << pending.size() << " run now, " << skipped << " already recorded); results in "
+            << results_file.string() << " (campo table " << dir.string() << ")\n";
   return failed == 0 ? kOk : kInternalError;
 }
 
@@ -123,16 +287,38 @@ Command add_sweep(CLI::App& app) {
   auto o = std::make_shared<SweepOptions>();
   app.add_option("spec", o->spec, "Sweep spec file (JSON, see docs/sweeps.md)")->required();
   app.add_option("--out", o->out, "Output directory (created if missing; an interrupted sweep resumes there)");
-  app.add_flag("--figures", o->figures, "Draw map.png and side.png for every run (slower)");
-  app.add_flag("--dry-run", o->dry_run, "Validate every run and print the manifest (as sweep.json) without running");
+  app.add_flag("--list", o->list,
+               "Validate every run and print the manifest, one JSON line per run (id, name, scene, planner, "
+               "params, seed, overrides), without running anything");
+  app.add_option("--jobs,-j", o->jobs, "Runs at a time, each in its own process (default: every available core)")
+      ->check(CLI::Range(1, 1024));
+  app.add_option("--shard", o->shard, "Run only part K of N of the manifest (runs K, K+N, K+2N, ...; K from 1)");
+  app.add_option("--time-limit", o->time_limit_s,
+                 "Wall-clock seconds a run may take before it is killed and recorded as failed (default: the "
+                 "spec's time_limit_s, else 3600)")
+      ->check(CLI::PositiveNumber);
+  app.add_flag("--keep-runs", o->keep_runs,
+               "Keep each run's files (run.json, trajectory.csv, scene.json) in DIR/runs/NAME/");
+  app.add_flag("--figures", o->figures, "Also draw map.png and side.png for every run (implies --keep-runs; slower)");
+  app.add_flag("--triage", o->triage,
+               "For every run that failed or did not reach its goal: DIR/triage/NAME/ with map.png, side.png, "
+               "depth.png (what the vehicle saw at the last step), the run's files and repro.sh, the command "
+               "that reruns it alone");
+  app.add_flag("--retry-failed", o->retry_failed, "Rerun the runs recorded as failed (completed runs are kept)");
+  app.add_option("--progress-every", o->progress_every_s,
+                 "Seconds between progress lines when stderr is not a terminal (default: 10)")
+      ->check(CLI::PositiveNumber);
   app.footer(
-      "Expands the spec into runs (scenes x axis values x seeds), validates every run's scene with\n"
-      "its overrides, then runs them one after the other. Writes DIR/sweep.json (the spec and the\n"
-      "manifest of runs), DIR/runs/<id>/ (each run's files, as campo run) and DIR/results.jsonl (one\n"
-      "line per run, appended as it finishes: params, seed, status, metrics, provenance). A run that\n"
-      "fails is recorded with its reason and the sweep goes on; run again with the same --out to\n"
-      "resume (completed runs are skipped). Summarize with campo table DIR.\n"
-      "Example: campo sweep scenes/sweeps/resolution_000.json --out out/resolution\n"
+      "Expands the spec into runs (scenes x planners x axis values or samples x seeds), validates every\n"
+      "run's scene with its overrides, then runs them in parallel, each in its own process: a run that\n"
+      "crashes, hangs past the time limit or throws is recorded as failed with its reason, and the\n"
+      "others go on. Writes DIR/sweep.json (the spec and the manifest) and appends one line per finished\n"
+      "run to DIR/results.jsonl (id, params, seed, status, metrics, provenance), so a killed sweep loses\n"
+      "no finished run: run the same command again and it does only the rest. Run IDs are content\n"
+      "hashes (campo version, effective scene, seed): the same run has the same ID in any spec, order\n"
+      "or shard, and its results do not depend on --jobs or --shard. On a terminal, a progress bar with\n"
+      "ETA; otherwise a progress line every 10 s. Shards of one spec combine with campo merge.\n"
+      "Example: campo sweep scenes/sweeps/resolution_000.json --out out/resolution --jobs 2\n"
       "Exit 0 when every run completed (whatever its outcome), 1 if any failed, 2 on bad input\n"
       "(nothing is written).");
   return [o] { return run_sweep(*o); };

@@ -1,7 +1,9 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "sweep/chart.hpp"
 #include "sweep/results.hpp"
@@ -17,7 +19,10 @@ namespace fs = std::filesystem;
 struct TableOptions {
   std::string dir;
   TableFormat format = TableFormat::markdown;
-  std::string chart;  ///< empty: DIR/chart.png
+  std::string rows, cols;            ///< fields; empty: the spec's table, else the summary
+  std::vector<std::string> metrics;
+  bool summary = false;              ///< the summary table even when the spec has a table
+  std::string chart;                 ///< empty: DIR/chart.png
   bool no_chart = false;
 };
 
@@ -25,15 +30,24 @@ int run_table(const TableOptions& o) {
   const fs::path dir = o.dir;
   const ResultsFile results = read_results(dir / "results.jsonl");
   for (const std::string& warning : results.warnings) std::cerr << "warning: " << warning << "\n";
-  const SweepTable table = aggregate(results.runs, table_layout(dir, results.runs));
-  std::cout << format_table(table, o.format);
+  const TableLayout layout = table_layout(dir, results.runs);
+  // Which table: the options', else the spec's, else the summary. Checked before anything is written.
+  std::optional<TableRequest> request;
+  if (!o.rows.empty()) {
+    request = TableRequest{.rows = o.rows, .cols = o.cols, .metrics = o.metrics};
+  } else if (!o.summary) {
+    request = layout.table;
+  }
+  const SweepTable summary = aggregate(results.runs, layout);
+  std::cout << (request ? format_metric_table(tabulate(results.runs, layout, *request), o.format)
+                        : format_table(summary, o.format));
   if (o.no_chart) return kOk;
-  if (!chartable(table)) {
-    std::cerr << "no chart: it needs exactly one axis with numeric values\n";
+  if (!chartable(summary)) {
+    std::cerr << "no chart: it needs exactly one axis with numeric values (campo plot draws any)\n";
     return kOk;
   }
   const fs::path chart = o.chart.empty() ? dir / "chart.png" : fs::path(o.chart);
-  write_sweep_chart(table, chart);
+  write_sweep_chart(summary, chart);
   std::cerr << "wrote " << chart.string() << "\n";
   return kOk;
 }
@@ -43,22 +57,38 @@ int run_table(const TableOptions& o) {
 Command add_table(CLI::App& app) {
   auto o = std::make_shared<TableOptions>();
   app.add_option("dir", o->dir, "Sweep output directory (holding results.jsonl, from campo sweep)")->required();
-  app.add_option("--format", o->format, "Table format: markdown, csv or latex (default: markdown)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, TableFormat>{
-              {"markdown", TableFormat::markdown}, {"csv", TableFormat::csv}, {"latex", TableFormat::latex}},
-          CLI::ignore_case));
+  app.add_option("--format", o->format, "Table format: markdown (or md), csv or latex (default: markdown)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, TableFormat>{{"markdown", TableFormat::markdown},
+                                                                             {"md", TableFormat::markdown},
+                                                                             {"csv", TableFormat::csv},
+                                                                             {"latex", TableFormat::latex}},
+                                          CLI::ignore_case));
+  auto* rows = app.add_option("--rows", o->rows, "Field giving the rows: scene, planner, seed or an axis name");
+  auto* cols = app.add_option("--cols", o->cols, "Field giving the column groups (default: one group)")->needs(rows);
+  auto* metrics = app.add_option("--metrics", o->metrics,
+                                 "Metrics, comma-separated: success (rate of outcome reached) or keys of run.json's "
+                                 "metrics (path_ratio, sim_time_s ...)")
+                      ->delimiter(',')
+                      ->needs(rows);
+  rows->needs(metrics);
+  app.add_flag("--summary", o->summary, "The summary table, even when the sweep's spec has a \"table\"")
+      ->excludes(rows)
+      ->excludes(cols);
   auto* chart = app.add_option("--chart", o->chart, "Where to write the chart PNG (default: DIR/chart.png)");
   app.add_flag("--no-chart", o->no_chart, "Do not draw the chart")->excludes(chart);
   app.footer(
-      "One row per scene and axis values, over the seeds: runs, success rate (outcome reached), waypoints\n"
-      "reached and discarded, path length, normalized path length (over the nominal route) and\n"
-      "simulated time as mean and sample standard deviation over the completed runs, total collisions,\n"
-      "the median of the runs' median replanning times, and the runs that failed. Rows follow the\n"
-      "sweep's expansion order. CSV has one header line of snake_case column names.\n"
-      "With exactly one numeric axis, also draws DIR/chart.png: normalized path length (mean +/- sd)\n"
-      "and success rate against the axis, one series per scene.\n"
-      "Example: campo table out/resolution --format csv > resolution.csv");
+      "With --rows FIELD [--cols FIELD] --metrics M1,M2 (or the spec's \"table\"): one row per value of\n"
+      "the rows field, one column group per value of the cols field, and in each cell every metric\n"
+      "over the cell's runs: mean, sample sd and 95% confidence interval (Student t) of numbers; the\n"
+      "rate with its 95% Wilson interval for success and boolean metrics; n and the failed runs.\n"
+      "CSV is tidy: one line per row, column and metric (runs, failed, n, mean, sd, ci95_low, ci95_high).\n"
+      "Otherwise the summary table: one row per scene and axis values, over the seeds: runs, success\n"
+      "rate, waypoints reached and discarded, path length, normalized path length and simulated time\n"
+      "(mean and sd over the completed runs), total collisions, the median of the runs' median\n"
+      "replanning times, and the runs that failed.\n"
+      "Rows follow the sweep's expansion order. With exactly one numeric axis, also draws\n"
+      "DIR/chart.png: normalized path length (mean +/- sd) and success rate against the axis.\n"
+      "Example: campo table out/resolution --rows resolution --cols scene --metrics success,path_ratio --format csv");
   return [o] { return run_table(*o); };
 }
 

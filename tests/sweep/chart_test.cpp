@@ -1,13 +1,25 @@
-// The sweep chart: when it applies, and that it is drawn the same every time.
+// The sweep chart and plots: when they apply, what they show, and that they
+// are drawn the same every time.
 #include "sweep/chart.hpp"
+
+#include <filesystem>
+#include <fstream>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include "render/figure_canvas.hpp"
+#include "render/figures.hpp"
+#include "sim/json_reader.hpp"
+#include "tests/sweep/results_fixture.hpp"
 
 namespace campo {
 namespace {
+
+namespace fs = std::filesystem;
 
 TableRow row(const std::string& scene, nlohmann::json value, double ratio, double sd, double success) {
   TableRow r;
@@ -64,6 +76,93 @@ TEST(SweepChart, LinearAxisForOtherValues) {
   for (double v : {0.3, 0.6, 0.9, 1.2}) table.rows.push_back(row("two_barriers", v, 1.0 + v / 10, 0.01, 1.0));
   const cv::Mat image = draw_sweep_chart(table);
   EXPECT_FALSE(image.empty());
+}
+
+class SweepPlot : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("campo_sweep_plot_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    std::ofstream(dir_ / "results.jsonl") << testing::fixture_results();
+    std::ofstream(dir_ / "sweep.json") << testing::fixture_manifest();
+    runs_ = read_results(dir_ / "results.jsonl").runs;
+    layout_ = table_layout(dir_, runs_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Pixels within `tolerance` of `color` (BGR) in `region`.
+  static int pixels_of(const cv::Mat& image, const cv::Scalar& color, const cv::Rect& region, int tolerance = 12) {
+    cv::Mat mask;
+    const cv::Scalar t(tolerance, tolerance, tolerance);
+    cv::inRange(image(region), color - t, color + t, mask);
+    return cv::countNonZero(mask);
+  }
+
+  std::string error_of(const PlotRequest& request) const {
+    try {
+      draw_sweep_plot(runs_, layout_, request);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  }
+
+  fs::path dir_;
+  std::vector<RunResult> runs_;
+  TableLayout layout_;
+};
+
+TEST_F(SweepPlot, LinePlotIsAPaperSizedDeterministicPngWithALegend) {
+  const PlotRequest request{.x = "resolution", .y = "path_ratio", .group = "scene"};
+  const cv::Mat image = draw_sweep_plot(runs_, layout_, request);
+  EXPECT_EQ(image.type(), CV_8UC3);
+  EXPECT_EQ(image.cols, 1600);
+  EXPECT_EQ(image.rows, 1000);
+  std::vector<uchar> a, b;
+  cv::imencode(".png", image, a);
+  cv::imencode(".png", draw_sweep_plot(runs_, layout_, request), b);
+  EXPECT_EQ(a, b);
+
+  // Both series' colours inside the plot area (the left 1200 px below the title) and in the legend (right).
+  const cv::Rect plot(170, 150, 1000, 700), legend(1200, 150, 400, 300);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_GT(pixels_of(image, run_color(i), plot), 200) << "series " << i;
+    EXPECT_GT(pixels_of(image, run_color(i), legend), 50) << "legend entry " << i;
+  }
+  EXPECT_EQ(pixels_of(image, run_color(2), plot), 0);  // two series only
+  // Text on top (the title) and dark pixels left of the plot (tick labels and the y label).
+  cv::Mat grey;
+  cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+  EXPECT_GT(cv::countNonZero(grey(cv::Rect(300, 10, 1000, 60)) < 100), 500);
+  EXPECT_GT(cv::countNonZero(grey(cv::Rect(0, 150, 160, 700)) < 100), 300);
+
+  write_png(image, dir_ / "plot.png");
+  EXPECT_EQ(cv::imread((dir_ / "plot.png").string()).size(), image.size());
+}
+
+TEST_F(SweepPlot, BoxPlotForCategoriesAndRatesInPercent) {
+  const cv::Mat box = draw_sweep_plot(runs_, layout_, {.x = "scene", .y = "sim_time_s", .group = "resolution"});
+  const cv::Rect plot(170, 150, 1000, 700);
+  // Boxes filled with the series' colour lightened (resolution 32), medians darker (16: equal values, flat boxes).
+  EXPECT_GT(pixels_of(box, figure::lighten(run_color(0), 0.55), plot, 4), 500);
+  EXPECT_GT(pixels_of(box, figure::shade(run_color(1), 0.55), plot, 4), 100);
+  // Forcing a box plot of a numeric field, and a line plot of a rate, work too.
+  EXPECT_FALSE(draw_sweep_plot(runs_, layout_, {.x = "resolution", .y = "sim_time_s", .kind = PlotKind::box}).empty());
+  const cv::Mat rate = draw_sweep_plot(runs_, layout_, {.x = "resolution", .y = "success"});
+  EXPECT_GT(pixels_of(rate, run_color(0), plot), 200);
+  EXPECT_NE(cv::norm(rate, box, cv::NORM_L1), 0.0);
+}
+
+TEST_F(SweepPlot, ErrorsNameTheOption) {
+  EXPECT_THAT(error_of({.x = "resolution", .y = "path_ratios"}),
+              ::testing::HasSubstr("command line: --y: expected a metric of the runs (success, "));
+  EXPECT_THAT(error_of({.x = "res", .y = "success"}), ::testing::HasSubstr("command line: --x: expected a field"));
+  EXPECT_THAT(error_of({.x = "scene", .y = "success", .group = "scene"}),
+              ::testing::HasSubstr("--group: a field other than --x"));
+  EXPECT_THAT(error_of({.x = "scene", .y = "success", .kind = PlotKind::line}),
+              ::testing::HasSubstr("--kind: line needs numeric values of --x \"scene\"; use --kind box"));
 }
 
 }  // namespace

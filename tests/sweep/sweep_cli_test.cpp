@@ -1,15 +1,23 @@
-// `campo sweep` and `campo table` run as a user would: a tiny sweep end to end.
+// `campo sweep` and `campo merge` run as a user would: parallel runs, resume
+// after a kill, schedules that do not change results, shards, triage.
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <map>
+#include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include "tests/cli_support.hpp"
 
 namespace {
@@ -22,7 +30,7 @@ using campo::testing::Result;
 using campo::testing::lines_of;
 using campo::testing::slurp;
 
-// Two barriers with the straight planner, the scanner at 16 and 32 columns, one seed, 5 s.
+// Two barriers with the straight planner, the scanner at 16 and 32 columns, one seed, 5 s: every run times out.
 constexpr const char* kTinySpec = R"({
   "campo_sweep": 1,
   "name": "tiny",
@@ -35,105 +43,301 @@ constexpr const char* kTinySpec = R"({
   "start_jitter": { "vehicle": "drone", "radius_m": 0.25 }
 })";
 
+// Seed 000's reactive planner through the barriers: 3 resolutions x 6 seeds, noisy ranges and jittered starts.
+constexpr const char* kReactiveSpec = R"({
+  "campo_sweep": 1,
+  "name": "reactive",
+  "scenes": ["two_barriers"],
+  "set": { "/objects/drone/sensors/scanner/noise_stddev_m": 0.01,
+           "/objects/drone/sensors/scanner/resolution": [32, 32] },
+  "axes": [ { "name": "resolution", "values": [32, 24, 16],
+              "set": ["/objects/drone/sensors/scanner/resolution/0",
+                      "/objects/drone/sensors/scanner/resolution/1"] } ],
+  "seeds": { "first": 1, "count": 6 },
+  "start_jitter": { "vehicle": "drone", "radius_m": 0.25 }
+})";
+
+// A line without what depends on the machine's speed: wall-clock times.
+nlohmann::json without_wall_time(nlohmann::json line) {
+  line.erase("wall_time_s");
+  if (line["metrics"].is_object()) {
+    nlohmann::json metrics;
+    for (const auto& [key, value] : line["metrics"].items()) {
+      const bool timed = key == "wall_time_s" || key.starts_with("planner_time_ms") || key.starts_with("replan_time_ms");
+      if (!timed) metrics[key] = value;
+    }
+    line["metrics"] = metrics;
+  }
+  return line;
+}
+
+// results.jsonl by run ID, wall times removed; every ID must appear once.
+std::map<std::string, nlohmann::json> results_by_id(const fs::path& file) {
+  std::map<std::string, nlohmann::json> results;
+  for (const std::string& text : lines_of(slurp(file))) {
+    const nlohmann::json line = nlohmann::json::parse(text);
+    EXPECT_TRUE(results.emplace(line["id"].get<std::string>(), without_wall_time(line)).second)
+        << "run " << line["id"] << " recorded twice in " << file;
+  }
+  return results;
+}
+
 class SweepCli : public campo::testing::CliTest {
  protected:
   void SetUp() override {
     CliTest::SetUp();
     write("tiny.json", kTinySpec);
+    write("reactive.json", kReactiveSpec);
   }
+  std::string spec(const char* name) const { return (dir_ / name).string(); }
+  std::string out(const char* name) const { return (dir_ / name).string(); }
 };
 
-TEST_F(SweepCli, RunsEveryRunThenTabulatesAndCharts) {
-  const fs::path out = dir_ / "out";
-  const Result sweep = campo("sweep " + (dir_ / "tiny.json").string() + " --out " + out.string());
+TEST_F(SweepCli, RunsEveryRunAndRecordsOneLineEach) {
+  const Result sweep = campo("sweep " + spec("tiny.json") + " --out " + out("o") + " --keep-runs");
   ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
-  EXPECT_THAT(sweep.err, HasSubstr("[1/2] two_barriers__resolution-16__seed-1: timeout"));
-  EXPECT_THAT(sweep.err, HasSubstr("[2/2] two_barriers__resolution-32__seed-1: timeout"));
+  EXPECT_THAT(sweep.err, HasSubstr("tiny: 2 runs to do (0 already recorded)"));
+  EXPECT_THAT(sweep.err, HasSubstr("progress: 2/2 done, 0 failed"));  // not a terminal: plain lines
+  EXPECT_THAT(sweep.out, HasSubstr("tiny: 2 of 2 runs completed, 0 failed"));
 
-  const auto results = lines_of(slurp(out / "results.jsonl"));
+  const auto results = lines_of(slurp(dir_ / "o" / "results.jsonl"));
   ASSERT_EQ(results.size(), 2u);
-  const nlohmann::json first = nlohmann::json::parse(results[0]);
-  EXPECT_EQ(first["id"], "two_barriers__resolution-16__seed-1");
+  nlohmann::json first = nlohmann::json::parse(results[0]);
+  if (first["params"]["resolution"] != 16) first = nlohmann::json::parse(results[1]);  // in order of finishing
+  EXPECT_EQ(first["id"].get<std::string>().size(), 16u);
+  EXPECT_EQ(first["name"], "two_barriers__resolution-16__seed-1");
+  EXPECT_EQ(first["planner"], "straight");
   EXPECT_EQ(first["status"], "completed");
   EXPECT_EQ(first["params"], nlohmann::json({{"resolution", 16}}));
   EXPECT_EQ(first["seed"], 1);
   EXPECT_EQ(first["run_dir"], "runs/two_barriers__resolution-16__seed-1");
   EXPECT_EQ(first["metrics"]["outcome"], "timeout");
   EXPECT_EQ(first["scene_sha256"].get<std::string>().size(), 64u);
+  EXPECT_EQ(first["spec_sha256"].get<std::string>().size(), 64u);
+  EXPECT_GT(first["wall_time_s"].get<double>(), 0.0);
   EXPECT_TRUE(first.contains("campo_version") && first.contains("git_rev"));
-  EXPECT_EQ(first["overrides"].back().get<std::string>().rfind("/objects/drone/pose/position_m=", 0), 0u);
-  // Each run's record, with the resolution the axis set.
-  const nlohmann::json record = nlohmann::json::parse(slurp(out / first["run_dir"].get<std::string>() / "run.json"));
+  // Each kept run's record, with the overrides of the manifest.
+  const nlohmann::json record = nlohmann::json::parse(slurp(dir_ / "o" / first["run_dir"].get<std::string>() / "run.json"));
   EXPECT_EQ(record["overrides"], first["overrides"]);
-  EXPECT_FALSE(fs::exists(out / first["run_dir"].get<std::string>() / "map.png"));  // no --figures
-  EXPECT_EQ(nlohmann::json::parse(slurp(out / "sweep.json"))["runs"].size(), 2u);
+  EXPECT_FALSE(fs::exists(dir_ / "o" / first["run_dir"].get<std::string>() / "map.png"));  // no --figures
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir_ / "o" / "sweep.json"))["runs"].size(), 2u);
 
-  // Run again: everything is already done.
-  const Result again = campo("sweep " + (dir_ / "tiny.json").string() + " --out " + out.string());
+  // Run again: everything is already recorded.
+  const Result again = campo("sweep " + spec("tiny.json") + " --out " + out("o"));
   ASSERT_EQ(again.exit_code, 0) << again.err;
-  EXPECT_THAT(again.err, HasSubstr("[2/2] two_barriers__resolution-32__seed-1: already completed, skipped"));
-  EXPECT_EQ(lines_of(slurp(out / "results.jsonl")).size(), 2u);
-
-  const Result table = campo("table " + out.string() + " --format csv");
-  ASSERT_EQ(table.exit_code, 0) << table.err;
-  const auto rows = lines_of(table.out);
-  ASSERT_EQ(rows.size(), 3u);
-  EXPECT_THAT(rows[0], StartsWith("scene,resolution,runs,success_rate,"));
-  EXPECT_THAT(rows[1], StartsWith("two_barriers,16,1,0,0,0,0,0,"));
-  EXPECT_THAT(rows[2], StartsWith("two_barriers,32,1,0,"));
-  EXPECT_THAT(table.err, HasSubstr("chart.png"));
-  const cv::Mat chart = cv::imread((out / "chart.png").string());
-  ASSERT_FALSE(chart.empty());
-  EXPECT_EQ(chart.type(), CV_8UC3);
-
-  const Result markdown = campo("table " + out.string() + " --no-chart");
-  ASSERT_EQ(markdown.exit_code, 0) << markdown.err;
-  EXPECT_THAT(markdown.out, HasSubstr("| two_barriers | 32 | 1 | 0% |"));
+  EXPECT_THAT(again.err, HasSubstr("tiny: 0 runs to do (2 already recorded)"));
+  EXPECT_EQ(lines_of(slurp(dir_ / "o" / "results.jsonl")).size(), 2u);
 }
 
-TEST_F(SweepCli, ARunThatFailsIsRecordedAndTheSweepGoesOn) {
+TEST_F(SweepCli, WithoutKeepRunsOnlyTheResultsAreWritten) {
+  const Result sweep = campo("sweep " + spec("tiny.json") + " --out " + out("o") + " --jobs 1");
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  EXPECT_THAT(sweep.err, HasSubstr("1 at a time"));
+  std::set<std::string> files;
+  for (const auto& entry : fs::directory_iterator(dir_ / "o")) files.insert(entry.path().filename().string());
+  EXPECT_EQ(files, (std::set<std::string>{"results.jsonl", "sweep.json"}));
+  EXPECT_TRUE(nlohmann::json::parse(lines_of(slurp(dir_ / "o" / "results.jsonl"))[0])["run_dir"].is_null());
+}
+
+TEST_F(SweepCli, ARunThatThrowsIsRecordedAndTheSweepGoesOn) {
   // A file where the first run's directory should be: that run cannot write its outputs.
-  const fs::path out = dir_ / "out";
-  fs::create_directories(out / "runs");
-  std::ofstream(out / "runs" / "two_barriers__resolution-16__seed-1") << "in the way";
-  const Result sweep = campo("sweep " + (dir_ / "tiny.json").string() + " --out " + out.string());
+  fs::create_directories(dir_ / "o" / "runs");
+  std::ofstream(dir_ / "o" / "runs" / "two_barriers__resolution-16__seed-1") << "in the way";
+  const Result sweep = campo("sweep " + spec("tiny.json") + " --out " + out("o") + " --keep-runs");
   EXPECT_EQ(sweep.exit_code, 1);
-  EXPECT_THAT(sweep.err, HasSubstr("[1/2] two_barriers__resolution-16__seed-1: failed: "));
-  const auto results = lines_of(slurp(out / "results.jsonl"));
-  ASSERT_EQ(results.size(), 2u);
-  const nlohmann::json failed = nlohmann::json::parse(results[0]);
+  EXPECT_THAT(sweep.err, HasSubstr("failed: two_barriers__resolution-16__seed-1 ("));
+  std::map<std::string, nlohmann::json> by_name;
+  for (const std::string& text : lines_of(slurp(dir_ / "o" / "results.jsonl"))) {
+    const nlohmann::json line = nlohmann::json::parse(text);
+    by_name[line["name"]] = line;
+  }
+  ASSERT_EQ(by_name.size(), 2u);
+  const nlohmann::json& failed = by_name["two_barriers__resolution-16__seed-1"];
   EXPECT_EQ(failed["status"], "failed");
   EXPECT_FALSE(failed["reason"].get<std::string>().empty());
   EXPECT_TRUE(failed["metrics"].is_null());
-  EXPECT_EQ(nlohmann::json::parse(results[1])["status"], "completed");
+  EXPECT_EQ(by_name["two_barriers__resolution-32__seed-1"]["status"], "completed");
 
-  const Result table = campo("table " + out.string() + " --format csv --no-chart");
-  ASSERT_EQ(table.exit_code, 0) << table.err;
-  EXPECT_THAT(table.out, HasSubstr("\ntwo_barriers,16,1,0,,,,,,,,,,,0,,,1\n"));
+  // Failed runs are recorded, so a rerun skips them unless asked to retry.
+  const Result again = campo("sweep " + spec("tiny.json") + " --out " + out("o") + " --keep-runs");
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_THAT(again.err, HasSubstr("0 runs to do (2 already recorded)"));
+  fs::remove(dir_ / "o" / "runs" / "two_barriers__resolution-16__seed-1");
+  const Result retry = campo("sweep " + spec("tiny.json") + " --out " + out("o") + " --keep-runs --retry-failed");
+  EXPECT_EQ(retry.exit_code, 0) << retry.err;
+  EXPECT_THAT(retry.err, HasSubstr("1 runs to do (1 already recorded)"));
 }
 
-TEST_F(SweepCli, BadSpecWritesNothing) {
-  std::string spec = kTinySpec;
-  spec.replace(spec.find("/resolution/0"), 13, "/resolutoin/0");
-  std::ofstream(dir_ / "bad.json") << spec;
-  const Result r = campo("sweep " + (dir_ / "bad.json").string() + " --out " + (dir_ / "out").string());
+// A run that goes on past its wall-clock limit is killed and recorded; the
+// others complete. A 512 x 512 scanner takes seconds, 16 x 16 a fraction.
+TEST_F(SweepCli, ARunPastItsTimeLimitIsKilledAndRecorded) {
+  write("slow.json", R"({"campo_sweep": 1, "name": "slow", "scenes": ["two_barriers"], "time_limit_s": 1,
+    "set": {"/objects/drone/sensors/scanner/resolution": [16, 16]},
+    "axes": [{"name": "resolution", "values": [16, 512],
+              "set": ["/objects/drone/sensors/scanner/resolution/0", "/objects/drone/sensors/scanner/resolution/1"]}]})");
+  const Result sweep = campo("sweep " + spec("slow.json") + " --out " + out("o") + " --triage");
+  EXPECT_EQ(sweep.exit_code, 1);
+  std::map<int, nlohmann::json> by_resolution;
+  for (const std::string& text : lines_of(slurp(dir_ / "o" / "results.jsonl"))) {
+    const nlohmann::json line = nlohmann::json::parse(text);
+    by_resolution[line["params"]["resolution"].get<int>()] = line;
+  }
+  ASSERT_EQ(by_resolution.size(), 2u);
+  EXPECT_EQ(by_resolution[16]["status"], "completed");
+  EXPECT_EQ(by_resolution[16]["metrics"]["outcome"], "reached");
+  EXPECT_FALSE(by_resolution[16].contains("triage"));
+  const nlohmann::json& killed = by_resolution[512];
+  EXPECT_EQ(killed["status"], "failed");
+  EXPECT_THAT(killed["reason"].get<std::string>(), StartsWith("exceeded the time limit of 1 s and was killed"));
+  EXPECT_LT(killed["wall_time_s"].get<double>(), 5.0);
+  // No record to draw from, but the command that reruns it.
+  EXPECT_THAT(killed["triage"]["repro"].get<std::string>(), StartsWith("campo run "));
+  EXPECT_TRUE(fs::exists(dir_ / "o" / killed["triage"]["dir"].get<std::string>() / "repro.sh"));
+}
+
+// Kill the sweep (SIGKILL, no chance to clean up) while it runs, run the
+// same command again: every run is recorded exactly once and the results are
+// those of a sweep that was never interrupted.
+TEST_F(SweepCli, ResumesAfterAKillLosingNothing) {
+  const fs::path results = dir_ / "killed" / "results.jsonl";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const std::string command = std::string("exec ") + CAMPO_BINARY + " sweep " + spec("reactive.json") + " --out " +
+                                out("killed") + " --jobs 1 >/dev/null 2>&1";
+    ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Wait for a few finished runs, then kill.
+  std::size_t recorded = 0;
+  for (int i = 0; i < 30000 && recorded < 3; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    recorded = fs::exists(results) ? lines_of(slurp(results)).size() : 0;
+  }
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, nullptr, 0);
+  const std::size_t before = lines_of(slurp(results)).size();
+  ASSERT_GE(before, 3u);
+  ASSERT_LT(before, 18u) << "the sweep finished before it could be killed";
+
+  const Result resumed = campo("sweep " + spec("reactive.json") + " --out " + out("killed") + " --jobs 2");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  const Result whole = campo("sweep " + spec("reactive.json") + " --out " + out("whole") + " --jobs 2");
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  const auto after_kill = results_by_id(results);
+  const auto uninterrupted = results_by_id(dir_ / "whole" / "results.jsonl");
+  EXPECT_EQ(after_kill.size(), 18u);
+  EXPECT_EQ(after_kill, uninterrupted);
+}
+
+// The same runs under other schedules: one process at a time, two, and two
+// shards run in reverse order and merged. Only wall times may differ.
+TEST_F(SweepCli, ResultsDoNotDependOnJobsOrderOrShards) {
+  ASSERT_EQ(campo("sweep " + spec("reactive.json") + " --out " + out("serial") + " --jobs 1").exit_code, 0);
+  ASSERT_EQ(campo("sweep " + spec("reactive.json") + " --out " + out("parallel") + " --jobs 2").exit_code, 0);
+  const Result shard2 = campo("sweep " + spec("reactive.json") + " --out " + out("shard2") + " --shard 2/2 --jobs 2");
+  ASSERT_EQ(shard2.exit_code, 0) << shard2.err;
+  EXPECT_THAT(shard2.err, HasSubstr("9 runs to do in shard 2/2"));
+  ASSERT_EQ(campo("sweep " + spec("reactive.json") + " --out " + out("shard1") + " --shard 1/2 --jobs 1").exit_code, 0);
+  const Result merge = campo("merge " + out("shard2") + " " + out("shard1") + " --out " + out("merged"));
+  ASSERT_EQ(merge.exit_code, 0) << merge.err;
+  EXPECT_THAT(merge.out, HasSubstr("merged 18 runs from 2 directories"));
+
+  const auto serial = results_by_id(dir_ / "serial" / "results.jsonl");
+  ASSERT_EQ(serial.size(), 18u);
+  // The seeds and resolutions really differ (a sweep of identical runs would prove nothing).
+  std::set<std::string> paths;
+  for (const auto& [id, line] : serial) paths.insert(line["metrics"]["path_length_m"].dump());
+  EXPECT_GT(paths.size(), 10u);
+  EXPECT_EQ(results_by_id(dir_ / "parallel" / "results.jsonl"), serial);
+  EXPECT_EQ(results_by_id(dir_ / "merged" / "results.jsonl"), serial);
+  // The merged manifest is the whole sweep's, in expansion order.
+  const nlohmann::json manifest = nlohmann::json::parse(slurp(dir_ / "merged" / "sweep.json"));
+  EXPECT_FALSE(manifest.contains("shard"));
+  const auto merged_lines = lines_of(slurp(dir_ / "merged" / "results.jsonl"));
+  for (std::size_t i = 0; i < merged_lines.size(); ++i) {
+    EXPECT_EQ(nlohmann::json::parse(merged_lines[i])["id"], manifest["runs"][i]["id"]);
+  }
+  // A shard's directory is that shard's: another shard is refused there.
+  const Result mixed = campo("sweep " + spec("reactive.json") + " --out " + out("shard1") + " --shard 2/2");
+  EXPECT_EQ(mixed.exit_code, 2);
+  EXPECT_THAT(mixed.err, HasSubstr("sweep.json: /shard: expected the sweep this directory holds"));
+}
+
+TEST_F(SweepCli, MergeRefusesAnotherSpecUnlessAllowed) {
+  ASSERT_EQ(campo("sweep " + spec("tiny.json") + " --out " + out("a")).exit_code, 0);
+  std::string other = kTinySpec;
+  other.replace(other.find("\"count\": 1"), 10, "\"count\": 2");
+  write("other.json", other);
+  ASSERT_EQ(campo("sweep " + spec("other.json") + " --out " + out("b")).exit_code, 0);
+  const Result refused = campo("merge " + out("a") + " " + out("b") + " --out " + out("m"));
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_THAT(refused.err, HasSubstr("b/sweep.json: /spec_sha256: expected the spec_sha256 of"));
+  EXPECT_FALSE(fs::exists(dir_ / "m"));
+  const Result allowed = campo("merge " + out("a") + " " + out("b") + " --out " + out("m") + " --allow-mismatch");
+  ASSERT_EQ(allowed.exit_code, 0) << allowed.err;
+  // Seed 1 runs are the same runs in both: 2 + 4 lines, 2 duplicates.
+  EXPECT_THAT(allowed.out, HasSubstr("merged 4 runs from 2 directories into"));
+  EXPECT_THAT(allowed.out, HasSubstr("2 duplicate lines dropped"));
+}
+
+// Triage of runs that did not reach their goal: the map, the depth map at the
+// last step, and a command that reruns the run alone to the same metrics.
+TEST_F(SweepCli, TriageKeepsFiguresAndACommandThatReproducesTheRun) {
+  const Result sweep = campo("sweep " + spec("tiny.json") + " --out " + out("o") + " --triage");
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  const nlohmann::json line = nlohmann::json::parse(lines_of(slurp(dir_ / "o" / "results.jsonl"))[0]);
+  ASSERT_TRUE(line.contains("triage"));
+  const fs::path triage = dir_ / "o" / line["triage"]["dir"].get<std::string>();
+  EXPECT_EQ(line["triage"]["dir"], "triage/" + line["name"].get<std::string>());
+  const cv::Mat map = cv::imread((triage / "map.png").string());
+  EXPECT_FALSE(map.empty());
+  const cv::Mat depth = cv::imread((triage / "depth.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(depth.empty());
+  EXPECT_EQ(depth.depth(), CV_16U);
+  EXPECT_EQ(slurp(triage / "repro.sh").find("#!/bin/sh\n"), 0u);
+
+  std::string command = line["triage"]["repro"].get<std::string>();
+  ASSERT_THAT(command, StartsWith("campo run "));
+  command.replace(0, 5, CAMPO_BINARY);
+  ASSERT_EQ(std::system((command + " >/dev/null 2>&1").c_str()), 0) << command;
+  const nlohmann::json rerun = nlohmann::json::parse(slurp(triage / "rerun" / "run.json"));
+  EXPECT_EQ(without_wall_time({{"metrics", rerun["metrics"]}}), without_wall_time({{"metrics", line["metrics"]}}));
+}
+
+TEST_F(SweepCli, ListPrintsTheManifestWithStableIds) {
+  const Result r = campo("sweep " + spec("reactive.json") + " --list");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto lines = lines_of(r.out);
+  ASSERT_EQ(lines.size(), 18u);
+  EXPECT_EQ(nlohmann::json::parse(lines[0])["name"], "two_barriers__resolution-32__seed-1");
+  EXPECT_EQ(campo("sweep " + spec("reactive.json") + " --list").out, r.out);
+  const Result shard = campo("sweep " + spec("reactive.json") + " --list --shard 3/4");
+  ASSERT_EQ(shard.exit_code, 0) << shard.err;
+  const auto part = lines_of(shard.out);
+  ASSERT_EQ(part.size(), 4u);  // runs 3, 7, 11, 15
+  EXPECT_EQ(part[1], lines[6]);
+  EXPECT_THAT(r.err, HasSubstr("18 runs"));
+  EXPECT_FALSE(fs::exists(dir_ / "o"));
+}
+
+TEST_F(SweepCli, BadInputWritesNothing) {
+  std::string bad = kTinySpec;
+  bad.replace(bad.find("/resolution/0"), 13, "/resolutoin/0");
+  write("bad.json", bad);
+  const Result r = campo("sweep " + spec("bad.json") + " --out " + out("o"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("bad.json: /scenes/0: run two_barriers__resolution-16__seed-1: "));
   EXPECT_THAT(r.err, HasSubstr("resolutoin"));
-  EXPECT_FALSE(fs::exists(dir_ / "out"));
-}
-
-TEST_F(SweepCli, DryRunPrintsTheManifest) {
-  const Result r = campo("sweep " + (dir_ / "tiny.json").string() + " --dry-run");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const nlohmann::json manifest = nlohmann::json::parse(r.out);
-  ASSERT_EQ(manifest["runs"].size(), 2u);
-  EXPECT_EQ(manifest["runs"][1]["id"], "two_barriers__resolution-32__seed-1");
-  EXPECT_THAT(r.err, HasSubstr("2 runs"));
+  EXPECT_FALSE(fs::exists(dir_ / "o"));
+  const Result shard = campo("sweep " + spec("tiny.json") + " --out " + out("o") + " --shard 3/2");
+  EXPECT_EQ(shard.exit_code, 2);
+  EXPECT_THAT(shard.err, HasSubstr("command line: --shard: expected K/N with 1 <= K <= N"));
+  EXPECT_FALSE(fs::exists(dir_ / "o"));
 }
 
 TEST_F(SweepCli, HelpHasExamples) {
-  for (const char* sub : {"sweep", "table"}) {
+  for (const char* sub : {"sweep", "merge", "table", "plot"}) {
     const Result help = campo(std::string(sub) + " --help");
     EXPECT_EQ(help.exit_code, 0) << sub;
     EXPECT_THAT(help.out, HasSubstr("Usage")) << sub;

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 
 #include <gmock/gmock.h>
@@ -64,7 +65,7 @@ TEST_F(SweepSpecTest, ErrorsNameFilePointerAndExpectation) {
               HasSubstr(spec + ": /axes/0/name: expected an axis name"));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
                            "axes": [{"name": "runs", "values": [1], "set": ["/world/time_limit_s"]}]})"),
-              HasSubstr("not also a table column"));
+              HasSubstr("or a table column"));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
                            "axes": [{"name": "v", "values": [1, 1.0], "set": ["/world/time_limit_s"]}]})"),
               HasSubstr(spec + ": /axes/0/values/1: expected values with distinct labels"));
@@ -113,15 +114,20 @@ TEST_F(SweepSpecTest, ExpandsScenesAxesAndSeedsInOrder) {
   EXPECT_EQ(spec.name, "order");
   const std::vector<SweepRun> runs = expand_sweep(spec);
   ASSERT_EQ(runs.size(), 2u * 2u * 3u * 2u);
-  EXPECT_EQ(runs[0].id, "local__speed-0.5__res-16x8__seed-7");
-  EXPECT_EQ(runs[1].id, "local__speed-0.5__res-16x8__seed-8");
-  EXPECT_EQ(runs[2].id, "local__speed-0.5__res-32x16__seed-7");
-  EXPECT_EQ(runs[6].id, "local__speed-1__res-16x8__seed-7");
-  EXPECT_EQ(runs[12].id, "two_barriers__speed-0.5__res-16x8__seed-7");
-  EXPECT_EQ(runs.back().id, "two_barriers__speed-1__res-64x32__seed-8");
-  std::set<std::string> ids;
-  for (const SweepRun& run : runs) ids.insert(run.id);
+  EXPECT_EQ(runs[0].name, "local__speed-0.5__res-16x8__seed-7");
+  EXPECT_EQ(runs[1].name, "local__speed-0.5__res-16x8__seed-8");
+  EXPECT_EQ(runs[2].name, "local__speed-0.5__res-32x16__seed-7");
+  EXPECT_EQ(runs[6].name, "local__speed-1__res-16x8__seed-7");
+  EXPECT_EQ(runs[12].name, "two_barriers__speed-0.5__res-16x8__seed-7");
+  EXPECT_EQ(runs.back().name, "two_barriers__speed-1__res-64x32__seed-8");
+  std::set<std::string> ids, names;
+  for (const SweepRun& run : runs) {
+    ids.insert(run.id);
+    names.insert(run.name);
+    EXPECT_EQ(run.planner, "straight");  // as the overrides set it
+  }
   EXPECT_EQ(ids.size(), runs.size());
+  EXPECT_EQ(names.size(), runs.size());
 
   const SweepRun& run = runs[3];
   EXPECT_EQ(run.scene, "local");
@@ -139,14 +145,160 @@ TEST_F(SweepSpecTest, ExpandsScenesAxesAndSeedsInOrder) {
   const nlohmann::json manifest = sweep_manifest(spec, runs);
   EXPECT_EQ(manifest["runs"].size(), runs.size());
   EXPECT_EQ(manifest["runs"][3]["id"], run.id);
+  EXPECT_EQ(manifest["runs"][3]["name"], run.name);
   EXPECT_EQ(manifest["spec"]["name"], "order");
+  EXPECT_EQ(manifest["spec_sha256"], spec_sha256(spec));
+  EXPECT_EQ(manifest["campo_version"], CAMPO_VERSION);
+}
+
+// IDs come from what a run is, not where it sits in a spec: the same run has
+// the same ID in another spec that orders things differently, and any change
+// to the scene, a parameter or the seed gives another ID.
+TEST_F(SweepSpecTest, RunIdsAreContentHashesStableAcrossSpecs) {
+  const auto ids_by_name = [&](const std::string& text) {
+    std::map<std::string, std::string> ids;
+    for (const SweepRun& run : expand_sweep(read_sweep_spec(write(text)))) {
+      EXPECT_EQ(run.id.size(), 16u);
+      EXPECT_EQ(run.id.find_first_not_of("0123456789abcdef"), std::string::npos) << run.id;
+      ids[run.name] = run.id;
+    }
+    return ids;
+  };
+  const auto first = ids_by_name(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
+    "axes": [{"name": "limit", "values": [5, 6], "set": ["/world/time_limit_s"]}], "seeds": {"count": 2}})");
+  const auto again = ids_by_name(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
+    "axes": [{"name": "limit", "values": [5, 6], "set": ["/world/time_limit_s"]}], "seeds": {"count": 2}})");
+  EXPECT_EQ(first, again);
+  // Other order, other name, more values and seeds: the shared runs keep their IDs.
+  const auto reordered = ids_by_name(R"({"campo_sweep": 1, "name": "other", "scenes": ["two_barriers"],
+    "axes": [{"name": "limit", "values": [7, 6, 5], "set": ["/world/time_limit_s"]}],
+    "seeds": {"first": 1, "count": 3}})");
+  for (const auto& [name, id] : first) EXPECT_EQ(reordered.at(name), id) << name;
+  std::set<std::string> distinct;
+  for (const auto& [name, id] : reordered) distinct.insert(id);
+  EXPECT_EQ(distinct.size(), reordered.size());
+  // A change of scene content that the name does not show changes the ID.
+  const auto changed = ids_by_name(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
+    "set": {"/world/sensor_rate_hz": 20},
+    "axes": [{"name": "limit", "values": [5, 6], "set": ["/world/time_limit_s"]}], "seeds": {"count": 2}})");
+  for (const auto& [name, id] : first) EXPECT_NE(changed.at(name), id) << name;
+}
+
+TEST_F(SweepSpecTest, RangesExpandToValues) {
+  const SweepSpec spec = read_sweep_spec(write(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
+    "axes": [{"name": "limit", "range": {"from": 0.1, "to": 0.5, "step": 0.1}, "set": ["/world/time_limit_s"]},
+             {"name": "rate", "range": {"from": 20, "to": 80, "step": 20}, "set": ["/world/control_rate_hz"]},
+             {"name": "speed", "range": {"from": 1, "to": 2, "count": 3},
+              "set": ["/objects/drone/planner/params/speed_mps"]}]})"));
+  // Stepped decimals read as written, integers stay integers, counts include both ends.
+  EXPECT_EQ(nlohmann::json(spec.axes[0].values), nlohmann::json::parse("[0.1, 0.2, 0.3, 0.4, 0.5]"));
+  EXPECT_EQ(nlohmann::json(spec.axes[1].values), nlohmann::json::parse("[20, 40, 60, 80]"));
+  EXPECT_TRUE(spec.axes[1].values[0].is_number_integer());
+  EXPECT_EQ(nlohmann::json(spec.axes[2].values), nlohmann::json::parse("[1.0, 1.5, 2.0]"));
+  EXPECT_EQ(expand_sweep(spec).size(), 5u * 4u * 3u);
+}
+
+TEST_F(SweepSpecTest, SpecErrorsOfRangesSamplingAndPlanners) {
+  const std::string spec = (dir_ / "spec.json").string();
+  const std::string head = R"({"campo_sweep": 1, "scenes": ["two_barriers"], )";
+  EXPECT_THAT(error_of(head + R"("axes": [{"name": "a", "range": {"from": 1, "to": 2}, "set": ["/world/time_limit_s"]}]})"),
+              HasSubstr(spec + ": /axes/0/range: expected a \"step\" or \"count\" (a range without them is an interval"));
+  EXPECT_THAT(error_of(head + R"("axes": [{"name": "a", "values": [1], "range": {"from": 1, "to": 2, "step": 1},
+                                "set": ["/world/time_limit_s"]}]})"),
+              HasSubstr(spec + ": /axes/0: expected an axis with either \"values\" or \"range\""));
+  EXPECT_THAT(error_of(head + R"("axes": [{"name": "a", "range": {"from": 2, "to": 1, "step": 1}, "set": ["/world/time_limit_s"]}]})"),
+              HasSubstr(spec + ": /axes/0/range/to: expected a number > from (2)"));
+  EXPECT_THAT(error_of(head + R"("sampling": {"method": "sobol", "samples": 4}, "axes": [{"name": "a", "values": [1], "set": ["/world/time_limit_s"]}]})"),
+              HasSubstr(spec + ": /sampling/method: expected one of"));
+  EXPECT_THAT(error_of(head + R"("sampling": {"method": "random", "samples": 4}})"),
+              HasSubstr(spec + ": /sampling: expected a sampling of at least one axis"));
+  EXPECT_THAT(error_of(head + R"("planners": ["straight", {"name": "straight"}]})"),
+              HasSubstr(spec + ": /planners/1: expected planners with distinct labels"));
+  EXPECT_THAT(error_of(head + R"("axes": [{"name": "seed", "values": [1], "set": ["/world/time_limit_s"]}]})"),
+              HasSubstr(spec + ": /axes/0/name: expected an axis name that is not also a run field"));
+  EXPECT_THAT(error_of(head + R"("time_limit_s": 0})"), HasSubstr(spec + ": /time_limit_s: expected a number > 0"));
+}
+
+// Latin hypercube: each axis cut into as many slices as samples, every slice
+// used exactly once; the same sampling seed gives the same points, another seed others.
+TEST_F(SweepSpecTest, LatinHypercubeUsesEverySliceOnceAndIsSeeded) {
+  const auto spec_text = [](int seed, const char* method) {
+    return std::string(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
+      "sampling": {"method": ")") + method + R"(", "samples": 8, "seed": )" + std::to_string(seed) + R"(},
+      "axes": [{"name": "limit", "range": {"from": 10, "to": 20}, "set": ["/world/time_limit_s"]},
+               {"name": "rate", "values": [5, 10, 15, 20], "set": ["/world/sensor_rate_hz"]}]})";
+  };
+  const SweepSpec spec = read_sweep_spec(write(spec_text(3, "latin_hypercube")));
+  const auto samples = sample_axes(spec);
+  ASSERT_EQ(samples.size(), 8u);
+  std::set<int> slices;
+  std::map<int, int> res_count;
+  for (const auto& sample : samples) {
+    const double limit = sample[0].get<double>();
+    EXPECT_GE(limit, 10.0);
+    EXPECT_LT(limit, 20.0);
+    slices.insert(static_cast<int>((limit - 10.0) / 10.0 * 8.0));
+    ++res_count[sample[1].get<int>()];
+  }
+  EXPECT_EQ(slices.size(), 8u);  // one sample per slice of [10, 20)
+  // 8 slices over 4 listed values: each value twice.
+  EXPECT_EQ(res_count, (std::map<int, int>{{5, 2}, {10, 2}, {15, 2}, {20, 2}}));
+  EXPECT_EQ(sample_axes(read_sweep_spec(write(spec_text(3, "latin_hypercube")))), samples);
+  EXPECT_NE(sample_axes(read_sweep_spec(write(spec_text(4, "latin_hypercube")))), samples);
+
+  const std::vector<SweepRun> runs = expand_sweep(spec);
+  ASSERT_EQ(runs.size(), 8u);
+  EXPECT_EQ(runs[2].name, "two_barriers__sample-3__seed-1");
+  EXPECT_EQ(runs[2].params["limit"], samples[2][0]);
+  EXPECT_EQ(runs[2].overrides[0], "/world/time_limit_s=" + samples[2][0].dump());
+
+  // Random sampling: values inside the interval, from the seed.
+  const auto random = sample_axes(read_sweep_spec(write(spec_text(3, "random"))));
+  ASSERT_EQ(random.size(), 8u);
+  for (const auto& sample : random) EXPECT_GE(sample[0].get<double>(), 10.0);
+  EXPECT_EQ(sample_axes(read_sweep_spec(write(spec_text(3, "random")))), random);
+}
+
+// Planners: the scene's own one gets the given parameters on top of the
+// scene's; another replaces it with only its own.
+TEST_F(SweepSpecTest, PlannersAreRunOnEveryScene) {
+  const std::vector<SweepRun> runs = expand_sweep(read_sweep_spec(write(R"({"campo_sweep": 1,
+    "scenes": ["two_barriers"],
+    "planners": ["straight", {"name": "depth_reactive", "label": "reactive_slow", "params": {"speed_mps": 0.5}}],
+    "seeds": {"count": 2}})")));
+  ASSERT_EQ(runs.size(), 4u);
+  EXPECT_EQ(runs[0].name, "two_barriers__straight__seed-1");
+  EXPECT_EQ(runs[0].planner, "straight");
+  EXPECT_EQ(runs[0].overrides[0], R"(/objects/drone/planner={"name":"straight","params":{}})");
+  EXPECT_EQ(runs[3].name, "two_barriers__reactive_slow__seed-2");
+  EXPECT_EQ(runs[3].planner, "reactive_slow");
+  EXPECT_EQ(runs[3].overrides[0], "/objects/drone/planner/params/speed_mps=0.5");
+}
+
+TEST(SweepShards, DisjointCoveringAndBalanced) {
+  std::vector<SweepRun> runs(23);
+  for (std::size_t i = 0; i < runs.size(); ++i) runs[i].id = std::to_string(i);
+  for (int count : {1, 2, 5, 23, 30}) {
+    std::multiset<std::string> seen;
+    std::size_t smallest = runs.size(), largest = 0;
+    for (int k = 1; k <= count; ++k) {
+      const auto shard = shard_of(runs, k, count);
+      smallest = std::min(smallest, shard.size());
+      largest = std::max(largest, shard.size());
+      for (const SweepRun& run : shard) seen.insert(run.id);
+    }
+    EXPECT_EQ(seen.size(), runs.size()) << count;
+    EXPECT_EQ(std::set<std::string>(seen.begin(), seen.end()).size(), runs.size()) << count;
+    EXPECT_LE(largest - smallest, 1u) << count;
+  }
 }
 
 TEST_F(SweepSpecTest, NoAxesGiveOneRunPerSceneAndSeed) {
   const std::vector<SweepRun> runs =
       expand_sweep(read_sweep_spec(write(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "seeds": {"count": 3}})")));
   ASSERT_EQ(runs.size(), 3u);
-  EXPECT_EQ(runs[0].id, "two_barriers__seed-1");
+  EXPECT_EQ(runs[0].name, "two_barriers__seed-1");
+  EXPECT_EQ(runs[0].planner, "depth_reactive");  // the scene's
   EXPECT_EQ(runs[2].overrides, std::vector<std::string>{"/world/seed=3"});
   EXPECT_EQ(runs[0].params, nlohmann::json::object());
 }
@@ -208,8 +360,8 @@ TEST(BundledSweeps, ResolutionSweepOfSeed000IsValid) {
     }
   });
   ASSERT_EQ(runs.size(), 2u * 5u * 3u);
-  EXPECT_EQ(runs.front().id, "two_barriers__resolution-256__seed-1");
-  EXPECT_EQ(runs.back().id, "trees_rolling_terrain__resolution-16__seed-3");
+  EXPECT_EQ(runs.front().name, "two_barriers__resolution-256__seed-1");
+  EXPECT_EQ(runs.back().name, "trees_rolling_terrain__resolution-16__seed-3");
 }
 
 }  // namespace

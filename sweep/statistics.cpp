@@ -1,0 +1,127 @@
+#include "sweep/statistics.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <numeric>
+
+namespace campo {
+
+namespace {
+
+// Continued fraction of the regularized incomplete beta function (modified Lentz).
+double beta_fraction(double a, double b, double x) {
+  constexpr double kTiny = 1e-300;
+  double c = 1.0, d = 1.0 - (a + b) * x / (a + 1.0);
+  d = 1.0 / (std::abs(d) < kTiny ? kTiny : d);
+  double h = d;
+  for (int m = 1; m <= 1000; ++m) {
+    for (int odd = 0; odd < 2; ++odd) {
+      const double numerator = odd == 0 ? m * (b - m) * x / ((a + 2 * m - 1) * (a + 2 * m))
+                                        : -(a + m) * (a + b + m) * x / ((a + 2 * m) * (a + 2 * m + 1));
+      d = 1.0 + numerator * d;
+      d = 1.0 / (std::abs(d) < kTiny ? kTiny : d);
+      c = 1.0 + numerator / c;
+      if (std::abs(c) < kTiny) c = kTiny;
+      h *= c * d;
+      if (odd == 1 && std::abs(c * d - 1.0) < 1e-15) return h;
+    }
+  }
+  return h;
+}
+
+// I_x(a, b).
+double incomplete_beta(double a, double b, double x) {
+  if (x <= 0.0) return 0.0;
+  if (x >= 1.0) return 1.0;
+  const double front =
+      std::exp(std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) + b * std::log1p(-x));
+  // The fraction converges fast below the mean; use the symmetry above it.
+  return x < (a + 1.0) / (a + b + 2.0) ? front * beta_fraction(a, b, x) / a
+                                       : 1.0 - front * beta_fraction(b, a, 1.0 - x) / b;
+}
+
+// P(T <= t) for t >= 0.
+double student_t_cdf(double t, int dof) {
+  const double v = dof;
+  return 1.0 - 0.5 * incomplete_beta(0.5 * v, 0.5, v / (v + t * t));
+}
+
+double quantile_sorted(const std::vector<double>& sorted, double p) {
+  const double h = p * static_cast<double>(sorted.size() - 1);
+  const auto below = static_cast<std::size_t>(std::floor(h));
+  const std::size_t above = std::min(below + 1, sorted.size() - 1);
+  return sorted[below] + (h - static_cast<double>(below)) * (sorted[above] - sorted[below]);
+}
+
+}  // namespace
+
+double student_t_quantile(double p, int dof) {
+  assert(p > 0.0 && p < 1.0 && dof >= 1);
+  if (p < 0.5) return -student_t_quantile(1.0 - p, dof);
+  if (p == 0.5) return 0.0;
+  double lo = 0.0, hi = 1.0;
+  while (student_t_cdf(hi, dof) < p) hi *= 2.0;
+  // Bisection to the last bit: deterministic and plenty fast for a table.
+  for (int i = 0; i < 200 && hi - lo > 1e-13 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (student_t_cdf(mid, dof) < p ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+Summary summarize_values(const std::vector<double>& values) {
+  assert(!values.empty());
+  Summary s;
+  s.n = static_cast<int>(values.size());
+  s.mean = std::accumulate(values.begin(), values.end(), 0.0) / s.n;
+  if (s.n < 2) return s;
+  double squares = 0.0;
+  for (double v : values) squares += (v - s.mean) * (v - s.mean);
+  s.sd = std::sqrt(squares / (s.n - 1));
+  const double half = student_t_quantile(0.975, s.n - 1) * s.sd / std::sqrt(static_cast<double>(s.n));
+  s.ci95 = Interval{s.mean - half, s.mean + half};
+  return s;
+}
+
+Summary summarize_rate(int successes, int trials) {
+  assert(trials > 0 && successes >= 0 && successes <= trials);
+  Summary s;
+  s.n = trials;
+  s.mean = static_cast<double>(successes) / trials;
+  // Sample sd of the 0/1 values: sum of squares is n p (1 - p).
+  if (trials > 1) s.sd = std::sqrt(trials * s.mean * (1.0 - s.mean) / (trials - 1));
+  s.ci95 = wilson_interval(successes, trials);
+  return s;
+}
+
+Interval wilson_interval(int successes, int trials, double z) {
+  const double n = trials, p = successes / n, z2 = z * z;
+  const double centre = (p + z2 / (2.0 * n)) / (1.0 + z2 / n);
+  const double half = z / (1.0 + z2 / n) * std::sqrt(p * (1.0 - p) / n + z2 / (4.0 * n * n));
+  // Exactly 0 and 1 at the ends, whatever the rounding.
+  return {successes == 0 ? 0.0 : centre - half, successes == trials ? 1.0 : centre + half};
+}
+
+BoxStats box_stats(std::vector<double> values) {
+  assert(!values.empty());
+  std::sort(values.begin(), values.end());
+  BoxStats b;
+  b.q1 = quantile_sorted(values, 0.25);
+  b.median = quantile_sorted(values, 0.5);
+  b.q3 = quantile_sorted(values, 0.75);
+  const double reach = 1.5 * (b.q3 - b.q1);
+  b.whisker_low = b.q1;
+  b.whisker_high = b.q3;
+  for (double v : values) {
+    if (v < b.q1 - reach || v > b.q3 + reach) {
+      b.outliers.push_back(v);
+    } else {
+      b.whisker_low = std::min(b.whisker_low, v);
+      b.whisker_high = std::max(b.whisker_high, v);
+    }
+  }
+  return b;
+}
+
+}  // namespace campo
