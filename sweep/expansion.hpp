@@ -16,9 +16,9 @@ namespace campo {
 
 /// One run of a sweep.
 struct SweepRun {
-  /// 16 hex digits of the SHA-256 of the campo version and the run's
-  /// effective scene document (scene, every override, the seed): the same run
-  /// has the same ID in every spec, order and shard.
+  /// 16 hex digits of the SHA-256 of the campo version, the run's name and
+  /// its effective scene document (scene, every override, the seed): the same
+  /// run has the same ID in every spec, order and shard.
   std::string id;
   std::string name;                    ///< readable and filesystem-safe: "two_barriers__resolution-256__seed-1"
   std::string scene;                   ///< the scene's label

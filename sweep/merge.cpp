@@ -59,30 +59,31 @@ MergedSweep merge_sweeps(const std::vector<SweepDir>& inputs, bool allow_mismatc
   merged.manifest = first.manifest;
   merged.manifest.erase("shard");
   // id -> the line kept; order: the manifest's, then first appearance.
-  std::map<std::string, nlohmann::json> kept;
+  std::map<std::string, std::pair<nlohmann::json, std::size_t>> kept;  // line and its input
   std::vector<std::string> order;
   for (const auto& run : merged.manifest["runs"]) order.push_back(run.value("id", ""));
   std::map<std::string, bool> in_order;
   for (const std::string& id : order) in_order[id] = true;
   std::size_t lines = 0;
-  for (const SweepDir& input : inputs) {
-    for (const nlohmann::json& line : input.lines) {
+  for (std::size_t source = 0; source < inputs.size(); ++source) {
+    for (const nlohmann::json& line : inputs[source].lines) {
       ++lines;
       const std::string id = line["id"];
       if (!in_order.contains(id)) {
         in_order[id] = true;
         order.push_back(id);
       }
-      auto [it, inserted] = kept.try_emplace(id, line);
+      auto [it, inserted] = kept.try_emplace(id, line, source);
       if (inserted) continue;
-      const bool old_completed = it->second.value("status", "") == "completed";
+      const bool old_completed = it->second.first.value("status", "") == "completed";
       const bool new_completed = line.value("status", "") == "completed";
-      if (new_completed || !old_completed) it->second = line;
+      if (new_completed || !old_completed) it->second = {line, source};
     }
   }
   for (const std::string& id : order) {
     if (const auto it = kept.find(id); it != kept.end()) {
-      merged.lines.push_back(it->second);
+      merged.lines.push_back(it->second.first);
+      merged.sources.push_back(it->second.second);
     } else {
       ++merged.missing;
     }

@@ -23,6 +23,7 @@ SweepDir read_sweep_dir(const std::filesystem::path& dir, std::vector<std::strin
 struct MergedSweep {
   nlohmann::json manifest;               ///< the first input's sweep.json, without "shard"
   std::vector<nlohmann::json> lines;     ///< one per run ID: in manifest order, then in order of appearance
+  std::vector<std::size_t> sources;      ///< for each line, the input it came from (its folders are there)
   std::size_t duplicates = 0;            ///< lines dropped because another line of their run was kept
   std::size_t missing = 0;               ///< manifest runs no input has a line for
 };

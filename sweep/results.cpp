@@ -62,7 +62,9 @@ RunResult read_result(const JsonNode& node) {
   if (auto dir = r.optional("run_dir"); dir && !dir->value().is_null()) dir->as_string();
   if (auto triage = r.optional("triage"); triage && !triage->value().is_object()) triage->fail("an object");
   // Provenance and timing are for people and scripts; tables and plots do not use them.
-  for (const char* key : {"campo_version", "git_rev", "scene_sha256", "spec_sha256", "wall_time_s"}) r.accept(key);
+  for (const char* key : {"campo_version", "git_rev", "scene_sha256", "spec_sha256", "wall_time_s", "files_error"}) {
+    r.accept(key);
+  }
   r.finish();
   return result;
 }

@@ -215,6 +215,16 @@ class SpecParser {
       spec.start_jitter = read_start_jitter(*jitter);
       claim("/objects/" + spec.start_jitter->vehicle + "/pose/position_m", *jitter);
     }
+    if (!spec.planners.empty()) {
+      // The planners own the first vehicle's planner choice.
+      for (const auto& [pointer, origin] : writers_) {
+        if (pointer.ends_with("/planner") || pointer.ends_with("/planner/name")) {
+          throw InputError(file_.string(), origin,
+                           "expected no planner choice when \"planners\" is given (it sets " + pointer +
+                               "); set the planner's parameters instead");
+        }
+      }
+    }
     if (auto sampling = r.optional("sampling")) {
       spec.sampling = read_sampling(*sampling, static_cast<int>(limits_.max_runs));
       if (spec.axes.empty()) sampling->fail("a sampling of at least one axis (\"axes\" is empty)");
@@ -264,7 +274,8 @@ class SpecParser {
     axis.origin = node.pointer();
     const JsonNode name = r.required("name");
     axis.name = name.as_string();
-    const bool valid_name = axis.name.size() <= 32 && axis.name.front() >= 'a' && axis.name.front() <= 'z' &&
+    const bool valid_name = !axis.name.empty() && axis.name.size() <= 32 && axis.name.front() >= 'a' &&
+                            axis.name.front() <= 'z' &&
                             std::all_of(axis.name.begin(), axis.name.end(), [](char c) {
                               return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
                             });
@@ -279,14 +290,16 @@ class SpecParser {
     const auto range = r.optional("range");
     if (values.has_value() == range.has_value()) node.fail("an axis with either \"values\" or \"range\"");
     if (range) read_range(*range, axis, limits_.max_values);
+    const std::vector<JsonNode> listed = values ? values->as_array(1, limits_.max_values) : std::vector<JsonNode>{};
+    for (const JsonNode& value : listed) axis.values.push_back(read_axis_value(value));
+    // Distinct in run names, so no two runs share a name, an ID or a directory.
     std::set<std::string> labels;
-    for (const JsonNode& value : values ? values->as_array(1, limits_.max_values) : std::vector<JsonNode>{}) {
-      axis.values.push_back(read_axis_value(value));
-      // Distinct in run names, so no two runs share a directory.
-      if (!labels.insert(value_id_label(axis.values.back())).second) {
-        value.fail("values with distinct labels in run IDs (\"" + value_id_label(axis.values.back()) +
-                   "\" appears twice)");
-      }
+    for (std::size_t i = 0; i < axis.values.size(); ++i) {
+      const std::string label = value_id_label(axis.values[i]);
+      if (labels.insert(label).second) continue;
+      const std::string expected = "values with distinct labels in run names (\"" + label + "\" appears twice)";
+      if (values) listed[i].fail(expected);
+      range->fail(expected);
     }
     for (const JsonNode& pointer : r.required("set").as_array(1, limits_.max_pointers)) {
       axis.pointers.push_back(read_pointer(pointer));

@@ -20,7 +20,7 @@ struct MergeOptions {
   bool allow_mismatch = false;
 };
 
-// The run's kept folders (runs/NAME, triage/NAME), copied next to the merged results.
+// The run's kept folders (runs/NAME, triage/NAME) from the directory its line came from.
 void copy_folders(const nlohmann::json& line, const fs::path& from, const StagedOutput& out) {
   std::vector<std::string> folders;
   if (line.value("run_dir", nlohmann::json()).is_string()) folders.push_back(line["run_dir"]);
@@ -28,7 +28,7 @@ void copy_folders(const nlohmann::json& line, const fs::path& from, const Staged
   for (const std::string& folder : folders) {
     if (folder.empty() || !fs::exists(from / folder)) continue;
     fs::create_directories(out.path(folder).parent_path());
-    fs::copy(from / folder, out.path(folder), fs::copy_options::recursive | fs::copy_options::skip_existing);
+    fs::copy(from / folder, out.path(folder), fs::copy_options::recursive);
   }
 }
 
@@ -45,9 +45,9 @@ int run_merge(const MergeOptions& o) {
 
   StagedOutput out(out_dir);
   std::string results;
-  for (const nlohmann::json& line : merged.lines) {
-    results += line.dump() + "\n";
-    for (const SweepDir& input : inputs) copy_folders(line, input.dir, out);
+  for (std::size_t i = 0; i < merged.lines.size(); ++i) {
+    results += merged.lines[i].dump() + "\n";
+    copy_folders(merged.lines[i], inputs[merged.sources[i]].dir, out);
   }
   write_file_atomically(out.path("results.jsonl"), results);
   write_file_atomically(out.path("sweep.json"), merged.manifest.dump(2) + "\n");

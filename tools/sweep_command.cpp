@@ -2,6 +2,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <iostream>
 #include <set>
 #include <string>
@@ -69,6 +70,16 @@ int available_cores() {
 void check_same_sweep(const fs::path& manifest_file, const nlohmann::json& manifest) {
   if (!fs::exists(manifest_file)) return;
   const nlohmann::json existing = read_json_file(manifest_file);
+  if (existing.contains("runs") && existing["runs"].size() == manifest["runs"].size()) {
+    for (std::size_t i = 0; i < manifest["runs"].size(); ++i) {
+      if (existing["runs"][i].value("id", "") != manifest["runs"][i]["id"]) {
+        throw InputError(manifest_file.string(), "/runs/" + std::to_string(i) + "/id",
+                         "expected the runs this directory holds (to resume them), but run " +
+                             manifest["runs"][i]["name"].get<std::string>() +
+                             " now has another ID: a scene file changed; use a new --out directory");
+      }
+    }
+  }
   for (const char* key : {"spec_sha256", "campo_version", "shard"}) {
     if (existing.value(key, nlohmann::json()) != manifest.value(key, nlohmann::json())) {
       throw InputError(manifest_file.string(), std::string("/") + key,
@@ -107,28 +118,33 @@ std::string run_one(const SweepRun& run, const fs::path& dir, const SweepOptions
   request.label = run.name;
   request.figures = o.figures;
   request.record_replans = false;
-  nlohmann::json line;
+  std::optional<SimulatedRun> simulated;
   try {
-    const SimulatedRun simulated = simulate_run(request, nullptr);
-    line = completed_result(run, simulated.record);
+    simulated = simulate_run(request, nullptr);
+  } catch (const std::exception& e) {
+    return failed_result(run, e.what()).dump();
+  }
+  nlohmann::json line = completed_result(run, simulated->record);
+  // The run completed: files that cannot be written are reported, its metrics kept.
+  try {
     if (o.keep_runs || o.figures) {
       StagedOutput out(request.out);
-      write_run_files(simulated, request, out);
+      write_run_files(*simulated, request, out);
       out.commit();
       line["run_dir"] = run_dir(run.name);
     }
-    if (o.triage && simulated.record.at("metrics").at("outcome") != "reached") {
+    if (o.triage && simulated->record.at("metrics").at("outcome") != "reached") {
       // What a person needs to see why: the map, the depth map at the last step, the run's files.
       RunRequest figures = request;
       figures.out = dir / triage_dir(run);
       figures.figures = true;
       StagedOutput out(figures.out);
-      write_run_files(simulated, figures, out);
-      write_final_depth(simulated, out.path("depth.png"));
+      write_run_files(*simulated, figures, out);
+      write_final_depth(*simulated, out.path("depth.png"));
       out.commit();
     }
   } catch (const std::exception& e) {
-    line = failed_result(run, e.what());
+    line["files_error"] = e.what();
   }
   return line.dump();
 }
@@ -140,7 +156,10 @@ void add_triage(nlohmann::json& line, const SweepRun& run, const fs::path& dir) 
   const std::string where = triage_dir(run);
   const std::string command = repro_command(run, fs::absolute(dir / where).lexically_normal().string());
   fs::create_directories(dir / where);
-  write_file_atomically(dir / where / "repro.sh", "#!/bin/sh\n# " + run.name + " (" + run.id + ")\n" + command + "\n");
+  const fs::path script = dir / where / "repro.sh";
+  write_file_atomically(script, "#!/bin/sh\n# " + run.name + " (" + run.id + ")\n" + command + "\n");
+  fs::permissions(script, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
+                  fs::perm_options::add);
   line["triage"] = {{"dir", where}, {"repro", command}};
 }
 
@@ -226,6 +245,7 @@ int run_sweep(const SweepOptions& o) {
   ProgressReport progress(pending.size(), o.progress_every_s);
   double overhead_s = 0.0;
   std::size_t returned = 0;
+  std::size_t files_errors = 0;
   progress.start();
   run_isolated(
       pending.size(), [&](std::size_t i) { return run_one(*pending[i], dir, o); },
@@ -255,6 +275,11 @@ int run_sweep(const SweepOptions& o) {
           ++counts.failed;
           progress.say("failed: " + run.name + " (" + run.id + "): " + line["reason"].get<std::string>());
         }
+        if (line.contains("files_error")) {
+          ++files_errors;
+          progress.say("completed, but its files could not be written: " + run.name + " (" + run.id +
+                       "): " + line["files_error"].get<std::string>());
+        }
         counts.running = std::min(pool.jobs, static_cast<int>(pending.size() - counts.done));
         progress.tick();
       },
@@ -278,7 +303,7 @@ int run_sweep(const SweepOptions& o) {
   std::cout << spec.name << ": " << completed << " of " << runs.size() << " runs completed, " << failed
             << " failed (" << pending.size() << " run now, " << skipped << " already recorded); results in "
             << results_file.string() << " (campo table " << dir.string() << ")\n";
-  return failed == 0 ? kOk : kInternalError;
+  return failed == 0 && files_errors == 0 ? kOk : kInternalError;
 }
 
 }  // namespace
@@ -289,7 +314,7 @@ Command add_sweep(CLI::App& app) {
   app.add_option("--out", o->out, "Output directory (created if missing; an interrupted sweep resumes there)");
   app.add_flag("--list", o->list,
                "Validate every run and print the manifest, one JSON line per run (id, name, scene, planner, "
-               "params, seed, overrides), without running anything");
+               "params, seed, overrides, scene_file), without running anything");
   app.add_option("--jobs,-j", o->jobs, "Runs at a time, each in its own process (default: every available core)")
       ->check(CLI::Range(1, 1024));
   app.add_option("--shard", o->shard, "Run only part K of N of the manifest (runs K, K+N, K+2N, ...; K from 1)");
@@ -315,7 +340,7 @@ Command add_sweep(CLI::App& app) {
       "others go on. Writes DIR/sweep.json (the spec and the manifest) and appends one line per finished\n"
       "run to DIR/results.jsonl (id, params, seed, status, metrics, provenance), so a killed sweep loses\n"
       "no finished run: run the same command again and it does only the rest. Run IDs are content\n"
-      "hashes (campo version, effective scene, seed): the same run has the same ID in any spec, order\n"
+      "hashes (campo version, run name, effective scene): the same run has the same ID in any spec, order\n"
       "or shard, and its results do not depend on --jobs or --shard. On a terminal, a progress bar with\n"
       "ETA; otherwise a progress line every 10 s. Shards of one spec combine with campo merge.\n"
       "Example: campo sweep scenes/sweeps/resolution_000.json --out out/resolution --jobs 2\n"

@@ -6,7 +6,7 @@
 #
 #   tests/slurm/slurm_sweep_test.sh CAMPO SPEC
 #
-# CAMPO is the campo executable (or tests/slurm/fake_campo.sh, a stand-in).
+# CAMPO is the campo executable.
 # Environment: CAMPO_SLURM_TMP, where to make the temporary directory (/tmp).
 # Exit 77 (CTest SKIP_RETURN_CODE) when Slurm or munge is not installed or we
 # are not root; the daemons are always stopped and the directory removed.

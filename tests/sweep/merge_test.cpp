@@ -36,6 +36,7 @@ TEST(MergeSweeps, OneLinePerRunInManifestOrderCompletedFirst) {
   EXPECT_EQ(merged.lines[1]["id"], "c");
   EXPECT_EQ(merged.lines[1]["status"], "completed");  // not replaced by the later failure
   EXPECT_EQ(merged.lines[2]["id"], "x");
+  EXPECT_EQ(merged.sources, (std::vector<std::size_t>{1, 0, 1}));  // where each kept line (and its folders) is
   EXPECT_EQ(merged.duplicates, 2u);
   EXPECT_EQ(merged.missing, 2u);  // b and d
   EXPECT_FALSE(merged.manifest.contains("shard"));

@@ -139,33 +139,45 @@ TEST_F(SweepCli, WithoutKeepRunsOnlyTheResultsAreWritten) {
   EXPECT_TRUE(nlohmann::json::parse(lines_of(slurp(dir_ / "o" / "results.jsonl"))[0])["run_dir"].is_null());
 }
 
-TEST_F(SweepCli, ARunThatThrowsIsRecordedAndTheSweepGoesOn) {
-  // A file where the first run's directory should be: that run cannot write its outputs.
+// A run whose files cannot be written still completed: its metrics are kept,
+// the error is recorded beside them, and the sweep says so in its exit code.
+TEST_F(SweepCli, ARunWhoseFilesCannotBeWrittenKeepsItsMetrics) {
+  // A file where the first run's directory should be.
   fs::create_directories(dir_ / "o" / "runs");
   std::ofstream(dir_ / "o" / "runs" / "two_barriers__resolution-16__seed-1") << "in the way";
   const Result sweep = campo("sweep " + spec("tiny.json") + " --out " + out("o") + " --keep-runs");
   EXPECT_EQ(sweep.exit_code, 1);
-  EXPECT_THAT(sweep.err, HasSubstr("failed: two_barriers__resolution-16__seed-1 ("));
+  EXPECT_THAT(sweep.err, HasSubstr("completed, but its files could not be written: two_barriers__resolution-16__seed-1"));
   std::map<std::string, nlohmann::json> by_name;
   for (const std::string& text : lines_of(slurp(dir_ / "o" / "results.jsonl"))) {
     const nlohmann::json line = nlohmann::json::parse(text);
     by_name[line["name"]] = line;
   }
   ASSERT_EQ(by_name.size(), 2u);
-  const nlohmann::json& failed = by_name["two_barriers__resolution-16__seed-1"];
-  EXPECT_EQ(failed["status"], "failed");
-  EXPECT_FALSE(failed["reason"].get<std::string>().empty());
-  EXPECT_TRUE(failed["metrics"].is_null());
-  EXPECT_EQ(by_name["two_barriers__resolution-32__seed-1"]["status"], "completed");
+  const nlohmann::json& blocked = by_name["two_barriers__resolution-16__seed-1"];
+  EXPECT_EQ(blocked["status"], "completed");
+  EXPECT_EQ(blocked["metrics"]["outcome"], "timeout");
+  EXPECT_FALSE(blocked["files_error"].get<std::string>().empty());
+  EXPECT_TRUE(blocked["run_dir"].is_null());
+  EXPECT_EQ(by_name["two_barriers__resolution-32__seed-1"]["run_dir"], "runs/two_barriers__resolution-32__seed-1");
+  const Result table = campo("table " + out("o") + " --format csv --no-chart");
+  EXPECT_EQ(table.exit_code, 0) << table.err;
+}
 
-  // Failed runs are recorded, so a rerun skips them unless asked to retry.
-  const Result again = campo("sweep " + spec("tiny.json") + " --out " + out("o") + " --keep-runs");
+// Failed runs are recorded, so a rerun skips them unless asked to retry.
+TEST_F(SweepCli, FailedRunsAreRetriedOnlyWhenAsked) {
+  write("slow.json", R"({"campo_sweep": 1, "name": "slow", "scenes": ["two_barriers"],
+    "set": {"/objects/drone/sensors/scanner/resolution": [16, 16]},
+    "axes": [{"name": "resolution", "values": [16, 512],
+              "set": ["/objects/drone/sensors/scanner/resolution/0", "/objects/drone/sensors/scanner/resolution/1"]}]})");
+  EXPECT_EQ(campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 0.5").exit_code, 1);
+  const Result again = campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 0.5");
   EXPECT_EQ(again.exit_code, 1);
   EXPECT_THAT(again.err, HasSubstr("0 runs to do (2 already recorded)"));
-  fs::remove(dir_ / "o" / "runs" / "two_barriers__resolution-16__seed-1");
-  const Result retry = campo("sweep " + spec("tiny.json") + " --out " + out("o") + " --keep-runs --retry-failed");
-  EXPECT_EQ(retry.exit_code, 0) << retry.err;
+  const Result retry = campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 0.5 --retry-failed");
+  EXPECT_EQ(retry.exit_code, 1);
   EXPECT_THAT(retry.err, HasSubstr("1 runs to do (1 already recorded)"));
+  EXPECT_EQ(lines_of(slurp(dir_ / "o" / "results.jsonl")).size(), 3u);
 }
 
 // A run that goes on past its wall-clock limit is killed and recorded; the
@@ -296,6 +308,7 @@ TEST_F(SweepCli, TriageKeepsFiguresAndACommandThatReproducesTheRun) {
   ASSERT_FALSE(depth.empty());
   EXPECT_EQ(depth.depth(), CV_16U);
   EXPECT_EQ(slurp(triage / "repro.sh").find("#!/bin/sh\n"), 0u);
+  EXPECT_NE(fs::status(triage / "repro.sh").permissions() & fs::perms::owner_exec, fs::perms::none);
 
   std::string command = line["triage"]["repro"].get<std::string>();
   ASSERT_THAT(command, StartsWith("campo run "));

@@ -217,6 +217,11 @@ TEST_F(SweepSpecTest, SpecErrorsOfRangesSamplingAndPlanners) {
   EXPECT_THAT(error_of(head + R"("axes": [{"name": "seed", "values": [1], "set": ["/world/time_limit_s"]}]})"),
               HasSubstr(spec + ": /axes/0/name: expected an axis name that is not also a run field"));
   EXPECT_THAT(error_of(head + R"("time_limit_s": 0})"), HasSubstr(spec + ": /time_limit_s: expected a number > 0"));
+  EXPECT_THAT(error_of(head + R"("axes": [{"name": "a", "range": {"from": 1, "to": 1.0000000000001, "count": 3},
+                                "set": ["/world/time_limit_s"]}]})"),
+              HasSubstr(spec + ": /axes/0/range: expected values with distinct labels in run names (\"1\" appears twice)"));
+  EXPECT_THAT(error_of(head + R"("planners": ["straight"], "set": {"/objects/drone/planner/name": "straight"}})"),
+              HasSubstr(spec + ": /set/~1objects~1drone~1planner~1name: expected no planner choice when \"planners\" is given"));
 }
 
 // Latin hypercube: each axis cut into as many slices as samples, every slice
