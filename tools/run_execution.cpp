@@ -1,6 +1,7 @@
 #include "tools/run_execution.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <cstdio>
 #include <stdexcept>
 #include <sstream>
@@ -21,7 +22,7 @@
 
 namespace campo::cli {
 
-SimulatedRun simulate_run(const RunRequest& request, StagedOutput* out) {
+SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& output) {
   const std::string scene_file = request.scene.string();
   // Overrides are applied to the document, then validated like the file itself.
   const std::string bytes = read_text_file(scene_file);
@@ -57,18 +58,18 @@ SimulatedRun simulate_run(const RunRequest& request, StagedOutput* out) {
   validate_vehicle_params(def);
   create_planner(def.planner, {def.type, &scene});
 
-  if ((request.record_depth_every > 0 || request.record_replans) && !out) {
+  if ((request.record_depth_every > 0 || request.record_replans) && !output) {
     throw std::logic_error("simulate_run: depth maps asked for without an output directory");
   }
   // Depth maps of every n-th scan, for `campo render --kind depth`.
   std::vector<int> scans_seen(def.sensors.size(), 0);
   if (request.record_depth_every > 0) {
-    std::filesystem::create_directories(out->path("depth"));
+    std::filesystem::create_directories(output().path("depth"));
     options.on_scan = [&](std::size_t i, const LidarScan& scan) {
       if (scans_seen[i]++ % request.record_depth_every != 0) return;
       char name[96];
       std::snprintf(name, sizeof name, "%s_%08.3f.png", def.sensors[i].alias.c_str(), scan.time_s);
-      write_depth_png(depth_map(scan, def.sensors[i].lidar), out->path("depth") / name);
+      write_depth_png(depth_map(scan, def.sensors[i].lidar), output().path("depth") / name);
     };
   }
   // The depth map each replanning used, for `campo render --kind depth --step K`.
@@ -81,9 +82,9 @@ SimulatedRun simulate_run(const RunRequest& request, StagedOutput* out) {
         // Only image sensors give a depth map worth drawing (not a leddar's single row).
         const bool image = reading.config->beams.empty() && reading.config->rows > 1;
         if (reading.alias != sensor || !reading.scan || !image) continue;
-        std::filesystem::create_directories(out->path("replans"));
+        std::filesystem::create_directories(output().path("replans"));
         write_depth_png(depth_map(*reading.scan, *reading.config),
-                        out->path("replans") / replan_depth_file(replan.at("index").get<int>()));
+                        output().path("replans") / replan_depth_file(replan.at("index").get<int>()));
       }
     };
   }
@@ -108,10 +109,14 @@ void write_run_files(const SimulatedRun& run, const RunRequest& request, const S
 }
 
 nlohmann::json execute_run(const RunRequest& request) {
-  StagedOutput out(request.out);
-  const SimulatedRun run = simulate_run(request, &out);
-  write_run_files(run, request, out);
-  out.commit();
+  std::optional<StagedOutput> out;
+  const auto output = [&]() -> const StagedOutput& {
+    if (!out) out.emplace(request.out);
+    return *out;
+  };
+  const SimulatedRun run = simulate_run(request, output);
+  write_run_files(run, request, output());
+  out->commit();
   return run.record;
 }
 

@@ -3,6 +3,7 @@
 /// `campo sweep`: overrides applied and validated, the episode run, the files
 /// written all-or-nothing.
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,10 +37,14 @@ struct SimulatedRun {
   nlohmann::json record;         ///< run.json
 };
 
+/// Where a run's files go, asked for only once every input is valid (so bad
+/// input creates nothing).
+using OutputProvider = std::function<const StagedOutput&()>;
+
 /// Validates every input (InputError naming the file and JSON path) and runs
-/// the episode. Depth maps asked for by the request are written into `out`,
-/// which may be null when the request asks for none.
-SimulatedRun simulate_run(const RunRequest& request, StagedOutput* out);
+/// the episode. Depth maps asked for by the request are written into
+/// `output()`, which may be empty when the request asks for none.
+SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& output);
 
 /// Writes run.json, trajectory.csv, scene.json and the requested figures into `out`.
 void write_run_files(const SimulatedRun& run, const RunRequest& request, const StagedOutput& out);

@@ -120,7 +120,7 @@ std::string run_one(const SweepRun& run, const fs::path& dir, const SweepOptions
   request.record_replans = false;
   std::optional<SimulatedRun> simulated;
   try {
-    simulated = simulate_run(request, nullptr);
+    simulated = simulate_run(request, {});
   } catch (const std::exception& e) {
     return failed_result(run, e.what()).dump();
   }

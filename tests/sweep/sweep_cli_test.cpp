@@ -170,11 +170,11 @@ TEST_F(SweepCli, FailedRunsAreRetriedOnlyWhenAsked) {
     "set": {"/objects/drone/sensors/scanner/resolution": [16, 16]},
     "axes": [{"name": "resolution", "values": [16, 512],
               "set": ["/objects/drone/sensors/scanner/resolution/0", "/objects/drone/sensors/scanner/resolution/1"]}]})");
-  EXPECT_EQ(campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 0.5").exit_code, 1);
-  const Result again = campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 0.5");
+  EXPECT_EQ(campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 1").exit_code, 1);
+  const Result again = campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 1");
   EXPECT_EQ(again.exit_code, 1);
   EXPECT_THAT(again.err, HasSubstr("0 runs to do (2 already recorded)"));
-  const Result retry = campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 0.5 --retry-failed");
+  const Result retry = campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 1 --retry-failed");
   EXPECT_EQ(retry.exit_code, 1);
   EXPECT_THAT(retry.err, HasSubstr("1 runs to do (1 already recorded)"));
   EXPECT_EQ(lines_of(slurp(dir_ / "o" / "results.jsonl")).size(), 3u);
