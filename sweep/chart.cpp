@@ -344,15 +344,9 @@ cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& l
 
   // X values and series (group values) in the sweep's expansion order.
   std::vector<nlohmann::json> xs, series;
-  const auto index_in = [](std::vector<nlohmann::json>& values, const nlohmann::json& value) {
-    const auto it = std::find(values.begin(), values.end(), value);
-    if (it != values.end()) return static_cast<std::size_t>(it - values.begin());
-    values.push_back(value);
-    return values.size() - 1;
-  };
   for (const RunGroup& g : groups) {
-    index_in(xs, g.key[0]);
-    index_in(series, g.key.size() > 1 ? g.key[1] : nlohmann::json());
+    index_in_order(xs, g.key[0]);
+    index_in_order(series, g.key.size() > 1 ? g.key[1] : nlohmann::json());
   }
   const bool numeric_x = std::all_of(xs.begin(), xs.end(), [](const nlohmann::json& v) { return v.is_number(); });
   if (request.kind == PlotKind::line && !numeric_x) {
@@ -367,7 +361,7 @@ cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& l
   const double scale = rate ? 100.0 : 1.0;  // rates in percent
   const NumericAxis x_axis = line ? numeric_axis(xs) : NumericAxis{};
   const auto x_of = [&](const nlohmann::json& v) {
-    return line ? x_axis.to_x(v.get<double>()) : static_cast<double>(index_in(xs, v));
+    return line ? x_axis.to_x(v.get<double>()) : static_cast<double>(index_in_order(xs, v));
   };
 
   // Statistics per group, and the data range.
@@ -382,8 +376,10 @@ cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& l
   int run_count = 0, failed = 0;
   for (const RunGroup& g : groups) {
     run_count += static_cast<int>(g.runs.size());
-    failed += static_cast<int>(std::count_if(g.runs.begin(), g.runs.end(), [](const RunResult* r) { return !r->completed; }));
-    Mark mark{index_in(series, g.key.size() > 1 ? g.key[1] : nlohmann::json()), x_of(g.key[0]), std::nullopt, std::nullopt};
+    failed += static_cast<int>(
+        std::count_if(g.runs.begin(), g.runs.end(), [](const RunResult* r) { return !r->completed; }));
+    const std::size_t series_index = index_in_order(series, g.key.size() > 1 ? g.key[1] : nlohmann::json());
+    Mark mark{series_index, x_of(g.key[0]), std::nullopt, std::nullopt};
     if (line || rate) {
       mark.summary = summarize_metric(g.runs, request.y, kind);
       if (!mark.summary) continue;

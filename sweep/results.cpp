@@ -317,6 +317,13 @@ std::optional<Summary> summarize_metric(const std::vector<const RunResult*>& run
   return summarize_rate(static_cast<int>(successes), static_cast<int>(values.size()));
 }
 
+std::size_t index_in_order(std::vector<nlohmann::json>& values, const nlohmann::json& value) {
+  const auto it = std::find(values.begin(), values.end(), value);
+  if (it != values.end()) return static_cast<std::size_t>(it - values.begin());
+  values.push_back(value);
+  return values.size() - 1;
+}
+
 std::vector<RunGroup> group_runs(const std::vector<RunResult>& runs, const TableLayout& layout,
                                  const std::vector<std::string>& fields) {
   // A run's rank: its place in the expansion, else after all of them in order of appearance.

@@ -165,6 +165,10 @@ struct RunGroup {
   std::vector<const RunResult*> runs;  ///< in the order of `runs`
 };
 
+/// The position of `value` in `values`, appended at the end when new: the
+/// distinct values of a field in order of first appearance.
+std::size_t index_in_order(std::vector<nlohmann::json>& values, const nlohmann::json& value);
+
 /// Groups `runs` (which must outlive the result) by the values of `fields`;
 /// groups in the sweep's expansion order (their first run's place in
 /// layout.run_order), then in order of appearance.

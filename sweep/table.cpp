@@ -303,20 +303,14 @@ MetricTable tabulate(const std::vector<RunResult>& runs, const TableLayout& layo
 
   const std::vector<RunGroup> groups = group_runs(runs, layout, fields);
   // Row and column values in the order of the groups: the sweep's expansion order.
-  const auto index_in = [](std::vector<nlohmann::json>& values, const nlohmann::json& value) {
-    const auto it = std::find(values.begin(), values.end(), value);
-    if (it != values.end()) return static_cast<std::size_t>(it - values.begin());
-    values.push_back(value);
-    return values.size() - 1;
-  };
   for (const RunGroup& group : groups) {
-    index_in(table.rows, group.key[0]);
-    index_in(table.cols, group.key.size() > 1 ? group.key[1] : nlohmann::json());
+    index_in_order(table.rows, group.key[0]);
+    index_in_order(table.cols, group.key.size() > 1 ? group.key[1] : nlohmann::json());
   }
   table.cells.assign(table.rows.size(), std::vector<MetricCell>(table.cols.size()));
   for (const RunGroup& group : groups) {
-    MetricCell& cell = table.cells[index_in(table.rows, group.key[0])]
-                                  [index_in(table.cols, group.key.size() > 1 ? group.key[1] : nlohmann::json())];
+    MetricCell& cell = table.cells[index_in_order(table.rows, group.key[0])]
+                                  [index_in_order(table.cols, group.key.size() > 1 ? group.key[1] : nlohmann::json())];
     cell.runs = static_cast<int>(group.runs.size());
     cell.failed = static_cast<int>(
         std::count_if(group.runs.begin(), group.runs.end(), [](const RunResult* r) { return !r->completed; }));

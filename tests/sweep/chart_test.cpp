@@ -78,20 +78,8 @@ TEST(SweepChart, LinearAxisForOtherValues) {
   EXPECT_FALSE(image.empty());
 }
 
-class SweepPlot : public ::testing::Test {
+class SweepPlot : public testing::FixtureSweepTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("campo_sweep_plot_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    std::ofstream(dir_ / "results.jsonl") << testing::fixture_results();
-    std::ofstream(dir_ / "sweep.json") << testing::fixture_manifest();
-    runs_ = read_results(dir_ / "results.jsonl").runs;
-    layout_ = table_layout(dir_, runs_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // Pixels within `tolerance` of `color` (BGR) in `region`.
   static int pixels_of(const cv::Mat& image, const cv::Scalar& color, const cv::Rect& region, int tolerance = 12) {
     cv::Mat mask;
@@ -109,9 +97,6 @@ class SweepPlot : public ::testing::Test {
     return "no error";
   }
 
-  fs::path dir_;
-  std::vector<RunResult> runs_;
-  TableLayout layout_;
 };
 
 TEST_F(SweepPlot, LinePlotIsAPaperSizedDeterministicPngWithALegend) {

@@ -3,10 +3,15 @@
 /// table and plot tests: scenes two_barriers and trees, resolution 32 then
 /// 16 (expansion order), seeds 1-3, some runs failed, one metric missing in
 /// one run. The lines are in a shuffled order; the manifest gives the order.
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+
+#include "sweep/results.hpp"
 
 namespace campo::testing {
 
@@ -69,5 +74,27 @@ inline std::string fixture_manifest(const nlohmann::json& table = nullptr) {
   return nlohmann::json{{"spec_file", "specs/res.json"}, {"spec", spec}, {"runs", runs}, {"spec_sha256", "11"}}
              .dump(2);
 }
+
+/// A test with the fixture's results.jsonl and sweep.json in a fresh
+/// directory of its own, read back as the table and the plot read them.
+class FixtureSweepTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = std::filesystem::temp_directory_path() /
+           ("campo_fixture_sweep_" + std::string(test->test_suite_name()) + "_" + test->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+    std::ofstream(dir_ / "results.jsonl") << fixture_results();
+    std::ofstream(dir_ / "sweep.json") << fixture_manifest();
+    runs_ = read_results(dir_ / "results.jsonl").runs;
+    layout_ = table_layout(dir_, runs_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::filesystem::path dir_;
+  std::vector<RunResult> runs_;
+  TableLayout layout_;
+};
 
 }  // namespace campo::testing

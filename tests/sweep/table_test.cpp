@@ -92,27 +92,11 @@ TEST(MetricLabel, NamesWithUnitsFromTheSuffix) {
   EXPECT_EQ(field_heading("start_gap"), "Start gap");
 }
 
-class MetricTableTest : public ::testing::Test {
+class MetricTableTest : public testing::FixtureSweepTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("campo_metric_table_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    std::ofstream(dir_ / "results.jsonl") << testing::fixture_results();
-    std::ofstream(dir_ / "sweep.json") << testing::fixture_manifest();
-    runs_ = read_results(dir_ / "results.jsonl").runs;
-    layout_ = table_layout(dir_, runs_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   MetricTable table(const std::string& rows, const std::string& cols, std::vector<std::string> metrics) const {
     return tabulate(runs_, layout_, TableRequest{.rows = rows, .cols = cols, .metrics = std::move(metrics)});
   }
-
-  fs::path dir_;
-  std::vector<RunResult> runs_;
-  TableLayout layout_;
 };
 
 TEST_F(MetricTableTest, ReadsTheCurrentResultsFormat) {
