@@ -19,11 +19,20 @@ int bubble_half_width(double radius_m, double nearest_range_m, double increment_
   return static_cast<int>(std::ceil(sectors - 1e-9));
 }
 
-double free_distance(double range_m, double offset_rad, double radius_m) {
-  const double along = range_m * std::cos(offset_rad);
-  const double lateral = range_m * std::sin(offset_rad);
+namespace {
+
+// free_distance() from the offset's cosine and sine (a table in the scan loop).
+double free_distance_cs(double range_m, double cos_offset, double sin_offset, double radius_m) {
+  const double along = range_m * cos_offset;
+  const double lateral = range_m * sin_offset;
   if (std::abs(lateral) > radius_m || (along < 0.0 && range_m > radius_m)) return std::numeric_limits<double>::infinity();
   return std::max(0.0, along - std::sqrt(radius_m * radius_m - lateral * lateral));
+}
+
+}  // namespace
+
+double free_distance(double range_m, double offset_rad, double radius_m) {
+  return free_distance_cs(range_m, std::cos(offset_rad), std::sin(offset_rad), radius_m);
 }
 
 FollowTheGapStep follow_the_gap_step(const FollowTheGapConfig& config, FollowTheGapState& state,
@@ -64,13 +73,21 @@ FollowTheGapStep follow_the_gap_step(const FollowTheGapConfig& config, FollowThe
   if (free_space) {
     std::vector<float> free = ranges;
     const double radius = config.bubble_radius_m;
+    // Beams are evenly spaced, so the offsets' cosines and sines are shared by every reading.
+    const int max_reach = std::min(beams - 1, static_cast<int>(std::ceil(M_PI / 2.0 / dalpha)));
+    std::vector<double> cos_offset(max_reach + 1), sin_offset(max_reach + 1);
+    for (int m = 0; m <= max_reach; ++m) {
+      cos_offset[m] = std::cos(m * dalpha);
+      sin_offset[m] = std::sin(m * dalpha);
+    }
     for (int j = 0; j < beams; ++j) {
       const double d = saturated_ranges[j];
       if (!(d < config.free_range_m + radius)) continue;  // farther ones cannot shorten a beam below free_range_m
       const double half = d <= radius ? M_PI / 2.0 : std::asin(radius / d);
-      const int reach = static_cast<int>(std::ceil(half / dalpha));
+      const int reach = std::min(max_reach, static_cast<int>(std::ceil(half / dalpha)));
       for (int k = std::max(0, j - reach); k <= std::min(beams - 1, j + reach); ++k) {
-        const double t = free_distance(d, scan.angle(k) - scan.angle(j), radius);
+        const int m = std::abs(k - j);
+        const double t = free_distance_cs(d, cos_offset[m], sin_offset[m], radius);
         if (t < free[k]) free[k] = static_cast<float>(t);
       }
     }

@@ -166,13 +166,15 @@ void add_triage(nlohmann::json& line, const SweepRun& run, const fs::path& dir) 
 // Terminal: one bar line redrawn in place. Otherwise: a plain line now and then.
 class ProgressReport {
  public:
-  ProgressReport(std::size_t total, double every_s) : tty_(::isatty(STDERR_FILENO) == 1), every_s_(every_s) {
+  ProgressReport(std::size_t total, int jobs, double every_s)
+      : tty_(::isatty(STDERR_FILENO) == 1), jobs_(static_cast<std::size_t>(jobs)), every_s_(every_s) {
     p_.total = total;
   }
   SweepProgress& counts() { return p_; }
   void start() { start_ = last_ = Clock::now(); }
   void tick(bool force = false) {
     p_.elapsed_s = std::chrono::duration<double>(Clock::now() - start_).count();
+    p_.running = std::min(jobs_, p_.total - p_.done);  // the pool keeps every slot busy while runs remain
     if (tty_) {
       std::cerr << "\r" << progress_bar(p_) << "\033[K" << std::flush;
     } else if (force || std::chrono::duration<double>(Clock::now() - last_).count() >= every_s_) {
@@ -193,6 +195,7 @@ class ProgressReport {
 
  private:
   bool tty_;
+  std::size_t jobs_;
   double every_s_;
   SweepProgress p_;
   Clock::time_point start_, last_;
@@ -242,7 +245,7 @@ int run_sweep(const SweepOptions& o) {
   std::cerr << spec.name << ": " << pending.size() << " runs to do" << (o.shard.empty() ? "" : " in shard " + o.shard)
             << " (" << skipped << " already recorded), " << pool.jobs << " at a time\n";
 
-  ProgressReport progress(pending.size(), o.progress_every_s);
+  ProgressReport progress(pending.size(), pool.jobs, o.progress_every_s);
   double overhead_s = 0.0;
   std::size_t returned = 0;
   std::size_t files_errors = 0;
@@ -280,13 +283,9 @@ int run_sweep(const SweepOptions& o) {
           progress.say("completed, but its files could not be written: " + run.name + " (" + run.id +
                        "): " + line["files_error"].get<std::string>());
         }
-        counts.running = std::min(pool.jobs, static_cast<int>(pending.size() - counts.done));
         progress.tick();
       },
-      pool, [&] {
-        progress.counts().running = std::min(pool.jobs, static_cast<int>(pending.size() - progress.counts().done));
-        progress.tick();
-      });
+      pool, [&] { progress.tick(); });
   progress.finish();
 
   // The sweep's state on disk, this invocation's runs and earlier ones alike.

@@ -28,6 +28,8 @@ const std::string kData = std::string(CAMPO_SOURCE_DIR) + "/tests/data/movingai/
 class PlanCli : public campo::testing::CliTest {
  protected:
   Result plan(const std::string& args) const { return campo("plan " + args); }
+  // A 5 x 3 map whose middle column is a wall: no path from left to right.
+  std::string walled_map() const { return write("walled.map", "type octile\nheight 3\nwidth 5\nmap\n..@..\n..@..\n..@..\n"); }
 };
 
 TEST_F(PlanCli, OneProblemPrintsOneLine) {
@@ -41,7 +43,7 @@ TEST_F(PlanCli, OneProblemPrintsOneLine) {
 }
 
 TEST_F(PlanCli, NoPathPrintsCostMinusOne) {
-  const std::string map = write("walled.map", "type octile\nheight 3\nwidth 5\nmap\n..@..\n..@..\n..@..\n");
+  const std::string map = walled_map();
   const Result r = plan("--map " + map + " --start 0,0 --goal 4,2");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, ::testing::StartsWith("cost=-1 steps=0 expansions=6 "));
@@ -187,7 +189,7 @@ TEST_F(PlanCli, RrtStarSolvesAnArenaProblemNearTheOptimum) {
 }
 
 TEST_F(PlanCli, RrtStarWithoutAPathPrintsCostMinusOne) {
-  const std::string map = write("walled.map", "type octile\nheight 3\nwidth 5\nmap\n..@..\n..@..\n..@..\n");
+  const std::string map = walled_map();
   const Result r = plan("--planner rrt_star --map " + map + " --start 0,0 --goal 4,2 --iterations 100");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, ::testing::StartsWith("cost=-1 steps=0 iterations=100 first_solution=-1 time_ms="));
