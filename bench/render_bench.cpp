@@ -41,10 +41,11 @@ void BM_DepthCameraScan(benchmark::State& state) {
   const Scene scene = bundled("trees_rolling_terrain");
   const SensorDef def = scanner(static_cast<int>(state.range(0)));
   const auto camera = make_depth_camera(scene, def);
+  const std::vector<Eigen::Isometry3d> poses = scripted_poses(scene, 0.0);
   LidarScan scan;
   std::int64_t scans = 0, hits = 0;
   for (auto _ : state) {
-    camera->scan(sensor_pose(scene, def.lidar, scans++), 0.0, scan);
+    camera->scan(sensor_pose(scene, def.lidar, scans++), 0.0, poses, scan);
     hits += static_cast<std::int64_t>(scan.points.size());
   }
   state.SetItemsProcessed(scans);

@@ -260,22 +260,22 @@ class DepthCamera final : public RangeSensor {
   DepthCamera& operator=(const DepthCamera&) = delete;
 
   const SensorDef& def() const override { return def_; }
-  void scan(const Eigen::Isometry3d& sensor_pose, double time_s, LidarScan& out) override;
+  void scan(const Eigen::Isometry3d& sensor_pose, double time_s, std::span<const Eigen::Isometry3d> body_poses,
+            LidarScan& out) override;
 
  private:
   bool visible(const Eigen::Affine3f& eye_from_mesh, const Eigen::Vector3f& eye_in_mesh, const Chunk& chunk,
                bool& close_by) const;
   bool back_faces_hidden(const Eigen::Vector3d& eye) const;
-  void render(const Eigen::Isometry3d& sensor_pose, double time_s);
+  void render(const Eigen::Isometry3d& sensor_pose, std::span<const Eigen::Isometry3d> body_poses);
   void fill(const Eigen::Isometry3d& sensor_pose, double time_s, LidarScan& out) const;
 
-  const Scene& scene_;
   SensorDef def_;
   Frustum frustum_;
   std::vector<Tap> taps_;
   std::vector<Eigen::Vector3f> directions_;  // unit rays in the sensor frame, beam order
   std::vector<Chunk> chunks_;                // static geometry, index-buffer order
-  std::vector<Chunk> mover_chunks_;          // one per mover, shape frame
+  std::vector<Chunk> mover_chunks_;          // one per moving body, shape frame
   std::vector<Chunk> solids_;                // closed static shapes, one per shape
   std::vector<OpenSurface> open_surfaces_;   // heightfields and planes
   std::vector<Eigen::Isometry3d> mover_poses_;     // world from shape at the scan time
@@ -295,7 +295,7 @@ class DepthCamera final : public RangeSensor {
 };
 
 DepthCamera::DepthCamera(const Scene& scene, const SceneMesh& mesh, const SensorDef& def)
-    : scene_(scene), def_(def), frustum_(make_frustum(def.lidar)) {
+    : def_(def), frustum_(make_frustum(def.lidar)) {
   const LidarConfig& c = def_.lidar;
   taps_ = make_taps(c, frustum_);
   for (const Beam& beam : lidar_beams(c)) directions_.push_back(beam_direction(beam));
@@ -307,7 +307,7 @@ DepthCamera::DepthCamera(const Scene& scene, const SceneMesh& mesh, const Sensor
       chunks_.push_back(bound(mesh, part.first_index + done, std::min(kChunkIndices, part.index_count - done)));
     }
   }
-  for (const MeshPart& part : mesh.mover_parts) {
+  for (const MeshPart& part : mesh.moving_parts) {
     mover_chunks_.push_back(bound(mesh, part.first_index, part.index_count));
   }
   mover_poses_.resize(mover_chunks_.size(), Eigen::Isometry3d::Identity());
@@ -400,7 +400,7 @@ bool DepthCamera::back_faces_hidden(const Eigen::Vector3d& eye) const {
   return true;
 }
 
-void DepthCamera::render(const Eigen::Isometry3d& sensor_pose, double time_s) {
+void DepthCamera::render(const Eigen::Isometry3d& sensor_pose, std::span<const Eigen::Isometry3d> body_poses) {
   Eigen::Isometry3d eye_from_world = Eigen::Isometry3d::Identity();
   eye_from_world.linear() = kEyeFromSensor;
   eye_from_world = eye_from_world * sensor_pose.inverse();
@@ -422,12 +422,14 @@ void DepthCamera::render(const Eigen::Isometry3d& sensor_pose, double time_s) {
     }
     run_end = chunk.first_index + chunk.index_count;
   }
-  // Movers, each at its place for the scan time.
+  // Moving bodies, each where the world has it now.
+  if (body_poses.size() != mover_chunks_.size()) {
+    throw std::invalid_argument("depth camera: " + std::to_string(body_poses.size()) + " poses for " +
+                                std::to_string(mover_chunks_.size()) + " moving bodies");
+  }
   visible_movers_.clear();
   for (std::size_t i = 0; i < mover_chunks_.size(); ++i) {
-    const Mover& mover = scene_.movers[i];
-    mover_poses_[i].linear() = mover.shape.pose.linear();
-    mover_poses_[i].translation() = mover.position_at(time_s);
+    mover_poses_[i] = body_poses[i];
     mover_model_views_[i] = (eye_from_world * mover_poses_[i]).matrix().cast<float>();
     const Eigen::Vector3f eye_in_shape = (mover_poses_[i].inverse() * sensor_pose.translation()).cast<float>();
     if (visible(Eigen::Affine3f(mover_model_views_[i]), eye_in_shape, mover_chunks_[i], close_by)) {
@@ -488,8 +490,9 @@ void DepthCamera::fill(const Eigen::Isometry3d& sensor_pose, double time_s, Lida
   }
 }
 
-void DepthCamera::scan(const Eigen::Isometry3d& sensor_pose, double time_s, LidarScan& out) {
-  render(sensor_pose, time_s);
+void DepthCamera::scan(const Eigen::Isometry3d& sensor_pose, double time_s,
+                       std::span<const Eigen::Isometry3d> body_poses, LidarScan& out) {
+  render(sensor_pose, body_poses);
   fill(sensor_pose, time_s, out);
 }
 

@@ -233,12 +233,9 @@ cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const Snapsho
     }
     draw(part, Eigen::Isometry3d::Identity(), kAmbient, tint);
   }
-  for (const MeshPart& part : mesh.mover_parts) {
-    const Mover& mover = scene.movers[static_cast<std::size_t>(-1 - part.shape)];
-    Eigen::Isometry3d model = Eigen::Isometry3d::Identity();
-    model.linear() = mover.shape.pose.linear();
-    model.translation() = mover.position_at(0.0);
-    draw(part, model, kAmbient, no_tint);
+  const std::vector<Eigen::Isometry3d> body_poses = scripted_poses(scene, 0.0);
+  for (std::size_t i = 0; i < mesh.moving_parts.size(); ++i) {
+    draw(mesh.moving_parts[i], body_poses[i], kAmbient, no_tint);
   }
   if (!tube.indices.empty()) {
     glBindVertexArray(tube_gpu.vao.id());

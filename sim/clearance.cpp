@@ -2,91 +2,269 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
+
+#include <btBulletCollisionCommon.h>
+#include <BulletCollision/CollisionShapes/btTriangleCallback.h>
+#include <BulletCollision/CollisionShapes/btTriangleShape.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
+#include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
+#include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
 
 namespace campo {
 
 namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// The search radius starts here at the first query, and never below it.
+constexpr double kMinSearch_m = 0.25;
 
-// Distance from (r, z) to the region 0 <= r' <= radius(z'), |z'| <= h/2 of a
-// solid of revolution whose radius falls linearly from r_bottom to r_top.
-double distance_to_frustum(double r, double z, double r_bottom, double r_top, double h) {
-  const double half = 0.5 * h;
-  const double radius_at = r_bottom + (r_top - r_bottom) * (std::clamp(z, -half, half) + half) / h;
-  if (std::abs(z) <= half && r <= radius_at) return 0.0;
-  // Closest point on the profile: bottom disc, top disc, slanted side.
-  const auto segment = [r, z](double r0, double z0, double r1, double z1) {
-    const double dr = r1 - r0, dz = z1 - z0;
-    const double t = std::clamp(((r - r0) * dr + (z - z0) * dz) / (dr * dr + dz * dz), 0.0, 1.0);
-    return std::hypot(r - (r0 + t * dr), z - (z0 + t * dz));
-  };
-  double d = segment(0.0, -half, r_bottom, -half);
-  d = std::min(d, segment(r_bottom, -half, r_top, half));
-  if (r_top > 0.0) d = std::min(d, segment(r_top, half, 0.0, half));
-  return d;
-}
-
-double bounding_radius(const Shape& s) {
-  switch (s.type) {
-    case ShapeType::cuboid: return 0.5 * s.size_m.norm();
-    case ShapeType::cylinder:
-    case ShapeType::cone: return std::hypot(s.radius_m, 0.5 * s.height_m);
-    case ShapeType::sphere: return s.radius_m;
-    default: return kInfinity;
+// Euclidean distance between two axis-aligned boxes (0 when they overlap): a
+// lower bound of the distance between anything inside them.
+double box_distance(const btVector3& a_min, const btVector3& a_max, const btVector3& b_min, const btVector3& b_max) {
+  double sum = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double gap = std::max({0.0, static_cast<double>(a_min[i] - b_max[i]), static_cast<double>(b_min[i] - a_max[i])});
+    sum += gap * gap;
   }
+  return std::sqrt(sum);
 }
+
+// True when the box [lo, hi] contains [inner_lo, inner_hi] along the axes `axes`.
+bool covers(const btVector3& lo, const btVector3& hi, const btVector3& inner_lo, const btVector3& inner_hi, int axes) {
+  for (int i = 0; i < axes; ++i) {
+    if (lo[i] > inner_lo[i] || hi[i] < inner_hi[i]) return false;
+  }
+  return true;
+}
+
+// Heightfield triangles near a vehicle body, measured one by one.
+struct TriangleDistances final : btTriangleCallback {
+  const btConvexShape* body = nullptr;
+  btTransform body_pose;        // in the heightfield's frame
+  btVector3 body_min, body_max; // the body's box, heightfield frame
+  double best = kInfinity;
+  double cutoff = kInfinity;
+  void processTriangle(btVector3* v, int, int) override {
+    btVector3 lo = v[0], hi = v[0];
+    lo.setMin(v[1]);
+    lo.setMin(v[2]);
+    hi.setMax(v[1]);
+    hi.setMax(v[2]);
+    if (box_distance(lo, hi, body_min, body_max) >= std::min(best, cutoff)) return;
+    btTriangleShape triangle(v[0], v[1], v[2]);
+    triangle.setMargin(0.0);
+    best = std::min(best, signed_distance(*body, body_pose, triangle, btTransform::getIdentity()));
+  }
+};
 
 }  // namespace
 
-double distance_to_shape(const Shape& shape, const Eigen::Vector3d& point) {
-  return distance_to_shape(shape, shape.pose, point);
+double signed_distance(const btConvexShape& a, const btTransform& pose_a, const btConvexShape& b,
+                       const btTransform& pose_b) {
+  btVoronoiSimplexSolver simplex;
+  btGjkEpaPenetrationDepthSolver epa;
+  btGjkPairDetector gjk(&a, &b, &simplex, &epa);
+  btGjkPairDetector::ClosestPointInput input;
+  input.m_transformA = pose_a;
+  input.m_transformB = pose_b;
+  btPointCollector result;
+  gjk.getClosestPoints(input, result, nullptr);
+  // No result only when EPA cannot resolve a degenerate overlap: touching.
+  return result.m_hasResult ? static_cast<double>(result.m_distance) : 0.0;
 }
 
-double distance_to_shape(const Shape& shape, const Eigen::Isometry3d& pose, const Eigen::Vector3d& point) {
-  const Eigen::Vector3d local = pose.inverse() * point;
-  switch (shape.type) {
-    case ShapeType::cuboid: {
-      const Eigen::Vector3d outside = (local.cwiseAbs() - 0.5 * shape.size_m).cwiseMax(0.0);
-      return outside.norm();
+ClearanceQuery::ClearanceQuery()
+    : statics_min_(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT),
+      statics_max_(-BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT) {}
+
+ClearanceQuery::~ClearanceQuery() { static_tree_.clear(); }
+
+void ClearanceQuery::add_static_obstacle(const btConvexShape& shape, const btTransform& pose, int id) {
+  btVector3 lo, hi;
+  shape.getAabb(pose, lo, hi);
+  statics_min_.setMin(lo);
+  statics_max_.setMax(hi);
+  // The tree keeps an index, not a pointer: statics_ may still grow.
+  static_tree_.insert(btDbvtVolume::FromMM(lo, hi), reinterpret_cast<void*>(statics_.size()));
+  statics_.push_back({&shape, pose, id});
+}
+
+void ClearanceQuery::add_moving_obstacle(const btCollisionObject& body, int id) { moving_.push_back({&body, id}); }
+
+void ClearanceQuery::add_ground(const btCollisionObject& body, const HeightGrid* grid) {
+  Ground ground{&body, {}};
+  if (grid) {
+    HeightBlocks& b = ground.blocks;
+    b.cols = grid->cols;
+    b.rows = grid->rows;
+    b.dx = grid->spacing_x_m;
+    b.dy = grid->spacing_y_m;
+    b.blocks_x = (grid->cols - 2) / HeightBlocks::kBlock + 1;
+    b.blocks_y = (grid->rows - 2) / HeightBlocks::kBlock + 1;
+    b.top_m.assign(static_cast<std::size_t>(b.blocks_x) * b.blocks_y, -kInfinity);
+    const double mid = 0.5 * (grid->min_height_m() + grid->max_height_m());
+    // A block's cells span vertices [k kBlock, (k+1) kBlock]: shared edges count in both.
+    for (int r = 0; r < grid->rows; ++r) {
+      for (int c = 0; c < grid->cols; ++c) {
+        const double h = grid->at(c, r) - mid;
+        for (int by = std::max(0, (r - 1) / HeightBlocks::kBlock); by <= std::min(b.blocks_y - 1, r / HeightBlocks::kBlock); ++by) {
+          for (int bx = std::max(0, (c - 1) / HeightBlocks::kBlock); bx <= std::min(b.blocks_x - 1, c / HeightBlocks::kBlock); ++bx) {
+            double& top = b.top_m[static_cast<std::size_t>(by) * b.blocks_x + bx];
+            top = std::max(top, h);
+          }
+        }
+      }
     }
-    case ShapeType::sphere:
-      return std::max(0.0, local.norm() - shape.radius_m);
-    case ShapeType::cylinder:
-      return distance_to_frustum(local.head<2>().norm(), local.z(), shape.radius_m, shape.radius_m, shape.height_m);
-    case ShapeType::cone:
-      return distance_to_frustum(local.head<2>().norm(), local.z(), shape.radius_m, 0.0, shape.height_m);
-    case ShapeType::plane:
-    case ShapeType::heightfield:
-      return kInfinity;
   }
-  return kInfinity;
+  ground_.push_back(std::move(ground));
 }
 
-ClearanceField::ClearanceField(const Scene& scene) : scene_(scene) {
-  for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
-    const Shape& s = scene.shapes[i];
-    if (s.type == ShapeType::plane || s.type == ShapeType::heightfield) continue;
-    obstacles_.push_back(static_cast<int>(i));
-    centres_.push_back(s.pose.translation());
-    radii_.push_back(bounding_radius(s));
+double ClearanceQuery::HeightBlocks::highest(double x0, double x1, double y0, double y1) const {
+  // Local x of vertex c is (c - (cols - 1) / 2) dx; cell c spans [c, c + 1].
+  const auto cell = [](double v, double spacing, int vertices) {
+    return static_cast<int>(std::clamp(std::floor(v / spacing + 0.5 * (vertices - 1)), 0.0, double(vertices - 2)));
+  };
+  const int bx0 = cell(x0, dx, cols) / kBlock, bx1 = cell(x1, dx, cols) / kBlock;
+  const int by0 = cell(y0, dy, rows) / kBlock, by1 = cell(y1, dy, rows) / kBlock;
+  double top = -kInfinity;
+  for (int by = by0; by <= by1; ++by) {
+    for (int bx = bx0; bx <= bx1; ++bx) top = std::max(top, top_m[static_cast<std::size_t>(by) * blocks_x + bx]);
+  }
+  return top;
+}
+
+void ClearanceQuery::find_vehicle(const btCollisionWorld& world) {
+  const btCollisionObjectArray& objects = world.getCollisionObjectArray();
+  if (objects.size() == objects_seen_) return;
+  objects_seen_ = objects.size();
+  vehicle_.clear();
+  for (int i = 0; i < objects.size(); ++i) {
+    const int tag = objects[i]->getUserIndex();
+    if (tag == kVehicleBodyTag || tag == kVehicleWheelTag) vehicle_.push_back({objects[i], tag == kVehicleBodyTag});
   }
 }
 
-double ClearanceField::distance(const Eigen::Vector3d& point, double t_s) const {
-  double best = kInfinity;
-  for (std::size_t k = 0; k < obstacles_.size(); ++k) {
-    // The bounding sphere bounds the distance from below: skip shapes that cannot beat `best`.
-    if ((point - centres_[k]).norm() - radii_[k] >= best) continue;
-    best = std::min(best, distance_to_shape(scene_.shapes[static_cast<std::size_t>(obstacles_[k])], point));
+Clearance ClearanceQuery::measure(const btCollisionWorld& world, double obstacle_cutoff_m, double ground_cutoff_m) {
+  find_vehicle(world);
+  Clearance out;
+  if (vehicle_.empty()) return out;
+  nearest_obstacle(obstacle_cutoff_m, out);
+  nearest_ground(ground_cutoff_m, out);
+  return out;
+}
+
+// Searches a box around the vehicle that grows until the nearest obstacle
+// found lies within it: everything outside the box is farther than its
+// margin, so the answer is exact. It starts from the last answer, which
+// moves little from one step to the next.
+void ClearanceQuery::nearest_obstacle(double cutoff_m, Clearance& out) {
+  btVector3 lo(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT), hi = -lo;
+  for (const VehiclePart& part : vehicle_) {
+    btVector3 a, b;
+    part.body->getCollisionShape()->getAabb(part.body->getWorldTransform(), a, b);
+    lo.setMin(a);
+    hi.setMax(b);
   }
-  for (const Mover& mover : scene_.movers) {
-    Eigen::Isometry3d pose = mover.shape.pose;
-    pose.translation() = mover.position_at(t_s);
-    best = std::min(best, distance_to_shape(mover.shape, pose, point));
+  struct Collect : btDbvt::ICollide {
+    std::vector<int>* hits;
+    void Process(const btDbvtNode* leaf) override {
+      hits->push_back(static_cast<int>(reinterpret_cast<std::size_t>(leaf->data)));
+    }
+  };
+  std::vector<int>& candidates = candidates_;
+  double radius = std::min(cutoff_m, std::max(kMinSearch_m, 2.0 * obstacle_hint_m_));
+  // Measures an obstacle unless its box is already as far as `bound`.
+  const auto measure_against = [&](const btConvexShape& shape, const btTransform& pose, int id, double bound) {
+    btVector3 a, b;
+    shape.getAabb(pose, a, b);
+    if (box_distance(lo, hi, a, b) >= std::min(out.obstacle_m, bound)) return;
+    for (const VehiclePart& part : vehicle_) {
+      const auto* mine = static_cast<const btConvexShape*>(part.body->getCollisionShape());
+      const double d = signed_distance(*mine, part.body->getWorldTransform(), shape, pose);
+      if (d < out.obstacle_m) {
+        out.obstacle_m = d;
+        out.obstacle = id;
+      }
+    }
+  };
+  // Moving obstacles are few: each is measured exactly (within the cutoff).
+  for (const MovingObstacle& m : moving_) {
+    measure_against(*static_cast<const btConvexShape*>(m.body->getCollisionShape()), m.body->getWorldTransform(), m.id,
+                    cutoff_m);
   }
-  return best;
+  for (;;) {
+    const btVector3 pad(radius, radius, radius);
+    const bool everything = statics_.empty() || covers(lo - pad, hi + pad, statics_min_, statics_max_, 3);
+    candidates.clear();
+    Collect collect;
+    collect.hits = &candidates;
+    if (!statics_.empty()) static_tree_.collideTV(static_tree_.m_root, btDbvtVolume::FromMM(lo - pad, hi + pad), collect);
+    for (const int k : candidates) {
+      const StaticObstacle& o = statics_[static_cast<std::size_t>(k)];
+      measure_against(*o.shape, o.pose, o.id, radius);
+    }
+    if (out.obstacle_m <= radius || radius >= cutoff_m) break;
+    // Nothing within the radius: grow the box until it covers every static obstacle.
+    if (everything) break;
+    radius = std::min(cutoff_m, 2.0 * radius);
+  }
+  if (out.obstacle_m >= cutoff_m) {
+    out.obstacle_m = kInfinity;
+    out.obstacle = -1;
+  }
+  if (std::isfinite(out.obstacle_m)) obstacle_hint_m_ = std::max(0.0, out.obstacle_m);
+}
+
+// Planes exactly from each body's support point; heightfields triangle by
+// triangle within a box that grows as in nearest_obstacle.
+void ClearanceQuery::nearest_ground(double cutoff_m, Clearance& out) {
+  for (const Ground& g : ground_) {
+    const btCollisionObject* ground = g.body;
+    const btCollisionShape* shape = ground->getCollisionShape();
+    const btTransform& ground_pose = ground->getWorldTransform();
+    for (const VehiclePart& part : vehicle_) {
+      if (!part.ground_counts) continue;
+      const auto* mine = static_cast<const btConvexShape*>(part.body->getCollisionShape());
+      const btTransform& pose = part.body->getWorldTransform();
+      if (shape->getShapeType() == STATIC_PLANE_PROXYTYPE) {
+        const auto* plane = static_cast<const btStaticPlaneShape*>(shape);
+        const btVector3 normal = ground_pose.getBasis() * plane->getPlaneNormal();
+        const btVector3 on_plane = ground_pose * (plane->getPlaneNormal() * plane->getPlaneConstant());
+        const btVector3 lowest = pose * mine->localGetSupportingVertex(pose.getBasis().transpose() * -normal);
+        out.ground_m = std::min(out.ground_m, static_cast<double>(normal.dot(lowest - on_plane)));
+        continue;
+      }
+      const auto* terrain = static_cast<const btConcaveShape*>(shape);
+      TriangleDistances triangles;
+      triangles.body = mine;
+      triangles.body_pose = ground_pose.inverse() * pose;
+      mine->getAabb(triangles.body_pose, triangles.body_min, triangles.body_max);
+      // Terrain under the reach of the cutoff that lies lower than the
+      // cutoff below the body cannot be nearer than it.
+      if (!g.blocks.top_m.empty() && std::isfinite(cutoff_m)) {
+        const btVector3& lo = triangles.body_min;
+        const btVector3& hi = triangles.body_max;
+        const double top = g.blocks.highest(lo.x() - cutoff_m, hi.x() + cutoff_m, lo.y() - cutoff_m, hi.y() + cutoff_m);
+        if (lo.z() - top >= cutoff_m) continue;
+      }
+      double radius = std::min(cutoff_m, std::max(kMinSearch_m, 2.0 * ground_hint_m_));
+      for (;;) {
+        triangles.cutoff = radius;
+        const btVector3 pad(radius, radius, radius);
+        terrain->processAllTriangles(&triangles, triangles.body_min - pad, triangles.body_max + pad);
+        if (triangles.best <= radius || radius >= cutoff_m) break;
+        btVector3 all_min, all_max;
+        terrain->getAabb(btTransform::getIdentity(), all_min, all_max);
+        // Every triangle lies under a box that covers the terrain's footprint.
+        if (covers(triangles.body_min - pad, triangles.body_max + pad, all_min, all_max, 2)) break;
+        radius = std::min(cutoff_m, 2.0 * radius);
+      }
+      out.ground_m = std::min(out.ground_m, triangles.best);
+    }
+  }
+  if (out.ground_m >= cutoff_m) out.ground_m = kInfinity;
+  if (std::isfinite(out.ground_m)) ground_hint_m_ = std::max(0.0, out.ground_m);
 }
 
 }  // namespace campo

@@ -1,35 +1,93 @@
 #pragma once
-/// Distances from points to scene shapes, for clearance metrics. Analytic
-/// and exact for every primitive; ground (planes, heightfields) is not an
-/// obstacle and is left out.
-#include <span>
+/// True clearance (private to sim/): signed distances between a vehicle's
+/// collision shapes and the world's other collision shapes, from Bullet's
+/// GJK (EPA when they overlap), the shapes the physics collides with. World
+/// owns one query and answers World::vehicle_clearance with it.
+#include <limits>
 #include <vector>
 
-#include <Eigen/Geometry>
+#include <BulletCollision/BroadphaseCollision/btDbvt.h>
+#include <LinearMath/btTransform.h>
 
-#include "sim/scene.hpp"
+#include "sim/world.hpp"
+
+class btCollisionObject;
+class btCollisionWorld;
+class btConvexShape;
 
 namespace campo {
 
-/// Euclidean distance from `point` to the solid `shape` (0 inside). Planes
-/// and heightfields: +infinity (not obstacles).
-double distance_to_shape(const Shape& shape, const Eigen::Vector3d& point);
-/// The same with the shape placed at `pose` instead of shape.pose (movers).
-double distance_to_shape(const Shape& shape, const Eigen::Isometry3d& pose, const Eigen::Vector3d& point);
+/// Signed distance between two convex shapes placed at `pose_a` and
+/// `pose_b`, collision margins included: > 0 apart, 0 touching, < 0 the
+/// depth of their overlap.
+double signed_distance(const btConvexShape& a, const btTransform& pose_a, const btConvexShape& b,
+                       const btTransform& pose_b);
 
-/// Nearest obstacle distance over the static obstacles of a scene, with a
-/// coarse bounding-sphere cull so the cost stays low in large scenes.
-class ClearanceField {
+/// The obstacles and the ground of a world, and the search for the nearest
+/// of each from the vehicle's bodies (found by their user index when asked,
+/// since vehicles join the world after it is built).
+class ClearanceQuery {
  public:
-  explicit ClearanceField(const Scene& scene);
-  /// Distance from `point` to the nearest static obstacle or mover (movers at time t).
-  double distance(const Eigen::Vector3d& point, double t_s) const;
+  ClearanceQuery();
+  ~ClearanceQuery();
+  ClearanceQuery(const ClearanceQuery&) = delete;
+  ClearanceQuery& operator=(const ClearanceQuery&) = delete;
+
+  /// A static obstacle (a child of a static compound), never moving.
+  void add_static_obstacle(const btConvexShape& shape, const btTransform& pose, int id);
+  /// A body that moves (dynamic shape, mover): read where it is at each query.
+  void add_moving_obstacle(const btCollisionObject& body, int id);
+  /// A plane or heightfield body; a heightfield's `grid` (the heights Bullet
+  /// was given) lets the search skip terrain that is out of reach.
+  void add_ground(const btCollisionObject& body, const HeightGrid* grid = nullptr);
+
+  /// Clearance of the bodies tagged kVehicleBodyTag or kVehicleWheelTag in
+  /// `world`: exact below each cutoff, +infinity when nothing is nearer.
+  Clearance measure(const btCollisionWorld& world, double obstacle_cutoff_m, double ground_cutoff_m);
 
  private:
-  const Scene& scene_;
-  std::vector<int> obstacles_;             // indices of non-ground shapes
-  std::vector<Eigen::Vector3d> centres_;   // bounding-sphere centres
-  std::vector<double> radii_;              // bounding-sphere radii
+  struct StaticObstacle {
+    const btConvexShape* shape;
+    btTransform pose;
+    int id;
+  };
+  struct MovingObstacle {
+    const btCollisionObject* body;
+    int id;
+  };
+  // Highest vertex of each block of kBlock x kBlock cells of a heightfield,
+  // in Bullet's frame of the heightfield (centred, heights less `mid_m`).
+  struct HeightBlocks {
+    static constexpr int kBlock = 8;
+    int cols = 0, rows = 0;  // vertices
+    double dx = 1.0, dy = 1.0;
+    int blocks_x = 0, blocks_y = 0;
+    std::vector<double> top_m;
+    // The highest terrain over local x in [x0, x1], y in [y0, y1].
+    double highest(double x0, double x1, double y0, double y1) const;
+  };
+  struct Ground {
+    const btCollisionObject* body;
+    HeightBlocks blocks;  // empty for planes
+  };
+  struct VehiclePart {
+    const btCollisionObject* body;
+    bool ground_counts;  // kVehicleBodyTag: touching the ground is a collision
+  };
+  void find_vehicle(const btCollisionWorld& world);
+  void nearest_obstacle(double cutoff_m, Clearance& out);
+  void nearest_ground(double cutoff_m, Clearance& out);
+
+  std::vector<StaticObstacle> statics_;
+  btDbvt static_tree_;  // leaves: index into statics_
+  btVector3 statics_min_, statics_max_;
+  std::vector<MovingObstacle> moving_;
+  std::vector<Ground> ground_;
+  std::vector<VehiclePart> vehicle_;
+  std::vector<int> candidates_;  // scratch of nearest_obstacle, reused
+  int objects_seen_ = -1;      // collision objects in the world when vehicle_ was found
+  double obstacle_hint_m_ = 1.0;  // the last nearest obstacle distance: where the search starts
+  double ground_hint_m_ = 1.0;
 };
 
 }  // namespace campo

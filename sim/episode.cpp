@@ -10,7 +10,6 @@
 
 #include <Eigen/Geometry>
 
-#include "sim/clearance.hpp"
 
 namespace campo {
 
@@ -218,8 +217,12 @@ nlohmann::json to_json(const EpisodeMetrics& m) {
       {"wall_time_s", m.wall_time_s},
       {"path_length_m", m.path_length_m},  // the distance travelled
       {"path_ratio", m.path_ratio},
-      // null when the scene has no obstacles at all
+      // null when the scene has no obstacles (no ground) at all
       {"min_clearance_m", std::isfinite(m.min_clearance_m) ? nlohmann::json(m.min_clearance_m) : nlohmann::json()},
+      {"nearest_obstacle", m.nearest_obstacle.empty() ? nlohmann::json() : nlohmann::json(m.nearest_obstacle)},
+      {"min_clearance_time_s", m.nearest_obstacle.empty() ? nlohmann::json() : nlohmann::json(m.min_clearance_time_s)},
+      {"min_ground_clearance_m",
+       std::isfinite(m.min_ground_clearance_m) ? nlohmann::json(m.min_ground_clearance_m) : nlohmann::json()},
       {"collisions", m.collisions},
       {"planner_calls", m.planner_calls},
       {"planner_time_ms_mean", m.planner_time_ms_mean},
@@ -236,6 +239,39 @@ nlohmann::json to_json(const EpisodeMetrics& m) {
   };
 }
 
+namespace {
+
+// The running minima of the clearance metrics.
+struct ClearanceMinima {
+  double obstacle_m = std::numeric_limits<double>::infinity();
+  int obstacle = -1;
+  double obstacle_time_s = 0.0;
+  double ground_m = std::numeric_limits<double>::infinity();
+
+  void update(const Clearance& c, double t_s) {
+    if (c.obstacle_m < obstacle_m) {
+      obstacle_m = c.obstacle_m;
+      obstacle = c.obstacle;
+      obstacle_time_s = t_s;
+    }
+    ground_m = std::min(ground_m, c.ground_m);
+  }
+  // Cutoffs for a query that only needs to find a new minimum or a touch:
+  // anything farther than the minima so far cannot change them.
+  double obstacle_cutoff() const { return std::max(obstacle_m, kTouchSearch_m); }
+  double ground_cutoff() const { return std::max(ground_m, kTouchSearch_m); }
+  static constexpr double kTouchSearch_m = 1e-6;
+};
+
+constexpr double kExact = std::numeric_limits<double>::infinity();
+
+std::string body_name(const Scene& scene, int id) {
+  if (id >= 0) return scene.shapes.at(static_cast<std::size_t>(id)).alias;
+  return scene.movers.at(static_cast<std::size_t>(-1 - id)).shape.alias;
+}
+
+}  // namespace
+
 EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, PlannerMaker make_planner,
                           const EpisodeOptions& options) {
   if (options.vehicle_index >= scene.vehicles.size()) {
@@ -248,7 +284,8 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
   World world(scene);
   const std::unique_ptr<Vehicle> vehicle = make_vehicle(world, def);
   const std::unique_ptr<Planner> planner = make_planner(def.planner, {def.type, &scene});
-  const ClearanceField clearance(scene);
+  StateEstimator estimator(def.state_noise,
+                           Rng::derive_seed(scene.world.seed, 0x5e57'0000ULL + options.vehicle_index));
 
   std::vector<MountedSensor> sensors;
   sensors.reserve(def.sensors.size());
@@ -260,6 +297,7 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
   for (std::size_t i = 0; i < sensors.size(); ++i) {
     readings[i] = {def.sensors[i].alias, &def.sensors[i].lidar, nullptr, false};
   }
+  std::vector<Eigen::Isometry3d> body_poses;  // of the moving bodies, refreshed before each scan
 
   EpisodeResult result;
   result.vehicle_parameters = vehicle->parameters();
@@ -267,7 +305,9 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
   EpisodeMetrics& m = result.metrics;
   const std::int64_t control_period = period_steps(scene.world.control_rate_hz, dt);
   const Eigen::Vector3d start = vehicle->state().position_m;
-  m.min_clearance_m = std::numeric_limits<double>::infinity();
+  // Where the vehicle was when the planner reported each mission waypoint reached.
+  std::vector<std::optional<Eigen::Vector3d>> reached_at(def.mission.size());
+  ClearanceMinima minima;
   double planner_ms_total = 0.0;
   bool was_colliding = false;
   std::optional<Outcome> outcome;
@@ -275,18 +315,24 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
 
   for (std::int64_t k = 0; !outcome; ++k) {
     const double t = static_cast<double>(k) * dt;
-    // Sense.
+    // Sense: every body where the physics has it now.
+    bool poses_read = false;
     for (std::size_t i = 0; i < sensors.size(); ++i) {
       MountedSensor& s = sensors[i];
       if (k % s.period != 0) continue;
-      s.sensor->scan(vehicle->state().pose() * to_isometry(def.sensors[i].lidar.mount), t, s.scan);
+      if (!poses_read) world.moving_body_poses(body_poses);
+      poses_read = true;
+      s.sensor->scan(vehicle->state().pose() * to_isometry(def.sensors[i].lidar.mount), t, body_poses, s.scan);
       readings[i].scan = &s.scan;
       readings[i].fresh = true;
       if (options.on_scan) options.on_scan(i, s.scan);
     }
-    // Plan and command.
+    // Plan and command, on the estimated state.
     if (k % control_period == 0) {
-      const VehicleState state = vehicle->state();
+      const VehicleState truth = vehicle->state();
+      const StateError& error = estimator.error_at(t);
+      vehicle->set_estimation_error(error);
+      const VehicleState state = estimated(truth, error);
       const Observation observation{t, def.type, state, vehicle->stable(), readings, def.mission};
       const auto plan_start = Clock::now();
       PlanResult plan = planner->plan(observation);
@@ -296,11 +342,19 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
       ++m.planner_calls;
       planner_ms_total += ms;
       m.planner_time_ms_max = std::max(m.planner_time_ms_max, ms);
+      if (plan.decisions.is_object()) {
+        for (const auto& index : plan.decisions.value("reached_waypoints", nlohmann::json::array())) {
+          const auto i = index.is_number_integer() ? index.get<std::int64_t>() : -1;
+          if (i >= 0 && static_cast<std::size_t>(i) < reached_at.size()) reached_at[static_cast<std::size_t>(i)] = truth.position_m;
+        }
+      }
       if (!plan.decisions.is_null()) result.events.push_back({t, std::move(plan.decisions)});
-      const double c = std::max(0.0, clearance.distance(state.position_m, t) - vehicle->bounding_radius_m());
-      m.min_clearance_m = std::min(m.min_clearance_m, c);
+      // Exact obstacle clearance for the record; the ground only as far as
+      // it could lower its minimum (far terrain costs many triangles).
+      const Clearance clearance = world.vehicle_clearance(kExact, minima.ground_cutoff());
+      minima.update(clearance, t);
       vehicle->command(plan.command);
-      result.trajectory.push_back({t, state, plan.command, c, vehicle->actuators()});
+      result.trajectory.push_back({t, truth, state.position_m, plan.command, clearance.obstacle_m, vehicle->actuators()});
       if (plan.status == PlanStatus::reached) {
         outcome = Outcome::reached;
         m.reason = plan.reason;
@@ -318,12 +372,17 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
     const Eigen::Vector3d position = vehicle->state().position_m;
     m.path_length_m += (position - previous).norm();
     previous = position;
-    const bool colliding = vehicle->in_collision();
+    // A collision is the collision shapes touching, from the same query as
+    // the clearance metrics, so the two always agree.
+    const Clearance clearance = world.vehicle_clearance(minima.obstacle_cutoff(), minima.ground_cutoff());
+    minima.update(clearance, world.time_s());
+    const bool colliding = clearance.touching();
     if (colliding && !was_colliding) {
       ++m.collisions;
       if (options.stop_on_collision) {
         outcome = Outcome::collision;
-        m.reason = "collision at t = " + std::to_string(world.time_s()) + " s";
+        const std::string with = clearance.obstacle_m <= 0.0 ? body_name(scene, clearance.obstacle) : "the ground";
+        m.reason = "collision with " + with + " at t = " + std::to_string(world.time_s()) + " s";
       }
     }
     was_colliding = colliding;
@@ -335,14 +394,25 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
 
   m.outcome = *outcome;
   m.sim_time_s = world.time_s();
+  m.min_clearance_m = minima.obstacle_m;
+  m.min_ground_clearance_m = minima.ground_m;
+  if (std::isfinite(minima.obstacle_m)) {
+    m.nearest_obstacle = body_name(scene, minima.obstacle);
+    m.min_clearance_time_s = minima.obstacle_time_s;
+  }
   // The nominal route: straight legs from the start through every waypoint
-  // (for a single goal, the straight start-goal line).
+  // (for a single goal, the straight start-goal line), each waypoint taken
+  // where the vehicle was when it was reached (within the arrival
+  // tolerance), so the path flown, which passes through those points, is
+  // never shorter than the route: the ratio of a reached run is at least 1.
+  if (m.outcome == Outcome::reached && !def.mission.empty()) reached_at.back() = vehicle->state().position_m;
   double nominal = 0.0;
   Eigen::Vector3d from = start;
-  for (const Waypoint& wp : def.mission) {
-    const Eigen::Vector3d leg = wp.position_m - from;
+  for (std::size_t i = 0; i < def.mission.size(); ++i) {
+    const Eigen::Vector3d to = reached_at[i].value_or(def.mission[i].position_m);
+    const Eigen::Vector3d leg = to - from;
     nominal += def.type == VehicleType::rover ? leg.head<2>().norm() : leg.norm();
-    from = wp.position_m;
+    from = to;
   }
   m.path_ratio = nominal > 1e-9 ? m.path_length_m / nominal : 0.0;
   count_decisions(result.events, m);

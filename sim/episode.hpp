@@ -35,9 +35,20 @@ struct EpisodeMetrics {
   double sim_time_s = 0.0;
   double wall_time_s = 0.0;        ///< measured, so it differs between identical runs
   double path_length_m = 0.0;      ///< distance travelled (flown/driven), integrated every physics step
-  double path_ratio = 0.0;         ///< path length / nominal route (straight legs start -> waypoints)
-  double min_clearance_m = 0.0;    ///< nearest approach of the vehicle's bounding sphere to an obstacle
-  int collisions = 0;
+  /// Path length / nominal route: straight legs from the start through each
+  /// waypoint where the vehicle was when it reached it (the waypoint as
+  /// given when it was not reached). At least 1 for a run that reached its goal.
+  double path_ratio = 0.0;
+  /// Minimum signed distance between the vehicle's collision shapes and any
+  /// obstacle's (every shape but ground: static, dynamic, movers), over every
+  /// physics step; negative when they overlapped. Infinite without obstacles.
+  double min_clearance_m = 0.0;
+  std::string nearest_obstacle;       ///< alias of the obstacle at min_clearance_m
+  double min_clearance_time_s = 0.0;  ///< when min_clearance_m was measured
+  /// The same between the bodies that may not touch the ground (a quadrotor,
+  /// a rover's chassis, not its wheels) and the ground (planes, heightfields).
+  double min_ground_clearance_m = 0.0;
+  int collisions = 0;  ///< times the collision shapes began to touch (clearance <= 0)
   int planner_calls = 0;
   double planner_time_ms_mean = 0.0;  ///< measured
   double planner_time_ms_max = 0.0;   ///< measured
@@ -64,9 +75,10 @@ nlohmann::json to_json(const EpisodeMetrics& metrics);
 /// One row of trajectory.csv, taken at every planner call.
 struct TrajectorySample {
   double time_s = 0.0;
-  VehicleState state;
+  VehicleState state;  ///< the truth
+  Eigen::Vector3d estimated_position_m = Eigen::Vector3d::Zero();  ///< what the planner was told
   Command command;
-  double clearance_m = 0.0;
+  double clearance_m = 0.0;  ///< signed distance to the nearest obstacle then (as min_clearance_m)
   nlohmann::json actuators;
 };
 

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 
 #include <Eigen/Geometry>
 
@@ -18,8 +19,11 @@ class RangeSensor {
   virtual ~RangeSensor() = default;
   virtual const SensorDef& def() const = 0;
   /// Fills `out` (ranges, hits, points; buffers reused) as seen from
-  /// `sensor_pose` (world frame) with the movers at time_s.
-  virtual void scan(const Eigen::Isometry3d& sensor_pose, double time_s, LidarScan& out) = 0;
+  /// `sensor_pose` (world frame) at time_s, with the scene's moving bodies
+  /// at `body_poses` (one per moving_bodies(scene) entry, in that order:
+  /// World::moving_body_poses in the closed loop).
+  virtual void scan(const Eigen::Isometry3d& sensor_pose, double time_s,
+                    std::span<const Eigen::Isometry3d> body_poses, LidarScan& out) = 0;
 };
 
 /// Builds the sensor of a definition for a scene (which must outlive it).

@@ -478,16 +478,14 @@ struct Layer {
 };
 
 struct RayCaster::Impl {
-  const Scene& scene;
   RTCDevice device = nullptr;
   Layer fixed;   // static shapes, built once with high quality
-  Layer movers;  // kinematic shapes, rebuilt by set_time()
+  Layer moving;  // dynamic shapes and movers, moved by set_poses()
   std::vector<Plane> planes;
 
-  explicit Impl(const Scene& s) : scene(s) {}
   ~Impl() {
     if (fixed.scene) rtcReleaseScene(fixed.scene);
-    if (movers.scene) rtcReleaseScene(movers.scene);
+    if (moving.scene) rtcReleaseScene(moving.scene);
     if (device) rtcReleaseDevice(device);
   }
 
@@ -530,15 +528,9 @@ struct RayCaster::Impl {
                                     &terrain_bounds, &terrain_intersect);
     layer.geometry_shape[geom_id] = id;
   }
-
-  void place_movers(double t_s) {
-    for (Primitive& p : movers.primitives) {
-      p.center = scene.movers[static_cast<std::size_t>(-1 - p.shape)].position_at(t_s);
-    }
-  }
 };
 
-RayCaster::RayCaster(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {
+RayCaster::RayCaster(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.device = rtcNewDevice(nullptr);
   if (!m.device) throw std::runtime_error("RayCaster: cannot create an Embree device");
@@ -548,6 +540,7 @@ RayCaster::RayCaster(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) 
   for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
     const Shape& shape = scene.shapes[i];
     const auto id = static_cast<std::int32_t>(i);
+    if (!shape.is_static) continue;  // a moving body
     if (shape.type == ShapeType::plane) {
       m.planes.push_back({shape.pose.translation(), shape.pose.linear().col(2), id});
     } else if (shape.type == ShapeType::heightfield) {
@@ -560,34 +553,47 @@ RayCaster::RayCaster(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) 
   rtcCommitScene(m.fixed.scene);
   m.check("building the static scene");
 
-  if (!scene.movers.empty()) {
-    m.movers.scene = rtcNewScene(m.device);
-    rtcSetSceneFlags(m.movers.scene, RTC_SCENE_FLAG_DYNAMIC);
-    rtcSetSceneBuildQuality(m.movers.scene, RTC_BUILD_QUALITY_LOW);
-    for (std::size_t i = 0; i < scene.movers.size(); ++i) {
-      const Shape& shape = scene.movers[i].shape;
+  const std::vector<MovingBody> bodies = moving_bodies(scene);
+  if (!bodies.empty()) {
+    m.moving.scene = rtcNewScene(m.device);
+    rtcSetSceneFlags(m.moving.scene, RTC_SCENE_FLAG_DYNAMIC);
+    rtcSetSceneBuildQuality(m.moving.scene, RTC_BUILD_QUALITY_LOW);
+    for (const MovingBody& body : bodies) {
+      const Shape& shape = *body.shape;
       if (shape.type == ShapeType::plane || shape.type == ShapeType::heightfield) {
-        throw std::invalid_argument("RayCaster: mover '" + shape.alias + "' is a " +
+        throw std::invalid_argument("RayCaster: moving body '" + shape.alias + "' is a " +
                                     std::string(to_string(shape.type)) +
-                                    "; movers must be cuboids, cylinders, cones or spheres");
+                                    "; moving bodies must be cuboids, cylinders, cones or spheres");
       }
-      m.movers.primitives.push_back(make_primitive(shape, -1 - static_cast<std::int32_t>(i)));
+      m.moving.primitives.push_back(make_primitive(shape, body.id));
     }
-    m.place_movers(0.0);
-    m.attach_primitives(m.movers, RTC_BUILD_QUALITY_LOW);
-    rtcCommitScene(m.movers.scene);
-    m.check("building the mover scene");
+    m.attach_primitives(m.moving, RTC_BUILD_QUALITY_LOW);
+    rtcCommitScene(m.moving.scene);
+    m.check("building the scene of moving bodies");
   }
 }
 
 RayCaster::~RayCaster() = default;
 
-void RayCaster::set_time(double t_s) {
+void RayCaster::set_poses(std::span<const Eigen::Isometry3d> poses) {
   Impl& m = *impl_;
-  if (!m.movers.scene) return;
-  m.place_movers(t_s);
-  rtcCommitGeometry(rtcGetGeometry(m.movers.scene, m.movers.primitive_geometry));
-  rtcCommitScene(m.movers.scene);
+  if (poses.size() != m.moving.primitives.size()) {
+    throw std::invalid_argument("RayCaster::set_poses: " + std::to_string(poses.size()) + " poses for " +
+                                std::to_string(m.moving.primitives.size()) + " moving bodies");
+  }
+  if (!m.moving.scene) return;
+  bool moved = false;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    Primitive& p = m.moving.primitives[i];
+    if (p.center == poses[i].translation() && p.rotation == poses[i].linear()) continue;
+    p.center = poses[i].translation();
+    p.rotation = poses[i].linear();
+    moved = true;
+  }
+  // Bodies at rest (a box that has landed) cost no rebuild.
+  if (!moved) return;
+  rtcCommitGeometry(rtcGetGeometry(m.moving.scene, m.moving.primitive_geometry));
+  rtcCommitScene(m.moving.scene);
 }
 
 void RayCaster::cast(const Eigen::Vector3d& origin, std::span<const Eigen::Vector3f> directions,
@@ -643,13 +649,13 @@ void RayCaster::cast(const Eigen::Vector3d& origin, std::span<const Eigen::Vecto
         hit.geomID = RTC_INVALID_GEOMETRY_ID;
       }
     }
-    if (m.movers.scene) {
-      rtcIntersect1M(m.movers.scene, &context.base, batch, static_cast<unsigned>(count),
+    if (m.moving.scene) {
+      rtcIntersect1M(m.moving.scene, &context.base, batch, static_cast<unsigned>(count),
                      sizeof(RTCRayHit));
       for (std::size_t i = 0; i < count; ++i) {
         const RTCHit& hit = batch[i].hit;
         if (hit.geomID != RTC_INVALID_GEOMETRY_ID)
-          shape[i] = m.movers.shape_of(hit.geomID, hit.primID);
+          shape[i] = m.moving.shape_of(hit.geomID, hit.primID);
       }
     }
     for (std::size_t i = 0; i < count; ++i) {

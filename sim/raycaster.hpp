@@ -6,7 +6,7 @@
 #include <memory>
 #include <span>
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "sim/scene.hpp"
 
@@ -21,15 +21,18 @@ struct RayHit {
 
 class RayCaster {
  public:
-  /// Builds the acceleration structure for the scene's shapes and movers
-  /// (movers at t = 0). Keeps a reference to `scene`, which must outlive it.
+  /// Builds the acceleration structure: the static shapes once, and the
+  /// moving bodies (moving_bodies(scene)) at their poses at t = 0.
+  /// `scene` must outlive the caster.
   explicit RayCaster(const Scene& scene);
   ~RayCaster();
   RayCaster(const RayCaster&) = delete;
   RayCaster& operator=(const RayCaster&) = delete;
 
-  /// Moves the movers to their poses at simulation time t.
-  void set_time(double t_s);
+  /// Places the moving bodies: one world-frame pose per moving_bodies(scene)
+  /// entry, in that order (World::moving_body_poses, or scripted_poses).
+  /// Throws std::invalid_argument for a wrong count.
+  void set_poses(std::span<const Eigen::Isometry3d> poses);
 
   /// Casts one ray per direction from `origin`; directions are unit vectors in
   /// the world frame. Hits nearer than min_range_m are ignored (the ray

@@ -129,4 +129,25 @@ std::optional<double> Scene::ground_height(double x, double y) const {
   return best;
 }
 
+std::vector<MovingBody> moving_bodies(const Scene& scene) {
+  std::vector<MovingBody> bodies;
+  for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
+    if (!scene.shapes[i].is_static) bodies.push_back({&scene.shapes[i], static_cast<std::int32_t>(i)});
+  }
+  for (std::size_t i = 0; i < scene.movers.size(); ++i) {
+    bodies.push_back({&scene.movers[i].shape, -1 - static_cast<std::int32_t>(i)});
+  }
+  return bodies;
+}
+
+std::vector<Eigen::Isometry3d> scripted_poses(const Scene& scene, double t_s) {
+  std::vector<Eigen::Isometry3d> poses;
+  for (const MovingBody& body : moving_bodies(scene)) {
+    Eigen::Isometry3d pose = body.shape->pose;
+    if (body.id < 0) pose.translation() = scene.movers[static_cast<std::size_t>(-1 - body.id)].position_at(t_s);
+    poses.push_back(pose);
+  }
+  return poses;
+}
+
 }  // namespace campo

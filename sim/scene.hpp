@@ -14,6 +14,7 @@
 
 #include "sim/lidar_config.hpp"
 #include "sim/pose.hpp"
+#include "sim/state_estimation.hpp"
 
 namespace campo {
 
@@ -134,6 +135,7 @@ struct VehicleDef {
   ParamsBlock params;  ///< overrides of the vehicle preset, checked by vehicles/
   PlannerSpec planner;
   std::vector<Waypoint> mission;  ///< ordered; the last one is the goal
+  StateNoiseConfig state_noise;   ///< what the planner and controllers see of the state (none by default)
 };
 
 /// Geodetic reference point of the local ENU frame (x east, y north, z up).
@@ -170,5 +172,21 @@ struct Scene {
   /// frame; nullopt where there is no ground.
   std::optional<double> ground_height(double x, double y) const;
 };
+
+/// A body that the physics moves during a run: a dynamic shape (Bullet
+/// integrates it: it falls, is pushed, tips over) or a mover (kinematic, on
+/// its path). Sensors and clearance see each where the world has it at that
+/// instant, whatever its kind.
+struct MovingBody {
+  const Shape* shape = nullptr;  ///< geometry; shape->pose is its pose at t = 0
+  std::int32_t id = 0;           ///< index into Scene::shapes, or -(1 + mover index)
+};
+/// The moving bodies of a scene: its dynamic shapes in scene order, then its
+/// movers. World::moving_body_poses reports their poses in this order.
+std::vector<MovingBody> moving_bodies(const Scene& scene);
+/// Poses of moving_bodies() known without physics: movers where their path
+/// has them at t_s, dynamic shapes where they start. For views of a scene
+/// that have no world (`campo scan`, snapshots).
+std::vector<Eigen::Isometry3d> scripted_poses(const Scene& scene, double t_s);
 
 }  // namespace campo

@@ -483,10 +483,24 @@ class Loader {
     }
     vehicle.params = {nlohmann::json::object(), r.node().file(), child_pointer(r.node().pointer(), "params")};
     if (auto params = r.optional("params")) vehicle.params = read_params_block(*params);
+    if (auto noise = r.optional("state_noise")) vehicle.state_noise = read_state_noise(*noise);
     if (auto mission = r.optional("mission")) {
       pending_missions_.emplace_back(scene_.vehicles.size(), *mission);
     }
     scene_.vehicles.push_back(std::move(vehicle));
+  }
+
+  static StateNoiseConfig read_state_noise(const JsonNode& node) {
+    ObjectReader r(node);
+    StateNoiseConfig c;
+    r.read("position_stddev_m", c.position_stddev_m, Range::closed(0.0, 1e3));
+    r.read("altitude_stddev_m", c.altitude_stddev_m, Range::closed(0.0, 1e3));
+    r.read("velocity_stddev_mps", c.velocity_stddev_mps, Range::closed(0.0, 1e3));
+    r.read("heading_stddev_deg", c.heading_stddev_deg, Range::closed(0.0, 180.0));
+    r.read("bias_walk_m_per_sqrt_s", c.bias_walk_m_per_sqrt_s, Range::closed(0.0, 1e3));
+    r.read("rate_hz", c.rate_hz, Range::closed(0.0, 10000.0));
+    r.finish();
+    return c;
   }
 
   static ParamsBlock read_params_block(const JsonNode& node) {

@@ -274,7 +274,8 @@ SceneMesh build_scene_mesh(const Scene& scene, const MeshOptions& options) {
   mesh.normals.reserve(total.vertices);
   mesh.indices.reserve(3 * total.triangles);
   mesh.parts.reserve(scene.shapes.size());
-  mesh.mover_parts.reserve(scene.movers.size());
+  const std::vector<MovingBody> bodies = moving_bodies(scene);
+  mesh.moving_parts.reserve(bodies.size());
 
   const auto add_part = [&](std::vector<MeshPart>& parts, const Shape& shape, int id,
                             const Eigen::Isometry3d& placement) {
@@ -283,11 +284,11 @@ SceneMesh build_scene_mesh(const Scene& scene, const MeshOptions& options) {
     parts.push_back({first, static_cast<std::uint32_t>(mesh.indices.size()) - first, shape.color, id});
   };
   for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
-    add_part(mesh.parts, scene.shapes[i], static_cast<int>(i), scene.shapes[i].pose);
+    if (scene.shapes[i].is_static) add_part(mesh.parts, scene.shapes[i], static_cast<int>(i), scene.shapes[i].pose);
   }
-  // Movers stay in their shape frame: a renderer places them at their pose for the time.
-  for (std::size_t i = 0; i < scene.movers.size(); ++i) {
-    add_part(mesh.mover_parts, scene.movers[i].shape, -1 - static_cast<int>(i), Eigen::Isometry3d::Identity());
+  // Moving bodies stay in their shape frame: a renderer places them where the world has them.
+  for (const MovingBody& body : bodies) {
+    add_part(mesh.moving_parts, *body.shape, body.id, Eigen::Isometry3d::Identity());
   }
   return mesh;
 }

@@ -27,11 +27,12 @@ struct MeshPart {
 };
 
 struct SceneMesh {
-  std::vector<Eigen::Vector3f> positions;  ///< static shapes: world frame; movers: their shape frame
+  std::vector<Eigen::Vector3f> positions;  ///< static shapes: world frame; moving bodies: their shape frame
   std::vector<Eigen::Vector3f> normals;    ///< unit, per vertex (flat for boxes, smooth for round shapes)
   std::vector<std::uint32_t> indices;      ///< counter-clockwise triangles seen from outside
   std::vector<MeshPart> parts;             ///< static shapes, in scene order
-  std::vector<MeshPart> mover_parts;       ///< one per mover (place with Mover::position_at)
+  std::vector<MeshPart> moving_parts;      ///< one per moving_bodies(scene) entry, in that order
+                                           ///< (place with World::moving_body_poses or scripted_poses)
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
 

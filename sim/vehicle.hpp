@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/scene.hpp"
+#include "sim/state_estimation.hpp"
 
 namespace campo {
 
@@ -24,6 +25,10 @@ struct VehicleState {
   double yaw_rad() const;
   Eigen::Isometry3d pose() const;
 };
+
+/// `truth` as an estimator with error `error` reports it: position and
+/// velocity offset, heading turned about the world z axis.
+VehicleState estimated(const VehicleState& truth, const StateError& error);
 
 /// Commands a planner may give (SPEC §5 behaviours). Each vehicle accepts
 /// those that make sense for it and rejects the others.
@@ -73,6 +78,11 @@ class Vehicle {
   virtual void pre_step(double dt_s) = 0;
   /// Ground-truth state after the last physics step.
   virtual VehicleState state() const = 0;
+  /// The state the vehicle's own controllers act on: the true state with
+  /// the estimation error set last (the truth when none is set).
+  VehicleState estimated_state() const { return estimated(state(), estimation_error_); }
+  /// Sets the estimation error the controllers see until the next call.
+  void set_estimation_error(const StateError& error) { estimation_error_ = error; }
   /// Linear and angular speeds are below the "stabilized" thresholds (000 stabilize()).
   virtual bool stable() const = 0;
   /// Radius of a sphere around the body origin that contains the vehicle (clearance).
@@ -84,6 +94,9 @@ class Vehicle {
   virtual nlohmann::json actuators() const = 0;
   /// The effective parameters, for provenance.
   virtual nlohmann::json parameters() const = 0;
+
+ private:
+  StateError estimation_error_;
 };
 
 }  // namespace campo

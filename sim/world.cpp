@@ -1,5 +1,6 @@
 #include "sim/world.hpp"
 #include "sim/bullet_convert.hpp"
+#include "sim/clearance.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -60,6 +61,8 @@ struct World::Impl {
   std::vector<std::unique_ptr<btRigidBody>> bodies;
   std::vector<btRigidBody*> shape_bodies;  // by Scene::shapes index; null inside a compound
   std::vector<btRigidBody*> mover_bodies;  // by Scene::movers index
+  std::vector<btRigidBody*> moving_bodies;  // in moving_bodies(scene) order: dynamic shapes, then movers
+  ClearanceQuery clearance;
   std::unique_ptr<btDiscreteDynamicsWorld> dynamics;
   std::int64_t steps = 0;
 
@@ -73,6 +76,14 @@ struct World::Impl {
   ~Impl() {
     for (auto& body : bodies) dynamics->removeRigidBody(body.get());
     dynamics.reset();
+  }
+
+  // Bullet pads cylinders and cones with a collision margin (4 cm) and
+  // rounds the edges of boxes with it, which would make obstacles differ
+  // from what the LIDAR sees and what clearance measures; dynamic bodies
+  // keep it for contact stability.
+  static void set_exact(btCollisionShape& shape) {
+    if (shape.getShapeType() != SPHERE_SHAPE_PROXYTYPE) shape.setMargin(0.0);
   }
 
   std::unique_ptr<btCollisionShape> make_shape(const Shape& shape) {
@@ -114,11 +125,7 @@ struct World::Impl {
   btRigidBody* add_body(const Shape& shape, int tag, bool kinematic) {
     shapes.push_back(make_shape(shape));
     btCollisionShape* collision_shape = shapes.back().get();
-    // Bullet pads cylinders and cones with a collision margin (4 cm), which
-    // would make static obstacles fatter than what the LIDAR sees; moving
-    // bodies keep it for contact stability.
-    const bool padded = shape.type == ShapeType::cylinder || shape.type == ShapeType::cone;
-    if (padded && (shape.is_static || kinematic)) collision_shape->setMargin(0.0);
+    if (shape.is_static || kinematic) set_exact(*collision_shape);
     const bool dynamic = !shape.is_static && !kinematic;
     const double mass = dynamic ? shape.mass_kg : 0.0;
     btVector3 inertia(0, 0, 0);
@@ -165,8 +172,10 @@ World::World(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()
       d.compound_children.emplace_back();
     }
     d.shapes.push_back(d.make_shape(shape));
-    if (shape.type == ShapeType::cylinder || shape.type == ShapeType::cone) d.shapes.back()->setMargin(0.0);
+    d.set_exact(*d.shapes.back());
     d.compounds[k]->addChildShape(to_bt(shape.pose), d.shapes.back().get());
+    d.clearance.add_static_obstacle(static_cast<const btConvexShape&>(*d.shapes.back()), to_bt(shape.pose),
+                                    static_cast<int>(i));
     d.compound_children[k].push_back(static_cast<int>(i));
   }
   for (std::size_t k = 0; k < d.compounds.size(); ++k) {
@@ -178,6 +187,19 @@ World::World(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()
   }
   for (std::size_t i = 0; i < scene.movers.size(); ++i) {
     impl_->mover_bodies.push_back(impl_->add_body(scene.movers[i].shape, mover_tag(i), true));
+  }
+  // What clearance measures against: every shape but the vehicles'.
+  for (const MovingBody& body : moving_bodies(scene)) {
+    btRigidBody* rigid = body.id >= 0 ? d.shape_bodies[static_cast<std::size_t>(body.id)]
+                                      : d.mover_bodies[static_cast<std::size_t>(-1 - body.id)];
+    d.moving_bodies.push_back(rigid);
+    d.clearance.add_moving_obstacle(*rigid, body.id);
+  }
+  for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
+    const ShapeType type = scene.shapes[i].type;
+    if (type == ShapeType::plane || type == ShapeType::heightfield) {
+      d.clearance.add_ground(*d.shape_bodies[i], scene.shapes[i].terrain.get());
+    }
   }
 }
 
@@ -222,6 +244,22 @@ std::optional<WorldRayHit> World::ray_test(const Eigen::Vector3d& from,
     hit.shape = children.at(static_cast<std::size_t>(callback.child));
   }
   return hit;
+}
+
+void World::moving_body_poses(std::vector<Eigen::Isometry3d>& out) const {
+  out.resize(impl_->moving_bodies.size());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const btTransform& t = impl_->moving_bodies[i]->getWorldTransform();
+    const btMatrix3x3& b = t.getBasis();
+    Eigen::Matrix3d r;
+    for (int row = 0; row < 3; ++row) r.row(row) << b[row].x(), b[row].y(), b[row].z();
+    out[i].linear() = r;
+    out[i].translation() = from_bt(t.getOrigin());
+  }
+}
+
+Clearance World::vehicle_clearance(double obstacle_cutoff_m, double ground_cutoff_m) const {
+  return impl_->clearance.measure(*impl_->dynamics, obstacle_cutoff_m, ground_cutoff_m);
 }
 
 BodyState World::shape_state(int shape_index) const {

@@ -3,6 +3,7 @@
 /// nothing outside sim/ sees Bullet types. Reset = build a new World from the
 /// same Scene, which gives bit-identical results (in-place reset would not).
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -17,8 +18,24 @@ class btDiscreteDynamicsWorld;
 namespace campo {
 
 /// Bullet user index of bodies that belong to vehicles (scene shapes carry
-/// their index in Scene::shapes, movers -(1 + mover index)).
+/// their index in Scene::shapes, movers -(1 + mover index)): a vehicle body
+/// that must touch nothing, ground included (a quadrotor, a rover's chassis)...
 inline constexpr int kVehicleBodyTag = -2000000000;
+/// ... and one that may rest on the ground but touch nothing else (a wheel).
+inline constexpr int kVehicleWheelTag = -2000000001;
+
+/// Signed distances from a vehicle's collision shapes to the other collision
+/// shapes of the world (Bullet GJK, EPA when penetrating): negative when
+/// they overlap, 0 when they touch. Ground (planes, heightfields) is kept
+/// apart from obstacles (every other shape: static, dynamic, movers).
+struct Clearance {
+  double obstacle_m = std::numeric_limits<double>::infinity();  ///< to the nearest obstacle
+  int obstacle = -1;  ///< which: index into Scene::shapes or -(1 + mover index); valid when finite
+  /// From the bodies that may not touch the ground (kVehicleBodyTag) to the ground.
+  double ground_m = std::numeric_limits<double>::infinity();
+  /// The collision shapes touch: what the closed loop counts as a collision.
+  bool touching() const { return obstacle_m <= 0.0 || ground_m <= 0.0; }
+};
 
 /// State of one rigid body, world frame.
 struct BodyState {
@@ -57,6 +74,16 @@ class World {
 
   /// Closest hit along the segment from `from` to `to` (Bullet ray test).
   std::optional<WorldRayHit> ray_test(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
+
+  /// Poses of the scene's moving bodies (moving_bodies(scene): dynamic shapes,
+  /// then movers) where the physics has them now, world frame; `out` reused.
+  void moving_body_poses(std::vector<Eigen::Isometry3d>& out) const;
+
+  /// Clearance of the vehicle bodies (kVehicleBodyTag, kVehicleWheelTag) now.
+  /// A distance at or beyond its cutoff is reported as +infinity (the
+  /// nearest is at least that far); by default both are exact at any distance.
+  Clearance vehicle_clearance(double obstacle_cutoff_m = std::numeric_limits<double>::infinity(),
+                              double ground_cutoff_m = std::numeric_limits<double>::infinity()) const;
 
   /// State of scene shape `shape_index` (static shapes: their scene pose, at rest).
   BodyState shape_state(int shape_index) const;

@@ -109,7 +109,7 @@ int run_scan(const ScanOptions& o) {
   const std::uint64_t world_seed = o.seed_set ? o.seed : scene.world.seed;
   const std::unique_ptr<RangeSensor> ranger = make_range_sensor(scene, sensor, world_seed);
   LidarScan scan;
-  ranger->scan(sensor_pose, 0.0, scan);
+  ranger->scan(sensor_pose, 0.0, scripted_poses(scene, 0.0), scan);
 
   const cv::Mat depth = depth_map(scan, config);
   StagedOutput out(o.out);

@@ -195,6 +195,7 @@ Quadrotor::Quadrotor(World& world, const QuadrotorConfig& config, const Eigen::I
       controller_(config.controller, model_of(config, world.scene().world.gravity_mps2),
                   resting_at(start_pose)) {
   shape_ = std::make_unique<btBoxShape>(to_bt(config.collision_half_extents_m));
+  shape_->setMargin(0.0);  // the exact box, without rounded edges (clearance)
   motion_state_ = std::make_unique<btDefaultMotionState>(to_bt(start_pose));
   // The construction info sets the configured inertia (setMassProps), not the box's.
   const btRigidBody::btRigidBodyConstructionInfo info(config.mass_kg, motion_state_.get(), shape_.get(),
@@ -214,10 +215,10 @@ Quadrotor::Quadrotor(World& world, const QuadrotorConfig& config, const Eigen::I
 
 Quadrotor::~Quadrotor() { bullet_.removeRigidBody(body_.get()); }
 
-void Quadrotor::command(const Command& c) { controller_.command(c, state()); }
+void Quadrotor::command(const Command& c) { controller_.command(c, estimated_state()); }
 
 void Quadrotor::pre_step(double dt_s) {
-  rotor_commands_ = controller_.update(state(), dt_s);
+  rotor_commands_ = controller_.update(estimated_state(), dt_s);
   // Exact discretisation of the first-order motor lag over one step.
   const double blend = 1.0 - std::exp(-dt_s / config_.motor_time_constant_s);
   const btMatrix3x3& basis = body_->getWorldTransform().getBasis();

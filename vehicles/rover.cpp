@@ -199,6 +199,7 @@ Rover::Rover(World& world, const RoverConfig& config, const Eigen::Isometry3d& s
       command_(command::Hold{start_pose.translation(), std::nullopt}) {
   Bodies& b = *bodies_;
   b.chassis_shape = std::make_unique<btBoxShape>(to_bt(0.5 * config.chassis_size_m));
+  b.chassis_shape->setMargin(0.0);  // the exact box, without rounded edges (clearance)
   b.wheel_shape = std::make_unique<btSphereShape>(config.wheel_radius_m);
   const auto mounts = wheel_mounts(config);
   const btTransform chassis_pose = to_bt(lifted_start(world, config, mounts, start_pose));
@@ -210,6 +211,7 @@ Rover::Rover(World& world, const RoverConfig& config, const Eigen::Isometry3d& s
     btTransform wheel_pose = chassis_pose;
     wheel_pose.setOrigin(chassis_pose * to_bt(mounts[i]));
     b.wheels[i] = make_body(*b.wheel_shape, config.wheel_mass_kg, config.wheel_friction, wheel_pose);
+    b.wheels[i]->setUserIndex(kVehicleWheelTag);  // may roll on the ground
     // A sphere's inertia is isotropic, so its gyroscopic torque is zero.
     b.wheels[i]->setFlags(b.wheels[i]->getFlags() & ~BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
     b.world.addRigidBody(b.wheels[i].get());
@@ -297,7 +299,7 @@ std::optional<BodyTwist> Rover::behaviour_twist(const VehicleState& s) {
 void Rover::pre_step(double dt_s) {
   odometry_ = integrate_odometry(odometry_, measured_side_speeds(), geometry_, dt_s);
 
-  const VehicleState s = state();
+  const VehicleState s = estimated_state();
   const std::optional<BodyTwist> reference = behaviour_twist(s);
   const bool hold = !reference;
   WheelSpeeds desired;  // zero when holding

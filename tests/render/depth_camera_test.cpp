@@ -66,7 +66,7 @@ void expect_plane_exact(int n, double tilt_deg, const Eigen::Vector3d& tilt_axis
   // Off the origin and turned, so the test does not rely on symmetry.
   const Eigen::Isometry3d pose = to_isometry(Pose{{0.0, 0.4, -0.3}, {3.0, -4.0, 6.0}});
   LidarScan scan;
-  camera->scan(pose, 0.0, scan);
+  camera->scan(pose, 0.0, scripted_poses(scene, 0.0), scan);
   ASSERT_EQ(scan.rows, n);
   ASSERT_EQ(scan.cols, n);
   const std::vector<Beam> beams = lidar_beams(def.lidar);
@@ -181,8 +181,8 @@ void expect_agreement(const std::string& scene_name, int n) {
   };
   LidarScan expected, actual;
   for (std::size_t k = 0; k < poses.size(); ++k) {
-    lidar->scan(poses[k], 0.0, expected);
-    camera->scan(poses[k], 0.0, actual);
+    lidar->scan(poses[k], 0.0, scripted_poses(scene, 0.0), expected);
+    camera->scan(poses[k], 0.0, scripted_poses(scene, 0.0), actual);
     const Agreement a = compare(expected, actual);
     const double within = static_cast<double>(a.within_5cm) / std::max(a.compared, 1);
     std::printf("[ agree    ] %s %dx%d pose %zu: %d compared, error median %.3f mm (%.5f %%), 99th percentile "
@@ -202,8 +202,8 @@ void expect_matches_lidar(const Scene& scene, const SensorDef& def, const Eigen:
   const auto camera = make_depth_camera(scene, def);
   const auto lidar = make_lidar_sensor(scene, as_lidar(def), 0);
   LidarScan expected, actual;
-  lidar->scan(pose, time_s, expected);
-  camera->scan(pose, time_s, actual);
+  lidar->scan(pose, time_s, scripted_poses(scene, time_s), expected);
+  camera->scan(pose, time_s, scripted_poses(scene, time_s), actual);
   EXPECT_EQ(actual.rows, expected.rows);
   EXPECT_EQ(actual.cols, expected.cols);
   EXPECT_EQ(actual.time_s, time_s);
@@ -226,9 +226,9 @@ TEST(DepthCamera, MoversAppearWhereTheyAreAtTheScanTime) {
   LidarScan scan;
   // Pixel (32, 32) looks just right of and below straight ahead.
   const std::size_t centre = 32 * 64 + 32;
-  camera->scan(Eigen::Isometry3d::Identity(), 0.0, scan);
+  camera->scan(Eigen::Isometry3d::Identity(), 0.0, scripted_poses(scene, 0.0), scan);
   EXPECT_EQ(scan.hits[centre], 0);  // the crate is 3 m to the right, the ball to the left
-  camera->scan(Eigen::Isometry3d::Identity(), 3.0, scan);
+  camera->scan(Eigen::Isometry3d::Identity(), 3.0, scripted_poses(scene, 3.0), scan);
   EXPECT_EQ(scan.hits[centre], 1);
   EXPECT_NEAR(scan.ranges_m[centre], 4.5 / (std::cos(0.5 * 90.0 / 64 * kDeg) * std::cos(0.5 * 90.0 / 64 * kDeg)), kCm);
   EXPECT_DOUBLE_EQ(scan.time_s, 3.0);
@@ -257,15 +257,15 @@ TEST(DepthCamera, TwoCamerasWorkSideBySide) {
     return sum / 4.0;
   };
   for (int round = 0; round < 3; ++round) {
-    first->scan(Eigen::Isometry3d::Identity(), 0.0, a);
-    second->scan(Eigen::Isometry3d::Identity(), 0.0, b);
+    first->scan(Eigen::Isometry3d::Identity(), 0.0, scripted_poses(near_wall, 0.0), a);
+    second->scan(Eigen::Isometry3d::Identity(), 0.0, scripted_poses(far_wall, 0.0), b);
     ASSERT_EQ(a.points.size(), 32u * 32u);
     ASSERT_EQ(b.points.size(), 48u * 16u);
     EXPECT_NEAR(straight_ahead(a), 4.0, kCm);
     EXPECT_NEAR(straight_ahead(b), 7.0, kCm);
   }
   first.reset();
-  second->scan(to_isometry(Pose{{1.0, 0.0, 0.0}, {0.0, 0.0, 0.0}}), 0.0, b);
+  second->scan(to_isometry(Pose{{1.0, 0.0, 0.0}, {0.0, 0.0, 0.0}}), 0.0, scripted_poses(far_wall, 0.0), b);
   EXPECT_NEAR(straight_ahead(b), 7.0, kCm);
 }
 
@@ -313,7 +313,7 @@ TEST(DepthCamera, FillsTheScanLikeTheLidar) {
   const auto camera = make_depth_camera(scene, def);
   LidarScan scan;
   scan.points.assign(5000, Eigen::Vector3f::Zero());  // stale content is replaced
-  camera->scan(pose, 2.5, scan);
+  camera->scan(pose, 2.5, scripted_poses(scene, 2.5), scan);
   EXPECT_EQ(scan.rows, 30);
   EXPECT_EQ(scan.cols, 40);
   EXPECT_EQ(scan.time_s, 2.5);
@@ -358,7 +358,7 @@ TEST(DepthCamera, RejectsWhatItCannotRender) {
   EXPECT_THROW(make_depth_camera(scene, as_lidar(camera_def(16, 16))), std::invalid_argument);
   // An empty scene renders: every pixel a miss.
   LidarScan scan;
-  make_depth_camera(scene, camera_def(16, 16))->scan(Eigen::Isometry3d::Identity(), 0.0, scan);
+  make_depth_camera(scene, camera_def(16, 16))->scan(Eigen::Isometry3d::Identity(), 0.0, scripted_poses(scene, 0.0), scan);
   EXPECT_EQ(std::count(scan.hits.begin(), scan.hits.end(), 0), 256);
 }
 

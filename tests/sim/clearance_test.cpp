@@ -1,67 +1,112 @@
+// True clearance against analytic geometry: signed distances between the
+// collision shapes themselves (GJK, EPA when they overlap), to within 1 mm.
 #include "sim/clearance.hpp"
 
 #include <cmath>
+#include <filesystem>
+#include <numbers>
 
+#include <btBulletDynamicsCommon.h>
 #include <gtest/gtest.h>
+
+#include "sim/bullet_convert.hpp"
+#include "sim/scene_loader.hpp"
+#include "vehicles/vehicle.hpp"
 
 namespace campo {
 namespace {
 
-Shape make(ShapeType type, const Eigen::Vector3d& at) {
-  Shape s;
-  s.type = type;
-  s.pose.translation() = at;
-  return s;
+constexpr double kMm = 1e-3;
+
+btTransform at(double x, double y, double z, double yaw_deg = 0.0) {
+  btQuaternion q(btVector3(0, 0, 1), yaw_deg * std::numbers::pi / 180.0);
+  return btTransform(q, btVector3(x, y, z));
 }
 
-TEST(Clearance, CuboidDistances) {
-  Shape box = make(ShapeType::cuboid, {0, 0, 0});
-  box.size_m = {2, 4, 6};
-  EXPECT_DOUBLE_EQ(distance_to_shape(box, {3, 0, 0}), 2.0);                  // face
-  EXPECT_DOUBLE_EQ(distance_to_shape(box, {4, 5, 0}), std::hypot(3.0, 3.0));  // edge
-  EXPECT_DOUBLE_EQ(distance_to_shape(box, {0.5, 0.5, 0.5}), 0.0);             // inside
-  box.pose.linear() = rotation_from_rpy_deg({0, 0, 90});                      // now 4 wide in x
-  EXPECT_NEAR(distance_to_shape(box, {3, 0, 0}), 1.0, 1e-12);
+// Shapes without Bullet's collision margin: the exact solids.
+btBoxShape exact_box(double hx, double hy, double hz) {
+  btBoxShape box(btVector3(hx, hy, hz));
+  box.setMargin(0.0);
+  return box;
 }
 
-TEST(Clearance, RoundShapes) {
-  Shape ball = make(ShapeType::sphere, {1, 1, 1});
-  ball.radius_m = 0.5;
-  EXPECT_DOUBLE_EQ(distance_to_shape(ball, {1, 1, 3}), 1.5);
-  Shape can = make(ShapeType::cylinder, {0, 0, 0});
-  can.radius_m = 1.0;
-  can.height_m = 2.0;
-  EXPECT_DOUBLE_EQ(distance_to_shape(can, {3, 0, 0.5}), 2.0);           // side
-  EXPECT_DOUBLE_EQ(distance_to_shape(can, {0.5, 0, 4}), 3.0);           // top
-  EXPECT_DOUBLE_EQ(distance_to_shape(can, {4, 0, 5}), 5.0);             // rim: (3, 4)
-  Shape cone = make(ShapeType::cone, {0, 0, 0});
-  cone.radius_m = 1.0;
-  cone.height_m = 2.0;                                                  // apex (0, 0, 1)
-  EXPECT_NEAR(distance_to_shape(cone, {0, 0, 3}), 2.0, 1e-12);          // above the apex
-  EXPECT_NEAR(distance_to_shape(cone, {0, 0, -3}), 2.0, 1e-12);         // below the base
-  // Side: the slant from (1, -1) to (0, 1) in (r, z); point (2, 0): distance 3 / sqrt(5).
-  EXPECT_NEAR(distance_to_shape(cone, {2, 0, 0}), 3.0 / std::sqrt(5.0), 1e-12);
-  EXPECT_TRUE(std::isinf(distance_to_shape(make(ShapeType::plane, {0, 0, 0}), {0, 0, 5})));
+TEST(SignedDistance, BoxToBoxFaceEdgeAndCorner) {
+  const btBoxShape a = exact_box(0.3, 0.3, 0.06);  // the quadrotor's collision box
+  const btBoxShape b = exact_box(0.15, 2.5, 2.0);  // a barrier
+  // Face to face: 2 - 0.3 - 0.15.
+  EXPECT_NEAR(signed_distance(a, at(0, 0, 0), b, at(2, 0, 0)), 1.55, kMm);
+  // Corner to corner: the drone's corner (0.3, 0.3) to the barrier's corner (1.85, 2.8) in the plane z = 0.
+  EXPECT_NEAR(signed_distance(a, at(0, 0, 0), b, at(2, 3.3, 0)), std::hypot(1.55, 0.5), kMm);
+  // Overlapping by 5 cm along x: the depth of the overlap, negative.
+  EXPECT_NEAR(signed_distance(a, at(0, 0, 0), b, at(0.4, 0, 0)), -0.05, kMm);
 }
 
-TEST(Clearance, FieldTakesTheNearestObstacleAndSkipsGround) {
+TEST(SignedDistance, RotatedVehicleToAWall) {
+  const btBoxShape drone = exact_box(0.3, 0.3, 0.06);
+  const btBoxShape wall = exact_box(0.15, 5.0, 2.0);
+  // Yawed 45 degrees, the drone reaches 0.3 sqrt(2) toward the wall, where a
+  // bounding sphere would claim |(0.3, 0.3, 0.06)| = 0.429.
+  const double reach = 0.3 * std::sqrt(2.0);
+  EXPECT_NEAR(signed_distance(drone, at(0, 0, 0, 45), wall, at(1.0, 0, 0)), 1.0 - 0.15 - reach, kMm);
+  EXPECT_NEAR(signed_distance(drone, at(0, 0, 0, 30), wall, at(1.0, 0, 0)),
+              1.0 - 0.15 - 0.3 * (std::cos(std::numbers::pi / 6) + std::sin(std::numbers::pi / 6)), kMm);
+}
+
+TEST(SignedDistance, BoxToCylinderAndSphere) {
+  const btBoxShape box = exact_box(0.5, 0.5, 0.5);
+  btCylinderShapeZ trunk(btVector3(0.2, 0.2, 2.0));
+  trunk.setMargin(0.0);
+  // Side of the trunk to the box face: 3 - 0.2 - 0.5.
+  EXPECT_NEAR(signed_distance(box, at(0, 0, 0), trunk, at(3, 0, 0)), 2.3, kMm);
+  // Toward the box's vertical edge at (0.5, 0.5): the axis at (2, 2).
+  EXPECT_NEAR(signed_distance(box, at(0, 0, 0), trunk, at(2, 2, 0)), std::hypot(1.5, 1.5) - 0.2, kMm);
+  const btSphereShape ball(0.25);
+  EXPECT_NEAR(signed_distance(box, at(0, 0, 0), ball, at(0, 0, 2)), 2 - 0.5 - 0.25, kMm);
+}
+
+Scene scene_from(const std::string& objects) {
+  return parse_scene(nlohmann::json::parse(R"j({"objects": [)j" + objects + "]}"), "inline.json",
+                     std::filesystem::temp_directory_path());
+}
+
+// The quadrotor of a scene, placed in its world (no step taken).
+struct Placed {
   Scene scene;
-  scene.shapes.push_back(make(ShapeType::plane, {0, 0, 0}));
-  Shape near = make(ShapeType::sphere, {5, 0, 1});
-  near.radius_m = 1.0;
-  Shape far = make(ShapeType::sphere, {50, 0, 1});
-  far.radius_m = 10.0;
-  scene.shapes.push_back(near);
-  scene.shapes.push_back(far);
-  Mover walker;
-  walker.shape = make(ShapeType::sphere, {0, 0, 1});
-  walker.shape.radius_m = 0.5;
-  walker.path_m = {{0, 10, 1}, {0, -10, 1}};
-  walker.speed_mps = 1.0;
-  scene.movers.push_back(walker);
-  const ClearanceField field(scene);
-  EXPECT_DOUBLE_EQ(field.distance({0, 0, 1}, 0.0), 4.0);   // walker 10 m away, sphere 4 m
-  EXPECT_DOUBLE_EQ(field.distance({0, 0, 1}, 8.0), 1.5);   // walker at y = 2
+  World world;
+  std::unique_ptr<Vehicle> vehicle;
+  explicit Placed(const std::string& objects)
+      : scene(scene_from(objects)), world(scene), vehicle(make_vehicle(world, scene.vehicles.front())) {}
+};
+
+TEST(VehicleClearance, QuadrotorBoxToABarrierAndTheGround) {
+  const Placed p(R"j({"alias": "ground", "type": "plane"},
+    {"alias": "barrier", "type": "cuboid", "size_m": [0.3, 5, 4], "pose": {"position_m": [2, 0, 2]}},
+    {"alias": "drone", "type": "quadrotor", "pose": {"position_m": [0, 0, 1.5], "rpy_deg": [0, 0, 45]}})j");
+  const Clearance c = p.world.vehicle_clearance();
+  // Collision box (0.3, 0.3, 0.06) yawed 45 degrees: reach 0.3 sqrt(2) toward the barrier face at x = 1.85.
+  EXPECT_NEAR(c.obstacle_m, 1.85 - 0.3 * std::sqrt(2.0), kMm);
+  EXPECT_EQ(p.scene.shapes.at(static_cast<std::size_t>(c.obstacle)).alias, "barrier");
+  EXPECT_NEAR(c.ground_m, 1.5 - 0.06, kMm);
+  EXPECT_FALSE(c.touching());
+  // A cutoff below the true distance reports "at least that far".
+  EXPECT_TRUE(std::isinf(p.world.vehicle_clearance(0.5, 0.5).obstacle_m));
+  EXPECT_NEAR(p.world.vehicle_clearance(2.0, 2.0).obstacle_m, c.obstacle_m, 1e-12);
+}
+
+TEST(VehicleClearance, GroundOfAHeightfieldAndMovingBodies) {
+  const Placed p(R"j({"alias": "hill", "type": "heightfield", "size_m": [20, 20], "spacing_m": 0.5,
+      "expression": "0.1 * x"},
+    {"alias": "box", "type": "cuboid", "size_m": [1, 1, 1], "static": false, "mass_kg": 2,
+     "pose": {"position_m": [-3, 0, 3]}},
+    {"alias": "drone", "type": "quadrotor", "pose": {"position_m": [0, 0, 2]}})j");
+  const Clearance c = p.world.vehicle_clearance();
+  // The plane z = 0.1 x under the box's lowest edge: the distance from the
+  // box (z = 2 - 0.06, x = -0.3 .. 0.3) to the slope, at the corner x = 0.3:
+  // (1.94 - 0.03) cos(atan 0.1).
+  EXPECT_NEAR(c.ground_m, (1.94 - 0.03) / std::sqrt(1.01), kMm);
+  // The dynamic box, face to face: 3 - 0.5 - 0.3.
+  EXPECT_NEAR(c.obstacle_m, 2.2, kMm);
+  EXPECT_EQ(p.scene.shapes.at(static_cast<std::size_t>(c.obstacle)).alias, "box");
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <random>
 
+#include <btBulletDynamicsCommon.h>
 #include <gtest/gtest.h>
 
 #include "sim/run_record.hpp"
@@ -15,34 +16,52 @@
 namespace campo {
 namespace {
 
-// Moves exactly at the commanded speed toward a GoTo target; collides when
-// its x passes `wall_x`.
+// Moves exactly at the commanded speed toward a GoTo target. Its collision
+// shape is a kinematic sphere of radius 0.5 m in the world, so clearance and
+// collisions are measured on it as on a real vehicle.
 class PointVehicle final : public Vehicle {
  public:
-  explicit PointVehicle(const VehicleDef& def) { state_.position_m = def.pose.translation(); }
+  PointVehicle(World& world, const VehicleDef& def)
+      : world_(world.bullet()), shape_(0.5), body_(btRigidBody::btRigidBodyConstructionInfo(0.0, nullptr, &shape_)) {
+    state_.position_m = def.pose.translation();
+    body_.setCollisionFlags(body_.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    body_.setUserIndex(kVehicleBodyTag);
+    place();
+    world_.addRigidBody(&body_);
+  }
+  ~PointVehicle() override { world_.removeRigidBody(&body_); }
   VehicleType type() const override { return VehicleType::quadrotor; }
   void command(const Command& c) override { command_ = c; }
   void pre_step(double dt) override {
     if (const auto* go = std::get_if<command::GoTo>(&command_)) {
-      const Eigen::Vector3d d = go->target_m - state_.position_m;
+      const Eigen::Vector3d d = go->target_m - estimated_state().position_m;
       const double step = std::min(d.norm(), go->speed_mps * dt);
       if (d.norm() > 0) state_.position_m += d.normalized() * step;
     }
+    place();
   }
   VehicleState state() const override { return state_; }
   bool stable() const override { return true; }
   double bounding_radius_m() const override { return 0.5; }
-  bool in_collision() const override { return state_.position_m.x() > wall_x; }
+  bool in_collision() const override { return false; }
   nlohmann::json actuators() const override { return {{"speed", 1.0}}; }
   nlohmann::json parameters() const override { return {{"kind", "point"}}; }
-  static inline double wall_x = 1e9;
 
  private:
+  void place() {
+    body_.setWorldTransform(btTransform(btQuaternion::getIdentity(),
+                                        btVector3(state_.position_m.x(), state_.position_m.y(), state_.position_m.z())));
+  }
+  btDiscreteDynamicsWorld& world_;
+  btSphereShape shape_;
+  btRigidBody body_;
   VehicleState state_;
   Command command_;
 };
 
-std::unique_ptr<Vehicle> make_point(World&, const VehicleDef& def) { return std::make_unique<PointVehicle>(def); }
+std::unique_ptr<Vehicle> make_point(World& world, const VehicleDef& def) {
+  return std::make_unique<PointVehicle>(world, def);
+}
 
 // Goes to each waypoint in turn at 1 m/s; counts fresh scans.
 class Follower final : public Planner {
@@ -74,9 +93,10 @@ class Follower final : public Planner {
 
 std::unique_ptr<Planner> make_follower(const PlannerSpec&, const PlannerContext&) { return std::make_unique<Follower>(); }
 
-Scene scene_with(const std::string& extra_world = "") {
+// `extra_objects`: more objects, each followed by a comma.
+Scene scene_with(const std::string& extra_world = "", const std::string& extra_objects = "") {
   return parse_scene(nlohmann::json::parse(R"j({"world": {"physics_step_s": 0.01, "control_rate_hz": 20,
-    "sensor_rate_hz": 5, "time_limit_s": 30)j" + extra_world + R"j(}, "objects": [
+    "sensor_rate_hz": 5, "time_limit_s": 30)j" + extra_world + R"j(}, "objects": [)j" + extra_objects + R"j(
     {"alias": "post", "type": "cylinder", "radius_m": 0.5, "height_m": 4, "pose": {"position_m": [5, 2, 2]}},
     {"alias": "v", "type": "quadrotor", "pose": {"position_m": [0, 0, 1]},
      "sensors": [{"alias": "s", "type": "lidar", "preset": "scanner3d", "resolution": [4, 4]}],
@@ -87,7 +107,6 @@ Scene scene_with(const std::string& extra_world = "") {
 class EpisodeTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    PointVehicle::wall_x = 1e9;
     Follower::fresh_scans = 0;
     Follower::give_up_at = -1;
   }
@@ -103,8 +122,13 @@ TEST_F(EpisodeTest, ReachesTheGoalWithExactMetrics) {
   EXPECT_NEAR(m.sim_time_s, 7.0, 0.05 + 1e-9);
   EXPECT_NEAR(m.path_length_m, 7.0, 1e-9);
   EXPECT_NEAR(m.path_ratio, 1.0, 1e-9);
-  // Closest approach: the post axis (5, 2) is 2 m from the second leg; minus post and vehicle radius.
-  EXPECT_NEAR(m.min_clearance_m, 2.0 - 0.5 - 0.5, 0.06);
+  // Closest approach: the post axis (5, 2) is 2 m from the second leg at
+  // (3, 2); less the post's and the vehicle's radius. Exact: GJK between the shapes.
+  EXPECT_NEAR(m.min_clearance_m, 2.0 - 0.5 - 0.5, 1e-6);
+  EXPECT_EQ(m.nearest_obstacle, "post");
+  EXPECT_NEAR(m.min_clearance_time_s, 5.0, 0.01);
+  // No ground in this scene.
+  EXPECT_TRUE(std::isinf(m.min_ground_clearance_m));
   EXPECT_EQ(m.collisions, 0);
   EXPECT_EQ(m.planner_calls, static_cast<int>(r.trajectory.size()));
   EXPECT_NEAR(m.planner_calls, 7.0 * 20 + 1, 2);
@@ -125,17 +149,26 @@ TEST_F(EpisodeTest, TimesOut) {
 }
 
 TEST_F(EpisodeTest, StopsAtTheFirstCollisionOrCountsThem) {
-  const Scene scene = scene_with();
-  PointVehicle::wall_x = 1.505;
+  // A thin wall across the first leg: the sphere (radius 0.5) touches its
+  // face at x = 2.005 when its centre reaches x = 1.505, at t = 1.505 s,
+  // found after the physics step that ends at 1.51 s.
+  const Scene scene = scene_with("", R"j({"alias": "wall", "type": "cuboid", "size_m": [0.095, 0.8, 2],
+    "pose": {"position_m": [2.0525, 0, 1]}},)j");
   EpisodeResult r = run_episode(scene, &make_point, &make_follower);
   EXPECT_EQ(r.metrics.outcome, Outcome::collision);
   EXPECT_EQ(r.metrics.collisions, 1);
   EXPECT_NEAR(r.metrics.sim_time_s, 1.51, 1e-9);
+  EXPECT_EQ(r.metrics.reason, "collision with wall at t = 1.510000 s");
+  // Touching is clearance <= 0: the two always agree.
+  EXPECT_LE(r.metrics.min_clearance_m, 0.0);
+  EXPECT_NEAR(r.metrics.min_clearance_m, -0.005, 1e-6);
   EpisodeOptions keep_going;
   keep_going.stop_on_collision = false;
   r = run_episode(scene, &make_point, &make_follower, keep_going);
   EXPECT_EQ(r.metrics.outcome, Outcome::reached);
   EXPECT_EQ(r.metrics.collisions, 1);  // one contact episode, however long
+  // Passing through, the sphere's centre crosses the wall: overlap of its radius plus half the wall.
+  EXPECT_NEAR(r.metrics.min_clearance_m, -(0.5 + 0.0475), 3e-3);
 }
 
 TEST_F(EpisodeTest, PlannerGivingUpAbortsWithItsReason) {

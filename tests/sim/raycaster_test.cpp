@@ -466,17 +466,17 @@ TEST(RayCaster, SetTimeMovesMoversAlongTheirPaths) {
   const Eigen::Vector3d x = Eigen::Vector3d::UnitX();
   EXPECT_EQ(cast_one(caster, o, x).shape, -1);
   EXPECT_NEAR(cast_one(caster, o, x).distance_m, 4.5, 1e-6);
-  caster.set_time(2.0);
+  caster.set_poses(scripted_poses(scene, 2.0));
   EXPECT_NEAR(cast_one(caster, o, x).distance_m, 8.5, 1e-6);
-  caster.set_time(20.0);  // first mover parked at x = 15, the sphere on the ray
+  caster.set_poses(scripted_poses(scene, 20.0));  // first mover parked at x = 15, the sphere on the ray
   EXPECT_EQ(cast_one(caster, o, x).shape, -2);
   EXPECT_NEAR(cast_one(caster, o, x).distance_m, 2.5, 1e-6);
-  caster.set_time(40.0);  // the sphere has gone by
+  caster.set_poses(scripted_poses(scene, 40.0));  // the sphere has gone by
   EXPECT_EQ(cast_one(caster, o, x).shape, -1);
   EXPECT_NEAR(cast_one(caster, o, x).distance_m, 14.5, 1e-6);
   // Off the movers' line the static wall is seen.
   EXPECT_EQ(cast_one(caster, {0.0, 1.5, 0.0}, x).shape, 0);
-  caster.set_time(0.0);
+  caster.set_poses(scripted_poses(scene, 0.0));
   EXPECT_NEAR(cast_one(caster, o, x).distance_m, 4.5, 1e-6);
 }
 
@@ -491,7 +491,7 @@ TEST(RayCaster, RejectsMoversThatAreNotPrimitives) {
     const RayCaster caster(scene);
     FAIL() << "a plane mover was accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("mover 'floor' is a plane"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("moving body 'floor' is a plane"), std::string::npos)
         << e.what();
   }
 }

@@ -191,14 +191,14 @@ TEST(SceneMesh, MoversAreInTheirShapeFrameOnePartEach) {
   scene.movers.push_back(ball);
   const SceneMesh mesh = build_scene_mesh(scene);
   ASSERT_EQ(mesh.parts.size(), 1u);
-  ASSERT_EQ(mesh.mover_parts.size(), 2u);
-  EXPECT_EQ(mesh.mover_parts[0].shape, -1);
-  EXPECT_EQ(mesh.mover_parts[1].shape, -2);
-  const Eigen::AlignedBox3d walker_box = part_box(mesh, mesh.mover_parts[0]);
+  ASSERT_EQ(mesh.moving_parts.size(), 2u);
+  EXPECT_EQ(mesh.moving_parts[0].shape, -1);
+  EXPECT_EQ(mesh.moving_parts[1].shape, -2);
+  const Eigen::AlignedBox3d walker_box = part_box(mesh, mesh.moving_parts[0]);
   EXPECT_TRUE(walker_box.min().isApprox(Eigen::Vector3d(-0.7, -0.7, -1.25), 1e-6));
   EXPECT_TRUE(walker_box.max().isApprox(Eigen::Vector3d(0.7, 0.7, 1.25), 1e-6));
-  EXPECT_EQ(mesh.mover_parts[1].first_index, mesh.mover_parts[0].first_index + mesh.mover_parts[0].index_count);
-  EXPECT_EQ(mesh.mover_parts[1].first_index + mesh.mover_parts[1].index_count, mesh.indices.size());
+  EXPECT_EQ(mesh.moving_parts[1].first_index, mesh.moving_parts[0].first_index + mesh.moving_parts[0].index_count);
+  EXPECT_EQ(mesh.moving_parts[1].first_index + mesh.moving_parts[1].index_count, mesh.indices.size());
 }
 
 TEST(SceneMesh, IsDeterministic) {
