@@ -97,14 +97,14 @@ TEST(VehicleClearance, GroundOfAHeightfieldAndMovingBodies) {
   const Placed p(R"j({"alias": "hill", "type": "heightfield", "size_m": [20, 20], "spacing_m": 0.5,
       "expression": "0.1 * x"},
     {"alias": "box", "type": "cuboid", "size_m": [1, 1, 1], "static": false, "mass_kg": 2,
-     "pose": {"position_m": [-3, 0, 3]}},
+     "pose": {"position_m": [-3, 0, 2]}},
     {"alias": "drone", "type": "quadrotor", "pose": {"position_m": [0, 0, 2]}})j");
   const Clearance c = p.world.vehicle_clearance();
   // The plane z = 0.1 x under the box's lowest edge: the distance from the
   // box (z = 2 - 0.06, x = -0.3 .. 0.3) to the slope, at the corner x = 0.3:
   // (1.94 - 0.03) cos(atan 0.1).
   EXPECT_NEAR(c.ground_m, (1.94 - 0.03) / std::sqrt(1.01), kMm);
-  // The dynamic box, face to face: 3 - 0.5 - 0.3.
+  // The dynamic box (not yet stepped), face to face: 3 - 0.5 - 0.3.
   EXPECT_NEAR(c.obstacle_m, 2.2, kMm);
   EXPECT_EQ(p.scene.shapes.at(static_cast<std::size_t>(c.obstacle)).alias, "box");
 }
