@@ -229,7 +229,7 @@ std::pair<double, double> padded(double lo, double hi, double min_pad) {
 // The summary table as series: one per scene, in order of first appearance.
 struct Series {
   std::string scene;
-  std::vector<Point> path_ratio;  ///< rows with completed runs only
+  std::vector<Point> path_ratio;  ///< over the runs that reached their goal; rows where some did only
   std::vector<Point> success;
 };
 
@@ -259,8 +259,9 @@ cv::Mat draw_sweep_chart(const SweepTable& table) {
     auto it = std::find_if(series.begin(), series.end(), [&](const Series& s) { return s.scene == row.scene; });
     if (it == series.end()) it = series.insert(series.end(), Series{row.scene, {}, {}});
     const double x = x_axis.to_x(row.params.front().get<double>());
-    if (row.path_ratio) {
-      const MeanSd& r = *row.path_ratio;
+    // Successes only: an aborted run's short path would pull the mean below the ideal 1.
+    if (row.path_ratio_reached) {
+      const MeanSd& r = *row.path_ratio_reached;
       it->path_ratio.push_back({x, r.mean, r.mean - r.sd, r.mean + r.sd});
       ratio_lo = std::min(ratio_lo, r.mean - r.sd);
       ratio_hi = std::max(ratio_hi, r.mean + r.sd);
@@ -298,7 +299,7 @@ cv::Mat draw_sweep_chart(const SweepTable& table) {
     std::vector<Point> Series::*points;
     std::optional<double> reference_y;  ///< a dashed line: the ideal value
   } panels[] = {
-      {ratio_frame, ratio_y, "Normalized path length (mean +/- sd)", "path length / nominal route",
+      {ratio_frame, ratio_y, "Normalized path length, reached runs (mean +/- sd)", "path length / nominal route",
        &Series::path_ratio, 1.0},
       {success_frame, success_y, "Success rate (%)", "runs reaching the goal (%)", &Series::success, std::nullopt},
   };
@@ -402,7 +403,7 @@ cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& l
 
   // Layout: title and note on top, the legend right of the plot.
   const ChartStyle& style = kPaperStyle;
-  const std::string series_label = request.group.empty() ? metric_label(request.y) : "";
+  const std::string series_label = request.group.empty() ? metric_heading(request.y) : "";
   std::vector<LegendRow> legend;
   for (std::size_t i = 0; i < series.size(); ++i) {
     const cv::Scalar color = run_color(i);
@@ -439,7 +440,7 @@ cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& l
   }
 
   cv::Mat image(config.height_px, config.width_px, CV_8UC3, figure::kWhite);
-  const std::string y_label = metric_label(request.y);
+  const std::string y_label = metric_heading(request.y);
   const std::string title = request.title.empty() ? layout.name + ": " + y_label + " vs " + request.x : request.title;
   put_title(image, title, {0, 10, config.width_px, 60}, style.title);
   const std::string spread = rate ? "rate with 95% Wilson interval"

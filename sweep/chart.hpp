@@ -2,7 +2,8 @@
 /// Charts of sweep results (SPEC §9), drawn with OpenCV, the same pixels for
 /// the same results. The summary chart of `campo table`: two panels,
 /// normalized path length (mean with ± sd error bars) and success rate (%)
-/// against one numeric axis, one coloured series per scene. The plots of
+/// against one numeric axis, one coloured series per scene (the path length
+/// over the runs that reached their goal only). The plots of
 /// `campo plot`: any metric against any field, as lines or box plots.
 #include <filesystem>
 #include <string>
@@ -33,7 +34,7 @@ enum class PlotKind {
 /// What `campo plot` draws: metric `y` against field `x`.
 struct PlotRequest {
   std::string x;       ///< a field (check_field): "scene", "planner", "seed" or an axis
-  std::string y;       ///< a metric (check_metric), "success" for the success rate
+  std::string y;       ///< a metric (check_metric), "success" for the success rate, "path_ratio@reached" over successes
   std::string group;   ///< a field other than x: one coloured series per value; empty: one series
   PlotKind kind = PlotKind::automatic;
   std::string title;   ///< empty: "<sweep>: <metric label> vs <x>"

@@ -24,6 +24,34 @@ constexpr std::uint64_t fnv1a(std::string_view text) {
 }
 constexpr std::uint64_t kStartJitterStream = fnv1a("start_jitter");
 
+// A seeded generator object of a scene document and where it is.
+struct GeneratorObject {
+  std::string alias;
+  std::string pointer;        ///< of its "seed", through aliases: "/objects/field/seed"
+  std::string index_pointer;  ///< the same through indices: "/objects/1/seed"
+};
+
+// Every seeded generator among `objects` and their children, in document order.
+void find_generators(const nlohmann::json& objects, const std::string& alias_path, const std::string& index_path,
+                     std::vector<GeneratorObject>& found) {
+  if (!objects.is_array()) return;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const nlohmann::json& object = objects[i];
+    if (!object.is_object()) continue;
+    const std::string alias = object.value("alias", "");
+    // Aliases are required and unique (the scene is validated later); an index stands in for a bad one.
+    const std::string by_alias = alias_path + "/" + (alias.empty() ? std::to_string(i) : alias);
+    const std::string by_index = child_pointer(index_path, i);
+    const std::string type = object.value("type", "");
+    if (std::find(kSeededGeneratorTypes.begin(), kSeededGeneratorTypes.end(), type) != kSeededGeneratorTypes.end()) {
+      found.push_back({alias, by_alias + "/seed", by_index + "/seed"});
+    }
+    if (const auto children = object.find("children"); children != object.end()) {
+      find_generators(*children, by_alias + "/children", by_index + "/children", found);
+    }
+  }
+}
+
 // An InputError's message without its "file: pointer: " prefix.
 std::string message_of(const InputError& e) {
   const std::size_t prefix = e.file().size() + 2 + (e.pointer().empty() ? 0 : e.pointer().size() + 2);
@@ -104,7 +132,7 @@ class SceneExpander {
   }
 
   /// The run of this planner (null: the scene's), axis point and seed.
-  SweepRun run(const SweepPlanner* planner, const AxisPoint& point, std::uint64_t seed) const {
+  SweepRun run(const SweepPlanner* planner, const AxisPoint& point, std::uint64_t seed) {
     SweepRun run;
     run.scene = scene_.label;
     if (planner) run.planner = planner->label;
@@ -123,6 +151,7 @@ class SceneExpander {
       for (const std::string& pointer : axis.pointers) apply(document, run, pointer, point.values[a], point.origins[a]);
     }
     apply(document, run, "/world/seed", seed, "/seeds");
+    if (spec_.vary_scene_with_seed) apply_generator_seeds(document, run);
     if (spec_.start_jitter) apply_start_jitter(document, run, *spec_.start_jitter);
 
     const Scene scene = validated(document, run);
@@ -142,6 +171,9 @@ class SceneExpander {
     run.id = sha256_hex(std::string(CAMPO_VERSION) + "\n" + run.name + "\n" + document.dump()).substr(0, 16);
     return run;
   }
+
+  /// The most seeded generators re-seeded in one run's scene so far.
+  std::size_t generators() const { return generators_; }
 
  private:
   // The run's scene, validated like a scene file; errors name the run.
@@ -180,6 +212,29 @@ class SceneExpander {
     }
   }
 
+  // Every seeded generator re-seeded from the run seed, as the document stands after set and the axes.
+  void apply_generator_seeds(nlohmann::json& document, SweepRun& run) {
+    std::vector<GeneratorObject> generators;
+    if (const auto objects = document.find("objects"); objects != document.end()) {
+      find_generators(*objects, "/objects", "/objects", generators);
+    }
+    for (const GeneratorObject& g : generators) {
+      // The seed must have one writer, as every other pointer.
+      const auto conflict = [&](const std::string& pointer, const std::string& origin) {
+        if (pointer != g.pointer && pointer != g.index_pointer) return;
+        throw InputError(spec_file_, "/vary_scene_with_seed",
+                         "expected no other override of a generator's seed when the run seeds vary the scene (" +
+                             pointer + " is also set at " + origin + ", scene " + scene_.label + ")");
+      };
+      for (const SweepOverride& o : spec_.set) conflict(o.pointer, o.origin);
+      for (const SweepAxis& axis : spec_.axes) {
+        for (const std::string& pointer : axis.pointers) conflict(pointer, axis.origin);
+      }
+      apply(document, run, g.pointer, generator_seed(run.seed, g.alias), "/vary_scene_with_seed");
+    }
+    generators_ = std::max(generators_, generators.size());
+  }
+
   // The start moved within the disc, from the vehicle's position in the document so far.
   void apply_start_jitter(nlohmann::json& document, SweepRun& run, const StartJitter& jitter) const {
     const auto [vehicle, index] = top_level_object(document, jitter.vehicle);
@@ -209,6 +264,7 @@ class SceneExpander {
   std::string sha256_;
   std::string vehicle_;  // alias of the first vehicle
   std::string planner_;  // its planner in the scene file
+  std::size_t generators_ = 0;  // most seeded generators in one run's scene (vary_scene_with_seed)
 };
 
 }  // namespace
@@ -247,13 +303,22 @@ std::vector<SweepRun> expand_sweep(const SweepSpec& spec, const SceneCheck& chec
   for (const SweepPlanner& p : spec.planners) planners.push_back(&p);
   if (planners.empty()) planners.push_back(nullptr);  // each scene's own
   std::vector<SweepRun> runs;
+  std::size_t generators = 0;
   for (const SweepScene& scene : spec.scenes) {
-    const SceneExpander expander(spec, scene, check);
+    SceneExpander expander(spec, scene, check);
     for (const SweepPlanner* planner : planners) {
       for (const AxisPoint& point : points) {
         for (int k = 0; k < spec.seed_count; ++k) runs.push_back(expander.run(planner, point, spec.first_seed + k));
       }
     }
+    generators += expander.generators();
+  }
+  // Asked to vary the scenes, a spec whose scenes have nothing to vary is a mistake, not a no-op.
+  if (spec.vary_scene_with_seed && generators == 0) {
+    std::string types;
+    for (std::string_view t : kSeededGeneratorTypes) (types += types.empty() ? "" : ", ") += t;
+    throw InputError(spec.file.string(), "/vary_scene_with_seed",
+                     "expected a scene with a seeded generator (" + types + "), or false");
   }
   return runs;
 }
@@ -264,6 +329,11 @@ std::vector<SweepRun> shard_of(const std::vector<SweepRun>& runs, int index, int
     shard.push_back(runs[i]);
   }
   return shard;
+}
+
+std::uint64_t generator_seed(std::uint64_t seed, const std::string& alias) {
+  // 53 bits: JSON tools that read numbers as doubles (jq, JavaScript) keep the seed exact.
+  return Rng::derive_seed(seed, fnv1a("vary_scene_with_seed/" + alias)) & ((std::uint64_t{1} << 53) - 1);
 }
 
 Eigen::Vector2d start_jitter_offset(std::uint64_t seed, double radius_m) {

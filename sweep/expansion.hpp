@@ -1,6 +1,7 @@
 #pragma once
 /// A sweep spec expanded into its runs (scene x axis values x seeds), each
 /// validated before anything runs, and the manifest that records them.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -26,7 +27,8 @@ struct SweepRun {
   std::filesystem::path scene_file;
   nlohmann::json params;               ///< axis name -> value
   std::uint64_t seed = 0;              ///< written to /world/seed
-  std::vector<std::string> overrides;  ///< "POINTER=JSON", in order: planner, set, axes, seed, start jitter
+  /// "POINTER=JSON", in order: planner, set, axes, seed, generator seeds (vary_scene_with_seed), start jitter
+  std::vector<std::string> overrides;
   std::string scene_sha256;            ///< of the scene file's bytes
 };
 
@@ -46,6 +48,17 @@ std::vector<std::vector<nlohmann::json>> sample_axes(const SweepSpec& spec);
 /// validated (parse_scene, then `check` if given); any error is an InputError
 /// naming the spec file, the spec's JSON pointer and the run.
 std::vector<SweepRun> expand_sweep(const SweepSpec& spec, const SceneCheck& check = {});
+
+/// Object types of the scene format whose shapes come from a seeded
+/// generator (sim/generators.hpp), re-seeded by "vary_scene_with_seed".
+inline constexpr std::array<std::string_view, 3> kSeededGeneratorTypes{"rolling_terrain", "trees", "vineyard"};
+
+/// The seed "vary_scene_with_seed" gives the generator object `alias` in the
+/// run of `seed`: Rng::derive_seed(seed, FNV-1a-64("vary_scene_with_seed/" +
+/// alias)), kept to 53 bits. The same for every scene, planner and axis value
+/// of a run seed (values compared on the same worlds), different per
+/// generator (two patches of trees are not placed alike).
+std::uint64_t generator_seed(std::uint64_t seed, const std::string& alias);
 
 /// Horizontal offset of the start jitter of `seed`: uniform in the disc of
 /// `radius_m`, from campo::Rng, the same for every scene and axis value of a

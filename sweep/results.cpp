@@ -59,6 +59,8 @@ RunResult read_result(const JsonNode& node) {
     result.reason = r.required("reason").as_string();
     if (!metrics.value().is_null()) metrics.fail("null for a failed run");
   }
+  // Results written before trajectories were digested lack it; identical_runs then compares metrics only.
+  r.read("trajectory_sha256", result.trajectory_sha256);
   if (auto dir = r.optional("run_dir"); dir && !dir->value().is_null()) dir->as_string();
   if (auto triage = r.optional("triage"); triage && !triage->value().is_object()) triage->fail("an object");
   // Provenance and timing are for people and scripts; tables and plots do not use them.
@@ -69,7 +71,7 @@ RunResult read_result(const JsonNode& node) {
   return result;
 }
 
-// Mean and sd of one metric over the completed runs; empty when there are none.
+// Mean and sd of one metric over some completed runs; empty when there are none.
 template <class Metric>
 std::optional<MeanSd> spread(const std::vector<const RunResult*>& completed, Metric metric) {
   if (completed.empty()) return std::nullopt;
@@ -84,28 +86,33 @@ TableRow summarize(const std::vector<const RunResult*>& group, const std::vector
   row.scene = group.front()->scene;
   for (const std::string& axis : axes) row.params.push_back(group.front()->params.value(axis, nlohmann::json()));
   row.runs = static_cast<int>(group.size());
-  std::vector<const RunResult*> completed;
+  std::vector<const RunResult*> completed, reached;
   std::vector<double> replan_medians, replan_maxima;
-  int reached = 0;
   for (const RunResult* r : group) {
     if (!r->completed) {
       ++row.failed;
       continue;
     }
     completed.push_back(r);
-    if (r->metrics.outcome == "reached") ++reached;
+    if (r->metrics.outcome == "reached") reached.push_back(r);
     row.collisions += r->metrics.collisions;
     if (r->metrics.replans > 0) {
       replan_medians.push_back(r->metrics.replan_ms_median);
       replan_maxima.push_back(r->metrics.replan_ms_max);
     }
   }
-  row.success_rate = static_cast<double>(reached) / row.runs;
+  row.reached = static_cast<int>(reached.size());
+  row.success_rate = static_cast<double>(row.reached) / row.runs;
+  row.identical = identical_runs(group);
   row.waypoints_reached = spread(completed, [](const RunMetrics& m) { return m.waypoints_reached; });
   row.waypoints_discarded = spread(completed, [](const RunMetrics& m) { return m.waypoints_discarded; });
   row.path_length_m = spread(completed, [](const RunMetrics& m) { return m.path_length_m; });
   row.path_ratio = spread(completed, [](const RunMetrics& m) { return m.path_ratio; });
   row.time_s = spread(completed, [](const RunMetrics& m) { return m.time_s; });
+  // An aborted run's short path would pull the all-run means down: the same over the successes alone.
+  row.path_length_m_reached = spread(reached, [](const RunMetrics& m) { return m.path_length_m; });
+  row.path_ratio_reached = spread(reached, [](const RunMetrics& m) { return m.path_ratio; });
+  row.time_s_reached = spread(reached, [](const RunMetrics& m) { return m.time_s; });
   if (!replan_medians.empty()) {
     row.replan_ms_median = box_stats(replan_medians).median;
     row.replan_ms_max = *std::max_element(replan_maxima.begin(), replan_maxima.end());
@@ -117,13 +124,15 @@ TableRow summarize(const std::vector<const RunResult*>& group, const std::vector
 
 std::string run_dir(const std::string& name) { return "runs/" + name; }
 
-nlohmann::json completed_result(const SweepRun& run, const nlohmann::json& run_record) {
+nlohmann::json completed_result(const SweepRun& run, const nlohmann::json& run_record,
+                                const std::string& trajectory_sha256) {
   const nlohmann::json& provenance = run_record.at("provenance");
   nlohmann::json line = result_line(run, "completed");
   line["metrics"] = run_record.at("metrics");
   line["campo_version"] = provenance.at("campo_version");
   line["git_rev"] = provenance.at("git_revision");
   line["scene_sha256"] = provenance.at("scene").at("sha256");
+  line["trajectory_sha256"] = trajectory_sha256;
   return line;
 }
 
@@ -277,14 +286,52 @@ std::vector<std::string> available_metrics(const std::vector<RunResult>& runs) {
   return metrics;
 }
 
+MetricName split_metric(const std::string& metric) {
+  const std::size_t at = metric.find('@');
+  if (at == std::string::npos) return {metric, false};
+  return {metric.substr(0, at), metric.substr(at) == kReachedSuffix};
+}
+
+bool measured_metric(std::string_view key) {
+  return key == "wall_time_s" || key.starts_with("planner_time_ms_") || key.starts_with("replan_time_ms_");
+}
+
+bool identical_runs(const std::vector<const RunResult*>& runs) {
+  if (runs.size() < 2) return false;
+  // Everything a run's seed could change but the wall-clock measurements.
+  const auto deterministic = [](const RunResult& run) {
+    nlohmann::json metrics = nlohmann::json::object();
+    for (const auto& [key, value] : run.metrics_json.items()) {
+      if (!measured_metric(key)) metrics[key] = value;
+    }
+    return metrics;
+  };
+  const RunResult& first = *runs.front();
+  if (!first.completed) return false;
+  const nlohmann::json reference = deterministic(first);
+  return std::all_of(runs.begin() + 1, runs.end(), [&](const RunResult* run) {
+    return run->completed && run->trajectory_sha256 == first.trajectory_sha256 && deterministic(*run) == reference;
+  });
+}
+
 MetricKind check_metric(const std::string& metric, const std::vector<RunResult>& runs, const std::string& file,
                         const std::string& where) {
-  if (metric == "success" || metric == "outcome") return MetricKind::rate;
+  const MetricName name = split_metric(metric);
+  if (name.base.size() != metric.size() && !name.reached_only) {
+    throw InputError(file, where, "expected a metric, or a metric over the runs that reached their goal as \"" +
+                                      name.base + std::string(kReachedSuffix) + "\", got \"" + metric + "\"");
+  }
+  const bool success = name.base == "success" || name.base == "outcome";
+  if (success && name.reached_only) {
+    throw InputError(file, where, "expected \"success\" without \"@reached\" (over the runs that reached their "
+                                  "goal it is 100 % by definition), got \"" + metric + "\"");
+  }
+  if (success) return MetricKind::rate;
   bool completed = false, number = false, boolean = false;
   for (const RunResult& run : runs) {
     if (!run.completed) continue;
     completed = true;
-    const nlohmann::json value = run.metrics_json.value(metric, nlohmann::json());
+    const nlohmann::json value = run.metrics_json.value(name.base, nlohmann::json());
     number = number || value.is_number();
     boolean = boolean || value.is_boolean();
   }
@@ -297,9 +344,11 @@ MetricKind check_metric(const std::string& metric, const std::vector<RunResult>&
 }
 
 std::optional<double> metric_value(const RunResult& run, const std::string& metric) {
-  if (metric == "success" || metric == "outcome") return run.completed && run.metrics.outcome == "reached" ? 1.0 : 0.0;
-  if (!run.completed) return std::nullopt;
-  const nlohmann::json value = run.metrics_json.value(metric, nlohmann::json());
+  const MetricName name = split_metric(metric);
+  const bool reached = run.completed && run.metrics.outcome == "reached";
+  if (name.base == "success" || name.base == "outcome") return reached ? 1.0 : 0.0;
+  if (!run.completed || (name.reached_only && !reached)) return std::nullopt;
+  const nlohmann::json value = run.metrics_json.value(name.base, nlohmann::json());
   if (value.is_boolean()) return value.get<bool>() ? 1.0 : 0.0;
   if (value.is_number()) return value.get<double>();
   return std::nullopt;

@@ -26,8 +26,11 @@ std::string run_dir(const std::string& name);
 /// The results.jsonl line of a run that completed, from its run.json:
 /// {id, name, scene, planner, params, seed, status: "completed", overrides,
 /// run_dir (null; the sweep sets it when it keeps the run's files), metrics,
-/// campo_version, git_rev, scene_sha256}.
-nlohmann::json completed_result(const SweepRun& run, const nlohmann::json& run_record);
+/// campo_version, git_rev, scene_sha256, trajectory_sha256}.
+/// `trajectory_sha256`: SHA-256 of the run's trajectory.csv text (what
+/// `campo table` compares to tell runs apart).
+nlohmann::json completed_result(const SweepRun& run, const nlohmann::json& run_record,
+                                const std::string& trajectory_sha256);
 /// The line of a run that failed (threw) before writing its record: status
 /// "failed", its `reason`, metrics null.
 nlohmann::json failed_result(const SweepRun& run, const std::string& reason);
@@ -74,6 +77,7 @@ struct RunResult {
   std::vector<std::string> overrides;
   RunMetrics metrics;                  ///< completed runs only
   nlohmann::json metrics_json;         ///< the run's metrics object as recorded; null for a failed run
+  std::string trajectory_sha256;       ///< of its trajectory.csv; empty for failed runs and older results
 };
 
 struct ResultsFile {
@@ -140,18 +144,44 @@ void check_field(const std::string& field, const std::vector<std::string>& axes,
 /// boolean metrics as the rate of true.
 enum class MetricKind { number, rate };
 
+/// Suffix of a metric summarized over the runs that reached their goal only:
+/// "path_ratio@reached". Without it, a metric is over every completed run
+/// that has it (an aborted run's short path included).
+inline constexpr std::string_view kReachedSuffix = "@reached";
+
+/// A metric as tables and plots name it, split: "path_ratio@reached" ->
+/// {"path_ratio", true}. Not checked (check_metric does that).
+struct MetricName {
+  std::string base;           ///< the run.json key, or "success"
+  bool reached_only = false;  ///< over the runs with outcome "reached" only
+};
+MetricName split_metric(const std::string& metric);
+
+/// Whether a run.json metric is measured wall-clock time, which differs
+/// between identical runs: wall_time_s, planner_time_ms_*, replan_time_ms_*.
+bool measured_metric(std::string_view key);
+
+/// Whether `runs` are the same run repeated: at least two, all completed,
+/// with equal metrics but for the measured ones (measured_metric) and equal
+/// trajectory digests (all present, or all absent in older results). Their
+/// seeds then change nothing, and a spread or interval over them would be
+/// spurious.
+bool identical_runs(const std::vector<const RunResult*>& runs);
+
 /// "success", then every metric with a number or boolean value in some completed run, sorted.
 std::vector<std::string> available_metrics(const std::vector<RunResult>& runs);
 
 /// The kind of `metric`; throws InputError(file, where, ...) listing the
 /// available metrics when no completed run has it as a number or boolean
-/// (any name passes while no run has completed). "outcome" is "success".
+/// (any name passes while no run has completed), and for a suffix other
+/// than "@reached" or "success@reached" (always 100 %). "outcome" is "success".
 MetricKind check_metric(const std::string& metric, const std::vector<RunResult>& runs, const std::string& file,
                         const std::string& where);
 
 /// A run's value of `metric`: for "success" (and "outcome"), 1 when the run
 /// completed with outcome "reached", else 0 (failed runs included); otherwise
-/// the completed run's number, or 1/0 for a boolean; empty when it has none.
+/// the completed run's number, or 1/0 for a boolean; empty when it has none,
+/// and for "<metric>@reached" when the run did not reach its goal.
 std::optional<double> metric_value(const RunResult& run, const std::string& metric);
 
 /// The metric over `runs`, over those that have a value (the Summary's n);
@@ -188,8 +218,12 @@ struct TableRow {
   int runs = 0;                        ///< all runs, failed ones included
   int failed = 0;                      ///< runs that failed rather than completed
   double success_rate = 0.0;           ///< runs with outcome "reached" / runs
+  int reached = 0;                     ///< runs with outcome "reached"
   // Over the completed runs (whatever their outcome); empty when there are none.
   std::optional<MeanSd> waypoints_reached, waypoints_discarded, path_length_m, path_ratio, time_s;
+  // Over the runs that reached their goal only; empty when none did.
+  std::optional<MeanSd> path_length_m_reached, path_ratio_reached, time_s_reached;
+  bool identical = false;              ///< the runs are one run repeated (identical_runs): no spread to show
   int collisions = 0;                  ///< total
   /// Median of the runs' replan_time_ms_median and max of their maxima, over
   /// the completed runs that replanned; empty when none did.

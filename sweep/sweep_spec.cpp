@@ -237,6 +237,7 @@ class SpecParser {
       }
     }
     r.read("time_limit_s", spec.time_limit_s, Range::positive());
+    r.read("vary_scene_with_seed", spec.vary_scene_with_seed);
     // Read by `campo table`, which checks its fields against the results.
     if (auto table = r.optional("table")) read_table_request(*table);
     r.finish();

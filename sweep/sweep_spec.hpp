@@ -78,6 +78,10 @@ struct SweepSpec {
   std::optional<StartJitter> start_jitter;
   std::optional<SweepSampling> sampling;
   double time_limit_s = 3600.0;          ///< wall-clock limit of one run, after which it is stopped and recorded as failed
+  /// Each run's seed also re-seeds every seeded scene generator (rolling
+  /// terrain, trees, vineyard) of its scene, so the seeds vary the world
+  /// (generator_seed); false: the generators keep the scene file's seeds.
+  bool vary_scene_with_seed = false;
 };
 
 /// Limits that stop a spec from expanding beyond reason.

@@ -21,19 +21,29 @@ struct SpreadColumn {
   int decimals;             ///< Markdown/LaTeX precision
   std::optional<MeanSd> TableRow::*member;
 };
+// Path length, ratio and time over all completed runs beside the same over the
+// runs that reached their goal: an aborted run's short path lowers the first.
 constexpr std::array kSpreadColumns{
     SpreadColumn{"waypoints_reached", "Waypoints reached", 1, &TableRow::waypoints_reached},
     SpreadColumn{"waypoints_discarded", "Discarded", 1, &TableRow::waypoints_discarded},
-    SpreadColumn{"path_length_m", "Path length (m)", 2, &TableRow::path_length_m},
-    SpreadColumn{"path_ratio", "Normalized length", 3, &TableRow::path_ratio},
-    SpreadColumn{"time_s", "Time (s)", 1, &TableRow::time_s},
+    SpreadColumn{"path_length_m", "Path length (m), all runs", 2, &TableRow::path_length_m},
+    SpreadColumn{"path_length_m_reached", "Path length (m), reached runs", 2, &TableRow::path_length_m_reached},
+    SpreadColumn{"path_ratio", "Normalized length, all runs", 3, &TableRow::path_ratio},
+    SpreadColumn{"path_ratio_reached", "Normalized length, reached runs", 3, &TableRow::path_ratio_reached},
+    SpreadColumn{"time_s", "Time (s), all runs", 1, &TableRow::time_s},
+    SpreadColumn{"time_s_reached", "Time (s), reached runs", 1, &TableRow::time_s_reached},
 };
 
 constexpr auto kStatColumns = std::to_array<std::string_view>({
-    "runs", "success_rate",
+    "runs", "success_rate", "reached_runs",
     "waypoints_reached_mean", "waypoints_reached_sd", "waypoints_discarded_mean", "waypoints_discarded_sd",
-    "path_length_m_mean", "path_length_m_sd", "path_ratio_mean", "path_ratio_sd", "time_s_mean", "time_s_sd",
-    "collisions", "replan_ms_median", "replan_ms_max", "failed"});
+    "path_length_m_mean", "path_length_m_sd", "path_length_m_reached_mean", "path_length_m_reached_sd",
+    "path_ratio_mean", "path_ratio_sd", "path_ratio_reached_mean", "path_ratio_reached_sd",
+    "time_s_mean", "time_s_sd", "time_s_reached_mean", "time_s_reached_sd",
+    "collisions", "replan_ms_median", "replan_ms_max", "failed", "identical"});
+
+// What a cell or row of identical runs says instead of a spread.
+constexpr std::string_view kIdenticalNote = "identical runs: seeds vary nothing";
 
 // Shortest text that reads back as the same double.
 std::string exact(double value) {
@@ -66,15 +76,17 @@ std::string csv(const SweepTable& table) {
     for (const auto& value : row.params) cells.push_back(csv_field(value.is_null() ? "" : value_label(value)));
     cells.push_back(std::to_string(row.runs));
     cells.push_back(exact(row.success_rate));
+    cells.push_back(std::to_string(row.reached));
     for (const SpreadColumn& column : kSpreadColumns) {
       const std::optional<MeanSd>& s = row.*column.member;
       cells.push_back(s ? exact(s->mean) : "");
-      cells.push_back(s ? exact(s->sd) : "");
+      cells.push_back(s && !row.identical ? exact(s->sd) : "");  // identical runs have no spread to speak of
     }
     cells.push_back(std::to_string(row.collisions));
     cells.push_back(optional(row.replan_ms_median));
     cells.push_back(optional(row.replan_ms_max));
     cells.push_back(std::to_string(row.failed));
+    cells.push_back(row.identical ? "true" : "false");
     for (std::size_t i = 0; i < cells.size(); ++i) out += (i == 0 ? "" : ",") + cells[i];
     out += "\n";
   }
@@ -118,7 +130,7 @@ const HumanStyle kLatexStyle{[](const std::string& text) {
 std::vector<std::vector<std::string>> human_cells(const SweepTable& table, const HumanStyle& style) {
   std::vector<std::string> header{"Scene"};
   for (const std::string& axis : table.axes) header.push_back(field_heading(axis));
-  for (const char* h : {"Runs", "Success"}) header.emplace_back(h);
+  for (const char* h : {"Runs", "Success", "Reached runs"}) header.emplace_back(h);
   for (const SpreadColumn& column : kSpreadColumns) header.emplace_back(column.header);
   for (const char* h : {"Collisions", "Replanning (ms, median)", "Failed"}) header.emplace_back(h);
   std::vector<std::vector<std::string>> cells{header};
@@ -127,12 +139,14 @@ std::vector<std::vector<std::string>> human_cells(const SweepTable& table, const
   for (const TableRow& row : table.rows) {
     std::vector<std::string> line{style.escape(row.scene)};
     for (const auto& value : row.params) line.push_back(value.is_null() ? style.missing : style.escape(value_label(value)));
-    line.push_back(std::to_string(row.runs));
+    line.push_back(std::to_string(row.runs) + (row.identical ? " " + std::string(kIdenticalNote) : ""));
     line.push_back(fixed(100.0 * row.success_rate, 0) + style.percent);
+    line.push_back(std::to_string(row.reached));
     for (const SpreadColumn& column : kSpreadColumns) {
       const std::optional<MeanSd>& s = row.*column.member;
-      line.push_back(s ? fixed(s->mean, column.decimals) + style.plus_minus + fixed(s->sd, column.decimals)
-                       : style.missing);
+      std::string text = s ? fixed(s->mean, column.decimals) : style.missing;
+      if (s && !row.identical) text += style.plus_minus + fixed(s->sd, column.decimals);
+      line.push_back(text);
     }
     line.push_back(std::to_string(row.collisions));
     line.push_back(row.replan_ms_median ? fixed(*row.replan_ms_median, 2) : style.missing);
@@ -188,9 +202,18 @@ std::string human_cell(const MetricCell& cell, std::size_t metric, MetricKind ki
                        const HumanStyle& style) {
   if (cell.runs == 0) return style.missing;
   const std::optional<Summary>& s = cell.metrics[metric];
-  const std::string counts = " (n=" + std::to_string(s ? s->n : 0) +
-                             (cell.failed > 0 ? ", " + std::to_string(cell.failed) + " failed" : "") + ")";
+  const int n = s ? s->n : 0;
+  std::string counts = " (n=" + std::to_string(n) +
+                       (cell.failed > 0 ? ", " + std::to_string(cell.failed) + " failed" : "") + ")";
+  if (cell.identical) {
+    // One run repeated: its value, and no spread or interval, which would pretend to a sample.
+    counts = " (n=" + (n == cell.runs ? "" : std::to_string(n) + " of ") + std::to_string(cell.runs) + " " +
+             std::string(kIdenticalNote) + ")";
+  }
   if (!s) return style.missing + counts;
+  if (cell.identical) {
+    return (kind == MetricKind::rate ? fixed(100.0 * s->mean, 0) + style.percent : fixed(s->mean, decimals)) + counts;
+  }
   if (kind == MetricKind::rate) {
     return fixed(100.0 * s->mean, 0) + style.percent + " [" + fixed(100.0 * s->ci95->low, 0) + ", " +
            fixed(100.0 * s->ci95->high, 0) + "]" + counts;
@@ -215,7 +238,7 @@ std::vector<std::vector<std::string>> metric_cells(const MetricTable& table, con
   std::vector<std::string> header{style.escape(field_heading(table.request.rows))};
   for (const nlohmann::json& col : table.cols) {
     for (const std::string& metric : table.request.metrics) {
-      const std::string label = capitalized(metric_label(metric));
+      const std::string label = capitalized(metric_heading(metric));
       header.push_back(style.escape(col.is_null() || grouped_header ? label
                                                                    : value_label(col) + ": " + label));
     }
@@ -236,7 +259,7 @@ std::vector<std::vector<std::string>> metric_cells(const MetricTable& table, con
 std::string metric_csv(const MetricTable& table) {
   const bool has_cols = !table.request.cols.empty();
   std::string out = csv_field(table.request.rows) + (has_cols ? "," + csv_field(table.request.cols) : "") +
-                    ",metric,kind,runs,failed,n,mean,sd,ci95_low,ci95_high\n";
+                    ",metric,over,kind,runs,failed,n,mean,sd,ci95_low,ci95_high,identical\n";
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
     for (std::size_t c = 0; c < table.cols.size(); ++c) {
       const MetricCell& cell = table.cells[r][c];
@@ -244,11 +267,13 @@ std::string metric_csv(const MetricTable& table) {
       for (std::size_t m = 0; m < table.request.metrics.size(); ++m) {
         const std::optional<Summary>& s = cell.metrics[m];
         out += csv_field(value_text(table.rows[r], "")) + (has_cols ? "," + csv_field(value_text(table.cols[c], "")) : "");
-        out += "," + csv_field(table.request.metrics[m]) + (table.kinds[m] == MetricKind::rate ? ",rate," : ",mean,");
+        const MetricName name = split_metric(table.request.metrics[m]);
+        out += "," + csv_field(name.base) + (name.reached_only ? ",reached" : ",all");
+        out += table.kinds[m] == MetricKind::rate ? ",rate," : ",mean,";
         out += std::to_string(cell.runs) + "," + std::to_string(cell.failed) + "," + std::to_string(s ? s->n : 0);
-        out += "," + (s ? exact(s->mean) : "") + "," + (s ? exact(s->sd) : "");
+        out += "," + (s ? exact(s->mean) : "") + "," + (s && !cell.identical ? exact(s->sd) : "");
         out += "," + (s && s->ci95 ? exact(s->ci95->low) : "") + "," + (s && s->ci95 ? exact(s->ci95->high) : "");
-        out += "\n";
+        out += cell.identical ? ",true\n" : ",false\n";
       }
     }
   }
@@ -314,8 +339,12 @@ MetricTable tabulate(const std::vector<RunResult>& runs, const TableLayout& layo
     cell.runs = static_cast<int>(group.runs.size());
     cell.failed = static_cast<int>(
         std::count_if(group.runs.begin(), group.runs.end(), [](const RunResult* r) { return !r->completed; }));
+    cell.identical = identical_runs(group.runs);
     for (std::size_t m = 0; m < request.metrics.size(); ++m) {
-      cell.metrics.push_back(summarize_metric(group.runs, request.metrics[m], table.kinds[m]));
+      std::optional<Summary> s = summarize_metric(group.runs, request.metrics[m], table.kinds[m]);
+      // Identical runs are one value, not a sample: no interval (a Wilson interval would still be wide).
+      if (s && cell.identical) s->ci95.reset();
+      cell.metrics.push_back(s);
     }
   }
   return table;
@@ -330,7 +359,10 @@ std::string format_metric_table(const MetricTable& table, TableFormat format) {
   return {};
 }
 
-std::string metric_label(const std::string& metric) {
+std::string metric_label(const std::string& metric_text) {
+  const MetricName name = split_metric(metric_text);
+  if (name.reached_only) return metric_label(name.base) + ", reached runs";
+  const std::string& metric = name.base;
   if (metric == "success" || metric == "outcome") return "success rate (%)";
   if (metric == "path_ratio") return "normalized path length";
   // Unit suffixes of run.json's metric names, wherever they stand after the first word.
@@ -350,6 +382,12 @@ std::string metric_label(const std::string& metric) {
     start = end + 1;
   }
   return unit.empty() ? words : words + " (" + unit + ")";
+}
+
+std::string metric_heading(const std::string& metric) {
+  const MetricName name = split_metric(metric);
+  if (name.reached_only || name.base == "success" || name.base == "outcome") return metric_label(metric);
+  return metric_label(metric) + ", all runs";
 }
 
 std::string field_heading(const std::string& field) {

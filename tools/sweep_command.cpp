@@ -14,6 +14,8 @@
 
 #include "sim/json_reader.hpp"
 #include "sim/output_dir.hpp"
+#include "sim/run_record.hpp"
+#include "sim/scene_loader.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/process_pool.hpp"
 #include "sweep/progress.hpp"
@@ -124,7 +126,8 @@ std::string run_one(const SweepRun& run, const fs::path& dir, const SweepOptions
   } catch (const std::exception& e) {
     return failed_result(run, e.what()).dump();
   }
-  nlohmann::json line = completed_result(run, simulated->record);
+  // The trajectory's digest tells `campo table` whether seeds changed anything.
+  nlohmann::json line = completed_result(run, simulated->record, sha256_hex(trajectory_csv(simulated->result)));
   // The run completed: files that cannot be written are reported, its metrics kept.
   try {
     if (o.keep_runs || o.figures) {

@@ -67,7 +67,8 @@ Command add_table(CLI::App& app) {
   auto* cols = app.add_option("--cols", o->cols, "Field giving the column groups (default: one group)")->needs(rows);
   auto* metrics = app.add_option("--metrics", o->metrics,
                                  "Metrics, comma-separated: success (rate of outcome reached) or keys of run.json's "
-                                 "metrics (path_ratio, sim_time_s ...)")
+                                 "metrics (path_ratio, sim_time_s ...), over all completed runs, or with @reached "
+                                 "over the runs that reached their goal (path_ratio@reached)")
                       ->delimiter(',')
                       ->needs(rows);
   rows->needs(metrics);
@@ -79,15 +80,21 @@ Command add_table(CLI::App& app) {
   app.footer(
       "With --rows FIELD [--cols FIELD] --metrics M1,M2 (or the spec's \"table\"): one row per value of\n"
       "the rows field, one column group per value of the cols field, and in each cell every metric\n"
-      "over the cell's runs: mean, sample sd and 95% confidence interval (Student t) of numbers; the\n"
-      "rate with its 95% Wilson interval for success and boolean metrics; n and the failed runs.\n"
-      "CSV is tidy: one line per row, column and metric (runs, failed, n, mean, sd, ci95_low, ci95_high).\n"
+      "over the cell's runs: mean, sample sd and 95% confidence interval (Student t) of numbers, over\n"
+      "every completed run or, for METRIC@reached, over the runs that reached their goal; the rate\n"
+      "with its 95% Wilson interval for success and boolean metrics; n and the failed runs. A cell\n"
+      "whose runs are identical (same metrics but wall-clock times, same trajectory) shows the value\n"
+      "and \"n=N identical runs: seeds vary nothing\" instead of a spread and interval.\n"
+      "CSV is tidy: one line per row, column and metric (metric, over: all|reached, runs, failed, n,\n"
+      "mean, sd, ci95_low, ci95_high, identical).\n"
       "Otherwise the summary table: one row per scene and axis values, over the seeds: runs, success\n"
-      "rate, waypoints reached and discarded, path length, normalized path length and simulated time\n"
-      "(mean and sd over the completed runs), total collisions, the median of the runs' median\n"
-      "replanning times, and the runs that failed.\n"
+      "rate, reached runs, waypoints reached and discarded, path length, normalized path length and\n"
+      "simulated time (mean and sd over the completed runs, and the last three over the reached runs),\n"
+      "total collisions, the median of the runs' median replanning times, the runs that failed, and\n"
+      "whether the runs are identical.\n"
       "Rows follow the sweep's expansion order. With exactly one numeric axis, also draws\n"
-      "DIR/chart.png: normalized path length (mean +/- sd) and success rate against the axis.\n"
+      "DIR/chart.png: normalized path length of the reached runs (mean +/- sd) and success rate\n"
+      "against the axis.\n"
       "Example: campo table out/resolution --rows resolution --cols scene --metrics success,path_ratio --format csv");
   return [o] { return run_table(*o); };
 }

@@ -28,6 +28,7 @@ TableRow row(const std::string& scene, nlohmann::json value, double ratio, doubl
   r.runs = 3;
   r.success_rate = success;
   r.path_ratio = MeanSd{ratio, sd};
+  r.path_ratio_reached = MeanSd{ratio, sd};
   return r;
 }
 
@@ -40,6 +41,7 @@ SweepTable resolution_table() {
     table.rows.push_back(row("trees_rolling_terrain", res, 1.04 + 2.0 / res, 0.02, res >= 64 ? 1.0 : 1.0 / 3.0));
   }
   table.rows.back().path_ratio.reset();  // no completed run at 16: no path point
+  table.rows.back().path_ratio_reached.reset();
   return table;
 }
 
@@ -69,6 +71,22 @@ TEST(SweepChart, SameTableSameBytes) {
   std::vector<cv::Mat> channels;
   cv::split(hsv, channels);
   EXPECT_GT(cv::countNonZero(channels[1] > 100), 500);
+}
+
+TEST(SweepChart, PathRatioOfTheReachedRunsOnly) {
+  const auto png = [](const SweepTable& table) {
+    std::vector<uchar> bytes;
+    cv::imencode(".png", draw_sweep_chart(table), bytes);
+    return bytes;
+  };
+  const std::vector<uchar> base = png(resolution_table());
+  // An aborted run's short path lowers the all-run mean: the chart does not show it.
+  SweepTable aborted = resolution_table();
+  aborted.rows[1].path_ratio = MeanSd{0.6, 0.4};
+  EXPECT_EQ(png(aborted), base);
+  SweepTable longer = resolution_table();
+  longer.rows[1].path_ratio_reached = MeanSd{1.3, 0.05};
+  EXPECT_NE(png(longer), base);
 }
 
 TEST(SweepChart, LinearAxisForOtherValues) {

@@ -15,9 +15,9 @@
 
 namespace campo::testing {
 
-/// A results.jsonl line in the current format (content-hash id, name, planner ...).
-inline std::string fixture_line(const std::string& scene, int resolution, int seed, const std::string& outcome,
-                                double ratio, double time, const nlohmann::json& clearance = nullptr) {
+/// A results.jsonl line in the current format (content-hash id, name, planner ...), as JSON to adjust.
+inline nlohmann::json fixture_run(const std::string& scene, int resolution, int seed, const std::string& outcome,
+                                  double ratio, double time, const nlohmann::json& clearance = nullptr) {
   const std::string name = scene + "__resolution-" + std::to_string(resolution) + "__seed-" + std::to_string(seed);
   nlohmann::json line = {{"id", "id-" + name}, {"name", name}, {"scene", scene}, {"planner", "depth_reactive"},
                          {"params", {{"resolution", resolution}}}, {"seed", seed}, {"overrides", nlohmann::json::array()},
@@ -35,8 +35,15 @@ inline std::string fixture_line(const std::string& scene, int resolution, int se
     line["metrics"] = {{"outcome", outcome}, {"reason", "r"}, {"path_length_m", 10.0 * ratio}, {"path_ratio", ratio},
                        {"sim_time_s", time}, {"collisions", outcome == "collision" ? 1 : 0},
                        {"min_clearance_m", clearance}, {"hovered", seed != 2}};
+    line["trajectory_sha256"] = "trajectory-of-" + name;
   }
-  return line.dump() + "\n";
+  return line;
+}
+
+/// fixture_run() as a line of text.
+inline std::string fixture_line(const std::string& scene, int resolution, int seed, const std::string& outcome,
+                                double ratio, double time, const nlohmann::json& clearance = nullptr) {
+  return fixture_run(scene, resolution, seed, outcome, ratio, time, clearance).dump() + "\n";
 }
 
 /// The results, lines not in expansion order.

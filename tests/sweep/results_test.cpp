@@ -107,6 +107,15 @@ TEST_F(ResultsTest, AggregatesMeanSampleSdAndMedianPerGroup) {
   EXPECT_NEAR(a.path_ratio->sd, 0.2, 1e-12);
   EXPECT_DOUBLE_EQ(a.time_s->mean, 70.0);
   EXPECT_DOUBLE_EQ(a.time_s->sd, std::sqrt(700.0));
+  // The same over the two runs that reached the goal (a1, a2), leaving the collision out.
+  EXPECT_EQ(a.reached, 2);
+  EXPECT_DOUBLE_EQ(a.path_length_m_reached->mean, 11.0);
+  EXPECT_DOUBLE_EQ(a.path_length_m_reached->sd, std::sqrt(2.0));
+  EXPECT_DOUBLE_EQ(a.path_ratio_reached->mean, 1.1);
+  EXPECT_NEAR(a.path_ratio_reached->sd, std::sqrt(0.02), 1e-12);
+  EXPECT_DOUBLE_EQ(a.time_s_reached->mean, 55.0);
+  EXPECT_DOUBLE_EQ(a.time_s_reached->sd, std::sqrt(50.0));
+  EXPECT_FALSE(a.identical);
   EXPECT_EQ(a.collisions, 1);
   // Median over the runs that replanned (10 and 20 ms; the third never replanned).
   EXPECT_DOUBLE_EQ(*a.replan_ms_median, 15.0);
@@ -132,9 +141,11 @@ TEST_F(ResultsTest, GroupsWithoutCompletedRunsHaveEmptyStatistics) {
   const SweepTable table = aggregate(results.runs, table_layout(dir_, results.runs));
   ASSERT_EQ(table.rows.size(), 1u);
   EXPECT_FALSE(table.rows[0].path_ratio);
+  EXPECT_FALSE(table.rows[0].path_ratio_reached);
   EXPECT_FALSE(table.rows[0].replan_ms_median);
+  EXPECT_FALSE(table.rows[0].identical);  // one run, and failed
   EXPECT_EQ(format_table(table, TableFormat::csv).substr(format_table(table, TableFormat::csv).find('\n') + 1),
-            "two_barriers,8,1,0,,,,,,,,,,,0,,,1\n");
+            "two_barriers,8,1,0,0," + std::string(16, ',') + "0,,,1,false\n");
 }
 
 TEST_F(ResultsTest, CsvHasExactlyTheDocumentedColumns) {
@@ -148,26 +159,31 @@ TEST_F(ResultsTest, CsvHasExactlyTheDocumentedColumns) {
   std::getline(lines, second);
   EXPECT_FALSE(std::getline(lines, extra));
   EXPECT_EQ(header,
-            "scene,resolution,runs,success_rate,waypoints_reached_mean,waypoints_reached_sd,"
+            "scene,resolution,runs,success_rate,reached_runs,waypoints_reached_mean,waypoints_reached_sd,"
             "waypoints_discarded_mean,waypoints_discarded_sd,path_length_m_mean,path_length_m_sd,"
-            "path_ratio_mean,path_ratio_sd,time_s_mean,time_s_sd,collisions,replan_ms_median,replan_ms_max,failed");
-  EXPECT_THAT(first, ::testing::StartsWith("two_barriers,16,4,0.5,3,1,1,"));
-  EXPECT_THAT(first, ::testing::EndsWith(",1,15,30,1"));
-  EXPECT_EQ(second, "two_barriers,32,1,1,1,0,1,0,8,0,1.1,0,40,0,0,7,7,0");
+            "path_length_m_reached_mean,path_length_m_reached_sd,path_ratio_mean,path_ratio_sd,"
+            "path_ratio_reached_mean,path_ratio_reached_sd,time_s_mean,time_s_sd,time_s_reached_mean,time_s_reached_sd,"
+            "collisions,replan_ms_median,replan_ms_max,failed,identical");
+  EXPECT_THAT(first, ::testing::StartsWith("two_barriers,16,4,0.5,2,3,1,1,"));
+  EXPECT_THAT(first, HasSubstr(",12,2,11,1.414"));  // path length: all completed runs, then the reached ones
+  EXPECT_THAT(first, ::testing::EndsWith(",1,15,30,1,false"));
+  EXPECT_EQ(second, "two_barriers,32,1,1,1,1,0,1,0,8,0,8,0,1.1,0,1.1,0,40,0,40,0,0,7,7,0,false");
 }
 
 TEST_F(ResultsTest, MarkdownAndLatexShowMeanAndSpread) {
   const ResultsFile results = read_results(dir_ / "results.jsonl");
   const SweepTable table = aggregate(results.runs, {"t", {"resolution"}, {"a1", "b1"}});
   const std::string markdown = format_table(table, TableFormat::markdown);
-  EXPECT_THAT(markdown, HasSubstr("| Scene | Resolution | Runs | Success | Waypoints reached | Discarded | "
-                                  "Path length (m) | Normalized length | Time (s) | Collisions | "
-                                  "Replanning (ms, median) | Failed |"));
-  EXPECT_THAT(markdown, HasSubstr("| two_barriers | 16 | 4 | 50% | 3.0 ± 1.0 | 1.0 ± 1.7 | 12.00 ± 2.00 | "
-                                  "1.200 ± 0.200 | 70.0 ± 26.5 | 1 | 15.00 | 1 |"));
+  EXPECT_THAT(markdown, HasSubstr("| Scene | Resolution | Runs | Success | Reached runs | Waypoints reached | "
+                                  "Discarded | Path length (m), all runs | Path length (m), reached runs | "
+                                  "Normalized length, all runs | Normalized length, reached runs | Time (s), all runs | "
+                                  "Time (s), reached runs | Collisions | Replanning (ms, median) | Failed |"));
+  EXPECT_THAT(markdown, HasSubstr("| two_barriers | 16 | 4 | 50% | 2 | 3.0 ± 1.0 | 1.0 ± 1.7 | 12.00 ± 2.00 | "
+                                  "11.00 ± 1.41 | 1.200 ± 0.200 | 1.100 ± 0.141 | 70.0 ± 26.5 | 55.0 ± 7.1 | 1 | "
+                                  "15.00 | 1 |"));
   const std::string latex = format_table(table, TableFormat::latex);
-  EXPECT_THAT(latex, HasSubstr("\\begin{tabular}{lrrrrrrrrrrr}"));
-  EXPECT_THAT(latex, HasSubstr("two\\_barriers & 16 & 4 & 50\\% & 3.0 $\\pm$ 1.0"));
+  EXPECT_THAT(latex, HasSubstr("\\begin{tabular}{lrrrrrrrrrrrrrrr}"));
+  EXPECT_THAT(latex, HasSubstr("two\\_barriers & 16 & 4 & 50\\% & 2 & 3.0 $\\pm$ 1.0"));
   EXPECT_THAT(latex, HasSubstr("\\end{tabular}"));
 }
 

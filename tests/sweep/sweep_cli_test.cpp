@@ -18,6 +18,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "sim/scene_loader.hpp"
 #include "tests/cli_support.hpp"
 
 namespace {
@@ -119,6 +120,9 @@ TEST_F(SweepCli, RunsEveryRunAndRecordsOneLineEach) {
   // Each kept run's record, with the overrides of the manifest.
   const nlohmann::json record = nlohmann::json::parse(slurp(dir_ / "o" / first["run_dir"].get<std::string>() / "run.json"));
   EXPECT_EQ(record["overrides"], first["overrides"]);
+  // The digest of the run's trajectory, as kept.
+  EXPECT_EQ(first["trajectory_sha256"],
+            campo::sha256_hex(slurp(dir_ / "o" / first["run_dir"].get<std::string>() / "trajectory.csv")));
   EXPECT_FALSE(fs::exists(dir_ / "o" / first["run_dir"].get<std::string>() / "map.png"));  // no --figures
   EXPECT_EQ(nlohmann::json::parse(slurp(dir_ / "o" / "sweep.json"))["runs"].size(), 2u);
 
@@ -127,6 +131,37 @@ TEST_F(SweepCli, RunsEveryRunAndRecordsOneLineEach) {
   ASSERT_EQ(again.exit_code, 0) << again.err;
   EXPECT_THAT(again.err, HasSubstr("tiny: 0 runs to do (2 already recorded)"));
   EXPECT_EQ(lines_of(slurp(dir_ / "o" / "results.jsonl")).size(), 2u);
+}
+
+TEST_F(SweepCli, SeedsThatVaryNothingGiveIdenticalRunsAndTheTableSaysSo) {
+  // Without start jitter or noise the straight planner flies the same path whatever the seed.
+  nlohmann::json same = nlohmann::json::parse(kTinySpec);
+  same.erase("start_jitter");
+  same["axes"][0]["values"] = {16};
+  same["seeds"]["count"] = 3;
+  write("same.json", same.dump());
+  ASSERT_EQ(campo("sweep " + spec("same.json") + " --out " + out("same") + " --jobs 2").exit_code, 0);
+  const auto lines = lines_of(slurp(dir_ / "same" / "results.jsonl"));
+  ASSERT_EQ(lines.size(), 3u);
+  const nlohmann::json first = nlohmann::json::parse(lines[0]);
+  for (const std::string& text : lines) {
+    const nlohmann::json line = nlohmann::json::parse(text);
+    EXPECT_EQ(line["trajectory_sha256"], first["trajectory_sha256"]);
+    EXPECT_EQ(line["trajectory_sha256"].get<std::string>().size(), 64u);
+  }
+  Result table = campo("table " + out("same") + " --rows resolution --metrics success,path_ratio --no-chart");
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_THAT(table.out, HasSubstr("| 16 | 0% (n=3 identical runs: seeds vary nothing) | "));
+  EXPECT_THAT(table.out, ::testing::Not(HasSubstr("[")));
+
+  // The jittered starts of the same seeds differ: an interval again.
+  same["start_jitter"] = nlohmann::json::parse(kTinySpec)["start_jitter"];
+  write("jittered.json", same.dump());
+  ASSERT_EQ(campo("sweep " + spec("jittered.json") + " --out " + out("jittered") + " --jobs 2").exit_code, 0);
+  table = campo("table " + out("jittered") + " --rows resolution --metrics success,path_ratio --no-chart");
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_THAT(table.out, HasSubstr("| 16 | 0% [0, 56] (n=3) | "));
+  EXPECT_THAT(table.out, ::testing::Not(HasSubstr("identical")));
 }
 
 TEST_F(SweepCli, WithoutKeepRunsOnlyTheResultsAreWritten) {

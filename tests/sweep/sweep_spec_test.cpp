@@ -11,6 +11,9 @@
 
 #include "planners/registry.hpp"
 #include "sim/json_reader.hpp"
+#include "sim/random.hpp"
+#include "sim/scene_loader.hpp"
+#include "sim/scene_overrides.hpp"
 #include "sweep/expansion.hpp"
 #include "vehicles/vehicle.hpp"
 
@@ -356,6 +359,103 @@ TEST_F(SweepSpecTest, StartJitterMovesTheSceneStartTheSameForEveryAxisValue) {
   EXPECT_NE(start_of(runs[0]), start_of(runs[1]));  // seeds 1 and 2
 }
 
+// The scene of a run: its scene file with the run's overrides, loaded as `campo run` loads it.
+Scene run_scene(const SweepRun& run) {
+  nlohmann::json document = read_json_file(run.scene_file);
+  for (const std::string& o : run.overrides) apply_override(document, o);
+  return parse_scene(document, run.scene_file.string(), run.scene_file.parent_path());
+}
+
+// Poses of the vineyard's random obstacles ("field/obstacle<k>").
+std::vector<std::vector<double>> obstacle_poses(const Scene& scene) {
+  std::vector<std::vector<double>> poses;
+  for (const Shape& shape : scene.shapes) {
+    if (shape.alias.find("/obstacle") == std::string::npos) continue;
+    const Eigen::Vector3d p = shape.pose.translation();
+    poses.push_back({p.x(), p.y(), p.z()});
+  }
+  return poses;
+}
+
+TEST_F(SweepSpecTest, VarySceneWithSeedReseedsTheScenesGenerators) {
+  const std::string spec = R"({"campo_sweep": 1, "scenes": ["vineyard"], "seeds": {"first": 1, "count": 2})";
+  // Without it, the seeds leave the vineyard's obstacles where the scene file's seed puts them.
+  const std::vector<SweepRun> fixed = expand_sweep(read_sweep_spec(write(spec + "}")));
+  ASSERT_EQ(fixed.size(), 2u);
+  EXPECT_EQ(fixed[1].overrides, std::vector<std::string>{"/world/seed=2"});
+  const auto fixed_1 = obstacle_poses(run_scene(fixed[0]));
+  ASSERT_EQ(fixed_1.size(), 12u);  // scenes/vineyard.json's obstacle_count
+  EXPECT_EQ(fixed_1, obstacle_poses(run_scene(fixed[1])));
+
+  // With it, each run seed gives the generator its own seed, after the world seed.
+  const std::vector<SweepRun> varied =
+      expand_sweep(read_sweep_spec(write(spec + R"(, "vary_scene_with_seed": true})")));
+  ASSERT_EQ(varied.size(), 2u);
+  for (const SweepRun& run : varied) {
+    EXPECT_EQ(run.overrides, (std::vector<std::string>{"/world/seed=" + std::to_string(run.seed),
+                                                       "/objects/field/seed=" +
+                                                           std::to_string(generator_seed(run.seed, "field"))}));
+  }
+  const auto varied_1 = obstacle_poses(run_scene(varied[0]));
+  const auto varied_2 = obstacle_poses(run_scene(varied[1]));
+  ASSERT_EQ(varied_1.size(), 12u);
+  ASSERT_EQ(varied_2.size(), 12u);
+  EXPECT_NE(varied_1, varied_2);
+  EXPECT_NE(varied_1, fixed_1);
+  EXPECT_NE(varied[0].id, fixed[0].id);  // another effective scene, another ID
+  // Deterministic: the same spec expands to the same runs.
+  const std::vector<SweepRun> again = expand_sweep(read_sweep_spec(write(spec + R"(, "vary_scene_with_seed": true})")));
+  EXPECT_EQ(again[1].overrides, varied[1].overrides);
+  EXPECT_EQ(again[1].id, varied[1].id);
+}
+
+TEST_F(SweepSpecTest, VarySceneWithSeedReachesNestedGeneratorsAndDiffersPerGenerator) {
+  // trees_rolling_terrain has two generators; one placed under a dummy here.
+  write(R"({"campo_scene": 1, "world": {"seed": 0}, "objects": [
+    {"alias": "ground", "type": "plane"},
+    {"alias": "group", "type": "dummy", "children": [
+      {"alias": "forest", "type": "trees", "count": 3, "area_min_m": [-10, -10], "area_max_m": [10, 10]}]},
+    {"alias": "grove", "type": "trees", "count": 3, "seed": 7, "area_min_m": [20, 20], "area_max_m": [30, 30]}]})",
+        "grove.json");
+  const std::vector<SweepRun> runs = expand_sweep(read_sweep_spec(write(R"({"campo_sweep": 1,
+    "scenes": ["grove.json"], "seeds": {"first": 5}, "vary_scene_with_seed": true})")));
+  ASSERT_EQ(runs.size(), 1u);
+  EXPECT_EQ(runs[0].overrides,
+            (std::vector<std::string>{"/world/seed=5",
+                                      "/objects/group/children/forest/seed=" + std::to_string(generator_seed(5, "forest")),
+                                      "/objects/grove/seed=" + std::to_string(generator_seed(5, "grove"))}));
+  // The documented derivation, written out: FNV-1a-64 of "vary_scene_with_seed/<alias>", derive_seed, 53 bits.
+  std::uint64_t label = 0xcbf29ce484222325ULL;
+  for (char c : std::string("vary_scene_with_seed/forest")) label = (label ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
+  EXPECT_EQ(generator_seed(5, "forest"), Rng::derive_seed(5, label) % (std::uint64_t{1} << 53));
+  EXPECT_NE(generator_seed(5, "forest"), generator_seed(5, "grove"));
+  EXPECT_NE(generator_seed(5, "forest"), generator_seed(6, "forest"));
+  EXPECT_LT(generator_seed(5, "forest"), std::uint64_t{1} << 53);
+}
+
+TEST_F(SweepSpecTest, VarySceneWithSeedErrors) {
+  const std::string spec = (dir_ / "spec.json").string();
+  EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["vineyard"], "vary_scene_with_seed": "yes"})"),
+              HasSubstr(spec + ": /vary_scene_with_seed: expected true or false, got \"yes\""));
+  EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["vineyard"], "vary_scene_with_seed": 1})"),
+              HasSubstr(spec + ": /vary_scene_with_seed: expected true or false, got 1"));
+  // Nothing to vary.
+  EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "vary_scene_with_seed": true})"),
+              HasSubstr(spec + ": /vary_scene_with_seed: expected a scene with a seeded generator (rolling_terrain, "
+                               "trees, vineyard), or false"));
+  // A generator's seed has one writer.
+  EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["vineyard"], "set": {"/objects/field/seed": 4},
+                           "vary_scene_with_seed": true})"),
+              HasSubstr(spec + ": /vary_scene_with_seed: expected no other override of a generator's seed when the run "
+                               "seeds vary the scene (/objects/field/seed is also set at /set/~1objects~1field~1seed"));
+  EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["vineyard"],
+                           "axes": [{"name": "layout", "values": [1, 2], "set": ["/objects/1/seed"]}],
+                           "vary_scene_with_seed": true})"),
+              HasSubstr(spec + ": /vary_scene_with_seed: expected no other override of a generator's seed"));
+  // false is the default, and valid anywhere.
+  EXPECT_EQ(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "vary_scene_with_seed": false})"), "");
+}
+
 TEST(BundledSweeps, ResolutionSweepOfSeed000IsValid) {
   const SweepSpec spec = read_sweep_spec(fs::path("scenes/sweeps/resolution_000.json"));
   const std::vector<SweepRun> runs = expand_sweep(spec, [](const Scene& scene) {
@@ -365,6 +465,12 @@ TEST(BundledSweeps, ResolutionSweepOfSeed000IsValid) {
     }
   });
   ASSERT_EQ(runs.size(), 2u * 5u * 3u);
+  EXPECT_FALSE(spec.vary_scene_with_seed);
+  // Its table shows path ratio and time over the runs that reached the goal beside those over all runs.
+  const std::vector<std::string> metrics = spec.document.at("table").at("metrics");
+  for (const char* metric : {"path_ratio@reached", "path_ratio", "sim_time_s@reached", "sim_time_s"}) {
+    EXPECT_NE(std::find(metrics.begin(), metrics.end(), metric), metrics.end()) << metric;
+  }
   EXPECT_EQ(runs.front().name, "two_barriers__resolution-256__seed-1");
   EXPECT_EQ(runs.back().name, "trees_rolling_terrain__resolution-16__seed-3");
 }

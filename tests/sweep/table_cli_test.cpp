@@ -31,9 +31,9 @@ TEST_F(TableCli, RowsColsAndMetricsAsTidyCsv) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto lines = campo::testing::lines_of(r.out);
   ASSERT_EQ(lines.size(), 9u);
-  EXPECT_EQ(lines[0], "resolution,scene,metric,kind,runs,failed,n,mean,sd,ci95_low,ci95_high");
-  EXPECT_THAT(lines[2], ::testing::StartsWith("32,two_barriers,path_ratio,mean,3,0,3,2,1,-0.48413"));
-  EXPECT_EQ(lines[6], "16,two_barriers,path_ratio,mean,3,2,1,1.5,0,,");
+  EXPECT_EQ(lines[0], "resolution,scene,metric,over,kind,runs,failed,n,mean,sd,ci95_low,ci95_high,identical");
+  EXPECT_THAT(lines[2], ::testing::StartsWith("32,two_barriers,path_ratio,all,mean,3,0,3,2,1,-0.48413"));
+  EXPECT_EQ(lines[6], "16,two_barriers,path_ratio,all,mean,3,2,1,1.5,0,,,false");
 }
 
 TEST_F(TableCli, TheSpecsTableIsTheDefaultAndMdIsMarkdown) {
@@ -41,13 +41,32 @@ TEST_F(TableCli, TheSpecsTableIsTheDefaultAndMdIsMarkdown) {
                           {{"rows", "resolution"}, {"cols", "scene"}, {"metrics", {"success", "sim_time_s"}}}));
   const Result r = campo("table " + dir() + " --format md");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("| Resolution | two_barriers: Success rate (%) | two_barriers: Sim time (s) |"));
+  EXPECT_THAT(r.out, HasSubstr("| Resolution | two_barriers: Success rate (%) | two_barriers: Sim time (s), all runs |"));
   EXPECT_THAT(r.out, HasSubstr("| 32 | 67% [21, 94] (n=3) | 20 ± 10 [-5, 45] (n=3) |"));
   EXPECT_THAT(r.err, HasSubstr("wrote " + (dir_ / "chart.png").string()));  // the summary chart as before
   // --summary: the summary table instead.
   const Result summary = campo("table " + dir() + " --summary --no-chart");
   ASSERT_EQ(summary.exit_code, 0) << summary.err;
   EXPECT_THAT(summary.out, HasSubstr("| Scene | Resolution | Runs | Success |"));
+}
+
+TEST_F(TableCli, ReachedRunMetricsInTheSpecsTableAndThePlot) {
+  write("sweep.json", campo::testing::fixture_manifest(
+                          {{"rows", "resolution"}, {"cols", "scene"}, {"metrics", {"path_ratio@reached", "path_ratio"}}}));
+  const Result r = campo("table " + dir() + " --no-chart");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("| Resolution | two_barriers: Normalized path length, reached runs | "
+                               "two_barriers: Normalized path length, all runs |"));
+  // Resolution 32 on two_barriers: ratios 1 and 2 reached the goal, 3 collided.
+  EXPECT_THAT(r.out, HasSubstr("| 32 | 1.50 ± 0.71 [-4.85, 7.85] (n=2) | 2.00 ± 1.00 [-0.48, 4.48] (n=3) |"));
+
+  const std::string png = (dir_ / "reached.png").string();
+  const Result plot = campo("plot " + dir() + " --x resolution --y path_ratio@reached --group scene --out " + png);
+  ASSERT_EQ(plot.exit_code, 0) << plot.err;
+  EXPECT_TRUE(fs::exists(png));
+  const Result bad = campo("plot " + dir() + " --x resolution --y success@reached --out " + png + ".2");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("command line: --y: expected \"success\" without \"@reached\""));
 }
 
 TEST_F(TableCli, BadInputExitsWithCode2AndWritesNothing) {
