@@ -38,23 +38,46 @@ bool covers(const btVector3& lo, const btVector3& hi, const btVector3& inner_lo,
   return true;
 }
 
-// Heightfield triangles near a vehicle body, measured one by one.
+// Heightfield triangles near a vehicle body: gathered with the distance of
+// their box from the body's box, then measured nearest box first, so that
+// the first few exact distances prune the rest.
 struct TriangleDistances final : btTriangleCallback {
+  using Candidate = TriangleCandidate;
   const btConvexShape* body = nullptr;
   btTransform body_pose;        // in the heightfield's frame
   btVector3 body_min, body_max; // the body's box, heightfield frame
   double best = kInfinity;
   double cutoff = kInfinity;
+  std::vector<Candidate>* candidates = nullptr;  // scratch, reused
   void processTriangle(btVector3* v, int, int) override {
     btVector3 lo = v[0], hi = v[0];
     lo.setMin(v[1]);
     lo.setMin(v[2]);
     hi.setMax(v[1]);
     hi.setMax(v[2]);
-    if (box_distance(lo, hi, body_min, body_max) >= std::min(best, cutoff)) return;
-    btTriangleShape triangle(v[0], v[1], v[2]);
-    triangle.setMargin(0.0);
-    best = std::min(best, signed_distance(*body, body_pose, triangle, btTransform::getIdentity()));
+    double bound = box_distance(lo, hi, body_min, body_max);
+    if (bound >= std::min(best, cutoff)) return;
+    // The body lies above the triangle's plane at least as far as its
+    // lowest point: a bound that is tight for terrain under the body.
+    btVector3 normal = (v[1] - v[0]).cross(v[2] - v[0]);
+    if (normal.z() < 0) normal = -normal;
+    if (normal.length2() > 0) {
+      normal.normalize();
+      const btVector3 lowest = body_pose * body->localGetSupportingVertex(body_pose.getBasis().transpose() * -normal);
+      bound = std::max(bound, static_cast<double>(normal.dot(lowest - v[0])));
+    }
+    if (bound < std::min(best, cutoff)) candidates->push_back({bound, {v[0], v[1], v[2]}});
+  }
+  void measure() {
+    std::sort(candidates->begin(), candidates->end(),
+              [](const Candidate& a, const Candidate& b) { return a.bound_m < b.bound_m; });
+    for (const Candidate& c : *candidates) {
+      if (c.bound_m >= std::min(best, cutoff)) break;
+      btTriangleShape triangle(c.v[0], c.v[1], c.v[2]);
+      triangle.setMargin(0.0);
+      best = std::min(best, signed_distance(*body, body_pose, triangle, btTransform::getIdentity()));
+    }
+    candidates->clear();
   }
 };
 
@@ -104,6 +127,8 @@ void ClearanceQuery::add_ground(const btCollisionObject& body, const HeightGrid*
     b.blocks_y = (grid->rows - 2) / HeightBlocks::kBlock + 1;
     b.top_m.assign(static_cast<std::size_t>(b.blocks_x) * b.blocks_y, -kInfinity);
     const double mid = 0.5 * (grid->min_height_m() + grid->max_height_m());
+    b.grid = grid;
+    b.mid_m = mid;
     // A block's cells span vertices [k kBlock, (k+1) kBlock]: shared edges count in both.
     for (int r = 0; r < grid->rows; ++r) {
       for (int c = 0; c < grid->cols; ++c) {
@@ -118,6 +143,32 @@ void ClearanceQuery::add_ground(const btCollisionObject& body, const HeightGrid*
     }
   }
   ground_.push_back(std::move(ground));
+}
+
+void ClearanceQuery::HeightBlocks::triangles_under(const btVector3& lo, const btVector3& hi,
+                                                  btTriangleCallback& callback) const {
+  const auto first_cell = [](double v, double spacing, int vertices) {
+    return static_cast<int>(std::clamp(std::floor(v / spacing + 0.5 * (vertices - 1)), 0.0, double(vertices - 2)));
+  };
+  const int c0 = first_cell(lo.x(), dx, cols), c1 = first_cell(hi.x(), dx, cols);
+  const int r0 = first_cell(lo.y(), dy, rows), r1 = first_cell(hi.y(), dy, rows);
+  const auto vertex = [this](int c, int r) {
+    return btVector3((c - 0.5 * (cols - 1)) * dx, (r - 0.5 * (rows - 1)) * dy, grid->at(c, r) - mid_m);
+  };
+  btVector3 v[3];
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) {
+      // Bullet's split of a cell (no flipped, diamond or zigzag edges).
+      v[0] = vertex(c, r);
+      v[1] = vertex(c, r + 1);
+      v[2] = vertex(c + 1, r);
+      callback.processTriangle(v, 0, 0);
+      v[0] = vertex(c + 1, r);
+      v[1] = vertex(c, r + 1);
+      v[2] = vertex(c + 1, r + 1);
+      callback.processTriangle(v, 0, 0);
+    }
+  }
 }
 
 double ClearanceQuery::HeightBlocks::highest(double x0, double x1, double y0, double y1) const {
@@ -150,8 +201,35 @@ Clearance ClearanceQuery::measure(const btCollisionWorld& world, double obstacle
   Clearance out;
   if (vehicle_.empty()) return out;
   nearest_obstacle(obstacle_cutoff_m, out);
-  nearest_ground(ground_cutoff_m, out);
+  // The ground does not move: while the vehicle has not moved far enough
+  // since the last exact answer to come within the cutoff, it cannot have.
+  if (ground_floor_m_ - ground_travel_m() >= ground_cutoff_m) return out;
+  // Measure a little beyond the cutoff, so the answer bounds the next steps.
+  const double reach = ground_cutoff_m + kGroundSlack_m;
+  nearest_ground(reach, out);
+  ground_floor_m_ = std::min(out.ground_m, reach);
+  ground_poses_.clear();
+  for (const VehiclePart& part : vehicle_) ground_poses_.push_back(part.body->getWorldTransform());
+  if (out.ground_m >= ground_cutoff_m) out.ground_m = kInfinity;
   return out;
+}
+
+double ClearanceQuery::ground_travel_m() const {
+  if (ground_poses_.size() != vehicle_.size()) return kInfinity;
+  // No point of a body moves farther than its origin's displacement plus the
+  // arc its farthest point turns through.
+  double travel = 0.0;
+  for (std::size_t i = 0; i < vehicle_.size(); ++i) {
+    const btTransform& now = vehicle_[i].body->getWorldTransform();
+    const btTransform& then = ground_poses_[i];
+    btVector3 centre;
+    btScalar radius;
+    vehicle_[i].body->getCollisionShape()->getBoundingSphere(centre, radius);
+    const btScalar angle = (now.getRotation() * then.getRotation().inverse()).getAngleShortestPath();
+    travel = std::max(travel, static_cast<double>((now.getOrigin() - then.getOrigin()).length() +
+                                                  (centre.length() + radius) * angle));
+  }
+  return travel;
 }
 
 // Searches a box around the vehicle that grows until the nearest obstacle
@@ -238,6 +316,7 @@ void ClearanceQuery::nearest_ground(double cutoff_m, Clearance& out) {
       const auto* terrain = static_cast<const btConcaveShape*>(shape);
       TriangleDistances triangles;
       triangles.body = mine;
+      triangles.candidates = &triangle_scratch_;
       triangles.body_pose = ground_pose.inverse() * pose;
       mine->getAabb(triangles.body_pose, triangles.body_min, triangles.body_max);
       // Terrain under the reach of the cutoff that lies lower than the
@@ -252,7 +331,14 @@ void ClearanceQuery::nearest_ground(double cutoff_m, Clearance& out) {
       for (;;) {
         triangles.cutoff = radius;
         const btVector3 pad(radius, radius, radius);
-        terrain->processAllTriangles(&triangles, triangles.body_min - pad, triangles.body_max + pad);
+        // Bullet's own triangles, read from the heights it was given
+        // without its per-vertex virtual calls.
+        if (g.blocks.grid) {
+          g.blocks.triangles_under(triangles.body_min - pad, triangles.body_max + pad, triangles);
+        } else {
+          terrain->processAllTriangles(&triangles, triangles.body_min - pad, triangles.body_max + pad);
+        }
+        triangles.measure();
         if (triangles.best <= radius || radius >= cutoff_m) break;
         btVector3 all_min, all_max;
         terrain->getAabb(btTransform::getIdentity(), all_min, all_max);

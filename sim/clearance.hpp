@@ -14,6 +14,7 @@
 class btCollisionObject;
 class btCollisionWorld;
 class btConvexShape;
+class btTriangleCallback;
 
 namespace campo {
 
@@ -26,6 +27,12 @@ double signed_distance(const btConvexShape& a, const btTransform& pose_a, const 
 /// The obstacles and the ground of a world, and the search for the nearest
 /// of each from the vehicle's bodies (found by their user index when asked,
 /// since vehicles join the world after it is built).
+/// A heightfield triangle gathered by the ground search (clearance.cpp).
+struct TriangleCandidate {
+  double bound_m;
+  btVector3 v[3];
+};
+
 class ClearanceQuery {
  public:
   ClearanceQuery();
@@ -63,8 +70,12 @@ class ClearanceQuery {
     double dx = 1.0, dy = 1.0;
     int blocks_x = 0, blocks_y = 0;
     std::vector<double> top_m;
+    const HeightGrid* grid = nullptr;
+    double mid_m = 0.0;  // Bullet centres the heights on the middle of their range
     // The highest terrain over local x in [x0, x1], y in [y0, y1].
     double highest(double x0, double x1, double y0, double y1) const;
+    // Hands every triangle of the cells under [lo, hi] (x, y) to `callback`.
+    void triangles_under(const btVector3& lo, const btVector3& hi, btTriangleCallback& callback) const;
   };
   struct Ground {
     const btCollisionObject* body;
@@ -77,6 +88,7 @@ class ClearanceQuery {
   void find_vehicle(const btCollisionWorld& world);
   void nearest_obstacle(double cutoff_m, Clearance& out);
   void nearest_ground(double cutoff_m, Clearance& out);
+  double ground_travel_m() const;
 
   std::vector<StaticObstacle> statics_;
   btDbvt static_tree_;  // leaves: index into statics_
@@ -85,9 +97,14 @@ class ClearanceQuery {
   std::vector<Ground> ground_;
   std::vector<VehiclePart> vehicle_;
   std::vector<int> candidates_;  // scratch of nearest_obstacle, reused
+  std::vector<TriangleCandidate> triangle_scratch_;  // scratch of nearest_ground, reused
   int objects_seen_ = -1;      // collision objects in the world when vehicle_ was found
   double obstacle_hint_m_ = 1.0;  // the last nearest obstacle distance: where the search starts
   double ground_hint_m_ = 1.0;
+  // The ground was at least ground_floor_m_ away with the vehicle's bodies at ground_poses_.
+  static constexpr double kGroundSlack_m = 0.5;
+  double ground_floor_m_ = -std::numeric_limits<double>::infinity();
+  std::vector<btTransform> ground_poses_;
 };
 
 }  // namespace campo
