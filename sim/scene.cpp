@@ -115,7 +115,8 @@ std::vector<double> dividing_rates_near(double rate_hz, double physics_step_s, i
   const double physics_rate_hz = 1.0 / physics_step_s;
   const double steps = physics_rate_hz / rate_hz;
   const auto exact = steps_per_period(rate_hz, physics_step_s);
-  const double above = exact > 0 ? static_cast<double>(exact) : std::floor(steps);  // largest n at or above rate_hz
+  // Largest n whose rate is at or above rate_hz, smallest n whose rate is below it.
+  const double above = exact > 0 ? static_cast<double>(exact) : std::floor(steps);
   const double below = exact > 0 ? static_cast<double>(exact) + 1.0 : std::ceil(steps);
   std::vector<double> rates;
   for (double n = above - each_side + 1; n <= above; ++n) {

@@ -52,7 +52,8 @@ std::string format_rate(double value) {
 }
 
 // What a rate must be at this physics step, with the valid rates nearest `rate_hz`:
-// "a rate that divides the physics rate 240 Hz into whole steps, such as 240, 120, 80 or 60".
+// "a rate that divides the physics rate 240 Hz (1 / physics_step_s) into a whole number of
+// steps, such as 240, 120, 80 or 60" (for 100 Hz).
 std::string dividing_rate_expectation(double rate_hz, double physics_step_s) {
   const std::vector<double> rates = dividing_rates_near(rate_hz, physics_step_s);
   std::string list;
