@@ -25,6 +25,13 @@ constexpr std::array kPlanners{
 
 std::span<const PlannerEntry> planner_registry() { return kPlanners; }
 
+void choose_planner(PlannerSpec& spec, std::string_view name, const std::string& origin) {
+  if (name != spec.name) spec.params.values = nlohmann::json::object();
+  spec.name = std::string(name);
+  spec.name_pointer = "";
+  spec.params.file = origin;
+}
+
 std::unique_ptr<Planner> create_planner(const PlannerSpec& spec, const PlannerContext& context) {
   const std::string_view name = spec.name.empty() ? kDefaultPlanner : std::string_view(spec.name);
   for (const PlannerEntry& entry : kPlanners) {

@@ -3,6 +3,7 @@
 /// plus one line in registry.cpp.
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "sim/planner.hpp"
@@ -23,6 +24,12 @@ std::span<const PlannerEntry> planner_registry();
 
 /// Name of the planner used when a vehicle names none.
 inline constexpr std::string_view kDefaultPlanner = "straight";
+
+/// Gives a vehicle the planner `name` chosen outside its scene (`origin`
+/// names where, e.g. "command line"): the scene's parameters stay when it is
+/// the scene's planner; another planner starts from its defaults (the scene's
+/// parameters belong to the planner it names).
+void choose_planner(PlannerSpec& spec, std::string_view name, const std::string& origin);
 
 /// Creates the planner `spec` names (kDefaultPlanner when empty); an unknown
 /// name is an InputError at the planner's params file/pointer.

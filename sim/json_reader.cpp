@@ -1,7 +1,9 @@
 #include "sim/json_reader.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <limits>
 #include <fstream>
 #include <sstream>
 
@@ -83,6 +85,22 @@ nlohmann::json read_json_file(const std::filesystem::path& path, const InputLimi
   return parse_json_text(read_text_file(path, limits), path.string(), limits);
 }
 
+std::string seed_expectation() {
+  return "an integer seed in [0, " + std::to_string(std::numeric_limits<std::uint64_t>::max()) + "]";
+}
+
+std::uint64_t parse_seed(const std::string& text, const std::string& file, const std::string& where) {
+  std::uint64_t seed = 0;
+  const char* end = text.data() + text.size();
+  // Digits only: no sign, no fraction, no exponent, no spaces; from_chars reports overflow.
+  const auto [ptr, ec] = std::from_chars(text.data(), end, seed);
+  const bool digits = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (!digits || ec != std::errc() || ptr != end) {
+    throw InputError(file, where, "expected " + seed_expectation() + ", got \"" + text + "\"");
+  }
+  return seed;
+}
+
 std::string child_pointer(const std::string& parent, std::string_view key) {
   std::string out = parent + "/";
   for (char c : key) {
@@ -142,11 +160,12 @@ std::int64_t JsonNode::as_int(std::int64_t min, std::int64_t max) const {
 }
 
 std::uint64_t JsonNode::as_seed() const {
+  // nlohmann reads integers exactly (as int64 or uint64); larger ones, fractions and exponents are doubles.
   if (value_->is_number_unsigned()) return value_->get<std::uint64_t>();
   if (value_->is_number_integer() && value_->get<std::int64_t>() >= 0) {
     return static_cast<std::uint64_t>(value_->get<std::int64_t>());
   }
-  fail("a non-negative integer seed");
+  fail(seed_expectation());
 }
 
 bool JsonNode::as_bool() const {

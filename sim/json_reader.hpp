@@ -43,6 +43,12 @@ nlohmann::json read_json_file(const std::filesystem::path& path, const InputLimi
 nlohmann::json parse_json_text(const std::string& text, const std::string& source,
                                const InputLimits& limits = {});
 
+/// What a seed must be, for messages: "an integer seed in [0, 18446744073709551615]".
+std::string seed_expectation();
+/// A seed given as text (a command-line option): decimal digits only, in
+/// [0, 2^64-1]; otherwise an InputError naming `file` and `where`.
+std::uint64_t parse_seed(const std::string& text, const std::string& file, const std::string& where);
+
 /// JSON pointer of `parent` extended by an object key or array index.
 std::string child_pointer(const std::string& parent, std::string_view key);
 std::string child_pointer(const std::string& parent, std::size_t index);
@@ -74,7 +80,8 @@ class JsonNode {
 
   double as_number(const Range& range = {}) const;
   std::int64_t as_int(std::int64_t min, std::int64_t max) const;
-  std::uint64_t as_seed() const;  ///< non-negative integer up to 2^64-1
+  /// A seed: a JSON integer (no fraction or exponent) in [0, 2^64-1], read exactly.
+  std::uint64_t as_seed() const;
   bool as_bool() const;
   std::string as_string() const;  ///< a non-empty string
   /// One of `choices`; returns its index.

@@ -102,6 +102,32 @@ Eigen::Vector3d Mover::position_at(double t_s) const {
   return path_m.back();
 }
 
+std::int64_t steps_per_period(double rate_hz, double physics_step_s) {
+  const double steps = 1.0 / (rate_hz * physics_step_s);
+  if (!std::isfinite(steps) || steps > 1e15) return 0;
+  const double whole = std::round(steps);
+  if (whole < 1.0 || std::abs(steps - whole) > kRatePeriodTolerance * whole) return 0;
+  return static_cast<std::int64_t>(whole);
+}
+
+std::vector<double> dividing_rates_near(double rate_hz, double physics_step_s, int each_side) {
+  // The rates are (1/physics_step_s) / n for whole n; rate_hz sits at n = steps.
+  const double physics_rate_hz = 1.0 / physics_step_s;
+  const double steps = physics_rate_hz / rate_hz;
+  const auto exact = steps_per_period(rate_hz, physics_step_s);
+  // Largest n whose rate is at or above rate_hz, smallest n whose rate is below it.
+  const double above = exact > 0 ? static_cast<double>(exact) : std::floor(steps);
+  const double below = exact > 0 ? static_cast<double>(exact) + 1.0 : std::ceil(steps);
+  std::vector<double> rates;
+  for (double n = above - each_side + 1; n <= above; ++n) {
+    if (n >= 1.0) rates.push_back(physics_rate_hz / n);
+  }
+  for (double n = std::max(below, 1.0); n < std::max(below, 1.0) + each_side; ++n) {
+    if (n > above) rates.push_back(physics_rate_hz / n);
+  }
+  return rates;
+}
+
 const Shape* Scene::find_shape(std::string_view alias) const { return find_by_alias(shapes, alias); }
 const Frame* Scene::find_frame(std::string_view alias) const { return find_by_alias(frames, alias); }
 const VehicleDef* Scene::find_vehicle(std::string_view alias) const {

@@ -148,12 +148,27 @@ struct GeoReference {
 struct WorldConfig {
   Eigen::Vector3d gravity_mps2{0.0, 0.0, -9.81};
   double physics_step_s = 1.0 / 240.0;  ///< fixed Bullet step
-  double control_rate_hz = 60.0;        ///< controller and planner rate
-  double sensor_rate_hz = 10.0;         ///< default rate of sensors that set none
+  double control_rate_hz = 60.0;        ///< controller and planner rate; divides 1/physics_step_s
+  double sensor_rate_hz = 10.0;         ///< default rate of sensors that set none; divides 1/physics_step_s
   double time_limit_s = 600.0;          ///< an episode ends here with "timeout"
   GeoReference geo_reference;
-  std::uint64_t seed = 0;               ///< master seed of everything random in a run
+  std::uint64_t seed = 0;               ///< master seed of everything random in a run, [0, 2^64-1]
 };
+
+/// Relative tolerance within which a rate's period counts as a whole number of physics steps.
+inline constexpr double kRatePeriodTolerance = 1e-9;
+
+/// Physics steps in one period of an event at `rate_hz` (control, a sensor)
+/// with a fixed step of `physics_step_s`: 1 / (rate_hz * physics_step_s) when
+/// that is a whole number >= 1 within kRatePeriodTolerance (relative), else 0
+/// (the rate does not divide the physics rate, or is faster than it). Every
+/// rate of a Scene from load_scene()/parse_scene() gives a value >= 1.
+std::int64_t steps_per_period(double rate_hz, double physics_step_s);
+
+/// Rates that divide the physics rate 1/physics_step_s, nearest `rate_hz`:
+/// up to `each_side` at or above it and `each_side` below it, fastest first
+/// (for 100 Hz at 1/240 s and 2 each side: 240, 120, 80, 60).
+std::vector<double> dividing_rates_near(double rate_hz, double physics_step_s, int each_side = 2);
 
 struct Scene {
   std::string name;            ///< file stem, or "name" from the file

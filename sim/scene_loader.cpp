@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include <openssl/evp.h>
@@ -41,6 +42,31 @@ Eigen::Vector2d read_interval(const JsonNode& node, const Range& range) {
 
 void read_interval(ObjectReader& r, std::string_view key, Eigen::Vector2d& out, const Range& range) {
   if (auto v = r.optional(key)) out = read_interval(*v, range);
+}
+
+// A rate or step as a reader would write it: up to 12 significant digits (80, 26.6666666667).
+std::string format_rate(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.12g", value);
+  return text;
+}
+
+// What a rate must be at this physics step, with the valid rates nearest `rate_hz`:
+// "a rate that divides the physics rate 240 Hz (1 / physics_step_s) into a whole number of
+// steps, such as 240, 120, 80 or 60" (for 100 Hz).
+std::string dividing_rate_expectation(double rate_hz, double physics_step_s) {
+  const std::vector<double> rates = dividing_rates_near(rate_hz, physics_step_s);
+  std::string list;
+  for (std::size_t i = 0; i < rates.size(); ++i) {
+    list += (i == 0 ? "" : i + 1 == rates.size() ? " or " : ", ") + format_rate(rates[i]);
+  }
+  return "a rate that divides the physics rate " + format_rate(1.0 / physics_step_s) +
+         " Hz (1 / physics_step_s) into a whole number of steps, such as " + list;
+}
+
+// A rate read at `node` must be a whole number of physics steps per period (no silent rounding).
+void check_rate(const JsonNode& node, double rate_hz, double physics_step_s) {
+  if (steps_per_period(rate_hz, physics_step_s) == 0) node.fail(dividing_rate_expectation(rate_hz, physics_step_s));
 }
 
 // Runs a generator; its complaints about the config become input errors at `at`.
@@ -86,6 +112,8 @@ class Loader {
     r.read("physics_step_s", w.physics_step_s, Range::closed(1e-5, 0.1));
     r.read("control_rate_hz", w.control_rate_hz, Range::closed(0.1, 10000.0));
     r.read("sensor_rate_hz", w.sensor_rate_hz, Range::closed(0.01, 10000.0));
+    check_world_rate(r, "control_rate_hz", w.control_rate_hz);
+    check_world_rate(r, "sensor_rate_hz", w.sensor_rate_hz);
     r.read("time_limit_s", w.time_limit_s, {0.0, 1e6, true, false});
     r.read_seed("seed", w.seed);
     if (auto geo = r.optional("geo_reference")) {
@@ -96,6 +124,17 @@ class Loader {
       g.finish();
     }
     r.finish();
+  }
+
+  // A world rate, set or default, at the physics step, set or default: the
+  // error points at the rate when the file sets it, else at the step.
+  void check_world_rate(ObjectReader& r, std::string_view key, double rate_hz) {
+    const double dt = scene_.world.physics_step_s;
+    if (auto rate = r.optional(key)) return check_rate(*rate, rate_hz, dt);
+    if (steps_per_period(rate_hz, dt) > 0) return;
+    const JsonNode step = *r.optional("physics_step_s");  // present: the defaults agree with each other
+    step.fail("a step that divides the period of the default " + std::string(key) + " " + format_rate(rate_hz) +
+              " Hz, or else /world/" + std::string(key) + " set to " + dividing_rate_expectation(rate_hz, dt));
   }
 
   void read_objects(const JsonNode& node, const Eigen::Isometry3d& parent, int depth) {
@@ -469,6 +508,9 @@ class Loader {
                            "duplicate sensor alias \"" + sensor_alias + "\" on vehicle \"" + alias + "\"");
         }
         vehicle.sensors.push_back(parse_sensor(s, limits_));
+        // 0 = world.sensor_rate_hz, checked with the world.
+        const double rate_hz = vehicle.sensors.back().lidar.rate_hz;
+        if (rate_hz > 0.0) check_rate(*sr.optional("rate_hz"), rate_hz, scene_.world.physics_step_s);
       }
     }
     vehicle.planner.params = {nlohmann::json::object(), r.node().file(),

@@ -207,8 +207,9 @@ class SpecParser {
       s.read_seed("first", spec.first_seed);
       s.read("count", spec.seed_count, 1, limits_.max_seeds);
       s.finish();
-      if (spec.first_seed > std::numeric_limits<std::uint64_t>::max() - static_cast<std::uint64_t>(spec.seed_count)) {
-        seeds->fail("seeds that fit in 64 bits");
+      // The last seed, first + count - 1, is a seed too.
+      if (spec.first_seed > std::numeric_limits<std::uint64_t>::max() - static_cast<std::uint64_t>(spec.seed_count - 1)) {
+        seeds->fail("seeds first .. first + count - 1 that are all in [0, 18446744073709551615]");
       }
     }
     if (auto jitter = r.optional("start_jitter")) {

@@ -351,7 +351,7 @@ int run_rrt_star(const PlanOptions& o) {
   reject(o, {"--from", "--to", "--radius"});
   const bool single = single_problem(o);
   RrtStarConfig config;
-  config.seed = o.has("--seed") ? parse_integer<std::uint64_t>(o.seed, "--seed", 0, UINT64_MAX) : 0;
+  config.seed = o.has("--seed") ? parse_seed(o.seed, "command line", "--seed") : 0;
   config.max_iterations =
       o.has("--iterations") ? parse_integer<int>(o.iterations, "--iterations", 1, 10'000'000) : kRrtDefaultIterations;
   config.step_m = o.has("--step") ? parse_positive(o.step, "--step", "the step in cells") : kRrtDefaultStep;

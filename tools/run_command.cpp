@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "planners/registry.hpp"
+#include "sim/json_reader.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
 #include "tools/run_execution.hpp"
@@ -16,7 +17,7 @@ struct RunOptions {
   std::string scene = bundled_scene("two_barriers").string();
   std::string planner;
   std::vector<std::string> sets;
-  std::uint64_t seed = 0;
+  std::string seed;  ///< as given; checked by parse_seed
   bool seed_set = false;
   std::string vehicle;
   std::string out = "out/run";
@@ -30,7 +31,7 @@ int run_run(const RunOptions& o) {
   RunRequest request;
   request.scene = o.scene;
   request.overrides = o.sets;
-  if (o.seed_set) request.overrides.push_back("/world/seed=" + std::to_string(o.seed));
+  if (o.seed_set) request.overrides.push_back("/world/seed=" + std::to_string(parse_seed(o.seed, "command line", "--seed")));
   request.planner = o.planner;
   request.vehicle = o.vehicle;
   request.out = o.out;
@@ -58,7 +59,7 @@ Command add_run(CLI::App& app) {
                  "Override a scene field: PATH=VALUE with PATH a JSON pointer; inside arrays of objects an "
                  "alias may stand for the index (e.g. --set /objects/drone/planner/params/speed_mps=1.0). "
                  "Repeatable; validated like the file");
-  app.add_option("--seed", o->seed, "World seed (same as --set /world/seed=N)")
+  app.add_option("--seed", o->seed, "World seed, an integer in [0, 2^64-1] (same as --set /world/seed=N)")
       ->each([o](const std::string&) { o->seed_set = true; });
   app.add_option("--vehicle", o->vehicle, "Vehicle to run (default: the first)");
   app.add_flag("--continue-after-collision", o->continue_after_collision,

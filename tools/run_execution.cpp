@@ -43,13 +43,8 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   }
   run.vehicle_index = options.vehicle_index;
   VehicleDef& def = scene.vehicles[options.vehicle_index];
-  if (!request.planner.empty()) {
-    // The scene's planner parameters are another planner's: --set them anew for this one.
-    if (request.planner != def.planner.name) def.planner.params.values = nlohmann::json::object();
-    def.planner.name = request.planner;
-    def.planner.name_pointer = "";
-    def.planner.params.file = "command line";
-  }
+  // Another planner than the scene's starts from its defaults: --set its parameters anew.
+  if (!request.planner.empty()) choose_planner(def.planner, request.planner, "command line");
   if (def.planner.name.empty()) def.planner.name = std::string(kDefaultPlanner);
   if (def.mission.empty()) {
     throw InputError(scene_file, "/objects", "expected vehicle \"" + def.alias + "\" to have a mission");

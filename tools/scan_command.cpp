@@ -25,7 +25,7 @@ struct ScanOptions {
   std::string res;
   std::string fov;
   std::string range;
-  std::uint64_t seed = 0;
+  std::string seed;  ///< as given; checked by parse_seed
   bool seed_set = false;
   std::string out;
 };
@@ -106,7 +106,7 @@ int run_scan(const ScanOptions& o) {
     throw InputError("command line", "--pose", "a sensor pose: the scene has no vehicle to default to");
   }
 
-  const std::uint64_t world_seed = o.seed_set ? o.seed : scene.world.seed;
+  const std::uint64_t world_seed = o.seed_set ? parse_seed(o.seed, "command line", "--seed") : scene.world.seed;
   const std::unique_ptr<RangeSensor> ranger = make_range_sensor(scene, sensor, world_seed);
   LidarScan scan;
   ranger->scan(sensor_pose, 0.0, scripted_poses(scene, 0.0), scan);
@@ -154,7 +154,7 @@ Command add_scan(CLI::App& app) {
   app.add_option("--res", o->res, "Beam grid COLSxROWS, e.g. 64x64");
   app.add_option("--fov", o->fov, "Field of view HxV in degrees, e.g. 90x90");
   app.add_option("--range", o->range, "Range limits MIN,MAX in metres, e.g. 0.05,10");
-  app.add_option("--seed", o->seed, "Noise seed (default: the scene's world seed)")
+  app.add_option("--seed", o->seed, "Noise seed, an integer in [0, 2^64-1] (default: the scene's world seed)")
       ->each([o](const std::string&) { o->seed_set = true; });
   app.add_option("--out", o->out, "Output directory (created if missing)")->required();
   app.footer(

@@ -177,7 +177,81 @@ TEST(SceneLoaderErrors, OutOfRangeValues) {
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "trees", "trunk_radius_m": [0.5, 0.2]})j")),
               HasSubstr("/objects/0/trunk_radius_m: expected [min, max] with min <= max"));
   EXPECT_THAT(error_of(R"j({"objects": [], "world": {"seed": -1}})j"),
-              HasSubstr("/world/seed: expected a non-negative integer seed, got -1"));
+              HasSubstr("/world/seed: expected an integer seed in [0, 18446744073709551615], got -1"));
+}
+
+// A rate whose period is not a whole number of physics steps would run at another rate.
+TEST(SceneLoaderErrors, RatesThatDoNotDivideThePhysicsRate) {
+  EXPECT_EQ(error_of(R"j({"objects": [], "world": {"control_rate_hz": 100}})j"),
+            "inline.json: /world/control_rate_hz: expected a rate that divides the physics rate 240 Hz "
+            "(1 / physics_step_s) into a whole number of steps, such as 240, 120, 80 or 60, got 100");
+  // Faster than the physics.
+  EXPECT_EQ(error_of(R"j({"objects": [], "world": {"control_rate_hz": 1000}})j"),
+            "inline.json: /world/control_rate_hz: expected a rate that divides the physics rate 240 Hz "
+            "(1 / physics_step_s) into a whole number of steps, such as 240 or 120, got 1000");
+  EXPECT_EQ(error_of(R"j({"objects": [], "world": {"sensor_rate_hz": 7}})j"),
+            "inline.json: /world/sensor_rate_hz: expected a rate that divides the physics rate 240 Hz "
+            "(1 / physics_step_s) into a whole number of steps, such as 7.27272727273, 7.05882352941, 6.85714285714 or 6.66666666667, got 7");
+  // A sensor's own rate.
+  EXPECT_EQ(error_of(with_objects(R"j({"alias": "v", "type": "quadrotor", "sensors": [
+      {"alias": "front", "type": "lidar", "preset": "leddar_vu8"},
+      {"alias": "down", "type": "lidar", "preset": "leddar_vu8", "rate_hz": 25}]})j")),
+            "inline.json: /objects/0/sensors/1/rate_hz: expected a rate that divides the physics rate 240 Hz "
+            "(1 / physics_step_s) into a whole number of steps, such as 30, 26.6666666667, 24 or 21.8181818182, got 25");
+  // The rate checked against the step, whichever of them the file sets.
+  EXPECT_EQ(error_of(R"j({"objects": [], "world": {"physics_step_s": 0.002, "control_rate_hz": 60}})j"),
+            "inline.json: /world/control_rate_hz: expected a rate that divides the physics rate 500 Hz "
+            "(1 / physics_step_s) into a whole number of steps, such as 71.4285714286, 62.5, 55.5555555556 or 50, got 60");
+  EXPECT_EQ(error_of(R"j({"objects": [], "world": {"physics_step_s": 0.01}})j"),
+            "inline.json: /world/physics_step_s: expected a step that divides the period of the default "
+            "control_rate_hz 60 Hz, or else /world/control_rate_hz set to a rate that divides the physics rate "
+            "100 Hz (1 / physics_step_s) into a whole number of steps, such as 100, 50 or 33.3333333333, got 0.01");
+}
+
+TEST(SceneLoader, RatesThatDivideThePhysicsRateAreKeptAsGiven) {
+  const Scene scene = parse(R"j({"world": {"control_rate_hz": 60, "sensor_rate_hz": 10}, "objects": [
+      {"alias": "v", "type": "quadrotor", "sensors": [
+        {"alias": "fast", "type": "lidar", "preset": "leddar_vu8", "rate_hz": 240},
+        {"alias": "odd", "type": "lidar", "preset": "leddar_vu8", "rate_hz": 26.6666666667}]}]})j");
+  EXPECT_EQ(scene.world.control_rate_hz, 60.0);
+  EXPECT_EQ(scene.world.sensor_rate_hz, 10.0);
+  EXPECT_EQ(scene.vehicles[0].sensors[1].lidar.rate_hz, 26.6666666667);
+  // A step with its rates, whichever way they are written (0.004166666666666667 is the bundled scenes' 1/240).
+  const Scene bundled = parse(R"j({"world": {"physics_step_s": 0.004166666666666667, "control_rate_hz": 48},
+      "objects": []})j");
+  EXPECT_EQ(steps_per_period(bundled.world.control_rate_hz, bundled.world.physics_step_s), 5);
+  // The defaults, 60 Hz and 10 Hz, at 120 Hz physics.
+  EXPECT_EQ(parse(R"j({"world": {"physics_step_s": 0.008333333333333333}, "objects": []})j").world.control_rate_hz,
+            60.0);
+}
+
+TEST(StepsPerPeriod, WholeStepsOnlyWithinARelativeTolerance) {
+  EXPECT_EQ(steps_per_period(60.0, 1.0 / 240.0), 4);
+  EXPECT_EQ(steps_per_period(240.0, 1.0 / 240.0), 1);
+  EXPECT_EQ(steps_per_period(0.1, 1.0 / 240.0), 2400);
+  EXPECT_EQ(steps_per_period(240.0 / 9.0, 1.0 / 240.0), 9);
+  EXPECT_EQ(steps_per_period(100.0, 1.0 / 240.0), 0);   // 2.4 steps
+  EXPECT_EQ(steps_per_period(1000.0, 1.0 / 240.0), 0);  // faster than the physics
+  EXPECT_EQ(steps_per_period(300.0, 1.0 / 240.0), 0);
+  EXPECT_EQ(steps_per_period(60.0 * (1.0 + 1e-6), 1.0 / 240.0), 0);
+  EXPECT_EQ(steps_per_period(60.0 * (1.0 + 1e-12), 1.0 / 240.0), 4);
+  EXPECT_EQ(dividing_rates_near(100.0, 1.0 / 240.0), (std::vector<double>{240.0, 120.0, 80.0, 60.0}));
+  EXPECT_EQ(dividing_rates_near(1000.0, 1.0 / 240.0), (std::vector<double>{240.0, 120.0}));
+}
+
+TEST(SceneLoaderErrors, SeedsAreIntegersReadExactly) {
+  // Beyond 2^53, where a double would round: read exactly.
+  EXPECT_EQ(parse(R"j({"objects": [], "world": {"seed": 18446744073709551615}})j").world.seed,
+            18446744073709551615u);
+  EXPECT_EQ(parse(R"j({"objects": [], "world": {"seed": 9007199254740993}})j").world.seed, 9007199254740993u);
+  EXPECT_EQ(error_of(R"j({"objects": [], "world": {"seed": 18446744073709551616}})j"),
+            "inline.json: /world/seed: expected an integer seed in [0, 18446744073709551615], got 1.8446744073709552e+19");
+  EXPECT_THAT(error_of(R"j({"objects": [], "world": {"seed": 1.5}})j"),
+              HasSubstr("/world/seed: expected an integer seed in [0, 18446744073709551615], got 1.5"));
+  EXPECT_THAT(error_of(R"j({"objects": [], "world": {"seed": 3.0}})j"),
+              HasSubstr("/world/seed: expected an integer seed in [0, 18446744073709551615], got 3.0"));
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "rolling_terrain", "size_m": [10, 10], "seed": -2})j")),
+              HasSubstr("/objects/0/seed: expected an integer seed in [0, 18446744073709551615], got -2"));
 }
 
 TEST(SceneLoaderErrors, UnknownTypeAndMissingKeys) {

@@ -74,7 +74,7 @@ TEST(World, RayTestHitsPrimitivesAtAnalyticDistances) {
 }
 
 TEST(World, FreeFallFollowsSymplecticEuler) {
-  const Scene scene = parse(R"j({"world": {"physics_step_s": 0.01},
+  const Scene scene = parse(R"j({"world": {"physics_step_s": 0.01, "control_rate_hz": 50},
     "objects": [{"alias": "ball", "type": "sphere", "radius_m": 0.1, "static": false, "mass_kg": 1,
                  "pose": {"position_m": [0, 0, 100]}}]})j");
   World world(scene);

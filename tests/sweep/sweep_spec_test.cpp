@@ -311,6 +311,45 @@ TEST_F(SweepSpecTest, NoAxesGiveOneRunPerSceneAndSeed) {
   EXPECT_EQ(runs[0].params, nlohmann::json::object());
 }
 
+TEST_F(SweepSpecTest, SeedsAreIntegersInZeroTo2To64Minus1) {
+  const std::string spec = (dir_ / "spec.json").string();
+  EXPECT_EQ(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "seeds": {"first": -1, "count": 2}})"),
+            spec + ": /seeds/first: expected an integer seed in [0, 18446744073709551615], got -1");
+  EXPECT_EQ(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "seeds": {"first": 2.5}})"),
+            spec + ": /seeds/first: expected an integer seed in [0, 18446744073709551615], got 2.5");
+  // The last seed, first + count - 1, must be a seed too.
+  EXPECT_EQ(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
+                          "seeds": {"first": 18446744073709551615, "count": 2}})"),
+            spec + ": /seeds: expected seeds first .. first + count - 1 that are all in [0, 18446744073709551615], "
+                   "got {\"count\":2,\"first\":18446744073709551615}");
+  const std::vector<SweepRun> runs = expand_sweep(read_sweep_spec(write(
+      R"({"campo_sweep": 1, "scenes": ["two_barriers"], "seeds": {"first": 18446744073709551614, "count": 2}})")));
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[1].seed, 18446744073709551615u);
+  EXPECT_EQ(runs[1].overrides.back(), "/world/seed=18446744073709551615");
+  // A seed swept as an axis (a generator's) goes through the scene loader.
+  EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["trees_rolling_terrain"],
+                           "axes": [{"name": "forest", "values": [3, -3], "set": ["/objects/forest/seed"]}]})"),
+              HasSubstr(spec + ": /scenes/0: run trees_rolling_terrain__forest--3__seed-1: "));
+  EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["trees_rolling_terrain"],
+                           "axes": [{"name": "forest", "values": [3, -3], "set": ["/objects/forest/seed"]}]})"),
+              HasSubstr("/seed: expected an integer seed in [0, 18446744073709551615], got -3"));
+}
+
+TEST_F(SweepSpecTest, SweptRatesMustDivideThePhysicsRate) {
+  const std::string spec = (dir_ / "spec.json").string();
+  EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
+                            "axes": [{"name": "rate", "values": [60, 100], "set": ["/world/control_rate_hz"]}]})"),
+              ::testing::AllOf(
+                  ::testing::StartsWith(spec + ": /scenes/0: run two_barriers__rate-100__seed-1: "),
+                  ::testing::EndsWith("scenes/two_barriers.json: /world/control_rate_hz: expected a rate that divides "
+                                      "the physics rate 240 Hz (1 / physics_step_s) into a whole number of steps, "
+                                      "such as 240, 120, 80 or 60, got 100")));
+  EXPECT_EQ(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
+                          "axes": [{"name": "rate", "values": [60, 40, 30], "set": ["/world/control_rate_hz"]}]})"),
+            "");
+}
+
 TEST_F(SweepSpecTest, ValueLabelsAreShortAndFilesystemSafe) {
   EXPECT_EQ(value_label(0.25), "0.25");
   EXPECT_EQ(value_label(256), "256");

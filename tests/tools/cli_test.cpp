@@ -1,5 +1,6 @@
 // Runs the `campo` executable as a user would and checks exit codes and files.
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -203,6 +204,102 @@ TEST_F(Cli, BadRunInputExitsTwoAndWritesNothing) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("/objects/4/params/mass_kg"));
   EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, RatesThatDoNotDivideThePhysicsRateExitTwoAndWriteNothing) {
+  const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json";
+  const fs::path out = dir_ / "never";
+  Result r = campo("run " + scene + " --set /world/control_rate_hz=100 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("two_barriers.json: /world/control_rate_hz: expected a rate that divides the physics "
+                               "rate 240 Hz (1 / physics_step_s) into a whole number of steps, such as 240, 120, 80 "
+                               "or 60, got 100"));
+  r = campo("run " + scene + " --set /world/control_rate_hz=1000 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("two_barriers.json: /world/control_rate_hz: expected a rate that divides the physics "
+                               "rate 240 Hz (1 / physics_step_s) into a whole number of steps, such as 240 or 120, "
+                               "got 1000"));
+  r = campo("run " + scene + " --set /objects/drone/sensors/0/rate_hz=7 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("two_barriers.json: /objects/4/sensors/0/rate_hz: expected a rate that divides the "
+                               "physics rate 240 Hz (1 / physics_step_s) into a whole number of steps, such as "
+                               "7.27272727273, 7.05882352941, 6.85714285714 or 6.66666666667, got 7"));
+  // The physics step changed alone: the scene's 60 Hz control no longer fits 100 Hz physics.
+  r = campo("run " + scene + " --set /world/physics_step_s=0.01 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("two_barriers.json: /world/control_rate_hz: expected a rate that divides the physics "
+                               "rate 100 Hz (1 / physics_step_s) into a whole number of steps, such as 100, 50 or "
+                               "33.3333333333, got 60"));
+  r = campo("validate " + write("rates.json", R"({"world": {"sensor_rate_hz": 7}, "objects": []})"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("rates.json: /world/sensor_rate_hz: expected a rate that divides the physics rate"));
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Cli, RatesThatDivideThePhysicsRateRunAsGivenAndAreRecorded) {
+  const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json";
+  const fs::path out = dir_ / "run";
+  const Result r = campo("run " + scene + " --planner straight --set /world/control_rate_hz=60 --set "
+                         "/world/sensor_rate_hz=10 --set /world/time_limit_s=2 --record-depth 1 --no-figures "
+                         "--no-replan-depth --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto run = nlohmann::json::parse(slurp(out / "run.json"));
+  EXPECT_EQ(run["parameters"]["world"]["control_rate_hz"], 60);
+  EXPECT_EQ(run["parameters"]["world"]["sensor_rate_hz"], 10);
+  // What ran: a planner call every 4 steps and a scan every 24 over 2 s of 240 Hz physics.
+  EXPECT_EQ(campo::testing::lines_of(slurp(out / "trajectory.csv")).size(), 1u + 2 * 60);
+  EXPECT_EQ(std::distance(fs::directory_iterator(out / "depth"), fs::directory_iterator()), 2 * 10);
+}
+
+TEST_F(Cli, SeedsAreIntegersFromZeroTo2To64Minus1) {
+  const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json";
+  const fs::path out = dir_ / "never";
+  for (const char* seed : {"-1", "1.5", "1e3", "18446744073709551616", "seven", "' 7'"}) {
+    const Result r = campo("run " + scene + " --seed " + seed + " --out " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << seed;
+    EXPECT_THAT(r.err, HasSubstr("command line: --seed: expected an integer seed in [0, 18446744073709551615], got \""))
+        << seed;
+  }
+  Result r = campo("run " + scene + " --seed=-1 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("command line: --seed: expected an integer seed in [0, 18446744073709551615], got \"-1\""));
+  r = campo("run " + scene + " --set /world/seed=-3 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("two_barriers.json: /world/seed: expected an integer seed in [0, 18446744073709551615], got -3"));
+  r = campo("run " + scene + " --set /world/seed=2.0 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("two_barriers.json: /world/seed: expected an integer seed in [0, 18446744073709551615], got 2.0"));
+  r = campo("scan " + scene + " --sensor leddar_vu8 --seed -1 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("command line: --seed: expected an integer seed in [0, 18446744073709551615], got \"-1\""));
+  EXPECT_FALSE(fs::exists(out));
+
+  // The largest seed runs and is recorded exactly (beyond 2^53, where a double would round it).
+  const fs::path big = dir_ / "big";
+  r = campo("run " + scene + " --planner straight --seed 18446744073709551615 --set /world/time_limit_s=1 "
+            "--no-figures --no-replan-depth --out " + big.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto run = nlohmann::json::parse(slurp(big / "run.json"));
+  EXPECT_EQ(run["parameters"]["world"]["seed"].get<std::uint64_t>(), 18446744073709551615u);
+  EXPECT_EQ(run["overrides"].back(), "/world/seed=18446744073709551615");
+  EXPECT_THAT(slurp(big / "run.json"), HasSubstr("\"seed\": 18446744073709551615"));
+}
+
+TEST_F(Cli, BenchEpisodesRunsBothVehicles) {
+  // A short episode per case: the rover in the vineyard runs `straight` without the scene's rover_route parameters.
+  const Result r = campo("bench episodes --episode-time 1 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto lines = campo::testing::lines_of(r.out);
+  ASSERT_EQ(lines.size(), 6u) << r.out;
+  const int resolutions[] = {0, 64, 256};
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const auto j = nlohmann::json::parse(lines[i]);
+    EXPECT_EQ(j["vehicle"], i < 3 ? "quadrotor" : "rover");
+    EXPECT_EQ(j["scene"], i < 3 ? "trees_rolling_terrain" : "vineyard");
+    EXPECT_EQ(j["sensor_resolution"], resolutions[i % 3]);
+    EXPECT_NEAR(j["sim_time_s"].get<double>(), 1.0, 1e-9) << lines[i];
+    EXPECT_GT(j["real_time_factor"].get<double>(), 0.0);
+  }
 }
 
 TEST_F(Cli, RenderRedrawsFiguresFromRunFilesAlone) {

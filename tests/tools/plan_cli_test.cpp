@@ -266,7 +266,8 @@ TEST_F(PlanCli, OptionsThatDoNotApplyOrAreBadExitTwo) {
            Case{rrt + " --radius 2", "--radius: does not apply to --planner rrt_star"},
            Case{rrt + " --iterations 0", "--iterations: expected an integer in [1, 10000000], got \"0\""},
            Case{rrt + " --iterations 2.5", "--iterations: expected an integer in [1, 10000000]"},
-           Case{rrt + " --seed -1", "--seed: expected an integer in [0, 18446744073709551615], got \"-1\""},
+           Case{rrt + " --seed -1", "--seed: expected an integer seed in [0, 18446744073709551615], got \"-1\""},
+           Case{rrt + " --seed 1.5", "--seed: expected an integer seed in [0, 18446744073709551615], got \"1.5\""},
            Case{rrt + " --step 0", "--step: expected the step in cells, a number > 0, got \"0\""},
        }) {
     const Result r = plan(c.args);
