@@ -17,9 +17,16 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Steps between two events at `rate_hz` with physics step dt (at least 1).
+// Steps between two events at `rate_hz` with physics step dt. The scene
+// loader accepts only rates that divide the physics rate, so every accepted
+// rate is the rate that runs; a scene built in code must obey it too.
 std::int64_t period_steps(double rate_hz, double dt) {
-  return std::max<std::int64_t>(1, std::llround(1.0 / (rate_hz * dt)));
+  const std::int64_t steps = steps_per_period(rate_hz, dt);
+  if (steps < 1) {
+    throw std::invalid_argument("a rate of " + std::to_string(rate_hz) + " Hz does not divide the physics rate " +
+                                std::to_string(1.0 / dt) + " Hz into whole steps");
+  }
+  return steps;
 }
 
 struct MountedSensor {
