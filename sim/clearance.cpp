@@ -200,28 +200,48 @@ Clearance ClearanceQuery::measure(const btCollisionWorld& world, double obstacle
   find_vehicle(world);
   Clearance out;
   if (vehicle_.empty()) return out;
-  nearest_obstacle(obstacle_cutoff_m, out);
-  // The ground does not move: while the vehicle has not moved far enough
-  // since the last exact answer to come within the cutoff, it cannot have.
-  if (ground_floor_m_ - ground_travel_m() >= ground_cutoff_m) return out;
-  // Measure a little beyond the cutoff, so the answer bounds the next steps.
-  const double reach = ground_cutoff_m + kGroundSlack_m;
-  nearest_ground(reach, out);
-  ground_floor_m_ = std::min(out.ground_m, reach);
-  ground_poses_.clear();
-  for (const VehiclePart& part : vehicle_) ground_poses_.push_back(part.body->getWorldTransform());
+  nearest_moving(obstacle_cutoff_m, out);
+  // Static obstacles and the ground do not move: while the vehicle has not
+  // moved far enough since their last exact answer to come within the
+  // cutoff, it cannot have. Each is measured a little beyond its cutoff, so
+  // that the answer bounds the next steps.
+  if (static_floor_.floor_m - travel_since(static_floor_) < obstacle_cutoff_m) {
+    Clearance statics;
+    const double reach = obstacle_cutoff_m + kSlack_m;
+    nearest_static(reach, statics);
+    remember(static_floor_, std::min(statics.obstacle_m, reach));
+    if (statics.obstacle_m < out.obstacle_m) {
+      out.obstacle_m = statics.obstacle_m;
+      out.obstacle = statics.obstacle;
+    }
+  }
+  if (out.obstacle_m >= obstacle_cutoff_m) {
+    out.obstacle_m = kInfinity;
+    out.obstacle = -1;
+  }
+  if (ground_floor_.floor_m - travel_since(ground_floor_) < ground_cutoff_m) {
+    const double reach = ground_cutoff_m + kSlack_m;
+    nearest_ground(reach, out);
+    remember(ground_floor_, std::min(out.ground_m, reach));
+  }
   if (out.ground_m >= ground_cutoff_m) out.ground_m = kInfinity;
   return out;
 }
 
-double ClearanceQuery::ground_travel_m() const {
-  if (ground_poses_.size() != vehicle_.size()) return kInfinity;
+void ClearanceQuery::remember(Floor& floor, double floor_m) const {
+  floor.floor_m = floor_m;
+  floor.poses.clear();
+  for (const VehiclePart& part : vehicle_) floor.poses.push_back(part.body->getWorldTransform());
+}
+
+double ClearanceQuery::travel_since(const Floor& floor) const {
+  if (floor.poses.size() != vehicle_.size()) return kInfinity;
   // No point of a body moves farther than its origin's displacement plus the
   // arc its farthest point turns through.
   double travel = 0.0;
   for (std::size_t i = 0; i < vehicle_.size(); ++i) {
     const btTransform& now = vehicle_[i].body->getWorldTransform();
-    const btTransform& then = ground_poses_[i];
+    const btTransform& then = floor.poses[i];
     btVector3 centre;
     btScalar radius;
     vehicle_[i].body->getCollisionShape()->getBoundingSphere(centre, radius);
@@ -232,18 +252,54 @@ double ClearanceQuery::ground_travel_m() const {
   return travel;
 }
 
-// Searches a box around the vehicle that grows until the nearest obstacle
-// found lies within it: everything outside the box is farther than its
-// margin, so the answer is exact. It starts from the last answer, which
-// moves little from one step to the next.
-void ClearanceQuery::nearest_obstacle(double cutoff_m, Clearance& out) {
-  btVector3 lo(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT), hi = -lo;
+void ClearanceQuery::vehicle_box(btVector3& lo, btVector3& hi) const {
+  lo.setValue(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
+  hi = -lo;
   for (const VehiclePart& part : vehicle_) {
     btVector3 a, b;
     part.body->getCollisionShape()->getAabb(part.body->getWorldTransform(), a, b);
     lo.setMin(a);
     hi.setMax(b);
   }
+}
+
+void ClearanceQuery::measure_obstacle(const btVector3& lo, const btVector3& hi, const btConvexShape& shape,
+                                      const btTransform& pose, int id, double bound, Clearance& out) const {
+  btVector3 a, b;
+  shape.getAabb(pose, a, b);
+  if (box_distance(lo, hi, a, b) >= std::min(out.obstacle_m, bound)) return;
+  for (const VehiclePart& part : vehicle_) {
+    const auto* mine = static_cast<const btConvexShape*>(part.body->getCollisionShape());
+    if (vehicle_.size() > 1) {  // each part's own box first (a rover's wheels)
+      btVector3 part_lo, part_hi;
+      mine->getAabb(part.body->getWorldTransform(), part_lo, part_hi);
+      if (box_distance(part_lo, part_hi, a, b) >= std::min(out.obstacle_m, bound)) continue;
+    }
+    const double d = signed_distance(*mine, part.body->getWorldTransform(), shape, pose);
+    if (d < out.obstacle_m) {
+      out.obstacle_m = d;
+      out.obstacle = id;
+    }
+  }
+}
+
+// Moving obstacles are few: each is measured exactly (within the cutoff).
+void ClearanceQuery::nearest_moving(double cutoff_m, Clearance& out) const {
+  btVector3 lo, hi;
+  vehicle_box(lo, hi);
+  for (const MovingObstacle& m : moving_) {
+    measure_obstacle(lo, hi, *static_cast<const btConvexShape*>(m.body->getCollisionShape()), m.body->getWorldTransform(),
+                     m.id, cutoff_m, out);
+  }
+}
+
+// Searches a box around the vehicle that grows until the nearest static
+// obstacle found lies within it: everything outside the box is farther than
+// its margin, so the answer is exact. It starts from the last answer, which
+// moves little from one step to the next.
+void ClearanceQuery::nearest_static(double cutoff_m, Clearance& out) {
+  btVector3 lo, hi;
+  vehicle_box(lo, hi);
   struct Collect : btDbvt::ICollide {
     std::vector<int>* hits;
     void Process(const btDbvtNode* leaf) override {
@@ -252,25 +308,6 @@ void ClearanceQuery::nearest_obstacle(double cutoff_m, Clearance& out) {
   };
   std::vector<int>& candidates = candidates_;
   double radius = std::min(cutoff_m, std::max(kMinSearch_m, 2.0 * obstacle_hint_m_));
-  // Measures an obstacle unless its box is already as far as `bound`.
-  const auto measure_against = [&](const btConvexShape& shape, const btTransform& pose, int id, double bound) {
-    btVector3 a, b;
-    shape.getAabb(pose, a, b);
-    if (box_distance(lo, hi, a, b) >= std::min(out.obstacle_m, bound)) return;
-    for (const VehiclePart& part : vehicle_) {
-      const auto* mine = static_cast<const btConvexShape*>(part.body->getCollisionShape());
-      const double d = signed_distance(*mine, part.body->getWorldTransform(), shape, pose);
-      if (d < out.obstacle_m) {
-        out.obstacle_m = d;
-        out.obstacle = id;
-      }
-    }
-  };
-  // Moving obstacles are few: each is measured exactly (within the cutoff).
-  for (const MovingObstacle& m : moving_) {
-    measure_against(*static_cast<const btConvexShape*>(m.body->getCollisionShape()), m.body->getWorldTransform(), m.id,
-                    cutoff_m);
-  }
   for (;;) {
     const btVector3 pad(radius, radius, radius);
     const bool everything = statics_.empty() || covers(lo - pad, hi + pad, statics_min_, statics_max_, 3);
@@ -280,7 +317,7 @@ void ClearanceQuery::nearest_obstacle(double cutoff_m, Clearance& out) {
     if (!statics_.empty()) static_tree_.collideTV(static_tree_.m_root, btDbvtVolume::FromMM(lo - pad, hi + pad), collect);
     for (const int k : candidates) {
       const StaticObstacle& o = statics_[static_cast<std::size_t>(k)];
-      measure_against(*o.shape, o.pose, o.id, radius);
+      measure_obstacle(lo, hi, *o.shape, o.pose, o.id, radius, out);
     }
     if (out.obstacle_m <= radius || radius >= cutoff_m) break;
     // Nothing within the radius: grow the box until it covers every static obstacle.

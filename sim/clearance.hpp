@@ -86,9 +86,21 @@ class ClearanceQuery {
     bool ground_counts;  // kVehicleBodyTag: touching the ground is a collision
   };
   void find_vehicle(const btCollisionWorld& world);
-  void nearest_obstacle(double cutoff_m, Clearance& out);
+  // A lower bound of a distance to things that do not move, valid with the
+  // vehicle's bodies at `poses`.
+  struct Floor {
+    double floor_m = -std::numeric_limits<double>::infinity();
+    std::vector<btTransform> poses;
+  };
+  void vehicle_box(btVector3& lo, btVector3& hi) const;
+  void measure_obstacle(const btVector3& lo, const btVector3& hi, const btConvexShape& shape, const btTransform& pose,
+                        int id, double bound, Clearance& out) const;
+  void nearest_moving(double cutoff_m, Clearance& out) const;
+  void nearest_static(double cutoff_m, Clearance& out);
   void nearest_ground(double cutoff_m, Clearance& out);
-  double ground_travel_m() const;
+  void remember(Floor& floor, double floor_m) const;
+  // How far any point of the vehicle's bodies may have moved since `floor` was set.
+  double travel_since(const Floor& floor) const;
 
   std::vector<StaticObstacle> statics_;
   btDbvt static_tree_;  // leaves: index into statics_
@@ -101,10 +113,9 @@ class ClearanceQuery {
   int objects_seen_ = -1;      // collision objects in the world when vehicle_ was found
   double obstacle_hint_m_ = 1.0;  // the last nearest obstacle distance: where the search starts
   double ground_hint_m_ = 1.0;
-  // The ground was at least ground_floor_m_ away with the vehicle's bodies at ground_poses_.
-  static constexpr double kGroundSlack_m = 0.5;
-  double ground_floor_m_ = -std::numeric_limits<double>::infinity();
-  std::vector<btTransform> ground_poses_;
+  static constexpr double kSlack_m = 0.5;  // measured beyond a cutoff, to skip the next steps
+  Floor static_floor_;
+  Floor ground_floor_;
 };
 
 }  // namespace campo
