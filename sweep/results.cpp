@@ -30,6 +30,7 @@ RunMetrics read_metrics(const JsonNode& node) {
   m.path_ratio = r.required("path_ratio").as_number(Range::non_negative());
   m.time_s = r.required("sim_time_s").as_number(Range::non_negative());
   m.collisions = static_cast<int>(r.required("collisions").as_int(0, 1 << 30));
+  if (auto c = r.optional("min_clearance_m"); c && !c->value().is_null()) m.min_clearance_m = c->as_number();
   r.read("replans", m.replans, 0, 1 << 30);
   r.read("replan_time_ms_median", m.replan_ms_median, Range::non_negative());
   r.read("replan_time_ms_max", m.replan_ms_max, Range::non_negative());
@@ -96,6 +97,7 @@ TableRow summarize(const std::vector<const RunResult*>& group, const std::vector
     completed.push_back(r);
     if (r->metrics.outcome == "reached") reached.push_back(r);
     row.collisions += r->metrics.collisions;
+    if (const auto& c = r->metrics.min_clearance_m) row.min_clearance_m = std::min(row.min_clearance_m.value_or(*c), *c);
     if (r->metrics.replans > 0) {
       replan_medians.push_back(r->metrics.replan_ms_median);
       replan_maxima.push_back(r->metrics.replan_ms_max);

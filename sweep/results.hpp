@@ -59,6 +59,7 @@ struct RunMetrics {
   double path_ratio = 0.0;
   double time_s = 0.0;             ///< simulated
   int collisions = 0;
+  std::optional<double> min_clearance_m;  ///< null without obstacles (and in results before it existed)
   int replans = 0;
   double replan_ms_median = 0.0;
   double replan_ms_max = 0.0;
@@ -225,6 +226,9 @@ struct TableRow {
   std::optional<MeanSd> path_length_m_reached, path_ratio_reached, time_s_reached;
   bool identical = false;              ///< the runs are one run repeated (identical_runs): no spread to show
   int collisions = 0;                  ///< total
+  /// The lowest min_clearance_m of the completed runs (the closest call);
+  /// empty when none measured one.
+  std::optional<double> min_clearance_m;
   /// Median of the runs' replan_time_ms_median and max of their maxima, over
   /// the completed runs that replanned; empty when none did.
   std::optional<double> replan_ms_median, replan_ms_max;

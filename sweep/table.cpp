@@ -40,7 +40,7 @@ constexpr auto kStatColumns = std::to_array<std::string_view>({
     "path_length_m_mean", "path_length_m_sd", "path_length_m_reached_mean", "path_length_m_reached_sd",
     "path_ratio_mean", "path_ratio_sd", "path_ratio_reached_mean", "path_ratio_reached_sd",
     "time_s_mean", "time_s_sd", "time_s_reached_mean", "time_s_reached_sd",
-    "collisions", "replan_ms_median", "replan_ms_max", "failed", "identical"});
+    "collisions", "min_clearance_m_min", "replan_ms_median", "replan_ms_max", "failed", "identical"});
 
 // What a cell or row of identical runs says instead of a spread.
 constexpr std::string_view kIdenticalNote = "identical runs: seeds vary nothing";
@@ -83,6 +83,7 @@ std::string csv(const SweepTable& table) {
       cells.push_back(s && !row.identical ? exact(s->sd) : "");  // identical runs have no spread to speak of
     }
     cells.push_back(std::to_string(row.collisions));
+    cells.push_back(optional(row.min_clearance_m));
     cells.push_back(optional(row.replan_ms_median));
     cells.push_back(optional(row.replan_ms_max));
     cells.push_back(std::to_string(row.failed));
@@ -132,7 +133,9 @@ std::vector<std::vector<std::string>> human_cells(const SweepTable& table, const
   for (const std::string& axis : table.axes) header.push_back(field_heading(axis));
   for (const char* h : {"Runs", "Success", "Reached runs"}) header.emplace_back(h);
   for (const SpreadColumn& column : kSpreadColumns) header.emplace_back(column.header);
-  for (const char* h : {"Collisions", "Replanning (ms, median)", "Failed"}) header.emplace_back(h);
+  for (const char* h : {"Collisions", "Min clearance (m), closest run", "Replanning (ms, median)", "Failed"}) {
+    header.emplace_back(h);
+  }
   std::vector<std::vector<std::string>> cells{header};
   for (auto& h : cells.front()) h = style.escape(h);
 
@@ -149,6 +152,7 @@ std::vector<std::vector<std::string>> human_cells(const SweepTable& table, const
       line.push_back(text);
     }
     line.push_back(std::to_string(row.collisions));
+    line.push_back(row.min_clearance_m ? fixed(*row.min_clearance_m, 3) : style.missing);
     line.push_back(row.replan_ms_median ? fixed(*row.replan_ms_median, 2) : style.missing);
     line.push_back(std::to_string(row.failed));
     cells.push_back(line);

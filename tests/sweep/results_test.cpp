@@ -28,7 +28,7 @@ std::string slurp(const fs::path& path) {
 // One completed line with the metrics the table reads.
 std::string completed(const std::string& id, int resolution, int seed, const std::string& outcome, double reached,
                       double discarded, double length, double ratio, double time, int collisions, int replans,
-                      double replan_median, double replan_max) {
+                      double replan_median, double replan_max, const nlohmann::json& min_clearance = nullptr) {
   const nlohmann::json line = {
       {"id", id}, {"scene", "two_barriers"}, {"params", {{"resolution", resolution}}}, {"seed", seed},
       {"status", "completed"}, {"overrides", {"/world/seed=" + std::to_string(seed)}}, {"run_dir", "runs/" + id},
@@ -36,7 +36,7 @@ std::string completed(const std::string& id, int resolution, int seed, const std
                    {"waypoints_discarded", discarded}, {"path_length_m", length}, {"path_ratio", ratio},
                    {"sim_time_s", time}, {"collisions", collisions}, {"replans", replans},
                    {"replan_time_ms_median", replan_median}, {"replan_time_ms_max", replan_max},
-                   {"min_clearance_m", nullptr}}},
+                   {"min_clearance_m", min_clearance}}},
       {"campo_version", "0.1.0"}, {"git_rev", "abc"}, {"scene_sha256", "00"}};
   return line.dump() + "\n";
 }
@@ -60,9 +60,9 @@ class ResultsTest : public ::testing::Test {
     // Resolution 32 first in the file; its only run failed, then completed when resumed.
     std::ofstream(dir_ / "results.jsonl")
         << failed("b1", 32, 1)                                                      //
-        << completed("a1", 16, 1, "reached", 2, 0, 10, 1.0, 50, 0, 4, 10, 30)       //
-        << completed("a2", 16, 2, "reached", 3, 0, 12, 1.2, 60, 0, 2, 20, 25)       //
-        << completed("a3", 16, 3, "collision", 4, 3, 14, 1.4, 100, 1, 0, 0, 0)      //
+        << completed("a1", 16, 1, "reached", 2, 0, 10, 1.0, 50, 0, 4, 10, 30, 0.3)      //
+        << completed("a2", 16, 2, "reached", 3, 0, 12, 1.2, 60, 0, 2, 20, 25, 0.12)     //
+        << completed("a3", 16, 3, "collision", 4, 3, 14, 1.4, 100, 1, 0, 0, 0, -0.01)  //
         << failed("a4", 16, 4)                                                      //
         << completed("b1", 32, 1, "reached", 1, 1, 8, 1.1, 40, 0, 1, 7, 7)          //
         << R"({"id": "a5", "scene": "two_barr)";  // killed mid-write
@@ -117,6 +117,7 @@ TEST_F(ResultsTest, AggregatesMeanSampleSdAndMedianPerGroup) {
   EXPECT_DOUBLE_EQ(a.time_s_reached->sd, std::sqrt(50.0));
   EXPECT_FALSE(a.identical);
   EXPECT_EQ(a.collisions, 1);
+  EXPECT_DOUBLE_EQ(*a.min_clearance_m, -0.01);  // the closest call: the collision's overlap
   // Median over the runs that replanned (10 and 20 ms; the third never replanned).
   EXPECT_DOUBLE_EQ(*a.replan_ms_median, 15.0);
   EXPECT_DOUBLE_EQ(*a.replan_ms_max, 30.0);
@@ -145,7 +146,7 @@ TEST_F(ResultsTest, GroupsWithoutCompletedRunsHaveEmptyStatistics) {
   EXPECT_FALSE(table.rows[0].replan_ms_median);
   EXPECT_FALSE(table.rows[0].identical);  // one run, and failed
   EXPECT_EQ(format_table(table, TableFormat::csv).substr(format_table(table, TableFormat::csv).find('\n') + 1),
-            "two_barriers,8,1,0,0," + std::string(16, ',') + "0,,,1,false\n");
+            "two_barriers,8,1,0,0," + std::string(16, ',') + "0,,,,1,false\n");
 }
 
 TEST_F(ResultsTest, CsvHasExactlyTheDocumentedColumns) {
@@ -163,11 +164,11 @@ TEST_F(ResultsTest, CsvHasExactlyTheDocumentedColumns) {
             "waypoints_discarded_mean,waypoints_discarded_sd,path_length_m_mean,path_length_m_sd,"
             "path_length_m_reached_mean,path_length_m_reached_sd,path_ratio_mean,path_ratio_sd,"
             "path_ratio_reached_mean,path_ratio_reached_sd,time_s_mean,time_s_sd,time_s_reached_mean,time_s_reached_sd,"
-            "collisions,replan_ms_median,replan_ms_max,failed,identical");
+            "collisions,min_clearance_m_min,replan_ms_median,replan_ms_max,failed,identical");
   EXPECT_THAT(first, ::testing::StartsWith("two_barriers,16,4,0.5,2,3,1,1,"));
   EXPECT_THAT(first, HasSubstr(",12,2,11,1.414"));  // path length: all completed runs, then the reached ones
-  EXPECT_THAT(first, ::testing::EndsWith(",1,15,30,1,false"));
-  EXPECT_EQ(second, "two_barriers,32,1,1,1,1,0,1,0,8,0,8,0,1.1,0,1.1,0,40,0,40,0,0,7,7,0,false");
+  EXPECT_THAT(first, ::testing::EndsWith(",1,-0.01,15,30,1,false"));
+  EXPECT_EQ(second, "two_barriers,32,1,1,1,1,0,1,0,8,0,8,0,1.1,0,1.1,0,40,0,40,0,0,,7,7,0,false");  // no clearance
 }
 
 TEST_F(ResultsTest, MarkdownAndLatexShowMeanAndSpread) {
@@ -177,12 +178,13 @@ TEST_F(ResultsTest, MarkdownAndLatexShowMeanAndSpread) {
   EXPECT_THAT(markdown, HasSubstr("| Scene | Resolution | Runs | Success | Reached runs | Waypoints reached | "
                                   "Discarded | Path length (m), all runs | Path length (m), reached runs | "
                                   "Normalized length, all runs | Normalized length, reached runs | Time (s), all runs | "
-                                  "Time (s), reached runs | Collisions | Replanning (ms, median) | Failed |"));
+                                  "Time (s), reached runs | Collisions | Min clearance (m), closest run | Replanning (ms, median) | "
+                                  "Failed |"));
   EXPECT_THAT(markdown, HasSubstr("| two_barriers | 16 | 4 | 50% | 2 | 3.0 ± 1.0 | 1.0 ± 1.7 | 12.00 ± 2.00 | "
                                   "11.00 ± 1.41 | 1.200 ± 0.200 | 1.100 ± 0.141 | 70.0 ± 26.5 | 55.0 ± 7.1 | 1 | "
-                                  "15.00 | 1 |"));
+                                  "-0.010 | 15.00 | 1 |"));
   const std::string latex = format_table(table, TableFormat::latex);
-  EXPECT_THAT(latex, HasSubstr("\\begin{tabular}{lrrrrrrrrrrrrrrr}"));
+  EXPECT_THAT(latex, HasSubstr("\\begin{tabular}{lrrrrrrrrrrrrrrrr}"));
   EXPECT_THAT(latex, HasSubstr("two\\_barriers & 16 & 4 & 50\\% & 2 & 3.0 $\\pm$ 1.0"));
   EXPECT_THAT(latex, HasSubstr("\\end{tabular}"));
 }
