@@ -200,6 +200,7 @@ Clearance ClearanceQuery::measure(const btCollisionWorld& world, double obstacle
   find_vehicle(world);
   Clearance out;
   if (vehicle_.empty()) return out;
+  out.contact = in_contact(world);
   nearest_moving(obstacle_cutoff_m, out);
   // Static obstacles and the ground do not move: while the vehicle has not
   // moved far enough since their last exact answer to come within the
@@ -226,6 +227,34 @@ Clearance ClearanceQuery::measure(const btCollisionWorld& world, double obstacle
   }
   if (out.ground_m >= ground_cutoff_m) out.ground_m = kInfinity;
   return out;
+}
+
+const ClearanceQuery::VehiclePart* ClearanceQuery::part_of(const btCollisionObject* object) const {
+  for (const VehiclePart& part : vehicle_) {
+    if (part.body == object) return &part;
+  }
+  return nullptr;
+}
+
+bool ClearanceQuery::in_contact(const btCollisionWorld& world) const {
+  // Bullet's manifold accessors are not const; reading them changes nothing.
+  btDispatcher* dispatcher = const_cast<btCollisionWorld&>(world).getDispatcher();
+  for (int i = 0; i < dispatcher->getNumManifolds(); ++i) {
+    const btPersistentManifold* m = dispatcher->getManifoldByIndexInternal(i);
+    const VehiclePart* mine = part_of(m->getBody0());
+    const btCollisionObject* other = m->getBody1();
+    if (!mine) {
+      mine = part_of(other);
+      other = m->getBody0();
+    }
+    if (!mine || part_of(other)) continue;
+    const bool ground = std::any_of(ground_.begin(), ground_.end(), [other](const Ground& g) { return g.body == other; });
+    if (ground && !mine->ground_counts) continue;  // a wheel on the ground
+    for (int c = 0; c < m->getNumContacts(); ++c) {
+      if (m->getContactPoint(c).getDistance() <= Clearance::kContact_m) return true;
+    }
+  }
+  return false;
 }
 
 void ClearanceQuery::remember(Floor& floor, double floor_m) const {

@@ -99,6 +99,8 @@ class ClearanceQuery {
   void nearest_static(double cutoff_m, Clearance& out);
   void nearest_ground(double cutoff_m, Clearance& out);
   void remember(Floor& floor, double floor_m) const;
+  const VehiclePart* part_of(const btCollisionObject* object) const;
+  bool in_contact(const btCollisionWorld& world) const;
   // How far any point of the vehicle's bodies may have moved since `floor` was set.
   double travel_since(const Floor& floor) const;
 

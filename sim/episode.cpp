@@ -267,7 +267,7 @@ struct ClearanceMinima {
   // anything farther than the minima so far cannot change them.
   double obstacle_cutoff() const { return std::max(obstacle_m, kTouchSearch_m); }
   double ground_cutoff() const { return std::max(ground_m, kTouchSearch_m); }
-  static constexpr double kTouchSearch_m = 1e-6;
+  static constexpr double kTouchSearch_m = 1e-6;  // finds every overlap
 };
 
 constexpr double kExact = std::numeric_limits<double>::infinity();
@@ -380,7 +380,7 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
     m.path_length_m += (position - previous).norm();
     previous = position;
     // A collision is the collision shapes touching, from the same query as
-    // the clearance metrics, so the two always agree.
+    // the clearance metrics, so an overlap is always a collision.
     const Clearance clearance = world.vehicle_clearance(minima.obstacle_cutoff(), minima.ground_cutoff());
     minima.update(clearance, world.time_s());
     const bool colliding = clearance.touching();

@@ -48,7 +48,7 @@ struct EpisodeMetrics {
   /// The same between the bodies that may not touch the ground (a quadrotor,
   /// a rover's chassis, not its wheels) and the ground (planes, heightfields).
   double min_ground_clearance_m = 0.0;
-  int collisions = 0;  ///< times the collision shapes began to touch (clearance <= 0)
+  int collisions = 0;  ///< times the collision shapes began to touch (Clearance::touching)
   int planner_calls = 0;
   double planner_time_ms_mean = 0.0;  ///< measured
   double planner_time_ms_max = 0.0;   ///< measured

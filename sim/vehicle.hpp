@@ -85,11 +85,6 @@ class Vehicle {
   void set_estimation_error(const StateError& error) { estimation_error_ = error; }
   /// Linear and angular speeds are below the "stabilized" thresholds (000 stabilize()).
   virtual bool stable() const = 0;
-  /// Radius of a sphere around the body origin that contains the vehicle (clearance).
-  virtual double bounding_radius_m() const = 0;
-  /// True when any vehicle body touches a scene shape it should not
-  /// (anything for the quadrotor, anything but the ground under the wheels for the rover).
-  virtual bool in_collision() const = 0;
   /// Actuator values for the trajectory record (rotor speeds, wheel speeds ...).
   virtual nlohmann::json actuators() const = 0;
   /// The effective parameters, for provenance.

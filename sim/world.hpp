@@ -33,8 +33,15 @@ struct Clearance {
   int obstacle = -1;  ///< which: index into Scene::shapes or -(1 + mover index); valid when finite
   /// From the bodies that may not touch the ground (kVehicleBodyTag) to the ground.
   double ground_m = std::numeric_limits<double>::infinity();
+  /// Bullet's narrow phase reported a contact point within kContact_m
+  /// between a vehicle body and something it may not touch in this step.
+  /// (A body pushed by a mover ends each step apart from it by the mover's
+  /// travel in the step, yet they are in contact.)
+  bool contact = false;
+  static constexpr double kContact_m = 1e-3;
   /// The collision shapes touch: what the closed loop counts as a collision.
-  bool touching() const { return obstacle_m <= 0.0 || ground_m <= 0.0; }
+  /// Overlapping shapes (a clearance <= 0) always touch.
+  bool touching() const { return contact || obstacle_m <= 0.0 || ground_m <= 0.0; }
 };
 
 /// State of one rigid body, world frame.

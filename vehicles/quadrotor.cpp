@@ -10,7 +10,6 @@
 #include <btBulletDynamicsCommon.h>
 
 #include "sim/json_reader.hpp"
-#include "vehicles/contacts.hpp"
 
 namespace campo {
 
@@ -56,7 +55,6 @@ const NumberField<QuadrotorConfig> kNumbers[] = {
     {"max_rotor_speed_radps", &QuadrotorConfig::max_rotor_speed_radps, Range::positive()},
     {"linear_drag_n_per_mps", &QuadrotorConfig::linear_drag_n_per_mps, Range::non_negative()},
     {"angular_drag_nm_per_radps", &QuadrotorConfig::angular_drag_nm_per_radps, Range::non_negative()},
-    {"bounding_radius_m", &QuadrotorConfig::bounding_radius_m, Range::positive()},
     {"stable_linear_speed_mps", &QuadrotorConfig::stable_linear_speed_mps, Range::positive()},
     {"stable_angular_speed_radps", &QuadrotorConfig::stable_angular_speed_radps, Range::positive()},
 };
@@ -139,10 +137,6 @@ QuadrotorConfig parse_quadrotor_config(const ParamsBlock& params) {
     fail("thrust_coefficient", "the rotors cannot lift the vehicle: maximum thrust " +
                                    format(max_thrust) + " N, weight " +
                                    format(c.mass_kg * kStandardGravity) + " N");
-  }
-  if (c.bounding_radius_m < c.collision_half_extents_m.norm()) {
-    fail("bounding_radius_m", "expected at least the half-diagonal of the collision box (" +
-                                  format(c.collision_half_extents_m.norm()) + " m)");
   }
   return c;
 }
@@ -251,7 +245,6 @@ bool Quadrotor::stable() const {
          body_->getAngularVelocity().length() < config_.stable_angular_speed_radps;
 }
 
-bool Quadrotor::in_collision() const { return !touching_objects(bullet_, *body_).empty(); }
 
 double Quadrotor::thrust_n() const {
   double total = 0.0;

@@ -33,7 +33,6 @@ struct QuadrotorConfig {
   double linear_drag_n_per_mps = 0.3;                         ///< drag force -c v, N per m/s, >= 0
   double angular_drag_nm_per_radps = 0.005;                   ///< drag torque -c w, N m per rad/s, >= 0
   Eigen::Vector3d collision_half_extents_m{0.3, 0.3, 0.06};   ///< collision box (frame and propellers), > 0
-  double bounding_radius_m = 0.43;                            ///< >= |collision_half_extents_m| (clearance)
   double stable_linear_speed_mps = 0.05;                      ///< stable() below this speed (000 stabilize()), > 0
   double stable_angular_speed_radps = 0.05;                   ///< and below this angular speed, > 0
   QuadrotorControllerConfig controller;                       ///< gains and behaviour shaping
@@ -67,8 +66,6 @@ class Quadrotor final : public Vehicle {
   void pre_step(double dt_s) override;
   VehicleState state() const override;
   bool stable() const override;
-  double bounding_radius_m() const override { return config_.bounding_radius_m; }
-  bool in_collision() const override;
   nlohmann::json actuators() const override;
   nlohmann::json parameters() const override { return to_json(config_); }
 

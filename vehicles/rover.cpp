@@ -61,7 +61,6 @@ const std::vector<NumberField>& number_fields() {
       {"face_tolerance_deg", &RoverConfig::face_tolerance_deg, Range::positive()},
       {"stable_speed_mps", &RoverConfig::stable_speed_mps, Range::positive()},
       {"stable_rate_radps", &RoverConfig::stable_rate_radps, Range::positive()},
-      {"bounding_radius_m", &RoverConfig::bounding_radius_m, Range::non_negative()},
   };
   return fields;
 }
@@ -87,23 +86,12 @@ RoverConfig parse_rover_config(const ParamsBlock& params) {
   return c;
 }
 
-double rover_bounding_radius(const RoverConfig& c) {
-  if (c.bounding_radius_m > 0.0) return c.bounding_radius_m;
-  const Eigen::Vector3d half = 0.5 * c.chassis_size_m;
-  const double chassis = half.norm();
-  // Farthest point of a wheel sphere from the chassis centre.
-  const double wheel =
-      Eigen::Vector3d(0.5 * c.wheelbase_m, c.half_track_m, c.axle_drop_m).norm() + c.wheel_radius_m;
-  return std::max(chassis, wheel);
-}
-
 nlohmann::json to_json(const RoverConfig& c) {
   nlohmann::json j = nlohmann::json::object();
   j["chassis_size_m"] = {c.chassis_size_m.x(), c.chassis_size_m.y(), c.chassis_size_m.z()};
   for (const NumberField& f : number_fields()) j[std::string(f.key)] = c.*f.member;
   j["joint_solver_iterations"] = c.joint_solver_iterations;
   j["hold_solver_iterations"] = c.hold_solver_iterations;
-  j["bounding_radius_m"] = rover_bounding_radius(c);
   return j;
 }
 
@@ -126,12 +114,6 @@ struct Rover::Bodies {
       if (wheel) world.removeRigidBody(wheel.get());
     }
     if (chassis) world.removeRigidBody(chassis.get());
-  }
-
-  bool owns(const btCollisionObject* object) const {
-    if (object == chassis.get()) return true;
-    return std::any_of(wheels.begin(), wheels.end(),
-                       [object](const auto& wheel) { return wheel.get() == object; });
   }
 };
 
@@ -194,7 +176,6 @@ Rover::Rover(World& world, const RoverConfig& config, const Eigen::Isometry3d& s
     : world_(world),
       config_(config),
       geometry_{config.wheel_radius_m, config.half_track_m},
-      bounding_radius_(rover_bounding_radius(config)),
       bodies_(std::make_unique<Bodies>(world.bullet())),
       command_(command::Hold{start_pose.translation(), std::nullopt}) {
   Bodies& b = *bodies_;
@@ -398,31 +379,6 @@ std::array<double, Rover::kWheels> Rover::wheel_speeds_radps() const {
 WheelSpeeds Rover::measured_side_speeds() const {
   const auto w = wheel_speeds_radps();
   return {0.5 * (w[front_left] + w[rear_left]), 0.5 * (w[front_right] + w[rear_right])};
-}
-
-bool Rover::in_collision() const {
-  const Scene& scene = world_.scene();
-  const auto is_ground = [&scene](const btCollisionObject* object) {
-    const int index = object->getUserIndex();
-    if (index < 0 || static_cast<std::size_t>(index) >= scene.shapes.size()) return false;
-    const ShapeType type = scene.shapes[static_cast<std::size_t>(index)].type;
-    return type == ShapeType::plane || type == ShapeType::heightfield;
-  };
-  // One pass over the contact manifolds for all five bodies.
-  constexpr double kTouchMargin = 1e-3;  // metres, as in touching_objects()
-  btDispatcher* dispatcher = world_.bullet().getDispatcher();
-  for (int i = 0; i < dispatcher->getNumManifolds(); ++i) {
-    const btPersistentManifold* m = dispatcher->getManifoldByIndexInternal(i);
-    const btCollisionObject* mine = m->getBody0();
-    const btCollisionObject* other = m->getBody1();
-    if (!bodies_->owns(mine)) std::swap(mine, other);
-    if (!bodies_->owns(mine) || bodies_->owns(other)) continue;
-    if (mine != bodies_->chassis.get() && is_ground(other)) continue;
-    for (int c = 0; c < m->getNumContacts(); ++c) {
-      if (m->getContactPoint(c).getDistance() <= kTouchMargin) return true;
-    }
-  }
-  return false;
 }
 
 nlohmann::json Rover::actuators() const {

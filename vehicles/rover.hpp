@@ -75,7 +75,6 @@ struct RoverConfig {
   // Status.
   double stable_speed_mps = 0.05;       ///< > 0, stable() below this linear speed
   double stable_rate_radps = 0.05;      ///< > 0, and below this angular speed
-  double bounding_radius_m = 0.0;       ///< >= 0; 0 = derived from the chassis and wheel geometry
 };
 
 /// The preset overridden by the keys of `params` (the names of the
@@ -83,11 +82,7 @@ struct RoverConfig {
 /// params.file and the JSON pointer.
 RoverConfig parse_rover_config(const ParamsBlock& params);
 
-/// Radius around the chassis centre containing the chassis and the wheels:
-/// config.bounding_radius_m, or the derived one when that is 0.
-double rover_bounding_radius(const RoverConfig& config);
-
-/// Every effective parameter (the derived bounding radius included).
+/// Every effective parameter.
 nlohmann::json to_json(const RoverConfig& config);
 
 class Rover final : public Vehicle {
@@ -115,10 +110,8 @@ class Rover final : public Vehicle {
   /// Chassis state.
   VehicleState state() const override;
   bool stable() const override;
-  double bounding_radius_m() const override { return bounding_radius_; }
   /// The chassis touches anything, or a wheel touches anything but a plane
   /// or heightfield scene shape (obstacles, movers, other vehicles).
-  bool in_collision() const override;
   /// Per wheel (front_left, front_right, rear_left, rear_right): the motor's
   /// target speed and the measured speed relative to the chassis, rad/s.
   nlohmann::json actuators() const override;
@@ -146,7 +139,6 @@ class Rover final : public Vehicle {
   World& world_;
   RoverConfig config_;
   SkidSteerGeometry geometry_;
-  double bounding_radius_;
   std::unique_ptr<Bodies> bodies_;
   Command command_;
   bool arrived_ = false;           ///< GoTo/Face target reached: holding until the next command

@@ -64,6 +64,21 @@ TEST(SignedDistance, BoxToCylinderAndSphere) {
   EXPECT_NEAR(signed_distance(box, at(0, 0, 0), ball, at(0, 0, 2)), 2 - 0.5 - 0.25, kMm);
 }
 
+TEST(Clearance, TouchingIsAContactOrAnOverlap) {
+  Clearance c;
+  EXPECT_FALSE(c.touching());  // nothing anywhere
+  c.obstacle_m = 0.004;
+  EXPECT_FALSE(c.touching());
+  c.contact = true;  // pushed by a mover: in contact, a step's travel apart
+  EXPECT_TRUE(c.touching());
+  c = Clearance{};
+  c.obstacle_m = -0.01;
+  EXPECT_TRUE(c.touching());
+  c = Clearance{};
+  c.ground_m = 0.0;
+  EXPECT_TRUE(c.touching());
+}
+
 Scene scene_from(const std::string& objects) {
   return parse_scene(nlohmann::json::parse(R"j({"objects": [)j" + objects + "]}"), "inline.json",
                      std::filesystem::temp_directory_path());

@@ -42,8 +42,6 @@ class PointVehicle final : public Vehicle {
   }
   VehicleState state() const override { return state_; }
   bool stable() const override { return true; }
-  double bounding_radius_m() const override { return 0.5; }
-  bool in_collision() const override { return false; }
   nlohmann::json actuators() const override { return {{"speed", 1.0}}; }
   nlohmann::json parameters() const override { return {{"kind", "point"}}; }
 

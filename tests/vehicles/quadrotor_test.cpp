@@ -93,7 +93,7 @@ TEST(Quadrotor, HoverHoldsAltitude) {
   });
   EXPECT_LT(worst, 0.05);
   EXPECT_NEAR(wrap(f.s().yaw_rad() - 0.5), 0.0, 1e-3);
-  EXPECT_FALSE(f.quad.in_collision());
+  EXPECT_FALSE(f.world.vehicle_clearance().touching());
 }
 
 TEST(Quadrotor, PositionStepSettlesWithoutOvershoot) {
@@ -181,7 +181,7 @@ TEST(Quadrotor, CollisionWhenFlownIntoAWall) {
   bool hit = false;
   double hit_x = 0.0;
   f.fly(command::GoTo{{5.0, 0.0, 2.0}, 0.6, false}, 8.0, [&] {
-    if (!hit && f.quad.in_collision()) {
+    if (!hit && f.world.vehicle_clearance().touching()) {
       hit = true;
       hit_x = f.s().position_m.x();
     }
@@ -241,7 +241,6 @@ TEST(QuadrotorConfig, PresetHoversNearSixtyPercentOfMaxRotorSpeed) {
   const QuadrotorConfig c;
   const double hover = hover_rotor_speed(model_of(c, {0.0, 0.0, -9.81}));
   EXPECT_NEAR(hover / c.max_rotor_speed_radps, 0.6, 0.02);
-  EXPECT_GE(c.bounding_radius_m, c.collision_half_extents_m.norm());
 }
 
 TEST(QuadrotorConfig, AppliesOverridesOnThePreset) {
@@ -283,7 +282,7 @@ TEST(QuadrotorConfig, RejectsBadValuesNamingThePointer) {
   EXPECT_THAT(error_of(R"j({"min_rotor_speed_radps": 1200})j"),
               HasSubstr("/objects/2/params/max_rotor_speed_radps"));
   EXPECT_THAT(error_of(R"j({"mass_kg": 10})j"), HasSubstr("cannot lift"));
-  EXPECT_THAT(error_of(R"j({"bounding_radius_m": 0.2})j"), HasSubstr("/objects/2/params/bounding_radius_m"));
+  EXPECT_THAT(error_of(R"j({"bounding_radius_m": 0.2})j"), HasSubstr("unknown key \"bounding_radius_m\""));
   EXPECT_THAT(error_of(R"j([1, 2])j"), HasSubstr("/objects/2/params"));
 }
 

@@ -125,21 +125,9 @@ TEST(RoverConfig, RejectsWheelsThatDoNotReachBelowTheChassis) {
 TEST(RoverConfig, JsonListsEveryParameterAndReadsBack) {
   RoverConfig c;
   c.max_wheel_accel_radps2 = 6.0;
-  c.bounding_radius_m = 1.25;
   const nlohmann::json j = to_json(c);
-  EXPECT_EQ(j.size(), 30u);
+  EXPECT_EQ(j.size(), 29u);
   EXPECT_EQ(to_json(parse_rover_config({j, "x.json", ""})), j);
-  // The derived bounding radius is written as its effective value.
-  EXPECT_DOUBLE_EQ(to_json(RoverConfig{})["bounding_radius_m"].get<double>(),
-                   rover_bounding_radius(RoverConfig{}));
-}
-
-TEST(Rover, BoundingRadiusContainsChassisAndWheels) {
-  // Chassis corner: |(0.75, 0.5, 0.175)|; wheel: |(0.5, 0.3, 0.2)| + 0.2.
-  EXPECT_NEAR(rover_bounding_radius(RoverConfig{}), std::sqrt(0.75 * 0.75 + 0.25 + 0.175 * 0.175), 1e-12);
-  RoverConfig big_wheels;
-  big_wheels.wheel_radius_m = 0.5;
-  EXPECT_NEAR(rover_bounding_radius(big_wheels), std::sqrt(0.25 + 0.09 + 0.04) + 0.5, 1e-12);
 }
 
 TEST(Rover, SettlesOnItsWheelsAtTheRestHeight) {
@@ -151,7 +139,7 @@ TEST(Rover, SettlesOnItsWheelsAtTheRestHeight) {
   EXPECT_NEAR(s.position_m.y(), -1.0, 0.01);
   EXPECT_NEAR(s.yaw_rad(), 0.3, 1e-3);
   EXPECT_TRUE(sim.rover.stable());
-  EXPECT_FALSE(sim.rover.in_collision());
+  EXPECT_FALSE(sim.world.vehicle_clearance().touching());
   EXPECT_EQ(sim.rover.type(), VehicleType::rover);
 }
 
@@ -183,7 +171,7 @@ TEST(Rover, ClimbsATenDegreeSlope) {
   EXPECT_NEAR(s.position_m.z(), std::tan(10 * kDeg) * s.position_m.x() + 0.4 / std::cos(10 * kDeg), 0.02);
   EXPECT_NEAR(s.position_m.y(), 0.0, 0.1);
   EXPECT_NEAR(sim.body_rates().v_mps, 0.8, 0.08);
-  EXPECT_FALSE(sim.rover.in_collision());
+  EXPECT_FALSE(sim.world.vehicle_clearance().touching());
 }
 
 TEST(Rover, HoldStopsWithoutDriftingOnFlatGround) {
@@ -259,7 +247,7 @@ TEST(Rover, DrivingIntoABoxIsACollision) {
   bool collided = false;
   for (int i = 0; i < 240 * 6 && !collided; ++i) {
     sim.step();
-    collided = sim.rover.in_collision();
+    collided = sim.world.vehicle_clearance().touching();
     // The front of the chassis (x + 0.75) reaches the wall face (x = 3.75) at x = 3.
     if (!collided) ASSERT_LT(sim.rover.state().position_m.x(), 3.02);
   }
@@ -274,7 +262,7 @@ TEST(Rover, DrivingOnTheGroundAloneIsNoCollision) {
     sim.rover.command(move);
     for (int i = 0; i < 240 * 3; ++i) {
       sim.step();
-      ASSERT_FALSE(sim.rover.in_collision()) << "t = " << sim.world.time_s();
+      ASSERT_FALSE(sim.world.vehicle_clearance().touching()) << "t = " << sim.world.time_s();
     }
   }
 }
@@ -285,7 +273,7 @@ TEST(Rover, AMoverHittingTheRoverIsACollision) {
   bool collided = false;
   for (int i = 0; i < 240 * 5 && !collided; ++i) {
     sim.step();
-    collided = sim.rover.in_collision();
+    collided = sim.world.vehicle_clearance().touching();
   }
   EXPECT_TRUE(collided);
   // The walker (radius 0.25) reaches the chassis side (y = -0.5) after 3.25 m.
@@ -354,7 +342,7 @@ TEST(Rover, StartsAboveSlopedGroundInsteadOfInsideIt) {
   // The chassis centre 0.4 m above the ground under it would bury the front wheels.
   Sim sim(kRamp, start_at(5.0, 0.0, std::tan(10 * kDeg) * 5.0 + 0.4));
   sim.run(2.0);
-  EXPECT_FALSE(sim.rover.in_collision());
+  EXPECT_FALSE(sim.world.vehicle_clearance().touching());
   const Eigen::Vector3d up = sim.rover.state().orientation * Eigen::Vector3d::UnitZ();
   EXPECT_NEAR(std::acos(up.z()), 10 * kDeg, 1 * kDeg);
   EXPECT_LT(std::abs(sim.rover.state().position_m.x() - 5.0), 0.2);
@@ -371,7 +359,6 @@ TEST(Rover, ReportsEveryWheelAndItsParameters) {
     EXPECT_NEAR(a.at(wheel).at("speed_radps").get<double>(), 2.5, 0.1) << wheel;
   }
   EXPECT_EQ(sim.rover.parameters(), to_json(RoverConfig{}));
-  EXPECT_DOUBLE_EQ(sim.rover.bounding_radius_m(), rover_bounding_radius(RoverConfig{}));
 }
 
 TEST(Rover, RemovesItsBodiesFromTheWorld) {
