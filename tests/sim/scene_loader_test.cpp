@@ -431,3 +431,29 @@ TEST(SceneLoader, DepthCamerasTakeAGridWithoutNoise) {
 
 }  // namespace
 }  // namespace campo
+
+namespace campo {
+namespace {
+
+TEST(SceneLoader, ReadsStateNoiseStrictly) {
+  const Scene scene = parse(with_objects(R"j({"alias": "d", "type": "quadrotor",
+    "state_noise": {"position_stddev_m": 0.5, "altitude_stddev_m": 0.2, "velocity_stddev_mps": 0.1,
+                    "heading_stddev_deg": 2, "bias_walk_m_per_sqrt_s": 0.05, "rate_hz": 5}})j"));
+  const StateNoiseConfig& n = scene.vehicles.front().state_noise;
+  EXPECT_EQ(n.position_stddev_m, 0.5);
+  EXPECT_EQ(n.altitude_stddev_m, 0.2);
+  EXPECT_EQ(n.velocity_stddev_mps, 0.1);
+  EXPECT_EQ(n.heading_stddev_deg, 2.0);
+  EXPECT_EQ(n.bias_walk_m_per_sqrt_s, 0.05);
+  EXPECT_EQ(n.rate_hz, 5.0);
+  // Absent: no noise at all.
+  EXPECT_FALSE(parse(with_objects(R"j({"alias": "d", "type": "quadrotor"})j")).vehicles.front().state_noise.enabled());
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "d", "type": "quadrotor",
+    "state_noise": {"position_stddev_m": -1}})j")),
+              HasSubstr("inline.json: /objects/0/state_noise/position_stddev_m: expected a number in [0, 1000]"));
+  EXPECT_THAT(error_of(with_objects(R"j({"alias": "d", "type": "quadrotor", "state_noise": {"gps": 1}})j")),
+              HasSubstr("/objects/0/state_noise/gps: unknown key"));
+}
+
+}  // namespace
+}  // namespace campo

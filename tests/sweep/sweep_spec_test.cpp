@@ -416,6 +416,18 @@ std::vector<std::vector<double>> obstacle_poses(const Scene& scene) {
   return poses;
 }
 
+TEST_F(SweepSpecTest, StateNoiseIsAnAxisLikeAnyParameter) {
+  // The vehicle has no "state_noise" block: the axis creates it.
+  const std::vector<SweepRun> runs = expand_sweep(read_sweep_spec(write(R"({"campo_sweep": 1,
+    "scenes": ["two_barriers"], "axes": [{"name": "gps", "values": [0, 0.5],
+      "set": ["/objects/drone/state_noise/position_stddev_m"]}]})")));
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(run_scene(runs[0]).vehicles.front().state_noise.position_stddev_m, 0.0);
+  EXPECT_FALSE(run_scene(runs[0]).vehicles.front().state_noise.enabled());
+  EXPECT_EQ(run_scene(runs[1]).vehicles.front().state_noise.position_stddev_m, 0.5);
+  EXPECT_TRUE(run_scene(runs[1]).vehicles.front().state_noise.enabled());
+}
+
 TEST_F(SweepSpecTest, VarySceneWithSeedReseedsTheScenesGenerators) {
   const std::string spec = R"({"campo_sweep": 1, "scenes": ["vineyard"], "seeds": {"first": 1, "count": 2})";
   // Without it, the seeds leave the vineyard's obstacles where the scene file's seed puts them.
