@@ -24,15 +24,16 @@ namespace campo {
 double signed_distance(const btConvexShape& a, const btTransform& pose_a, const btConvexShape& b,
                        const btTransform& pose_b);
 
-/// The obstacles and the ground of a world, and the search for the nearest
-/// of each from the vehicle's bodies (found by their user index when asked,
-/// since vehicles join the world after it is built).
-/// A heightfield triangle gathered by the ground search (clearance.cpp).
+/// A heightfield triangle gathered by the ground search, with a lower bound
+/// of its distance to the body (clearance.cpp).
 struct TriangleCandidate {
   double bound_m;
   btVector3 v[3];
 };
 
+/// The obstacles and the ground of a world, and the search for the nearest
+/// of each from the vehicle's bodies (found by their user index when asked,
+/// since vehicles join the world after it is built).
 class ClearanceQuery {
  public:
   ClearanceQuery();
@@ -49,7 +50,8 @@ class ClearanceQuery {
   void add_ground(const btCollisionObject& body, const HeightGrid* grid = nullptr);
 
   /// Clearance of the bodies tagged kVehicleBodyTag or kVehicleWheelTag in
-  /// `world`: exact below each cutoff, +infinity when nothing is nearer.
+  /// `world`: exact below each cutoff, +infinity when nothing is nearer; and
+  /// whether Bullet's narrow phase has them in contact.
   Clearance measure(const btCollisionWorld& world, double obstacle_cutoff_m, double ground_cutoff_m);
 
  private:
