@@ -66,6 +66,14 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
   const auto scene_path = dir / "scene.json";
   const std::filesystem::path data_dir = run.record.value("/provenance/scene/data_dir"_json_pointer, std::string("."));
   run.scene = parse_scene(read_json_file(scene_path), scene_path.string(), data_dir);
+  // Dynamic bodies are drawn where the run left them (a fallen box on the ground).
+  for (const auto& body : run.record.value("final_body_poses", nlohmann::json::array())) {
+    const std::string alias = body.at("alias").get<std::string>();
+    for (Shape& shape : run.scene.shapes) {
+      if (shape.is_static || shape.alias != alias) continue;
+      shape.pose = to_isometry(Pose{vector3(body.at("position_m")), vector3(body.at("rpy_deg"))});
+    }
+  }
   RunView& v = run.view;
   v.label = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
   v.outcome = run.record.value("/metrics/outcome"_json_pointer, std::string());

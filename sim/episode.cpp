@@ -430,6 +430,7 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
   m.planner_time_ms_mean = m.planner_calls > 0 ? planner_ms_total / m.planner_calls : 0.0;
   m.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
   result.final_state_hash = world.state_hash();
+  world.moving_body_poses(result.final_body_poses);
   return result;
 }
 

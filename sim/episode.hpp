@@ -116,6 +116,9 @@ struct EpisodeResult {
   nlohmann::json vehicle_parameters;
   nlohmann::json planner_parameters;
   std::uint64_t final_state_hash = 0;  ///< World::state_hash at the end (determinism checks)
+  /// Where the moving bodies (moving_bodies(scene): dynamic shapes, then
+  /// movers) were at the end, so figures show a fallen box where it fell.
+  std::vector<Eigen::Isometry3d> final_body_poses;
 };
 
 struct EpisodeOptions {

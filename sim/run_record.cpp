@@ -105,6 +105,14 @@ std::string trajectory_csv(const EpisodeResult& result) {
 
 nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const EpisodeOptions& options,
                         const std::vector<std::string>& overrides) {
+  nlohmann::json final_body_poses = nlohmann::json::array();
+  const std::vector<MovingBody> bodies = moving_bodies(scene);
+  for (std::size_t i = 0; i < bodies.size() && i < result.final_body_poses.size(); ++i) {
+    const Eigen::Isometry3d& pose = result.final_body_poses[i];
+    final_body_poses.push_back({{"alias", bodies[i].shape->alias},
+                                {"position_m", vector_json(pose.translation())},
+                                {"rpy_deg", vector_json(rpy_deg_from_rotation(pose.linear()))}});
+  }
   const VehicleDef& def = scene.vehicles.at(options.vehicle_index);
   nlohmann::json sensors = nlohmann::json::array();
   for (const SensorDef& s : def.sensors) {
@@ -146,6 +154,7 @@ nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const E
         {"mission", mission},
         {"stop_on_collision", options.stop_on_collision}}},
       {"final_state_hash", result.final_state_hash},
+      {"final_body_poses", final_body_poses},
       {"events", events},
   };
 }

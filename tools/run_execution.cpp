@@ -131,9 +131,8 @@ void write_final_depth(const SimulatedRun& run, const std::filesystem::path& png
   const TrajectorySample& last = run.result.trajectory.back();
   const std::unique_ptr<RangeSensor> ranger = make_range_sensor(run.scene, sensor, run.scene.world.seed);
   LidarScan scan;
-  // Dynamic bodies are drawn where they started: a run record keeps no body poses.
-  ranger->scan(last.state.pose() * to_isometry(sensor.lidar.mount), last.time_s,
-               scripted_poses(run.scene, last.time_s), scan);
+  // The bodies where the run left them.
+  ranger->scan(last.state.pose() * to_isometry(sensor.lidar.mount), last.time_s, run.result.final_body_poses, scan);
   write_depth_png(depth_map(scan, sensor.lidar), png);
 }
 

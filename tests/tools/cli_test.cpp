@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sys/wait.h>
 
+#include "render/run_files.hpp"
 #include "sim/scene_loader.hpp"
 #include "tests/cli_support.hpp"
 
@@ -396,3 +397,30 @@ TEST_F(Cli, ScanWithTheDepthCameraMatchesTheLidar) {
 }
 
 }  // namespace
+
+namespace campo {
+namespace {
+
+TEST_F(Cli, FiguresDrawDynamicBodiesWhereTheRunLeftThem) {
+  // A box released 2 m up falls while the drone flies (until the time limit): run.json records
+  // where it landed, and the figures' scene has it there.
+  const std::string scene = write("drop.json", R"j({"world": {"time_limit_s": 3}, "objects": [
+    {"alias": "ground", "type": "plane"},
+    {"alias": "box", "type": "cuboid", "size_m": [0.4, 0.4, 0.4], "static": false, "mass_kg": 1,
+     "pose": {"position_m": [3, 0, 2]}},
+    {"alias": "drone", "type": "quadrotor", "pose": {"position_m": [0, 0, 1.5]},
+     "mission": {"waypoints": [{"position_m": [0, 5, 1.5]}]}, "planner": {"name": "straight"}}]})j");
+  const Result r = campo("run " + scene + " --out " + (dir_ / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const RecordedRun run = load_run_dir(dir_ / "out");
+  const auto& poses = run.record.at("final_body_poses");
+  ASSERT_EQ(poses.size(), 1u);
+  EXPECT_EQ(poses[0].at("alias"), "box");
+  EXPECT_NEAR(poses[0].at("position_m").at(2).get<double>(), 0.2, 0.01);
+  const Shape* box = run.scene.find_shape("box");
+  ASSERT_NE(box, nullptr);
+  EXPECT_NEAR(box->pose.translation().z(), 0.2, 0.01);
+}
+
+}  // namespace
+}  // namespace campo
