@@ -361,7 +361,10 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
       const Clearance clearance = world.vehicle_clearance(kExact, minima.ground_cutoff());
       minima.update(clearance, t);
       vehicle->command(plan.command);
-      result.trajectory.push_back({t, truth, state.position_m, plan.command, clearance.obstacle_m, vehicle->actuators()});
+      const std::optional<double> ground = scene.ground_height(truth.position_m.x(), truth.position_m.y());
+      const double above_ground = ground ? truth.position_m.z() - *ground : std::numeric_limits<double>::quiet_NaN();
+      result.trajectory.push_back(
+          {t, truth, state.position_m, plan.command, clearance.obstacle_m, above_ground, vehicle->actuators()});
       if (plan.status == PlanStatus::reached) {
         outcome = Outcome::reached;
         m.reason = plan.reason;

@@ -79,6 +79,9 @@ struct TrajectorySample {
   Eigen::Vector3d estimated_position_m = Eigen::Vector3d::Zero();  ///< what the planner was told
   Command command;
   double clearance_m = 0.0;  ///< signed distance to the nearest obstacle then (as min_clearance_m)
+  /// Height of the vehicle's origin above the ground straight below it
+  /// (the highest plane or heightfield there); NaN where there is none.
+  double height_above_ground_m = 0.0;
   nlohmann::json actuators;
 };
 

@@ -74,7 +74,7 @@ std::string trajectory_csv(const EpisodeResult& result) {
   std::string out =
       "time_s,x_m,y_m,z_m,roll_deg,pitch_deg,yaw_deg,vx_mps,vy_mps,vz_mps,wx_radps,wy_radps,wz_radps,"
       "command,cmd_x_m,cmd_y_m,cmd_z_m,cmd_speed_mps,cmd_v_mps,cmd_w_radps,clearance_m,"
-      "est_x_m,est_y_m,est_z_m";
+      "est_x_m,est_y_m,est_z_m,height_above_ground_m";
   for (const auto& name : actuator_names) out += "," + name;
   out += "\n";
   std::vector<double> actuators;
@@ -95,6 +95,7 @@ std::string trajectory_csv(const EpisodeResult& result) {
     append(out, f.w);
     append(out, s.clearance_m);
     for (int i = 0; i < 3; ++i) append(out, s.estimated_position_m[i]);
+    append(out, s.height_above_ground_m);
     actuators.clear();
     flatten(s.actuators, "", nullptr, &actuators);
     for (std::size_t i = 0; i < actuator_names.size(); ++i) append(out, i < actuators.size() ? actuators[i] : std::nan(""));

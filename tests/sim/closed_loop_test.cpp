@@ -1,5 +1,6 @@
 // Whole episodes with the real vehicles and the registry's planners.
 #include <cstring>
+#include <filesystem>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -7,6 +8,7 @@
 #include "planners/registry.hpp"
 #include "render/sensors.hpp"
 #include "sim/episode.hpp"
+#include "sim/run_record.hpp"
 #include "sim/scene_loader.hpp"
 #include "vehicles/vehicle.hpp"
 
@@ -114,6 +116,29 @@ TEST(ClosedLoop, DepthCameraAndLidarGiveTheSameEpisode) {
     }
     EXPECT_GE(close, 32 * 32 * 95 / 100) << "scan " << i;
   }
+}
+
+}  // namespace
+}  // namespace campo
+
+namespace campo {
+namespace {
+
+TEST(ClosedLoop, RecordsTheHeightAboveTheGroundBelow) {
+  // Straight and level over a slope z = 0.1 x (its triangles are exactly that plane).
+  const Scene scene = parse_scene(nlohmann::json::parse(R"j({"world": {"time_limit_s": 30}, "objects": [
+    {"alias": "slope", "type": "heightfield", "size_m": [40, 40], "spacing_m": 0.5, "expression": "0.1 * x"},
+    {"alias": "drone", "type": "quadrotor", "pose": {"position_m": [0, 0, 2.5]},
+     "mission": {"waypoints": [{"position_m": [8, 0, 2.5]}]}, "planner": {"name": "straight"}}]})j"),
+                                  "inline.json", std::filesystem::temp_directory_path());
+  const EpisodeResult r = run_episode(scene, &make_vehicle, &create_planner);
+  ASSERT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+  for (const TrajectorySample& s : r.trajectory) {
+    EXPECT_NEAR(s.height_above_ground_m, s.state.position_m.z() - 0.1 * s.state.position_m.x(), 1e-9);
+  }
+  EXPECT_NEAR(r.trajectory.back().height_above_ground_m, 2.5 - 0.8, 0.1);  // level flight, rising ground
+  const std::string csv = trajectory_csv(r);
+  EXPECT_NE(csv.substr(0, csv.find('\n')).find(",height_above_ground_m"), std::string::npos);
 }
 
 }  // namespace
