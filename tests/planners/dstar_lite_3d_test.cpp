@@ -232,12 +232,14 @@ TEST(DStarLite3dClosedLoop, ZigzagSixConnected) {
 TEST(DStarLite3dClosedLoop, WallClimbedOver) {
   const EpisodeResult r = fly("wall");
   expect_solved(r, 4, "wall", 1.5);
-  // Both ways (north at 42 m, back south at 28 m) the drone crosses the wall (rows 20-22: y 28.5..33) above its top.
+  // Both ways (north at 42 m, back south at 28 m) the drone crosses the wall
+  // (rows 20-22: y 28.5..33) above its top: 30 m (Tabella 5.5) above the
+  // highest ground under it, sin(x/5) <= 1.
   bool crossed = false;
   for (const TrajectorySample& s : r.trajectory) {
     if (s.state.position_m.y() > 28.5 && s.state.position_m.y() < 33.0) {
       crossed = true;
-      EXPECT_GT(s.state.position_m.z(), 35.0);
+      EXPECT_GT(s.state.position_m.z(), 31.0);
     }
   }
   EXPECT_TRUE(crossed);
