@@ -507,6 +507,24 @@ TEST_F(SweepSpecTest, VarySceneWithSeedErrors) {
   EXPECT_EQ(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "vary_scene_with_seed": false})"), "");
 }
 
+TEST(BundledSweeps, SensorSweepOfSeed000IsValid) {
+  const SweepSpec spec = read_sweep_spec(fs::path("scenes/sweeps/sensor_000.json"));
+  std::vector<std::pair<double, double>> fov_and_range;
+  const std::vector<SweepRun> runs = expand_sweep(spec, [&fov_and_range](const Scene& scene) {
+    const LidarConfig& scanner = scene.vehicles.front().sensors.front().lidar;
+    EXPECT_EQ(scanner.fov_h_deg, scanner.fov_v_deg);
+    fov_and_range.emplace_back(scanner.fov_h_deg, scanner.max_range_m);
+    for (const VehicleDef& vehicle : scene.vehicles) create_planner(vehicle.planner, {vehicle.type, &scene});
+  });
+  ASSERT_EQ(runs.size(), 3u * 3u * 5u);
+  // Every field of view meets every range in the scenes the runs load.
+  std::sort(fov_and_range.begin(), fov_and_range.end());
+  fov_and_range.erase(std::unique(fov_and_range.begin(), fov_and_range.end()), fov_and_range.end());
+  EXPECT_EQ(fov_and_range.size(), 9u);
+  EXPECT_EQ(fov_and_range.front(), std::make_pair(60.0, 5.0));
+  EXPECT_EQ(fov_and_range.back(), std::make_pair(120.0, 20.0));
+}
+
 TEST(BundledSweeps, ResolutionSweepOfSeed000IsValid) {
   const SweepSpec spec = read_sweep_spec(fs::path("scenes/sweeps/resolution_000.json"));
   const std::vector<SweepRun> runs = expand_sweep(spec, [](const Scene& scene) {
