@@ -78,7 +78,7 @@ TEST(BundledScenes, ZigzagMatchesTheSeedTable) {
 
 TEST(BundledScenes, WallMatchesTheSeedTable) {
   const Scene scene = bundled("wall");
-  expect_blocks(scene, {{20, 22, 1, 100, 35}});
+  expect_blocks(scene, {{20, 22, 1, 100, 30}});  // Tabella 5.5: rows 20-22, columns 1-100, 30 m
   expect_route(scene, {{1, 16, 42}, {31, 16, 42}, {31, 16, 28}, {1, 16, 28}});
 }
 
