@@ -177,9 +177,15 @@ struct MapPlan {
   const HeightMapView* height_map = nullptr;  // a height-map figure: cells coloured, obstacles outlined
 };
 
-Eigen::AlignedBox2d map_bounds(const std::vector<const RunView*>& runs, const std::vector<Footprint>& solids,
-                               double margin_m) {
+Eigen::AlignedBox2d map_bounds(const Scene& scene, const std::vector<const RunView*>& runs,
+                               const std::vector<Footprint>& solids, double margin_m) {
   Eigen::AlignedBox2d box;
+  // A mission given on a grid (seed 001's fields) shows the whole grid.
+  if (!runs.empty()) {
+    for (const VehicleDef& vehicle : scene.vehicles) {
+      if (vehicle.mission_area_m) box.extend(*vehicle.mission_area_m);
+    }
+  }
   for (const RunView* run : runs) {
     for (const auto& p : run->track) box.extend(xy(p.position_m));
     for (const auto& w : run->mission) box.extend(xy(w.position_m));
@@ -280,7 +286,7 @@ MapPlan plan_map(const Scene& scene, std::vector<const RunView*> runs, const Fig
   plan.runs = std::move(runs);
   plan.overlay = overlay;
   std::vector<Footprint> solids = figure::solid_footprints(scene);
-  plan.bounds = map_bounds(plan.runs, solids, style.margin_m);
+  plan.bounds = map_bounds(scene, plan.runs, solids, style.margin_m);
   for (auto& f : solids) {
     if (f.box_m.intersects(plan.bounds)) plan.footprints.push_back(std::move(f));
   }

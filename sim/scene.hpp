@@ -135,6 +135,8 @@ struct VehicleDef {
   ParamsBlock params;  ///< overrides of the vehicle preset, checked by vehicles/
   PlannerSpec planner;
   std::vector<Waypoint> mission;  ///< ordered; the last one is the goal
+  /// The (x, y) extent of the grid the mission is given on, if any (maps show all of it).
+  std::optional<Eigen::AlignedBox2d> mission_area_m;
   StateNoiseConfig state_noise;   ///< what the planner and controllers see of the state (none by default)
 };
 

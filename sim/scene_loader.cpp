@@ -99,7 +99,8 @@ class Loader {
     r.finish();
     // Missions last: they may name frames and grids declared anywhere.
     for (auto& [vehicle_index, mission] : pending_missions_) {
-      scene_.vehicles[vehicle_index].mission = read_mission(mission);
+      VehicleDef& vehicle = scene_.vehicles[vehicle_index];
+      vehicle.mission = read_mission(mission, vehicle.mission_area_m);
     }
     return std::move(scene_);
   }
@@ -550,13 +551,15 @@ class Loader {
     return {node.value(), node.file(), node.pointer()};
   }
 
-  std::vector<Waypoint> read_mission(const JsonNode& node) {
+  // The waypoints; `area` becomes the extent of the mission's grid, if any.
+  std::vector<Waypoint> read_mission(const JsonNode& node, std::optional<Eigen::AlignedBox2d>& area) {
     ObjectReader r(node);
     const GridObstaclesConfig* grid = nullptr;
     if (auto g = r.optional("grid")) {
       const auto it = grids_.find(g->as_string());
       if (it == grids_.end()) g->fail("the alias of a grid_obstacles object");
       grid = &it->second;
+      area = Eigen::AlignedBox2d(grid->origin_m, grid->origin_m + grid->cell_size_m * Eigen::Vector2d(grid->cols, grid->rows));
     }
     std::vector<Waypoint> waypoints;
     for (const JsonNode& wp :

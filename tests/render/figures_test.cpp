@@ -138,6 +138,28 @@ TEST(FiguresMap, GrowsToWholeObstaclesNearTheBorderOnly) {
   EXPECT_NEAR(cut.min.y(), plain.min.y(), 1e-9);
 }
 
+TEST(FiguresMap, AMissionOnAGridShowsTheWholeGrid) {
+  // A 20 x 30 grid of 2 m cells from (-10, -20): the track (x -8..8, y 0)
+  // crosses a small part of it; the map shows all of it, plus the margin.
+  const Scene scene = parse_scene(nlohmann::json::parse(R"j({"objects": [
+    {"alias": "ground", "type": "plane"},
+    {"alias": "field", "type": "grid_obstacles", "origin_m": [-10, -20], "cell_size_m": 2, "rows": 30, "cols": 20,
+     "boxes": [{"rows": [28, 30], "cols": 20, "height_m": 5}]},
+    {"alias": "drone", "type": "quadrotor", "pose": {"position_m": [-8, 0, 3]},
+     "mission": {"grid": "field", "waypoints": [{"cell": [11, 9], "agl_m": 3}]}}]})j"),
+                                  "inline.json", std::filesystem::temp_directory_path());
+  ASSERT_TRUE(scene.vehicles.front().mission_area_m);
+  EXPECT_EQ(scene.vehicles.front().mission_area_m->min(), Eigen::Vector2d(-10.0, -20.0));
+  EXPECT_EQ(scene.vehicles.front().mission_area_m->max(), Eigen::Vector2d(30.0, 40.0));
+  FigureStyle style = small_style();
+  style.max_size_px = 2000;
+  const FigureLayout layout = map_layout(scene, test_run(), style);
+  EXPECT_NEAR(layout.min.x(), -10.0 - style.margin_m, 1e-9);
+  EXPECT_NEAR(layout.min.y(), -20.0 - style.margin_m, 1e-9);
+  EXPECT_GE(layout.min.x() + layout.plot_px.width / layout.px_per_unit.x(), 30.0 + style.margin_m - 1e-6);
+  EXPECT_GE(layout.min.y() + layout.plot_px.height / layout.px_per_unit.y(), 40.0 + style.margin_m - 1e-6);
+}
+
 TEST(FiguresMap, DrawsTheTrackInItsTimeColours) {
   const Scene scene = test_scene();
   const RunView run = test_run();
