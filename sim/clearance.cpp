@@ -38,6 +38,13 @@ bool covers(const btVector3& lo, const btVector3& hi, const btVector3& inner_lo,
   return true;
 }
 
+// The heightfield cell holding local coordinate v along an axis of
+// `vertices` vertices `spacing` apart (vertex k at (k - (vertices - 1) / 2)
+// spacing), clamped to the grid.
+int cell_of(double v, double spacing, int vertices) {
+  return static_cast<int>(std::clamp(std::floor(v / spacing + 0.5 * (vertices - 1)), 0.0, double(vertices - 2)));
+}
+
 // Heightfield triangles near a vehicle body: gathered with the distance of
 // their box from the body's box, then measured nearest box first, so that
 // the first few exact distances prune the rest.
@@ -147,11 +154,8 @@ void ClearanceQuery::add_ground(const btCollisionObject& body, const HeightGrid*
 
 void ClearanceQuery::HeightBlocks::triangles_under(const btVector3& lo, const btVector3& hi,
                                                   btTriangleCallback& callback) const {
-  const auto first_cell = [](double v, double spacing, int vertices) {
-    return static_cast<int>(std::clamp(std::floor(v / spacing + 0.5 * (vertices - 1)), 0.0, double(vertices - 2)));
-  };
-  const int c0 = first_cell(lo.x(), dx, cols), c1 = first_cell(hi.x(), dx, cols);
-  const int r0 = first_cell(lo.y(), dy, rows), r1 = first_cell(hi.y(), dy, rows);
+  const int c0 = cell_of(lo.x(), dx, cols), c1 = cell_of(hi.x(), dx, cols);
+  const int r0 = cell_of(lo.y(), dy, rows), r1 = cell_of(hi.y(), dy, rows);
   const auto vertex = [this](int c, int r) {
     return btVector3((c - 0.5 * (cols - 1)) * dx, (r - 0.5 * (rows - 1)) * dy, grid->at(c, r) - mid_m);
   };
@@ -172,12 +176,8 @@ void ClearanceQuery::HeightBlocks::triangles_under(const btVector3& lo, const bt
 }
 
 double ClearanceQuery::HeightBlocks::highest(double x0, double x1, double y0, double y1) const {
-  // Local x of vertex c is (c - (cols - 1) / 2) dx; cell c spans [c, c + 1].
-  const auto cell = [](double v, double spacing, int vertices) {
-    return static_cast<int>(std::clamp(std::floor(v / spacing + 0.5 * (vertices - 1)), 0.0, double(vertices - 2)));
-  };
-  const int bx0 = cell(x0, dx, cols) / kBlock, bx1 = cell(x1, dx, cols) / kBlock;
-  const int by0 = cell(y0, dy, rows) / kBlock, by1 = cell(y1, dy, rows) / kBlock;
+  const int bx0 = cell_of(x0, dx, cols) / kBlock, bx1 = cell_of(x1, dx, cols) / kBlock;
+  const int by0 = cell_of(y0, dy, rows) / kBlock, by1 = cell_of(y1, dy, rows) / kBlock;
   double top = -kInfinity;
   for (int by = by0; by <= by1; ++by) {
     for (int bx = bx0; bx <= bx1; ++bx) top = std::max(top, top_m[static_cast<std::size_t>(by) * blocks_x + bx]);

@@ -224,7 +224,7 @@ nlohmann::json to_json(const EpisodeMetrics& m) {
       {"wall_time_s", m.wall_time_s},
       {"path_length_m", m.path_length_m},  // the distance travelled
       {"path_ratio", m.path_ratio},
-      // null when the scene has no obstacles (no ground) at all
+      // null when the scene has no obstacles at all
       {"min_clearance_m", std::isfinite(m.min_clearance_m) ? nlohmann::json(m.min_clearance_m) : nlohmann::json()},
       {"nearest_obstacle", m.nearest_obstacle.empty() ? nlohmann::json() : nlohmann::json(m.nearest_obstacle)},
       {"min_clearance_time_s", m.nearest_obstacle.empty() ? nlohmann::json() : nlohmann::json(m.min_clearance_time_s)},
