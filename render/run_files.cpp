@@ -18,46 +18,53 @@ Eigen::Vector3d vector3(const nlohmann::json& j) { return {j.at(0).get<double>()
 
 // trajectory.csv: time, position and velocity columns by name.
 std::vector<TrackPoint> read_track(const std::filesystem::path& path) {
-  const std::string text = read_text_file(path, {256u << 20, 32});
-  std::istringstream in(text);
-  std::string line;
-  if (!std::getline(in, line)) throw InputError(path.string(), "", "empty file; expected a CSV header");
-  std::vector<std::string> header;
-  for (std::stringstream s(line); std::getline(s, line, ',');) header.push_back(line);
-  const auto column = [&](const std::string& name) {
-    for (std::size_t i = 0; i < header.size(); ++i) {
-      if (header[i] == name) return i;
-    }
-    throw InputError(path.string(), "", "missing column \"" + name + "\"");
-  };
-  const std::size_t t = column("time_s"), x = column("x_m"), y = column("y_m"), z = column("z_m");
-  const std::size_t vx = column("vx_mps"), vy = column("vy_mps"), vz = column("vz_mps");
-  std::vector<TrackPoint> track;
-  std::vector<double> fields;
-  for (int row = 2; std::getline(in, line); ++row) {
-    fields.clear();
-    std::size_t start = 0;
-    while (start <= line.size()) {
-      const std::size_t end = std::min(line.find(',', start), line.size());
-      double v = 0.0;
-      const auto [ptr, ec] = std::from_chars(line.data() + start, line.data() + end, v);
-      fields.push_back(ec == std::errc() ? v : 0.0);
-      start = end + 1;
-    }
-    if (fields.size() < header.size()) {
-      throw InputError(path.string(), "", "line " + std::to_string(row) + ": expected " +
-                                              std::to_string(header.size()) + " fields");
-    }
-    TrackPoint p;
-    p.time_s = fields[t];
-    p.position_m = {fields[x], fields[y], fields[z]};
-    p.speed_mps = Eigen::Vector3d(fields[vx], fields[vy], fields[vz]).norm();
-    track.push_back(p);
+  const TrajectoryTable table = read_trajectory_table(path);
+  const std::vector<double>& t = table.column("time_s");
+  const std::vector<double>&x = table.column("x_m"), &y = table.column("y_m"), &z = table.column("z_m");
+  const std::vector<double>&vx = table.column("vx_mps"), &vy = table.column("vy_mps"), &vz = table.column("vz_mps");
+  std::vector<TrackPoint> track(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    track[i].time_s = t[i];
+    track[i].position_m = {x[i], y[i], z[i]};
+    track[i].speed_mps = Eigen::Vector3d(vx[i], vy[i], vz[i]).norm();
   }
   return track;
 }
 
 }  // namespace
+
+const std::vector<double>& TrajectoryTable::column(const std::string& name) const {
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (header[i] == name) return columns[i];
+  }
+  throw InputError(file, "", "missing column \"" + name + "\"");
+}
+
+TrajectoryTable read_trajectory_table(const std::filesystem::path& path) {
+  const std::string text = read_text_file(path, {256u << 20, 32});
+  std::istringstream in(text);
+  std::string line;
+  if (!std::getline(in, line)) throw InputError(path.string(), "", "empty file; expected a CSV header");
+  TrajectoryTable table;
+  table.file = path.string();
+  for (std::stringstream s(line); std::getline(s, line, ',');) table.header.push_back(line);
+  table.columns.resize(table.header.size());
+  for (int row = 2; std::getline(in, line); ++row) {
+    std::size_t start = 0, field = 0;
+    while (start <= line.size() && field < table.header.size()) {
+      const std::size_t end = std::min(line.find(',', start), line.size());
+      double v = 0.0;
+      const auto [ptr, ec] = std::from_chars(line.data() + start, line.data() + end, v);
+      table.columns[field++].push_back(ec == std::errc() ? v : 0.0);
+      start = end + 1;
+    }
+    if (field < table.header.size()) {
+      throw InputError(path.string(), "", "line " + std::to_string(row) + ": expected " +
+                                              std::to_string(table.header.size()) + " fields");
+    }
+  }
+  return table;
+}
 
 RecordedRun load_run_dir(const std::filesystem::path& dir) {
   RecordedRun run;

@@ -3,6 +3,7 @@
 /// back for figures, so every figure is reproducible from the files alone.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +18,19 @@ struct RecordedRun {
   Scene scene;            ///< from scene.json, the effective scene of the run
   RunView view;           ///< track, mission and planner decisions
 };
+
+/// trajectory.csv read back as numbers, column by column (docs/running.md);
+/// fields that are not numbers (the command's name) read as 0.
+struct TrajectoryTable {
+  std::string file;
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> columns;  ///< [column][row]
+  /// The column named `name`; InputError naming the file when there is none.
+  const std::vector<double>& column(const std::string& name) const;
+};
+
+/// Reads a trajectory.csv; InputError naming the file and line when a line is short.
+TrajectoryTable read_trajectory_table(const std::filesystem::path& path);
 
 /// Loads a run directory written by `campo run`; InputError naming the file
 /// when something is missing or malformed.

@@ -26,5 +26,6 @@ Command add_table(CLI::App& app);
 Command add_plot(CLI::App& app);
 Command add_merge(CLI::App& app);
 Command add_plan(CLI::App& app);
+Command add_reproduce(CLI::App& app);
 
 }  // namespace campo::cli

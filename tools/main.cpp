@@ -31,6 +31,8 @@ int main(int argc, char** argv) {
   add(campo::cli::add_plot, "plot", "Plot a metric of a sweep against a field (line or box plot, PNG)");
   add(campo::cli::add_merge, "merge", "Combine the results of several directories of one sweep (e.g. its shards) into one");
   add(campo::cli::add_plan, "plan", "Plan on a 2D grid map (MovingAI format) with A*, D* Lite, LPA* or RRT*, or a Dubins path between two poses");
+  add(campo::cli::add_reproduce, "reproduce",
+      "Regenerate the reproduction report of the seed theses (docs/reproductions.md) and its figures");
   add(campo::cli::add_bench, "bench", "Measure LIDAR throughput and closed-loop real-time factor on the bundled scenes");
 
   try {

@@ -1,0 +1,100 @@
+// campo reproduce: the reproduction report of the seed theses (docs/reproductions.md).
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#include <unistd.h>
+
+#include "reproduce/claims.hpp"
+#include "reproduce/report.hpp"
+#include "reproduce/workbench.hpp"
+#include "sim/json_reader.hpp"
+#include "sim/output_dir.hpp"
+#include "sim/provenance.hpp"
+#include "tools/commands.hpp"
+
+namespace campo::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ReproduceOptions {
+  std::string report = "docs/reproductions.md";
+  std::string work = "out/reproduce";
+  bool quick = false;
+  int jobs = 0;  ///< 0: every core
+};
+
+fs::path this_executable() {
+  std::error_code error;
+  const fs::path self = fs::read_symlink("/proc/self/exe", error);
+  if (error) throw std::runtime_error("cannot find the campo executable (/proc/self/exe)");
+  return self;
+}
+
+int reproduce(const ReproduceOptions& o) {
+  // The experiments name the bundled scenes by their paths in the source tree.
+  if (!fs::exists("scenes/sweeps/resolution_000.json")) {
+    throw InputError("command line", "", "campo reproduce runs from campo's source directory (where scenes/ is); "
+                     "scenes/sweeps/resolution_000.json is not here");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path report = o.report;
+  WorkbenchConfig config;
+  config.campo_binary = this_executable();
+  config.work_dir = o.work;
+  config.figure_dir = report.parent_path() / report.stem();
+  config.figure_prefix = report.stem().string() + "/";
+  config.quick = o.quick;
+  config.jobs = o.jobs > 0 ? o.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const Workbench bench(config);
+
+  std::vector<Claim> claims;
+  for (auto* seed_claims : {&seed_000_claims}) {
+    for (Claim& claim : seed_claims(bench)) {
+      std::cerr << "campo reproduce: " << claim.seed << " " << claim.title << ": " << verdict_name(claim.verdict)
+                << "\n";
+      claims.push_back(std::move(claim));
+    }
+  }
+  ReportInfo info;
+  info.campo_version = campo_version_string();
+  info.command = std::string("campo reproduce") + (o.quick ? " --quick" : "") +
+                 (o.report != ReproduceOptions{}.report ? " --report " + o.report : "");
+  info.quick = o.quick;
+  info.jobs = config.jobs;
+  info.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_file_atomically(report, format_report(claims, info));
+  int reproduced = 0;
+  for (const Claim& c : claims) reproduced += c.verdict == Verdict::reproduced;
+  std::cout << "campo reproduce: " << reproduced << " of " << claims.size() << " claims reproduced; report in "
+            << report.string() << ", figures in " << config.figure_dir.string() << "\n";
+  return kOk;
+}
+
+}  // namespace
+
+Command add_reproduce(CLI::App& app) {
+  auto o = std::make_shared<ReproduceOptions>();
+  app.add_option("--report", o->report, "Where to write the report (default: docs/reproductions.md; the figures go "
+                                        "to a directory of the same name beside it)");
+  app.add_option("--work", o->work, "Directory for the sweeps and runs (default: out/reproduce; emptied first)");
+  app.add_flag("--quick", o->quick,
+               "Reduced experiments (fewer seeds, resolutions and runs): the test suite's version, minutes instead "
+               "of a quarter of an hour; its numbers are not the reproduction");
+  app.add_option("--jobs,-j", o->jobs, "Runs at a time in the sweeps (default: every available core)")
+      ->check(CLI::Range(1, 1024));
+  app.footer(
+      "Runs every experiment of the seed theses that campo reproduces (the bundled scenes and sweep specs), from "
+      "campo's source directory, each as the campo command the report lists, and writes the report: for every "
+      "claim the thesis's words or numbers, campo's measurement, its commands, figures and a verdict "
+      "(reproduced, deviates, not reproduced). A claim whose experiment fails is reported as not reproduced with "
+      "the reason; the other claims still are.\n"
+      "Examples: campo reproduce\n"
+      "          campo reproduce --quick --report out/quick/reproductions.md --work out/quick/work");
+  return [o] { return reproduce(*o); };
+}
+
+}  // namespace campo::cli
