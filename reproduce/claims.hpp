@@ -11,4 +11,8 @@ namespace campo {
 /// Seed 000: Table 5.1, Fig. 5.6, Fig. 5.5 (terrain following), the field-of-view and range sweep.
 std::vector<Claim> seed_000_claims(const Workbench& bench);
 
+/// Seed 001: the obstacles and routes of Tabelle 5.1-5.6, the three behaviours (the slot, the weave, the wall),
+/// the bridge with column and OctoMap mapping, Figures 5.4-5.13.
+std::vector<Claim> seed_001_claims(const Workbench& bench);
+
 }  // namespace campo

@@ -224,7 +224,7 @@ void sensor_sweep(const Workbench& bench, Claim& claim) {
   claim.measured = "The trees at 64 x 64, field of view (horizontal = vertical) against maximum range; each cell over "
                    "its seeds:\n\n" + table;
   claim.verdict = Verdict::reproduced;
-  claim.verdict_reason = "A new experiment the thesis proposed; the table and chart are its result, nothing to compare.";
+  claim.verdict_reason = "A new experiment the thesis proposed; the table and the plots are its result, with nothing in the thesis to compare them to.";
 }
 
 }  // namespace
