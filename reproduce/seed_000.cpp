@@ -137,6 +137,37 @@ void table_5_1(const Workbench& bench, std::vector<fs::path>& tree_runs, Claim& 
                    markdown_table({"Scene", "Resolution", "Runs", "Success", "Reached", "Discarded", "Length (m)",
                                    "Normalised", "Max normalised", "Time (s)", "Collisions", "Min clearance (m)"},
                                   rows);
+  // Side by side per resolution: the thesis's three runs against campo's on the trees.
+  std::vector<std::vector<std::string>> side_by_side;
+  for (int resolution : resolutions) {
+    std::vector<double> ratios, times;
+    for (const ThesisRow& r : kThesisTable51) {
+      if (r.resolution != resolution) continue;
+      ratios.push_back(r.ratio);
+      times.push_back(r.time_s);
+    }
+    const auto found = cells.find({"trees_rolling_terrain", resolution});
+    if (found == cells.end()) continue;
+    std::vector<double> campo_ratios, campo_times;
+    for (const RunResult* r : found->second.runs) {
+      if (!r->completed || r->metrics.outcome != "reached") continue;
+      campo_ratios.push_back(r->metrics.path_ratio);
+      campo_times.push_back(r->metrics.time_s);
+    }
+    const auto range = [](const std::vector<double>& v, int decimals) -> std::string {
+      if (v.empty()) return "–";
+      const Summary s = summarize_values(v);
+      return fixed(s.mean, decimals) + " (" + fixed(*std::min_element(v.begin(), v.end()), decimals) + "-" +
+             fixed(*std::max_element(v.begin(), v.end()), decimals) + ")";
+    };
+    side_by_side.push_back({std::to_string(resolution), ratios.empty() ? "–" : std::to_string(ratios.size()),
+                            range(ratios, 3), range(times, 1), std::to_string(found->second.runs.size()),
+                            std::to_string(campo_ratios.size()), range(campo_ratios, 3), range(campo_times, 1)});
+  }
+  claim.measured += "\nThe trees side by side, mean (minimum-maximum) over the runs that reached the goal:\n\n" +
+                    markdown_table({"Resolution", "Thesis runs", "Thesis normalised", "Thesis time (s)", "campo runs",
+                                    "campo reached", "campo normalised", "campo time (s)"},
+                                   side_by_side);
   claim.verdict = check.verdict();
   claim.verdict_reason = check.summary();
 }
