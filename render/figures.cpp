@@ -550,10 +550,6 @@ cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLay
   }
   if (!plan.overlay && !plan.height_map) {
     for (const auto& p : plan.runs.front()->sensor_hits) sensor_hit_marker(plot, to(p));
-    // Over the track and the hits, thin, so that where the track leaves it both show.
-    if (has_nominal_route(*plan.runs.front())) {
-      figure::dashed_polyline(plot, to.all(nominal_route(*plan.runs.front())), kNominalRoute, 2, 9.0, 6.0);
-    }
   }
   for (std::size_t i = 0; i < plan.runs.size(); ++i) {
     const RunView& run = *plan.runs[i];
@@ -564,6 +560,10 @@ cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLay
     for (const auto& p : run.discarded) {
       figure::cross_marker(plot, to(p), plan.overlay ? run_color(i) : kDiscardedWaypoint);
     }
+  }
+  // Over the track, the hits and the planned waypoints, thin and dashed, so that where the track leaves it both show.
+  if (!plan.overlay && !plan.height_map && has_nominal_route(*plan.runs.front())) {
+    figure::dashed_polyline(plot, to.all(nominal_route(*plan.runs.front())), kNominalRoute, 2, 9.0, 6.0);
   }
   draw_mission(plot, to, plan);
   for (const auto& s : plan.starts) figure::start_marker(plot, to(s));
