@@ -48,7 +48,7 @@ RecordedMission record(const std::string& scene_name) {
   const DStarLite3dConfig config = parse_dstar_lite_3d_config(scene.vehicles.front().planner.params);
   RecordedMission mission;
   mission.map = grid_map_config(config, flown.trajectory.front().state.position_m.z());
-  mission.level_step_cells = config.level_spacing_m / config.cell_size_m;
+  mission.level_step_cells = climb_cost_cells(config);  // as the planner searches
   mission.connectivity = config.connectivity;
   GridMap3d map(mission.map);
   std::vector<grid::CellChange> pending;

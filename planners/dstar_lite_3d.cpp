@@ -43,8 +43,7 @@ class DStarLite3dPlanner final : public Planner {
       // Moves cost their length: a 7 m climb costs 4.7 cells of 1.5 m, not one,
       // so the drone weaves between buildings at its altitude rather than
       // climbing over every one it has mapped.
-      graph_ = std::make_unique<grid::GridGraph>(map_->size(), config_.connectivity,
-                                                 config_.level_spacing_m / config_.cell_size_m);
+      graph_ = std::make_unique<grid::GridGraph>(map_->size(), config_.connectivity, climb_cost_cells(config_));
     }
 
     // Mission waypoints already reached.
@@ -146,6 +145,7 @@ class DStarLite3dPlanner final : public Planner {
                         {"ground_level", c.ground_level},
                         {"origin_m", {c.origin_m.x(), c.origin_m.y()}},
                         {"connectivity", c.connectivity == grid::Connectivity::six ? "six" : "twenty_six"},
+                        {"climb_cost_cells", c.climb_cost_cells},
                         {"speed_mps", c.speed_mps},
                         {"tolerance_m", c.tolerance_m},
                         {"lookahead_cells", c.lookahead_cells},
@@ -231,6 +231,10 @@ class DStarLite3dPlanner final : public Planner {
 
 }  // namespace
 
+double climb_cost_cells(const DStarLite3dConfig& c) {
+  return c.climb_cost_cells > 0.0 ? c.climb_cost_cells : c.level_spacing_m / c.cell_size_m;
+}
+
 GridMap3dConfig grid_map_config(const DStarLite3dConfig& c, double ground_z_m) {
   return {c.columns, c.rows, c.levels, c.cell_size_m, c.level_spacing_m, c.ground_level, c.origin_m, ground_z_m};
 }
@@ -250,6 +254,7 @@ DStarLite3dConfig parse_dstar_lite_3d_config(const ParamsBlock& params) {
     c.connectivity = connectivity->as_choice({"six", "twenty_six"}) == 0 ? grid::Connectivity::six
                                                                           : grid::Connectivity::twenty_six;
   }
+  r.read("climb_cost_cells", c.climb_cost_cells, Range::closed(0.0, 1000.0));
   r.read("speed_mps", c.speed_mps, Range::closed(0.01, 20.0));
   r.read("tolerance_m", c.tolerance_m, Range::positive());
   r.read("lookahead_cells", c.lookahead_cells, 1, 100);

@@ -25,6 +25,10 @@ struct DStarLite3dConfig {
   int ground_level = 2;             ///< level at take-off ground height (001: 2)
   Eigen::Vector2d origin_m{0.0, 0.0};  ///< world x, y of the grid's south-west corner
   grid::Connectivity connectivity = grid::Connectivity::twenty_six;  ///< six or twenty_six
+  /// Cost of a move of one level up or down, in horizontal cell moves, > 0;
+  /// 0 = its length, level_spacing_m / cell_size_m (4.67). 001 gave every
+  /// move the same cost: 1.
+  double climb_cost_cells = 0.0;
   double speed_mps = 1.0;           ///< cruise speed (001 flew at 1 m/s)
   double tolerance_m = 0.5;         ///< a mission waypoint counts as reached within this distance
   int lookahead_cells = 3;          ///< fly up to this many cells ahead along a straight run of the path
@@ -37,6 +41,9 @@ std::unique_ptr<Planner> make_dstar_lite_3d_planner(const ParamsBlock& params, c
 /// connectivity "six" | "twenty_six"); InputError naming the file and JSON
 /// pointer otherwise.
 DStarLite3dConfig parse_dstar_lite_3d_config(const ParamsBlock& params);
+
+/// The cost of a one-level climb the search uses, in horizontal cell moves.
+double climb_cost_cells(const DStarLite3dConfig& config);
 
 /// The map geometry of a configuration, with take-off ground at `ground_z_m`.
 GridMap3dConfig grid_map_config(const DStarLite3dConfig& config, double ground_z_m);

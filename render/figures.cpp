@@ -54,6 +54,7 @@ const cv::Scalar kTrackHalo = rgb(40, 40, 40);
 const cv::Scalar kPlannedWaypoint = rgb(31, 119, 180);
 const cv::Scalar kDiscardedWaypoint = rgb(200, 40, 120);
 const cv::Scalar kPlannedPath = rgb(60, 60, 60);
+const cv::Scalar kNominalRoute = rgb(190, 0, 150);  // straight legs through the mission (001 Fig. 5.3/5.7/5.11)
 const cv::Scalar kSensorHit = rgb(214, 39, 40);
 const cv::Scalar kVehicleLine = rgb(31, 119, 180);
 const cv::Scalar kNeutralMarker = rgb(120, 120, 120);  // legend symbols whose colour is the run's
@@ -211,6 +212,14 @@ Eigen::AlignedBox2d map_bounds(const Scene& scene, const std::vector<const RunVi
   return grown;
 }
 
+// The nominal route of a run: straight legs from its start through every mission waypoint.
+bool has_nominal_route(const RunView& run) { return !run.track.empty() && !run.mission.empty(); }
+std::vector<Eigen::Vector3d> nominal_route(const RunView& run) {
+  std::vector<Eigen::Vector3d> route{run.track.front().position_m};
+  for (const Waypoint& w : run.mission) route.push_back(w.position_m);
+  return route;
+}
+
 void add_symbol_entries(MapPlan& plan, const Scene& scene) {
   auto& legend = plan.legend;
   const bool overlay = plan.overlay;
@@ -221,6 +230,9 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
   const bool steps = !plan.height_map;
   if (steps && std::any_of(plan.runs.begin(), plan.runs.end(), [](const RunView* r) { return r->planned_path.size() >= 2; })) {
     legend.push_back(line_entry(overlay ? kNeutralMarker : kPlannedPath, 1, "planned path", true));
+  }
+  if (steps && !overlay && has_nominal_route(*plan.runs.front())) {
+    legend.push_back(line_entry(kNominalRoute, 2, "nominal route", true));
   }
   if (!plan.movers.empty()) {
     const cv::Scalar c = figure::shade(to_bgr(scene.movers[plan.movers.front()].shape.color), 0.7);
@@ -548,6 +560,10 @@ cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLay
     for (const auto& p : run.discarded) {
       figure::cross_marker(plot, to(p), plan.overlay ? run_color(i) : kDiscardedWaypoint);
     }
+  }
+  // Over the track, the hits and the planned waypoints, thin and dashed, so that where the track leaves it both show.
+  if (!plan.overlay && !plan.height_map && has_nominal_route(*plan.runs.front())) {
+    figure::dashed_polyline(plot, to.all(nominal_route(*plan.runs.front())), kNominalRoute, 2, 9.0, 6.0);
   }
   draw_mission(plot, to, plan);
   for (const auto& s : plan.starts) figure::start_marker(plot, to(s));

@@ -5,11 +5,13 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
 #include <Eigen/Geometry>
 
+#include "sim/route_metrics.hpp"
 
 namespace campo {
 
@@ -34,6 +36,34 @@ struct MountedSensor {
   LidarScan scan;
   std::int64_t period;
 };
+
+// The per-leg and gate metrics (sim/route_metrics.hpp) from the trajectory
+// samples; `reached_sample[k]` is the sample at which waypoint k was reported reached.
+void route_metrics(const VehicleDef& def, const Eigen::Vector3d& start, const std::vector<TrajectorySample>& trajectory,
+                   const std::vector<std::optional<std::size_t>>& reached_sample, EpisodeMetrics& m) {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<double> agl_m;
+  for (const TrajectorySample& s : trajectory) {
+    points.push_back(s.state.position_m);
+    agl_m.push_back(s.height_above_ground_m);
+  }
+  const std::span<const Eigen::Vector3d> all(points);
+  for (std::size_t k = 0; k < def.mission.size(); ++k) {
+    LegMetrics& leg = m.legs.emplace_back();
+    const std::optional<std::size_t> first = k == 0 ? std::optional<std::size_t>(0) : reached_sample[k - 1];
+    const std::optional<std::size_t> last = reached_sample[k];
+    if (!first || !last || *last < *first || *last >= points.size()) continue;
+    const auto flown = all.subspan(*first, *last - *first + 1);
+    leg.path_length_m = polyline_length_m(flown);
+    const Eigen::Vector3d from = k == 0 ? start : def.mission[k - 1].position_m;
+    leg.lateral_before_climb_m = lateral_before_climb_m(flown, from, def.mission[k].position_m);
+  }
+  for (const MissionGate& gate : def.gates) {
+    GateMetrics& g = m.gates.emplace_back();
+    g.name = gate.name;
+    if (const auto i = first_inside(points, agl_m, gate.area_m, gate.max_agl_m)) g.time_s = trajectory[*i].time_s;
+  }
+}
 
 // Counts the decisions of planner.hpp's keys into the metrics.
 void count_decisions(const std::vector<PlannerEvent>& events, EpisodeMetrics& m) {
@@ -217,7 +247,7 @@ std::string_view to_string(Outcome outcome) {
 }
 
 nlohmann::json to_json(const EpisodeMetrics& m) {
-  return {
+  nlohmann::json j = {
       {"outcome", to_string(m.outcome)},
       {"reason", m.reason},
       {"sim_time_s", m.sim_time_s},
@@ -244,6 +274,17 @@ nlohmann::json to_json(const EpisodeMetrics& m) {
       {"cross_track_max_m", m.cross_track_max_m},
       {"avoiding_time_s", m.avoiding_time_s},
   };
+  const auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
+  for (std::size_t k = 0; k < m.legs.size(); ++k) {
+    const std::string leg = "leg" + std::to_string(k);
+    j[leg + "_path_length_m"] = optional(m.legs[k].path_length_m);
+    j[leg + "_lateral_before_climb_m"] = optional(m.legs[k].lateral_before_climb_m);
+  }
+  for (const GateMetrics& gate : m.gates) {
+    j["gate_" + gate.name + "_passed"] = gate.time_s.has_value();
+    j["gate_" + gate.name + "_time_s"] = optional(gate.time_s);
+  }
+  return j;
 }
 
 namespace {
@@ -314,6 +355,8 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
   const Eigen::Vector3d start = vehicle->state().position_m;
   // Where the vehicle was when the planner reported each mission waypoint reached.
   std::vector<std::optional<Eigen::Vector3d>> reached_at(def.mission.size());
+  // And the index of the trajectory sample of that planner call.
+  std::vector<std::optional<std::size_t>> reached_sample(def.mission.size());
   ClearanceMinima minima;
   double planner_ms_total = 0.0;
   bool was_colliding = false;
@@ -352,7 +395,10 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
       if (plan.decisions.is_object()) {
         for (const auto& index : plan.decisions.value("reached_waypoints", nlohmann::json::array())) {
           const auto i = index.is_number_integer() ? index.get<std::int64_t>() : -1;
-          if (i >= 0 && static_cast<std::size_t>(i) < reached_at.size()) reached_at[static_cast<std::size_t>(i)] = truth.position_m;
+          if (i >= 0 && static_cast<std::size_t>(i) < reached_at.size()) {
+            reached_at[static_cast<std::size_t>(i)] = truth.position_m;
+            reached_sample[static_cast<std::size_t>(i)] = result.trajectory.size();
+          }
         }
       }
       if (!plan.decisions.is_null()) result.events.push_back({t, std::move(plan.decisions)});
@@ -430,6 +476,7 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
   m.cross_track_rms_m = cross_track.rms_m;
   m.cross_track_max_m = cross_track.max_m;
   m.avoiding_time_s = avoiding_time(result.events, m.sim_time_s);
+  route_metrics(def, start, result.trajectory, reached_sample, m);
   m.planner_time_ms_mean = m.planner_calls > 0 ? planner_ms_total / m.planner_calls : 0.0;
   m.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
   result.final_state_hash = world.state_hash();

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -27,6 +28,20 @@ using PlannerMaker = std::unique_ptr<Planner> (*)(const PlannerSpec& spec, const
 
 enum class Outcome { reached, collision, timeout, aborted };
 std::string_view to_string(Outcome outcome);
+
+/// One leg of the mission: from the start (leg 0) or mission waypoint k - 1
+/// to mission waypoint k (sim/route_metrics.hpp), measured on the trajectory
+/// samples between the planner calls that reported the two reached.
+struct LegMetrics {
+  std::optional<double> path_length_m;           ///< flown; nullopt when waypoint k was not reached
+  std::optional<double> lateral_before_climb_m;  ///< lateral_before_climb_m against the nominal leg; nullopt: no climb
+};
+
+/// Whether the vehicle passed through a mission gate.
+struct GateMetrics {
+  std::string name;
+  std::optional<double> time_s;  ///< first trajectory sample inside the gate; nullopt: never
+};
 
 /// Metrics of one run, named as in run.json.
 struct EpisodeMetrics {
@@ -69,6 +84,10 @@ struct EpisodeMetrics {
   /// Simulated time spent in local obstacle avoidance: from each "avoiding":
   /// true to the next "avoiding": false, or to the end of the run (avoiding_time).
   double avoiding_time_s = 0.0;
+  /// Per mission leg, as "leg<k>_path_length_m" and "leg<k>_lateral_before_climb_m".
+  std::vector<LegMetrics> legs;
+  /// Per mission gate, as "gate_<name>_passed" (boolean) and "gate_<name>_time_s".
+  std::vector<GateMetrics> gates;
 };
 nlohmann::json to_json(const EpisodeMetrics& metrics);
 

@@ -63,4 +63,10 @@ Geodetic enu_to_geodetic(const Eigen::Vector3d& enu_m, const Geodetic& origin) {
   return ecef_to_geodetic(geodetic_to_ecef(origin) + r.transpose() * enu_m);
 }
 
+Eigen::Vector3d geodetic_to_sphere_no_coslat(const Geodetic& point, const Geodetic& origin, double radius_m) {
+  const double deg = std::numbers::pi / 180.0;
+  return {(point.longitude_deg - origin.longitude_deg) * deg * radius_m,
+          (point.latitude_deg - origin.latitude_deg) * deg * radius_m, point.altitude_m - origin.altitude_m};
+}
+
 }  // namespace campo

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include "sim/geodesy.hpp"
+
 namespace campo {
 
 namespace {
@@ -174,6 +176,20 @@ std::vector<Eigen::Isometry3d> scripted_poses(const Scene& scene, double t_s) {
     poses.push_back(pose);
   }
   return poses;
+}
+
+std::string_view to_string(GeoProjection projection) {
+  return projection == GeoProjection::wgs84_enu ? "wgs84_enu" : "sphere_no_coslat";
+}
+
+Eigen::Vector3d geodetic_to_local(const GeoReference& reference, double latitude_deg, double longitude_deg,
+                                  double altitude_m) {
+  const Geodetic point{latitude_deg, longitude_deg, altitude_m};
+  const Geodetic origin{reference.latitude_deg, reference.longitude_deg, reference.altitude_m};
+  Eigen::Vector3d local = reference.projection == GeoProjection::wgs84_enu ? geodetic_to_enu(point, origin)
+                                                                         : geodetic_to_sphere_no_coslat(point, origin);
+  local.head<2>() += reference.position_m;
+  return local;
 }
 
 }  // namespace campo

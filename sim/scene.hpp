@@ -127,6 +127,14 @@ struct PlannerSpec {
   ParamsBlock params;        ///< checked by the planner
 };
 
+/// An area of cells of the mission's grid (e.g. the slot between two
+/// buildings) whose passage is a metric of the run.
+struct MissionGate {
+  std::string name;                ///< lower-case letters, digits, '_'; names the metrics
+  Eigen::AlignedBox2d area_m;      ///< world x, y of the cells' outer edges
+  std::optional<double> max_agl_m;  ///< counts only below this height above ground (e.g. under the roofs)
+};
+
 struct VehicleDef {
   std::string alias;
   VehicleType type = VehicleType::quadrotor;
@@ -138,14 +146,31 @@ struct VehicleDef {
   /// The (x, y) extent of the grid the mission is given on, if any (maps show all of it).
   std::optional<Eigen::AlignedBox2d> mission_area_m;
   StateNoiseConfig state_noise;   ///< what the planner and controllers see of the state (none by default)
+  /// Named areas of the mission's grid whose passage the run record reports (gate_<name>_* metrics).
+  std::vector<MissionGate> gates;
 };
 
-/// Geodetic reference point of the local ENU frame (x east, y north, z up).
+/// How geodetic waypoints become local coordinates.
+enum class GeoProjection : std::uint8_t {
+  wgs84_enu,         ///< WGS84 geodetic -> ECEF -> ENU at the reference point (proper cos(latitude))
+  sphere_no_coslat,  ///< seed 001's conversion (001 §4.2.3): sphere of 6371000 m, no cos(latitude)
+};
+std::string_view to_string(GeoProjection projection);
+
+/// Geodetic reference point of the local frame (x east, y north, z up).
 struct GeoReference {
   double latitude_deg = 0.0;   ///< [-90, 90]
   double longitude_deg = 0.0;  ///< [-180, 180]
   double altitude_m = 0.0;     ///< WGS84 ellipsoidal height
+  GeoProjection projection = GeoProjection::wgs84_enu;
+  /// Local x, y of the reference point (seed 001 refers its cells to a point
+  /// off the grid's south-west corner), within [-1e6, 1e6].
+  Eigen::Vector2d position_m{0.0, 0.0};
 };
+
+/// Local position of a geodetic point under a reference (projection, then the reference's position_m).
+Eigen::Vector3d geodetic_to_local(const GeoReference& reference, double latitude_deg, double longitude_deg,
+                                  double altitude_m);
 
 struct WorldConfig {
   Eigen::Vector3d gravity_mps2{0.0, 0.0, -9.81};

@@ -1,6 +1,8 @@
 #include "sim/scene_loader.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -100,7 +102,7 @@ class Loader {
     // Missions last: they may name frames and grids declared anywhere.
     for (auto& [vehicle_index, mission] : pending_missions_) {
       VehicleDef& vehicle = scene_.vehicles[vehicle_index];
-      vehicle.mission = read_mission(mission, vehicle.mission_area_m);
+      vehicle.mission = read_mission(mission, vehicle.mission_area_m, vehicle.gates);
     }
     return std::move(scene_);
   }
@@ -122,6 +124,12 @@ class Loader {
       g.read("latitude_deg", w.geo_reference.latitude_deg, Range::closed(-90.0, 90.0));
       g.read("longitude_deg", w.geo_reference.longitude_deg, Range::closed(-180.0, 180.0));
       g.read("altitude_m", w.geo_reference.altitude_m, Range::closed(-1e4, 1e5));
+      if (auto projection = g.optional("projection")) {
+        w.geo_reference.projection = projection->as_choice({"wgs84_enu", "sphere_no_coslat"}) == 0
+                                         ? GeoProjection::wgs84_enu
+                                         : GeoProjection::sphere_no_coslat;
+      }
+      g.read("position_m", w.geo_reference.position_m, Range::closed(-1e6, 1e6));
       g.finish();
     }
     r.finish();
@@ -552,7 +560,8 @@ class Loader {
   }
 
   // The waypoints; `area` becomes the extent of the mission's grid, if any.
-  std::vector<Waypoint> read_mission(const JsonNode& node, std::optional<Eigen::AlignedBox2d>& area) {
+  std::vector<Waypoint> read_mission(const JsonNode& node, std::optional<Eigen::AlignedBox2d>& area,
+                                     std::vector<MissionGate>& gates) {
     ObjectReader r(node);
     const GridObstaclesConfig* grid = nullptr;
     if (auto g = r.optional("grid")) {
@@ -566,12 +575,49 @@ class Loader {
          r.required("waypoints").as_array(1, static_cast<std::size_t>(limits_.max_waypoints))) {
       waypoints.push_back(read_waypoint(wp, grid));
     }
+    if (auto list = r.optional("gates")) {
+      if (!grid) list->fail("a mission with \"grid\" naming a grid_obstacles object");
+      for (const JsonNode& gate : list->as_array(1, 16)) gates.push_back(read_gate(gate, *grid, gates));
+    }
     r.finish();
     return waypoints;
   }
 
+  // A gate: a named block of cells of the mission's grid, optionally only
+  // below a height above ground.
+  MissionGate read_gate(const JsonNode& node, const GridObstaclesConfig& grid, const std::vector<MissionGate>& before) {
+    ObjectReader r(node);
+    MissionGate gate;
+    const JsonNode name = r.required("name");
+    gate.name = name.as_string();
+    const bool valid = !gate.name.empty() && gate.name.size() <= 32 && std::islower(static_cast<unsigned char>(gate.name[0])) &&
+                       std::all_of(gate.name.begin(), gate.name.end(), [](char c) {
+                         return std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_';
+                       });
+    if (!valid) name.fail("a name of lower-case letters, digits and '_', starting with a letter (up to 32)");
+    for (const MissionGate& other : before) {
+      if (other.name == gate.name) name.fail("a gate name not used before in this mission");
+    }
+    const auto range = [&](std::string_view key, int count) {
+      const JsonNode node = r.required(key);
+      const auto items = node.as_array(2, 2);
+      const int lo = static_cast<int>(items[0].as_int(1, count));
+      const int hi = static_cast<int>(items[1].as_int(lo, count));
+      return std::pair{lo, hi};
+    };
+    const auto [row_lo, row_hi] = range("rows", grid.rows);
+    const auto [col_lo, col_hi] = range("cols", grid.cols);
+    const double c = grid.cell_size_m;
+    gate.area_m = Eigen::AlignedBox2d(grid.origin_m + c * Eigen::Vector2d(col_lo - 1, row_lo - 1),
+                                      grid.origin_m + c * Eigen::Vector2d(col_hi, row_hi));
+    if (auto agl = r.optional("max_agl_m")) gate.max_agl_m = agl->as_number(Range::closed(-1e4, 1e5));
+    r.finish();
+    return gate;
+  }
+
   // A waypoint is exactly one of: position_m [x,y,z] | [x,y] with agl_m,
-  // frame (dummy alias), geodetic [lat, lon, alt], cell [row, col] with agl_m.
+  // frame (dummy alias), geodetic [lat, lon, alt] | [lat, lon] with agl_m,
+  // cell [row, col] with agl_m.
   Waypoint read_waypoint(const JsonNode& node, const GridObstaclesConfig* grid) {
     ObjectReader r(node);
     Waypoint wp;
@@ -599,12 +645,12 @@ class Loader {
       wp.position_m = f->pose.translation();
       xy = wp.position_m.head<2>();
     } else if (geodetic) {
-      const auto g = geodetic->as_array(3, 3);
-      const GeoReference& ref = scene_.world.geo_reference;
-      wp.position_m = geodetic_to_enu(
-          {g[0].as_number(Range::closed(-90.0, 90.0)), g[1].as_number(Range::closed(-180.0, 180.0)),
-           g[2].as_number(Range::closed(-1e4, 1e5))},
-          {ref.latitude_deg, ref.longitude_deg, ref.altitude_m});
+      const auto g = geodetic->as_array(2, 3);
+      if (g.size() == 3 && agl) agl->fail("no \"agl_m\" with a geodetic [lat, lon, alt]");
+      if (g.size() == 2 && !agl) geodetic->fail("[lat, lon, alt], or [lat, lon] with \"agl_m\"");
+      wp.position_m = geodetic_to_local(scene_.world.geo_reference, g[0].as_number(Range::closed(-90.0, 90.0)),
+                                        g[1].as_number(Range::closed(-180.0, 180.0)),
+                                        g.size() == 3 ? g[2].as_number(Range::closed(-1e4, 1e5)) : 0.0);
       xy = wp.position_m.head<2>();
     } else {
       if (!grid) cell->fail("a mission with \"grid\" naming a grid_obstacles object");
@@ -615,7 +661,7 @@ class Loader {
       wp.position_m.head<2>() = xy;
     }
     if (agl) {
-      if (frame || geodetic) agl->fail("no \"agl_m\" with a frame or geodetic waypoint");
+      if (frame) agl->fail("no \"agl_m\" with a frame waypoint");
       const auto ground = scene_.ground_height(xy.x(), xy.y());
       if (!ground) agl->fail("a waypoint above terrain (none below this point)");
       wp.position_m.z() = *ground + agl->as_number(Range::closed(-1e4, 1e5));

@@ -1,5 +1,6 @@
 // The bundled scenes match the experiments of SPEC §8.
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -48,15 +49,62 @@ void expect_blocks(const Scene& scene, const std::vector<Block>& blocks) {
   }
 }
 
-// Mission waypoints at (row, col, altitude above ground).
+// Mission waypoints in (row, col, altitude above ground): within half a
+// cell of the cell's centre in x and y (the scenes give 001's geodetic
+// waypoints, which land up to 0.69 m off the centres), at the altitude above
+// the ground under the waypoint.
 void expect_route(const Scene& scene, const std::vector<std::array<double, 3>>& route) {
   const auto& mission = scene.vehicles.at(0).mission;
   ASSERT_EQ(mission.size(), route.size());
   for (std::size_t i = 0; i < route.size(); ++i) {
     const double x = (route[i][1] - 0.5) * 1.5, y = (route[i][0] - 0.5) * 1.5;
-    EXPECT_NEAR(mission[i].position_m.x(), x, 1e-9) << i;
-    EXPECT_NEAR(mission[i].position_m.y(), y, 1e-9) << i;
-    EXPECT_NEAR(mission[i].position_m.z(), std::sin(x / 5) + route[i][2], 1e-9) << i;
+    const Eigen::Vector3d& p = mission[i].position_m;
+    EXPECT_LT(std::abs(p.x() - x), 0.75) << i;
+    EXPECT_LT(std::abs(p.y() - y), 0.75) << i;
+    // The terrain is sampled every 0.75 m: between vertices linear interpolation
+    // is within 0.75^2 / 8 / 25 = 2.8 mm of sin(x/5).
+    EXPECT_NEAR(p.z(), std::sin(p.x() / 5) + route[i][2], 3e-3) << i;
+  }
+}
+
+// A waypoint of 001's route tables (latitude and longitude in degrees,
+// altitude above ground in metres) and the cell of the SPEC's route it stands for.
+struct TableWaypoint {
+  double latitude_deg, longitude_deg, agl_m;
+  int row, col;
+};
+
+// 001 §4.2.3 converts the tables' latitude/longitude to graph nodes from its
+// north-west reference point (40.82233, 14.70328) on a sphere of
+// R = 6371000 m without cos(latitude): coox = round(deg2rad(lon - lon_ref) R
+// / 1.5), cooy = round(deg2rad(lat_ref - lat) R / 1.5). The tables' cells
+// count rows northward from the south edge (SPEC §8): row = 100 - cooy,
+// column = coox. Every waypoint of the table, through the scene's
+// geo_reference, lands in the SPEC's cell within half a cell of its centre,
+// and the scene's mission holds exactly these waypoints.
+void expect_geodetic_table(const Scene& scene, const std::vector<TableWaypoint>& table) {
+  const GeoReference& ref = scene.world.geo_reference;
+  EXPECT_DOUBLE_EQ(ref.latitude_deg, 40.82233);
+  EXPECT_DOUBLE_EQ(ref.longitude_deg, 14.70328);
+  EXPECT_EQ(ref.projection, GeoProjection::sphere_no_coslat);
+  const auto& mission = scene.vehicles.at(0).mission;
+  ASSERT_EQ(mission.size(), table.size());
+  const double r = 6371000.0, deg = std::numbers::pi / 180.0;
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    const TableWaypoint& w = table[i];
+    SCOPED_TRACE(i);
+    // The seed's own node formulas.
+    EXPECT_EQ(std::lround((w.longitude_deg - 14.70328) * deg * r / 1.5), w.col);
+    EXPECT_EQ(100 - std::lround((40.82233 - w.latitude_deg) * deg * r / 1.5), w.row);
+    // The scene's conversion: the same cell, near its centre.
+    const Eigen::Vector3d p = geodetic_to_local(ref, w.latitude_deg, w.longitude_deg, 0.0);
+    EXPECT_EQ(static_cast<int>(std::floor(p.y() / 1.5)) + 1, w.row);
+    EXPECT_EQ(static_cast<int>(std::floor(p.x() / 1.5)) + 1, w.col);
+    EXPECT_LE(std::abs(p.x() - (w.col - 0.5) * 1.5), 0.75);
+    EXPECT_LE(std::abs(p.y() - (w.row - 0.5) * 1.5), 0.75);
+    EXPECT_NEAR(mission[i].position_m.x(), p.x(), 1e-9);
+    EXPECT_NEAR(mission[i].position_m.y(), p.y(), 1e-9);
+    EXPECT_NEAR(mission[i].position_m.z(), std::sin(p.x() / 5) + w.agl_m, 3e-3);  // the sampled terrain (above)
   }
 }
 
@@ -67,19 +115,37 @@ TEST(BundledScenes, ObstacleFieldMatchesTheSeedTable) {
   expect_route(scene, {{1, 16, 42}, {76, 16, 42}, {76, 46, 42}, {24, 46, 42}, {24, 46, 28}, {24, 16, 28},
                        {76, 16, 28}, {76, 46, 28}, {24, 46, 28}});
   EXPECT_EQ(scene.vehicles[0].sensors.at(0).lidar.preset, "leddar_vu8");
-  EXPECT_DOUBLE_EQ(scene.world.geo_reference.latitude_deg, 40.821);
+  // Tabella 5.2.
+  expect_geodetic_table(scene, {{40.8210, 14.7035, 42, 1, 16}, {40.8220, 14.7035, 42, 76, 16},
+                                {40.8220, 14.7039, 42, 76, 46}, {40.8213, 14.7039, 42, 24, 46},
+                                {40.8213, 14.7039, 28, 24, 46}, {40.8213, 14.7035, 28, 24, 16},
+                                {40.8220, 14.7035, 28, 76, 16}, {40.8220, 14.7039, 28, 76, 46},
+                                {40.8213, 14.7039, 28, 24, 46}});
+  // The slot of 001 §5.1 is a gate of the mission: columns 50-51 of rows 49-50, below the blocks' 35 m.
+  const auto& gates = scene.vehicles[0].gates;
+  ASSERT_EQ(gates.size(), 1u);
+  EXPECT_EQ(gates[0].name, "slot");
+  EXPECT_TRUE(gates[0].area_m.min().isApprox(Eigen::Vector2d(73.5, 72.0)));
+  EXPECT_TRUE(gates[0].area_m.max().isApprox(Eigen::Vector2d(76.5, 75.0)));
+  EXPECT_EQ(gates[0].max_agl_m, 35.0);
 }
 
 TEST(BundledScenes, ZigzagMatchesTheSeedTable) {
   const Scene scene = bundled("zigzag");
   expect_blocks(scene, {{24, 27, 16, 28, 35}, {39, 42, 6, 18, 35}, {54, 57, 16, 28, 35}, {69, 72, 6, 18, 35}});
   expect_route(scene, {{1, 16, 42}, {76, 16, 42}, {76, 16, 28}, {1, 16, 28}});
+  // Tabella 5.4.
+  expect_geodetic_table(scene, {{40.8210, 14.7035, 42, 1, 16}, {40.8220, 14.7035, 42, 76, 16},
+                                {40.8220, 14.7035, 28, 76, 16}, {40.8210, 14.7035, 28, 1, 16}});
 }
 
 TEST(BundledScenes, WallMatchesTheSeedTable) {
   const Scene scene = bundled("wall");
   expect_blocks(scene, {{20, 22, 1, 100, 30}});  // Tabella 5.5: rows 20-22, columns 1-100, 30 m
   expect_route(scene, {{1, 16, 42}, {31, 16, 42}, {31, 16, 28}, {1, 16, 28}});
+  // Tabella 5.6.
+  expect_geodetic_table(scene, {{40.8210, 14.7035, 42, 1, 16}, {40.8214, 14.7035, 42, 31, 16},
+                                {40.8214, 14.7035, 28, 31, 16}, {40.8210, 14.7035, 28, 1, 16}});
 }
 
 TEST(BundledScenes, TreesStartAndGoalAre23_27MetresApart) {

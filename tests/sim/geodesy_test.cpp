@@ -74,5 +74,28 @@ TEST(Geodesy, EnuRoundTrip) {
   }
 }
 
+// Seed 001's conversion (001 §4.2.3): one degree is R pi / 180 = 111194.93 m
+// on the sphere of 6371000 m, along a meridian and, without cos(latitude),
+// along a parallel too.
+TEST(Geodesy, SphereWithoutCosLatitudeIsSeed001sConversion) {
+  const Geodetic origin{40.82233, 14.70328, 10.0};
+  const Eigen::Vector3d one_degree = geodetic_to_sphere_no_coslat({41.82233, 15.70328, 25.0}, origin);
+  EXPECT_NEAR(one_degree.x(), 111194.9266, 1e-4);
+  EXPECT_NEAR(one_degree.y(), 111194.9266, 1e-4);
+  EXPECT_DOUBLE_EQ(one_degree.z(), 15.0);
+  // 001's own node indices, cooy = round(deg2rad(lat_ref - lat) R / 1.5) and
+  // coox = round(deg2rad(lon - lon_ref) R / 1.5), of Tabella 5.2's first
+  // waypoint (40.8210, 14.7035): 99 cells south (147.89 m), 16 east (24.46 m).
+  const Eigen::Vector3d first = geodetic_to_sphere_no_coslat({40.8210, 14.7035, 0.0}, origin);
+  EXPECT_NEAR(first.x(), 24.4629, 1e-4);
+  EXPECT_NEAR(first.y(), -147.8893, 1e-4);
+  EXPECT_EQ(std::lround(first.x() / 1.5), 16);
+  EXPECT_EQ(std::lround(-first.y() / 1.5), 99);
+  // WGS84 ENU puts the same point 5.90 m further west (cos 40.82 deg = 0.757) and 0.19 m further north.
+  const Eigen::Vector3d enu = geodetic_to_enu({40.8210, 14.7035, 10.0}, origin);
+  EXPECT_NEAR(first.x() - enu.x(), 5.90, 0.01);
+  EXPECT_NEAR(first.y() - enu.y(), -0.19, 0.01);
+}
+
 }  // namespace
 }  // namespace campo

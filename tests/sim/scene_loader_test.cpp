@@ -125,6 +125,40 @@ TEST(SceneLoader, ReadsVehicleSensorsAndMissionForms) {
   EXPECT_EQ(v.mission[4].heading_deg, 90.0);
 }
 
+// Seed 001's conversion with its reference point placed off the grid, and
+// geodetic waypoints given as [lat, lon] with a height above ground; gates
+// are blocks of the mission grid's cells.
+TEST(SceneLoader, ReadsSeed001GeodesyAndGates) {
+  const Scene scene = parse(R"j({
+    "world": {"geo_reference": {"latitude_deg": 40.82233, "longitude_deg": 14.70328,
+                                "projection": "sphere_no_coslat", "position_m": [-0.75, 149.25]}},
+    "objects": [
+      {"alias": "ground", "type": "heightfield", "expression": "sin(x/5)", "size_m": [150, 150],
+       "spacing_m": 0.75, "pose": {"position_m": [75, 75, 0]}},
+      {"alias": "grid", "type": "grid_obstacles", "cell_size_m": 1.5, "rows": 100, "cols": 100},
+      {"alias": "uav", "type": "quadrotor", "pose": {"position_m": [1, 2, 3]},
+       "mission": {"grid": "grid", "gates": [{"name": "slot", "rows": [49, 50], "cols": [50, 51], "max_agl_m": 35},
+                                             {"name": "gap2", "rows": [3, 3], "cols": [1, 100]}],
+                   "waypoints": [{"geodetic": [40.8210, 14.7035], "agl_m": 42},
+                                 {"geodetic": [40.8210, 14.7035, 7]}]}}]})j");
+  EXPECT_EQ(scene.world.geo_reference.projection, GeoProjection::sphere_no_coslat);
+  const VehicleDef& v = scene.vehicles.at(0);
+  ASSERT_EQ(v.mission.size(), 2u);
+  // 24.463 m east and 147.889 m south of the reference (hand-computed, 001 §4.2.3), from (-0.75, 149.25).
+  EXPECT_NEAR(v.mission[0].position_m.x(), 23.713, 1e-3);
+  EXPECT_NEAR(v.mission[0].position_m.y(), 1.361, 1e-3);
+  // The terrain sampled every 0.75 m is within 2.8 mm of sin(x/5) between vertices.
+  EXPECT_NEAR(v.mission[0].position_m.z(), std::sin(v.mission[0].position_m.x() / 5) + 42, 3e-3);
+  EXPECT_NEAR(v.mission[1].position_m.z(), 7.0, 1e-9);
+  ASSERT_EQ(v.gates.size(), 2u);
+  EXPECT_EQ(v.gates[0].name, "slot");
+  EXPECT_TRUE(v.gates[0].area_m.min().isApprox(Eigen::Vector2d(73.5, 72.0)));
+  EXPECT_TRUE(v.gates[0].area_m.max().isApprox(Eigen::Vector2d(76.5, 75.0)));
+  EXPECT_EQ(v.gates[0].max_agl_m, 35.0);
+  EXPECT_FALSE(v.gates[1].max_agl_m.has_value());
+  EXPECT_TRUE(v.gates[1].area_m.max().isApprox(Eigen::Vector2d(150.0, 4.5)));
+}
+
 TEST(SceneLoader, SameFileGivesTheSameScene) {
   const std::string text = with_objects(R"j(
     {"alias": "t", "type": "rolling_terrain", "size_m": [30, 30], "seed": 5},
@@ -287,6 +321,35 @@ TEST(SceneLoaderErrors, DanglingReferences) {
               HasSubstr("/objects/0/sensors/0/preset: expected one of \"scanner3d\""));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "d", "type": "dummy", "pose": {"position_m": [0, 0, 1], "above_ground": true}})j")),
               HasSubstr("/objects/0/pose/above_ground: no terrain below"));
+}
+
+TEST(SceneLoaderErrors, GeodeticWaypointsAndGates) {
+  const std::string grid = R"j({"alias": "ground", "type": "plane"},
+      {"alias": "g", "type": "grid_obstacles", "cell_size_m": 1.5, "rows": 10, "cols": 10},)j";
+  EXPECT_THAT(error_of(with_objects(grid + R"j({"alias": "v", "type": "quadrotor",
+      "mission": {"waypoints": [{"geodetic": [40.8, 14.7]}]}})j")),
+              HasSubstr("/objects/2/mission/waypoints/0/geodetic: expected [lat, lon, alt], or [lat, lon] with \"agl_m\""));
+  EXPECT_THAT(error_of(with_objects(grid + R"j({"alias": "v", "type": "quadrotor",
+      "mission": {"waypoints": [{"geodetic": [40.8, 14.7, 3], "agl_m": 2}]}})j")),
+              HasSubstr("/objects/2/mission/waypoints/0/agl_m: expected no \"agl_m\" with a geodetic [lat, lon, alt]"));
+  EXPECT_THAT(error_of(R"j({"world": {"geo_reference": {"projection": "utm"}}, "objects": []})j"),
+              HasSubstr("/world/geo_reference/projection: expected one of \"wgs84_enu\""));
+  EXPECT_THAT(error_of(with_objects(grid + R"j({"alias": "v", "type": "quadrotor",
+      "mission": {"gates": [{"name": "s", "rows": [1, 1], "cols": [1, 1]}], "waypoints": [{"position_m": [0, 0, 1]}]}})j")),
+              HasSubstr("/objects/2/mission/gates: expected a mission with \"grid\""));
+  EXPECT_THAT(error_of(with_objects(grid + R"j({"alias": "v", "type": "quadrotor",
+      "mission": {"grid": "g", "gates": [{"name": "s", "rows": [1, 11], "cols": [1, 1]}],
+                  "waypoints": [{"position_m": [0, 0, 1]}]}})j")),
+              HasSubstr("/objects/2/mission/gates/0/rows/1: expected"));
+  EXPECT_THAT(error_of(with_objects(grid + R"j({"alias": "v", "type": "quadrotor",
+      "mission": {"grid": "g", "gates": [{"name": "Slot", "rows": [1, 1], "cols": [1, 1]}],
+                  "waypoints": [{"position_m": [0, 0, 1]}]}})j")),
+              HasSubstr("/objects/2/mission/gates/0/name: expected a name of lower-case letters"));
+  EXPECT_THAT(error_of(with_objects(grid + R"j({"alias": "v", "type": "quadrotor",
+      "mission": {"grid": "g", "gates": [{"name": "s", "rows": [1, 1], "cols": [1, 1]},
+                                         {"name": "s", "rows": [2, 2], "cols": [1, 1]}],
+                  "waypoints": [{"position_m": [0, 0, 1]}]}})j")),
+              HasSubstr("/objects/2/mission/gates/1/name: expected a gate name not used before"));
 }
 
 TEST(SceneLoaderErrors, UnreadableDataFiles) {
