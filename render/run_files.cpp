@@ -32,6 +32,8 @@ std::vector<TrackPoint> read_track(const std::filesystem::path& path) {
   };
   const std::size_t t = column("time_s"), x = column("x_m"), y = column("y_m"), z = column("z_m");
   const std::size_t vx = column("vx_mps"), vy = column("vy_mps"), vz = column("vz_mps");
+  const auto yaw = std::find(header.begin(), header.end(), "yaw_deg");  // optional: older files lack it
+  const std::size_t yaw_column = static_cast<std::size_t>(yaw - header.begin());
   std::vector<TrackPoint> track;
   std::vector<double> fields;
   for (int row = 2; std::getline(in, line); ++row) {
@@ -52,6 +54,7 @@ std::vector<TrackPoint> read_track(const std::filesystem::path& path) {
     p.time_s = fields[t];
     p.position_m = {fields[x], fields[y], fields[z]};
     p.speed_mps = Eigen::Vector3d(fields[vx], fields[vy], fields[vz]).norm();
+    if (yaw_column < header.size()) p.yaw_deg = fields[yaw_column];
     track.push_back(p);
   }
   return track;
