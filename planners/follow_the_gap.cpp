@@ -121,9 +121,29 @@ FollowTheGapStep follow_the_gap_step(const FollowTheGapConfig& config, FollowThe
     g.center_rad = 0.5 * (scan.angle(g.first_beam) + scan.angle(g.last_beam));
     // Near obstacles (large a / d_min) pull the heading toward the gap's centre, far ones toward the goal.
     g.heading_rad = (w * g.center_rad + goal_bearing_rad) / (w + 1.0);
-    if (free_space) {
-      // A goal behind an obstacle would otherwise pull the heading out of the gap, onto the obstacle.
-      const double a1 = scan.angle(g.first_beam), a2 = scan.angle(g.last_beam);
+    double a1 = scan.angle(g.first_beam), a2 = scan.angle(g.last_beam);
+    if (!free_space && !config.grow_gap_edges) {
+      // As 003 §3.6 prints it: the blend is the heading, inside the gap or not.
+    } else if (!free_space) {
+      // 003's point-robot approach (§2.4.2): the obstacles bounding the gap
+      // are grown by R too, not only the nearest one (the bubble). At a range
+      // step the nearer reading is the obstacle's edge; the gap loses the
+      // angle asin(R / d) that edge's growth covers. A bubble or the end of
+      // the field of view bounds it as it is. Without this, the opening past
+      // a box's edge that only a point fits is a gap, straight at the box.
+      const auto edge_growth = [&](int inside, int outside) {
+        if (outside < 0 || outside >= beams || ranges[outside] <= 0.0f) return 0.0;
+        const double d = std::min(ranges[outside], ranges[inside]);
+        return d <= config.bubble_radius_m ? M_PI / 2.0 : std::asin(config.bubble_radius_m / d);
+      };
+      const double step_sign = scan.increment_rad < 0.0 ? -1.0 : 1.0;
+      a1 += step_sign * edge_growth(g.first_beam, g.first_beam - 1);
+      a2 -= step_sign * edge_growth(g.last_beam, g.last_beam + 1);
+      // Grown edges that cross leave no room for the rover: no gap.
+      if (step_sign * (a2 - a1) < 0.0) continue;
+    }
+    // A goal behind an obstacle would otherwise pull the heading out of the gap, onto the obstacle.
+    if (free_space || config.grow_gap_edges) {
       g.heading_rad = std::clamp(g.heading_rad, std::min(a1, a2), std::max(a1, a2));
     }
     g.score = config.k_width * g.width_m * g.mean_range +

@@ -30,6 +30,14 @@ struct FollowTheGapConfig {
   /// than this; the heading stays inside its gap. 0: 003's gaps, every
   /// unblocked run between range steps. m, >= 0
   double free_range_m = 3.5;
+  /// 003's gaps only (free_range_m = 0). true: 003 §2.4.2's point-robot
+  /// approach applied to each gap's edges: the near side of every range step
+  /// bounding a gap is grown by R (the gap loses asin(R / d) there), a gap
+  /// left with no directions is dropped, and phi_gap is clamped to what
+  /// remains. false: the gaps as §3.6 prints them, where only the nearest
+  /// reading is grown, an opening only a point fits is a gap and phi_gap may
+  /// leave its gap (the rover then heads for a box's edge and stands there).
+  bool grow_gap_edges = true;
   double alpha_m = 1.0;             ///< a in phi_gap: weight of the gap centre against the goal, m, >= 0
   double k_width = 1.0;             ///< k1: score per metre of width times normalised depth
   double k_heading = 1.0;           ///< k2: score per radian of alignment with the goal
@@ -91,7 +99,9 @@ double free_distance(double range_m, double offset_rad, double radius_m);
 /// there), and each gap gets
 ///   phi_gap = ((a / d_min) phi_center + phi_goal) / (a / d_min + 1),
 ///   U = k1 L_gap d_gap + k2 (pi - |phi_gap - phi_goal|),
-/// (with free_range_m > 0, phi_gap clamped to the gap's beams)
+/// (with free_range_m > 0, phi_gap clamped to the gap's beams; with 003's
+/// gaps and grow_gap_edges, clamped to the gap less asin(R / d) at each
+/// range-step edge of nearer range d, and gaps left empty dropped)
 /// plus the bonus for the gap overlapping most the previous choice. The best
 /// gap is chosen and remembered; an inactive step forgets the previous one.
 FollowTheGapStep follow_the_gap_step(const FollowTheGapConfig& config, FollowTheGapState& state,

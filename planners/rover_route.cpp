@@ -30,6 +30,7 @@ struct FieldReader {
   void operator()(std::string_view key, double& v, const Range& range) { r.read(key, v, range); }
   void operator()(std::string_view key, int& v, std::int64_t lo, std::int64_t hi) { r.read(key, v, lo, hi); }
   void operator()(std::string_view key, std::uint64_t& v) { r.read_seed(key, v); }
+  void operator()(std::string_view key, bool& v) { r.read(key, v); }
 };
 
 struct FieldWriter {
@@ -37,6 +38,7 @@ struct FieldWriter {
   void operator()(std::string_view key, double v, const Range&) { j[std::string(key)] = v; }
   void operator()(std::string_view key, int v, std::int64_t, std::int64_t) { j[std::string(key)] = v; }
   void operator()(std::string_view key, std::uint64_t v) { j[std::string(key)] = v; }
+  void operator()(std::string_view key, bool v) { j[std::string(key)] = v; }
 };
 
 template <class Visit>
@@ -56,6 +58,7 @@ void fields(FollowTheGapConfig& c, Visit&& f) {
   f("bubble_radius_m", c.bubble_radius_m, Range::positive());
   f("gap_jump_m", c.gap_jump_m, Range::positive());
   f("free_range_m", c.free_range_m, Range::non_negative());
+  f("grow_gap_edges", c.grow_gap_edges);
   f("alpha_m", c.alpha_m, Range::non_negative());
   f("k_width", c.k_width, Range::non_negative());
   f("k_heading", c.k_heading, Range::non_negative());
@@ -255,6 +258,8 @@ class RoverRoutePlanner final : public Planner {
     if (scanner && scanner->fresh && scanner->scan) {
       remember(*scanner->scan, *scanner->config, position);
       assess_scan(*scanner, position, heading);
+      if (!gap_record_.is_null()) result.decisions["gap"] = std::move(gap_record_);
+      gap_record_ = nullptr;
     }
     if (avoiding_ != last_avoiding_) {
       result.decisions["avoiding"] = avoiding_;
@@ -277,6 +282,11 @@ class RoverRoutePlanner final : public Planner {
                      config_.pure_pursuit.max_yaw_rate_rad_s);
       v = config_.avoid_speed_mps * std::max(0.0, std::cos(error));
       if (blocked_ahead_ || std::abs(error) > M_PI / 3.0) v = 0.0;
+      if (blocked_ahead_ && std::abs(error) < kBlockedTurnRad) {
+        // Stopped by an obstacle at one side of the way ahead while the heading is straight on:
+        // turning in place toward that heading would never end. Turn away from the obstacle's side.
+        w = (blocked_left_ ? -1.0 : 1.0) * config_.avoid_turn_gain * kBlockedTurnRad;
+      }
     }
     result.command = guarded(v, w, position, heading);
     return result;
@@ -390,8 +400,11 @@ class RoverRoutePlanner final : public Planner {
       if (!scan.hits[i]) continue;
       const double a = lidar.beams.empty() ? 0.0 : lidar.beams[i].azimuth_deg * M_PI / 180.0;
       const double r = scan.ranges_m[i];
-      const double ahead = r * std::cos(a), lateral = std::abs(r * std::sin(a) + lidar.mount.position_m.y());
-      if (ahead >= 0.0 && lateral <= config_.corridor_half_width_m) nearest_ahead = std::min(nearest_ahead, ahead);
+      const double ahead = r * std::cos(a), lateral = r * std::sin(a) + lidar.mount.position_m.y();
+      if (ahead >= 0.0 && std::abs(lateral) <= config_.corridor_half_width_m && ahead < nearest_ahead) {
+        nearest_ahead = ahead;
+        blocked_left_ = lateral > 0.0;
+      }
     }
     // In the way: a hit near the route ahead, from the rover's route point on for the
     // activation range, not merely ahead of the rover — in a headland turn the row
@@ -432,6 +445,7 @@ class RoverRoutePlanner final : public Planner {
       const FollowTheGapStep gap = follow_the_gap_step(ftg, gap_state_, view, goal_bearing, heading);
       avoid_heading_rad_ = gap.heading_rad;
       blocked_ahead_ = blocked_ahead_ || gap.chosen < 0;
+      record_gap(gap, heading, goal_bearing, from);
     } else {
       // VFH+ on a local grid of this scan's hits around the rover.
       const OccupancyGrid local = scan_grid(scan, position, config_.vfh_plus.window_radius_m + 1.0);
@@ -442,6 +456,28 @@ class RoverRoutePlanner final : public Planner {
         blocked_ahead_ = true;
       }
     }
+  }
+
+  // The chosen gap for the record, its angles relative to the route's
+  // direction at the rover's nearest route point (positive: left of the route).
+  void record_gap(const FollowTheGapStep& gap, double heading, double goal_bearing, std::size_t route_index) {
+    const std::size_t a = std::min(route_index, route_.size() - 2);
+    const Eigen::Vector2d along = route_[a + 1] - route_[a];
+    const double route_heading = std::atan2(along.y(), along.x());
+    const auto relative_deg = [&](double robot_frame_rad) {
+      return wrap_to_pi(robot_frame_rad + heading - route_heading) * 180.0 / M_PI;
+    };
+    nlohmann::json g = {{"route_heading_deg", route_heading * 180.0 / M_PI},
+                        {"goal_deg", relative_deg(goal_bearing)},
+                        {"nearest_range_m", gap.nearest_range_m},
+                        {"gaps", gap.gaps.size()}};
+    if (gap.chosen >= 0) {
+      const ScanGap& chosen = gap.gaps[static_cast<std::size_t>(gap.chosen)];
+      g["gap_heading_deg"] = relative_deg(chosen.heading_rad);
+      g["gap_center_deg"] = relative_deg(chosen.center_rad);
+      g["gap_width_m"] = chosen.width_m;
+    }
+    gap_record_ = std::move(g);
   }
 
   // The first of (v, w), (v/2, w), (v, 0), (0, w), (-kReverseMps, 0), (0, 0) whose motion over
@@ -568,7 +604,10 @@ class RoverRoutePlanner final : public Planner {
   bool last_avoiding_ = false;       ///< as last recorded
   bool blocked_ahead_ = false;       ///< stop and turn in place
   double avoid_heading_rad_ = 0.0;   ///< robot frame, from the latest scan
+  nlohmann::json gap_record_;        ///< follow-the-gap's choice on the latest scan, for the record
+  bool blocked_left_ = false;        ///< the obstacle that stops the rover lies left of its centre line
   static constexpr double kReverseMps = 0.2;
+  static constexpr double kBlockedTurnRad = 0.35;  ///< least heading error turned for when stopped (20 deg)
   std::vector<Eigen::Vector2d> recent_points_;  ///< scan hits near the rover, world frame
   std::unordered_set<std::int64_t> cells_;      ///< scratch: 5 cm cells of recent_points_
 };

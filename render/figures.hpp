@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
 #include "sim/scene.hpp"
@@ -20,6 +21,7 @@ struct TrackPoint {
   double time_s = 0.0;
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
   double speed_mps = 0.0;
+  double yaw_deg = 0.0;  ///< heading, counter-clockwise from x (east); 0 when the file has no yaw
 };
 
 /// A planner's reconstructed height map (decisions "height_map_grid", then
@@ -58,6 +60,9 @@ struct FigureStyle {
   double margin_m = 3.0;     ///< around the runs' paths and waypoints, >= 0
   std::string title;         ///< empty: one made from the run's label and outcome
   TrackColoring coloring = TrackColoring::time;
+  /// Maps only: when set, exactly this area (x, y in metres) is drawn, and
+  /// margin_m is not added (panels of one sequence share one frame).
+  std::optional<Eigen::AlignedBox2d> bounds_m;
 };
 
 /// Bands around the plot of map, overlay and side-view figures, pixels: the
@@ -118,6 +123,23 @@ FigureLayout side_view_layout(const Scene& scene, const RunView& run, const Figu
 /// legend entries "label (outcome)"; shared start and goal markers.
 cv::Mat draw_overlay(const Scene& scene, const std::vector<RunView>& runs, const FigureStyle& style = {});
 FigureLayout overlay_layout(const Scene& scene, const std::vector<RunView>& runs, const FigureStyle& style = {});
+
+/// One panel of a sequence figure: the run as it was at `time_s`.
+struct SequencePanel {
+  double time_s = 0.0;
+  std::string caption;                    ///< the panel's title, e.g. "(a) 6.0 s: gap on the right"
+  std::optional<double> heading_deg;      ///< world heading to draw as an arrow from the vehicle (a chosen gap)
+};
+
+/// The map of one run at several instants (seed 003 Fig. 46), two panels a
+/// row, all on one frame (the track between the first and the last instant,
+/// the movers there then, plus style.margin_m): in each, the track up to that
+/// instant, every mover where it was then (its path dashed), the vehicle's
+/// footprint (`footprint_m`, length x width, about its track point) at its
+/// recorded heading and, when given, an arrow along heading_deg.
+/// std::invalid_argument when `panels` is empty or the run has no track.
+cv::Mat draw_sequence(const Scene& scene, const RunView& run, const std::vector<SequencePanel>& panels,
+                      const Eigen::Vector2d& footprint_m, const FigureStyle& style = {});
 
 /// Colour of a run in overlays: a fixed qualitative palette, cycled (BGR).
 cv::Scalar run_color(std::size_t index);

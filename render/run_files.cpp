@@ -22,11 +22,15 @@ std::vector<TrackPoint> read_track(const std::filesystem::path& path) {
   const std::vector<double>& t = table.column("time_s");
   const std::vector<double>&x = table.column("x_m"), &y = table.column("y_m"), &z = table.column("z_m");
   const std::vector<double>&vx = table.column("vx_mps"), &vy = table.column("vy_mps"), &vz = table.column("vz_mps");
+  // Optional: older files lack it.
+  const auto yaw_at = std::find(table.header.begin(), table.header.end(), "yaw_deg");
+  const std::vector<double>* yaw = yaw_at == table.header.end() ? nullptr : &table.columns[yaw_at - table.header.begin()];
   std::vector<TrackPoint> track(t.size());
   for (std::size_t i = 0; i < t.size(); ++i) {
     track[i].time_s = t[i];
     track[i].position_m = {x[i], y[i], z[i]};
     track[i].speed_mps = Eigen::Vector3d(vx[i], vy[i], vz[i]).norm();
+    if (yaw) track[i].yaw_deg = (*yaw)[i];
   }
   return track;
 }

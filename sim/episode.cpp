@@ -198,7 +198,7 @@ CrossTrack cross_track_error(std::span<const TrajectorySample> trajectory, std::
   std::optional<RouteDistance> route;
   const nlohmann::json* pending = nullptr;  // the latest planned path, built when a sample needs it
   std::size_t e = 0;
-  double sum_squares = 0.0, max_squared = 0.0;
+  double sum = 0.0, sum_squares = 0.0, max_squared = 0.0;
   for (const TrajectorySample& s : trajectory) {
     for (; e < events.size() && events[e].time_s <= s.time_s; ++e) {
       const nlohmann::json& d = events[e].decisions;
@@ -213,12 +213,14 @@ CrossTrack cross_track_error(std::span<const TrajectorySample> trajectory, std::
     }
     if (!route) continue;
     const double d2 = route->squared_distance(s.state.position_m.head<2>());
+    sum += std::sqrt(d2);
     sum_squares += d2;
     max_squared = std::max(max_squared, d2);
     ++result.samples;
   }
   if (result.samples > 0) {
     result.rms_m = std::sqrt(sum_squares / static_cast<double>(result.samples));
+    result.mean_m = sum / static_cast<double>(result.samples);
     result.max_m = std::sqrt(max_squared);
   }
   return result;
@@ -271,6 +273,7 @@ nlohmann::json to_json(const EpisodeMetrics& m) {
       {"replan_time_ms_median", m.replan_time_ms_median},
       {"replan_time_ms_max", m.replan_time_ms_max},
       {"cross_track_rms_m", m.cross_track_rms_m},
+      {"cross_track_mean_m", m.cross_track_mean_m},
       {"cross_track_max_m", m.cross_track_max_m},
       {"avoiding_time_s", m.avoiding_time_s},
   };
@@ -474,6 +477,7 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
   count_decisions(result.events, m);
   const CrossTrack cross_track = cross_track_error(result.trajectory, result.events);
   m.cross_track_rms_m = cross_track.rms_m;
+  m.cross_track_mean_m = cross_track.mean_m;
   m.cross_track_max_m = cross_track.max_m;
   m.avoiding_time_s = avoiding_time(result.events, m.sim_time_s);
   route_metrics(def, start, result.trajectory, reached_sample, m);

@@ -76,10 +76,11 @@ struct EpisodeMetrics {
   double replan_time_ms_max = 0.0;     ///< measured
   /// Horizontal (x, y) distance of the vehicle, at every trajectory sample,
   /// to the route in force then: the latest "planned_path" recorded at or
-  /// before the sample, as a polyline. Root mean square and maximum over the
-  /// samples that have a route (cross_track_error); zero when the planner
-  /// records no planned path.
+  /// before the sample, as a polyline. Root mean square, mean and maximum
+  /// over the samples that have a route (cross_track_error); zero when the
+  /// planner records no planned path.
   double cross_track_rms_m = 0.0;
+  double cross_track_mean_m = 0.0;
   double cross_track_max_m = 0.0;
   /// Simulated time spent in local obstacle avoidance: from each "avoiding":
   /// true to the next "avoiding": false, or to the end of the run (avoiding_time).
@@ -113,6 +114,7 @@ struct PlannerEvent {
 /// Cross-track error of a trajectory against the routes its planner recorded.
 struct CrossTrack {
   double rms_m = 0.0;
+  double mean_m = 0.0;
   double max_m = 0.0;
   std::size_t samples = 0;  ///< samples measured: those with a route in force
 };

@@ -236,6 +236,104 @@ std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, 
   return written;
 }
 
+namespace {
+
+// A follow-the-gap decision of a rover_route run ("gap" event).
+struct GapDecision {
+  double time_s = 0.0;
+  std::optional<double> relative_deg;  // chosen gap's heading relative to the route, positive left
+  std::optional<double> center_deg;    // its centre, the same way: which side of the route the opening is
+  double route_heading_deg = 0.0;
+};
+
+std::vector<GapDecision> gap_decisions(const RecordedRun& run) {
+  std::vector<GapDecision> out;
+  try {
+    for (const auto& event : run.record.value("events", nlohmann::json::array())) {
+      const auto& d = event.at("decisions");
+      const auto g = d.find("gap");
+      if (g == d.end()) continue;
+      GapDecision decision;
+      decision.time_s = event.at("time_s").get<double>();
+      decision.route_heading_deg = g->at("route_heading_deg").get<double>();
+      if (g->contains("gap_heading_deg")) decision.relative_deg = (*g)["gap_heading_deg"].get<double>();
+      if (g->contains("gap_center_deg")) decision.center_deg = (*g)["gap_center_deg"].get<double>();
+      out.push_back(decision);
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(record_file(run), "/events", std::string("malformed gap decision: ") + e.what());
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> gap_switch_instants(const RecordedRun& run) {
+  const std::vector<GapDecision> gaps = gap_decisions(run);
+  const auto chosen =
+      std::find_if(gaps.begin(), gaps.end(), [](const GapDecision& g) { return g.center_deg.has_value(); });
+  if (chosen == gaps.end()) {
+    throw InputError(record_file(run), "/events", "no follow-the-gap decision with a chosen gap (\"gap\" events)");
+  }
+  // Sides by the gap's centre: the heading is blended toward the goal and may cross the route.
+  const bool left_first = *chosen->center_deg > 0.0;
+  const auto other = std::find_if(chosen, gaps.end(), [&](const GapDecision& g) {
+    return g.center_deg && (*g.center_deg > 0.0) != left_first;
+  });
+  if (other == gaps.end()) {
+    throw InputError(record_file(run), "/events", "the chosen gap never changed sides; give the instants with --at");
+  }
+  // Back on the route: 2 s after the avoidance the switch belongs to ended (else the last gap decision).
+  double end = gaps.back().time_s;
+  for (const auto& [from, until] : run.view.avoiding_s) {
+    if (from <= other->time_s && until >= other->time_s) end = until + 2.0;
+  }
+  if (!run.view.track.empty()) end = std::min(end, run.view.track.back().time_s);
+  return {chosen->time_s, 0.5 * (chosen->time_s + other->time_s), other->time_s, end};
+}
+
+std::filesystem::path write_sequence(const RecordedRun& run, std::vector<double> times_s,
+                                     const std::filesystem::path& out_dir) {
+  if (times_s.empty()) times_s = gap_switch_instants(run);
+  const std::vector<GapDecision> gaps = gap_decisions(run);
+  std::vector<SequencePanel> panels;
+  for (std::size_t i = 0; i < times_s.size(); ++i) {
+    SequencePanel panel;
+    panel.time_s = times_s[i];
+    std::ostringstream caption;
+    caption << "(" << static_cast<char>('a' + i % 26) << ") " << std::fixed << std::setprecision(1) << panel.time_s
+            << " s";
+    // The latest gap decision at or before the instant, if avoidance was on then.
+    const GapDecision* latest = nullptr;
+    for (const GapDecision& g : gaps) {
+      if (g.time_s <= panel.time_s + 1e-9) latest = &g;
+    }
+    const bool avoiding = std::any_of(run.view.avoiding_s.begin(), run.view.avoiding_s.end(), [&](const auto& a) {
+      return a.first <= panel.time_s && panel.time_s < a.second;
+    });
+    if (latest && latest->relative_deg && latest->center_deg && avoiding) {
+      const double rel = *latest->relative_deg;
+      caption << " - gap on the " << (*latest->center_deg > 0.0 ? "left" : "right") << ", heading " << std::showpos
+              << std::setprecision(0) << rel << std::noshowpos << " deg (arrow)";
+      panel.heading_deg = latest->route_heading_deg + rel;
+    } else {
+      caption << " - following the route";
+    }
+    panel.caption = caption.str();
+    panels.push_back(std::move(panel));
+  }
+  // The chassis as the run's vehicle parameters give it (rover), else 1.5 m x 1.0 m (003 §3.1).
+  Eigen::Vector2d footprint(1.5, 1.0);
+  const auto size = "/parameters/vehicle/params/chassis_size_m"_json_pointer;
+  if (run.record.contains(size) && run.record.at(size).is_array() && run.record.at(size).size() >= 2) {
+    footprint = {run.record.at(size).at(0).get<double>(), run.record.at(size).at(1).get<double>()};
+  }
+  FigureStyle style;
+  style.max_size_px = 700;
+  style.margin_m = 1.5;
+  return write_png(draw_sequence(run.scene, run.view, panels, footprint, style), out_dir / "sequence.png");
+}
+
 std::filesystem::path write_overlay(const std::vector<RecordedRun>& runs, const std::filesystem::path& out_dir) {
   std::vector<RunView> views;
   for (const auto& r : runs) views.push_back(r.view);

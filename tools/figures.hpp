@@ -40,6 +40,19 @@ std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::opt
 std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, const std::vector<ReplanStep>& steps,
                                                         const std::filesystem::path& out_dir);
 
+/// The instants of a sequence figure picked from a rover_route run's
+/// follow-the-gap decisions ("gap" events): (a) the first chosen gap, (c) the
+/// first one whose centre lies on the other side of the route, (b) half way
+/// between, (d) 2 s after that avoidance ended (or the last gap decision);
+/// InputError when the chosen gap never changed sides.
+std::vector<double> gap_switch_instants(const RecordedRun& run);
+
+/// The map of a run at `times_s` (2 x 2 for four; gap_switch_instants when
+/// empty), each panel captioned with its letter, time and the gap chosen
+/// then, written to out_dir/sequence.png.
+std::filesystem::path write_sequence(const RecordedRun& run, std::vector<double> times_s,
+                                     const std::filesystem::path& out_dir);
+
 /// Several runs on one map, written to out_dir/overlay.png.
 std::filesystem::path write_overlay(const std::vector<RecordedRun>& runs, const std::filesystem::path& out_dir);
 

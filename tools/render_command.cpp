@@ -17,6 +17,7 @@ struct RenderOptions {
   std::vector<std::string> runs;
   std::vector<std::string> kinds{"map", "side"};
   std::vector<std::string> steps;  // --step: replanning step numbers or "all"
+  std::vector<double> at_s;        // --at: instants of --kind sequence
   std::string out;
 };
 
@@ -37,6 +38,9 @@ std::optional<std::vector<int>> parse_steps(const std::vector<std::string>& valu
 
 int run_render(const RenderOptions& o) {
   const bool replan_steps = !o.steps.empty();
+  if (!o.at_s.empty() && std::find(o.kinds.begin(), o.kinds.end(), "sequence") == o.kinds.end()) {
+    throw InputError("command line", "--at", "gives the instants of --kind sequence; add --kind sequence");
+  }
   if (replan_steps && std::find(o.kinds.begin(), o.kinds.end(), "depth") == o.kinds.end()) {
     throw InputError("command line", "--step", "draws replanning steps of --kind depth; add --kind depth");
   }
@@ -59,6 +63,10 @@ int run_render(const RenderOptions& o) {
       const RecordedRun& run = runs[i];
       const std::filesystem::path out = o.out.empty() ? run.dir : std::filesystem::path(o.out) / run.dir.filename();
       std::filesystem::create_directories(out);
+      if (kind == "sequence") {
+        std::cout << "wrote " << write_sequence(run, o.at_s, out).string() << "\n";
+        continue;
+      }
       const auto files = kind == "depth" && replan_steps ? write_replan_figures(run, steps[i], out)
                                                          : write_figure(run, kind, out);
       for (const auto& file : files) std::cout << "wrote " << file.string() << "\n";
@@ -72,12 +80,18 @@ int run_render(const RenderOptions& o) {
 Command add_render(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   app.add_option("runs", o->runs, "Run directories written by campo run")->required()->check(CLI::ExistingDirectory);
-  app.add_option("--kind", o->kinds, "Figures to draw: map, side, heightmap (mapping planners), depth, snapshot, overlay (repeatable)")
-      ->check(CLI::IsMember({"map", "side", "heightmap", "depth", "snapshot", "overlay"}))
+  app.add_option("--kind", o->kinds,
+                 "Figures to draw: map, side, heightmap (mapping planners), depth, snapshot, overlay, sequence "
+                 "(repeatable)")
+      ->check(CLI::IsMember({"map", "side", "heightmap", "depth", "snapshot", "overlay", "sequence"}))
       ->capture_default_str();
   app.add_option("--step", o->steps,
                  "With --kind depth: draw replanning step K of a depth_reactive run instead of the recorded depth "
                  "maps (repeatable; \"all\" for every step)");
+  app.add_option("--at", o->at_s,
+                 "With --kind sequence: an instant to draw, simulated seconds (repeatable; default: four instants "
+                 "around the first side switch of follow-the-gap's chosen gap)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--out", o->out,
                  "Output directory (default: each run's own directory; for overlay, the current directory)");
   app.footer(
@@ -88,9 +102,11 @@ Command add_render(CLI::App& app) {
       "replanning step K read (replans/), next to the dilated and thresholded maps recomputed from the\n"
       "recorded planner parameters, with W', its safety sphere, the chosen pixel, the scan line and the\n"
       "new waypoint. snapshot: a perspective colour view rendered off-screen with OSMesa. overlay: every\n"
-      "run given on one map, one colour each.\n"
+      "run given on one map, one colour each. sequence: the map at several instants, 2 x 2 (seed 003\n"
+      "Fig. 46): track so far, movers where they were, the rover and follow-the-gap's chosen direction.\n"
       "Examples: campo render out/run1 out/run2 out/run3 --kind overlay --out figures\n"
-      "          campo render out/run1 --kind depth --step 0 --step 3");
+      "          campo render out/run1 --kind depth --step 0 --step 3\n"
+      "          campo render out/gap --kind sequence --at 6 --at 9 --at 12 --at 16");
   return [o] { return run_render(*o); };
 }
 

@@ -45,9 +45,12 @@ std::vector<float> wall_scan(double distance_m, const std::vector<std::pair<doub
   });
 }
 
-// 003's gaps (every unblocked run between range steps): the synthetic
-// openings below are slits a point robot takes, narrower than a rover.
-constexpr FollowTheGapConfig k003{.free_range_m = 0.0};
+// 003's gaps as §3.6 prints them (every unblocked run between range steps,
+// only the nearest reading grown): the synthetic openings below are slits a
+// point robot takes, narrower than a rover.
+constexpr FollowTheGapConfig k003{.free_range_m = 0.0, .grow_gap_edges = false};
+// 003's gaps with the point-robot approach of §2.4.2 on their edges.
+constexpr FollowTheGapConfig k003Grown{.free_range_m = 0.0};
 
 FollowTheGapStep step_on(const std::vector<float>& ranges, double goal_bearing_rad,
                          const FollowTheGapConfig& config = k003) {
@@ -335,6 +338,30 @@ TEST(FollowTheGap, FreeSpaceGapsFindThePassageBesideABoxBetweenRows) {
   EXPECT_GE(std::hypot(3.0, 0.3) * std::sin(off), 0.8);
   // ...where 003's gaps split the walls into runs at every range step.
   EXPECT_GT(step_on(ranges, 0.0).gaps.size(), 5u);
+}
+
+// Between vine rows, 003's gaps as printed: the bubble grows the canopy
+// beside the rover (the nearest reading), not the box, so the box's face and
+// the slit past its corner, which only a point fits, are gaps, and the blended
+// heading points at the box. With the gaps' edges grown by R no chosen
+// heading passes the box's corner nearer than R.
+TEST(FollowTheGap, With003GapsGrownAtTheirEdgesTheHeadingClearsTheBoxByR) {
+  const std::vector<float> ranges = inter_row_with_box();
+  const double corner = std::atan2(-0.3, 3.0);  // the box's near left corner, 3 m ahead, 0.3 m right
+  const auto clearance = [&](double heading) { return std::hypot(3.0, 0.3) * std::sin(heading - corner); };
+  const FollowTheGapStep printed = step_on(ranges, 0.0, k003);
+  ASSERT_GE(printed.chosen, 0);
+  EXPECT_LT(clearance(printed.heading_rad), 0.8);  // straight on, 0.3 m from the corner
+  const FollowTheGapStep grown = step_on(ranges, 0.0, k003Grown);
+  ASSERT_GE(grown.chosen, 0);
+  EXPECT_GE(clearance(grown.heading_rad), 0.8 - 1e-9);
+  // Every gap left keeps its heading inside its beams and R off each range-step edge.
+  for (const ScanGap& g : grown.gaps) {
+    EXPECT_LE(g.heading_rad, scan_angle(g.first_beam) + 1e-12);
+    EXPECT_GE(g.heading_rad, scan_angle(g.last_beam) - 1e-12);
+  }
+  // Fewer gaps: the single beams along the canopy walls between range steps are gone.
+  EXPECT_LT(grown.gaps.size(), printed.gaps.size());
 }
 
 TEST(FollowTheGap, FreeSpaceRejectsAnOpeningNarrowerThanTheRover) {

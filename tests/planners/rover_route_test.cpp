@@ -1,5 +1,9 @@
 #include "planners/rover_route.hpp"
 
+#include <algorithm>
+#include <fstream>
+#include <limits>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -169,6 +173,143 @@ TEST(RoverRouteClosedLoop, AStarAsTheGlobalPlanner) {
   EXPECT_LT(r.metrics.cross_track_rms_m, 0.1);
   EXPECT_LT(r.metrics.cross_track_max_m, 0.4);
   EXPECT_EQ(r.events.front().decisions["replan"]["global"], "astar");
+}
+
+// ---------------------------------------------------------------- seed 003 Fig. 45 and Fig. 46
+
+// Avoidance episodes [on, off] (s), from the "avoiding" decisions.
+std::vector<std::pair<double, double>> avoidance_episodes(const EpisodeResult& r) {
+  std::vector<std::pair<double, double>> out;
+  double on = -1.0;
+  for (const PlannerEvent& e : r.events) {
+    if (!e.decisions.contains("avoiding")) continue;
+    if (e.decisions["avoiding"].get<bool>()) {
+      on = e.time_s;
+    } else if (on >= 0.0) {
+      out.emplace_back(on, e.time_s);
+      on = -1.0;
+    }
+  }
+  if (on >= 0.0) out.emplace_back(on, r.metrics.sim_time_s);
+  return out;
+}
+
+// Cross-track error (against the route the planner recorded) of the samples between t0 and t1.
+CrossTrack cross_track_between(const EpisodeResult& r, double t0, double t1) {
+  const auto from =
+      std::find_if(r.trajectory.begin(), r.trajectory.end(), [&](const auto& s) { return s.time_s >= t0; });
+  const auto to = std::find_if(from, r.trajectory.end(), [&](const auto& s) { return s.time_s > t1; });
+  return cross_track_error({&*from, static_cast<std::size_t>(to - from)}, r.events);
+}
+
+// Closest approach (x, y) of the rover's centre to a point while avoiding, m.
+double nearest_while_avoiding(const EpisodeResult& r, const Eigen::Vector2d& point) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& [on, off] : avoidance_episodes(r)) {
+    for (const TrajectorySample& s : r.trajectory) {
+      if (s.time_s >= on && s.time_s <= off) best = std::min(best, (s.state.position_m.head<2>() - point).norm());
+    }
+  }
+  return best;
+}
+
+// Seed 003 Fig. 45 (scenes/vineyard_obstacles.json): a box in the first
+// inter-row, one on the headland turn and a cluster of three in the second
+// inter-row, all in the route's way; follow-the-gap steers round each and
+// pure pursuit brings the rover back onto the route after each.
+void expect_fig45_obstacles_avoided(const EpisodeResult& r, double max_avoiding_s) {
+  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+  EXPECT_EQ(testing::waypoints_reached(r), 4);
+  EXPECT_EQ(r.metrics.collisions, 0);
+  EXPECT_GT(r.metrics.min_clearance_m, 0.05);  // true clearance of chassis and wheels
+  EXPECT_LT(r.metrics.avoiding_time_s, max_avoiding_s);
+  // Each obstacle was avoided: the rover came within 3 m of it while the local planner steered.
+  for (const auto& [name, at] : {std::pair{"box_row", Eigen::Vector2d(-0.5, -6.0)},
+                                 std::pair{"box_turn", Eigen::Vector2d(2.5, 19.0)},
+                                 std::pair{"cluster", Eigen::Vector2d(4.2, 3.0)}}) {
+    EXPECT_LT(nearest_while_avoiding(r, at), 3.0) << name;
+  }
+  // Back on the route after every avoidance: within 0.1 m of it before the
+  // next one starts (or the run ends), and no avoidance of the three lasts long.
+  const auto episodes = avoidance_episodes(r);
+  ASSERT_GE(episodes.size(), 3u);
+  for (std::size_t i = 0; i < episodes.size(); ++i) {
+    const double next = i + 1 < episodes.size() ? episodes[i + 1].first : r.metrics.sim_time_s;
+    if (next - episodes[i].second < 2.0) continue;  // a flicker of the corridor test, the same obstacle
+    const CrossTrack after = cross_track_between(r, next - 1.0, next);
+    EXPECT_LT(after.max_m, 0.1) << "before " << next << " s";
+  }
+}
+
+TEST(RoverRouteClosedLoop, Fig45ObstaclesOnTheRouteAreAvoidedAndTheRouteRejoined) {
+  const EpisodeResult r = testing::run_bundled("vineyard_obstacles", "rover_route");
+  expect_fig45_obstacles_avoided(r, 60.0);
+  EXPECT_LT(r.metrics.cross_track_max_m, 1.6);  // the widest detour: round the cluster
+}
+
+// 003's own gaps (range steps, free_range_m 0): the rover headed for the
+// box's corner, stopped there and turned in place toward a heading straight
+// on, forever (on this scene from 7.6 s to 813 s behind the first box, then at
+// the headland box until the 900 s limit). Now its gaps' edges are grown by R
+// and, stopped with the heading straight on, it turns away from the obstacle.
+TEST(RoverRouteClosedLoop, Fig45With003GapsDoesNotStandBehindTheBoxes) {
+  const EpisodeResult r = testing::run_bundled("vineyard_obstacles", "rover_route",
+                                               {"/objects/rover/planner/params/follow_the_gap/free_range_m=0"});
+  expect_fig45_obstacles_avoided(r, 60.0);
+  for (const auto& [on, off] : avoidance_episodes(r)) EXPECT_LT(off - on, 30.0) << "from " << on << " s";
+}
+
+// The same on the bundled vineyard's 12 boxes (before: 608 s, 344 s of it avoiding).
+TEST(RoverRouteClosedLoop, FollowTheGapWith003GapsGetsPastTheBundledBoxes) {
+  const EpisodeResult r =
+      drive({kFollowTheGap, kWalkerAway, "/objects/rover/planner/params/follow_the_gap/free_range_m=0"});
+  expect_route_driven(r, "boxes, 003's gaps", 0.0, 1.25);
+  EXPECT_LT(r.metrics.avoiding_time_s, 100.0);
+}
+
+// Seed 003 Fig. 46 (scenes/vineyard_gap.json): a person on the left of the
+// route; follow-the-gap first takes the opening on the right (a); the person
+// walks right across the route (b), cutting it off, and the rover switches to
+// the opening on the left (c), passes behind the person and rejoins the route (d).
+TEST(RoverRouteClosedLoop, Fig46SwitchesToTheLeftGapWhenTheWalkerCutsOffTheRight) {
+  const EpisodeResult r = testing::run_bundled("vineyard_gap", "rover_route");
+  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+  EXPECT_EQ(r.metrics.collisions, 0);
+  EXPECT_GT(r.metrics.min_clearance_m, 0.3);
+  // The chosen gaps, their centres and headings relative to the route (positive left).
+  struct Choice {
+    double t, center_deg, heading_deg;
+  };
+  std::vector<Choice> choices;
+  for (const PlannerEvent& e : r.events) {
+    if (!e.decisions.contains("gap") || !e.decisions["gap"].contains("gap_center_deg")) continue;
+    const auto& g = e.decisions["gap"];
+    choices.push_back({e.time_s, g["gap_center_deg"].get<double>(), g["gap_heading_deg"].get<double>()});
+  }
+  ASSERT_FALSE(choices.empty());
+  // (a) right first, while the person stands (walks from 8 s).
+  EXPECT_LT(choices.front().center_deg, 0.0);
+  EXPECT_LT(choices.front().heading_deg, 0.0);
+  EXPECT_LT(choices.front().t, 8.0);
+  // (c) the first opening on the left comes after the person set off, heading left.
+  const auto left = std::find_if(choices.begin(), choices.end(), [](const Choice& c) { return c.center_deg > 0.0; });
+  ASSERT_NE(left, choices.end());
+  EXPECT_GT(left->t, 8.0);
+  EXPECT_GT(left->heading_deg, 0.0);
+  // ...and the rover keeps to the left opening: no later choice is right of the route.
+  for (auto c = left; c != choices.end(); ++c) EXPECT_GT(c->center_deg, 0.0) << "at " << c->t << " s";
+  // (d) it passed behind (north of, left of) the person, then back onto the route.
+  const Scene scene = [] {
+    const std::string file = std::string(CAMPO_SOURCE_DIR) + "/scenes/vineyard_gap.json";
+    return parse_scene(nlohmann::json::parse(std::ifstream(file)), file, CAMPO_SOURCE_DIR);
+  }();
+  const Mover& walker = scene.movers.front();
+  const auto passing = std::find_if(r.trajectory.begin(), r.trajectory.end(), [&](const TrajectorySample& s) {
+    return s.state.position_m.x() >= walker.path_m.front().x();
+  });
+  ASSERT_NE(passing, r.trajectory.end());
+  EXPECT_GT(passing->state.position_m.y(), walker.position_at(passing->time_s).y() + 0.8);
+  EXPECT_LT(cross_track_between(r, r.metrics.sim_time_s - 3.0, r.metrics.sim_time_s).max_m, 0.1);
 }
 
 }  // namespace

@@ -181,7 +181,7 @@ TEST_F(EpisodeTest, MetricsJsonUsesTheDocumentedNames) {
   const nlohmann::json j = to_json(run_episode(scene_with(), &make_point, &make_follower).metrics);
   for (const char* key : {"outcome", "reason", "sim_time_s", "wall_time_s", "path_length_m", "path_ratio",
                           "min_clearance_m", "collisions", "planner_time_ms_mean", "planner_time_ms_max",
-                          "cross_track_rms_m", "cross_track_max_m", "avoiding_time_s"}) {
+                          "cross_track_rms_m", "cross_track_mean_m", "cross_track_max_m", "avoiding_time_s"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_EQ(j["outcome"], "reached");
@@ -307,6 +307,7 @@ TEST(CrossTrackError, MeasuresEachSampleAgainstTheRouteInForce) {
   const CrossTrack c = cross_track_error(trajectory, events);
   EXPECT_EQ(c.samples, 3u);
   EXPECT_NEAR(c.rms_m, std::sqrt((9.0 + 25.0 + 16.0) / 3.0), 1e-12);
+  EXPECT_NEAR(c.mean_m, (3.0 + 5.0 + 4.0) / 3.0, 1e-12);
   EXPECT_NEAR(c.max_m, 5.0, 1e-12);
 }
 
