@@ -32,7 +32,7 @@ struct DepthReactiveConfig {
   int layers = 18;                    ///< n of DilataMappa (0.56 m deep each over 10 m)
   StructuringShape structuring_element = StructuringShape::square;
   LayerRadii layer_radii = LayerRadii::margin;
-  double dilation_margin_m = 0.4;     ///< margin kept around obstacles (layer_radii margin): about the vehicle's half-width
+  double dilation_margin_m = 0.55;    ///< margin kept around obstacles (layer_radii margin): the drone as a point (below)
   double dilation_radius_deg = 17.2;  ///< r as an angle (layer_radii as_printed; seed 000: 49 px at 256 px over 90 deg)
   double altitude_penalty = 1.0;      ///< k of TrovaWP's cost, per pixel of altitude change
   double threshold_cap = 0.9;         ///< cap of TrovaWP's threshold t
@@ -41,6 +41,10 @@ struct DepthReactiveConfig {
   double yaw_tolerance_deg = 3.0;     ///< ControllaRotazione: aligned within this
   double max_elevation_deg = 20.0;    ///< ControllaAltitudine: change altitude until the waypoint is within this elevation
   double monitor_min_range_m = 1.0;   ///< VaiVerso stops checking occlusion this close to the waypoint
+  /// The target is flown to only when also visible with its neighbourhood
+  /// this many pixels wider: VaiVerso's check on the way (plain) must not
+  /// fail as soon as the drone pitches forward and the image shifts.
+  double visible_margin_px = 1.5;
   double wall_scan_deg = 60.0;        ///< wall following: look this far either side of the goal (000 §4.4.3)
   double wall_turn_step_deg = 20.0;   ///< then turn toward the freer side in these steps
   double wall_sector_deg = 60.0;      ///< width of the navigable sector that must be free
