@@ -313,8 +313,12 @@ class DepthReactivePlanner final : public Planner {
     const auto start = Clock::now();
     const DepthGrid grid = DepthGrid::of(*reading.config);
     const cv::Mat dilated = dilate_depth_map(depth_map(*reading.scan, *reading.config), dilation_params(config_, grid));
+    // The other side of the hysteresis of evaluate(): on the way the
+    // neighbourhood is visible_margin_px narrower than when deciding, so the
+    // image shifting by a pixel or two as the drone pitches does not stop it;
+    // the dilation still keeps the margin around the line of flight.
     const VisibilityCheck check = check_visibility(dilated, grid, reading.scan->sensor_pose.inverse() * entry.position_m,
-                                                   config_.safety_radius_m);
+                                                   config_.safety_radius_m, -config_.visible_margin_px);
     if (check.visibility == Visibility::visible) return;
     // Occluded on the way: stop here and decide again once still.
     nlohmann::json replan = replan_record(reading, *reading.scan, entry, check);

@@ -272,7 +272,7 @@ VisibilityCheck check_visibility(const cv::Mat& dilated, const DepthGrid& grid, 
     c.visibility = Visibility::visible;  // the sensor is inside the safety sphere
     return c;
   }
-  const Eigen::Vector2d radius = projected_radius_px(grid, r, c.waypoint_range_m).array() + extra_px;
+  const Eigen::Vector2d radius = (projected_radius_px(grid, r, c.waypoint_range_m).array() + extra_px).cwiseMax(0.0);
   c.radius_x_px = radius.x();
   c.radius_y_px = radius.y();
   const std::optional<float> m = min_in_ellipse(dilated, c.pixel, radius.x(), radius.y());

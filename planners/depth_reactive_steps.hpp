@@ -101,7 +101,8 @@ struct VisibilityCheck {
 /// which would call every occluded waypoint visible); Unreachable when
 /// |rho_W - m| < r; else Invisible. A waypoint within r of the sensor is
 /// Visible; one whose neighbourhood lies wholly outside the image is Invisible.
-/// `extra_px` widens the neighbourhood by that many pixels (0: Algorithm 2).
+/// `extra_px` widens the neighbourhood by that many pixels (0: Algorithm 2;
+/// negative narrows it, down to the pixel holding W').
 VisibilityCheck check_visibility(const cv::Mat& dilated, const DepthGrid& grid,
                                  const Eigen::Vector3d& waypoint_sensor, double safety_radius_m,
                                  double extra_px = 0.0);
