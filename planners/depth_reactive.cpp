@@ -69,6 +69,9 @@ class DepthReactivePlanner final : public Planner {
       } else {
         result.decisions["reached_waypoints"].push_back(next_target_++);
       }
+      // Stop at the waypoint reached (not where the drone is, still moving,
+      // which would overshoot it by the braking distance) before turning.
+      command_ = command::Hold{top.position_m, o.state.yaw_rad()};
       stack_.pop_back();
       enter(Phase::align, o);
     }
@@ -101,6 +104,7 @@ class DepthReactivePlanner final : public Planner {
             {"yaw_tolerance_deg", c.yaw_tolerance_deg},
             {"max_elevation_deg", c.max_elevation_deg},
             {"monitor_min_range_m", c.monitor_min_range_m},
+            {"visible_margin_px", c.visible_margin_px},
             {"wall_scan_deg", c.wall_scan_deg},
             {"wall_turn_step_deg", c.wall_turn_step_deg},
             {"wall_sector_deg", c.wall_sector_deg},
@@ -175,6 +179,8 @@ class DepthReactivePlanner final : public Planner {
   }
 
   void align(const Observation& o, const SensorReading& reading, PlanResult& result) {
+    // After a waypoint was reached: come to rest on it before turning in place.
+    if (std::holds_alternative<command::Hold>(command_) && !o.stable) return;
     const Eigen::Vector3d w = stack_.back().position_m;
     const Eigen::Vector3d delta = w - o.state.position_m;
     // ControllaAltitudine: the least altitude change that brings W within max_elevation_deg.
@@ -206,9 +212,25 @@ class DepthReactivePlanner final : public Planner {
     const double dilation_ms = elapsed_ms(start);
     const StackEntry entry = stack_.back();
     const Eigen::Isometry3d to_sensor = scan.sensor_pose.inverse();
-    const VisibilityCheck check = check_visibility(dilated, grid, to_sensor * entry.position_m, config_.safety_radius_m);
+    VisibilityCheck check = check_visibility(dilated, grid, to_sensor * entry.position_m, config_.safety_radius_m);
+    // Hysteresis against VaiVerso's check: a target visible only just (its
+    // neighbourhood widened by visible_margin_px holds an obstacle) counts as
+    // invisible, so TrovaWP sets a waypoint clear by the same margin instead
+    // of a flight that stops at the first scan taken while pitched forward.
+    bool marginal = false;
+    if (!entry.temporary && check.visibility == Visibility::visible && config_.visible_margin_px > 0.0 &&
+        check.waypoint_range_m > config_.monitor_min_range_m) {
+      const VisibilityCheck strict = check_visibility(dilated, grid, to_sensor * entry.position_m,
+                                                      config_.safety_radius_m, config_.visible_margin_px);
+      if (strict.visibility != Visibility::visible) {
+        check = strict;
+        check.visibility = Visibility::invisible;
+        marginal = true;
+      }
+    }
 
     nlohmann::json replan = replan_record(reading, scan, entry, check);
+    if (marginal) replan["marginal"] = true;
     std::string action;
     if (check.visibility == Visibility::visible) {
       action = "fly";
@@ -291,8 +313,12 @@ class DepthReactivePlanner final : public Planner {
     const auto start = Clock::now();
     const DepthGrid grid = DepthGrid::of(*reading.config);
     const cv::Mat dilated = dilate_depth_map(depth_map(*reading.scan, *reading.config), dilation_params(config_, grid));
+    // The other side of the hysteresis of evaluate(): on the way the
+    // neighbourhood is visible_margin_px narrower than when deciding, so the
+    // image shifting by a pixel or two as the drone pitches does not stop it;
+    // the dilation still keeps the margin around the line of flight.
     const VisibilityCheck check = check_visibility(dilated, grid, reading.scan->sensor_pose.inverse() * entry.position_m,
-                                                   config_.safety_radius_m);
+                                                   config_.safety_radius_m, -config_.visible_margin_px);
     if (check.visibility == Visibility::visible) return;
     // Occluded on the way: stop here and decide again once still.
     nlohmann::json replan = replan_record(reading, *reading.scan, entry, check);
@@ -388,6 +414,7 @@ DepthReactiveConfig parse_depth_reactive_config(const ParamsBlock& params) {
   r.read("yaw_tolerance_deg", c.yaw_tolerance_deg, Range::closed(0.1, 45.0));
   r.read("max_elevation_deg", c.max_elevation_deg, Range::closed(1.0, 80.0));
   r.read("monitor_min_range_m", c.monitor_min_range_m, Range::non_negative());
+  r.read("visible_margin_px", c.visible_margin_px, Range::closed(0.0, 100.0));
   r.read("wall_scan_deg", c.wall_scan_deg, Range::closed(1.0, 180.0));
   r.read("wall_turn_step_deg", c.wall_turn_step_deg, Range::closed(1.0, 180.0));
   r.read("wall_sector_deg", c.wall_sector_deg, Range::closed(1.0, 360.0));
@@ -400,11 +427,10 @@ DepthReactiveConfig parse_depth_reactive_config(const ParamsBlock& params) {
 }
 
 DilationParams dilation_params(const DepthReactiveConfig& c, const DepthGrid& grid) {
+  if (c.layer_radii == LayerRadii::margin) return margin_layers(c.dilation_margin_m, grid, c.structuring_element);
   return {c.structuring_element,
-          c.layer_radii == LayerRadii::margin
-              ? margin_layer_radii(c.layers, c.dilation_margin_m, grid)
-              : printed_layer_radii(c.layers, c.dilation_radius_deg / grid.deg_per_col(),
-                                    c.dilation_radius_deg / grid.deg_per_row())};
+          printed_layer_radii(c.layers, c.dilation_radius_deg / grid.deg_per_col(), c.dilation_radius_deg / grid.deg_per_row()),
+          {}};
 }
 
 FindWaypointParams find_waypoint_params(const DepthReactiveConfig& c) {

@@ -32,7 +32,11 @@ struct DepthReactiveConfig {
   int layers = 18;                    ///< n of DilataMappa (0.56 m deep each over 10 m)
   StructuringShape structuring_element = StructuringShape::square;
   LayerRadii layer_radii = LayerRadii::margin;
-  double dilation_margin_m = 0.4;     ///< margin kept around obstacles (layer_radii margin): about the vehicle's half-width
+  /// Margin kept around obstacles (layer_radii margin), so that the drone
+  /// flies as a point: the bounding radius of the quadrotor's collision box
+  /// (0.6 x 0.6 x 0.12 m: half-diagonal 0.43 m) plus 0.07 m for tracking
+  /// error; rounding the dilation up to whole pixels adds up to a pixel more.
+  double dilation_margin_m = 0.5;
   double dilation_radius_deg = 17.2;  ///< r as an angle (layer_radii as_printed; seed 000: 49 px at 256 px over 90 deg)
   double altitude_penalty = 1.0;      ///< k of TrovaWP's cost, per pixel of altitude change
   double threshold_cap = 0.9;         ///< cap of TrovaWP's threshold t
@@ -41,6 +45,11 @@ struct DepthReactiveConfig {
   double yaw_tolerance_deg = 3.0;     ///< ControllaRotazione: aligned within this
   double max_elevation_deg = 20.0;    ///< ControllaAltitudine: change altitude until the waypoint is within this elevation
   double monitor_min_range_m = 1.0;   ///< VaiVerso stops checking occlusion this close to the waypoint
+  /// Hysteresis of ControllaVisibilita: the target is flown to only when also
+  /// visible with its neighbourhood this many pixels wider, and VaiVerso's
+  /// check on the way uses a neighbourhood this many pixels narrower, so a
+  /// flight does not stop as soon as the drone pitches forward and the image shifts.
+  double visible_margin_px = 1.5;
   double wall_scan_deg = 60.0;        ///< wall following: look this far either side of the goal (000 §4.4.3)
   double wall_turn_step_deg = 20.0;   ///< then turn toward the freer side in these steps
   double wall_sector_deg = 60.0;      ///< width of the navigable sector that must be free

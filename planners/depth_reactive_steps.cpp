@@ -128,24 +128,77 @@ std::vector<cv::Size> printed_layer_radii(int layers, double max_radius_x_px, do
 std::vector<cv::Size> margin_layer_radii(int layers, double margin_m, const DepthGrid& grid) {
   std::vector<cv::Size> radii;
   for (int s = 1; s <= layers; ++s) {
-    const double near_m = (s - 0.5) / layers * grid.max_range_m;
+    // The layer's nearest depth, where the margin spans the widest angle, and
+    // whole pixels rounded up: an obstacle anywhere in the layer is grown by
+    // at least margin_m. The edge of an obstacle lies between the last pixel
+    // centre that hit it and the next, so a free pixel centre r pixels beyond
+    // the dilation is still r pixels (at least the margin) from the obstacle.
+    const double near_m = (s - 1.0) / layers * grid.max_range_m;
     const double deg = std::atan2(margin_m, near_m) * kRadToDeg;
-    radii.emplace_back(static_cast<int>(std::lround(deg / grid.deg_per_col())),
-                       static_cast<int>(std::lround(deg / grid.deg_per_row())));
+    // (No wider than the image: beyond that a larger element changes nothing.)
+    const auto pixels = [&](double deg_per_px, int size) {
+      return static_cast<int>(std::min(std::ceil(deg / deg_per_px - 1e-9), static_cast<double>(size)));
+    };
+    radii.emplace_back(pixels(grid.deg_per_col(), grid.cols), pixels(grid.deg_per_row(), grid.rows));
   }
   return radii;
+}
+
+DilationParams margin_layers(double margin_m, const DepthGrid& grid, StructuringShape shape) {
+  // Rounded radius at depth d: ceil(atan(margin / d) / deg_per_px), which
+  // steps from k - 1 to k at d = margin / tan(k deg_per_px). Those depths,
+  // both axes, cut [0, d_max] into the layers.
+  const auto radius_px = [&](double d_m, double deg_per_px, int size) {
+    const double deg = std::atan2(margin_m, d_m) * kRadToDeg;
+    return static_cast<int>(std::min(std::ceil(deg / deg_per_px - 1e-9), static_cast<double>(size)));
+  };
+  std::vector<double> cuts;  // normalised depths
+  for (const auto& [deg_per_px, size] : {std::pair{grid.deg_per_col(), grid.cols}, std::pair{grid.deg_per_row(), grid.rows}}) {
+    for (int k = 1; k <= size && k * deg_per_px < 90.0; ++k) {
+      const double d = margin_m / std::tan(k * deg_per_px * kDegToRad) / grid.max_range_m;
+      if (d > 0.0 && d < 1.0) cuts.push_back(d);
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  cuts.push_back(1.0);
+  DilationParams p;
+  p.shape = shape;
+  double lower = 0.0;
+  for (const double upper : cuts) {
+    // Values in (lower, upper]: the radius only shrinks with depth, so the
+    // layer's largest is just above `lower`; at a cut it is the one for d = cut.
+    const double near_m = lower * grid.max_range_m;
+    const cv::Size r(radius_px(near_m, grid.deg_per_col(), grid.cols), radius_px(near_m, grid.deg_per_row(), grid.rows));
+    if (!p.layer_radius_px.empty() && p.layer_radius_px.back() == r) {
+      p.layer_upper.back() = upper;  // same element: one layer
+    } else {
+      p.layer_radius_px.push_back(r);
+      p.layer_upper.push_back(upper);
+    }
+    lower = upper;
+  }
+  return p;
 }
 
 cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
   const int n = static_cast<int>(p.layer_radius_px.size());
   CV_Assert(depth.type() == CV_32F && depth.isContinuous() && n >= 1);
+  CV_Assert(p.layer_upper.empty() || static_cast<int>(p.layer_upper.size()) == n);
   // The pixels of each layer, by a counting sort on the layer (0 = free space).
   const int pixels = static_cast<int>(depth.total());
   const float* value = depth.ptr<float>();
   std::vector<int> layer(pixels);
   std::vector<int> start(n + 2, 0);
   for (int i = 0; i < pixels; ++i) {
-    layer[i] = value[i] >= 1.0f ? 0 : std::clamp(static_cast<int>(std::ceil(value[i] * n)), 1, n);
+    if (value[i] >= 1.0f) {
+      layer[i] = 0;
+    } else if (p.layer_upper.empty()) {
+      layer[i] = std::clamp(static_cast<int>(std::ceil(value[i] * n)), 1, n);
+    } else {  // the first layer whose upper bound is at least the value
+      const auto it = std::lower_bound(p.layer_upper.begin(), p.layer_upper.end(), static_cast<double>(value[i]));
+      layer[i] = std::clamp(static_cast<int>(it - p.layer_upper.begin()) + 1, 1, n);
+    }
     ++start[layer[i] + 1];
   }
   for (int s = 1; s <= n + 1; ++s) start[s] += start[s - 1];
@@ -165,15 +218,19 @@ cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
     // R_s - R_(s+1), then ... then by R_n; and erosion commutes with the
     // minimum. So every layer shares one chain of small erosions (Horner):
     // erode_Rn(min(L_n, ... erode_(R1-R2)(L_1))), about one erosion's cost.
+    // Erosions between layers with no pixels add up into one (rectangles compose).
     cv::Mat acc(depth.size(), CV_32F, cv::Scalar(kEmpty));
     float* a = acc.ptr<float>();
     bool any = false;
+    int last = 0;  // the last layer with pixels
     for (int s = 1; s <= n; ++s) {
-      if (any && s > 1) erode_square(acc, p.layer_radius_px[s - 2] - p.layer_radius_px[s - 1]);
+      if (start[s + 1] == start[s]) continue;
+      if (any) erode_square(acc, p.layer_radius_px[last - 1] - p.layer_radius_px[s - 1]);
       for (const int i : layer_pixels(s)) a[i] = std::min(a[i], value[i]);
-      any = any || start[s + 1] > start[s];
+      any = true;
+      last = s;
     }
-    if (any) erode_square(acc, p.layer_radius_px[n - 1]);
+    if (any) erode_square(acc, p.layer_radius_px[last - 1]);
     cv::min(acc, 1.0, out);
     return out;
   }
@@ -206,7 +263,7 @@ std::string_view to_string(Visibility visibility) {
 }
 
 VisibilityCheck check_visibility(const cv::Mat& dilated, const DepthGrid& grid, const Eigen::Vector3d& w,
-                                 double r) {
+                                 double r, double extra_px) {
   VisibilityCheck c;
   c.waypoint_range_m = w.norm();
   c.pixel = grid.project(w);
@@ -215,7 +272,7 @@ VisibilityCheck check_visibility(const cv::Mat& dilated, const DepthGrid& grid, 
     c.visibility = Visibility::visible;  // the sensor is inside the safety sphere
     return c;
   }
-  const Eigen::Vector2d radius = projected_radius_px(grid, r, c.waypoint_range_m);
+  const Eigen::Vector2d radius = (projected_radius_px(grid, r, c.waypoint_range_m).array() + extra_px).cwiseMax(0.0);
   c.radius_x_px = radius.x();
   c.radius_y_px = radius.y();
   const std::optional<float> m = min_in_ellipse(dilated, c.pixel, radius.x(), radius.y());

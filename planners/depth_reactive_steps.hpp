@@ -44,18 +44,31 @@ struct DilationParams {
   /// Radius in pixels (across, down) of the structuring element of layer s
   /// at index s - 1; n = size() layers.
   std::vector<cv::Size> layer_radius_px;
+  /// Upper bounds of the layers' values, increasing, the last 1: layer s holds
+  /// the values in (upper[s - 2], upper[s - 1]]. Empty: n equal layers, s / n.
+  std::vector<double> layer_upper;
 };
 
 /// Layer radii of Algorithm 1 as printed: layer s of n gets r s / n (rounded),
 /// so the farthest layer is dilated most.
 std::vector<cv::Size> printed_layer_radii(int layers, double max_radius_x_px, double max_radius_y_px);
-/// Layer radii that keep `margin_m` around every obstacle: layer s spans the
-/// angle of the margin seen from the layer's middle depth (s - 1/2) / n d_max,
+/// Layer radii that keep at least `margin_m` around every obstacle: layer s
+/// spans the angle of the margin seen from the layer's nearest depth
+/// (s - 1) / n d_max, rounded up to whole pixels (at most the image's size),
 /// so near layers are dilated most, as 000 §4.2.1 asks.
 std::vector<cv::Size> margin_layer_radii(int layers, double margin_m, const DepthGrid& grid);
+/// Layers that grow every obstacle pixel by the angle `margin_m` spans at
+/// that pixel's own depth d, atan(margin / d), rounded up to whole pixels
+/// (at most the image's size): one layer per depth interval over which the
+/// rounded radius (across or down) is constant, so there are as many layers
+/// as distinct radii and none dilates more than its nearest pixel needs.
+/// The edge of an obstacle lies between the last pixel centre that hit it and
+/// the next, so a free pixel centre is at least the margin from it.
+DilationParams margin_layers(double margin_m, const DepthGrid& grid, StructuringShape shape = StructuringShape::square);
 
-/// DilataMappa: layer s holds the pixels with value in ((s-1)/n, s/n] (layer
-/// 1 also those at 0, nearer than d_min); each layer is dilated with its
+/// DilataMappa: layer s holds the pixels with value in ((s-1)/n, s/n], or
+/// between its params.layer_upper bounds (layer 1 also those at 0, nearer
+/// than d_min); each layer is dilated with its
 /// structuring element (a square of side 2r+1 or a disc of radius r) and
 /// nearer layers overwrite farther ones. No-return pixels (1) are free space,
 /// not obstacles. Inside a layer the nearest value wins where dilated pixels
@@ -88,8 +101,11 @@ struct VisibilityCheck {
 /// which would call every occluded waypoint visible); Unreachable when
 /// |rho_W - m| < r; else Invisible. A waypoint within r of the sensor is
 /// Visible; one whose neighbourhood lies wholly outside the image is Invisible.
+/// `extra_px` widens the neighbourhood by that many pixels (0: Algorithm 2;
+/// negative narrows it, down to the pixel holding W').
 VisibilityCheck check_visibility(const cv::Mat& dilated, const DepthGrid& grid,
-                                 const Eigen::Vector3d& waypoint_sensor, double safety_radius_m);
+                                 const Eigen::Vector3d& waypoint_sensor, double safety_radius_m,
+                                 double extra_px = 0.0);
 
 // ------------------------------------------------------------------ TrovaWP
 

@@ -720,12 +720,21 @@ Profile profile_of(const Scene& scene, const RunView& run) {
   return p;
 }
 
+bool has_ground(const Profile& p) {
+  return std::any_of(p.ground_m.begin(), p.ground_m.end(), [](double g) { return !std::isnan(g); });
+}
+
 FigureLayout layout_side_view(const Profile& p, const FigureStyle& style) {
   const int width = style.max_size_px;
   const int legend_h = p.legend.empty() ? 0 : figure::legend_height(p.legend.size());
   const int height = std::max({240, static_cast<int>(std::lround(0.35 * style.max_size_px)), legend_h});
   FigureLayout l;
   l.image_px = {kFigureLeftPx + width + kFigurePanelPx, kFigureTitlePx + height + kFigureBottomPx};
+  if (has_ground(p) && !p.distance_m.empty()) {
+    const int agl_h = std::max(120, static_cast<int>(std::lround(0.12 * style.max_size_px)));
+    l.agl_plot_px = {kFigureLeftPx, kFigureTitlePx + height + kFigureBottomPx, width, agl_h};
+    l.image_px.height += agl_h + kFigureBottomPx;
+  }
   l.title_px = {0, 0, l.image_px.width, kFigureTitlePx};
   l.plot_px = {kFigureLeftPx, kFigureTitlePx, width, height};
   if (legend_h > 0) {
@@ -734,6 +743,44 @@ FigureLayout layout_side_view(const Profile& p, const FigureStyle& style) {
   l.min = {p.x0, p.y0};
   l.px_per_unit = {width / (p.x1 - p.x0), height / (p.y1 - p.y0)};
   return l;
+}
+
+// The height above the ground beneath the track, on the profile's distance
+// axis, over the band between its smallest and largest value (shaded, both
+// labelled), with the ground itself as the zero line.
+void draw_height_above_ground(cv::Mat& image, const Profile& p, const cv::Rect& plot_px) {
+  std::vector<double> agl(p.distance_m.size(), std::numeric_limits<double>::quiet_NaN());
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t i = 0; i < agl.size(); ++i) {
+    if (std::isnan(p.ground_m[i])) continue;
+    agl[i] = p.altitude_m[i] - p.ground_m[i];
+    lo = std::min(lo, agl[i]);
+    hi = std::max(hi, agl[i]);
+  }
+  const double pad = std::max(0.15 * (hi - lo), 0.3);
+  const figure::PlotFrame frame{plot_px, p.x0, p.x1, std::min(0.0, lo - pad), hi + pad};
+  figure::draw_grid(image, frame);
+  cv::Mat plot = image(plot_px);
+  const cv::Point2d origin(plot_px.x, plot_px.y);
+  const auto to = [&](double s, double h) { return frame.to_px(s, h) - origin; };
+  const cv::Scalar band = figure::lighten(kVehicleLine, 0.8);
+  cv::rectangle(plot, figure::fixed(to(p.x0, hi)), figure::fixed(to(p.x1, lo)), band, cv::FILLED,
+                cv::LINE_AA, figure::kShift);
+  const cv::Scalar ground_edge = figure::shade(p.ground_color, 0.6);
+  figure::polyline(plot, {to(p.x0, 0.0), to(p.x1, 0.0)}, ground_edge, 2);
+  for (const auto& [a, b] : runs_where(agl.size(), [&](std::size_t i) { return !std::isnan(agl[i]); })) {
+    std::vector<cv::Point2d> curve;
+    for (std::size_t i = a; i <= b; ++i) curve.push_back(to(p.distance_m[i], agl[i]));
+    std::vector<cv::Point2d> line;
+    for (std::size_t k : thin_out(curve)) line.push_back(curve[k]);
+    figure::polyline(plot, line, kVehicleLine, 2);
+  }
+  figure::draw_axes(image, frame, "distance along track, horizontal (m)", "above ground (m)");
+  const double label_x = plot_px.x + plot_px.width + 12.0;
+  figure::put_text(image, "highest " + figure::format_number(hi, 0.01) + " m", {label_x, origin.y + to(p.x1, hi).y},
+                   figure::kLabelFont, figure::kInk);
+  figure::put_text(image, "lowest " + figure::format_number(lo, 0.01) + " m", {label_x, origin.y + to(p.x1, lo).y},
+                   figure::kLabelFont, figure::kInk);
 }
 
 cv::Mat draw_side_figure(const RunView& run, const Profile& p, const FigureLayout& layout,
@@ -789,6 +836,7 @@ cv::Mat draw_side_figure(const RunView& run, const Profile& p, const FigureLayou
   if (n > 0) figure::start_marker(plot, curve.front());
 
   figure::draw_axes(image, frame, "distance along track, horizontal (m)", "altitude (m)");
+  if (!layout.agl_plot_px.empty()) draw_height_above_ground(image, p, layout.agl_plot_px);
   if (!p.legend.empty()) figure::draw_legend(image, layout.legend_px, p.legend);
   figure::put_title(image, title, layout.title_px);
   return image;

@@ -88,6 +88,10 @@ struct FigureLayout {
   cv::Rect legend_px;            ///< legend box
   cv::Rect colorbar_px;          ///< colour bar; empty when the figure has none
   cv::Rect scalebar_px;          ///< scale bar and north arrow; empty on side views
+  /// Side views over ground: the height-above-ground panel under the profile
+  /// (same distance axis), kFigureBottomPx below the plot and
+  /// max(120, 0.12 * style.max_size_px) high; the image grows by both. Empty otherwise.
+  cv::Rect agl_plot_px;
   Eigen::Vector2d min = Eigen::Vector2d::Zero();  ///< data (x, y) at the plot's bottom-left corner, m
   Eigen::Vector2d px_per_unit = Eigen::Vector2d::Ones();  ///< pixels per metre along x and y
   /// Drawing coordinates of a data point: pixel (c, r) is centred on (c, r).
@@ -108,7 +112,10 @@ FigureLayout map_layout(const Scene& scene, const RunView& run, const FigureStyl
 /// the distance travelled along the track, with the vertical extent of the
 /// obstacles the track passes over, under or through, and the mission
 /// waypoints at the track's closest approach to them. Distances are
-/// horizontal, so that slopes show true.
+/// horizontal, so that slopes show true. Where there is ground beneath the
+/// track a second panel shows the height above it (vehicle altitude minus
+/// ground height) with the band it stayed in, its minimum and maximum, shaded
+/// and labelled (seed 000 Fig. 5.5: the drone follows the terrain).
 /// The run's reconstructed height map (run.height_map must not be empty):
 /// mapped cells coloured by height above the take-off ground, with a colour
 /// bar, the scene's obstacles as outlines for comparison, the track and the

@@ -80,12 +80,60 @@ TEST(DilataMappa, LayerRadiiAsPrintedAndForAMargin) {
   // A 0.45 m margin over 9 layers of 10 m on a 64 px, 90 deg grid (1.40625 deg/px), seen
   // from each layer's middle: layer 1 from 0.556 m: 39.0 deg = 27.7 px; layer 5 from
   // 5.0 m: 5.14 deg = 3.66 px; layer 9 from 9.44 m: 2.73 deg = 1.94 px.
+  // seen from each layer's nearest depth and rounded up: layer 1 from 0 m: 90 deg, the
+  // whole 64 px; layer 5 from 4.44 m: 5.78 deg = 4.11 px -> 5; layer 9 from 8.89 m: 2.90 deg = 2.06 px -> 3.
   const std::vector<cv::Size> margin = margin_layer_radii(9, 0.45, grid64());
   ASSERT_EQ(margin.size(), 9u);
-  EXPECT_EQ(margin[0], cv::Size(28, 28));
-  EXPECT_EQ(margin[4], cv::Size(4, 4));
-  EXPECT_EQ(margin[8], cv::Size(2, 2));
+  EXPECT_EQ(margin[0], cv::Size(64, 64));
+  EXPECT_EQ(margin[4], cv::Size(5, 5));
+  EXPECT_EQ(margin[8], cv::Size(3, 3));
   for (std::size_t s = 1; s < margin.size(); ++s) EXPECT_LE(margin[s].width, margin[s - 1].width);
+}
+
+TEST(DilataMappa, MarginLayersCutWhereTheRoundedRadiusSteps) {
+  // 0.55 m on a 32 px, 90 deg, 10 m grid (2.8125 deg/px): the radius is
+  // ceil(atan(0.55 / d) / 2.8125 deg): 2 px from d = 0.55 / tan(5.625 deg) =
+  // 5.584 m to 10 m (1 px would need 11.2 m), 3 px from 3.708 m.
+  const DepthGrid grid{32, 32, 90.0, 90.0, 10.0};
+  const DilationParams p = margin_layers(0.55, grid);
+  ASSERT_EQ(p.layer_upper.size(), p.layer_radius_px.size());
+  ASSERT_GE(p.layer_radius_px.size(), 3u);
+  const std::size_t n = p.layer_radius_px.size();
+  EXPECT_EQ(p.layer_radius_px[n - 1], cv::Size(2, 2));
+  EXPECT_DOUBLE_EQ(p.layer_upper[n - 1], 1.0);
+  EXPECT_EQ(p.layer_radius_px[n - 2], cv::Size(3, 3));
+  EXPECT_NEAR(p.layer_upper[n - 2], 0.55 / std::tan(5.625 * M_PI / 180.0) / 10.0, 1e-12);
+  EXPECT_NEAR(p.layer_upper[n - 3], 0.55 / std::tan(8.4375 * M_PI / 180.0) / 10.0, 1e-12);
+  EXPECT_EQ(p.layer_radius_px.front(), cv::Size(32, 32));  // nearer than any cut: the whole image
+}
+
+TEST(DilataMappa, MarginLayersGrowEveryObstaclePixelByTheMarginAtItsOwnDepth) {
+  // Reference: every obstacle pixel at depth d covers the square of radius
+  // ceil(atan(margin / d) / deg_per_px) pixels around it; the nearest value wins.
+  const DepthGrid grid{48, 48, 90.0, 90.0, 10.0};
+  const double margin = 0.55;
+  Rng rng(7);
+  cv::Mat depth = free_map(48);
+  for (int k = 0; k < 40; ++k) {
+    depth.at<float>(static_cast<int>(rng.uniform_int(0, 47)), static_cast<int>(rng.uniform_int(0, 47))) =
+        static_cast<float>(rng.uniform(0.05, 0.99));
+  }
+  cv::Mat expected = free_map(48);
+  for (int qy = 0; qy < 48; ++qy) {
+    for (int qx = 0; qx < 48; ++qx) {
+      const float v = depth.at<float>(qy, qx);
+      if (v >= 1.0f) continue;
+      const double deg = std::atan2(margin, v * grid.max_range_m) * 180.0 / M_PI;
+      const int r = std::min(48, static_cast<int>(std::ceil(deg / grid.deg_per_col() - 1e-9)));
+      for (int y = std::max(0, qy - r); y <= std::min(47, qy + r); ++y) {
+        for (int x = std::max(0, qx - r); x <= std::min(47, qx + r); ++x) {
+          expected.at<float>(y, x) = std::min(expected.at<float>(y, x), v);
+        }
+      }
+    }
+  }
+  const cv::Mat out = dilate_depth_map(depth, margin_layers(margin, grid));
+  EXPECT_EQ(cv::countNonZero(out != expected), 0);
 }
 
 TEST(DilataMappa, ASingleObstacleLayerDilatesByExactlyItsRadius) {
@@ -200,6 +248,9 @@ TEST(ControllaVisibilita, ClassifiesEachOutcome) {
   cv::Mat post = free_map(64);
   post.col(37).setTo(0.2f);  // 5.5 px right of W': outside the neighbourhood
   EXPECT_EQ(classify(post, ahead).visibility, Visibility::visible);
+  // Widened by 1.5 px (4.08 + 1.5 = 5.58 px > 5.5 px) the post at column 37 is inside.
+  EXPECT_NEAR(check_visibility(post, grid, ahead, r, 1.5).radius_x_px, c.radius_x_px + 1.5, 1e-9);
+  EXPECT_EQ(check_visibility(post, grid, ahead, r, 1.5).visibility, Visibility::invisible);
   post.col(35).setTo(0.2f);  // 3.5 px: inside
   EXPECT_EQ(classify(post, ahead).visibility, Visibility::invisible);
 

@@ -146,15 +146,20 @@ TEST(DepthReactive, FindsAWaypointBesideABarrier) {
   const Eigen::Vector3d w(r.decisions["planned_waypoint"][0], r.decisions["planned_waypoint"][1],
                           r.decisions["planned_waypoint"][2]);
   EXPECT_LT(w.y(), 0.0);           // to the right, where it is free
-  EXPECT_GT(w.x(), 4.0);           // beyond the barrier's edge
+  // Beyond the barrier's edge: every pixel of the barrier reads 4 m, so the
+  // waypoint lies farther than 4 m from the sensor (edge + vehicle radius).
+  EXPECT_GT(r.decisions["replan"]["new_waypoint_range_m"].get<double>(), 4.0);
   EXPECT_NEAR(w.z(), 1.5, 0.3);    // about level: climbing costs more
 }
 
 // Closed loop on the seed 000 scenes at coarse resolutions.
-EpisodeResult fly(const std::string& name, int resolution, SensorType source = SensorType::lidar) {
+EpisodeResult fly(const std::string& name, int resolution, SensorType source = SensorType::lidar,
+                  std::uint64_t seed = 0, double noise_stddev_m = 0.0) {
   Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json");
+  scene.world.seed = seed;
   SensorDef& sensor = scene.vehicles.front().sensors.front();
   sensor.lidar.cols = sensor.lidar.rows = resolution;
+  sensor.lidar.noise_stddev_m = noise_stddev_m;
   sensor.type = source;
   EpisodeOptions options;
   options.make_sensor = range_sensor_factory();
@@ -185,6 +190,40 @@ TEST(DepthReactiveClosedLoop, TwoBarriersThroughTheGap) {
 }
 
 TEST(DepthReactiveClosedLoop, TreesOnRollingTerrain) { expect_solved(fly("trees_rolling_terrain", 32), "32 x 32"); }
+
+// Seed 000 Fig. 5.5: over the 2.1 m hill of the bundled trees the drone
+// follows the slope, climbing well over 1.5 m while staying between 0.75 m
+// and 2.5 m above the ground beneath it (it starts and ends 1.6 m above it).
+TEST(DepthReactiveClosedLoop, TreesFollowTheTerrainWithinAHeightBand) {
+  const EpisodeResult r = fly("trees_rolling_terrain", 64);
+  ASSERT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+  double z_min = INFINITY, z_max = -INFINITY, agl_min = INFINITY, agl_max = -INFINITY;
+  for (const TrajectorySample& s : r.trajectory) {
+    z_min = std::min(z_min, s.state.position_m.z());
+    z_max = std::max(z_max, s.state.position_m.z());
+    agl_min = std::min(agl_min, s.height_above_ground_m);
+    agl_max = std::max(agl_max, s.height_above_ground_m);
+  }
+  EXPECT_GE(z_max - z_min, 1.5);
+  EXPECT_GE(agl_min, 0.75);
+  EXPECT_LE(agl_max, 2.5);
+}
+
+// A reduced seed 000 Table 5.1: noisy 64 x 64 and 32 x 32 scans, two seeds
+// each, on the trees. The thesis's worst run was 1.07 and none above 1.10;
+// campo asserts success, no run above 1.15 and 5 cm of true clearance.
+TEST(DepthReactiveClosedLoop, ReducedTable5_1OnTheTrees) {
+  for (const int resolution : {64, 32}) {
+    for (const std::uint64_t seed : {1u, 2u}) {
+      const EpisodeResult r = fly("trees_rolling_terrain", resolution, SensorType::lidar, seed, 0.01);
+      SCOPED_TRACE(std::to_string(resolution) + " px, seed " + std::to_string(seed));
+      EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+      EXPECT_EQ(r.metrics.collisions, 0);
+      EXPECT_LE(r.metrics.path_ratio, 1.15);
+      EXPECT_GE(r.metrics.min_clearance_m, 0.05);
+    }
+  }
+}
 
 TEST(DepthReactiveClosedLoop, TwoBarriersWithTheDepthCamera) {
   expect_solved(fly("two_barriers", 32, SensorType::depth_camera), "OSMesa depth camera 32 x 32");

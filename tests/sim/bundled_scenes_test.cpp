@@ -152,7 +152,16 @@ TEST(BundledScenes, TreesStartAndGoalAre23_27MetresApart) {
   const Scene scene = bundled("trees_rolling_terrain");
   const Eigen::Vector3d start = scene.vehicles.at(0).pose.translation();
   const Eigen::Vector3d goal = scene.vehicles[0].mission.back().position_m;
-  EXPECT_NEAR((goal - start).norm(), 23.27, 1e-9);
+  EXPECT_NEAR((goal - start).head<2>().norm(), 23.27, 1e-9);
+  // Both 1.6 m above the ground beneath them; a hill of over 1.5 m rises between (Fig. 5.5).
+  EXPECT_NEAR(start.z() - *scene.ground_height(start.x(), start.y()), 1.6, 1e-9);
+  EXPECT_NEAR(goal.z() - *scene.ground_height(goal.x(), goal.y()), 1.6, 1e-9);
+  double highest = -INFINITY;
+  for (double t = 0.0; t <= 1.0; t += 0.01) {
+    const Eigen::Vector3d p = start + t * (goal - start);
+    highest = std::max(highest, *scene.ground_height(p.x(), p.y()));
+  }
+  EXPECT_GT(highest - *scene.ground_height(start.x(), start.y()), 1.5);
   EXPECT_EQ(scene.vehicles[0].sensors.at(0).lidar.preset, "scanner3d");
   int trunks = 0;
   for (const Shape& s : scene.shapes) {
