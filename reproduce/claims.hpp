@@ -15,4 +15,7 @@ std::vector<Claim> seed_000_claims(const Workbench& bench);
 /// the bridge with column and OctoMap mapping, Figures 5.4-5.13.
 std::vector<Claim> seed_001_claims(const Workbench& bench);
 
+/// Seed 003: Fig. 45 (obstacles on the route), Fig. 46 (a crossing obstacle, follow-the-gap), follow-the-gap not stuck.
+std::vector<Claim> seed_003_claims(const Workbench& bench);
+
 }  // namespace campo

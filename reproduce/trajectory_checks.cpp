@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace campo {
 
@@ -27,6 +28,18 @@ TerrainFollowing measure_terrain_following(std::span<const double> x_m, std::spa
     out.height_above_ground_max_m = std::max(out.height_above_ground_max_m, h);
   }
   return out;
+}
+
+double distance_to_polyline(const Eigen::Vector2d& point, const std::vector<Eigen::Vector2d>& route) {
+  if (route.empty()) return std::numeric_limits<double>::infinity();
+  double best = (point - route.front()).norm();
+  for (std::size_t i = 1; i < route.size(); ++i) {
+    const Eigen::Vector2d a = route[i - 1], ab = route[i] - a;
+    const double length2 = ab.squaredNorm();
+    const double t = length2 > 0.0 ? std::clamp((point - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+    best = std::min(best, (point - (a + t * ab)).norm());
+  }
+  return best;
 }
 
 }  // namespace campo

@@ -2,6 +2,9 @@
 /// Measures of a recorded trajectory that the theses' claims are about, as
 /// pure functions of the samples (tested directly).
 #include <span>
+#include <vector>
+
+#include <Eigen/Core>
 
 namespace campo {
 
@@ -22,5 +25,15 @@ struct TerrainFollowing {
 TerrainFollowing measure_terrain_following(std::span<const double> x_m, std::span<const double> y_m,
                                            std::span<const double> z_m, std::span<const double> height_above_ground_m,
                                            double end_margin_m);
+
+/// An interval of local obstacle avoidance, simulated seconds.
+struct AvoidanceSpan {
+  double start_s = 0.0;
+  double end_s = 0.0;
+};
+
+/// Horizontal distance from `point` to the polyline `route` (a single point
+/// when it has one vertex); infinity when it is empty.
+double distance_to_polyline(const Eigen::Vector2d& point, const std::vector<Eigen::Vector2d>& route);
 
 }  // namespace campo

@@ -52,7 +52,7 @@ int reproduce(const ReproduceOptions& o) {
   const Workbench bench(config);
 
   std::vector<Claim> claims;
-  for (auto* seed_claims : {&seed_000_claims, &seed_001_claims}) {
+  for (auto* seed_claims : {&seed_000_claims, &seed_001_claims, &seed_003_claims}) {
     for (Claim& claim : seed_claims(bench)) {
       std::cerr << "campo reproduce: " << claim.seed << " " << claim.title << ": " << verdict_name(claim.verdict)
                 << "\n";

@@ -51,5 +51,14 @@ TEST(TerrainFollowing, NothingFarFromTheEndsMeasuresNothing) {
   EXPECT_EQ(t.altitude_change_m(), 0.0);
 }
 
+TEST(DistanceToPolyline, NearestSegmentInteriorOrVertex) {
+  const std::vector<Eigen::Vector2d> route{{0.0, 0.0}, {10.0, 0.0}, {10.0, 10.0}};
+  EXPECT_DOUBLE_EQ(distance_to_polyline({5.0, 3.0}, route), 3.0);    // beside the first leg
+  EXPECT_DOUBLE_EQ(distance_to_polyline({12.0, 5.0}, route), 2.0);   // beside the second
+  EXPECT_DOUBLE_EQ(distance_to_polyline({13.0, -4.0}, route), 5.0);  // beyond the corner: 3-4-5 to the vertex
+  EXPECT_DOUBLE_EQ(distance_to_polyline({-1.0, 0.0}, {{2.0, 0.0}}), 3.0);
+  EXPECT_TRUE(std::isinf(distance_to_polyline({0.0, 0.0}, {})));
+}
+
 }  // namespace
 }  // namespace campo
