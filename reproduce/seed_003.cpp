@@ -77,8 +77,8 @@ void fig_45(const Workbench& bench, Claim& claim) {
   check.expect(rows.size() >= 3, "the three places (row, headland turn, cluster) each make an avoidance");
   claim.measured = "scenes/vineyard_obstacles.json: a box in the first inter-row, one on the headland turn between "
                    "the rows and a cluster of three in the second inter-row, each in the route's way (placed by "
-                   "hand where the thesis's figure shows them, not drawn at random); the rover's local planner "
-                   "follow-the-gap, pure pursuit on the route.\n\n" +
+                   "hand, where the thesis drew them at random, so that every case it names occurs: a row, a curve, "
+                   "several obstacles together); the rover's local planner follow-the-gap, pure pursuit on the route.\n\n" +
                    metrics_table({{"vineyard_obstacles", m}}) +
                    "\nEach avoidance (intervals less than 3 s apart merged) and the smallest distance to the route "
                    "after it, before the next one:\n\n" +
