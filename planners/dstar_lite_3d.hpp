@@ -11,9 +11,16 @@
 
 #include "grid/grid_graph.hpp"
 #include "planners/grid_map3d.hpp"
+#include "planners/octomap3d.hpp"
 #include "sim/planner.hpp"
 
 namespace campo {
+
+/// How LIDAR hits become the planning grid's occupancy.
+enum class Mapping3d {
+  columns,  ///< 001 §4.2.4: a hit blocks its cell and every cell below it (an overhang looks like a hill, 001 §6)
+  octomap,  ///< free, occupied and unknown space from the rays in an octree (planners/octomap3d.hpp)
+};
 
 struct DStarLite3dConfig {
   std::string sensor;               ///< alias of the LIDAR; empty: the vehicle's first sensor
@@ -29,12 +36,15 @@ struct DStarLite3dConfig {
   double tolerance_m = 0.5;         ///< a mission waypoint counts as reached within this distance
   int lookahead_cells = 3;          ///< fly up to this many cells ahead along a straight run of the path
   double cell_reached_m = 0.5;      ///< the search's start moves to the vehicle's cell within this distance of its centre
+  Mapping3d mapping = Mapping3d::columns;  ///< "columns" (001) or "octomap"
+  OctoMap3dConfig octomap;          ///< the octree's settings, for mapping "octomap" only
 };
 
 std::unique_ptr<Planner> make_dstar_lite_3d_planner(const ParamsBlock& params, const PlannerContext& context);
 
 /// The configuration of `params` (keys as DStarLite3dConfig's fields;
-/// connectivity "six" | "twenty_six"); InputError naming the file and JSON
+/// connectivity "six" | "twenty_six"; mapping "columns" | "octomap", the
+/// latter with an optional "octomap" object of OctoMap3dConfig's fields); InputError naming the file and JSON
 /// pointer otherwise.
 DStarLite3dConfig parse_dstar_lite_3d_config(const ParamsBlock& params);
 
