@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "grid/dstar_lite.hpp"
-#include "sim/lidar.hpp"
 #include "sim/json_reader.hpp"
+#include "sim/lidar.hpp"
 
 namespace campo {
 
@@ -39,10 +39,12 @@ class DStarLite3dPlanner final : public Planner {
       map_.emplace(grid_map_config(config_, o.state.position_m.z()));
       if (config_.mapping == Mapping3d::octomap) octomap_.emplace(map_->config(), config_.octomap);
       // A height map only where the map is one (an octree keeps what lies under an overhang).
-      if (!octomap_) result.decisions["height_map_grid"] = {{"origin_m", {config_.origin_m.x(), config_.origin_m.y()}},
-                                             {"cell_size_m", config_.cell_size_m},
-                                             {"columns", config_.columns},
-                                             {"rows", config_.rows}};
+      if (!octomap_) {
+        result.decisions["height_map_grid"] = {{"origin_m", {config_.origin_m.x(), config_.origin_m.y()}},
+                                               {"cell_size_m", config_.cell_size_m},
+                                               {"columns", config_.columns},
+                                               {"rows", config_.rows}};
+      }
       // Moves cost their length: a 7 m climb costs 4.7 cells of 1.5 m, not one,
       // so the drone weaves between buildings at its altitude rather than
       // climbing over every one it has mapped.
@@ -229,7 +231,9 @@ class DStarLite3dPlanner final : public Planner {
     if (octomap_) {
       // Planning cells an occupied voxel now blocks or no longer blocks: [column, row, level].
       nlohmann::json blocked = nlohmann::json::array(), cleared = nlohmann::json::array();
-      for (const grid::CellChange& c : changes) (c.state == grid::CellState::blocked ? blocked : cleared).push_back(to_json(c.cell));
+      for (const grid::CellChange& c : changes) {
+        (c.state == grid::CellState::blocked ? blocked : cleared).push_back(to_json(c.cell));
+      }
       if (!blocked.empty()) result.decisions["blocked_cells"] = std::move(blocked);
       if (!cleared.empty()) result.decisions["cleared_cells"] = std::move(cleared);
       result.decisions["occupied_voxels"] = octomap_->occupied_leaf_count();

@@ -21,14 +21,15 @@
 
 namespace campo {
 
+/// Probabilities default to OctoMap's own defaults.
 struct OctoMap3dConfig {
-  double resolution_m = 0.75;        ///< octree leaf side, [0.05, 10]; 0.75: half of seed 001's 1.5 m cell, voxels align with cells
-  double probability_hit = 0.7;      ///< occupancy probability a return gives its voxel, (0.5, 1) (OctoMap's default)
-  double probability_miss = 0.4;     ///< occupancy probability a ray gives the voxels it crosses, (0, 0.5) (OctoMap's default)
-  double occupied_threshold = 0.5;   ///< a voxel is occupied above this probability, (0, 1) (OctoMap's default)
-  double clamping_min = 0.1192;      ///< occupancy probability clamped below here, (0, occupied_threshold) (OctoMap's default)
-  double clamping_max = 0.971;       ///< and above here, (occupied_threshold, 1) (OctoMap's default)
-  double vehicle_radius_m = 0.5;     ///< planning cells within this of an occupied voxel are blocked, [0, 100]
+  double resolution_m = 0.75;       ///< octree leaf side, [0.05, 10] m; half of 001's 1.5 m cell, so faces align
+  double probability_hit = 0.7;     ///< occupancy probability a return gives its voxel, (0.5, 1)
+  double probability_miss = 0.4;    ///< occupancy probability a ray gives the voxels it crosses, (0, 0.5)
+  double occupied_threshold = 0.5;  ///< a voxel is occupied above this probability, (0, 1)
+  double clamping_min = 0.1192;     ///< occupancy probability clamped below here, (0, occupied_threshold)
+  double clamping_max = 0.971;      ///< and above here, (occupied_threshold, 1)
+  double vehicle_radius_m = 0.5;    ///< planning cells within this of an occupied voxel are blocked, [0, 100] m
 };
 
 /// One voxel's state in the octree.

@@ -103,7 +103,8 @@ TEST(DStarLite3dOctomap, ParsesItsSettingsStrictly) {
 // route's (levels 7 m apart, route level 14 m, deck level 21 m).
 TEST(DStarLite3dBridge, SceneHasTheDeckAcrossTheRoute) {
   const Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/bridge.json");
-  const auto deck = std::find_if(scene.shapes.begin(), scene.shapes.end(), [](const Shape& s) { return s.alias == "deck"; });
+  const auto deck =
+      std::find_if(scene.shapes.begin(), scene.shapes.end(), [](const Shape& s) { return s.alias == "deck"; });
   ASSERT_NE(deck, scene.shapes.end());
   const Eigen::Vector3d lo = deck->pose.translation() - 0.5 * deck->size_m;
   const Eigen::Vector3d hi = deck->pose.translation() + 0.5 * deck->size_m;

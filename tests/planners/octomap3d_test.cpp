@@ -65,7 +65,7 @@ TEST(OctoMap3d, RaysIntoABoxMarkItsFaceOccupiedTheRaysFreeAndBehindUnknown) {
     EXPECT_EQ(map.voxel_state(end + Eigen::Vector3d(0.01, 0.0, 0.0)), VoxelState::occupied) << end.transpose();
     // Along the ray, well before the face: free.
     for (const double t : {0.2, 0.5, 0.9}) {
-      EXPECT_EQ(map.voxel_state(scan.origin + t * (end - scan.origin)), VoxelState::free) << end.transpose() << " " << t;
+      EXPECT_EQ(map.voxel_state(scan.origin + t * (end - scan.origin)), VoxelState::free) << end.transpose() << t;
     }
     // Inside and behind the box nothing was seen.
     EXPECT_EQ(map.voxel_state(end + Eigen::Vector3d(1.0, 0.0, 0.0)), VoxelState::unknown);
