@@ -9,6 +9,7 @@
 
 #include "grid/dstar_lite.hpp"
 #include "sim/json_reader.hpp"
+#include "sim/lidar.hpp"
 
 namespace campo {
 
@@ -36,10 +37,14 @@ class DStarLite3dPlanner final : public Planner {
     if (!map_) {
       // The vehicle starts on the ground: its height is take-off ground level (within a level's rounding).
       map_.emplace(grid_map_config(config_, o.state.position_m.z()));
-      result.decisions["height_map_grid"] = {{"origin_m", {config_.origin_m.x(), config_.origin_m.y()}},
-                                             {"cell_size_m", config_.cell_size_m},
-                                             {"columns", config_.columns},
-                                             {"rows", config_.rows}};
+      if (config_.mapping == Mapping3d::octomap) octomap_.emplace(map_->config(), config_.octomap);
+      // A height map only where the map is one (an octree keeps what lies under an overhang).
+      if (!octomap_) {
+        result.decisions["height_map_grid"] = {{"origin_m", {config_.origin_m.x(), config_.origin_m.y()}},
+                                               {"cell_size_m", config_.cell_size_m},
+                                               {"columns", config_.columns},
+                                               {"rows", config_.rows}};
+      }
       // Moves cost their length: a 7 m climb costs 4.7 cells of 1.5 m, not one,
       // so the drone weaves between buildings at its altitude rather than
       // climbing over every one it has mapped.
@@ -60,7 +65,9 @@ class DStarLite3dPlanner final : public Planner {
     const auto started = Clock::now();
     // Map the fresh scan; only cells that changed go to the search.
     std::vector<grid::CellChange> changes;
-    if (lidar->fresh && lidar->scan) {
+    if (lidar->fresh && lidar->scan && octomap_) {
+      changes = insert_rays(*lidar);
+    } else if (lidar->fresh && lidar->scan) {
       for (const Eigen::Vector3f& point : lidar->scan->points) {
         const std::vector<grid::CellChange> marked = map_->mark_hit(point.cast<double>());
         changes.insert(changes.end(), marked.begin(), marked.end());
@@ -149,7 +156,15 @@ class DStarLite3dPlanner final : public Planner {
                         {"speed_mps", c.speed_mps},
                         {"tolerance_m", c.tolerance_m},
                         {"lookahead_cells", c.lookahead_cells},
-                        {"cell_reached_m", c.cell_reached_m}};
+                        {"cell_reached_m", c.cell_reached_m},
+                        {"mapping", c.mapping == Mapping3d::columns ? "columns" : "octomap"}};
+    if (c.mapping == Mapping3d::octomap) {
+      const OctoMap3dConfig& m = c.octomap;
+      p["octomap"] = {{"resolution_m", m.resolution_m},         {"probability_hit", m.probability_hit},
+                      {"probability_miss", m.probability_miss}, {"occupied_threshold", m.occupied_threshold},
+                      {"clamping_min", m.clamping_min},         {"clamping_max", m.clamping_max},
+                      {"vehicle_radius_m", m.vehicle_radius_m}};
+    }
     // In the form parse_dstar_lite_3d_config reads: no sensor key when none was chosen.
     if (!c.sensor.empty()) p["sensor"] = c.sensor;
     return p;
@@ -166,13 +181,39 @@ class DStarLite3dPlanner final : public Planner {
     cell.z = std::max(cell.z, 0);
     if (!map_->contains(cell)) return std::nullopt;
     const bool reached = (position_m - map_->center(cell)).norm() <= config_.cell_reached_m;
-    if (leg_started_ && !reached && map_->state(search_->start()) != grid::CellState::blocked) {
-      return search_->start();
-    }
-    while (map_->state(cell) == grid::CellState::blocked) {
+    if (leg_started_ && !reached && !blocked(search_->start())) return search_->start();
+    while (blocked(cell)) {
       if (++cell.z >= config_.levels) return std::nullopt;
     }
     return cell;
+  }
+
+  bool blocked(const grid::Cell& cell) const {
+    return (octomap_ ? octomap_->state(cell) : map_->state(cell)) == grid::CellState::blocked;
+  }
+
+  // Casts the scan's rays into the octree: every beam from the sensor to its
+  // range, a return or free to the end; without the sensor's beam layout,
+  // the hits alone. Returns the planning cells that changed.
+  std::vector<grid::CellChange> insert_rays(const SensorReading& lidar) {
+    const LidarScan& scan = *lidar.scan;
+    const Eigen::Vector3d origin = scan.sensor_pose.translation();
+    std::vector<Eigen::Vector3d> ends;
+    std::vector<std::uint8_t> returns;
+    const std::size_t beams = scan.ranges_m.size();
+    if (lidar.config && lidar.config->beam_count() == static_cast<int>(beams) && scan.hits.size() == beams) {
+      if (directions_.empty()) {
+        for (const Beam& beam : lidar_beams(*lidar.config)) directions_.push_back(beam_direction(beam).cast<double>());
+      }
+      for (std::size_t i = 0; i < beams; ++i) {
+        ends.push_back(origin + scan.sensor_pose.linear() * directions_[i] * static_cast<double>(scan.ranges_m[i]));
+        returns.push_back(scan.hits[i]);
+      }
+    } else {
+      for (const Eigen::Vector3f& p : scan.points) ends.push_back(p.cast<double>());
+      returns.assign(ends.size(), 1);
+    }
+    return octomap_->insert_scan(origin, ends, returns);
   }
 
   // World points of a path, the goal cell replaced by the waypoint itself.
@@ -187,6 +228,17 @@ class DStarLite3dPlanner final : public Planner {
     nlohmann::json hits = nlohmann::json::array();
     for (const Eigen::Vector3f& p : scan.points) hits.push_back({cm(p.x()), cm(p.y()), cm(p.z())});
     if (!hits.empty()) result.decisions["lidar_hits"] = std::move(hits);
+    if (octomap_) {
+      // Planning cells an occupied voxel now blocks or no longer blocks: [column, row, level].
+      nlohmann::json blocked = nlohmann::json::array(), cleared = nlohmann::json::array();
+      for (const grid::CellChange& c : changes) {
+        (c.state == grid::CellState::blocked ? blocked : cleared).push_back(to_json(c.cell));
+      }
+      if (!blocked.empty()) result.decisions["blocked_cells"] = std::move(blocked);
+      if (!cleared.empty()) result.decisions["cleared_cells"] = std::move(cleared);
+      result.decisions["occupied_voxels"] = octomap_->occupied_leaf_count();
+      return;
+    }
     nlohmann::json columns = nlohmann::json::array();
     for (std::size_t i = 0; i < changes.size(); ++i) {
       const grid::Cell& c = changes[i].cell;
@@ -220,6 +272,8 @@ class DStarLite3dPlanner final : public Planner {
 
   DStarLite3dConfig config_;
   std::optional<GridMap3d> map_;             ///< created at the first observation (take-off ground level)
+  std::optional<OctoMap3d> octomap_;         ///< with mapping "octomap": the occupancy, map_ only the geometry
+  std::vector<Eigen::Vector3d> directions_;  ///< the LIDAR's beams in its frame, for casting misses
   std::unique_ptr<grid::GridGraph> graph_;   ///< the map as the search sees it
   std::unique_ptr<grid::DStarLite> search_;  ///< searches graph_, reset for every leg
   std::size_t next_ = 0;                     ///< mission waypoint being flown to
@@ -259,6 +313,24 @@ DStarLite3dConfig parse_dstar_lite_3d_config(const ParamsBlock& params) {
   r.read("tolerance_m", c.tolerance_m, Range::positive());
   r.read("lookahead_cells", c.lookahead_cells, 1, 100);
   r.read("cell_reached_m", c.cell_reached_m, Range::positive());
+  if (const auto mapping = r.optional("mapping")) {
+    c.mapping = mapping->as_choice({"columns", "octomap"}) == 0 ? Mapping3d::columns : Mapping3d::octomap;
+  }
+  if (const auto octomap = r.optional("octomap")) {
+    if (c.mapping != Mapping3d::octomap) {
+      throw InputError(octomap->file(), octomap->pointer(), "octomap settings need \"mapping\": \"octomap\"");
+    }
+    OctoMap3dConfig& m = c.octomap;
+    ObjectReader o(*octomap);
+    o.read("resolution_m", m.resolution_m, Range::closed(0.05, 10.0));
+    o.read("probability_hit", m.probability_hit, Range{0.5, 1.0, true, true});
+    o.read("probability_miss", m.probability_miss, Range{0.0, 0.5, true, true});
+    o.read("occupied_threshold", m.occupied_threshold, Range{0.0, 1.0, true, true});
+    o.read("clamping_min", m.clamping_min, Range{0.0, m.occupied_threshold, true, true});
+    o.read("clamping_max", m.clamping_max, Range{m.occupied_threshold, 1.0, true, true});
+    o.read("vehicle_radius_m", m.vehicle_radius_m, Range::closed(0.0, 100.0));
+    o.finish();
+  }
   r.finish();
   return c;
 }

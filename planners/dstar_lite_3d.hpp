@@ -4,16 +4,25 @@
 /// vehicle's start, is a start/goal; D* Lite searches the 3D grid of
 /// GridMap3d (unknown cells assumed free) from the goal to the vehicle's cell,
 /// and the drone flies cell to cell along the path. Every fresh scan's hits
-/// block their cells and the cells below them; only the cells that changed go
-/// to D* Lite, which moves its start (k_m) and repairs the search.
+/// block their cells and the cells below them (mapping "columns"), or its rays
+/// update an octree of free and occupied space that blocks the cells near
+/// occupied voxels (mapping "octomap", OctoMap3d); only the cells that changed
+/// go to D* Lite, which moves its start (k_m) and repairs the search.
 #include <memory>
 #include <string>
 
 #include "grid/grid_graph.hpp"
 #include "planners/grid_map3d.hpp"
+#include "planners/octomap3d.hpp"
 #include "sim/planner.hpp"
 
 namespace campo {
+
+/// How LIDAR hits become the planning grid's occupancy.
+enum class Mapping3d {
+  columns,  ///< 001 §4.2.4: a hit blocks its cell and every cell below it (an overhang looks like a hill, 001 §6)
+  octomap,  ///< free, occupied and unknown space from the rays in an octree (planners/octomap3d.hpp)
+};
 
 struct DStarLite3dConfig {
   std::string sensor;               ///< alias of the LIDAR; empty: the vehicle's first sensor
@@ -33,13 +42,16 @@ struct DStarLite3dConfig {
   double tolerance_m = 0.5;         ///< a mission waypoint counts as reached within this distance
   int lookahead_cells = 3;          ///< fly up to this many cells ahead along a straight run of the path
   double cell_reached_m = 0.5;      ///< the search's start moves to the vehicle's cell within this distance of its centre
+  Mapping3d mapping = Mapping3d::columns;  ///< "columns" (001, the default) or "octomap"
+  OctoMap3dConfig octomap;                 ///< the octree's settings, for mapping "octomap" only
 };
 
 std::unique_ptr<Planner> make_dstar_lite_3d_planner(const ParamsBlock& params, const PlannerContext& context);
 
 /// The configuration of `params` (keys as DStarLite3dConfig's fields;
-/// connectivity "six" | "twenty_six"); InputError naming the file and JSON
-/// pointer otherwise.
+/// connectivity "six" | "twenty_six"; mapping "columns" | "octomap", the
+/// latter with an optional "octomap" object of OctoMap3dConfig's fields);
+/// InputError naming the file and JSON pointer otherwise.
 DStarLite3dConfig parse_dstar_lite_3d_config(const ParamsBlock& params);
 
 /// The cost of a one-level climb the search uses, in horizontal cell moves.

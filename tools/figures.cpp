@@ -122,7 +122,9 @@ std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const st
   }
   if (kind == "heightmap") {
     if (run.view.height_map.empty()) {
-      throw InputError(record_file(run), "/events", "no height map: only mapping planners (dstar_lite_3d) record one");
+      throw InputError(record_file(run), "/events",
+                       "no height map: only dstar_lite_3d with column mapping records one (octomap mapping keeps "
+                       "what lies under an overhang, which a height map cannot show: see the side view)");
     }
     style.title = title_of(run, "reconstructed height map");
     return {write_png(draw_height_map(run.scene, run.view, style), out_dir / "heightmap.png")};

@@ -56,8 +56,8 @@ TEST_F(Cli, ValidatesEveryBundledScene) {
   // The shell expands the glob; each file gets its "ok" line.
   const Result all = campo("validate " + std::string(CAMPO_SOURCE_DIR) + "/scenes/*.json");
   EXPECT_EQ(all.exit_code, 0) << all.err;
-  for (const char* name : {"two_barriers", "trees_rolling_terrain", "obstacle_field", "zigzag", "wall", "vineyard",
-                           "vineyard_obstacles", "vineyard_gap"}) {
+  for (const char* name : {"two_barriers", "trees_rolling_terrain", "obstacle_field", "zigzag", "wall", "bridge",
+                           "vineyard", "vineyard_obstacles", "vineyard_gap"}) {
     EXPECT_THAT(all.out, HasSubstr(std::string("ok ") + CAMPO_SOURCE_DIR + "/scenes/" + name + ".json"));
   }
 }
@@ -132,8 +132,8 @@ TEST_F(Cli, BadScanInputExitsTwoAndWritesNothing) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-const char* const kBundled[] = {"two_barriers", "trees_rolling_terrain", "obstacle_field",     "zigzag",
-                                "wall",         "vineyard",              "vineyard_obstacles", "vineyard_gap"};
+const char* const kBundled[] = {"two_barriers", "trees_rolling_terrain", "obstacle_field", "zigzag",      "wall",
+                                "bridge",       "vineyard",              "vineyard_obstacles", "vineyard_gap"};
 
 TEST_F(Cli, RunsEveryBundledSceneWithTheStraightPlanner) {
   for (const char* name : kBundled) {
