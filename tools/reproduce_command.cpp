@@ -82,8 +82,8 @@ Command add_reproduce(CLI::App& app) {
                                         "to a directory of the same name beside it)");
   app.add_option("--work", o->work, "Directory for the sweeps and runs (default: out/reproduce; emptied first)");
   app.add_flag("--quick", o->quick,
-               "Reduced experiments (fewer seeds, resolutions and runs): the test suite's version, minutes instead "
-               "of a quarter of an hour; its numbers are not the reproduction");
+               "Reduced experiments (fewer seeds, resolutions and runs): the test suite's version, seconds instead "
+               "of minutes; its numbers are not the reproduction");
   app.add_option("--jobs,-j", o->jobs, "Runs at a time in the sweeps (default: every available core)")
       ->check(CLI::Range(1, 1024));
   app.footer(
