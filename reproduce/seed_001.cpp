@@ -4,7 +4,9 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <stdexcept>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "render/run_files.hpp"
@@ -42,7 +44,6 @@ struct ThesisWaypoint {
 struct ThesisScene {
   const char* scene;       // bundled scene
   const char* table;       // the thesis's table of its obstacle cells
-  const char* section;     // where the thesis describes it
   std::vector<ThesisBlock> blocks;
   const char* route_table;  // the thesis's table of its route
   std::vector<ThesisWaypoint> route;
@@ -51,18 +52,18 @@ struct ThesisScene {
 // The row "49 ÷ 50 | 46 ÷ 49 52 ÷ 55 | 35" of Tabella 5.1 is two blocks with the slot between them.
 const std::vector<ThesisScene>& thesis_scenes() {
   static const std::vector<ThesisScene> scenes{
-      {"obstacle_field", "Tabella 5.1", "§5.1",
+      {"obstacle_field", "Tabella 5.1",
        {{35, 35, 16, 18, 30}, {40, 45, 25, 30, 15}, {55, 56, 15, 18, 35}, {77, 80, 40, 41, 35},
         {49, 50, 46, 49, 35}, {49, 50, 52, 55, 35}, {30, 31, 50, 51, 35}, {65, 100, 5, 30, 10}},
        "Tabella 5.2",
        {{40.8210, 14.7035, 42, 1, 16}, {40.8220, 14.7035, 42, 76, 16}, {40.8220, 14.7039, 42, 76, 46},
         {40.8213, 14.7039, 42, 24, 46}, {40.8213, 14.7039, 28, 24, 46}, {40.8213, 14.7035, 28, 24, 16},
         {40.8220, 14.7035, 28, 76, 16}, {40.8220, 14.7039, 28, 76, 46}, {40.8213, 14.7039, 28, 24, 46}}},
-      {"zigzag", "Tabella 5.3", "§5.2", {{24, 27, 16, 28, 35}, {39, 42, 6, 18, 35}, {54, 57, 16, 28, 35}, {69, 72, 6, 18, 35}},
+      {"zigzag", "Tabella 5.3", {{24, 27, 16, 28, 35}, {39, 42, 6, 18, 35}, {54, 57, 16, 28, 35}, {69, 72, 6, 18, 35}},
        "Tabella 5.4",
        {{40.8210, 14.7035, 42, 1, 16}, {40.8220, 14.7035, 42, 76, 16}, {40.8220, 14.7035, 28, 76, 16},
         {40.8210, 14.7035, 28, 1, 16}}},
-      {"wall", "Tabella 5.5", "§5.3", {{20, 22, 1, 100, 30}}, "Tabella 5.6",
+      {"wall", "Tabella 5.5", {{20, 22, 1, 100, 30}}, "Tabella 5.6",
        {{40.8210, 14.7035, 42, 1, 16}, {40.8214, 14.7035, 42, 31, 16}, {40.8214, 14.7035, 28, 31, 16},
         {40.8210, 14.7035, 28, 1, 16}}},
   };
@@ -178,18 +179,21 @@ void geodetic_routes(Claim& claim) {
     const Scene scene = load_scene(file);
     const VehicleDef& drone = scene.vehicles.at(0);
     const nlohmann::json* grid = nullptr;
+    std::vector<nlohmann::json> written;  // the mission's waypoints as the file gives them
     for (const auto& object : document.at("objects")) {
       if (object.value("type", "") == "grid_obstacles") grid = &object;
-    }
-    const double cell_m = grid->at("cell_size_m").get<double>();
-    const Eigen::Vector2d origin_m(grid->at("origin_m").at(0).get<double>(), grid->at("origin_m").at(1).get<double>());
-    const nlohmann::json& waypoints = document.at("/objects"_json_pointer);
-    std::vector<nlohmann::json> written;
-    for (const auto& object : waypoints) {
       if (object.contains("mission")) {
         for (const auto& wp : object.at("/mission/waypoints"_json_pointer)) written.push_back(wp);
       }
     }
+    if (!grid) throw std::runtime_error(file.string() + " has no grid_obstacles to give cells");
+    const double cell_m = grid->at("cell_size_m").get<double>();
+    const Eigen::Vector2d origin_m(grid->at("origin_m").at(0).get<double>(), grid->at("origin_m").at(1).get<double>());
+    // Row and column (from 1) of the cell holding a local position.
+    const auto cell_of = [&](const Eigen::Vector3d& p) {
+      return std::pair{static_cast<int>(std::floor((p.y() - origin_m.y()) / cell_m)) + 1,
+                       static_cast<int>(std::floor((p.x() - origin_m.x()) / cell_m)) + 1};
+    };
     check.expect(written.size() == t.route.size() && drone.mission.size() == t.route.size(),
                  std::string(t.scene) + " has the " + std::to_string(t.route.size()) + " waypoints of " + t.route_table);
     GeoReference wgs84 = scene.world.geo_reference;
@@ -201,11 +205,8 @@ void geodetic_routes(Claim& claim) {
                              written[i]["geodetic"].at(1).get<double>() == w.longitude_deg &&
                              written[i].value("agl_m", -1.0) == w.agl_m;
       const Eigen::Vector3d p = drone.mission[i].position_m;
-      const int col = static_cast<int>(std::floor((p.x() - origin_m.x()) / cell_m)) + 1;
-      const int row = static_cast<int>(std::floor((p.y() - origin_m.y()) / cell_m)) + 1;
-      const Eigen::Vector3d enu = geodetic_to_local(wgs84, w.latitude_deg, w.longitude_deg, 0.0);
-      const int enu_col = static_cast<int>(std::floor((enu.x() - origin_m.x()) / cell_m)) + 1;
-      const int enu_row = static_cast<int>(std::floor((enu.y() - origin_m.y()) / cell_m)) + 1;
+      const auto [row, col] = cell_of(p);
+      const auto [enu_row, enu_col] = cell_of(geodetic_to_local(wgs84, w.latitude_deg, w.longitude_deg, 0.0));
       rows.push_back({t.scene, std::to_string(i + 1), fixed(w.latitude_deg, 4), fixed(w.longitude_deg, 4),
                       fixed(w.agl_m, 0), as_thesis ? "yes" : "no", fixed(p.x(), 2) + ", " + fixed(p.y(), 2),
                       std::to_string(row) + ", " + std::to_string(col),
