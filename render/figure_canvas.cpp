@@ -46,20 +46,28 @@ void fill(cv::Mat& image, const std::vector<cv::Point2d>& points, const cv::Scal
   cv::fillPoly(image, polygons, color, cv::LINE_AA, kShift);
 }
 
-// Multiples of `step` in [lo, hi].
+// Multiples of `step` in [lo, hi]; none when there would be more than a
+// figure can show (a degenerate or non-finite axis must not allocate without bound).
 std::vector<double> ticks_in(double lo, double hi, double step) {
+  constexpr double kMaxTicks = 1000.0;
   std::vector<double> ticks;
   const double first = std::ceil(lo / step - 1e-9), last = std::floor(hi / step + 1e-9);
+  if (!std::isfinite(first) || !std::isfinite(last) || last - first > kMaxTicks) return ticks;
   for (double k = first; k <= last; k += 1.0) ticks.push_back(k * step);
   return ticks;
 }
 
 // `text` cut and ended with "..." so that it is at most `max_width_px` wide.
+// The longest prefix that fits is found by bisection: titles come from
+// scene names, which may be megabytes long.
 std::string fit_text(const std::string& text, const Font& font, int max_width_px) {
-  if (text_size(text, font).width <= max_width_px) return text;
-  std::string cut = text;
-  while (!cut.empty() && text_size(cut + "...", font).width > max_width_px) cut.pop_back();
-  return cut + "...";
+  if (text.size() <= 4096 && text_size(text, font).width <= max_width_px) return text;
+  std::size_t fits = 0, too_long = std::min<std::size_t>(text.size(), 4096) + 1;
+  while (too_long - fits > 1) {
+    const std::size_t mid = fits + (too_long - fits) / 2;
+    (text_size(text.substr(0, mid) + "...", font).width <= max_width_px ? fits : too_long) = mid;
+  }
+  return text.substr(0, fits) + "...";
 }
 
 }  // namespace

@@ -153,7 +153,11 @@ void Ground::paint(cv::Mat& plot, const Eigen::Vector2d& top_left_m, double px_p
   if (empty()) return;
   // Heights over the plot and a border as wide as the smoothing reaches, so
   // that the shading near the plot's edges sees the terrain beyond them.
-  const double sigma = relief_ ? std::max(1.0, 0.6 * spacing_m_ * px_per_m) : 0.0;
+  // The smoothing follows the terrain's vertex spacing up to kMaxSmoothing_px:
+  // on coarse terrain a wider blur would cost time and padding with the
+  // spacing (a 20 m grid at 10 px/m: a 360 px kernel) for no visible gain.
+  constexpr double kMaxSmoothing_px = 8.0;
+  const double sigma = relief_ ? std::clamp(0.6 * spacing_m_ * px_per_m, 1.0, kMaxSmoothing_px) : 0.0;
   const int pad = 1 + static_cast<int>(std::ceil(3.0 * sigma));
   const cv::Mat padded = heights(top_left_m + Eigen::Vector2d(-pad, pad) / px_per_m, 1.0 / px_per_m,
                                  {plot.cols + 2 * pad, plot.rows + 2 * pad});

@@ -29,6 +29,8 @@ constexpr int kAttemptsPerTree = 1000;
 constexpr double kObstacleRowClearance_m = 0.3;
 /// Grid obstacles: boxes reach this far below the lowest ground under them.
 constexpr double kGridBoxFooting_m = 1.0;
+/// Grid obstacles: ground samples per side of a block (cell corners and centres up to this).
+constexpr int kGridBoxGroundSamples = 256;
 
 std::string str(double value) {
   std::ostringstream out;
@@ -444,12 +446,16 @@ std::vector<Shape> make_grid_obstacles(const GridObstaclesConfig& config, const 
     const double y0 = config.origin_m.y() + (box.row_first - 1) * s;
     const int cols = box.col_last - box.col_first + 1;
     const int rows = box.row_last - box.row_first + 1;
-    // Ground extremes sampled at every cell corner and centre under the block.
+    // Ground extremes sampled at every cell corner and centre under the block,
+    // but at most kGridBoxGroundSamples per side: a block over a whole
+    // 10000 x 10000 grid would otherwise cost 4e8 ground queries.
+    const int samples_x = std::min(2 * cols, kGridBoxGroundSamples);
+    const int samples_y = std::min(2 * rows, kGridBoxGroundSamples);
     double lowest = std::numeric_limits<double>::infinity();
     double highest = -std::numeric_limits<double>::infinity();
-    for (int j = 0; j <= 2 * rows; ++j) {
-      for (int i = 0; i <= 2 * cols; ++i) {
-        const double g = ground_at(ground, x0 + 0.5 * s * i, y0 + 0.5 * s * j);
+    for (int j = 0; j <= samples_y; ++j) {
+      for (int i = 0; i <= samples_x; ++i) {
+        const double g = ground_at(ground, x0 + cols * s * i / samples_x, y0 + rows * s * j / samples_y);
         lowest = std::min(lowest, g);
         highest = std::max(highest, g);
       }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <fstream>
+#include <iterator>
+#include <unordered_map>
 #include <sstream>
 
 namespace campo {
@@ -30,6 +32,184 @@ InputError::InputError(std::string file, std::string pointer, const std::string&
       file_(std::move(file)),
       pointer_(std::move(pointer)) {}
 
+namespace {
+
+/// 1-based line and column of byte `offset` of `text`, for messages.
+std::string line_column(const std::string& text, std::size_t offset) {
+  offset = std::min(offset, text.size());
+  const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n');
+  const auto line_start = offset == 0 ? std::string::npos : text.rfind('\n', offset - 1);
+  const auto column = offset - (line_start == std::string::npos ? 0 : line_start + 1) + 1;
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+/// A character iterator that publishes how far the parser has read, so the
+/// SAX handler can say where a key is (nlohmann gives positions only to errors).
+class TrackingIterator {
+ public:
+  using iterator_category = std::input_iterator_tag;
+  using value_type = char;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const char*;
+  using reference = const char&;
+
+  TrackingIterator(const char* at, const char** cursor) : at_(at), cursor_(cursor) {}
+  reference operator*() const { return *at_; }
+  TrackingIterator& operator++() {
+    *cursor_ = ++at_;
+    return *this;
+  }
+  TrackingIterator operator++(int) {
+    TrackingIterator before = *this;
+    ++*this;
+    return before;
+  }
+  bool operator==(const TrackingIterator& other) const { return at_ == other.at_; }
+  bool operator!=(const TrackingIterator& other) const { return at_ != other.at_; }
+
+ private:
+  const char* at_;
+  const char** cursor_;
+};
+
+/// Builds the document like nlohmann's DOM parser, in linear time (its callback
+/// parser rescans a whole array at the end of every element object), and
+/// rejects what nlohmann accepts silently: duplicate keys (the last would win)
+/// and NUL characters in strings (they would truncate paths and expressions).
+/// Every refusal names the JSON pointer of the value being read.
+class DocumentBuilder {
+ public:
+  DocumentBuilder(const std::string& text, const std::string& source, const InputLimits& limits,
+                  const char** cursor)
+      : text_(text), source_(source), limits_(limits), cursor_(cursor) {}
+
+  nlohmann::json& document() { return document_; }
+
+  bool null() { return add(nullptr); }
+  bool boolean(bool v) { return add(v); }
+  bool number_integer(std::int64_t v) { return add(v); }
+  bool number_unsigned(std::uint64_t v) { return add(v); }
+  bool number_float(double v, const std::string&) { return add(v); }
+  bool string(std::string& v) {
+    reject_nul(v, current_pointer());
+    return add(std::move(v));
+  }
+  bool binary(nlohmann::json::binary_t&) { return false; }  // never produced by JSON text
+
+  bool start_object(std::size_t) { return open(nlohmann::json::object()); }
+  bool start_array(std::size_t) { return open(nlohmann::json::array()); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+
+  bool key(std::string& k) {
+    Frame& frame = frames_.back();
+    // The cursor is just past the key's closing quote; its opening quote is
+    // the key's length further back (exact unless the key has escapes).
+    const std::size_t end = offset();
+    const std::size_t here = end >= k.size() + 2 ? end - k.size() - 2 : 0;
+    const auto [first, inserted] = frame.key_offsets.emplace(k, here);
+    if (!inserted) {
+      throw InputError(source_, child_pointer(frame.pointer, k),
+                       "duplicate key \"" + k + "\" at " + line_column(text_, here) + "; first at " +
+                           line_column(text_, first->second) + " (expected each key once per object)");
+    }
+    reject_nul(k, frame.pointer);
+    frame.key = k;
+    return true;
+  }
+
+  bool parse_error(std::size_t position, const std::string& token, const nlohmann::json::exception& e) {
+    const std::size_t at = position > 0 ? position - 1 : 0;
+    if (dynamic_cast<const nlohmann::json::out_of_range*>(&e) != nullptr) {
+      // nlohmann reports a number beyond the range of a double this way, once
+      // it has read the whole number (`position` is just past it).
+      std::string shown = token.size() > 40 ? token.substr(0, 37) + "..." : token;
+      const std::size_t start = position >= token.size() ? position - token.size() : 0;
+      throw InputError(source_, current_pointer(),
+                       "number out of range at " + line_column(text_, start) +
+                           ": expected a finite number (magnitude below 1.8e308), got " + shown + " (" +
+                           std::to_string(token.size()) + " characters)");
+    }
+    // Report line and column rather than nlohmann's byte offset.
+    const std::string what = e.what();
+    const auto colon = what.rfind(": ");
+    throw InputError(source_, "",
+                     "invalid JSON at " + line_column(text_, at) + ": " +
+                         (colon == std::string::npos ? what : what.substr(colon + 2)));
+  }
+
+ private:
+  struct Frame {
+    nlohmann::json* value = nullptr;
+    std::string pointer;  ///< of this array or object
+    std::string key;      ///< the key being read (objects)
+    std::unordered_map<std::string, std::size_t> key_offsets;
+  };
+
+  std::size_t offset() const { return static_cast<std::size_t>(*cursor_ - text_.data()); }
+
+  /// Pointer of the value about to be added to the innermost open container.
+  std::string current_pointer() const {
+    if (frames_.empty()) return "";
+    const Frame& top = frames_.back();
+    return top.value->is_array() ? child_pointer(top.pointer, top.value->size())
+                                 : child_pointer(top.pointer, top.key);
+  }
+
+  void reject_nul(const std::string& s, const std::string& pointer) const {
+    if (s.find('\0') != std::string::npos) {
+      throw InputError(source_, pointer, "expected text without NUL characters (\\u0000)");
+    }
+  }
+
+  template <typename Value>
+  nlohmann::json* insert(Value&& v) {
+    if (frames_.empty()) {
+      document_ = nlohmann::json(std::forward<Value>(v));
+      return &document_;
+    }
+    Frame& top = frames_.back();
+    if (top.value->is_array()) {
+      top.value->emplace_back(std::forward<Value>(v));
+      return &top.value->back();
+    }
+    nlohmann::json& slot = (*top.value)[top.key];
+    slot = nlohmann::json(std::forward<Value>(v));
+    return &slot;
+  }
+
+  template <typename Value>
+  bool add(Value&& v) {
+    insert(std::forward<Value>(v));
+    return true;
+  }
+
+  bool open(nlohmann::json empty) {
+    if (static_cast<int>(frames_.size()) >= limits_.max_depth) {
+      throw InputError(source_, current_pointer(),
+                       "nesting deeper than " + std::to_string(limits_.max_depth) + " levels");
+    }
+    std::string pointer = current_pointer();
+    nlohmann::json* value = insert(std::move(empty));
+    frames_.push_back(Frame{value, std::move(pointer), {}, {}});
+    return true;
+  }
+
+  bool close() {
+    frames_.pop_back();
+    return true;
+  }
+
+  const std::string& text_;
+  const std::string& source_;
+  const InputLimits& limits_;
+  const char** cursor_;
+  nlohmann::json document_;
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
+
 nlohmann::json parse_json_text(const std::string& text, const std::string& source,
                                const InputLimits& limits) {
   if (text.size() > limits.max_file_bytes) {
@@ -37,29 +217,12 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
                                      " bytes, expected at most " +
                                      std::to_string(limits.max_file_bytes));
   }
-  const auto depth_guard = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-    if (depth > limits.max_depth) {
-      throw InputError(source, "", "nesting deeper than " + std::to_string(limits.max_depth) +
-                                       " levels");
-    }
-    return true;
-  };
-  try {
-    return nlohmann::json::parse(text, depth_guard);
-  } catch (const nlohmann::json::parse_error& e) {
-    // Report line and column rather than nlohmann's byte offset.
-    const std::size_t offset = std::min<std::size_t>(e.byte, text.size());
-    const std::size_t before = offset > 0 ? offset - 1 : 0;
-    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(before), '\n');
-    const auto line_start = text.rfind('\n', before == 0 ? 0 : before - 1);
-    const auto column = before - (line_start == std::string::npos ? 0 : line_start + 1) + 1;
-    std::string what = e.what();
-    const auto colon = what.rfind(": ");
-    throw InputError(source, "",
-                     "invalid JSON at line " + std::to_string(line) + ", column " +
-                         std::to_string(column) + ": " +
-                         (colon == std::string::npos ? what : what.substr(colon + 2)));
-  }
+  const char* cursor = text.data();
+  DocumentBuilder builder(text, source, limits, &cursor);
+  const TrackingIterator first(text.data(), &cursor);
+  const TrackingIterator last(text.data() + text.size(), &cursor);
+  nlohmann::json::sax_parse(first, last, &builder);
+  return std::move(builder.document());
 }
 
 std::string read_text_file(const std::filesystem::path& path, const InputLimits& limits) {

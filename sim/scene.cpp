@@ -136,23 +136,26 @@ const VehicleDef* Scene::find_vehicle(std::string_view alias) const {
   return find_by_alias(vehicles, alias);
 }
 
+std::optional<double> ground_height_of(const Shape& shape, double x, double y) {
+  if (shape.type == ShapeType::heightfield) {
+    const Eigen::Vector3d local = shape.pose.inverse() * Eigen::Vector3d(x, y, 0.0);
+    if (auto h = shape.terrain->height_at(local.x(), local.y())) return *h + shape.pose.translation().z();
+  } else if (shape.type == ShapeType::plane) {
+    // z where the vertical line through (x, y) meets the plane, if it is not vertical.
+    const Eigen::Vector3d n = shape.pose.linear().col(2);
+    if (std::abs(n.z()) > 1e-9) {
+      const Eigen::Vector3d p = shape.pose.translation();
+      return p.z() - (n.x() * (x - p.x()) + n.y() * (y - p.y())) / n.z();
+    }
+  }
+  return std::nullopt;
+}
+
 std::optional<double> Scene::ground_height(double x, double y) const {
   std::optional<double> best;
-  const auto consider = [&](double h) {
-    if (!best || h > *best) best = h;
-  };
   for (const auto& shape : shapes) {
-    if (shape.type == ShapeType::heightfield) {
-      const Eigen::Vector3d local = shape.pose.inverse() * Eigen::Vector3d(x, y, 0.0);
-      if (auto h = shape.terrain->height_at(local.x(), local.y())) consider(*h + shape.pose.translation().z());
-    } else if (shape.type == ShapeType::plane) {
-      // z where the vertical line through (x, y) meets the plane, if it is not vertical.
-      const Eigen::Vector3d n = shape.pose.linear().col(2);
-      if (std::abs(n.z()) > 1e-9) {
-        const Eigen::Vector3d p = shape.pose.translation();
-        consider(p.z() - (n.x() * (x - p.x()) + n.y() * (y - p.y())) / n.z());
-      }
-    }
+    const auto h = ground_height_of(shape, x, y);
+    if (h && (!best || *h > *best)) best = h;
   }
   return best;
 }

@@ -215,6 +215,10 @@ struct Scene {
   std::optional<double> ground_height(double x, double y) const;
 };
 
+/// Height of one ground shape (heightfield or plane) below world (x, y);
+/// nullopt for other shapes and where the shape has no ground there.
+std::optional<double> ground_height_of(const Shape& shape, double x, double y);
+
 /// A body that the physics moves during a run: a dynamic shape (Bullet
 /// integrates it: it falls, is pushed, tips over) or a mover (kinematic, on
 /// its path). Sensors and clearance see each where the world has it at that

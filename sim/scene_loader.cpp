@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <sstream>
 
 #include <openssl/evp.h>
 
@@ -16,6 +17,12 @@
 namespace campo {
 
 namespace {
+
+// Every length, size and spacing of a scene (positions are in [-1e6, 1e6] m):
+// beyond these, geometry, physics and figures lose their meaning in doubles.
+const Range kLength{0.0, 1e6, true, false};
+// Terrain heights, however they are given (expression, CSV, PNG).
+const Range kTerrainHeight = Range::closed(-1e5, 1e5);
 
 constexpr std::string_view kTypes[] = {
     "cuboid", "cylinder", "sphere", "cone", "plane", "heightfield", "dummy",
@@ -198,7 +205,7 @@ class Loader {
   // Keys shared by every shape: static, mass, colour, friction.
   void read_shape_properties(ObjectReader& r, Shape& shape) {
     r.read("static", shape.is_static);
-    r.read("mass_kg", shape.mass_kg, Range::positive());
+    r.read("mass_kg", shape.mass_kg, Range{0.0, 1e9, true, false});
     r.read("friction", shape.friction, Range::closed(0.0, 10.0));
     if (auto c = r.optional("color")) shape.color = read_color(*c);
     if (!shape.is_static && shape.mass_kg <= 0.0) {
@@ -211,15 +218,15 @@ class Loader {
   void read_primitive(ObjectReader& r, Shape& shape) {
     switch (shape.type) {
       case ShapeType::cuboid:
-        shape.size_m = r.required("size_m").as_vector3(Range::positive());
+        shape.size_m = r.required("size_m").as_vector3(kLength);
         break;
       case ShapeType::cylinder:
       case ShapeType::cone:
-        shape.radius_m = r.required("radius_m").as_number(Range::positive());
-        shape.height_m = r.required("height_m").as_number(Range::positive());
+        shape.radius_m = r.required("radius_m").as_number(kLength);
+        shape.height_m = r.required("height_m").as_number(kLength);
         break;
       case ShapeType::sphere:
-        shape.radius_m = r.required("radius_m").as_number(Range::positive());
+        shape.radius_m = r.required("radius_m").as_number(kLength);
         break;
       case ShapeType::plane:
       case ShapeType::heightfield:
@@ -247,8 +254,22 @@ class Loader {
     }
   }
 
+  // The ground so far, for generators that stand things on it. Only the ground
+  // shapes are visited per query (a scene may hold 200000 shapes); the
+  // function is used before the generated shapes are added.
   GroundFunction ground_function() const {
-    return [this](double x, double y) { return scene_.ground_height(x, y).value_or(0.0); };
+    std::vector<const Shape*> ground;
+    for (const Shape& shape : scene_.shapes) {
+      if (shape.type == ShapeType::heightfield || shape.type == ShapeType::plane) ground.push_back(&shape);
+    }
+    return [ground = std::move(ground)](double x, double y) {
+      std::optional<double> best;
+      for (const Shape* shape : ground) {
+        const auto h = ground_height_of(*shape, x, y);
+        if (h && (!best || *h > *best)) best = h;
+      }
+      return best.value_or(0.0);
+    };
   }
 
   void read_object(const JsonNode& node, const Eigen::Isometry3d& parent, int depth) {
@@ -323,24 +344,43 @@ class Loader {
     double min_height_m = 0.0;
     const JsonNode& source = expression ? *expression : csv ? *csv : *png;
     if (expression) {
-      r.read("size_m", size_m, Range::positive());
-      r.read("spacing_m", spacing_m, Range::positive());
+      r.read("size_m", size_m, kLength);
+      r.read("spacing_m", spacing_m, kLength);
       check_vertex_count(node, size_m, spacing_m);
       shape.terrain = std::make_shared<HeightGrid>(generated(source, [&] {
         return heightgrid_from_expression(expression->as_string(), size_m, spacing_m, shape.pose);
       }));
     } else if (csv) {
-      r.read("spacing_m", spacing_m, Range::positive());
+      r.read("spacing_m", spacing_m, kLength);
       const auto path = resolve_path(*csv);
       shape.terrain = std::make_shared<HeightGrid>(
           generated(source, [&] { return heightgrid_from_csv(path, spacing_m); }));
     } else {
-      r.read("size_m", size_m, Range::positive());
-      r.read("height_scale_m", height_scale_m, Range::positive());
+      r.read("size_m", size_m, kLength);
+      r.read("height_scale_m", height_scale_m, kLength);
       r.read("min_height_m", min_height_m, Range::closed(-1e4, 1e4));
       const auto path = resolve_path(*png);
       shape.terrain = std::make_shared<HeightGrid>(generated(
           source, [&] { return heightgrid_from_png(path, size_m, height_scale_m, min_height_m); }));
+    }
+    check_heights(source, *shape.terrain);
+  }
+
+  // Heights far beyond any terrain would overflow sizes derived from them
+  // (boxes standing on the ground, figure axes), so they are refused here.
+  static void check_heights(const JsonNode& source, const HeightGrid& grid) {
+    for (int row = 0; row < grid.rows; ++row) {
+      for (int col = 0; col < grid.cols; ++col) {
+        const double h = grid.at(col, row);
+        if (!kTerrainHeight.contains(h)) {
+          std::ostringstream got;
+          got << h;
+          throw InputError(source.file(), source.pointer(),
+                           "expected terrain heights that are " + kTerrainHeight.describe() + " m, got " +
+                               got.str() + " at vertex (column " + std::to_string(col) + ", row " +
+                               std::to_string(row) + ")");
+        }
+      }
     }
   }
 
@@ -358,10 +398,10 @@ class Loader {
   void read_rolling_terrain(ObjectReader& r, const std::string& alias,
                             const Eigen::Isometry3d& parent) {
     RollingTerrainConfig c;
-    r.read("size_m", c.size_m, Range::positive());
-    r.read("spacing_m", c.spacing_m, Range::positive());
+    r.read("size_m", c.size_m, kLength);
+    r.read("spacing_m", c.spacing_m, kLength);
     r.read("amplitude_m", c.amplitude_m, Range::closed(0.0, 1e4));
-    r.read("wavelength_m", c.wavelength_m, Range::positive());
+    r.read("wavelength_m", c.wavelength_m, kLength);
     r.read("waves", c.waves, 1, 32);
     r.read_seed("seed", c.seed);
     check_vertex_count(r.node(), c.size_m, c.spacing_m);
@@ -390,18 +430,18 @@ class Loader {
     }
     r.read("count", c.count, 0, limits_.max_trees);
     r.read("min_spacing_m", c.min_spacing_m, Range::non_negative());
-    read_interval(r, "trunk_radius_m", c.trunk_radius_m, Range::positive());
-    read_interval(r, "trunk_height_m", c.trunk_height_m, Range::positive());
+    read_interval(r, "trunk_radius_m", c.trunk_radius_m, kLength);
+    read_interval(r, "trunk_height_m", c.trunk_height_m, kLength);
     if (auto crown = r.optional("crown")) {
       c.crown = crown->as_choice({"sphere", "cone"}) == 0 ? CrownShape::sphere : CrownShape::cone;
     }
-    read_interval(r, "crown_radius_m", c.crown_radius_m, Range::positive());
-    r.read("crown_height_ratio", c.crown_height_ratio, Range::positive());
+    read_interval(r, "crown_radius_m", c.crown_radius_m, kLength);
+    r.read("crown_height_ratio", c.crown_height_ratio, Range{0.0, 1e3, true, false});
     if (auto keep_out = r.optional("keep_out")) {
       for (const JsonNode& zone : keep_out->as_array(0, 1000)) {
         ObjectReader z(zone);
         const Eigen::Vector2d center = z.required("center_m").as_vector2(Range::closed(-1e6, 1e6));
-        const double radius = z.required("radius_m").as_number(Range::positive());
+        const double radius = z.required("radius_m").as_number(kLength);
         z.finish();
         c.keep_out.emplace_back(center.x(), center.y(), radius);
       }
@@ -412,20 +452,20 @@ class Loader {
 
   void read_vineyard(ObjectReader& r, const std::string& alias, const Eigen::Isometry3d& parent) {
     VineyardConfig c;
-    r.read("field_size_m", c.field_size_m, Range::positive());
+    r.read("field_size_m", c.field_size_m, kLength);
     r.read("row_count", c.row_count, 1, 500);
-    r.read("row_spacing_m", c.row_spacing_m, Range::positive());
+    r.read("row_spacing_m", c.row_spacing_m, kLength);
     r.read("headland_m", c.headland_m, Range::non_negative());
-    r.read("post_spacing_m", c.post_spacing_m, Range::positive());
-    r.read("post_radius_m", c.post_radius_m, Range::positive());
-    r.read("post_height_m", c.post_height_m, Range::positive());
-    r.read("canopy_width_m", c.canopy_width_m, Range::positive());
+    r.read("post_spacing_m", c.post_spacing_m, kLength);
+    r.read("post_radius_m", c.post_radius_m, kLength);
+    r.read("post_height_m", c.post_height_m, kLength);
+    r.read("canopy_width_m", c.canopy_width_m, kLength);
     r.read("canopy_bottom_m", c.canopy_bottom_m, Range::non_negative());
-    r.read("canopy_top_m", c.canopy_top_m, Range::positive());
-    r.read("fence_height_m", c.fence_height_m, Range::positive());
-    r.read("fence_thickness_m", c.fence_thickness_m, Range::positive());
+    r.read("canopy_top_m", c.canopy_top_m, kLength);
+    r.read("fence_height_m", c.fence_height_m, kLength);
+    r.read("fence_thickness_m", c.fence_thickness_m, kLength);
     r.read("obstacle_count", c.obstacle_count, 0, limits_.max_generated_obstacles);
-    read_interval(r, "obstacle_size_m", c.obstacle_size_m, Range::positive());
+    read_interval(r, "obstacle_size_m", c.obstacle_size_m, kLength);
     r.read("obstacle_passage_m", c.obstacle_passage_m, Range::non_negative());
     r.read_seed("seed", c.seed);
     const double posts_per_row = std::floor(c.field_size_m.y() / c.post_spacing_m) + 2;
@@ -452,7 +492,7 @@ class Loader {
   void read_grid_obstacles(ObjectReader& r, const std::string& alias) {
     GridObstaclesConfig c;
     r.read("origin_m", c.origin_m, Range::closed(-1e6, 1e6));
-    r.read("cell_size_m", c.cell_size_m, Range::positive());
+    r.read("cell_size_m", c.cell_size_m, kLength);
     r.read("rows", c.rows, 1, limits_.max_grid_cells_per_axis);
     r.read("cols", c.cols, 1, limits_.max_grid_cells_per_axis);
     if (auto boxes = r.optional("boxes")) {
@@ -462,7 +502,7 @@ class Loader {
         GridBox box;
         std::tie(box.row_first, box.row_last) = read_index_range(b.required("rows"), c.rows);
         std::tie(box.col_first, box.col_last) = read_index_range(b.required("cols"), c.cols);
-        box.height_m = b.required("height_m").as_number(Range::positive());
+        box.height_m = b.required("height_m").as_number(kLength);
         b.finish();
         c.boxes.push_back(box);
       }

@@ -188,7 +188,7 @@ TEST(SceneLoaderErrors, UnknownTopLevelAndNestedKeys) {
 
 TEST(SceneLoaderErrors, WrongTypes) {
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "cuboid", "size_m": [1, "2", 3]})j")),
-              HasSubstr("/objects/0/size_m/1: expected a number > 0, got \"2\""));
+              HasSubstr("/objects/0/size_m/1: expected a number in (0, 1e+06], got \"2\""));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "cuboid", "size_m": [1, 2]})j")),
               HasSubstr("/objects/0/size_m: expected an array of 3 elements, got [1,2]"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": 7, "type": "sphere", "radius_m": 1})j")),
@@ -201,7 +201,7 @@ TEST(SceneLoaderErrors, WrongTypes) {
 
 TEST(SceneLoaderErrors, OutOfRangeValues) {
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "cuboid", "size_m": [1, -1, 3]})j")),
-              HasSubstr("/objects/0/size_m/1: expected a number > 0, got -1"));
+              HasSubstr("/objects/0/size_m/1: expected a number in (0, 1e+06], got -1"));
   EXPECT_THAT(error_of(R"j({"objects": [], "world": {"physics_step_s": 0}})j"),
               HasSubstr("/world/physics_step_s: expected a number in [1e-05, 0.1], got 0"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "sphere", "radius_m": 1, "color": [0, 2, 0]})j")),
