@@ -187,8 +187,8 @@ TEST_F(Cli, RunIsReproducibleAndRecordsTheSeed) {
   }
   EXPECT_EQ(a, b);
   // The decisions too, but for their measured times.
-  std::vector<RecordedRun> runs{load_run_dir(dir_ / "a"), load_run_dir(dir_ / "b")};
-  for (RecordedRun& run : runs) {
+  std::vector<campo::RecordedRun> runs{campo::load_run_dir(dir_ / "a"), campo::load_run_dir(dir_ / "b")};
+  for (campo::RecordedRun& run : runs) {
     for (auto& event : run.events) {
       if (!event["decisions"].contains("replan")) continue;
       for (const char* key : {"time_ms", "dilation_ms", "search_ms"}) event["decisions"]["replan"].erase(key);
@@ -232,12 +232,12 @@ TEST_F(Cli, ARunWithManyBigEventsKeepsItsRecordBounded) {
   EXPECT_EQ(record["event_log"]["bounded"], thinned);
   EXPECT_GT(thinned, 10u);
   // The readers read it: the run directory, the figures redrawn.
-  const RecordedRun run = load_run_dir(out);
+  const campo::RecordedRun run = campo::load_run_dir(out);
   EXPECT_EQ(run.events.size(), lines.size());
   EXPECT_GT(run.view.sensor_hits.size(), 10 * campo::kEventArrayMaxEntries);
   const Result render = campo("render " + out.string() + " --kind map --out " + (dir_ / "redrawn").string());
   EXPECT_EQ(render.exit_code, 0) << render.err;
-  EXPECT_TRUE(fs::is_regular_file(dir_ / "redrawn" / "map.png"));
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "redrawn" / "d3" / "map.png"));
 }
 
 // A completed run is never thrown away: a figure that cannot be written
