@@ -44,7 +44,13 @@ grid::Cell cell(const nlohmann::json& j) { return {j.at(0).get<int>(), j.at(1).g
 
 RecordedMission record(const std::string& scene_name) {
   const Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
-  const EpisodeResult flown = run_episode(scene, &make_vehicle, &create_planner);
+  // Every hit of every scan, as the planner got them (the run's record keeps a bounded sample, sim/event_log.hpp).
+  std::vector<PlannerEvent> events;
+  EpisodeOptions options;
+  options.on_plan = [&events](const Observation& o, const PlanResult& plan) {
+    if (!plan.decisions.is_null()) events.push_back({o.time_s, plan.decisions});
+  };
+  const EpisodeResult flown = run_episode(scene, &make_vehicle, &create_planner, options);
   const DStarLite3dConfig config = parse_dstar_lite_3d_config(scene.vehicles.front().planner.params);
   RecordedMission mission;
   mission.map = grid_map_config(config, flown.trajectory.front().state.position_m.z());
@@ -53,7 +59,7 @@ RecordedMission record(const std::string& scene_name) {
   GridMap3d map(mission.map);
   std::vector<grid::CellChange> pending;
   std::optional<grid::Cell> goal;
-  for (const PlannerEvent& e : flown.events) {
+  for (const PlannerEvent& e : events) {
     for (const nlohmann::json& p : e.decisions.value("lidar_hits", nlohmann::json::array())) {
       const auto changed = map.mark_hit({p[0].get<double>(), p[1].get<double>(), p[2].get<double>()});
       pending.insert(pending.end(), changed.begin(), changed.end());

@@ -1,8 +1,6 @@
 #include "render/depth_image.hpp"
 
-#include <stdexcept>
-
-#include <opencv2/imgcodecs.hpp>
+#include "sim/image_io.hpp"
 
 namespace campo {
 
@@ -14,9 +12,7 @@ cv::Mat depth_to_gray16(const cv::Mat& depth) {
 }
 
 void write_depth_png(const cv::Mat& depth, const std::filesystem::path& path) {
-  if (!cv::imwrite(path.string(), depth_to_gray16(depth))) {
-    throw std::runtime_error("cannot write PNG " + path.string());
-  }
+  write_png_file(depth_to_gray16(depth), path);
 }
 
 }  // namespace campo

@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "sim/event_log.hpp"
 #include "sim/json_reader.hpp"
 #include "sim/scene_loader.hpp"
 
@@ -85,6 +86,20 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
       shape.pose = to_isometry(Pose{vector3(body.at("position_m")), vector3(body.at("rpy_deg"))});
     }
   }
+  try {
+    if (const auto log = run.record.find("event_log"); log != run.record.end()) {
+      const std::filesystem::path name = log->at("file").get<std::string>();
+      // Only a file beside run.json: a record names no other place to read.
+      if (name.has_parent_path() || name.empty() || name == "." || name == "..") {
+        throw InputError((dir / "run.json").string(), "/event_log/file", "expected a file name, got " + name.string());
+      }
+      run.events = read_events_jsonl(dir / name);
+    } else {
+      run.events = run.record.value("events", nlohmann::json::array());
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError((dir / "run.json").string(), "/event_log", std::string("malformed run record: ") + e.what());
+  }
   RunView& v = run.view;
   v.label = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
   v.outcome = run.record.value("/metrics/outcome"_json_pointer, std::string());
@@ -100,7 +115,7 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
     // waypoints set or dropped, a planned path, obstacle avoidance switched on and off.
     bool avoiding = false;
     double avoiding_since = 0.0;
-    for (const auto& event : run.record.value("events", nlohmann::json::array())) {
+    for (const auto& event : run.events) {
       const auto& d = event.at("decisions");
       if (const auto a = d.find("avoiding"); a != d.end() && a->is_boolean()) {
         const double t = event.at("time_s").get<double>();

@@ -1,5 +1,5 @@
 #pragma once
-/// Reading a recorded run directory (run.json, trajectory.csv, scene.json)
+/// Reading a recorded run directory (run.json, events.jsonl, trajectory.csv, scene.json)
 /// back for figures, so every figure is reproducible from the files alone.
 #include <filesystem>
 #include <string>
@@ -15,6 +15,9 @@ namespace campo {
 struct RecordedRun {
   std::filesystem::path dir;
   nlohmann::json record;  ///< run.json
+  /// The planner decisions, [{"time_s", "decisions"}] in time order: events.jsonl
+  /// (run.json's event_log), or the "events" array of run.json in runs recorded before it.
+  nlohmann::json events;
   Scene scene;            ///< from scene.json, the effective scene of the run
   RunView view;           ///< track, mission and planner decisions
 };

@@ -104,7 +104,7 @@ void fig_46(const Workbench& bench, Claim& claim) {
   // The chosen gaps in time order: which side of the route each lies on (its centre) and the heading steered for.
   std::vector<std::vector<std::string>> rows;
   std::vector<int> sides;
-  for (const auto& event : run.record.at("events")) {
+  for (const auto& event : run.events) {
     const auto* gap = event.at("decisions").contains("gap") ? &event.at("decisions").at("gap") : nullptr;
     if (!gap || !gap->contains("gap_center_deg")) continue;
     const double center = gap->at("gap_center_deg").get<double>();
@@ -124,7 +124,7 @@ void fig_46(const Workbench& bench, Claim& claim) {
   check.expect(m.value("cross_track_max_m", 1e9) < 1.0, "it stays within 1 m of the route");
   claim.measured = "scenes/vineyard_gap.json: a person 0.6 m left of the route ahead walks right across it from 8 s "
                    "(a mover); the rover's local planner follow-the-gap with the thesis's own gaps (range "
-                   "discontinuities). The chosen gap each time it changed sides (run.json events, decisions.gap: "
+                   "discontinuities). The chosen gap each time it changed sides (events.jsonl, decisions.gap: "
                    "gap_center_deg, the gap's centre, and gap_heading_deg, the heading steered for, both relative to "
                    "the route, positive left):\n\n" +
                    markdown_table({"Time (s)", "Side", "Gap centre (°)", "Heading (°)"}, rows) + "\n" +

@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 
+#include "sim/event_log.hpp"
 #include "sim/route_metrics.hpp"
 
 namespace campo {
@@ -404,7 +405,12 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
           }
         }
       }
-      if (!plan.decisions.is_null()) result.events.push_back({t, std::move(plan.decisions)});
+      // Bounded as recorded (sim/event_log.hpp): a scan's thousands of hits would otherwise make the record
+      // grow with every scan; the metrics below read the same bounded decisions the files keep.
+      if (!plan.decisions.is_null()) {
+        bound_decisions(plan.decisions);
+        result.events.push_back({t, std::move(plan.decisions)});
+      }
       // Exact obstacle clearance for the record; the ground only as far as
       // it could lower its minimum (far terrain costs many triangles).
       const Clearance clearance = world.vehicle_clearance(kExact, minima.ground_cutoff());

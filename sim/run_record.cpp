@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "sim/event_log.hpp"
 #include "sim/provenance.hpp"
 #include "sim/scan_io.hpp"
 
@@ -126,8 +127,10 @@ nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const E
     mission.push_back(j);
   }
   const WorldConfig& w = scene.world;
-  nlohmann::json events = nlohmann::json::array();
-  for (const PlannerEvent& e : result.events) events.push_back({{"time_s", e.time_s}, {"decisions", e.decisions}});
+  std::size_t bounded = 0;
+  for (const PlannerEvent& e : result.events) {
+    bounded += e.decisions.is_object() && (e.decisions.contains("thinned") || e.decisions.contains("omitted"));
+  }
   return {
       {"metrics", to_json(result.metrics)},
       {"provenance", with_data_dir(provenance(scene), scene)},
@@ -158,7 +161,8 @@ nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const E
         {"stop_on_collision", options.stop_on_collision}}},
       {"final_state_hash", result.final_state_hash},
       {"final_body_poses", final_body_poses},
-      {"events", events},
+      // The decisions themselves are in events.jsonl, so this file does not grow with the run.
+      {"event_log", {{"file", kEventsFile}, {"count", result.events.size()}, {"bounded", bounded}}},
   };
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 /// Files of a run: trajectory.csv and run.json (metrics, outcome, provenance
-/// and every effective parameter).
+/// and every effective parameter); events.jsonl is sim/event_log.hpp's.
 #include <string>
 #include <vector>
 
@@ -16,7 +16,10 @@ namespace campo {
 std::string trajectory_csv(const EpisodeResult& result);
 
 /// run.json: {"metrics", "provenance", "parameters": {world, vehicle, planner,
-/// sensors, mission}, "overrides", "events"}.
+/// sensors, mission}, "overrides", "final_state_hash", "final_body_poses",
+/// "event_log": {"file": "events.jsonl", "count", "bounded"}}. Nothing in it
+/// grows with the length of the run: the planner decisions go to
+/// events.jsonl (events_jsonl in sim/event_log.hpp).
 nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const EpisodeOptions& options,
                         const std::vector<std::string>& overrides);
 

@@ -9,7 +9,7 @@
 
 #include "render/figure_canvas.hpp"
 #include "render/figures.hpp"
-#include "sim/output_dir.hpp"
+#include "sim/image_io.hpp"
 #include "sweep/sweep_spec.hpp"
 #include "sweep/table.hpp"
 
@@ -493,9 +493,7 @@ cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& l
 }
 
 void write_png(const cv::Mat& image, const std::filesystem::path& png) {
-  std::vector<uchar> bytes;
-  if (!cv::imencode(".png", image, bytes)) throw std::runtime_error("cannot encode " + png.string());
-  write_file_atomically(png, std::string(bytes.begin(), bytes.end()));
+  write_png_file(image, png);
 }
 
 }  // namespace campo

@@ -1,12 +1,18 @@
 #include "sweep/results.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <numeric>
 #include <set>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include "sim/json_reader.hpp"
+#include "sim/output_dir.hpp"
 
 namespace campo {
 
@@ -64,6 +70,11 @@ RunResult read_result(const JsonNode& node) {
   r.read("trajectory_sha256", result.trajectory_sha256);
   if (auto dir = r.optional("run_dir"); dir && !dir->value().is_null()) dir->as_string();
   if (auto triage = r.optional("triage"); triage && !triage->value().is_object()) triage->fail("an object");
+  // A failed run that had completed but whose kept files could not be written (docs/sweeps.md).
+  if (auto files = r.optional("files_error"); files && !result.completed) {
+    files->as_string();
+    result.files_failed = true;
+  }
   // Provenance and timing are for people and scripts; tables and plots do not use them.
   for (const char* key : {"campo_version", "git_rev", "scene_sha256", "spec_sha256", "wall_time_s", "files_error"}) {
     r.accept(key);
@@ -148,7 +159,7 @@ nlohmann::json failed_result(const SweepRun& run, const std::string& reason) {
   return line;
 }
 
-ResultsLog::ResultsLog(const std::filesystem::path& path) {
+ResultsLog::ResultsLog(const std::filesystem::path& path) : path_(path) {
   // Find where the last complete line ends, reading backwards from the end.
   std::error_code ec;
   const auto size = std::filesystem::file_size(path, ec);
@@ -157,21 +168,37 @@ ResultsLog::ResultsLog(const std::filesystem::path& path) {
     auto end = size;
     for (char c = 0; end > 0; --end) {
       in.seekg(static_cast<std::streamoff>(end - 1));
-      if (!in.get(c)) throw std::runtime_error("cannot read " + path.string());
+      if (!in.get(c)) throw OutputError(path, "cannot read it back to resume");
       if (c == '\n') break;
     }
     if (end < size) {
-      std::filesystem::resize_file(path, end);
+      std::filesystem::resize_file(path, end, ec);
+      if (ec) throw OutputError(path, system_reason("cannot cut off its incomplete last line", ec.value()));
       cut_partial_line_ = true;
     }
   }
-  out_.open(path, std::ios::app | std::ios::binary);
-  if (!out_) throw std::runtime_error("cannot open " + path.string() + " for appending");
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0666);
+  if (fd_ < 0) throw OutputError(path, system_reason("cannot open for appending", errno));
+}
+
+ResultsLog::~ResultsLog() {
+  if (fd_ >= 0) ::close(fd_);
 }
 
 void ResultsLog::append(const nlohmann::json& line) {
-  out_ << line.dump() << '\n' << std::flush;
-  if (!out_) throw std::runtime_error("cannot append to results.jsonl");
+  const std::string text = line.dump() + "\n";
+  const off_t before = ::lseek(fd_, 0, SEEK_END);
+  for (std::size_t done = 0; done < text.size();) {
+    const ssize_t n = ::write(fd_, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int errnum = errno;
+      // No half line stays behind for the next line to continue.
+      if (before >= 0) (void)!::ftruncate(fd_, before);
+      throw OutputError(path_, system_reason("cannot append", errnum));
+    }
+    done += static_cast<std::size_t>(n);
+  }
 }
 
 std::vector<ResultLine> read_result_lines(const std::filesystem::path& path, std::vector<std::string>& warnings) {

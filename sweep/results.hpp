@@ -39,14 +39,21 @@ nlohmann::json failed_result(const SweepRun& run, const std::string& reason);
 /// mid-write) is cut off first, so new lines start on a line of their own.
 class ResultsLog {
  public:
+  /// OutputError naming the file and the system's reason when it cannot be opened.
   explicit ResultsLog(const std::filesystem::path& path);
-  /// Writes one line and flushes it.
+  ~ResultsLog();
+  ResultsLog(const ResultsLog&) = delete;
+  ResultsLog& operator=(const ResultsLog&) = delete;
+  /// Writes one line. When it cannot be written whole (a full disk), the
+  /// part written is cut off again and an OutputError names the file and the
+  /// system's reason.
   void append(const nlohmann::json& line);
   /// Whether a partial last line was cut off on opening.
   bool cut_partial_line() const { return cut_partial_line_; }
 
  private:
-  std::ofstream out_;
+  std::filesystem::path path_;
+  int fd_ = -1;
   bool cut_partial_line_ = false;
 };
 
@@ -75,6 +82,8 @@ struct RunResult {
   std::uint64_t seed = 0;
   bool completed = false;              ///< false: the run failed before producing its record
   std::string reason;                  ///< why it failed
+  /// Failed only because its files (--keep-runs) could not be written: a resumed sweep runs it again.
+  bool files_failed = false;
   std::vector<std::string> overrides;
   RunMetrics metrics;                  ///< completed runs only
   nlohmann::json metrics_json;         ///< the run's metrics object as recorded; null for a failed run

@@ -9,6 +9,7 @@
 
 #include "planners/depth_reactive.hpp"
 #include "render/snapshot.hpp"
+#include "sim/image_io.hpp"
 #include "sim/json_reader.hpp"
 #include "sim/scene_mesh.hpp"
 
@@ -18,9 +19,7 @@ namespace {
 
 std::filesystem::path write_png(const cv::Mat& image, const std::filesystem::path& path) {
   // Fixed compression settings: the same figure gives the same bytes.
-  if (!cv::imwrite(path.string(), image, {cv::IMWRITE_PNG_COMPRESSION, 6})) {
-    throw std::runtime_error("cannot write " + path.string());
-  }
+  write_png_file(image, path, {cv::IMWRITE_PNG_COMPRESSION, 6});
   return path;
 }
 
@@ -34,7 +33,7 @@ std::string record_file(const RecordedRun& run) { return (run.dir / "run.json").
 
 // A recorded depth map (16-bit PNG, render/depth_image.hpp) back as CV_32F in [0, 1].
 cv::Mat read_depth_png(const std::filesystem::path& file) {
-  const cv::Mat gray16 = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat gray16 = read_image_file(file, cv::IMREAD_UNCHANGED);
   if (gray16.type() != CV_16U) throw InputError(file.string(), "", "expected a 16-bit grey depth map");
   cv::Mat depth;
   gray16.convertTo(depth, CV_32F, 1.0 / 65535.0);
@@ -171,7 +170,7 @@ std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::opt
   }
   std::vector<ReplanStep> recorded;
   try {
-    const nlohmann::json& events = run.record.at("events");
+    const nlohmann::json& events = run.events;
     for (std::size_t e = 0; e < events.size(); ++e) {
       const nlohmann::json& decisions = events[e].at("decisions");
       if (!decisions.contains("replan")) continue;
@@ -251,7 +250,7 @@ struct GapDecision {
 std::vector<GapDecision> gap_decisions(const RecordedRun& run) {
   std::vector<GapDecision> out;
   try {
-    for (const auto& event : run.record.value("events", nlohmann::json::array())) {
+    for (const auto& event : run.events) {
       const auto& d = event.at("decisions");
       const auto g = d.find("gap");
       if (g == d.end()) continue;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "planners/registry.hpp"
+#include "sim/event_log.hpp"
 #include "sim/json_reader.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
@@ -39,10 +40,25 @@ int run_run(const RunOptions& o) {
   request.figures = o.figures;
   request.record_depth_every = o.record_depth_every;
   request.record_replans = o.record_replans;
-  const nlohmann::json record = execute_run(request);
-  const bool height_map = o.figures && std::filesystem::exists(std::filesystem::path(o.out) / "heightmap.png");
-  std::cout << run_summary_line(record) << "; wrote run.json, trajectory.csv, scene.json"
-            << (o.figures ? ", map.png, side.png" : "") << (height_map ? ", heightmap.png" : "") << " to " << o.out << "\n";
+  const ExecutedRun run = execute_run(request);
+  const std::filesystem::path out = o.out;
+  std::string figures;
+  for (const char* png : {"map.png", "side.png", "heightmap.png"}) {
+    if (o.figures && std::filesystem::exists(out / png)) figures += std::string(", ") + png;
+  }
+  std::cout << run_summary_line(run.record) << "; wrote run.json, " << kEventsFile << ", trajectory.csv, scene.json"
+            << figures << " to " << o.out << "\n";
+  if (!run.figure_failures.empty()) {
+    // The run is kept: only the figures that failed are missing.
+    bool bad_input = true;
+    for (const FigureFailure& f : run.figure_failures) {
+      std::cerr << (f.bad_input ? "error: " : "internal error: ") << f.figure << " figure: " << f.message << "\n";
+      bad_input = bad_input && f.bad_input;
+    }
+    std::cerr << "the run completed and its files are kept in " << o.out
+              << "; only the figures above are missing (campo render " << o.out << " redraws them)\n";
+    return bad_input ? kBadInput : kInternalError;
+  }
   return kOk;
 }
 
@@ -75,10 +91,12 @@ Command add_run(CLI::App& app) {
       "Runs one closed-loop episode: sense -> plan -> control -> actuate -> step, until the mission\n"
       "is complete (reached), the vehicle collides (collision), the time limit passes (timeout) or the\n"
       "planner gives up (aborted). Writes DIR/run.json (metrics, outcome, provenance, every effective\n"
-      "parameter), DIR/trajectory.csv (one row per planner call), DIR/scene.json (the effective\n"
-      "scene) and the figures DIR/map.png and DIR/side.png, plus DIR/heightmap.png for mapping\n"
-      "planners (redraw with campo render).\n"
-      "Exit 0 when the run completed, whatever its outcome; 2 on bad input; 1 on internal failure.");
+      "parameter), DIR/events.jsonl (the planner's decisions, one line each), DIR/trajectory.csv (one\n"
+      "row per planner call), DIR/scene.json (the effective scene) and the figures DIR/map.png and\n"
+      "DIR/side.png, plus DIR/heightmap.png for mapping planners (redraw with campo render).\n"
+      "Exit 0 when the run completed, whatever its outcome; 2 on bad input or an output that cannot be\n"
+      "written (nothing is written); 1 on internal failure. A completed run whose figure fails keeps\n"
+      "its files and exits 2 (or 1 for an internal failure) naming the figure.");
   return [o] { return run_run(*o); };
 }
 

@@ -1,6 +1,8 @@
 #include "tools/run_execution.hpp"
 
 #include <algorithm>
+#include <cstdlib>
+#include <functional>
 #include <optional>
 #include <cstdio>
 #include <stdexcept>
@@ -11,6 +13,7 @@
 #include "render/run_files.hpp"
 #include "render/sensors.hpp"
 #include "sim/episode.hpp"
+#include "sim/event_log.hpp"
 #include "sim/json_reader.hpp"
 #include "sim/pose.hpp"
 #include "sim/output_dir.hpp"
@@ -89,30 +92,61 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   return run;
 }
 
-void write_run_files(const SimulatedRun& run, const RunRequest& request, const StagedOutput& out) {
+std::vector<FigureFailure> write_run_files(const SimulatedRun& run, const RunRequest& request,
+                                           const StagedOutput& out) {
   write_file_atomically(out.path("trajectory.csv"), trajectory_csv(run.result));
+  write_file_atomically(out.path(kEventsFile), events_jsonl(run.result.events));
   write_file_atomically(out.path("run.json"), run.record.dump(2) + "\n");
   write_file_atomically(out.path("scene.json"), run.document.dump(2) + "\n");
-  if (request.figures) {
-    // Drawn from the files just written, exactly as `campo render` would.
-    const std::filesystem::path staged = out.path("");
-    RecordedRun recorded = load_run_dir(staged);
-    recorded.view.label = request.label.empty() ? request.out.filename().string() : request.label;
-    for (const std::string kind : {"map", "side"}) write_figure(recorded, kind, staged);
-    if (!recorded.view.height_map.empty()) write_figure(recorded, "heightmap", staged);
+  std::vector<FigureFailure> failures;
+  if (!request.figures) return failures;
+  // Drawn from the files just written, exactly as `campo render` would; each on its own, so one that
+  // fails costs neither the others nor the run.
+  // Test hook (tests/tools/cli_test.cpp): the figure named fails as on a full disk.
+  const char* const inject = std::getenv("CAMPO_TEST_FAIL_FIGURE");
+  const auto attempt = [&](const std::string& figure, const std::function<void()>& draw) {
+    try {
+      if (inject && figure == inject) {
+        throw OutputError(out.path(figure + ".png"), "cannot write: injected failure (CAMPO_TEST_FAIL_FIGURE)");
+      }
+      draw();
+    } catch (const InputError& e) {
+      failures.push_back({figure, e.what(), true});
+    } catch (const std::exception& e) {
+      failures.push_back({figure, e.what(), false});
+    }
+  };
+  const std::filesystem::path staged = out.path("");
+  std::optional<RecordedRun> recorded;
+  attempt("run directory", [&] {
+    recorded = load_run_dir(staged);
+    recorded->view.label = request.label.empty() ? request.out.filename().string() : request.label;
+  });
+  if (!recorded) return failures;  // no figure could be drawn from it
+  for (const std::string kind : {"map", "side"}) attempt(kind, [&] { write_figure(*recorded, kind, staged); });
+  if (!recorded->view.height_map.empty()) {
+    attempt("heightmap", [&] { write_figure(*recorded, "heightmap", staged); });
   }
+  return failures;
 }
 
-nlohmann::json execute_run(const RunRequest& request) {
+ExecutedRun execute_run(const RunRequest& request) {
   std::optional<StagedOutput> out;
   const auto output = [&]() -> const StagedOutput& {
     if (!out) out.emplace(request.out);
     return *out;
   };
   const SimulatedRun run = simulate_run(request, output);
-  write_run_files(run, request, output());
-  out->commit();
-  return run.record;
+  ExecutedRun executed{run.record, {}};
+  try {
+    executed.figure_failures = write_run_files(run, request, output());
+    out->commit();
+  } catch (const OutputError& e) {
+    throw OutputError(e.file(), std::string(e.what()).substr(e.file().size() + 2) +
+                                    "; the run completed (" + run_summary_line(run.record) +
+                                    ") but none of its files were kept");
+  }
+  return executed;
 }
 
 void write_final_depth(const SimulatedRun& run, const std::filesystem::path& png) {

@@ -46,11 +46,31 @@ using OutputProvider = std::function<const StagedOutput&()>;
 /// `output()`, which may be empty when the request asks for none.
 SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& output);
 
-/// Writes run.json, trajectory.csv, scene.json and the requested figures into `out`.
-void write_run_files(const SimulatedRun& run, const RunRequest& request, const StagedOutput& out);
+/// A figure that could not be drawn or written after the run's files were.
+struct FigureFailure {
+  std::string figure;        ///< "map", "side", "heightmap"
+  std::string message;       ///< what went wrong, naming the file where there is one
+  bool bad_input = false;    ///< an InputError (the record, the scene, the place to write), else a bug
+};
 
-/// simulate_run() and write_run_files() into `request.out`, all-or-nothing. Returns run.json.
-nlohmann::json execute_run(const RunRequest& request);
+/// Writes run.json, events.jsonl, trajectory.csv and scene.json into `out`
+/// (an OutputError naming the file when one cannot be written), then the
+/// requested figures. A figure that fails does not take the run with it: the
+/// figures that failed are returned and the run's files stay staged.
+std::vector<FigureFailure> write_run_files(const SimulatedRun& run, const RunRequest& request,
+                                           const StagedOutput& out);
+
+/// A run executed into its directory.
+struct ExecutedRun {
+  nlohmann::json record;                        ///< run.json
+  std::vector<FigureFailure> figure_failures;   ///< figures missing from the directory
+};
+
+/// simulate_run() and write_run_files() into `request.out`. Bad input writes
+/// nothing; a completed run is kept even when a figure fails (reported in
+/// the result). When the run's own files cannot be written, the OutputError
+/// also carries the run's summary line, so its outcome is not lost.
+ExecutedRun execute_run(const RunRequest& request);
 
 /// The depth map the vehicle would see at the end of the run (the failure
 /// step of a collision): its first image sensor, else the scanner3d depth

@@ -128,27 +128,43 @@ std::string run_one(const SweepRun& run, const fs::path& dir, const SweepOptions
   }
   // The trajectory's digest tells `campo table` whether seeds changed anything.
   nlohmann::json line = completed_result(run, simulated->record, sha256_hex(trajectory_csv(simulated->result)));
-  // The run completed: files that cannot be written are reported, its metrics kept.
-  try {
-    if (o.keep_runs || o.figures) {
+  // The run's own files, asked for and not written (a full disk), make it a failed run with the reason,
+  // which a resumed sweep runs again; a figure that fails is reported, the run and its files kept.
+  std::vector<FigureFailure> figure_failures;
+  if (o.keep_runs || o.figures) {
+    try {
       StagedOutput out(request.out);
-      write_run_files(*simulated, request, out);
+      figure_failures = write_run_files(*simulated, request, out);
       out.commit();
       line["run_dir"] = run_dir(run.name);
+    } catch (const std::exception& e) {
+      nlohmann::json failed =
+          failed_result(run, std::string("completed, but its files could not be written: ") + e.what());
+      failed["files_error"] = e.what();
+      return failed.dump();
     }
+  }
+  std::string files_error;
+  for (const FigureFailure& f : figure_failures) {
+    files_error += (files_error.empty() ? "" : "; ") + f.figure + ": " + f.message;
+  }
+  try {
     if (o.triage && simulated->record.at("metrics").at("outcome") != "reached") {
       // What a person needs to see why: the map, the depth map at the last step, the run's files.
       RunRequest figures = request;
       figures.out = dir / triage_dir(run);
       figures.figures = true;
       StagedOutput out(figures.out);
-      write_run_files(*simulated, figures, out);
+      for (const FigureFailure& f : write_run_files(*simulated, figures, out)) {
+        files_error += (files_error.empty() ? "triage " : "; triage ") + f.figure + ": " + f.message;
+      }
       write_final_depth(*simulated, out.path("depth.png"));
       out.commit();
     }
   } catch (const std::exception& e) {
-    line["files_error"] = e.what();
+    files_error += (files_error.empty() ? "triage: " : "; triage: ") + std::string(e.what());
   }
+  if (!files_error.empty()) line["files_error"] = files_error;
   return line.dump();
 }
 
@@ -233,7 +249,8 @@ int run_sweep(const SweepOptions& o) {
   // Resuming: runs already recorded are not redone (failed ones only with --retry-failed).
   std::set<std::string> recorded;
   for (const RunResult& r : read_results(results_file).runs) {
-    if (r.completed || !o.retry_failed) recorded.insert(r.id);
+    // A run that failed only for want of its files' room is done again without being asked.
+    if (r.completed || (!o.retry_failed && !r.files_failed)) recorded.insert(r.id);
   }
   std::vector<const SweepRun*> pending;
   for (const SweepRun& run : runs) {
@@ -281,9 +298,9 @@ int run_sweep(const SweepOptions& o) {
           ++counts.failed;
           progress.say("failed: " + run.name + " (" + run.id + "): " + line["reason"].get<std::string>());
         }
-        if (line.contains("files_error")) {
+        if (line.contains("files_error") && line["status"] == "completed") {
           ++files_errors;
-          progress.say("completed, but its files could not be written: " + run.name + " (" + run.id +
+          progress.say("completed, but some of its figures could not be written: " + run.name + " (" + run.id +
                        "): " + line["files_error"].get<std::string>());
         }
         progress.tick();

@@ -39,16 +39,20 @@ int run_table(const TableOptions& o) {
     request = layout.table;
   }
   const SweepTable summary = aggregate(results.runs, layout);
-  std::cout << (request ? format_metric_table(tabulate(results.runs, layout, *request), o.format)
-                        : format_table(summary, o.format));
-  if (o.no_chart) return kOk;
-  if (!chartable(summary)) {
-    std::cerr << "no chart: it needs exactly one axis with numeric values (campo plot draws any)\n";
-    return kOk;
+  const std::string table = request ? format_metric_table(tabulate(results.runs, layout, *request), o.format)
+                                    : format_table(summary, o.format);
+  // The chart first: a chart that cannot be written is an error (exit 2) with nothing printed before it.
+  std::optional<fs::path> chart;
+  if (!o.no_chart && chartable(summary)) {
+    chart = o.chart.empty() ? dir / "chart.png" : fs::path(o.chart);
+    write_sweep_chart(summary, *chart);
   }
-  const fs::path chart = o.chart.empty() ? dir / "chart.png" : fs::path(o.chart);
-  write_sweep_chart(summary, chart);
-  std::cerr << "wrote " << chart.string() << "\n";
+  std::cout << table << std::flush;
+  if (chart) {
+    std::cerr << "wrote " << chart->string() << "\n";
+  } else if (!o.no_chart) {
+    std::cerr << "no chart: it needs exactly one axis with numeric values (campo plot draws any)\n";
+  }
   return kOk;
 }
 

@@ -221,3 +221,21 @@ TEST_F(ResultsTest, LogCutsAPartialLastLineBeforeAppending) {
 
 }  // namespace
 }  // namespace campo
+
+namespace campo {
+namespace {
+
+// A full disk: the line is refused with the file and the system's reason.
+TEST(ResultsLogFullDisk, AppendNamesTheFileAndTheSystemsReason) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  ResultsLog log("/dev/full");
+  try {
+    log.append(nlohmann::json{{"id", "a"}});
+    ADD_FAILURE() << "expected an OutputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "/dev/full: cannot append: No space left on device");
+  }
+}
+
+}  // namespace
+}  // namespace campo

@@ -174,15 +174,17 @@ TEST_F(SweepCli, WithoutKeepRunsOnlyTheResultsAreWritten) {
   EXPECT_TRUE(nlohmann::json::parse(lines_of(slurp(dir_ / "o" / "results.jsonl"))[0])["run_dir"].is_null());
 }
 
-// A run whose files cannot be written still completed: its metrics are kept,
-// the error is recorded beside them, and the sweep says so in its exit code.
-TEST_F(SweepCli, ARunWhoseFilesCannotBeWrittenKeepsItsMetrics) {
+// A run whose kept files cannot be written is recorded as failed with the
+// system's reason, and a resumed sweep runs it again (without --retry-failed).
+TEST_F(SweepCli, ARunWhoseFilesCannotBeWrittenIsFailedAndRedoneOnResume) {
   // A file where the first run's directory should be.
-  fs::create_directories(dir_ / "o" / "runs");
-  std::ofstream(dir_ / "o" / "runs" / "two_barriers__resolution-16__seed-1") << "in the way";
+  const fs::path blocker = dir_ / "o" / "runs" / "two_barriers__resolution-16__seed-1";
+  fs::create_directories(blocker.parent_path());
+  std::ofstream(blocker) << "in the way";
   const Result sweep = campo("sweep " + spec("tiny.json") + " --out " + out("o") + " --keep-runs");
   EXPECT_EQ(sweep.exit_code, 1);
-  EXPECT_THAT(sweep.err, HasSubstr("completed, but its files could not be written: two_barriers__resolution-16__seed-1"));
+  EXPECT_THAT(sweep.err, HasSubstr("failed: two_barriers__resolution-16__seed-1"));
+  EXPECT_THAT(sweep.err, HasSubstr("completed, but its files could not be written"));
   std::map<std::string, nlohmann::json> by_name;
   for (const std::string& text : lines_of(slurp(dir_ / "o" / "results.jsonl"))) {
     const nlohmann::json line = nlohmann::json::parse(text);
@@ -190,13 +192,47 @@ TEST_F(SweepCli, ARunWhoseFilesCannotBeWrittenKeepsItsMetrics) {
   }
   ASSERT_EQ(by_name.size(), 2u);
   const nlohmann::json& blocked = by_name["two_barriers__resolution-16__seed-1"];
-  EXPECT_EQ(blocked["status"], "completed");
-  EXPECT_EQ(blocked["metrics"]["outcome"], "timeout");
-  EXPECT_FALSE(blocked["files_error"].get<std::string>().empty());
-  EXPECT_TRUE(blocked["run_dir"].is_null());
+  EXPECT_EQ(blocked["status"], "failed");
+  // The system's reason, not only "cannot write".
+  EXPECT_THAT(blocked["files_error"].get<std::string>(), HasSubstr(blocker.string()));
+  EXPECT_THAT(blocked["files_error"].get<std::string>(),
+              ::testing::AnyOf(HasSubstr("Not a directory"), HasSubstr("File exists")));
   EXPECT_EQ(by_name["two_barriers__resolution-32__seed-1"]["run_dir"], "runs/two_barriers__resolution-32__seed-1");
+  // Room again: the same command does that run, and only it.
+  fs::remove(blocker);
+  const Result resumed = campo("sweep " + spec("tiny.json") + " --out " + out("o") + " --keep-runs");
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_THAT(resumed.err, HasSubstr("1 runs to do (1 already recorded)"));
+  EXPECT_TRUE(fs::is_regular_file(blocker / "run.json"));
+  EXPECT_TRUE(fs::is_regular_file(blocker / "events.jsonl"));
+  const nlohmann::json last = nlohmann::json::parse(lines_of(slurp(dir_ / "o" / "results.jsonl")).back());
+  EXPECT_EQ(last["name"], "two_barriers__resolution-16__seed-1");
+  EXPECT_EQ(last["status"], "completed");
   const Result table = campo("table " + out("o") + " --format csv --no-chart");
   EXPECT_EQ(table.exit_code, 0) << table.err;
+}
+
+// A killed run's staging directory on this host is removed by the next
+// output into the same place; another host's (a shard on a shared file
+// system) is left alone.
+TEST_F(SweepCli, StaleStagingDirectoriesOfThisHostAreCleaned) {
+  const Result first = campo("run --set /world/time_limit_s=0.5 --no-figures --no-replan-depth --out " + out("r"));
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  // A process that has ended: its PID is free.
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ::waitpid(child, nullptr, 0);
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  const fs::path stale = dir_ / "r" / (".staging-" + std::string(host) + "-" + std::to_string(child));
+  const fs::path other = dir_ / "r" / ".staging-another-host.example-1";
+  const fs::path live = dir_ / "r" / (".staging-" + std::string(host) + "-" + std::to_string(::getpid()));
+  for (const fs::path& d : {stale, other, live}) fs::create_directories(d / "depth");
+  const Result second = campo("run --set /world/time_limit_s=0.5 --no-figures --no-replan-depth --out " + out("r"));
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_TRUE(fs::exists(other));
+  EXPECT_TRUE(fs::exists(live));
 }
 
 // Failed runs are recorded, so a rerun skips them unless asked to retry.

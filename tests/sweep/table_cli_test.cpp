@@ -83,6 +83,18 @@ TEST_F(TableCli, BadInputExitsWithCode2AndWritesNothing) {
   EXPECT_EQ(r.exit_code, 2);
 }
 
+// A chart that cannot be written is an output error: exit 2 naming the file
+// and the system's reason, and no table printed before it.
+TEST_F(TableCli, AChartThatCannotBeWrittenIsExitTwoWithNothingPrinted) {
+  const fs::path chart = dir_ / "no_such_dir" / "chart.png";
+  const Result r = campo("table " + dir() + " --chart " + chart.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_THAT(r.err, HasSubstr("error: " + chart.string() + ": cannot write: No such file or directory"));
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("libpng")));
+  EXPECT_FALSE(fs::exists(chart));
+}
+
 TEST_F(TableCli, PlotWritesAPng) {
   const std::string png = (dir_ / "ratio.png").string();
   const Result r = campo("plot " + dir() + " --x resolution --y path_ratio --group scene --out " + png);

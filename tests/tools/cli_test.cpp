@@ -15,6 +15,7 @@
 #include <sys/wait.h>
 
 #include "render/run_files.hpp"
+#include "sim/event_log.hpp"
 #include "sim/scene_loader.hpp"
 #include "tests/cli_support.hpp"
 
@@ -183,12 +184,78 @@ TEST_F(Cli, RunIsReproducibleAndRecordsTheSeed) {
                             "replan_time_ms_max"}) {
       (*j)["metrics"].erase(key);
     }
-    for (auto& event : (*j)["events"]) {
+  }
+  EXPECT_EQ(a, b);
+  // The decisions too, but for their measured times.
+  std::vector<campo::RecordedRun> runs{campo::load_run_dir(dir_ / "a"), campo::load_run_dir(dir_ / "b")};
+  for (campo::RecordedRun& run : runs) {
+    for (auto& event : run.events) {
       if (!event["decisions"].contains("replan")) continue;
       for (const char* key : {"time_ms", "dilation_ms", "search_ms"}) event["decisions"]["replan"].erase(key);
     }
   }
-  EXPECT_EQ(a, b);
+  EXPECT_FALSE(runs[0].events.empty());
+  EXPECT_EQ(runs[0].events, runs[1].events);
+}
+
+// A mapping planner records every scan's LIDAR hits (tens of thousands a
+// scan): run.json stays small whatever the run's length, every line of
+// events.jsonl is bounded, and the figures read them back.
+TEST_F(Cli, ARunWithManyBigEventsKeepsItsRecordBounded) {
+  const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json";
+  const fs::path out = dir_ / "d3";
+  const Result r = campo("run " + scene + " --planner dstar_lite_3d --set /world/time_limit_s=8 --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("wrote run.json, events.jsonl, trajectory.csv, scene.json, map.png, side.png"));
+  // run.json: no per-step data (the scene's parameters and the metrics only).
+  EXPECT_LT(fs::file_size(out / "run.json"), 64u << 10);
+  const nlohmann::json record = nlohmann::json::parse(slurp(out / "run.json"));
+  EXPECT_FALSE(record.contains("events"));
+  EXPECT_EQ(record["event_log"]["file"], "events.jsonl");
+  const std::vector<std::string> lines = campo::testing::lines_of(slurp(out / "events.jsonl"));
+  ASSERT_EQ(record["event_log"]["count"], lines.size());
+  std::size_t thinned = 0, hits = 0;
+  for (const std::string& line : lines) {
+    EXPECT_LE(line.size(), campo::kEventLineMaxBytes);
+    const nlohmann::json event = nlohmann::json::parse(line);
+    const nlohmann::json& d = event["decisions"];
+    if (!d.contains("lidar_hits")) continue;
+    ++hits;
+    EXPECT_LE(d["lidar_hits"].size(), campo::kEventArrayMaxEntries);
+    // The scanner's scans hit far more than that: each says how many it had.
+    if (d.contains("thinned")) {
+      ++thinned;
+      EXPECT_GT(d["thinned"]["/lidar_hits"].get<std::size_t>(), campo::kEventArrayMaxEntries);
+    }
+  }
+  EXPECT_GT(hits, 10u);
+  EXPECT_EQ(record["event_log"]["bounded"], thinned);
+  EXPECT_GT(thinned, 10u);
+  // The readers read it: the run directory, the figures redrawn.
+  const campo::RecordedRun run = campo::load_run_dir(out);
+  EXPECT_EQ(run.events.size(), lines.size());
+  EXPECT_GT(run.view.sensor_hits.size(), 10 * campo::kEventArrayMaxEntries);
+  const Result render = campo("render " + out.string() + " --kind map --out " + (dir_ / "redrawn").string());
+  EXPECT_EQ(render.exit_code, 0) << render.err;
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "redrawn" / "d3" / "map.png"));
+}
+
+// A completed run is never thrown away: a figure that cannot be written
+// (a failure injected through the test hook) costs only that figure.
+TEST_F(Cli, AFigureThatFailsKeepsTheRunsFiles) {
+  const fs::path out = dir_ / "kept";
+  ::setenv("CAMPO_TEST_FAIL_FIGURE", "map", 1);
+  const Result r = campo("run --set /world/time_limit_s=1 --no-replan-depth --out " + out.string());
+  ::unsetenv("CAMPO_TEST_FAIL_FIGURE");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("error: map figure: "));
+  EXPECT_THAT(r.err, HasSubstr("map.png: cannot write: injected failure"));
+  EXPECT_FALSE(fs::exists(out / "map.png"));
+  EXPECT_THAT(r.err, HasSubstr("the run completed and its files are kept in " + out.string()));
+  for (const char* file : {"run.json", "events.jsonl", "trajectory.csv", "scene.json", "side.png"}) {
+    EXPECT_TRUE(fs::is_regular_file(out / file)) << file;
+  }
+  EXPECT_EQ(nlohmann::json::parse(slurp(out / "run.json"))["metrics"]["outcome"], "timeout");
 }
 
 TEST_F(Cli, BadRunInputExitsTwoAndWritesNothing) {
