@@ -2,12 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <numbers>
-#include <utility>
 #include <stdexcept>
 #include <string>
+#include <utility>
+
+// nanoflann 1.4.3 copies a never-built tree's uninitialized bounding box when
+// it sets up its sub-trees (harmless: a tree's box is computed when it is
+// built, before any query reads it); GCC warns about that copy at -O2.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <nanoflann.hpp>
+#pragma GCC diagnostic pop
 
 #include "sim/random.hpp"
 
@@ -18,8 +27,8 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument("RRT*: " + message);
 }
 
+/// A tree node; its point is in a separate array (see NodeCloud).
 struct Node {
-  Eigen::Vector2d point;
   int parent = -1;
   double cost = 0.0;  ///< length of the tree path from the start
   std::vector<int> children;
@@ -42,145 +51,145 @@ struct BestGoal {
   }
 };
 
-/// The tree's points in a k-d tree kept by the logarithmic method (Bentley &
-/// Saxe): static balanced trees of 1, 2, 4, ... points, merged and rebuilt
-/// like the digits of a binary counter as points arrive. Nearest and
-/// k-nearest queries cost O(log^2 n) node visits whatever the map's extent
-/// or the step, and the memory is O(n): the old lattice of step-sized
-/// buckets cost (extent / step)^2 memory and, for a sample far from the
-/// tree, a scan of every bucket between them (issue 16). Ties are broken by
-/// the lower id, so the answers do not depend on how the trees are built.
+/// The nodes' points as nanoflann's dataset: a view of the array, no copy.
+/// The points live apart from the rest of the nodes (16 bytes a node, not
+/// 64) because nanoflann reads them in its leaf scans in an order unrelated
+/// to the ids, where cache misses dominate the query time. Counts the coordinates nanoflann reads, which is its work:
+/// two per distance it computes in a query, and the bounding boxes and splits
+/// of the trees it rebuilds as nodes arrive.
+struct NodeCloud {
+  const std::vector<Eigen::Vector2d>& points;
+  mutable std::uint64_t reads = 0;
+
+  std::size_t kdtree_get_point_count() const { return points.size(); }
+  double kdtree_get_pt(std::size_t id, std::size_t axis) const {
+    ++reads;
+    return points[id][static_cast<Eigen::Index>(axis)];
+  }
+  /// No precomputed box: nanoflann computes it from the points.
+  template <class Box>
+  bool kdtree_get_bbox(Box& /*box*/) const {
+    return false;
+  }
+};
+
+/// A nanoflann result set: the at most k nearest points within sqrt(limit)
+/// of the query, ties to the lower id, in a max-heap of (squared distance,
+/// id) whose buffer is reused across queries. nanoflann's own KNNResultSet
+/// keeps, among equal distances, the one found first, and once full it never
+/// offers a point tied with the k-th (it offers only dist < worstDist()), so
+/// which of two tied nodes is kept would depend on how the trees happen to be
+/// built; RRT* breaks ties by the lower id, as its lattice and hand-written
+/// k-d tree did.
+class NearestWithin {
+ public:
+  using DistanceType = double;
+  using IndexType = std::uint32_t;
+
+  void reset(std::size_t k, double limit) {
+    k_ = k;
+    limit_ = limit;
+    items_.clear();
+    items_.reserve(k);
+  }
+
+  /// Called by nanoflann for a point nearer than worstDist().
+  bool addPoint(double d2, IndexType id) {
+    if (k_ == 0 || d2 > limit_) return true;
+    const std::pair<double, int> item{d2, static_cast<int>(id)};
+    if (items_.size() < k_) {
+      items_.push_back(item);
+      std::push_heap(items_.begin(), items_.end());
+    } else if (item < items_.front()) {
+      std::pop_heap(items_.begin(), items_.end());
+      items_.back() = item;
+      std::push_heap(items_.begin(), items_.end());
+    }
+    return true;  // search on
+  }
+
+  /// nanoflann offers a point only below this and searches a cell only when
+  /// it may hold a point within it: a hair above the true bound (1e-9
+  /// relative, at least one ulp), so that a point tied with the k-th still
+  /// reaches addPoint, which decides by id, and that rounding in nanoflann's
+  /// incremental cell distances cannot skip one. It costs a few more offers.
+  double worstDist() const {
+    if (k_ == 0) return -1.0;
+    const double bound = items_.size() < k_ ? limit_ : std::min(limit_, items_.front().first);
+    return bound * (1.0 + 1e-9) + std::numeric_limits<double>::denorm_min();
+  }
+  bool full() const { return items_.size() == k_; }
+  std::size_t size() const { return items_.size(); }
+  const std::vector<std::pair<double, int>>& items() const { return items_; }
+
+ private:
+  std::size_t k_ = 0;
+  double limit_ = 0.0;
+  std::vector<std::pair<double, int>> items_;
+};
+
+/// The tree's points in nanoflann's dynamic k-d tree
+/// (KDTreeSingleIndexDynamicAdaptor, libnanoflann-dev): the logarithmic
+/// method of Bentley & Saxe, static balanced trees of 1, 2, 4, ... points
+/// merged and rebuilt like the digits of a binary counter as points arrive,
+/// so an insertion costs O(log^2 n) amortized and a nearest or k-nearest
+/// query visits O(log n) trees of O(log n) depth, whatever the map's extent
+/// or the step; memory O(n). (The old lattice of step-sized buckets cost
+/// (extent / step)^2 memory and, for a sample far from the tree, a scan of
+/// every bucket between them; issue 16.)
 class PointIndex {
  public:
-  explicit PointIndex(const std::vector<Node>& nodes) : nodes_(nodes) {}
+  /// Indexes the points already in `points`; `max_points` bounds their
+  /// number (nanoflann keeps log2(max_points) + 1 sub-trees).
+  PointIndex(const std::vector<Eigen::Vector2d>& points, std::size_t max_points)
+      : cloud_{points},
+        index_(2, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize), std::max<std::size_t>(max_points, 1)) {
+    build_reads_ = cloud_.reads;
+  }
+  PointIndex(const PointIndex&) = delete;  // nanoflann keeps a reference to cloud_
+  PointIndex& operator=(const PointIndex&) = delete;
 
+  /// Adds points[id]; ids must arrive in order 1, 2, ... (nanoflann numbers
+  /// its points by arrival).
   void add(int id) {
-    std::vector<int> carry{id};
-    for (std::size_t k = 0;; ++k) {
-      if (k == trees_.size()) trees_.emplace_back();
-      if (trees_[k].ids.empty()) {
-        build(trees_[k], std::move(carry));
-        return;
-      }
-      carry.insert(carry.end(), trees_[k].ids.begin(), trees_[k].ids.end());
-      trees_[k] = {};
-    }
+    const std::uint64_t before = cloud_.reads;
+    index_.addPoints(static_cast<std::uint32_t>(id), static_cast<std::uint32_t>(id));
+    build_reads_ += cloud_.reads - before;
   }
 
   /// Nearest point to q, lowest id on ties; -1 when empty.
   int nearest(const Eigen::Vector2d& q) {
-    Best best(1);
-    for (const Tree& tree : trees_) search(tree, 0, tree.ids.size(), q, kInf, best);
-    return best.items.empty() ? -1 : best.items.front().second;
+    search(q, 1, std::numeric_limits<double>::infinity());
+    return result_.size() == 0 ? -1 : result_.items().front().second;
   }
 
   /// The at most `k` nearest points within `radius` of q (by distance, then
-  /// lower id), in increasing id order.
-  std::vector<int> nearest_within(const Eigen::Vector2d& q, double radius, std::size_t k) {
-    Best best(k);
-    for (const Tree& tree : trees_) search(tree, 0, tree.ids.size(), q, radius * radius, best);
-    std::vector<int> out;
-    out.reserve(best.items.size());
-    for (const auto& item : best.items) out.push_back(item.second);
+  /// lower id), into `out` in increasing id order.
+  void nearest_within(const Eigen::Vector2d& q, double radius, std::size_t k, std::vector<int>& out) {
+    search(q, k, radius * radius);
+    out.clear();
+    for (const auto& item : result_.items()) out.push_back(item.second);
     std::sort(out.begin(), out.end());
-    return out;
   }
 
-  /// k-d tree nodes visited by the queries so far.
-  std::uint64_t visits() const { return visits_; }
+  /// Coordinates nanoflann read in queries (two per distance) and in building.
+  std::uint64_t query_reads() const { return cloud_.reads - build_reads_; }
+  std::uint64_t build_reads() const { return build_reads_; }
 
  private:
-  static constexpr double kInf = std::numeric_limits<double>::infinity();
+  using Index = nanoflann::KDTreeSingleIndexDynamicAdaptor<nanoflann::L2_Simple_Adaptor<double, NodeCloud>, NodeCloud, 2>;
+  /// nanoflann's default: leaves of up to 10 points are scanned, not split.
+  static constexpr std::size_t kLeafSize = 10;
 
-  /// A balanced k-d tree stored implicitly: the median of ids[lo, hi) sits
-  /// at (lo + hi) / 2 and splits along axis[(lo + hi) / 2].
-  struct Tree {
-    std::vector<int> ids;
-    std::vector<Eigen::Vector2d> points;  ///< points[i] of ids[i], copied for locality
-    std::vector<std::uint8_t> axis;
-  };
-  /// Ranges this small are scanned, not split.
-  static constexpr std::size_t kLeafSize = 8;
-
-  /// The k best (squared distance, id) pairs so far, a max-heap.
-  struct Best {
-    explicit Best(std::size_t k) : k(k) {}
-    std::size_t k;
-    std::vector<std::pair<double, int>> items;
-    /// Squared distance beyond which nothing can enter.
-    double bound(double limit) const { return items.size() < k ? limit : std::min(limit, items.front().first); }
-    void offer(double d2, int id) {
-      if (k == 0) return;
-      const std::pair<double, int> item{d2, id};
-      if (items.size() < k) {
-        items.push_back(item);
-        std::push_heap(items.begin(), items.end());
-      } else if (item < items.front()) {
-        std::pop_heap(items.begin(), items.end());
-        items.back() = item;
-        std::push_heap(items.begin(), items.end());
-      }
-    }
-  };
-
-  const Eigen::Vector2d& point(int id) const { return nodes_[static_cast<std::size_t>(id)].point; }
-
-  void build(Tree& tree, std::vector<int> ids) {
-    tree.ids = std::move(ids);
-    tree.axis.assign(tree.ids.size(), 0);
-    build(tree, 0, tree.ids.size());
-    tree.points.clear();
-    tree.points.reserve(tree.ids.size());
-    for (const int id : tree.ids) tree.points.push_back(point(id));
+  void search(const Eigen::Vector2d& q, std::size_t k, double limit) {
+    result_.reset(k, limit);
+    index_.findNeighbors(result_, q.data(), nanoflann::SearchParams());
   }
 
-  // Splits along the axis of the larger spread, so a long narrow map does not
-  // waste the levels that split its short side.
-  void build(Tree& tree, std::size_t lo, std::size_t hi) {
-    if (hi - lo <= kLeafSize) return;
-    Eigen::Vector2d min = point(tree.ids[lo]), max = min;
-    for (std::size_t i = lo + 1; i < hi; ++i) {
-      min = min.cwiseMin(point(tree.ids[i]));
-      max = max.cwiseMax(point(tree.ids[i]));
-    }
-    const int axis = (max.x() - min.x()) >= (max.y() - min.y()) ? 0 : 1;
-    const std::size_t mid = (lo + hi) / 2;
-    std::nth_element(tree.ids.begin() + static_cast<std::ptrdiff_t>(lo), tree.ids.begin() + static_cast<std::ptrdiff_t>(mid),
-                     tree.ids.begin() + static_cast<std::ptrdiff_t>(hi), [&](int a, int b) {
-                       return std::pair(point(a)[axis], a) < std::pair(point(b)[axis], b);
-                     });
-    tree.axis[mid] = static_cast<std::uint8_t>(axis);
-    build(tree, lo, mid);
-    build(tree, mid + 1, hi);
-  }
-
-  // Offers the points of ids[lo, hi) within sqrt(limit) of q to `best`,
-  // skipping halves that lie farther than the current bound.
-  void search(const Tree& tree, std::size_t lo, std::size_t hi, const Eigen::Vector2d& q, double limit, Best& best) {
-    if (hi - lo <= kLeafSize) {
-      for (std::size_t i = lo; i < hi; ++i) {
-        ++visits_;
-        const double d2 = (tree.points[i] - q).squaredNorm();
-        if (d2 <= limit) best.offer(d2, tree.ids[i]);
-      }
-      return;
-    }
-    ++visits_;
-    const std::size_t mid = (lo + hi) / 2;
-    const Eigen::Vector2d& p = tree.points[mid];
-    const double d2 = (p - q).squaredNorm();
-    if (d2 <= limit) best.offer(d2, tree.ids[mid]);
-    const int axis = tree.axis[mid];
-    const double offset = q[axis] - p[axis];
-    // The near side first; the far side only when its slab can hold a point within the bound.
-    const bool left_first = offset < 0.0;
-    search(tree, left_first ? lo : mid + 1, left_first ? mid : hi, q, limit, best);
-    if (offset * offset <= best.bound(limit)) search(tree, left_first ? mid + 1 : lo, left_first ? hi : mid, q, limit, best);
-  }
-
-  const std::vector<Node>& nodes_;
-  std::vector<Tree> trees_;
-  std::uint64_t visits_ = 0;
+  NodeCloud cloud_;
+  Index index_;
+  NearestWithin result_;
+  std::uint64_t build_reads_ = 0;
 };
 
 /// Moves node `id` under `parent` at `cost`, shifting its subtree's costs alike.
@@ -248,7 +257,8 @@ RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m
     result.status = RrtStarStatus::invalid_goal;
     return result;
   }
-  std::vector<Node> nodes{{start_m, -1, 0.0, {}, false}};
+  std::vector<Node> nodes{{-1, 0.0, {}, false}};
+  std::vector<Eigen::Vector2d> points{start_m};  ///< points[i] of nodes[i]
   if ((start_m - goal_m).norm() <= config.goal_radius_m) {
     result.status = RrtStarStatus::solved;
     result.path_m = {start_m};
@@ -269,8 +279,8 @@ RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m
   // beyond it changes nothing.
   const Eigen::Vector2d extent = grid.resolution_m * Eigen::Vector2d(grid.cols, grid.rows);
   const double step_m = std::min(config.step_m, extent.norm());
-  PointIndex index(nodes);
-  index.add(0);
+  PointIndex index(points, static_cast<std::size_t>(config.max_iterations) + 1);
+  std::vector<int> near;  // reused: no allocation per iteration once grown
   Rng rng(config.seed);
   BestGoal best_goal;
   RrtStarWork& work = result.work;
@@ -288,36 +298,36 @@ RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m
                                        : Eigen::Vector2d(grid.origin_m.x() + extent.x() * rng.uniform01(),
                                                          grid.origin_m.y() + extent.y() * rng.uniform01());
     const int nearest = index.nearest(sample);
-    const Eigen::Vector2d from = nodes[static_cast<std::size_t>(nearest)].point;
+    const Eigen::Vector2d from = points[static_cast<std::size_t>(nearest)];
     const double distance = (sample - from).norm();
     const Eigen::Vector2d point = distance > step_m ? Eigen::Vector2d(from + (sample - from) * (step_m / distance)) : sample;
     if (distance > 1e-12 && segment_free(from, point)) {
       // Connect through the cheapest free neighbour (the nearest node at worst):
       // the k(n) nearest within the rewiring radius.
-      const std::vector<int> near =
-          index.nearest_within(point, rewire_radius(nodes.size() + 1), max_neighbours(nodes.size() + 1));
+      index.nearest_within(point, rewire_radius(nodes.size() + 1), max_neighbours(nodes.size() + 1), near);
       work.max_neighbours = std::max(work.max_neighbours, near.size());
       int parent = nearest;
       double cost = nodes[static_cast<std::size_t>(nearest)].cost + (point - from).norm();
       for (const int j : near) {
-        const Node& candidate = nodes[static_cast<std::size_t>(j)];
-        const double via = candidate.cost + (point - candidate.point).norm();
-        if (via < cost && segment_free(candidate.point, point)) {
+        const Eigen::Vector2d& at = points[static_cast<std::size_t>(j)];
+        const double via = nodes[static_cast<std::size_t>(j)].cost + (point - at).norm();
+        if (via < cost && segment_free(at, point)) {
           parent = j;
           cost = via;
         }
       }
       const int id = static_cast<int>(nodes.size());
       const bool in_goal = (point - goal_m).norm() <= config.goal_radius_m;
-      nodes.push_back({point, parent, cost, {}, in_goal});
+      nodes.push_back({parent, cost, {}, in_goal});
+      points.push_back(point);
       nodes[static_cast<std::size_t>(parent)].children.push_back(id);
       index.add(id);
       // Rewire: neighbours that are cheaper to reach through the new node.
       for (const int j : near) {
         if (j == parent) continue;
-        const Node& neighbour = nodes[static_cast<std::size_t>(j)];
-        const double via = cost + (neighbour.point - point).norm();
-        if (via < neighbour.cost && segment_free(point, neighbour.point)) reparent(nodes, j, id, via, best_goal);
+        const Eigen::Vector2d& at = points[static_cast<std::size_t>(j)];
+        const double via = cost + (at - point).norm();
+        if (via < nodes[static_cast<std::size_t>(j)].cost && segment_free(point, at)) reparent(nodes, j, id, via, best_goal);
       }
       if (in_goal) {
         best_goal.consider(nodes, id);
@@ -330,14 +340,15 @@ RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m
                                                              : nodes[static_cast<std::size_t>(best_goal.id)].cost);
   }
 
-  work.index_visits = index.visits();
+  work.index_query_reads = index.query_reads();
+  work.index_build_reads = index.build_reads();
   result.iterations = config.max_iterations;
   result.nodes = nodes.size();
   if (best_goal.id < 0) return result;
   result.status = RrtStarStatus::solved;
   result.cost_m = nodes[static_cast<std::size_t>(best_goal.id)].cost;
   for (int k = best_goal.id; k >= 0; k = nodes[static_cast<std::size_t>(k)].parent) {
-    result.path_m.push_back(nodes[static_cast<std::size_t>(k)].point);
+    result.path_m.push_back(points[static_cast<std::size_t>(k)]);
   }
   std::reverse(result.path_m.begin(), result.path_m.end());
   return result;
