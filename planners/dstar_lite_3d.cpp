@@ -300,8 +300,8 @@ DStarLite3dConfig parse_dstar_lite_3d_config(const ParamsBlock& params) {
   r.read("columns", c.columns, 1, 4000);
   r.read("rows", c.rows, 1, 4000);
   r.read("levels", c.levels, 1, 1000);
-  r.read("cell_size_m", c.cell_size_m, Range::positive());
-  r.read("level_spacing_m", c.level_spacing_m, Range::positive());
+  r.read("cell_size_m", c.cell_size_m, Range::closed(kMinCellSizeM, kMaxCellSizeM));
+  r.read("level_spacing_m", c.level_spacing_m, Range::closed(kMinCellSizeM, kMaxCellSizeM));
   r.read("ground_level", c.ground_level, 0, c.levels - 1);
   r.read("origin_m", c.origin_m);
   if (const auto connectivity = r.optional("connectivity")) {
@@ -332,7 +332,24 @@ DStarLite3dConfig parse_dstar_lite_3d_config(const ParamsBlock& params) {
     o.finish();
   }
   r.finish();
+  check_grid_size(c, params);
   return c;
+}
+
+void check_grid_size(const DStarLite3dConfig& c, const ParamsBlock& params) {
+  const std::int64_t cells = std::int64_t{c.columns} * c.rows * c.levels;
+  if (cells > kMaxDStarLite3dCells) {
+    throw InputError(params.file, params.pointer,
+                     "expected columns x rows x levels <= " + std::to_string(kMaxDStarLite3dCells) + " cells, got " +
+                         std::to_string(c.columns) + " x " + std::to_string(c.rows) + " x " + std::to_string(c.levels) +
+                         " = " + std::to_string(cells));
+  }
+  // The search's grid takes a climb of at most 1000 horizontal moves.
+  if (c.climb_cost_cells == 0.0 && !(climb_cost_cells(c) <= 1000.0)) {
+    throw InputError(params.file, params.pointer,
+                     "expected level_spacing_m / cell_size_m <= 1000 (a climb's cost in cell moves) or climb_cost_cells "
+                     "given, got " + std::to_string(c.level_spacing_m) + " / " + std::to_string(c.cell_size_m));
+  }
 }
 
 std::unique_ptr<Planner> make_dstar_lite_3d_planner(const ParamsBlock& params, const PlannerContext& context) {

@@ -8,6 +8,7 @@
 /// update an octree of free and occupied space that blocks the cells near
 /// occupied voxels (mapping "octomap", OctoMap3d); only the cells that changed
 /// go to D* Lite, which moves its start (k_m) and repairs the search.
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -45,6 +46,19 @@ struct DStarLite3dConfig {
   Mapping3d mapping = Mapping3d::columns;  ///< "columns" (001, the default) or "octomap"
   OctoMap3dConfig octomap;                 ///< the octree's settings, for mapping "octomap" only
 };
+
+/// Limits of the planning grid (issue 16): its cells (about 40 bytes each
+/// with the map and the search: 8 million take some 320 MB), and the cell
+/// size and level spacing, so that positions convert to cells exactly
+/// enough and a climb costs at most 1000 cell moves.
+inline constexpr std::int64_t kMaxDStarLite3dCells = 8'000'000;
+inline constexpr double kMinCellSizeM = 0.01;
+inline constexpr double kMaxCellSizeM = 1000.0;
+
+/// Throws InputError at `params` when the grid of `config` has more than
+/// kMaxDStarLite3dCells cells or its derived climb cost exceeds 1000 cells.
+/// parse_dstar_lite_3d_config runs it, so `campo run` and `campo validate` do.
+void check_grid_size(const DStarLite3dConfig& config, const ParamsBlock& params);
 
 std::unique_ptr<Planner> make_dstar_lite_3d_planner(const ParamsBlock& params, const PlannerContext& context);
 

@@ -6,8 +6,12 @@
 #include <functional>
 #include <memory>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
+#include <span>
+#include <string>
+#include <utility>
 #include <unordered_set>
 #include <vector>
 
@@ -117,15 +121,15 @@ nlohmann::json to_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()};
 
 // Poses the route passes: the vehicle's start (unless the first waypoint is
 // there) and the mission waypoints, headed as given or toward the next one.
-std::vector<dubins::Pose2> route_poses(const Observation& o, double tolerance_m) {
+std::vector<dubins::Pose2> route_poses(const Eigen::Vector2d& start, double start_yaw_rad,
+                                       std::span<const Waypoint> mission, double tolerance_m) {
   std::vector<Eigen::Vector2d> points;
   std::vector<std::optional<double>> headings;
-  const Eigen::Vector2d start = o.state.position_m.head<2>();
-  if (o.mission.empty() || (o.mission.front().position_m.head<2>() - start).norm() > tolerance_m) {
+  if (mission.empty() || (mission.front().position_m.head<2>() - start).norm() > tolerance_m) {
     points.push_back(start);
-    headings.push_back(o.state.yaw_rad());
+    headings.push_back(start_yaw_rad);
   }
-  for (const Waypoint& w : o.mission) {
+  for (const Waypoint& w : mission) {
     points.push_back(w.position_m.head<2>());
     headings.push_back(w.heading_deg ? std::optional(*w.heading_deg * M_PI / 180.0) : std::nullopt);
   }
@@ -141,6 +145,32 @@ std::vector<dubins::Pose2> route_poses(const Observation& o, double tolerance_m)
     poses.push_back({points[i].x(), points[i].y(), heading});
   }
   return poses;
+}
+
+std::vector<dubins::Pose2> route_poses(const Observation& o, double tolerance_m) {
+  return route_poses(o.state.position_m.head<2>(), o.state.yaw_rad(), o.mission, tolerance_m);
+}
+
+// A number for messages: 0.1 -> "0.1", 25200400 -> "25200400".
+std::string format_number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.10g", value);
+  return buffer;
+}
+
+// Points dubins::sample_route makes of `path` at `step_m` (the junction with
+// the previous path counted there), as a double so that no extent overflows.
+double sampled_points(const dubins::Path& path, double step_m) { return std::ceil(path.length_m() / step_m); }
+
+// The first pose whose Dubins path from the previous one takes the route past
+// kMaxRoutePoints, or nullopt.
+std::optional<std::size_t> dubins_route_overflow(const std::vector<dubins::Pose2>& poses, const RoverRouteConfig& c) {
+  double points = 1.0;
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    points += sampled_points(dubins::shortest_path(poses[i - 1], poses[i], c.turning_radius_m), c.route_step_m);
+    if (!(points <= static_cast<double>(kMaxRoutePoints))) return i;
+  }
+  return std::nullopt;
 }
 
 std::vector<Eigen::Vector2d> dubins_route(const std::vector<dubins::Pose2>& poses, const RoverRouteConfig& c) {
@@ -327,6 +357,13 @@ class RoverRoutePlanner final : public Planner {
       return false;
     }
     if (config_.global == GlobalRoute::dubins) {
+      // Checked at creation from the scene's start; the start observed may differ.
+      if (dubins_route_overflow(poses, config_)) {
+        result.status = PlanStatus::aborted;
+        result.reason = "the Dubins route through the mission waypoints would exceed " +
+                        std::to_string(kMaxRoutePoints) + " points of route_step_m";
+        return false;
+      }
       route_ = dubins_route(poses, config_);
     } else {
       if (!scene_) {
@@ -337,6 +374,7 @@ class RoverRoutePlanner final : public Planner {
       }
       OccupancyConfig occupancy;
       occupancy.resolution_m = config_.occupancy_resolution_m;
+      occupancy.max_cells = kMaxRouteGridCells;  // checked at creation (check_rover_route_extent)
       const OccupancyGrid grid = inflate(build_occupancy_grid(*scene_, occupancy), config_.clearance_m);
       const LegPlanner legs = config_.global == GlobalRoute::astar ? astar_legs(grid) : rrt_star_legs(grid, config_.rrt_star);
       const auto raw = grid_route(grid, poses, config_.turning_radius_m, legs);
@@ -651,11 +689,71 @@ RoverRouteConfig parse_rover_route_config(const ParamsBlock& params) {
   return c;
 }
 
+void check_rover_route_extent(const RoverRouteConfig& c, const VehicleDef& vehicle, const Scene& scene) {
+  // The loader puts a vehicle's "params" block (present or not) at <vehicle>/params.
+  const auto waypoint_at = [](const VehicleDef& v, std::size_t i) {
+    const std::string& params = v.params.pointer;
+    const std::size_t slash = params.rfind('/');
+    return std::pair<std::string, std::string>{
+        v.params.file,
+        (slash == std::string::npos ? std::string() : params.substr(0, slash)) + "/mission/waypoints/" + std::to_string(i)};
+  };
+  if (c.global == GlobalRoute::dubins) {
+    const Eigen::Vector3d x_axis = vehicle.pose.linear() * Eigen::Vector3d::UnitX();
+    const std::vector<dubins::Pose2> poses = route_poses(vehicle.pose.translation().head<2>(),
+                                                         std::atan2(x_axis.y(), x_axis.x()), vehicle.mission,
+                                                         c.waypoint_tolerance_m);
+    if (const auto i = dubins_route_overflow(poses, c)) {
+      // poses: the start (when it is not at the first waypoint), then the waypoints.
+      const std::size_t waypoint = *i - (poses.size() - vehicle.mission.size());
+      const auto at = waypoint_at(vehicle, waypoint);
+      throw InputError(at.first, at.second,
+                       "expected a waypoint nearer the previous one: the rover's Dubins route to it would exceed " +
+                           std::to_string(kMaxRoutePoints) + " points of route_step_m " + format_number(c.route_step_m) +
+                           " m (" + format_number(static_cast<double>(kMaxRoutePoints) * c.route_step_m / 1000.0) +
+                           " km in all)");
+    }
+    return;
+  }
+  // A* and RRT* plan on an occupancy grid over the obstacles and every
+  // vehicle's start and waypoints: the first waypoint that takes it past the
+  // limit is named.
+  OccupancyConfig occupancy;
+  occupancy.resolution_m = c.occupancy_resolution_m;
+  const auto cells = [&](const Eigen::AlignedBox2d& box) {
+    const Eigen::Vector2d size = occupancy_grid_cells(box, occupancy);
+    return size.x() * size.y();
+  };
+  const auto limit = static_cast<double>(kMaxRouteGridCells);
+  const std::string expected = "an occupancy grid of at most " + std::to_string(kMaxRouteGridCells) +
+                               " cells of occupancy_resolution_m " + format_number(c.occupancy_resolution_m) +
+                               " m over the obstacles, starts and waypoints";
+  Eigen::AlignedBox2d bounds = occupancy_bounds(scene, false);
+  if (!(cells(bounds) <= limit)) {
+    throw InputError(vehicle.planner.params.file, vehicle.planner.params.pointer,
+                     "expected " + expected + ", got " + format_number(cells(bounds)) +
+                         " cells for the obstacles and starts alone (a coarser occupancy_resolution_m?)");
+  }
+  for (const VehicleDef& v : scene.vehicles) {
+    for (std::size_t i = 0; i < v.mission.size(); ++i) {
+      bounds.extend(Eigen::Vector2d(v.mission[i].position_m.head<2>()));
+      if (!(cells(bounds) <= limit)) {
+        const auto at = waypoint_at(v, i);
+        throw InputError(at.first, at.second,
+                         "expected a waypoint nearer the obstacles and starts: rover_route's " +
+                             std::string(kGlobalNames[static_cast<std::size_t>(c.global)]) + " route needs " +
+                             expected + ", and with this waypoint it would have " + format_number(cells(bounds)));
+      }
+    }
+  }
+}
+
 std::unique_ptr<Planner> make_rover_route_planner(const ParamsBlock& params, const PlannerContext& context) {
   if (context.vehicle != VehicleType::rover) {
     throw InputError(params.file, params.pointer, "planner rover_route drives a rover only");
   }
   RoverRouteConfig config = parse_rover_route_config(params);
+  if (context.scene && context.vehicle_def) check_rover_route_extent(config, *context.vehicle_def, *context.scene);
   if (context.scene && !params.values.contains("rrt_star")) {
     config.rrt_star.seed = context.scene->world.seed;  // seeded from the world unless given
   }

@@ -6,6 +6,8 @@
 /// pursuit, with a local planner (follow-the-gap or VFH+) taking over while
 /// an obstacle stands in the rover's way within the activation range; pure
 /// pursuit resumes from the route point nearest the rover afterwards.
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -58,6 +60,22 @@ struct RoverRouteConfig {
   VfhPlusConfig vfh_plus;
   RrtStarConfig rrt_star;
 };
+
+/// Limits of the work a mission may ask of rover_route (issue 16): the
+/// route polyline pure pursuit follows has at most kMaxRoutePoints points
+/// (the Dubins route's length over route_step_m: 100 km at 0.1 m), and the
+/// occupancy grid of the A* and RRT* routes at most kMaxRouteGridCells cells
+/// (400 m x 400 m at 0.1 m; about 30 bytes a cell with inflation and A*).
+inline constexpr std::size_t kMaxRoutePoints = 1'000'000;
+inline constexpr std::int64_t kMaxRouteGridCells = 16'000'000;
+
+/// Checks that the vehicle's mission stays within those limits, from the
+/// scene's start pose; throws InputError naming the scene file and the JSON
+/// pointer of the first waypoint past a limit (or the planner's params when
+/// the obstacles alone make the grid too large). Run by
+/// make_rover_route_planner whenever the context names the vehicle, so by
+/// `campo run` and `campo validate` alike.
+void check_rover_route_extent(const RoverRouteConfig& config, const VehicleDef& vehicle, const Scene& scene);
 
 std::unique_ptr<Planner> make_rover_route_planner(const ParamsBlock& params, const PlannerContext& context);
 

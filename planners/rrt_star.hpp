@@ -5,7 +5,9 @@
 /// an iteration count, never the wall clock, so the same inputs give the
 /// same tree and path.
 #include <cstdint>
+#include <cstddef>
 #include <limits>
+#include <numbers>
 #include <string_view>
 #include <vector>
 
@@ -16,14 +18,31 @@
 
 namespace campo {
 
+/// Bounds of the lengths in RrtStarConfig: a step below kMinStepM would add
+/// nodes that barely move; lengths above kMaxLengthM have no use on any grid.
+inline constexpr double kMinStepM = 1e-3;
+inline constexpr double kMaxLengthM = 1e6;
+/// A new node considers at most k(n) = ceil(kNeighboursPerLogNode ln n) of
+/// its nearest nodes within the rewiring radius (n the number of nodes), so
+/// an iteration's work stays O(log n) segment checks even with a fixed
+/// radius or nodes crowded together. k-nearest RRT* is asymptotically
+/// optimal for a factor above e (1 + 1/d) = 1.5 e in the plane (Karaman &
+/// Frazzoli 2011, Thm. 38); twice that leaves the shrinking radius (about
+/// 6 ln n nodes expected in it) almost always the binding limit.
+inline constexpr double kNeighboursPerLogNode = 3.0 * std::numbers::e;
+/// k(n) above.
+std::size_t max_neighbours(std::size_t n);
+
 struct RrtStarConfig {
   std::uint64_t seed = 0;        ///< of the sampler (campo::Rng, mt19937_64)
-  double step_m = 2.0;           ///< lambda: the farthest a new node lies from its nearest node, > 0
+  /// lambda: the farthest a new node lies from its nearest node, [kMinStepM,
+  /// kMaxLengthM]; a step beyond the grid's diagonal acts as the diagonal.
+  double step_m = 2.0;
   /// > 0: fixed rewiring radius. 0: shrinking radius
-  /// min(gamma (log n / n)^(1/2), lambda), n the number of nodes.
+  /// min(gamma (log n / n)^(1/2), lambda), n the number of nodes. <= kMaxLengthM.
   double rewire_radius_m = 0.0;
   /// gamma of the shrinking radius; 0: Karaman & Frazzoli's bound for the
-  /// plane, 2 (1.5 A_free / pi)^(1/2), A_free the grid's free area. >= 0.
+  /// plane, 2 (1.5 A_free / pi)^(1/2), A_free the grid's free area. [0, kMaxLengthM].
   double rewire_gamma_m = 0.0;
   double goal_radius_m = 1.0;    ///< a node this near the goal solves the problem, > 0
   double goal_bias = 0.05;       ///< probability of sampling the goal itself, [0, 1]
@@ -41,6 +60,21 @@ enum class RrtStarStatus {
 };
 std::string_view to_string(RrtStarStatus status);
 
+/// Work done, for bounds tests: none of it grows with the grid's extent.
+struct RrtStarWork {
+  /// Node coordinates nanoflann's k-d tree read in the nearest / near
+  /// queries: two per distance computed (tree cells it steps through read
+  /// none, but each leads to a leaf of at most 10 points whose distances count).
+  std::uint64_t index_query_reads = 0;
+  /// Node coordinates it read building its trees (bounding boxes, splits) as
+  /// nodes arrived: O(log^2 n) amortized per node.
+  std::uint64_t index_build_reads = 0;
+  std::size_t max_neighbours = 0;             ///< most rewiring candidates of one iteration (<= k(n))
+  std::uint64_t segment_checks = 0;           ///< OccupancyGrid::segment_free calls
+  std::uint64_t cells_checked = 0;            ///< grid cells those calls looked up
+  std::uint64_t max_cells_per_iteration = 0;  ///< most cells looked up in one iteration
+};
+
 struct RrtStarResult {
   RrtStarStatus status = RrtStarStatus::no_solution;
   std::vector<Eigen::Vector2d> path_m;  ///< start .. a node inside the goal region; empty unless solved
@@ -51,14 +85,18 @@ struct RrtStarResult {
   /// Best cost after each iteration (index i: after iteration i + 1); +inf
   /// before the first solution. Never increases: rewiring only lowers costs.
   std::vector<double> best_cost_by_iteration;
+  RrtStarWork work;
 };
 
 /// Grows the tree from `start_m` for config.max_iterations iterations:
 /// sample (the goal with probability goal_bias, else uniform over the grid),
 /// steer from the nearest node by at most lambda, keep the new node when the
 /// segment is free (OccupancyGrid::segment_free), connect it through the
-/// cheapest free neighbour within the rewiring radius, then rewire the
-/// neighbours through it when that is cheaper. The path is the cheapest
+/// cheapest free neighbour among the k(n) nearest within the rewiring radius,
+/// then rewire those neighbours through it when that is cheaper. Nearest
+/// nodes come from nanoflann's dynamic k-d tree, so an iteration costs
+/// O(log^2 n) index work (amortized) plus at most 2 k(n) + 1 segment checks of about 3 lambda / resolution
+/// cells each, independent of the grid's extent. The path is the cheapest
 /// tree path to a node inside the goal region. Throws std::invalid_argument
 /// for a bad config.
 RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m, const Eigen::Vector2d& goal_m,

@@ -335,7 +335,7 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
 
   World world(scene);
   const std::unique_ptr<Vehicle> vehicle = make_vehicle(world, def);
-  const std::unique_ptr<Planner> planner = make_planner(def.planner, {def.type, &scene});
+  const std::unique_ptr<Planner> planner = make_planner(def.planner, {def.type, &scene, &def});
   StateEstimator estimator(def.state_noise,
                            Rng::derive_seed(scene.world.seed, 0x5e57'0000ULL + options.vehicle_index));
 

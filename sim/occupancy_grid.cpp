@@ -130,7 +130,40 @@ bool is_obstacle_candidate(const Shape& shape) {
   return shape.is_static && shape.type != ShapeType::plane && shape.type != ShapeType::heightfield;
 }
 
+// Origin on a multiple of the resolution, so cell edges fall on round coordinates.
+// (The 1e-9 keeps -3.5 / 0.1 = -34.999... from adding a cell.)
+Eigen::Vector2d grid_origin(const Eigen::AlignedBox2d& bounds, const OccupancyConfig& config) {
+  const double r = config.resolution_m;
+  return ((bounds.min().array() - config.margin_m) / r + 1e-9).floor() * r;
+}
+
 }  // namespace
+
+Eigen::AlignedBox2d occupancy_bounds(const Scene& scene, bool with_missions) {
+  // The obstacles plus the places the vehicles start at and go to, so a
+  // planner always finds its start and goal inside the grid.
+  Eigen::AlignedBox2d bounds;
+  for (const Shape& shape : scene.shapes) {
+    if (!is_obstacle_candidate(shape)) continue;
+    const Eigen::AlignedBox3d box = world_box(shape);
+    bounds.extend(Eigen::Vector2d(box.min().head<2>()));
+    bounds.extend(Eigen::Vector2d(box.max().head<2>()));
+  }
+  for (const VehicleDef& vehicle : scene.vehicles) {
+    bounds.extend(Eigen::Vector2d(vehicle.pose.translation().head<2>()));
+    if (!with_missions) continue;
+    for (const Waypoint& waypoint : vehicle.mission) bounds.extend(Eigen::Vector2d(waypoint.position_m.head<2>()));
+  }
+  return bounds;
+}
+
+Eigen::Vector2d occupancy_grid_cells(const Eigen::AlignedBox2d& bounds, const OccupancyConfig& config) {
+  if (bounds.isEmpty()) return Eigen::Vector2d::Zero();
+  const double r = config.resolution_m;
+  const Eigen::Vector2d lo = grid_origin(bounds, config);
+  const Eigen::Vector2d hi = bounds.max().array() + config.margin_m;
+  return ((hi - lo).array() / r - 1e-9).ceil().max(1.0);
+}
 
 Eigen::Vector2i OccupancyGrid::cell_of(const Eigen::Vector2d& point_m) const {
   const Eigen::Vector2d u = (point_m - origin_m) / resolution_m;
@@ -145,14 +178,20 @@ Eigen::Vector2d OccupancyGrid::centre_of(int col, int row) const {
   return origin_m + resolution_m * Eigen::Vector2d(col + 0.5, row + 0.5);
 }
 
-bool OccupancyGrid::segment_free(const Eigen::Vector2d& a_m, const Eigen::Vector2d& b_m) const {
+bool OccupancyGrid::segment_free(const Eigen::Vector2d& a_m, const Eigen::Vector2d& b_m,
+                                 std::int64_t* cells_checked) const {
   if (!a_m.allFinite() || !b_m.allFinite()) return false;
+  // Every cell look-up of the walk, counted for callers that bound their work.
+  const auto blocked = [&](int col, int row) {
+    if (cells_checked) ++*cells_checked;
+    return is_occupied(col, row);
+  };
   // Amanatides-Woo traversal in cell units; t in [0, 1] along a -> b.
   const Eigen::Vector2d u0 = (a_m - origin_m) / resolution_m;
   const Eigen::Vector2d u1 = (b_m - origin_m) / resolution_m;
   Eigen::Vector2i cell = cell_of(a_m);
   const Eigen::Vector2i end = cell_of(b_m);
-  if (is_occupied(cell.x(), cell.y())) return false;
+  if (blocked(cell.x(), cell.y())) return false;
   const Eigen::Vector2d d = u1 - u0;
   const int step_x = d.x() > 0.0 ? 1 : -1;
   const int step_y = d.y() > 0.0 ? 1 : -1;
@@ -169,7 +208,7 @@ bool OccupancyGrid::segment_free(const Eigen::Vector2d& a_m, const Eigen::Vector
     const bool corner = left_x > 0 && left_y > 0 && std::abs(next_x - next_y) <= kCornerTolerance;
     if (corner) {
       // Through a cell corner: the segment touches both cells beside it.
-      if (is_occupied(cell.x() + step_x, cell.y()) || is_occupied(cell.x(), cell.y() + step_y)) return false;
+      if (blocked(cell.x() + step_x, cell.y()) || blocked(cell.x(), cell.y() + step_y)) return false;
       cell += Eigen::Vector2i(step_x, step_y);
       next_x += delta_x;
       next_y += delta_y;
@@ -184,7 +223,7 @@ bool OccupancyGrid::segment_free(const Eigen::Vector2d& a_m, const Eigen::Vector
       next_y += delta_y;
       --left_y;
     }
-    if (is_occupied(cell.x(), cell.y())) return false;
+    if (blocked(cell.x(), cell.y())) return false;
   }
   return true;
 }
@@ -201,33 +240,17 @@ OccupancyGrid build_occupancy_grid(const Scene& scene, const OccupancyConfig& co
     throw std::invalid_argument("occupancy grid: margin must be finite and >= 0");
   }
 
-  // Bounds: the obstacles plus the places the vehicles start at and go to, so
-  // a planner always finds its start and goal inside the grid.
-  Eigen::AlignedBox2d bounds;
-  for (const Shape& shape : scene.shapes) {
-    if (!is_obstacle_candidate(shape)) continue;
-    const Eigen::AlignedBox3d box = world_box(shape);
-    bounds.extend(Eigen::Vector2d(box.min().head<2>()));
-    bounds.extend(Eigen::Vector2d(box.max().head<2>()));
-  }
-  for (const VehicleDef& vehicle : scene.vehicles) {
-    bounds.extend(Eigen::Vector2d(vehicle.pose.translation().head<2>()));
-    for (const Waypoint& waypoint : vehicle.mission) bounds.extend(Eigen::Vector2d(waypoint.position_m.head<2>()));
-  }
   OccupancyGrid grid;
   grid.resolution_m = config.resolution_m;
+  const Eigen::AlignedBox2d bounds = occupancy_bounds(scene);
   if (bounds.isEmpty()) return grid;
-
-  // Origin on a multiple of the resolution, so cell edges fall on round coordinates.
-  const double r = config.resolution_m;
-  // (The 1e-9 keeps -3.5 / 0.1 = -34.999... from adding a cell.)
-  const Eigen::Vector2d lo = ((bounds.min().array() - config.margin_m) / r + 1e-9).floor() * r;
-  const Eigen::Vector2d hi = bounds.max().array() + config.margin_m;
-  const Eigen::Vector2d extent = ((hi - lo).array() / r - 1e-9).ceil().max(1.0);
+  const Eigen::Vector2d extent = occupancy_grid_cells(bounds, config);
   if (extent.x() * extent.y() > static_cast<double>(config.max_cells)) {
     throw std::invalid_argument("occupancy grid: " + std::to_string(extent.x()) + " x " + std::to_string(extent.y()) +
                                 " cells exceed the limit of " + std::to_string(config.max_cells));
   }
+  const double r = config.resolution_m;
+  const Eigen::Vector2d lo = grid_origin(bounds, config);
   grid.origin_m = lo;
   grid.cols = static_cast<int>(extent.x());
   grid.rows = static_cast<int>(extent.y());

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace campo {
 
@@ -40,7 +41,11 @@ struct OccupancyGrid {
   /// the segment touches is checked, not samples along it: an Amanatides-Woo
   /// walk; where it passes through a cell corner, within 1e-9 cells, both
   /// cells beside the corner count too). Non-finite points are never free.
-  bool segment_free(const Eigen::Vector2d& a_m, const Eigen::Vector2d& b_m) const;
+  /// The walk stops at the first occupied or outside cell, so it looks up at
+  /// most 2 (|a - b|_1 / resolution_m + 2) cells, however large the grid;
+  /// `cells_checked`, when given, is increased by the look-ups made.
+  bool segment_free(const Eigen::Vector2d& a_m, const Eigen::Vector2d& b_m,
+                    std::int64_t* cells_checked = nullptr) const;
 };
 
 struct OccupancyConfig {
@@ -66,6 +71,15 @@ struct OccupancyConfig {
 /// empty grid (0 x 0) when there is nothing. Throws std::invalid_argument for
 /// a bad config or more than max_cells cells.
 OccupancyGrid build_occupancy_grid(const Scene& scene, const OccupancyConfig& config = {});
+
+/// The (x, y) box build_occupancy_grid covers before its margin: the static
+/// obstacles' bounding box and the vehicles' start points, plus their
+/// mission waypoints when `with_missions`. Empty when there is nothing.
+Eigen::AlignedBox2d occupancy_bounds(const Scene& scene, bool with_missions = true);
+/// Columns (x) and rows (y) of the grid build_occupancy_grid makes over
+/// `bounds` (0 x 0 for an empty box); doubles, so that hostile extents are
+/// measured without overflow before anything is allocated.
+Eigen::Vector2d occupancy_grid_cells(const Eigen::AlignedBox2d& bounds, const OccupancyConfig& config);
 
 /// Every cell whose centre lies within radius_m of an occupied cell's centre
 /// becomes occupied (exact Euclidean distance via cv::distanceTransform;

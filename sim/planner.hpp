@@ -66,6 +66,10 @@ struct PlanResult {
 struct PlannerContext {
   VehicleType vehicle = VehicleType::quadrotor;
   const Scene* scene = nullptr;  ///< static map knowledge for global planners
+  /// The vehicle the planner drives (its start and mission), when known: a
+  /// planner checks at creation that the work its mission implies stays
+  /// within its limits, so `campo validate` refuses what `campo run` would.
+  const VehicleDef* vehicle_def = nullptr;
 };
 
 class Planner {

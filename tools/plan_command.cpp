@@ -250,6 +250,22 @@ int run_grid(const PlanOptions& o) {
 
 // ---- numbers on the command line ----
 
+// Accepted ranges. Dubins: coordinates within 10,000 km, headings within a
+// million degrees and radii from a micrometre to 10,000 km keep every
+// intermediate (distances over the radius, angles) finite and exact enough.
+// RRT*: the step's limits are RrtStarConfig's (cells are metres here).
+constexpr double kMaxCoordinateM = 1e7;
+constexpr double kMaxHeadingDeg = 1e6;
+constexpr double kMinRadiusM = 1e-6;
+constexpr double kMaxRadiusM = 1e7;
+
+// 1e-06 -> "1e-06", 1000000 -> "1000000".
+std::string format_limit(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  return buffer;
+}
+
 std::optional<double> to_number(std::string_view text) {
   double value = 0.0;
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -259,10 +275,15 @@ std::optional<double> to_number(std::string_view text) {
   return value;
 }
 
-double parse_positive(const std::string& text, const std::string& option, const std::string& what) {
+// A number in [min, max]: bounds keep the work of every planner bounded and
+// its arithmetic finite (see docs/planners.md, "Limits of campo plan").
+double parse_in_range(const std::string& text, const std::string& option, const std::string& what, double min,
+                      double max) {
   const auto value = to_number(text);
-  if (!value || !(*value > 0.0)) {
-    throw InputError("command line", option, "expected " + what + ", a number > 0, got \"" + text + "\"");
+  if (!value || !(*value >= min && *value <= max)) {
+    throw InputError("command line", option,
+                     "expected " + what + ", a number in [" + format_limit(min) + ", " + format_limit(max) +
+                         "], got \"" + text + "\"");
   }
   return *value;
 }
@@ -287,10 +308,12 @@ dubins::Pose2 parse_pose(const std::string& text, const std::string& option) {
     const std::size_t comma = i < 2 ? text.find(',', begin) : text.size();
     const auto value = comma == std::string::npos ? std::nullopt
                                                   : to_number(std::string_view(text).substr(begin, comma - begin));
-    if (!value || (i == 2 && text.find(',', begin) != std::string::npos)) {
+    const double limit = i < 2 ? kMaxCoordinateM : kMaxHeadingDeg;
+    if (!value || std::abs(*value) > limit || (i == 2 && text.find(',', begin) != std::string::npos)) {
       throw InputError("command line", option,
-                       "expected X,Y,HEADING (metres, metres, degrees counter-clockwise from +x; finite numbers), "
-                       "got \"" + text + "\"");
+                       "expected X,Y,HEADING (metres, metres, degrees counter-clockwise from +x; |X|, |Y| <= " +
+                           format_limit(kMaxCoordinateM) + ", |HEADING| <= " + format_limit(kMaxHeadingDeg) +
+                           "), got \"" + text + "\"");
     }
     v[i] = *value;
     begin = comma + 1;
@@ -313,7 +336,8 @@ int run_dubins(const PlanOptions& o) {
     }
   }
   const dubins::Pose2 from = parse_pose(o.from, "--from"), to = parse_pose(o.to, "--to");
-  const double radius = parse_positive(o.radius, "--radius", "the turning radius in metres");
+  const double radius =
+      parse_in_range(o.radius, "--radius", "the turning radius in metres", kMinRadiusM, kMaxRadiusM);
   const dubins::Path path = dubins::shortest_path(from, to, radius);
   std::cout << "word=" << dubins::to_string(path.word) << " length=" << fixed6(path.length_m()) << " segments="
             << fixed6(path.segment_lengths_m[0]) << ',' << fixed6(path.segment_lengths_m[1]) << ','
@@ -354,7 +378,8 @@ int run_rrt_star(const PlanOptions& o) {
   config.seed = o.has("--seed") ? parse_seed(o.seed, "command line", "--seed") : 0;
   config.max_iterations =
       o.has("--iterations") ? parse_integer<int>(o.iterations, "--iterations", 1, 10'000'000) : kRrtDefaultIterations;
-  config.step_m = o.has("--step") ? parse_positive(o.step, "--step", "the step in cells") : kRrtDefaultStep;
+  config.step_m =
+      o.has("--step") ? parse_in_range(o.step, "--step", "the step in cells", kMinStepM, kMaxLengthM) : kRrtDefaultStep;
   config.goal_radius_m = kRrtGoalRadius;
   return with_format_errors([&] {
     const grid::MovingAiMap map = grid::read_movingai_map(o.map);
@@ -409,10 +434,11 @@ Command add_plan(CLI::App& app) {
   add("--scen", o->scen, "MovingAI scenario file: solve every problem in it, print CSV");
   add("--seed", o->seed, "rrt_star: seed of the sampler (default 0)");
   add("--iterations", o->iterations, "rrt_star: iterations, 1 to 10000000 (default 20000)");
-  add("--step", o->step, "rrt_star: farthest a new node lies from the tree, cells > 0 (default 5)");
-  add("--from", o->from, "dubins: start pose X,Y,HEADING (metres, metres, degrees CCW from +x)");
+  add("--step", o->step, "rrt_star: farthest a new node lies from the tree, cells, 0.001 to 1000000 (default 5)");
+  add("--from", o->from,
+      "dubins: start pose X,Y,HEADING (metres, metres, degrees CCW from +x; |X|, |Y| <= 1e7, |HEADING| <= 1e6)");
   add("--to", o->to, "dubins: goal pose X,Y,HEADING");
-  add("--radius", o->radius, "dubins: minimum turning radius in metres, > 0");
+  add("--radius", o->radius, "dubins: minimum turning radius in metres, 1e-06 to 1e+07");
   app.footer(
       "  campo plan [--planner astar|dstar_lite|lpa_star] --map FILE.map (--start X,Y --goal X,Y | --scen FILE.scen)\n"
       "  campo plan --planner rrt_star --map FILE.map (--start X,Y --goal X,Y | --scen FILE.scen)\n"
@@ -444,13 +470,15 @@ Command add_plan(CLI::App& app) {
       "S the segments, I the iterations run and K the iteration that first reached the goal (-1:\n"
       "never). With --scen prints the same CSV, with match 1 when a path was found and its cost is\n"
       "at most 10 % longer than the file's optimal length (RRT* is asymptotically optimal, not\n"
-      "exact), and a summary on stderr.\n"
+      "exact), and a summary on stderr. --step is 0.001 to 1000000 cells; each iteration checks at\n"
+      "most k(n) = ceil(3e ln n) neighbours of a new node, n the tree's size, whatever the map's size.\n"
       "\n"
       "dubins: the shortest path forward-only with a minimum turning radius between two poses (no\n"
       "map, no obstacles); HEADING in degrees, counter-clockwise from +x. Prints one line:\n"
       "  word=LSL length=L segments=A,B,C\n"
       "with the word (L left arc, R right arc, S straight), the length and the three segment\n"
-      "lengths in metres, 6 decimals; a segment that is not needed has length 0.\n"
+      "lengths in metres, 6 decimals; a segment that is not needed has length 0. Accepted: |X|, |Y|\n"
+      "up to 1e7 m, |HEADING| up to 1e6 degrees, R from 1e-6 to 1e7 m.\n"
       "\n"
       "Options that do not apply to the planner are errors.\n"
       "Exit 0 when done (with --scen: every cost matched), 1 when a cost did not match or on an\n"

@@ -54,7 +54,7 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   }
   // Validate every parameter before anything runs.
   validate_vehicle_params(def);
-  create_planner(def.planner, {def.type, &scene});
+  create_planner(def.planner, {def.type, &scene, &def});
 
   if ((request.record_depth_every > 0 || request.record_replans) && !output) {
     throw std::logic_error("simulate_run: depth maps asked for without an output directory");

@@ -9,7 +9,7 @@ namespace campo::cli {
 void check_vehicles_and_planners(const Scene& scene) {
   for (const VehicleDef& vehicle : scene.vehicles) {
     validate_vehicle_params(vehicle);
-    create_planner(vehicle.planner, {vehicle.type, &scene});
+    create_planner(vehicle.planner, {vehicle.type, &scene, &vehicle});
   }
 }
 

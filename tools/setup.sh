@@ -15,7 +15,7 @@ packages=(
   build-essential cmake pkg-config
   libbullet-dev libeigen3-dev libopencv-dev libosmesa6-dev libcli11-dev
   nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
-  libmuparser-dev libssl-dev liboctomap-dev
+  libmuparser-dev libssl-dev liboctomap-dev libnanoflann-dev
   slurm-wlm munge jq # tests/slurm: a local single-node Slurm cluster (tools/slurm/)
 )
 

@@ -148,6 +148,14 @@ TEST(DStarLite3d, ParsesParamsStrictly) {
   expect_error({{"ground_level", 9}}, "/objects/2/planner/params/ground_level");
   expect_error({{"speed", 1.0}}, "/objects/2/planner/params");
   expect_error({{"climb_cost_cells", -1.0}}, "/objects/2/planner/params/climb_cost_cells");
+  // Issue 16: grids that GridGraph or memory could not take are input errors.
+  expect_error({{"columns", 4000}, {"rows", 4000}, {"levels", 17}},
+               "/objects/2/planner/params: expected columns x rows x levels <= 8000000 cells, got 4000 x 4000 x 17");
+  EXPECT_NO_THROW(parse_dstar_lite_3d_config(params({{"columns", 1000}, {"rows", 1000}, {"levels", 8}})));
+  expect_error({{"cell_size_m", 1e-300}}, "/objects/2/planner/params/cell_size_m");
+  expect_error({{"level_spacing_m", 1e300}}, "/objects/2/planner/params/level_spacing_m");
+  expect_error({{"cell_size_m", 0.01}, {"level_spacing_m", 20.0}}, "expected level_spacing_m / cell_size_m <= 1000");
+  EXPECT_NO_THROW(parse_dstar_lite_3d_config(params({{"cell_size_m", 0.01}, {"level_spacing_m", 20.0}, {"climb_cost_cells", 1.0}})));
   EXPECT_THROW(make_dstar_lite_3d_planner({}, {VehicleType::rover, nullptr}), InputError);
 }
 

@@ -1,6 +1,7 @@
 #include "planners/rover_route.hpp"
 
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <limits>
 
@@ -8,7 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "closed_loop_support.hpp"
+#include "planners/registry.hpp"
 #include "sim/json_reader.hpp"
+#include "sim/scene_loader.hpp"
 
 namespace campo {
 namespace {
@@ -52,6 +55,59 @@ TEST(RoverRoute, ParsesParamsStrictlyAndRoundTrips) {
   expect_error({{"turning_radius_m", 0.0}}, "/objects/3/planner/params/turning_radius_m");
   expect_error({{"vfh_plus", {{"mu_target", 1.0}}}}, "mu");  // mu1 > mu2 + mu3
   EXPECT_THROW(make_rover_route_planner({}, {VehicleType::quadrotor, nullptr}), InputError);
+}
+
+// A rover at the origin with a mission of the given waypoints (x, y) and
+// one box obstacle, planned by rover_route with `params`.
+Scene far_scene(const std::vector<std::array<double, 2>>& waypoints, nlohmann::json planner_params) {
+  nlohmann::json wps = nlohmann::json::array();
+  for (const auto& w : waypoints) wps.push_back({{"position_m", {w[0], w[1], 0.0}}});
+  const nlohmann::json document = {
+      {"campo_scene", 1},
+      {"name", "far"},
+      {"objects",
+       {{{"alias", "ground"}, {"type", "plane"}},
+        {{"alias", "box"}, {"type", "cuboid"}, {"size_m", {1.0, 1.0, 1.0}}, {"pose", {{"position_m", {5.0, 5.0, 0.5}}}}},
+        {{"alias", "rover"},
+         {"type", "rover"},
+         {"pose", {{"position_m", {0.0, 0.0, 0.4}}}},
+         {"sensors", {{{"alias", "scanner"}, {"type", "lidar"}, {"preset", "planar180"}}}},
+         {"planner", {{"name", "rover_route"}, {"params", std::move(planner_params)}}},
+         {"mission", {{"waypoints", wps}}}}}}};
+  return parse_scene(document, "far.json", CAMPO_SOURCE_DIR);
+}
+
+std::string creation_error(const Scene& scene) {
+  const VehicleDef& rover = scene.vehicles.front();
+  try {
+    create_planner(rover.planner, {rover.type, &scene, &rover});
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Issue 16: a waypoint 1,400 km away made the rover's route (a point every
+// route_step_m) take 850 MB. The limit is checked when the planner is
+// created, which `campo validate` does too, and names the waypoint.
+TEST(RoverRoute, FarWaypointsAreRefusedAtCreation) {
+  EXPECT_EQ(creation_error(far_scene({{10.0, 0.0}, {20.0, 10.0}}, nlohmann::json::object())), "");
+  // Dubins: 900 km at 0.1 m is 9 million points, over 1 million (the loader takes coordinates up to 1,000 km).
+  EXPECT_THAT(creation_error(far_scene({{10.0, 0.0}, {9e5, 0.0}, {0.0, 0.0}}, nlohmann::json::object())),
+              HasSubstr("far.json: /objects/2/mission/waypoints/1: expected a waypoint nearer the previous one"));
+  // Just inside: 99 km at 0.1 m; just outside with a finer step.
+  EXPECT_EQ(creation_error(far_scene({{9.9e4, 0.0}}, nlohmann::json::object())), "");
+  EXPECT_THAT(creation_error(far_scene({{9.9e4, 0.0}}, {{"route_step_m", 0.05}})),
+              HasSubstr("/objects/2/mission/waypoints/0: expected a waypoint nearer"));
+  // A* and RRT*: the occupancy grid over obstacles, start and waypoints.
+  // 300 m x 300 m at 0.1 m is 9 million cells (inside); 500 m x 500 m is 25 million.
+  for (const char* global : {"astar", "rrt_star"}) {
+    SCOPED_TRACE(global);
+    EXPECT_EQ(creation_error(far_scene({{300.0, 0.0}, {300.0, 300.0}}, {{"global", global}})), "");
+    EXPECT_THAT(creation_error(far_scene({{300.0, 0.0}, {500.0, 500.0}}, {{"global", global}})),
+                HasSubstr("far.json: /objects/2/mission/waypoints/1: expected a waypoint nearer the obstacles and starts"));
+    EXPECT_EQ(creation_error(far_scene({{500.0, 500.0}}, {{"global", global}, {"occupancy_resolution_m", 0.2}})), "");
+  }
 }
 
 // The bundled vineyard with --set style overrides, in closed loop (1-2 s each in Release).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -174,6 +175,120 @@ TEST(RrtStar, MovingAiMapsBecomeOneMetreGrids) {
   expect_valid_solution(grid, result, start, goal, config);
   EXPECT_GT(result.cost_m, (goal - start).norm() - config.goal_radius_m);
   EXPECT_LT(result.cost_m, 62.15 * 1.1);
+}
+
+/// A free corridor one cell wide and `length` cells long (1 m cells).
+OccupancyGrid corridor(int length) {
+  OccupancyGrid grid;
+  grid.cols = 1;
+  grid.rows = length;
+  grid.resolution_m = 1.0;
+  grid.occupied.assign(static_cast<std::size_t>(length), 0);
+  return grid;
+}
+
+// Issue 16: on a 1 x 4096 map the old bucket lattice scanned every bucket
+// between a sample and the tree (cubic in the extent). The work of an
+// iteration must now be bounded by the tree size and the step alone.
+TEST(RrtStar, WorkPerIterationDoesNotGrowWithTheMapsExtent) {
+  RrtStarConfig config;
+  config.step_m = 5.0;
+  config.max_iterations = 4000;
+  const auto run = [&](int length) {
+    const OccupancyGrid grid = corridor(length);
+    return rrt_star(grid, {0.5, 0.5}, {0.5, length - 0.5}, config);
+  };
+  const RrtStarResult small = run(64);
+  const RrtStarResult large = run(4096);
+  for (const RrtStarResult* result : {&small, &large}) {
+    const RrtStarWork& work = result->work;
+    // Rewiring candidates: at most k(n) for the final tree size.
+    EXPECT_LE(work.max_neighbours, max_neighbours(result->nodes));
+    // One steering check plus one connection and one rewiring check per
+    // candidate, each walking at most 2 (|d|_1 + 2) cells of an edge no
+    // longer than the step: 2 (5 sqrt(2) + 2) < 19 cells.
+    EXPECT_LE(work.max_cells_per_iteration, (2 * max_neighbours(result->nodes) + 1) * 19);
+    EXPECT_LE(work.segment_checks, static_cast<std::uint64_t>(config.max_iterations) * (2 * max_neighbours(result->nodes) + 1));
+    // Nearest and near queries over nanoflann's k-d trees of at most
+    // log2(n) + 1 sizes: far fewer distances than nodes (n about 3,900 here,
+    // 75 to 110 distances an iteration). Generous: 10 (log2 n)^2 distances
+    // (two coordinates each) per iteration.
+    const double log_n = std::log2(static_cast<double>(result->nodes));
+    EXPECT_LE(static_cast<double>(work.index_query_reads), 2 * 10.0 * log_n * log_n * config.max_iterations);
+    // Rebuilding as nodes arrive: each node lands in about log2 n trees in
+    // turn, each build reading it O(log n) times (about 0.9 (log2 n)^2 reads
+    // a node here). Generous: 4 (log2 n)^2 per node.
+    EXPECT_LE(static_cast<double>(work.index_build_reads), 4.0 * log_n * log_n * result->nodes);
+  }
+  // 64 times longer, yet not more work per node of the tree than a few times
+  // the short corridor's (the old lattice: about 64^3 times more).
+  const auto per_node = [](const RrtStarResult& r) {
+    return static_cast<double>(r.work.index_query_reads + r.work.index_build_reads) / r.nodes;
+  };
+  EXPECT_LT(per_node(large), 4.0 * per_node(small) + 100.0);
+
+  // And still right: the only path is the corridor's centre line, 4095 m.
+  ASSERT_EQ(large.status, RrtStarStatus::solved);
+  EXPECT_GE(large.cost_m, 4095.0 - config.goal_radius_m - 1e-9);
+  EXPECT_LT(large.cost_m, 4095.0 * 1.001);
+  const OccupancyGrid grid = corridor(4096);
+  for (std::size_t i = 1; i < large.path_m.size(); ++i) EXPECT_TRUE(grid.segment_free(large.path_m[i - 1], large.path_m[i]));
+}
+
+TEST(RrtStar, NeighbourCapBoundsAFixedRadiusCoveringTheWholeTree) {
+  const OccupancyGrid grid = walled_field();
+  RrtStarConfig config;
+  config.rewire_radius_m = 1000.0;  // every node a neighbour of every other one
+  config.max_iterations = 1500;
+  const RrtStarResult result = rrt_star(grid, kStart, kGoal, config);
+  EXPECT_LE(result.work.max_neighbours, max_neighbours(result.nodes));
+  // The cap binds: the tree has far more nodes than k(n).
+  EXPECT_GT(result.nodes, 10 * max_neighbours(result.nodes));
+  ASSERT_EQ(result.status, RrtStarStatus::solved);
+  EXPECT_GT(result.cost_m, 27.4);
+  EXPECT_LT(result.cost_m, 29.5);
+}
+
+TEST(RrtStar, KOfNFollowsTheFormula) {
+  // ceil(3 e ln n): 3 e = 8.1548...
+  EXPECT_EQ(max_neighbours(1), 6u);  // n taken as at least 2: 8.15 ln 2 = 5.65
+  EXPECT_EQ(max_neighbours(100), 38u);  // 8.1548 x 4.6052 = 37.55
+  EXPECT_EQ(max_neighbours(1'000'000), 113u);  // 8.1548 x 13.8155 = 112.66
+}
+
+TEST(RrtStar, LengthsOutsideTheirLimitsAreRefused) {
+  const auto refused = [](auto change, const std::string& what) {
+    RrtStarConfig config;
+    change(config);
+    try {
+      validate(config);
+      ADD_FAILURE() << "accepted: " << what;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  refused([](RrtStarConfig& c) { c.step_m = 1e-4; }, "step must be in [0.001, 1000000] m");
+  refused([](RrtStarConfig& c) { c.step_m = 1e300; }, "step must be in [0.001, 1000000] m");
+  refused([](RrtStarConfig& c) { c.step_m = std::nan(""); }, "step must be in");
+  refused([](RrtStarConfig& c) { c.rewire_radius_m = 1e300; }, "rewire_radius must be in [0, 1000000] m");
+  refused([](RrtStarConfig& c) { c.rewire_gamma_m = 2e6; }, "rewire_gamma must be in [0, 1000000] m");
+  RrtStarConfig edge;
+  edge.step_m = kMinStepM;
+  edge.rewire_radius_m = kMaxLengthM;
+  EXPECT_NO_THROW(validate(edge));
+}
+
+// A step far beyond the map acts as its diagonal: edges never leave the grid
+// and each check walks at most the cells of the map's diagonal.
+TEST(RrtStar, HugeStepActsAsTheGridsDiagonal) {
+  const OccupancyGrid grid = walled_field();
+  RrtStarConfig config;
+  config.step_m = kMaxLengthM;
+  config.max_iterations = 500;
+  const RrtStarResult result = rrt_star(grid, kStart, kGoal, config);
+  ASSERT_EQ(result.status, RrtStarStatus::solved);
+  // 80 x 80 cells: at most 2 (160 + 2) cells per check.
+  EXPECT_LE(result.work.max_cells_per_iteration, (2 * max_neighbours(result.nodes) + 1) * 324);
 }
 
 }  // namespace

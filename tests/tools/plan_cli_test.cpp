@@ -121,6 +121,15 @@ TEST_F(PlanCli, DubinsUTurnIsOneRightHalfCircle) {
   EXPECT_EQ(r.out, "word=RSR length=6.283185 segments=6.283185,0.000000,0.000000\n");
 }
 
+// Issue 16: the extremes of the accepted ranges plan (exit 0): a straight
+// run of 2e7 m along x, east to east, radius 1e-6 m: word LSL with zero arcs.
+TEST_F(PlanCli, DubinsAtTheLimitsOfItsRanges) {
+  const Result r = plan("--planner dubins --from -1e7,0,0 --to 1e7,0,0 --radius 1e-6");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "word=LSL length=20000000.000000 segments=0.000000,20000000.000000,0.000000\n");
+  EXPECT_EQ(plan("--planner dubins --from 0,0,1e6 --to 4,0,-1e6 --radius 1e7").exit_code, 0);
+}
+
 TEST_F(PlanCli, DubinsRowSwitchIsArcStraightArc) {
   // North at the origin to south at (10, 0), radius 2: a quarter turn right
   // about (2, 0) to (2, 2) heading east, 6 m straight to (8, 2), a quarter
@@ -239,7 +248,11 @@ TEST_F(PlanCli, OptionsThatDoNotApplyOrAreBadExitTwo) {
            Case{dubins + " --from 0,0,90 --radius 2", "--to: expected --from X,Y,HEADING --to X,Y,HEADING --radius R"},
            Case{dubins + " --to 0,0,90 --radius 2", "--from: expected --from X,Y,HEADING"},
            Case{dubins + " --from 0,0,90 --to 4,0,-90", "--radius: expected --from X,Y,HEADING"},
-           Case{dubins + " --from 0,0,90 --to 4,0,-90 --radius 0", "--radius: expected the turning radius in metres, a number > 0, got \"0\""},
+           Case{dubins + " --from 0,0,90 --to 4,0,-90 --radius 0", "--radius: expected the turning radius in metres, a number in [1e-06, 1e+07], got \"0\""},
+           // Issue 16: huge values are refused with exit 2, not an internal error.
+           Case{dubins + " --from 0,0,1e308 --to 4,0,-90 --radius 2", "--from: expected X,Y,HEADING (metres, metres, degrees counter-clockwise from +x; |X|, |Y| <= 1e+07, |HEADING| <= 1e+06), got \"0,0,1e308\""},
+           Case{dubins + " --from 0,0,90 --to 1e300,0,-90 --radius 2", "--to: expected X,Y,HEADING"},
+           Case{dubins + " --from 0,0,90 --to 4,0,-90 --radius 1e300", "--radius: expected the turning radius in metres, a number in [1e-06, 1e+07]"},
            Case{dubins + " --from 0,0,90 --to 4,0,-90 --radius -1", "--radius: expected the turning radius"},
            Case{dubins + " --from 0,0,90 --to 4,0,-90 --radius 2m", "--radius: expected the turning radius"},
            Case{dubins + " --from 0,0,90 --to 4,0,-90 --radius inf", "--radius: expected the turning radius"},
@@ -268,7 +281,9 @@ TEST_F(PlanCli, OptionsThatDoNotApplyOrAreBadExitTwo) {
            Case{rrt + " --iterations 2.5", "--iterations: expected an integer in [1, 10000000]"},
            Case{rrt + " --seed -1", "--seed: expected an integer seed in [0, 18446744073709551615], got \"-1\""},
            Case{rrt + " --seed 1.5", "--seed: expected an integer seed in [0, 18446744073709551615], got \"1.5\""},
-           Case{rrt + " --step 0", "--step: expected the step in cells, a number > 0, got \"0\""},
+           Case{rrt + " --step 0", "--step: expected the step in cells, a number in [0.001, 1e+06], got \"0\""},
+           Case{rrt + " --step 1e-300", "--step: expected the step in cells, a number in [0.001, 1e+06], got \"1e-300\""},
+           Case{rrt + " --step 1e300", "--step: expected the step in cells, a number in [0.001, 1e+06]"},
        }) {
     const Result r = plan(c.args);
     EXPECT_EQ(r.exit_code, 2) << c.args;
