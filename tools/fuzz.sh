@@ -75,7 +75,7 @@ run() {
 
 # One line per fuzzer; on a finding, the report and where the input is.
 report() {
-  local name="$1" status="$2" work="$build_dir/fuzz/$1"
+  local name="$1" status="$2" kind="$3" work="$build_dir/fuzz/$1"
   local log="$work/fuzz.log"
   if [ "$status" -eq 0 ]; then
     local runs units
@@ -85,12 +85,13 @@ report() {
     return 0
   fi
   echo "fuzz_$name: FOUND a failure (libFuzzer exit $status); report from $log:" >&2
-  grep -v '^#[0-9]' "$log" | tail -n 60 >&2
+  # Without the progress lines and the input's hex and base64 dumps (the file is named below).
+  grep -v -e '^#[0-9]' -e '^0x' -e '^Base64:' "$log" | tail -n 60 >&2
   local input
   input="$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | tail -n 1)"
   if [ -n "$input" ]; then
     echo "fuzz_$name: the input is $input; reproduce with: $build_dir/fuzz_$name $input" >&2
-    echo "fuzz_$name: keep it as a regression input: tests/hostile/corpus/<scenes|sweeps>/<what_it_does>.json" >&2
+    echo "fuzz_$name: once understood, keep it as tests/hostile/corpus/$kind/WHAT_IT_DOES.json" >&2
   fi
   return 1
 }
@@ -111,6 +112,6 @@ else
 fi
 
 failed=0
-report scene_loader "$status_scene" || failed=1
-report sweep_spec "$status_sweep" || failed=1
+report scene_loader "$status_scene" scenes || failed=1
+report sweep_spec "$status_sweep" sweeps || failed=1
 exit "$failed"
