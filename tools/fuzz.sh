@@ -37,32 +37,38 @@ cmake --build "$build_dir" -j "$jobs" "${targets[@]}" -- --no-print-directory -s
 # Leak detection stays on: the readers do not load Mesa (whose contexts keep
 # allocations until exit, the reason the sanitizer suite turns it off), and
 # a leak per input would be a bug. UBSan stops at the first report.
-export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
+export ASAN_OPTIONS="detect_leaks=1${ASAN_OPTIONS:+:$ASAN_OPTIONS}"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
 if [ -z "${ASAN_SYMBOLIZER_PATH:-}" ] && ! command -v llvm-symbolizer >/dev/null; then
-  for s in /usr/lib/llvm-*/bin/llvm-symbolizer; do [ -x "$s" ] && export ASAN_SYMBOLIZER_PATH="$s"; done
+  for s in /usr/lib/llvm-*/bin/llvm-symbolizer; do
+    if [ -x "$s" ]; then export ASAN_SYMBOLIZER_PATH="$s"; fi
+  done
 fi
 
 # Prepares fuzz_NAME's work folder: the scratch corpus with the seeds copied in
 # (bundled-* and hostile-*, refreshed on every run), and a dictionary of the
-# seeds' quoted words (keys, type names, aliases) so mutations write valid keys.
+# seeds' quoted words (keys, type names, aliases) and the words the given docs
+# write as `code` (keys and names no seed uses), so mutations write real keys.
 prepare() {
   local name="$1" bundled_glob="$2" hostile_dir="$3"
+  shift 3
   local work="$build_dir/fuzz/$name"
   mkdir -p "$work/corpus" "$work/findings"
   local f
   for f in $bundled_glob; do
-    [ -f "$f" ] && cp "$f" "$work/corpus/bundled-$(basename "$f")"
+    if [ -f "$f" ]; then cp "$f" "$work/corpus/bundled-$(basename "$f")"; fi
   done
   if [ -d "$hostile_dir" ]; then
     for f in "$hostile_dir"/*; do
-      [ -f "$f" ] && cp "$f" "$work/corpus/hostile-$(basename "$f")"
+      if [ -f "$f" ]; then cp "$f" "$work/corpus/hostile-$(basename "$f")"; fi
     done
   fi
   {
     printf '"%s"\n' '{' '}' '[' ']' ':' ',' 'true' 'false' 'null' '-1' '0' '1e308' '1e-308' '\"'
-    cat "$work"/corpus/bundled-* "$work"/corpus/hostile-* 2>/dev/null \
-      | grep -ao '"[A-Za-z0-9_./@-]\{1,40\}"' | sort -u | sed 's/"/\\"/g; s/.*/"&"/'
+    {
+      cat "$work"/corpus/bundled-* "$work"/corpus/hostile-* 2>/dev/null | grep -ao '"[A-Za-z0-9_./@-]\{1,40\}"' || true
+      cat "$@" | grep -o '`[a-z][a-z0-9_]\{0,39\}`' | tr '`' '"' || true
+    } | sort -u | sed 's/"/\\"/g; s/.*/"&"/'
   } >"$work/dict"
 }
 
@@ -96,8 +102,8 @@ report() {
   return 1
 }
 
-prepare scene_loader "scenes/*.json" tests/hostile/corpus/scenes
-prepare sweep_spec "scenes/sweeps/*.json" tests/hostile/corpus/sweeps
+prepare scene_loader "scenes/*.json" tests/hostile/corpus/scenes docs/scene-format.md docs/planners.md docs/vehicles.md
+prepare sweep_spec "scenes/sweeps/*.json" tests/hostile/corpus/sweeps docs/sweeps.md
 
 status_scene=0
 status_sweep=0
