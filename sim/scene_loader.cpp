@@ -820,9 +820,12 @@ Scene parse_scene(const nlohmann::json& document, const std::string& source,
 }
 
 Scene load_scene(const std::filesystem::path& path, const SceneLimits& limits) {
-  const std::string bytes = read_text_file(path, limits.json);
-  const nlohmann::json document = parse_json_text(bytes, path.string(), limits.json);
-  return parse_scene(document, path.string(), path.parent_path(), sha256_hex(bytes), limits);
+  return load_scene_text(read_text_file(path, limits.json), path, limits);
+}
+
+Scene load_scene_text(const std::string& text, const std::filesystem::path& path, const SceneLimits& limits) {
+  const nlohmann::json document = parse_json_text(text, path.string(), limits.json);
+  return parse_scene(document, path.string(), path.parent_path(), sha256_hex(text), limits);
 }
 
 }  // namespace campo

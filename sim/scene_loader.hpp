@@ -32,6 +32,11 @@ struct SceneLimits {
 /// are resolved against the file's directory.
 Scene load_scene(const std::filesystem::path& path, const SceneLimits& limits = {});
 
+/// load_scene of `text` as if it were the content of the file `path` (which names
+/// it in errors and whose directory resolves relative data paths); the file is
+/// not read. For the fuzz target (fuzz/) and scenes held in memory.
+Scene load_scene_text(const std::string& text, const std::filesystem::path& path, const SceneLimits& limits = {});
+
 /// Validates an already-parsed scene document; `source` names it in errors
 /// and `base_dir` resolves relative data paths. `source_sha256` is stored as given.
 Scene parse_scene(const nlohmann::json& document, const std::string& source,

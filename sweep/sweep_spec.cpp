@@ -351,7 +351,12 @@ std::string value_id_label(const nlohmann::json& value) {
 }
 
 SweepSpec read_sweep_spec(const std::filesystem::path& file, const SweepLimits& limits) {
-  return parse_sweep_spec(read_json_file(file), file, limits);
+  return read_sweep_spec_text(read_text_file(file), file, limits);
+}
+
+SweepSpec read_sweep_spec_text(const std::string& text, const std::filesystem::path& file,
+                               const SweepLimits& limits) {
+  return parse_sweep_spec(parse_json_text(text, file.string()), file, limits);
 }
 
 SweepSpec parse_sweep_spec(const nlohmann::json& document, const std::filesystem::path& file,

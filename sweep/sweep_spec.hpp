@@ -99,6 +99,12 @@ struct SweepLimits {
 /// relative to the spec file; others name bundled scenes (sweep/bundled.hpp).
 SweepSpec read_sweep_spec(const std::filesystem::path& file, const SweepLimits& limits = {});
 
+/// read_sweep_spec of `text` as if it were the content of `file` (which names it
+/// in errors and resolves relative scene paths); the file is not read. For the
+/// fuzz target (fuzz/) and specs held in memory.
+SweepSpec read_sweep_spec_text(const std::string& text, const std::filesystem::path& file,
+                               const SweepLimits& limits = {});
+
 /// Validates an already-parsed spec document; `file` names it in errors and
 /// resolves relative scene paths.
 SweepSpec parse_sweep_spec(const nlohmann::json& document, const std::filesystem::path& file,

@@ -17,6 +17,9 @@ packages=(
   nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
   libmuparser-dev libssl-dev liboctomap-dev libnanoflann-dev
   slurm-wlm munge jq # tests/slurm: a local single-node Slurm cluster (tools/slurm/)
+  # tools/fuzz.sh: clang, libFuzzer's runtime (libclang-rt-dev, only a Recommends of clang's
+  # packages) and llvm-symbolizer (llvm) for sanitizer reports with file and line.
+  clang libclang-rt-dev llvm
 )
 
 missing=()

@@ -1,5 +1,6 @@
 #include "sim/scene_loader.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -169,6 +170,42 @@ TEST(SceneLoader, SameFileGivesTheSameScene) {
   for (std::size_t i = 0; i < a.shapes.size(); ++i) {
     EXPECT_TRUE(a.shapes[i].pose.isApprox(b.shapes[i].pose, 0.0)) << i;
   }
+}
+
+// The fuzz target's entry: text loaded as if it were the file, its data paths
+// beside that file, its provenance hash that of the text.
+TEST(SceneLoader, TextLoadsAsTheFileItIsNamedAfter) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "campo_scene_loader_text";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "g.csv") << "1,2,3\n4,5,6\n";
+  const std::string text = with_objects(R"j({"alias": "t", "type": "heightfield", "csv": "g.csv", "spacing_m": 0.5})j");
+  const std::filesystem::path named = dir / "never_written.json";
+
+  const Scene scene = load_scene_text(text, named);
+  EXPECT_EQ(scene.source_path, named.string());
+  EXPECT_EQ(scene.source_sha256, sha256_hex(text));
+  ASSERT_EQ(scene.shapes.size(), 1u);
+  const HeightGrid& grid = *scene.shapes[0].terrain;
+  EXPECT_EQ(grid.cols, 3);
+  EXPECT_EQ(grid.rows, 2);
+  EXPECT_EQ(*std::min_element(grid.heights_m.begin(), grid.heights_m.end()), 1.0);
+  EXPECT_EQ(*std::max_element(grid.heights_m.begin(), grid.heights_m.end()), 6.0);
+
+  // The same bytes in a file give the same scene but for the file's name.
+  std::ofstream(dir / "written.json") << text;
+  const Scene from_file = load_scene(dir / "written.json");
+  EXPECT_EQ(from_file.source_sha256, scene.source_sha256);
+  EXPECT_EQ(from_file.shapes[0].terrain->heights_m, grid.heights_m);
+
+  try {
+    load_scene_text("{\"objects\": 1}", named);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), named.string());
+    EXPECT_EQ(e.pointer(), "/objects");
+  }
+  std::filesystem::remove_all(dir);
 }
 
 // --- every kind of validation error, with its message ---------------------

@@ -76,6 +76,27 @@ TEST_F(SweepSpecTest, ErrorsNameFilePointerAndExpectation) {
               HasSubstr(spec + ": /start_jitter: missing required key \"radius_m\""));
 }
 
+// The fuzz target's entry: text read as if it were the spec file, its scene
+// paths relative to that file.
+TEST_F(SweepSpecTest, TextReadsAsTheFileItIsNamedAfter) {
+  fs::copy_file(fs::path(CAMPO_SOURCE_DIR) / "scenes" / "two_barriers.json", dir_ / "mine.json");
+  const fs::path named = dir_ / "never_written.json";
+  const SweepSpec spec =
+      read_sweep_spec_text(R"({"campo_sweep": 1, "scenes": ["mine.json"], "seeds": {"count": 2}})", named);
+  EXPECT_EQ(spec.file, named);
+  EXPECT_EQ(spec.name, "never_written");
+  ASSERT_EQ(spec.scenes.size(), 1u);
+  EXPECT_EQ(spec.scenes[0].file, dir_ / "mine.json");
+  EXPECT_EQ(expand_sweep(spec).size(), 2u);
+  try {
+    read_sweep_spec_text(R"({"campo_sweep": 1, "scenes": []})", named);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), named.string());
+    EXPECT_EQ(e.pointer(), "/scenes");
+  }
+}
+
 TEST_F(SweepSpecTest, BadPointersFailBeforeAnythingRuns) {
   const std::string spec = (dir_ / "spec.json").string();
   // Not a pointer at all.
