@@ -155,7 +155,7 @@ void Ground::paint(cv::Mat& plot, const Eigen::Vector2d& top_left_m, double px_p
   // that the shading near the plot's edges sees the terrain beyond them.
   // The smoothing follows the terrain's vertex spacing up to kMaxSmoothing_px:
   // on coarse terrain a wider blur would cost time and padding with the
-  // spacing (a 20 m grid at 10 px/m: a 360 px kernel) for no visible gain.
+  // spacing (a 20 m grid at 10 px/m: sigma 120 px, 360 px of padding) for no visible gain.
   constexpr double kMaxSmoothing_px = 8.0;
   const double sigma = relief_ ? std::clamp(0.6 * spacing_m_ * px_per_m, 1.0, kMaxSmoothing_px) : 0.0;
   const int pad = 1 + static_cast<int>(std::ceil(3.0 * sigma));
