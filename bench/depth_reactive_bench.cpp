@@ -8,10 +8,10 @@
 
 #include <string>
 
+#include "campo/scene_loader.hpp"
 #include "planners/depth_reactive.hpp"
-#include "sim/lidar.hpp"
-#include "sim/raycaster.hpp"
-#include "sim/scene_loader.hpp"
+#include "sensors/lidar.hpp"
+#include "sensors/raycaster.hpp"
 
 namespace campo {
 namespace {

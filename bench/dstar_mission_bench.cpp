@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
+#include "campo/episode.hpp"
+#include "campo/scene_loader.hpp"
 #include "grid/astar.hpp"
 #include "grid/dstar_lite.hpp"
 #include "planners/dstar_lite_3d.hpp"
 #include "planners/registry.hpp"
-#include "sim/episode.hpp"
-#include "sim/scene_loader.hpp"
-#include "vehicles/vehicle.hpp"
+#include "vehicles/factory.hpp"
 
 namespace campo {
 namespace {
@@ -44,7 +44,7 @@ grid::Cell cell(const nlohmann::json& j) { return {j.at(0).get<int>(), j.at(1).g
 
 RecordedMission record(const std::string& scene_name) {
   const Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + scene_name + ".json");
-  // Every hit of every scan, as the planner got them (the run's record keeps a bounded sample, sim/event_log.hpp).
+  // Every hit of every scan, as the planner got them (the run's record keeps a bounded sample, run/event_log.hpp).
   std::vector<PlannerEvent> events;
   EpisodeOptions options;
   options.on_plan = [&events](const Observation& o, const PlanResult& plan) {

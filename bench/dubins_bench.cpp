@@ -6,8 +6,8 @@
 #include <numbers>
 #include <vector>
 
+#include "campo/random.hpp"
 #include "planners/dubins.hpp"
-#include "sim/random.hpp"
 
 namespace campo::dubins {
 namespace {

@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "campo/random.hpp"
 #include "grid/astar.hpp"
 #include "grid/dstar_lite.hpp"
 #include "grid/movingai.hpp"
-#include "sim/random.hpp"
 
 namespace campo::grid {
 namespace {

@@ -5,10 +5,10 @@
 
 #include <string>
 
-#include "sim/lidar.hpp"
-#include "sim/raycaster.hpp"
-#include "sim/scene_loader.hpp"
-#include "sim/world.hpp"
+#include "campo/scene_loader.hpp"
+#include "campo/world.hpp"
+#include "sensors/lidar.hpp"
+#include "sensors/raycaster.hpp"
 
 namespace campo {
 namespace {

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "render/depth_camera.hpp"
-#include "render/osmesa_gl.hpp"
-#include "sim/scene_loader.hpp"
-#include "sim/scene_mesh.hpp"
+#include "campo/scene_loader.hpp"
+#include "scene/scene_mesh.hpp"
+#include "sensors/depth_camera.hpp"
+#include "sensors/osmesa_gl.hpp"
 
 namespace campo {
 namespace {

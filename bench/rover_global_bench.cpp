@@ -12,14 +12,14 @@
 #include <string>
 #include <vector>
 
+#include "campo/scene.hpp"
+#include "campo/scene_loader.hpp"
 #include "grid/astar.hpp"
 #include "grid/movingai.hpp"
 #include "planners/path_smoothing.hpp"
 #include "planners/rrt_star.hpp"
 #include "planners/vfh_plus.hpp"
-#include "sim/occupancy_grid.hpp"
-#include "sim/scene.hpp"
-#include "sim/scene_loader.hpp"
+#include "scene/occupancy_grid.hpp"
 
 namespace campo {
 namespace {

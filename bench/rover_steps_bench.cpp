@@ -8,9 +8,9 @@
 
 #include <Eigen/Core>
 
+#include "campo/random.hpp"
 #include "planners/follow_the_gap.hpp"
 #include "planners/pure_pursuit.hpp"
-#include "sim/random.hpp"
 
 namespace campo {
 namespace {

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <string>
 
-#include "sim/json_reader.hpp"
-#include "sim/scene_loader.hpp"
+#include "campo/json_reader.hpp"
+#include "campo/scene_loader.hpp"
 #include "tools/scene_checks.hpp"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "sim/json_reader.hpp"
+#include "campo/json_reader.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/sweep_spec.hpp"
 #include "tools/scene_checks.hpp"

@@ -5,8 +5,8 @@
 #include <optional>
 #include <vector>
 
-#include "sim/json_reader.hpp"
-#include "sim/lidar.hpp"
+#include "campo/json_reader.hpp"
+#include "sensors/lidar.hpp"
 
 namespace campo {
 

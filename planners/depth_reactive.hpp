@@ -13,8 +13,8 @@
 #include <memory>
 #include <string>
 
+#include "campo/planner.hpp"
 #include "planners/depth_reactive_steps.hpp"
-#include "sim/planner.hpp"
 
 namespace campo {
 

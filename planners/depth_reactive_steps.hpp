@@ -11,7 +11,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
-#include "sim/lidar_config.hpp"
+#include "campo/lidar_config.hpp"
 
 namespace campo {
 

@@ -7,9 +7,9 @@
 #include <optional>
 #include <vector>
 
+#include "campo/json_reader.hpp"
 #include "grid/dstar_lite.hpp"
-#include "sim/json_reader.hpp"
-#include "sim/lidar.hpp"
+#include "sensors/lidar.hpp"
 
 namespace campo {
 

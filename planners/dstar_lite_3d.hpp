@@ -12,10 +12,10 @@
 #include <memory>
 #include <string>
 
+#include "campo/planner.hpp"
 #include "grid/grid_graph.hpp"
 #include "planners/grid_map3d.hpp"
 #include "planners/octomap3d.hpp"
-#include "sim/planner.hpp"
 
 namespace campo {
 

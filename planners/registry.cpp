@@ -2,11 +2,11 @@
 
 #include <array>
 
+#include "campo/json_reader.hpp"
 #include "planners/depth_reactive.hpp"
 #include "planners/dstar_lite_3d.hpp"
 #include "planners/rover_route.hpp"
 #include "planners/straight.hpp"
-#include "sim/json_reader.hpp"
 
 namespace campo {
 

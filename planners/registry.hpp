@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "sim/planner.hpp"
+#include "campo/planner.hpp"
 
 namespace campo {
 

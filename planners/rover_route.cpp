@@ -15,10 +15,10 @@
 #include <unordered_set>
 #include <vector>
 
+#include "campo/json_reader.hpp"
+#include "campo/random.hpp"
 #include "grid/astar.hpp"
 #include "planners/dubins.hpp"
-#include "sim/json_reader.hpp"
-#include "sim/random.hpp"
 
 namespace campo {
 

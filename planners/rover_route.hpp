@@ -11,13 +11,13 @@
 #include <memory>
 #include <string>
 
+#include "campo/planner.hpp"
 #include "planners/follow_the_gap.hpp"
 #include "planners/path_smoothing.hpp"
 #include "planners/pure_pursuit.hpp"
 #include "planners/rrt_star.hpp"
 #include "planners/vfh_plus.hpp"
-#include "sim/occupancy_grid.hpp"
-#include "sim/planner.hpp"
+#include "scene/occupancy_grid.hpp"
 
 namespace campo {
 

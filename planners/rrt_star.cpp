@@ -18,7 +18,7 @@
 #include <nanoflann.hpp>
 #pragma GCC diagnostic pop
 
-#include "sim/random.hpp"
+#include "campo/random.hpp"
 
 namespace campo {
 namespace {

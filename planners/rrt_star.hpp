@@ -14,7 +14,7 @@
 #include <Eigen/Core>
 
 #include "grid/movingai.hpp"
-#include "sim/occupancy_grid.hpp"
+#include "scene/occupancy_grid.hpp"
 
 namespace campo {
 

@@ -1,6 +1,6 @@
 #include "planners/straight.hpp"
 
-#include "sim/json_reader.hpp"
+#include "campo/json_reader.hpp"
 
 namespace campo {
 

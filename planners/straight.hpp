@@ -3,7 +3,7 @@
 /// The simplest closed-loop planner, and the baseline the others are compared to.
 #include <memory>
 
-#include "sim/planner.hpp"
+#include "campo/planner.hpp"
 
 namespace campo {
 

@@ -17,7 +17,7 @@
 
 #include <Eigen/Core>
 
-#include "sim/occupancy_grid.hpp"
+#include "scene/occupancy_grid.hpp"
 
 namespace campo {
 

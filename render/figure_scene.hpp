@@ -8,7 +8,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
-#include "sim/scene.hpp"
+#include "campo/scene.hpp"
 
 namespace campo::figure {
 

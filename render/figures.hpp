@@ -12,7 +12,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
-#include "sim/scene.hpp"
+#include "campo/scene.hpp"
 
 namespace campo {
 

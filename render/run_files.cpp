@@ -7,9 +7,9 @@
 #include <limits>
 #include <sstream>
 
-#include "sim/event_log.hpp"
-#include "sim/json_reader.hpp"
-#include "sim/scene_loader.hpp"
+#include "campo/json_reader.hpp"
+#include "campo/scene_loader.hpp"
+#include "run/event_log.hpp"
 
 namespace campo {
 

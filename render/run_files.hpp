@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "campo/scene.hpp"
 #include "render/figures.hpp"
-#include "sim/scene.hpp"
 
 namespace campo {
 

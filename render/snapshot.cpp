@@ -8,7 +8,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "render/osmesa_gl.hpp"
+#include "sensors/osmesa_gl.hpp"
 
 namespace campo {
 

@@ -7,8 +7,8 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
-#include "sim/scene.hpp"
-#include "sim/scene_mesh.hpp"
+#include "campo/scene.hpp"
+#include "scene/scene_mesh.hpp"
 
 namespace campo {
 

@@ -4,10 +4,10 @@
 #include <map>
 #include <set>
 
+#include "campo/json_reader.hpp"
 #include "render/run_files.hpp"
 #include "reproduce/claims.hpp"
 #include "reproduce/trajectory_checks.hpp"
-#include "sim/json_reader.hpp"
 #include "sweep/results.hpp"
 
 namespace campo {

@@ -9,11 +9,11 @@
 #include <utility>
 #include <vector>
 
+#include "campo/json_reader.hpp"
+#include "campo/scene_loader.hpp"
 #include "render/run_files.hpp"
 #include "reproduce/claims.hpp"
-#include "sim/geodesy.hpp"
-#include "sim/json_reader.hpp"
-#include "sim/scene_loader.hpp"
+#include "scene/geodesy.hpp"
 #include "sweep/results.hpp"
 
 namespace campo {

@@ -7,8 +7,8 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "sim/json_reader.hpp"
-#include "sim/output_dir.hpp"
+#include "campo/json_reader.hpp"
+#include "core/output_dir.hpp"
 
 namespace campo {
 

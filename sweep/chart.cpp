@@ -7,9 +7,9 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "core/image_io.hpp"
 #include "render/figure_canvas.hpp"
 #include "render/figures.hpp"
-#include "sim/image_io.hpp"
 #include "sweep/sweep_spec.hpp"
 #include "sweep/table.hpp"
 

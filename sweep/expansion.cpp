@@ -6,11 +6,11 @@
 #include <numeric>
 #include <string_view>
 
+#include "campo/json_reader.hpp"
+#include "campo/random.hpp"
+#include "campo/scene_loader.hpp"
 #include "planners/registry.hpp"
-#include "sim/json_reader.hpp"
-#include "sim/random.hpp"
-#include "sim/scene_loader.hpp"
-#include "sim/scene_overrides.hpp"
+#include "scene/scene_overrides.hpp"
 
 namespace campo {
 

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/scene.hpp"
+#include "campo/scene.hpp"
 #include "sweep/sweep_spec.hpp"
 
 namespace campo {
@@ -33,7 +33,7 @@ struct SweepRun {
 };
 
 /// Extra validation of a run's scene (e.g. vehicle and planner parameters,
-/// which live outside sim/); throws InputError.
+/// which live outside scene/); throws InputError.
 using SceneCheck = std::function<void(const Scene&)>;
 
 /// The sampled axis values of a spec with "sampling": samples x axes, the same
@@ -50,7 +50,7 @@ std::vector<std::vector<nlohmann::json>> sample_axes(const SweepSpec& spec);
 std::vector<SweepRun> expand_sweep(const SweepSpec& spec, const SceneCheck& check = {});
 
 /// Object types of the scene format whose shapes come from a seeded
-/// generator (sim/generators.hpp), re-seeded by "vary_scene_with_seed".
+/// generator (scene/generators.hpp), re-seeded by "vary_scene_with_seed".
 inline constexpr std::array<std::string_view, 3> kSeededGeneratorTypes{"rolling_terrain", "trees", "vineyard"};
 
 /// The seed "vary_scene_with_seed" gives the generator object `alias` in the

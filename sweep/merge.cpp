@@ -2,7 +2,7 @@
 
 #include <map>
 
-#include "sim/json_reader.hpp"
+#include "campo/json_reader.hpp"
 #include "sweep/results.hpp"
 
 namespace campo {

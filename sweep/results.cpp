@@ -11,8 +11,8 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include "sim/json_reader.hpp"
-#include "sim/output_dir.hpp"
+#include "campo/json_reader.hpp"
+#include "core/output_dir.hpp"
 
 namespace campo {
 
@@ -26,7 +26,7 @@ nlohmann::json result_line(const SweepRun& run, const std::string& status) {
 }
 
 RunMetrics read_metrics(const JsonNode& node) {
-  // Only the keys the table uses: run.json's metrics are defined (and grow) in sim/, so no finish().
+  // Only the keys the table uses: run.json's metrics are defined (and grow) in run/, so no finish().
   ObjectReader r(node);
   RunMetrics m;
   m.outcome = r.required("outcome").as_string();

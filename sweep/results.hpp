@@ -14,7 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/json_reader.hpp"
+#include "campo/json_reader.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/statistics.hpp"
 

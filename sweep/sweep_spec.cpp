@@ -9,7 +9,7 @@
 #include <map>
 #include <set>
 
-#include "sim/json_reader.hpp"
+#include "campo/json_reader.hpp"
 #include "sweep/bundled.hpp"
 #include "sweep/results.hpp"
 #include "sweep/table.hpp"

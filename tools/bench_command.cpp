@@ -3,15 +3,15 @@
 #include <iostream>
 #include <sstream>
 
+#include "campo/episode.hpp"
+#include "campo/scene_loader.hpp"
 #include "planners/registry.hpp"
-#include "render/sensors.hpp"
-#include "sim/episode.hpp"
-#include "sim/lidar.hpp"
-#include "sim/provenance.hpp"
-#include "sim/scene_loader.hpp"
+#include "run/provenance.hpp"
+#include "sensors/lidar.hpp"
+#include "sensors/sensor_factory.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
-#include "vehicles/vehicle.hpp"
+#include "vehicles/factory.hpp"
 
 namespace campo::cli {
 

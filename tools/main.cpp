@@ -2,8 +2,8 @@
 #include <iostream>
 #include <map>
 
-#include "sim/json_reader.hpp"
-#include "sim/provenance.hpp"
+#include "campo/json_reader.hpp"
+#include "run/provenance.hpp"
 #include "tools/commands.hpp"
 
 int main(int argc, char** argv) {

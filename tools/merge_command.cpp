@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "sim/json_reader.hpp"
-#include "sim/output_dir.hpp"
+#include "campo/json_reader.hpp"
+#include "core/output_dir.hpp"
 #include "sweep/merge.hpp"
 #include "tools/commands.hpp"
 

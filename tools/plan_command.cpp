@@ -15,13 +15,13 @@
 #include <utility>
 #include <vector>
 
+#include "campo/json_reader.hpp"
 #include "grid/astar.hpp"
 #include "grid/dstar_lite.hpp"
 #include "grid/lpa_star.hpp"
 #include "grid/movingai.hpp"
 #include "planners/dubins.hpp"
 #include "planners/rrt_star.hpp"
-#include "sim/json_reader.hpp"
 #include "tools/commands.hpp"
 
 namespace campo::cli {

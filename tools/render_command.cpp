@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "sim/json_reader.hpp"
+#include "campo/json_reader.hpp"
 #include "tools/commands.hpp"
-#include "tools/figures.hpp"
+#include "tools/run_figures.hpp"
 
 namespace campo::cli {
 

@@ -6,12 +6,12 @@
 
 #include <unistd.h>
 
+#include "campo/json_reader.hpp"
+#include "core/output_dir.hpp"
 #include "reproduce/claims.hpp"
 #include "reproduce/report.hpp"
 #include "reproduce/workbench.hpp"
-#include "sim/json_reader.hpp"
-#include "sim/output_dir.hpp"
-#include "sim/provenance.hpp"
+#include "run/provenance.hpp"
 #include "tools/commands.hpp"
 
 namespace campo::cli {

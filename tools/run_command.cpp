@@ -3,9 +3,9 @@
 #include <string>
 #include <vector>
 
+#include "campo/json_reader.hpp"
 #include "planners/registry.hpp"
-#include "sim/event_log.hpp"
-#include "sim/json_reader.hpp"
+#include "run/event_log.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
 #include "tools/run_execution.hpp"

@@ -8,20 +8,21 @@
 #include <stdexcept>
 #include <sstream>
 
+#include "campo/episode.hpp"
+#include "campo/json_reader.hpp"
+#include "campo/pose.hpp"
+#include "campo/run_record.hpp"
+#include "campo/scene_loader.hpp"
+#include "core/output_dir.hpp"
 #include "planners/registry.hpp"
-#include "render/depth_image.hpp"
 #include "render/run_files.hpp"
-#include "render/sensors.hpp"
-#include "sim/episode.hpp"
-#include "sim/event_log.hpp"
-#include "sim/json_reader.hpp"
-#include "sim/pose.hpp"
-#include "sim/output_dir.hpp"
-#include "sim/run_record.hpp"
-#include "sim/scene_loader.hpp"
-#include "sim/scene_overrides.hpp"
-#include "tools/figures.hpp"
-#include "vehicles/vehicle.hpp"
+#include "run/event_log.hpp"
+#include "scene/scene_overrides.hpp"
+#include "sensors/depth_image.hpp"
+#include "sensors/lidar.hpp"
+#include "sensors/sensor_factory.hpp"
+#include "tools/run_figures.hpp"
+#include "vehicles/factory.hpp"
 
 namespace campo::cli {
 

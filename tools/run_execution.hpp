@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "sim/episode.hpp"
-#include "sim/output_dir.hpp"
-#include "sim/scene.hpp"
+#include "campo/episode.hpp"
+#include "campo/scene.hpp"
+#include "core/output_dir.hpp"
 
 namespace campo::cli {
 

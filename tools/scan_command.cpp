@@ -4,13 +4,13 @@
 #include <string>
 #include <vector>
 
-#include "render/depth_image.hpp"
-#include "render/sensors.hpp"
-#include "sim/lidar.hpp"
-#include "sim/output_dir.hpp"
-#include "sim/provenance.hpp"
-#include "sim/scan_io.hpp"
-#include "sim/scene_loader.hpp"
+#include "campo/scene_loader.hpp"
+#include "core/output_dir.hpp"
+#include "run/provenance.hpp"
+#include "sensors/depth_image.hpp"
+#include "sensors/lidar.hpp"
+#include "sensors/scan_io.hpp"
+#include "sensors/sensor_factory.hpp"
 #include "tools/commands.hpp"
 
 namespace campo::cli {

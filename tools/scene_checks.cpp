@@ -1,8 +1,8 @@
 #include "tools/scene_checks.hpp"
 
+#include "campo/json_reader.hpp"
 #include "planners/registry.hpp"
-#include "sim/json_reader.hpp"
-#include "vehicles/vehicle.hpp"
+#include "vehicles/factory.hpp"
 
 namespace campo::cli {
 

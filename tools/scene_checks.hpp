@@ -1,7 +1,7 @@
 #pragma once
-/// Checks of a scene beyond sim/'s loader, shared by `campo validate` and
+/// Checks of a scene beyond scene/'s loader, shared by `campo validate` and
 /// `campo sweep`: the parameters that vehicles/ and planners/ interpret.
-#include "sim/scene.hpp"
+#include "campo/scene.hpp"
 
 namespace campo::cli {
 

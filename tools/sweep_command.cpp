@@ -12,10 +12,10 @@
 #include <sched.h>
 #include <unistd.h>
 
-#include "sim/json_reader.hpp"
-#include "sim/output_dir.hpp"
-#include "sim/run_record.hpp"
-#include "sim/scene_loader.hpp"
+#include "campo/json_reader.hpp"
+#include "campo/run_record.hpp"
+#include "campo/scene_loader.hpp"
+#include "core/output_dir.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/process_pool.hpp"
 #include "sweep/progress.hpp"

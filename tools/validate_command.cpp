@@ -2,7 +2,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/scene_loader.hpp"
+#include "campo/scene_loader.hpp"
 #include "tools/commands.hpp"
 #include "tools/scene_checks.hpp"
 

@@ -1,6 +1,6 @@
+#include "vehicles/factory.hpp"
 #include "vehicles/quadrotor.hpp"
 #include "vehicles/rover.hpp"
-#include "vehicles/vehicle.hpp"
 
 namespace campo {
 

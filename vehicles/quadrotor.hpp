@@ -9,9 +9,9 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
-#include "sim/scene.hpp"
-#include "sim/vehicle.hpp"
-#include "sim/world.hpp"
+#include "campo/scene.hpp"
+#include "campo/vehicle.hpp"
+#include "campo/world.hpp"
 #include "vehicles/quadrotor_controller.hpp"
 
 class btCollisionShape;

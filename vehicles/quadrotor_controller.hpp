@@ -8,7 +8,7 @@
 
 #include <Eigen/Geometry>
 
-#include "sim/vehicle.hpp"
+#include "campo/vehicle.hpp"
 #include "vehicles/pid.hpp"
 
 namespace campo {

@@ -1,5 +1,6 @@
 #include "vehicles/rover.hpp"
-#include "sim/bullet_convert.hpp"
+
+#include "physics/bullet_convert.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +13,7 @@
 
 #include <btBulletDynamicsCommon.h>
 
-#include "sim/json_reader.hpp"
+#include "campo/json_reader.hpp"
 
 namespace campo {
 

@@ -9,9 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include "campo/random.hpp"
 #include "grid/grid_graph.hpp"
 #include "grid/search_result.hpp"
-#include "sim/random.hpp"
 
 namespace campo::grid::test {
 

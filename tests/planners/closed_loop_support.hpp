@@ -8,11 +8,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "campo/episode.hpp"
+#include "campo/scene_loader.hpp"
 #include "planners/registry.hpp"
-#include "sim/episode.hpp"
-#include "sim/scene_loader.hpp"
-#include "sim/scene_overrides.hpp"
-#include "vehicles/vehicle.hpp"
+#include "scene/scene_overrides.hpp"
+#include "vehicles/factory.hpp"
 
 namespace campo::testing {
 

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "sim/lidar.hpp"
-#include "sim/random.hpp"
+#include "campo/random.hpp"
+#include "sensors/lidar.hpp"
 
 namespace campo {
 namespace {

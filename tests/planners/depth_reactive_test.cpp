@@ -5,12 +5,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "campo/episode.hpp"
+#include "campo/json_reader.hpp"
+#include "campo/scene_loader.hpp"
 #include "planners/registry.hpp"
-#include "render/sensors.hpp"
-#include "sim/episode.hpp"
-#include "sim/json_reader.hpp"
-#include "sim/scene_loader.hpp"
-#include "vehicles/vehicle.hpp"
+#include "sensors/lidar.hpp"
+#include "sensors/sensor_factory.hpp"
+#include "vehicles/factory.hpp"
 
 namespace campo {
 namespace {

@@ -11,10 +11,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "campo/json_reader.hpp"
+#include "campo/scene_loader.hpp"
 #include "closed_loop_support.hpp"
 #include "planners/dstar_lite_3d.hpp"
-#include "sim/json_reader.hpp"
-#include "sim/scene_loader.hpp"
 
 namespace campo {
 namespace {

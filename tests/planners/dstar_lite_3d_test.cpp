@@ -8,9 +8,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "campo/json_reader.hpp"
 #include "closed_loop_support.hpp"
 #include "grid/astar.hpp"
-#include "sim/json_reader.hpp"
 
 namespace campo {
 namespace {

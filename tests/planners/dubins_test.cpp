@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "sim/random.hpp"
+#include "campo/random.hpp"
 
 namespace campo::dubins {
 namespace {

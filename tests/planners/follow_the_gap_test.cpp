@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "sim/random.hpp"
+#include "campo/random.hpp"
 
 namespace campo {
 namespace {

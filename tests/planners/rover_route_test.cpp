@@ -8,10 +8,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "campo/json_reader.hpp"
+#include "campo/scene_loader.hpp"
 #include "closed_loop_support.hpp"
 #include "planners/registry.hpp"
-#include "sim/json_reader.hpp"
-#include "sim/scene_loader.hpp"
 
 namespace campo {
 namespace {

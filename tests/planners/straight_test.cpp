@@ -3,8 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "campo/json_reader.hpp"
 #include "planners/registry.hpp"
-#include "sim/json_reader.hpp"
 
 namespace campo {
 namespace {

@@ -12,8 +12,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "campo/scene_loader.hpp"
 #include "render/run_files.hpp"
-#include "sim/scene_loader.hpp"
 
 namespace campo {
 namespace {

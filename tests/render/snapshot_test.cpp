@@ -10,7 +10,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include "sim/scene_loader.hpp"
+#include "campo/scene_loader.hpp"
 
 namespace campo {
 namespace {

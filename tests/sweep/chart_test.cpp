@@ -11,9 +11,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "campo/json_reader.hpp"
 #include "render/figure_canvas.hpp"
 #include "render/figures.hpp"
-#include "sim/json_reader.hpp"
 #include "tests/sweep/results_fixture.hpp"
 
 namespace campo {

@@ -5,7 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sim/json_reader.hpp"
+#include "campo/json_reader.hpp"
 
 namespace campo {
 namespace {

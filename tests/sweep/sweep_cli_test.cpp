@@ -18,7 +18,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "sim/scene_loader.hpp"
+#include "campo/scene_loader.hpp"
 #include "tests/cli_support.hpp"
 
 namespace {

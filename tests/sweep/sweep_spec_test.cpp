@@ -9,13 +9,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "campo/json_reader.hpp"
+#include "campo/random.hpp"
+#include "campo/scene_loader.hpp"
 #include "planners/registry.hpp"
-#include "sim/json_reader.hpp"
-#include "sim/random.hpp"
-#include "sim/scene_loader.hpp"
-#include "sim/scene_overrides.hpp"
+#include "scene/scene_overrides.hpp"
 #include "sweep/expansion.hpp"
-#include "vehicles/vehicle.hpp"
+#include "vehicles/factory.hpp"
 
 namespace campo {
 namespace {

@@ -10,7 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sim/json_reader.hpp"
+#include "campo/json_reader.hpp"
 #include "sweep/statistics.hpp"
 #include "tests/sweep/results_fixture.hpp"
 

@@ -14,9 +14,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <sys/wait.h>
 
+#include "campo/scene_loader.hpp"
 #include "render/run_files.hpp"
-#include "sim/event_log.hpp"
-#include "sim/scene_loader.hpp"
+#include "run/event_log.hpp"
 #include "tests/cli_support.hpp"
 
 namespace {

@@ -11,8 +11,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sim/json_reader.hpp"
-#include "sim/scene_loader.hpp"
+#include "campo/json_reader.hpp"
+#include "campo/scene_loader.hpp"
 
 namespace campo {
 namespace {

@@ -10,7 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "sim/scene_loader.hpp"
+#include "campo/scene_loader.hpp"
 
 namespace campo {
 namespace {

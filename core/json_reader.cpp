@@ -1,0 +1,455 @@
+#include "campo/json_reader.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <fstream>
+#include <iterator>
+#include <unordered_map>
+#include <sstream>
+
+namespace campo {
+
+namespace {
+
+std::string describe_value(const nlohmann::json& v) {
+  std::string text = v.dump();
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return text;
+}
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+InputError::InputError(std::string file, std::string pointer, const std::string& message)
+    : std::runtime_error(file + ": " + (pointer.empty() ? std::string() : pointer + ": ") + message),
+      file_(std::move(file)),
+      pointer_(std::move(pointer)) {}
+
+namespace {
+
+/// 1-based line and column of byte `offset` of `text`, for messages.
+std::string line_column(const std::string& text, std::size_t offset) {
+  offset = std::min(offset, text.size());
+  const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n');
+  const auto line_start = offset == 0 ? std::string::npos : text.rfind('\n', offset - 1);
+  const auto column = offset - (line_start == std::string::npos ? 0 : line_start + 1) + 1;
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+/// A character iterator that publishes how far the parser has read, so the
+/// SAX handler can say where a key is (nlohmann gives positions only to errors).
+class TrackingIterator {
+ public:
+  using iterator_category = std::input_iterator_tag;
+  using value_type = char;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const char*;
+  using reference = const char&;
+
+  TrackingIterator(const char* at, const char** cursor) : at_(at), cursor_(cursor) {}
+  reference operator*() const { return *at_; }
+  TrackingIterator& operator++() {
+    *cursor_ = ++at_;
+    return *this;
+  }
+  TrackingIterator operator++(int) {
+    TrackingIterator before = *this;
+    ++*this;
+    return before;
+  }
+  bool operator==(const TrackingIterator& other) const { return at_ == other.at_; }
+  bool operator!=(const TrackingIterator& other) const { return at_ != other.at_; }
+
+ private:
+  const char* at_;
+  const char** cursor_;
+};
+
+/// Builds the document like nlohmann's DOM parser, in linear time (its callback
+/// parser rescans a whole array at the end of every element object), and
+/// rejects what nlohmann accepts silently: duplicate keys (the last would win)
+/// and NUL characters in strings (they would truncate paths and expressions).
+/// Every refusal names the JSON pointer of the value being read.
+class DocumentBuilder {
+ public:
+  DocumentBuilder(const std::string& text, const std::string& source, const InputLimits& limits,
+                  const char** cursor)
+      : text_(text), source_(source), limits_(limits), cursor_(cursor) {}
+
+  nlohmann::json& document() { return document_; }
+
+  bool null() { return add(nullptr); }
+  bool boolean(bool v) { return add(v); }
+  bool number_integer(std::int64_t v) { return add(v); }
+  bool number_unsigned(std::uint64_t v) { return add(v); }
+  bool number_float(double v, const std::string&) { return add(v); }
+  bool string(std::string& v) {
+    reject_nul(v, current_pointer());
+    return add(std::move(v));
+  }
+  bool binary(nlohmann::json::binary_t&) { return false; }  // never produced by JSON text
+
+  bool start_object(std::size_t) { return open(nlohmann::json::object()); }
+  bool start_array(std::size_t) { return open(nlohmann::json::array()); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+
+  bool key(std::string& k) {
+    Frame& frame = frames_.back();
+    // The cursor is just past the key's closing quote; its opening quote is
+    // the key's length further back (exact unless the key has escapes).
+    const std::size_t end = offset();
+    const std::size_t here = end >= k.size() + 2 ? end - k.size() - 2 : 0;
+    const auto [first, inserted] = frame.key_offsets.emplace(k, here);
+    if (!inserted) {
+      throw InputError(source_, child_pointer(frame.pointer, k),
+                       "duplicate key \"" + k + "\" at " + line_column(text_, here) + "; first at " +
+                           line_column(text_, first->second) + " (expected each key once per object)");
+    }
+    reject_nul(k, frame.pointer);
+    frame.key = k;
+    return true;
+  }
+
+  bool parse_error(std::size_t position, const std::string& token, const nlohmann::json::exception& e) {
+    const std::size_t at = position > 0 ? position - 1 : 0;
+    if (dynamic_cast<const nlohmann::json::out_of_range*>(&e) != nullptr) {
+      // nlohmann reports a number beyond the range of a double this way, once
+      // it has read the whole number (`position` is just past it).
+      std::string shown = token.size() > 40 ? token.substr(0, 37) + "..." : token;
+      const std::size_t start = position >= token.size() ? position - token.size() : 0;
+      throw InputError(source_, current_pointer(),
+                       "number out of range at " + line_column(text_, start) +
+                           ": expected a finite number (magnitude below 1.8e308), got " + shown + " (" +
+                           std::to_string(token.size()) + " characters)");
+    }
+    // Report line and column rather than nlohmann's byte offset.
+    const std::string what = e.what();
+    const auto colon = what.rfind(": ");
+    throw InputError(source_, "",
+                     "invalid JSON at " + line_column(text_, at) + ": " +
+                         (colon == std::string::npos ? what : what.substr(colon + 2)));
+  }
+
+ private:
+  struct Frame {
+    nlohmann::json* value = nullptr;
+    std::string pointer;  ///< of this array or object
+    std::string key;      ///< the key being read (objects)
+    std::unordered_map<std::string, std::size_t> key_offsets;
+  };
+
+  std::size_t offset() const { return static_cast<std::size_t>(*cursor_ - text_.data()); }
+
+  /// Pointer of the value about to be added to the innermost open container.
+  std::string current_pointer() const {
+    if (frames_.empty()) return "";
+    const Frame& top = frames_.back();
+    return top.value->is_array() ? child_pointer(top.pointer, top.value->size())
+                                 : child_pointer(top.pointer, top.key);
+  }
+
+  void reject_nul(const std::string& s, const std::string& pointer) const {
+    if (s.find('\0') != std::string::npos) {
+      throw InputError(source_, pointer, "expected text without NUL characters (\\u0000)");
+    }
+  }
+
+  template <typename Value>
+  nlohmann::json* insert(Value&& v) {
+    if (frames_.empty()) {
+      document_ = nlohmann::json(std::forward<Value>(v));
+      return &document_;
+    }
+    Frame& top = frames_.back();
+    if (top.value->is_array()) {
+      top.value->emplace_back(std::forward<Value>(v));
+      return &top.value->back();
+    }
+    nlohmann::json& slot = (*top.value)[top.key];
+    slot = nlohmann::json(std::forward<Value>(v));
+    return &slot;
+  }
+
+  template <typename Value>
+  bool add(Value&& v) {
+    insert(std::forward<Value>(v));
+    return true;
+  }
+
+  bool open(nlohmann::json empty) {
+    if (static_cast<int>(frames_.size()) >= limits_.max_depth) {
+      throw InputError(source_, current_pointer(),
+                       "nesting deeper than " + std::to_string(limits_.max_depth) + " levels");
+    }
+    std::string pointer = current_pointer();
+    nlohmann::json* value = insert(std::move(empty));
+    frames_.push_back(Frame{value, std::move(pointer), {}, {}});
+    return true;
+  }
+
+  bool close() {
+    frames_.pop_back();
+    return true;
+  }
+
+  const std::string& text_;
+  const std::string& source_;
+  const InputLimits& limits_;
+  const char** cursor_;
+  nlohmann::json document_;
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
+
+nlohmann::json parse_json_text(const std::string& text, const std::string& source,
+                               const InputLimits& limits) {
+  if (text.size() > limits.max_file_bytes) {
+    throw InputError(source, "", "file too large: " + std::to_string(text.size()) +
+                                     " bytes, expected at most " +
+                                     std::to_string(limits.max_file_bytes));
+  }
+  const char* cursor = text.data();
+  DocumentBuilder builder(text, source, limits, &cursor);
+  const TrackingIterator first(text.data(), &cursor);
+  const TrackingIterator last(text.data() + text.size(), &cursor);
+  nlohmann::json::sax_parse(first, last, &builder);
+  return std::move(builder.document());
+}
+
+std::string read_text_file(const std::filesystem::path& path, const InputLimits& limits) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw InputError(name, "", "cannot read: not an existing regular file");
+  }
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > limits.max_file_bytes) {
+    throw InputError(name, "", "file too large: " + std::to_string(size) +
+                                   " bytes, expected at most " +
+                                   std::to_string(limits.max_file_bytes));
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(name, "", "cannot open for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+nlohmann::json read_json_file(const std::filesystem::path& path, const InputLimits& limits) {
+  return parse_json_text(read_text_file(path, limits), path.string(), limits);
+}
+
+std::string seed_expectation() {
+  return "an integer seed in [0, " + std::to_string(std::numeric_limits<std::uint64_t>::max()) + "]";
+}
+
+std::uint64_t parse_seed(const std::string& text, const std::string& file, const std::string& where) {
+  std::uint64_t seed = 0;
+  const char* end = text.data() + text.size();
+  // Digits only: no sign, no fraction, no exponent, no spaces; from_chars reports overflow.
+  const auto [ptr, ec] = std::from_chars(text.data(), end, seed);
+  const bool digits = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (!digits || ec != std::errc() || ptr != end) {
+    throw InputError(file, where, "expected " + seed_expectation() + ", got \"" + text + "\"");
+  }
+  return seed;
+}
+
+std::string child_pointer(const std::string& parent, std::string_view key) {
+  std::string out = parent + "/";
+  for (char c : key) {
+    if (c == '~') out += "~0";
+    else if (c == '/') out += "~1";
+    else out += c;
+  }
+  return out;
+}
+
+std::string child_pointer(const std::string& parent, std::size_t index) {
+  return parent + "/" + std::to_string(index);
+}
+
+bool Range::contains(double v) const {
+  if (!std::isfinite(v)) return false;
+  if (min_exclusive ? v <= min : v < min) return false;
+  if (max_exclusive ? v >= max : v > max) return false;
+  return true;
+}
+
+std::string Range::describe() const {
+  const bool has_min = std::isfinite(min);
+  const bool has_max = std::isfinite(max);
+  if (has_min && has_max) {
+    return "a number in " + std::string(min_exclusive ? "(" : "[") + format_number(min) + ", " +
+           format_number(max) + (max_exclusive ? ")" : "]");
+  }
+  if (has_min) return "a number " + std::string(min_exclusive ? "> " : ">= ") + format_number(min);
+  if (has_max) return "a number " + std::string(max_exclusive ? "< " : "<= ") + format_number(max);
+  return "a finite number";
+}
+
+void JsonNode::fail(const std::string& expected) const {
+  throw InputError(file_, pointer_, "expected " + expected + ", got " + describe_value(*value_));
+}
+
+double JsonNode::as_number(const Range& range) const {
+  if (!value_->is_number()) fail(range.describe());
+  const double v = value_->get<double>();
+  if (!range.contains(v)) fail(range.describe());
+  return v;
+}
+
+std::int64_t JsonNode::as_int(std::int64_t min, std::int64_t max) const {
+  const std::string expected =
+      "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
+  if (value_->is_number_unsigned()) {
+    const auto u = value_->get<std::uint64_t>();
+    if (u > static_cast<std::uint64_t>(max) || static_cast<std::int64_t>(u) < min) fail(expected);
+    return static_cast<std::int64_t>(u);
+  }
+  if (!value_->is_number_integer()) fail(expected);
+  const auto v = value_->get<std::int64_t>();
+  if (v < min || v > max) fail(expected);
+  return v;
+}
+
+std::uint64_t JsonNode::as_seed() const {
+  // nlohmann reads integers exactly (as int64 or uint64); larger ones, fractions and exponents are doubles.
+  if (value_->is_number_unsigned()) return value_->get<std::uint64_t>();
+  if (value_->is_number_integer() && value_->get<std::int64_t>() >= 0) {
+    return static_cast<std::uint64_t>(value_->get<std::int64_t>());
+  }
+  fail(seed_expectation());
+}
+
+bool JsonNode::as_bool() const {
+  if (!value_->is_boolean()) fail("true or false");
+  return value_->get<bool>();
+}
+
+std::string JsonNode::as_string() const {
+  if (!value_->is_string() || value_->get_ref<const std::string&>().empty()) {
+    fail("a non-empty string");
+  }
+  return value_->get<std::string>();
+}
+
+std::size_t JsonNode::as_choice(const std::vector<std::string_view>& choices) const {
+  std::string expected = "one of";
+  for (std::size_t i = 0; i < choices.size(); ++i) {
+    expected += (i == 0 ? " \"" : ", \"") + std::string(choices[i]) + "\"";
+  }
+  if (!value_->is_string()) fail(expected);
+  const auto& s = value_->get_ref<const std::string&>();
+  for (std::size_t i = 0; i < choices.size(); ++i) {
+    if (s == choices[i]) return i;
+  }
+  fail(expected);
+}
+
+std::vector<JsonNode> JsonNode::as_array(std::size_t min_size, std::size_t max_size) const {
+  const std::string expected =
+      min_size == max_size
+          ? "an array of " + std::to_string(min_size) + " elements"
+          : "an array of " + std::to_string(min_size) + " to " + std::to_string(max_size) +
+                " elements";
+  if (!value_->is_array() || value_->size() < min_size || value_->size() > max_size) {
+    fail(expected);
+  }
+  std::vector<JsonNode> out;
+  out.reserve(value_->size());
+  for (std::size_t i = 0; i < value_->size(); ++i) {
+    out.emplace_back((*value_)[i], file_, child_pointer(pointer_, i));
+  }
+  return out;
+}
+
+Eigen::Vector3d JsonNode::as_vector3(const Range& range) const {
+  const auto items = as_array(3, 3);
+  return {items[0].as_number(range), items[1].as_number(range), items[2].as_number(range)};
+}
+
+Eigen::Vector2d JsonNode::as_vector2(const Range& range) const {
+  const auto items = as_array(2, 2);
+  return {items[0].as_number(range), items[1].as_number(range)};
+}
+
+ObjectReader::ObjectReader(const JsonNode& node) : node_(node) {
+  if (!node_.value().is_object()) node_.fail("an object");
+}
+
+bool ObjectReader::has(std::string_view key) const {
+  return node_.value().contains(std::string(key));
+}
+
+JsonNode ObjectReader::required(std::string_view key) {
+  accept(key);
+  const auto it = node_.value().find(std::string(key));
+  if (it == node_.value().end()) {
+    throw InputError(node_.file(), node_.pointer(),
+                     "missing required key \"" + std::string(key) + "\"");
+  }
+  return JsonNode(*it, node_.file(), child_pointer(node_.pointer(), key));
+}
+
+std::optional<JsonNode> ObjectReader::optional(std::string_view key) {
+  accept(key);
+  const auto it = node_.value().find(std::string(key));
+  if (it == node_.value().end()) return std::nullopt;
+  return JsonNode(*it, node_.file(), child_pointer(node_.pointer(), key));
+}
+
+void ObjectReader::read(std::string_view key, double& out, const Range& range) {
+  if (auto v = optional(key)) out = v->as_number(range);
+}
+
+void ObjectReader::read(std::string_view key, int& out, std::int64_t min, std::int64_t max) {
+  if (auto v = optional(key)) out = static_cast<int>(v->as_int(min, max));
+}
+
+void ObjectReader::read(std::string_view key, bool& out) {
+  if (auto v = optional(key)) out = v->as_bool();
+}
+
+void ObjectReader::read(std::string_view key, std::string& out) {
+  if (auto v = optional(key)) out = v->as_string();
+}
+
+void ObjectReader::read_seed(std::string_view key, std::uint64_t& out) {
+  if (auto v = optional(key)) out = v->as_seed();
+}
+
+void ObjectReader::read(std::string_view key, Eigen::Vector3d& out, const Range& range) {
+  if (auto v = optional(key)) out = v->as_vector3(range);
+}
+
+void ObjectReader::read(std::string_view key, Eigen::Vector2d& out, const Range& range) {
+  if (auto v = optional(key)) out = v->as_vector2(range);
+}
+
+void ObjectReader::accept(std::string_view key) {
+  if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.emplace_back(key);
+}
+
+void ObjectReader::finish() const {
+  for (const auto& [key, value] : node_.value().items()) {
+    if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
+    std::vector<std::string> allowed = known_;
+    std::sort(allowed.begin(), allowed.end());
+    std::string list;
+    for (const auto& k : allowed) list += (list.empty() ? "" : ", ") + k;
+    throw InputError(node_.file(), child_pointer(node_.pointer(), key),
+                     "unknown key \"" + key + "\"; expected one of: " + list);
+  }
+}
+
+}  // namespace campo

@@ -1,0 +1,164 @@
+#pragma once
+/// The closed loop (SPEC §1): sense -> plan -> control -> actuate -> step,
+/// each at its own rate, until the mission ends, the time limit passes or the
+/// vehicle collides. Stepped from this one place; deterministic for a given
+/// Scene (including its world seed).
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "campo/planner.hpp"
+#include "campo/range_sensor.hpp"
+#include "campo/scene.hpp"
+#include "campo/vehicle.hpp"
+#include "campo/world.hpp"
+
+namespace campo {
+
+/// Builds the vehicle of a definition inside a world (vehicles/ provides make_vehicle).
+using VehicleFactory = std::unique_ptr<Vehicle> (*)(World& world, const VehicleDef& def);
+/// Builds a planner (planners/ provides create_planner).
+using PlannerMaker = std::unique_ptr<Planner> (*)(const PlannerSpec& spec, const PlannerContext& context);
+
+enum class Outcome { reached, collision, timeout, aborted };
+std::string_view to_string(Outcome outcome);
+
+/// One leg of the mission: from the start (leg 0) or mission waypoint k - 1
+/// to mission waypoint k (run/route_metrics.hpp), measured on the trajectory
+/// samples between the planner calls that reported the two reached.
+struct LegMetrics {
+  std::optional<double> path_length_m;           ///< flown; nullopt when waypoint k was not reached
+  std::optional<double> lateral_before_climb_m;  ///< lateral_before_climb_m against the nominal leg; nullopt: no climb
+};
+
+/// Whether the vehicle passed through a mission gate.
+struct GateMetrics {
+  std::string name;
+  std::optional<double> time_s;  ///< first trajectory sample inside the gate; nullopt: never
+};
+
+/// Metrics of one run, named as in run.json.
+struct EpisodeMetrics {
+  Outcome outcome = Outcome::aborted;
+  std::string reason;
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;        ///< measured, so it differs between identical runs
+  double path_length_m = 0.0;      ///< distance travelled (flown/driven), integrated every physics step
+  /// Path length / nominal route: straight legs from the start through each
+  /// waypoint where the vehicle was when it reached it (the waypoint as
+  /// given when it was not reached). At least 1 for a run that reached its goal.
+  double path_ratio = 0.0;
+  /// Minimum signed distance between the vehicle's collision shapes and any
+  /// obstacle's (every shape but ground: static, dynamic, movers), over every
+  /// physics step; negative when they overlapped. Infinite without obstacles.
+  double min_clearance_m = 0.0;
+  std::string nearest_obstacle;       ///< alias of the obstacle at min_clearance_m
+  double min_clearance_time_s = 0.0;  ///< when min_clearance_m was measured
+  /// The same between the bodies that may not touch the ground (a quadrotor,
+  /// a rover's chassis, not its wheels) and the ground (planes, heightfields).
+  double min_ground_clearance_m = 0.0;
+  int collisions = 0;  ///< times the collision shapes began to touch (Clearance::touching)
+  int planner_calls = 0;
+  double planner_time_ms_mean = 0.0;  ///< measured
+  double planner_time_ms_max = 0.0;   ///< measured
+  // From the planner's decisions (planner.hpp keys); zero for planners that do not set them.
+  int waypoints_planned = 0;    ///< intermediate waypoints set ("planned_waypoint")
+  int waypoints_reached = 0;    ///< intermediate waypoints reached ("reached_intermediate")
+  int waypoints_discarded = 0;  ///< intermediate waypoints dropped ("discarded_waypoint")
+  int replans = 0;              ///< replanning steps ("replan")
+  double replan_time_ms_median = 0.0;  ///< measured ("replan"/"time_ms")
+  double replan_time_ms_max = 0.0;     ///< measured
+  /// Horizontal (x, y) distance of the vehicle, at every trajectory sample,
+  /// to the route in force then: the latest "planned_path" recorded at or
+  /// before the sample, as a polyline. Root mean square, mean and maximum
+  /// over the samples that have a route (cross_track_error); zero when the
+  /// planner records no planned path.
+  double cross_track_rms_m = 0.0;
+  double cross_track_mean_m = 0.0;
+  double cross_track_max_m = 0.0;
+  /// Simulated time spent in local obstacle avoidance: from each "avoiding":
+  /// true to the next "avoiding": false, or to the end of the run (avoiding_time).
+  double avoiding_time_s = 0.0;
+  /// Per mission leg, as "leg<k>_path_length_m" and "leg<k>_lateral_before_climb_m".
+  std::vector<LegMetrics> legs;
+  /// Per mission gate, as "gate_<name>_passed" (boolean) and "gate_<name>_time_s".
+  std::vector<GateMetrics> gates;
+};
+nlohmann::json to_json(const EpisodeMetrics& metrics);
+
+/// One row of trajectory.csv, taken at every planner call.
+struct TrajectorySample {
+  double time_s = 0.0;
+  VehicleState state;  ///< the truth
+  Eigen::Vector3d estimated_position_m = Eigen::Vector3d::Zero();  ///< what the planner was told
+  Command command;
+  double clearance_m = 0.0;  ///< signed distance to the nearest obstacle then (as min_clearance_m)
+  /// Height of the vehicle's origin above the ground straight below it
+  /// (the highest plane or heightfield there); NaN where there is none.
+  double height_above_ground_m = 0.0;
+  nlohmann::json actuators;
+};
+
+/// A planner decision with the time it was taken (for run.json and figures).
+struct PlannerEvent {
+  double time_s = 0.0;
+  nlohmann::json decisions;
+};
+
+/// Cross-track error of a trajectory against the routes its planner recorded.
+struct CrossTrack {
+  double rms_m = 0.0;
+  double mean_m = 0.0;
+  double max_m = 0.0;
+  std::size_t samples = 0;  ///< samples measured: those with a route in force
+};
+
+/// The cross-track metrics of EpisodeMetrics from the samples and the events,
+/// both in time order. A "planned_path" decision (list of [x, y, z]; z is
+/// ignored) becomes the route for the samples at or after its time until the
+/// next one; an empty list leaves no route (samples skipped until the next),
+/// a single point is a route of one point. Samples before the first planned
+/// path are skipped; with none measured, everything is zero. Exact (the
+/// distance to the nearest segment), in about log(route segments) per sample.
+CrossTrack cross_track_error(std::span<const TrajectorySample> trajectory, std::span<const PlannerEvent> events);
+
+/// Total time between each "avoiding": true decision and the next "avoiding":
+/// false (repeated values change nothing); an avoidance still on at the end
+/// counts up to `end_time_s`. Events in time order.
+double avoiding_time(std::span<const PlannerEvent> events, double end_time_s);
+
+struct EpisodeResult {
+  EpisodeMetrics metrics;
+  std::vector<TrajectorySample> trajectory;
+  std::vector<PlannerEvent> events;
+  nlohmann::json vehicle_parameters;
+  nlohmann::json planner_parameters;
+  std::uint64_t final_state_hash = 0;  ///< World::state_hash at the end (determinism checks)
+  /// Where the moving bodies (moving_bodies(scene): dynamic shapes, then
+  /// movers) were at the end, so figures show a fallen box where it fell.
+  std::vector<Eigen::Isometry3d> final_body_poses;
+};
+
+struct EpisodeOptions {
+  std::size_t vehicle_index = 0;  ///< which of the scene's vehicles runs the mission
+  bool stop_on_collision = true;  ///< end the run at the first collision
+  /// Builds the vehicle's sensors (render/ make_range_sensor adds depth cameras).
+  SensorFactory make_sensor = &make_lidar_sensor;
+  /// Called after every scan with the sensor index and its fresh scan (e.g. to record depth maps).
+  std::function<void(std::size_t sensor, const LidarScan& scan)> on_scan;
+  /// Called after every planner call with what the planner saw and decided
+  /// (e.g. to record the depth map a replanning used).
+  std::function<void(const Observation& observation, const PlanResult& plan)> on_plan;
+};
+
+/// Runs one episode of `scene` to its end.
+EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, PlannerMaker make_planner,
+                          const EpisodeOptions& options = {});
+
+}  // namespace campo

@@ -1,0 +1,48 @@
+#pragma once
+/// Configuration of a ray-cast LIDAR (SPEC §6): field of view, beam layout,
+/// range limits, mount pose, rate and imperfections.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "campo/pose.hpp"
+
+namespace campo {
+
+/// One beam direction in the sensor frame (x forward, y left, z up).
+struct Beam {
+  double azimuth_deg = 0.0;    ///< positive to the left (counter-clockwise about z)
+  double elevation_deg = 0.0;  ///< positive up
+};
+
+/// Sensor frame: x forward, y left, z up. A grid sensor's pixel (col, row)
+/// looks at azimuth = fov_h/2 - (col + 0.5) * fov_h / cols (so column 0 is the
+/// leftmost) and elevation = fov_v/2 - (row + 0.5) * fov_v / rows (row 0 the
+/// top), matching the depth-map convention: (0,0) top-left, x right, y down.
+struct LidarConfig {
+  std::string preset = "custom";  ///< preset it started from, for provenance
+  double fov_h_deg = 90.0;        ///< horizontal field of view, (0, 360]
+  double fov_v_deg = 90.0;        ///< vertical field of view, [0, 180)
+  int cols = 256;                 ///< beams across, >= 1
+  int rows = 256;                 ///< beams down, >= 1
+  std::vector<Beam> beams;        ///< explicit beams; when set they replace the grid (rows = 1)
+  double min_range_m = 0.05;      ///< nearer returns read as 0 in the depth map
+  double max_range_m = 10.0;      ///< beyond this: no hit
+  double noise_stddev_m = 0.0;    ///< Gaussian range noise, metres
+  double dropout_probability = 0.0;  ///< chance a beam returns nothing, [0, 1]
+  double quantization_m = 0.0;    ///< round ranges to this step; 0 = off
+  double rate_hz = 0.0;           ///< scans per second; 0 = the world's sensor rate
+  Pose mount;                     ///< relative to the carrier's body frame
+  std::uint64_t seed = 0;         ///< noise stream, combined with the world seed
+
+  int beam_count() const { return beams.empty() ? cols * rows : static_cast<int>(beams.size()); }
+};
+
+/// Preset names: "scanner3d", "leddar_vu8", "planar180".
+std::vector<std::string_view> lidar_preset_names();
+/// The preset's configuration; nullopt for an unknown name.
+std::optional<LidarConfig> lidar_preset(std::string_view name);
+
+}  // namespace campo

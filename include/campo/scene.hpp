@@ -1,0 +1,238 @@
+#pragma once
+/// The validated, immutable description of a world: what a scene file says,
+/// with generators expanded and every pose resolved to the world frame.
+/// Plain data; no Bullet. Built by load_scene() (scene_loader.hpp).
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include "campo/lidar_config.hpp"
+#include "campo/pose.hpp"
+#include "campo/state_estimation.hpp"
+
+namespace campo {
+
+/// RGB colour, components in [0, 1].
+struct Color {
+  double r = 0.6;
+  double g = 0.6;
+  double b = 0.6;
+};
+
+enum class ShapeType { cuboid, cylinder, sphere, cone, plane, heightfield };
+
+/// One name table for both directions (parsing and printing).
+std::string_view to_string(ShapeType type);
+std::optional<ShapeType> shape_type_from_string(std::string_view name);
+
+/// Heights on a regular vertex grid. Column index grows along local +x, row
+/// index along local +y; the grid is centred on its local origin, so vertex
+/// (c, r) sits at x = (c - (cols-1)/2) * spacing_x_m, y = (r - (rows-1)/2) * spacing_y_m.
+/// Each cell is split into two triangles along the diagonal from (c+1, r) to
+/// (c, r+1), which is how Bullet's btHeightfieldTerrainShape triangulates it.
+struct HeightGrid {
+  int cols = 0;                  ///< vertices along x (>= 2)
+  int rows = 0;                  ///< vertices along y (>= 2)
+  double spacing_x_m = 1.0;      ///< vertex spacing along x, metres
+  double spacing_y_m = 1.0;      ///< vertex spacing along y, metres
+  std::vector<double> heights_m; ///< rows*cols heights, row-major (index r*cols + c)
+
+  double at(int col, int row) const { return heights_m[static_cast<std::size_t>(row) * cols + col]; }
+  double size_x_m() const { return (cols - 1) * spacing_x_m; }
+  double size_y_m() const { return (rows - 1) * spacing_y_m; }
+  double min_height_m() const;
+  double max_height_m() const;
+  /// Height of the triangulated surface at local (x, y); nullopt outside the grid.
+  std::optional<double> height_at(double x, double y) const;
+};
+
+/// A rigid shape in the world frame. Shapes are centred on their pose:
+/// cuboid (size_m = full extents), cylinder and cone (axis along local z,
+/// radius_m, height_m; the cone's apex at +z), sphere (radius_m), plane
+/// (local z = 0, normal +z, infinite), heightfield (terrain, see HeightGrid;
+/// its pose has no roll or pitch).
+struct Shape {
+  std::string alias;
+  ShapeType type = ShapeType::cuboid;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< world frame
+  Eigen::Vector3d size_m = Eigen::Vector3d::Ones();         ///< cuboid extents, metres
+  double radius_m = 0.5;                                    ///< cylinder, cone, sphere
+  double height_m = 1.0;                                    ///< cylinder, cone
+  std::shared_ptr<const HeightGrid> terrain;                ///< heightfield only
+  bool is_static = true;     ///< false: a dynamic body of mass_kg
+  double mass_kg = 0.0;      ///< used when !is_static
+  double friction = 0.8;     ///< Coulomb friction coefficient
+  Color color;
+  std::string source;        ///< JSON pointer of the object or generator it came from
+};
+
+/// A named frame (V-REP "dummy"): goals, waypoints, start poses.
+struct Frame {
+  std::string alias;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< world frame
+};
+
+/// A shape moved kinematically along a polyline at constant speed.
+struct Mover {
+  Shape shape;                          ///< pose = pose at t = 0 (first path point)
+  std::vector<Eigen::Vector3d> path_m;  ///< world-frame points, >= 2
+  double speed_mps = 1.0;               ///< along the path
+  double start_time_s = 0.0;            ///< waits at the first point until then
+  bool loop = false;                    ///< restart from the first point at the end
+  /// Position of the shape's centre at simulation time t.
+  Eigen::Vector3d position_at(double t_s) const;
+};
+
+enum class VehicleType { quadrotor, rover };
+std::string_view to_string(VehicleType type);
+std::optional<VehicleType> vehicle_type_from_string(std::string_view name);
+
+enum class SensorType {
+  lidar,         ///< ray-cast against the physics geometry (sensors/lidar.hpp)
+  depth_camera,  ///< rendered off-screen with OSMesa (sensors/depth_camera.hpp)
+};
+std::string_view to_string(SensorType type);
+
+/// A sensor mounted on a vehicle. Both types produce the same range image and
+/// depth map over the same angular grid, so planners take either.
+struct SensorDef {
+  std::string alias;
+  SensorType type = SensorType::lidar;
+  LidarConfig lidar;  ///< angular grid, ranges, mount, rate (a depth camera has no explicit beams)
+};
+
+/// A mission waypoint, resolved to world coordinates at load time.
+struct Waypoint {
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  std::optional<double> heading_deg;  ///< required heading (Dubins routes), if any
+};
+
+/// Parameters that another module validates (vehicle presets, planners),
+/// kept with where they came from so its errors can name file and pointer.
+struct ParamsBlock {
+  nlohmann::json values = nlohmann::json::object();
+  std::string file;     ///< scene file
+  std::string pointer;  ///< JSON pointer of the block (where it would be, when absent)
+};
+
+struct PlannerSpec {
+  std::string name;          ///< registry name; empty = the default planner
+  std::string name_pointer;  ///< JSON pointer of "name" in params.file ("" when absent)
+  ParamsBlock params;        ///< checked by the planner
+};
+
+/// An area of cells of the mission's grid (e.g. the slot between two
+/// buildings) whose passage is a metric of the run.
+struct MissionGate {
+  std::string name;                ///< lower-case letters, digits, '_'; names the metrics
+  Eigen::AlignedBox2d area_m;      ///< world x, y of the cells' outer edges
+  std::optional<double> max_agl_m;  ///< counts only below this height above ground (e.g. under the roofs)
+};
+
+struct VehicleDef {
+  std::string alias;
+  VehicleType type = VehicleType::quadrotor;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< start pose, world frame
+  std::vector<SensorDef> sensors;
+  ParamsBlock params;  ///< overrides of the vehicle preset, checked by vehicles/
+  PlannerSpec planner;
+  std::vector<Waypoint> mission;  ///< ordered; the last one is the goal
+  /// The (x, y) extent of the grid the mission is given on, if any (maps show all of it).
+  std::optional<Eigen::AlignedBox2d> mission_area_m;
+  StateNoiseConfig state_noise;   ///< what the planner and controllers see of the state (none by default)
+  /// Named areas of the mission's grid whose passage the run record reports (gate_<name>_* metrics).
+  std::vector<MissionGate> gates;
+};
+
+/// How geodetic waypoints become local coordinates.
+enum class GeoProjection : std::uint8_t {
+  wgs84_enu,         ///< WGS84 geodetic -> ECEF -> ENU at the reference point (proper cos(latitude))
+  sphere_no_coslat,  ///< seed 001's conversion (001 §4.2.3): sphere of 6371000 m, no cos(latitude)
+};
+std::string_view to_string(GeoProjection projection);
+
+/// Geodetic reference point of the local frame (x east, y north, z up).
+struct GeoReference {
+  double latitude_deg = 0.0;   ///< [-90, 90]
+  double longitude_deg = 0.0;  ///< [-180, 180]
+  double altitude_m = 0.0;     ///< WGS84 ellipsoidal height
+  GeoProjection projection = GeoProjection::wgs84_enu;
+  /// Local x, y of the reference point (seed 001 refers its cells to a point
+  /// off the grid's south-west corner), within [-1e6, 1e6].
+  Eigen::Vector2d position_m{0.0, 0.0};
+};
+
+/// Local position of a geodetic point under a reference (projection, then the reference's position_m).
+Eigen::Vector3d geodetic_to_local(const GeoReference& reference, double latitude_deg, double longitude_deg,
+                                  double altitude_m);
+
+struct WorldConfig {
+  Eigen::Vector3d gravity_mps2{0.0, 0.0, -9.81};
+  double physics_step_s = 1.0 / 240.0;  ///< fixed Bullet step
+  double control_rate_hz = 60.0;        ///< controller and planner rate; divides 1/physics_step_s
+  double sensor_rate_hz = 10.0;         ///< default rate of sensors that set none; divides 1/physics_step_s
+  double time_limit_s = 600.0;          ///< an episode ends here with "timeout"
+  GeoReference geo_reference;
+  std::uint64_t seed = 0;               ///< master seed of everything random in a run, [0, 2^64-1]
+};
+
+/// Relative tolerance within which a rate's period counts as a whole number of physics steps.
+inline constexpr double kRatePeriodTolerance = 1e-9;
+
+/// Physics steps in one period of an event at `rate_hz` (control, a sensor)
+/// with a fixed step of `physics_step_s`: 1 / (rate_hz * physics_step_s) when
+/// that is a whole number >= 1 within kRatePeriodTolerance (relative), else 0
+/// (the rate does not divide the physics rate, or is faster than it). Every
+/// rate of a Scene from load_scene()/parse_scene() gives a value >= 1.
+std::int64_t steps_per_period(double rate_hz, double physics_step_s);
+
+/// Rates that divide the physics rate 1/physics_step_s, nearest `rate_hz`:
+/// up to `each_side` at or above it and `each_side` below it, fastest first
+/// (for 100 Hz at 1/240 s and 2 each side: 240, 120, 80, 60).
+std::vector<double> dividing_rates_near(double rate_hz, double physics_step_s, int each_side = 2);
+
+struct Scene {
+  std::string name;            ///< file stem, or "name" from the file
+  std::string source_path;     ///< file it was loaded from
+  std::string source_sha256;   ///< hash of the file bytes, for provenance
+  WorldConfig world;
+  std::vector<Shape> shapes;
+  std::vector<Frame> frames;
+  std::vector<Mover> movers;
+  std::vector<VehicleDef> vehicles;
+
+  const Shape* find_shape(std::string_view alias) const;
+  const Frame* find_frame(std::string_view alias) const;
+  const VehicleDef* find_vehicle(std::string_view alias) const;
+  /// Height of the highest heightfield or plane below (x, y) in the world
+  /// frame; nullopt where there is no ground.
+  std::optional<double> ground_height(double x, double y) const;
+};
+
+/// Height of one ground shape (heightfield or plane) below world (x, y);
+/// nullopt for other shapes and where the shape has no ground there.
+std::optional<double> ground_height_of(const Shape& shape, double x, double y);
+
+/// A body that the physics moves during a run: a dynamic shape (Bullet
+/// integrates it: it falls, is pushed, tips over) or a mover (kinematic, on
+/// its path). Sensors and clearance see each where the world has it at that
+/// instant, whatever its kind.
+struct MovingBody {
+  const Shape* shape = nullptr;  ///< geometry; shape->pose is its pose at t = 0
+  std::int32_t id = 0;           ///< index into Scene::shapes, or -(1 + mover index)
+};
+/// The moving bodies of a scene: its dynamic shapes in scene order, then its
+/// movers. World::moving_body_poses reports their poses in this order.
+std::vector<MovingBody> moving_bodies(const Scene& scene);
+/// Poses of moving_bodies() known without physics: movers where their path
+/// has them at t_s, dynamic shapes where they start. For views of a scene
+/// that have no world (`campo scan`, snapshots).
+std::vector<Eigen::Isometry3d> scripted_poses(const Scene& scene, double t_s);
+
+}  // namespace campo

@@ -1,0 +1,111 @@
+#pragma once
+/// The Bullet world built from a Scene. It owns every Bullet object (RAII);
+/// nothing outside physics/ and vehicles/ sees Bullet types. Reset = build a new World from the
+/// same Scene, which gives bit-identical results (in-place reset would not).
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "campo/scene.hpp"
+
+class btRigidBody;
+class btDiscreteDynamicsWorld;
+
+namespace campo {
+
+/// Bullet user index of bodies that belong to vehicles (scene shapes carry
+/// their index in Scene::shapes, movers -(1 + mover index)): a vehicle body
+/// that must touch nothing, ground included (a quadrotor, a rover's chassis)...
+inline constexpr int kVehicleBodyTag = -2000000000;
+/// ... and one that may rest on the ground but touch nothing else (a wheel).
+inline constexpr int kVehicleWheelTag = -2000000001;
+
+/// Signed distances from a vehicle's collision shapes to the other collision
+/// shapes of the world (Bullet GJK, EPA when penetrating): negative when
+/// they overlap, 0 when they touch. Ground (planes, heightfields) is kept
+/// apart from obstacles (every other shape: static, dynamic, movers).
+struct Clearance {
+  double obstacle_m = std::numeric_limits<double>::infinity();  ///< to the nearest obstacle
+  int obstacle = -1;  ///< which: index into Scene::shapes or -(1 + mover index); valid when finite
+  /// From the bodies that may not touch the ground (kVehicleBodyTag) to the ground.
+  double ground_m = std::numeric_limits<double>::infinity();
+  /// Bullet's narrow phase reported a contact point within kContact_m
+  /// between a vehicle body and something it may not touch in this step.
+  /// (A body pushed by a mover ends each step apart from it by the mover's
+  /// travel in the step, yet they are in contact.)
+  bool contact = false;
+  static constexpr double kContact_m = 1e-3;
+  /// The collision shapes touch: what the closed loop counts as a collision.
+  /// Overlapping shapes (a clearance <= 0) always touch.
+  bool touching() const { return contact || obstacle_m <= 0.0 || ground_m <= 0.0; }
+};
+
+/// State of one rigid body, world frame.
+struct BodyState {
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d linear_velocity_mps = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity_radps = Eigen::Vector3d::Zero();
+};
+
+/// Closest hit of a Bullet ray test.
+struct WorldRayHit {
+  double distance_m = 0.0;
+  Eigen::Vector3d point_m = Eigen::Vector3d::Zero();
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  int shape = -1;  ///< index into Scene::shapes, or -(1 + mover index)
+};
+
+class World {
+ public:
+  /// Builds the Bullet world. Keeps a reference to `scene`, which must outlive it.
+  explicit World(const Scene& scene);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  const Scene& scene() const { return scene_; }
+  /// Simulation time, seconds (steps * physics_step_s).
+  double time_s() const;
+  std::int64_t step_count() const;
+
+  /// Advances by exactly one fixed physics step; movers follow their paths.
+  void step();
+
+  /// Terrain height at world (x, y); nullopt where there is no ground.
+  std::optional<double> terrain_height(double x_m, double y_m) const;
+
+  /// Closest hit along the segment from `from` to `to` (Bullet ray test).
+  std::optional<WorldRayHit> ray_test(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
+
+  /// Poses of the scene's moving bodies (moving_bodies(scene): dynamic shapes,
+  /// then movers) where the physics has them now, world frame; `out` reused.
+  void moving_body_poses(std::vector<Eigen::Isometry3d>& out) const;
+
+  /// Clearance of the vehicle bodies (kVehicleBodyTag, kVehicleWheelTag) now.
+  /// A distance at or beyond its cutoff is reported as +infinity (the
+  /// nearest is at least that far); by default both are exact at any distance.
+  Clearance vehicle_clearance(double obstacle_cutoff_m = std::numeric_limits<double>::infinity(),
+                              double ground_cutoff_m = std::numeric_limits<double>::infinity()) const;
+
+  /// State of scene shape `shape_index` (static shapes: their scene pose, at rest).
+  BodyState shape_state(int shape_index) const;
+
+  /// Deterministic digest of the state of every body in the Bullet world,
+  /// vehicles included (positions, orientations, velocities, bit patterns).
+  std::uint64_t state_hash() const;
+
+  /// For the vehicles module: the underlying Bullet world.
+  btDiscreteDynamicsWorld& bullet();
+
+ private:
+  struct Impl;
+  const Scene& scene_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace campo

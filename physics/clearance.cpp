@@ -1,0 +1,422 @@
+#include "physics/clearance.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <btBulletCollisionCommon.h>
+#include <BulletCollision/CollisionShapes/btTriangleCallback.h>
+#include <BulletCollision/CollisionShapes/btTriangleShape.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkEpaPenetrationDepthSolver.h>
+#include <BulletCollision/NarrowPhaseCollision/btGjkPairDetector.h>
+#include <BulletCollision/NarrowPhaseCollision/btPointCollector.h>
+#include <BulletCollision/NarrowPhaseCollision/btVoronoiSimplexSolver.h>
+
+namespace campo {
+
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+// The search radius starts here at the first query, and never below it.
+constexpr double kMinSearch_m = 0.25;
+
+// Euclidean distance between two axis-aligned boxes (0 when they overlap): a
+// lower bound of the distance between anything inside them.
+double box_distance(const btVector3& a_min, const btVector3& a_max, const btVector3& b_min, const btVector3& b_max) {
+  double sum = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double gap = std::max({0.0, static_cast<double>(a_min[i] - b_max[i]), static_cast<double>(b_min[i] - a_max[i])});
+    sum += gap * gap;
+  }
+  return std::sqrt(sum);
+}
+
+// True when the box [lo, hi] contains [inner_lo, inner_hi] along the axes `axes`.
+bool covers(const btVector3& lo, const btVector3& hi, const btVector3& inner_lo, const btVector3& inner_hi, int axes) {
+  for (int i = 0; i < axes; ++i) {
+    if (lo[i] > inner_lo[i] || hi[i] < inner_hi[i]) return false;
+  }
+  return true;
+}
+
+// The heightfield cell holding local coordinate v along an axis of
+// `vertices` vertices `spacing` apart (vertex k at (k - (vertices - 1) / 2)
+// spacing), clamped to the grid.
+int cell_of(double v, double spacing, int vertices) {
+  return static_cast<int>(std::clamp(std::floor(v / spacing + 0.5 * (vertices - 1)), 0.0, double(vertices - 2)));
+}
+
+// Heightfield triangles near a vehicle body: gathered with the distance of
+// their box from the body's box, then measured nearest box first, so that
+// the first few exact distances prune the rest.
+struct TriangleDistances final : btTriangleCallback {
+  using Candidate = TriangleCandidate;
+  const btConvexShape* body = nullptr;
+  btTransform body_pose;        // in the heightfield's frame
+  btVector3 body_min, body_max; // the body's box, heightfield frame
+  double best = kInfinity;
+  double cutoff = kInfinity;
+  std::vector<Candidate>* candidates = nullptr;  // scratch, reused
+  void processTriangle(btVector3* v, int, int) override {
+    btVector3 lo = v[0], hi = v[0];
+    lo.setMin(v[1]);
+    lo.setMin(v[2]);
+    hi.setMax(v[1]);
+    hi.setMax(v[2]);
+    double bound = box_distance(lo, hi, body_min, body_max);
+    if (bound >= std::min(best, cutoff)) return;
+    // The body lies above the triangle's plane at least as far as its
+    // lowest point: a bound that is tight for terrain under the body.
+    btVector3 normal = (v[1] - v[0]).cross(v[2] - v[0]);
+    if (normal.z() < 0) normal = -normal;
+    if (normal.length2() > 0) {
+      normal.normalize();
+      const btVector3 lowest = body_pose * body->localGetSupportingVertex(body_pose.getBasis().transpose() * -normal);
+      bound = std::max(bound, static_cast<double>(normal.dot(lowest - v[0])));
+    }
+    if (bound < std::min(best, cutoff)) candidates->push_back({bound, {v[0], v[1], v[2]}});
+  }
+  void measure() {
+    std::sort(candidates->begin(), candidates->end(),
+              [](const Candidate& a, const Candidate& b) { return a.bound_m < b.bound_m; });
+    for (const Candidate& c : *candidates) {
+      if (c.bound_m >= std::min(best, cutoff)) break;
+      btTriangleShape triangle(c.v[0], c.v[1], c.v[2]);
+      triangle.setMargin(0.0);
+      best = std::min(best, signed_distance(*body, body_pose, triangle, btTransform::getIdentity()));
+    }
+    candidates->clear();
+  }
+};
+
+}  // namespace
+
+double signed_distance(const btConvexShape& a, const btTransform& pose_a, const btConvexShape& b,
+                       const btTransform& pose_b) {
+  btVoronoiSimplexSolver simplex;
+  btGjkEpaPenetrationDepthSolver epa;
+  btGjkPairDetector gjk(&a, &b, &simplex, &epa);
+  btGjkPairDetector::ClosestPointInput input;
+  input.m_transformA = pose_a;
+  input.m_transformB = pose_b;
+  btPointCollector result;
+  gjk.getClosestPoints(input, result, nullptr);
+  // No result only when EPA cannot resolve a degenerate overlap: touching.
+  return result.m_hasResult ? static_cast<double>(result.m_distance) : 0.0;
+}
+
+ClearanceQuery::ClearanceQuery()
+    : statics_min_(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT),
+      statics_max_(-BT_LARGE_FLOAT, -BT_LARGE_FLOAT, -BT_LARGE_FLOAT) {}
+
+ClearanceQuery::~ClearanceQuery() { static_tree_.clear(); }
+
+void ClearanceQuery::add_static_obstacle(const btConvexShape& shape, const btTransform& pose, int id) {
+  btVector3 lo, hi;
+  shape.getAabb(pose, lo, hi);
+  statics_min_.setMin(lo);
+  statics_max_.setMax(hi);
+  // The tree keeps an index, not a pointer: statics_ may still grow.
+  static_tree_.insert(btDbvtVolume::FromMM(lo, hi), reinterpret_cast<void*>(statics_.size()));
+  statics_.push_back({&shape, pose, id});
+}
+
+void ClearanceQuery::add_moving_obstacle(const btCollisionObject& body, int id) { moving_.push_back({&body, id}); }
+
+void ClearanceQuery::add_ground(const btCollisionObject& body, const HeightGrid* grid) {
+  Ground ground{&body, {}};
+  if (grid) {
+    HeightBlocks& b = ground.blocks;
+    b.cols = grid->cols;
+    b.rows = grid->rows;
+    b.dx = grid->spacing_x_m;
+    b.dy = grid->spacing_y_m;
+    b.blocks_x = (grid->cols - 2) / HeightBlocks::kBlock + 1;
+    b.blocks_y = (grid->rows - 2) / HeightBlocks::kBlock + 1;
+    b.top_m.assign(static_cast<std::size_t>(b.blocks_x) * b.blocks_y, -kInfinity);
+    const double mid = 0.5 * (grid->min_height_m() + grid->max_height_m());
+    b.grid = grid;
+    b.mid_m = mid;
+    // A block's cells span vertices [k kBlock, (k+1) kBlock]: shared edges count in both.
+    for (int r = 0; r < grid->rows; ++r) {
+      for (int c = 0; c < grid->cols; ++c) {
+        const double h = grid->at(c, r) - mid;
+        for (int by = std::max(0, (r - 1) / HeightBlocks::kBlock); by <= std::min(b.blocks_y - 1, r / HeightBlocks::kBlock); ++by) {
+          for (int bx = std::max(0, (c - 1) / HeightBlocks::kBlock); bx <= std::min(b.blocks_x - 1, c / HeightBlocks::kBlock); ++bx) {
+            double& top = b.top_m[static_cast<std::size_t>(by) * b.blocks_x + bx];
+            top = std::max(top, h);
+          }
+        }
+      }
+    }
+  }
+  ground_.push_back(std::move(ground));
+}
+
+void ClearanceQuery::HeightBlocks::triangles_under(const btVector3& lo, const btVector3& hi,
+                                                  btTriangleCallback& callback) const {
+  const int c0 = cell_of(lo.x(), dx, cols), c1 = cell_of(hi.x(), dx, cols);
+  const int r0 = cell_of(lo.y(), dy, rows), r1 = cell_of(hi.y(), dy, rows);
+  const auto vertex = [this](int c, int r) {
+    return btVector3((c - 0.5 * (cols - 1)) * dx, (r - 0.5 * (rows - 1)) * dy, grid->at(c, r) - mid_m);
+  };
+  btVector3 v[3];
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) {
+      // Bullet's split of a cell (no flipped, diamond or zigzag edges).
+      v[0] = vertex(c, r);
+      v[1] = vertex(c, r + 1);
+      v[2] = vertex(c + 1, r);
+      callback.processTriangle(v, 0, 0);
+      v[0] = vertex(c + 1, r);
+      v[1] = vertex(c, r + 1);
+      v[2] = vertex(c + 1, r + 1);
+      callback.processTriangle(v, 0, 0);
+    }
+  }
+}
+
+double ClearanceQuery::HeightBlocks::highest(double x0, double x1, double y0, double y1) const {
+  const int bx0 = cell_of(x0, dx, cols) / kBlock, bx1 = cell_of(x1, dx, cols) / kBlock;
+  const int by0 = cell_of(y0, dy, rows) / kBlock, by1 = cell_of(y1, dy, rows) / kBlock;
+  double top = -kInfinity;
+  for (int by = by0; by <= by1; ++by) {
+    for (int bx = bx0; bx <= bx1; ++bx) top = std::max(top, top_m[static_cast<std::size_t>(by) * blocks_x + bx]);
+  }
+  return top;
+}
+
+void ClearanceQuery::find_vehicle(const btCollisionWorld& world) {
+  const btCollisionObjectArray& objects = world.getCollisionObjectArray();
+  if (objects.size() == objects_seen_) return;
+  objects_seen_ = objects.size();
+  vehicle_.clear();
+  for (int i = 0; i < objects.size(); ++i) {
+    const int tag = objects[i]->getUserIndex();
+    if (tag == kVehicleBodyTag || tag == kVehicleWheelTag) vehicle_.push_back({objects[i], tag == kVehicleBodyTag});
+  }
+}
+
+Clearance ClearanceQuery::measure(const btCollisionWorld& world, double obstacle_cutoff_m, double ground_cutoff_m) {
+  find_vehicle(world);
+  Clearance out;
+  if (vehicle_.empty()) return out;
+  out.contact = in_contact(world);
+  nearest_moving(obstacle_cutoff_m, out);
+  // Static obstacles and the ground do not move: while the vehicle has not
+  // moved far enough since their last exact answer to come within the
+  // cutoff, it cannot have. Each is measured a little beyond its cutoff, so
+  // that the answer bounds the next steps.
+  if (static_floor_.floor_m - travel_since(static_floor_) < obstacle_cutoff_m) {
+    Clearance statics;
+    const double reach = obstacle_cutoff_m + kSlack_m;
+    nearest_static(reach, statics);
+    remember(static_floor_, std::min(statics.obstacle_m, reach));
+    if (statics.obstacle_m < out.obstacle_m) {
+      out.obstacle_m = statics.obstacle_m;
+      out.obstacle = statics.obstacle;
+    }
+  }
+  if (out.obstacle_m >= obstacle_cutoff_m) {
+    out.obstacle_m = kInfinity;
+    out.obstacle = -1;
+  }
+  if (ground_floor_.floor_m - travel_since(ground_floor_) < ground_cutoff_m) {
+    const double reach = ground_cutoff_m + kSlack_m;
+    nearest_ground(reach, out);
+    remember(ground_floor_, std::min(out.ground_m, reach));
+  }
+  if (out.ground_m >= ground_cutoff_m) out.ground_m = kInfinity;
+  return out;
+}
+
+const ClearanceQuery::VehiclePart* ClearanceQuery::part_of(const btCollisionObject* object) const {
+  for (const VehiclePart& part : vehicle_) {
+    if (part.body == object) return &part;
+  }
+  return nullptr;
+}
+
+bool ClearanceQuery::in_contact(const btCollisionWorld& world) const {
+  // Bullet's manifold accessors are not const; reading them changes nothing.
+  btDispatcher* dispatcher = const_cast<btCollisionWorld&>(world).getDispatcher();
+  for (int i = 0; i < dispatcher->getNumManifolds(); ++i) {
+    const btPersistentManifold* m = dispatcher->getManifoldByIndexInternal(i);
+    const VehiclePart* mine = part_of(m->getBody0());
+    const btCollisionObject* other = m->getBody1();
+    if (!mine) {
+      mine = part_of(other);
+      other = m->getBody0();
+    }
+    if (!mine || part_of(other)) continue;
+    const bool ground = std::any_of(ground_.begin(), ground_.end(), [other](const Ground& g) { return g.body == other; });
+    if (ground && !mine->ground_counts) continue;  // a wheel on the ground
+    for (int c = 0; c < m->getNumContacts(); ++c) {
+      if (m->getContactPoint(c).getDistance() <= Clearance::kContact_m) return true;
+    }
+  }
+  return false;
+}
+
+void ClearanceQuery::remember(Floor& floor, double floor_m) const {
+  floor.floor_m = floor_m;
+  floor.poses.clear();
+  for (const VehiclePart& part : vehicle_) floor.poses.push_back(part.body->getWorldTransform());
+}
+
+double ClearanceQuery::travel_since(const Floor& floor) const {
+  if (floor.poses.size() != vehicle_.size()) return kInfinity;
+  // No point of a body moves farther than its origin's displacement plus the
+  // arc its farthest point turns through.
+  double travel = 0.0;
+  for (std::size_t i = 0; i < vehicle_.size(); ++i) {
+    const btTransform& now = vehicle_[i].body->getWorldTransform();
+    const btTransform& then = floor.poses[i];
+    btVector3 centre;
+    btScalar radius;
+    vehicle_[i].body->getCollisionShape()->getBoundingSphere(centre, radius);
+    const btScalar angle = (now.getRotation() * then.getRotation().inverse()).getAngleShortestPath();
+    travel = std::max(travel, static_cast<double>((now.getOrigin() - then.getOrigin()).length() +
+                                                  (centre.length() + radius) * angle));
+  }
+  return travel;
+}
+
+void ClearanceQuery::vehicle_box(btVector3& lo, btVector3& hi) const {
+  lo.setValue(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
+  hi = -lo;
+  for (const VehiclePart& part : vehicle_) {
+    btVector3 a, b;
+    part.body->getCollisionShape()->getAabb(part.body->getWorldTransform(), a, b);
+    lo.setMin(a);
+    hi.setMax(b);
+  }
+}
+
+void ClearanceQuery::measure_obstacle(const btVector3& lo, const btVector3& hi, const btConvexShape& shape,
+                                      const btTransform& pose, int id, double bound, Clearance& out) const {
+  btVector3 a, b;
+  shape.getAabb(pose, a, b);
+  if (box_distance(lo, hi, a, b) >= std::min(out.obstacle_m, bound)) return;
+  for (const VehiclePart& part : vehicle_) {
+    const auto* mine = static_cast<const btConvexShape*>(part.body->getCollisionShape());
+    if (vehicle_.size() > 1) {  // each part's own box first (a rover's wheels)
+      btVector3 part_lo, part_hi;
+      mine->getAabb(part.body->getWorldTransform(), part_lo, part_hi);
+      if (box_distance(part_lo, part_hi, a, b) >= std::min(out.obstacle_m, bound)) continue;
+    }
+    const double d = signed_distance(*mine, part.body->getWorldTransform(), shape, pose);
+    if (d < out.obstacle_m) {
+      out.obstacle_m = d;
+      out.obstacle = id;
+    }
+  }
+}
+
+// Moving obstacles are few: each is measured exactly (within the cutoff).
+void ClearanceQuery::nearest_moving(double cutoff_m, Clearance& out) const {
+  btVector3 lo, hi;
+  vehicle_box(lo, hi);
+  for (const MovingObstacle& m : moving_) {
+    measure_obstacle(lo, hi, *static_cast<const btConvexShape*>(m.body->getCollisionShape()), m.body->getWorldTransform(),
+                     m.id, cutoff_m, out);
+  }
+}
+
+// Searches a box around the vehicle that grows until the nearest static
+// obstacle found lies within it: everything outside the box is farther than
+// its margin, so the answer is exact. It starts from the last answer, which
+// moves little from one step to the next.
+void ClearanceQuery::nearest_static(double cutoff_m, Clearance& out) {
+  btVector3 lo, hi;
+  vehicle_box(lo, hi);
+  struct Collect : btDbvt::ICollide {
+    std::vector<int>* hits;
+    void Process(const btDbvtNode* leaf) override {
+      hits->push_back(static_cast<int>(reinterpret_cast<std::size_t>(leaf->data)));
+    }
+  };
+  std::vector<int>& candidates = candidates_;
+  double radius = std::min(cutoff_m, std::max(kMinSearch_m, 2.0 * obstacle_hint_m_));
+  for (;;) {
+    const btVector3 pad(radius, radius, radius);
+    const bool everything = statics_.empty() || covers(lo - pad, hi + pad, statics_min_, statics_max_, 3);
+    candidates.clear();
+    Collect collect;
+    collect.hits = &candidates;
+    if (!statics_.empty()) static_tree_.collideTV(static_tree_.m_root, btDbvtVolume::FromMM(lo - pad, hi + pad), collect);
+    for (const int k : candidates) {
+      const StaticObstacle& o = statics_[static_cast<std::size_t>(k)];
+      measure_obstacle(lo, hi, *o.shape, o.pose, o.id, radius, out);
+    }
+    if (out.obstacle_m <= radius || radius >= cutoff_m) break;
+    // Nothing within the radius: grow the box until it covers every static obstacle.
+    if (everything) break;
+    radius = std::min(cutoff_m, 2.0 * radius);
+  }
+  if (out.obstacle_m >= cutoff_m) {
+    out.obstacle_m = kInfinity;
+    out.obstacle = -1;
+  }
+  if (std::isfinite(out.obstacle_m)) obstacle_hint_m_ = std::max(0.0, out.obstacle_m);
+}
+
+// Planes exactly from each body's support point; heightfields triangle by
+// triangle within a box that grows as in nearest_obstacle.
+void ClearanceQuery::nearest_ground(double cutoff_m, Clearance& out) {
+  for (const Ground& g : ground_) {
+    const btCollisionObject* ground = g.body;
+    const btCollisionShape* shape = ground->getCollisionShape();
+    const btTransform& ground_pose = ground->getWorldTransform();
+    for (const VehiclePart& part : vehicle_) {
+      if (!part.ground_counts) continue;
+      const auto* mine = static_cast<const btConvexShape*>(part.body->getCollisionShape());
+      const btTransform& pose = part.body->getWorldTransform();
+      if (shape->getShapeType() == STATIC_PLANE_PROXYTYPE) {
+        const auto* plane = static_cast<const btStaticPlaneShape*>(shape);
+        const btVector3 normal = ground_pose.getBasis() * plane->getPlaneNormal();
+        const btVector3 on_plane = ground_pose * (plane->getPlaneNormal() * plane->getPlaneConstant());
+        const btVector3 lowest = pose * mine->localGetSupportingVertex(pose.getBasis().transpose() * -normal);
+        out.ground_m = std::min(out.ground_m, static_cast<double>(normal.dot(lowest - on_plane)));
+        continue;
+      }
+      const auto* terrain = static_cast<const btConcaveShape*>(shape);
+      TriangleDistances triangles;
+      triangles.body = mine;
+      triangles.candidates = &triangle_scratch_;
+      triangles.body_pose = ground_pose.inverse() * pose;
+      mine->getAabb(triangles.body_pose, triangles.body_min, triangles.body_max);
+      // Terrain under the reach of the cutoff that lies lower than the
+      // cutoff below the body cannot be nearer than it.
+      if (!g.blocks.top_m.empty() && std::isfinite(cutoff_m)) {
+        const btVector3& lo = triangles.body_min;
+        const btVector3& hi = triangles.body_max;
+        const double top = g.blocks.highest(lo.x() - cutoff_m, hi.x() + cutoff_m, lo.y() - cutoff_m, hi.y() + cutoff_m);
+        if (lo.z() - top >= cutoff_m) continue;
+      }
+      double radius = std::min(cutoff_m, std::max(kMinSearch_m, 2.0 * ground_hint_m_));
+      for (;;) {
+        triangles.cutoff = radius;
+        const btVector3 pad(radius, radius, radius);
+        // Bullet's own triangles, read from the heights it was given
+        // without its per-vertex virtual calls.
+        if (g.blocks.grid) {
+          g.blocks.triangles_under(triangles.body_min - pad, triangles.body_max + pad, triangles);
+        } else {
+          terrain->processAllTriangles(&triangles, triangles.body_min - pad, triangles.body_max + pad);
+        }
+        triangles.measure();
+        if (triangles.best <= radius || radius >= cutoff_m) break;
+        btVector3 all_min, all_max;
+        terrain->getAabb(btTransform::getIdentity(), all_min, all_max);
+        // Every triangle lies under a box that covers the terrain's footprint.
+        if (covers(triangles.body_min - pad, triangles.body_max + pad, all_min, all_max, 2)) break;
+        radius = std::min(cutoff_m, 2.0 * radius);
+      }
+      out.ground_m = std::min(out.ground_m, triangles.best);
+    }
+  }
+  if (out.ground_m >= cutoff_m) out.ground_m = kInfinity;
+  if (std::isfinite(out.ground_m)) ground_hint_m_ = std::max(0.0, out.ground_m);
+}
+
+}  // namespace campo

@@ -1,0 +1,125 @@
+#pragma once
+/// True clearance (private to physics/): signed distances between a vehicle's
+/// collision shapes and the world's other collision shapes, from Bullet's
+/// GJK (EPA when they overlap), the shapes the physics collides with. World
+/// owns one query and answers World::vehicle_clearance with it.
+#include <limits>
+#include <vector>
+
+#include <BulletCollision/BroadphaseCollision/btDbvt.h>
+#include <LinearMath/btTransform.h>
+
+#include "campo/world.hpp"
+
+class btCollisionObject;
+class btCollisionWorld;
+class btConvexShape;
+class btTriangleCallback;
+
+namespace campo {
+
+/// Signed distance between two convex shapes placed at `pose_a` and
+/// `pose_b`, collision margins included: > 0 apart, 0 touching, < 0 the
+/// depth of their overlap.
+double signed_distance(const btConvexShape& a, const btTransform& pose_a, const btConvexShape& b,
+                       const btTransform& pose_b);
+
+/// A heightfield triangle gathered by the ground search, with a lower bound
+/// of its distance to the body (clearance.cpp).
+struct TriangleCandidate {
+  double bound_m;
+  btVector3 v[3];
+};
+
+/// The obstacles and the ground of a world, and the search for the nearest
+/// of each from the vehicle's bodies (found by their user index when asked,
+/// since vehicles join the world after it is built).
+class ClearanceQuery {
+ public:
+  ClearanceQuery();
+  ~ClearanceQuery();
+  ClearanceQuery(const ClearanceQuery&) = delete;
+  ClearanceQuery& operator=(const ClearanceQuery&) = delete;
+
+  /// A static obstacle (a child of a static compound), never moving.
+  void add_static_obstacle(const btConvexShape& shape, const btTransform& pose, int id);
+  /// A body that moves (dynamic shape, mover): read where it is at each query.
+  void add_moving_obstacle(const btCollisionObject& body, int id);
+  /// A plane or heightfield body; a heightfield's `grid` (the heights Bullet
+  /// was given) lets the search skip terrain that is out of reach.
+  void add_ground(const btCollisionObject& body, const HeightGrid* grid = nullptr);
+
+  /// Clearance of the bodies tagged kVehicleBodyTag or kVehicleWheelTag in
+  /// `world`: exact below each cutoff, +infinity when nothing is nearer; and
+  /// whether Bullet's narrow phase has them in contact.
+  Clearance measure(const btCollisionWorld& world, double obstacle_cutoff_m, double ground_cutoff_m);
+
+ private:
+  struct StaticObstacle {
+    const btConvexShape* shape;
+    btTransform pose;
+    int id;
+  };
+  struct MovingObstacle {
+    const btCollisionObject* body;
+    int id;
+  };
+  // Highest vertex of each block of kBlock x kBlock cells of a heightfield,
+  // in Bullet's frame of the heightfield (centred, heights less `mid_m`).
+  struct HeightBlocks {
+    static constexpr int kBlock = 8;
+    int cols = 0, rows = 0;  // vertices
+    double dx = 1.0, dy = 1.0;
+    int blocks_x = 0, blocks_y = 0;
+    std::vector<double> top_m;
+    const HeightGrid* grid = nullptr;
+    double mid_m = 0.0;  // Bullet centres the heights on the middle of their range
+    // The highest terrain over local x in [x0, x1], y in [y0, y1].
+    double highest(double x0, double x1, double y0, double y1) const;
+    // Hands every triangle of the cells under [lo, hi] (x, y) to `callback`.
+    void triangles_under(const btVector3& lo, const btVector3& hi, btTriangleCallback& callback) const;
+  };
+  struct Ground {
+    const btCollisionObject* body;
+    HeightBlocks blocks;  // empty for planes
+  };
+  struct VehiclePart {
+    const btCollisionObject* body;
+    bool ground_counts;  // kVehicleBodyTag: touching the ground is a collision
+  };
+  void find_vehicle(const btCollisionWorld& world);
+  // A lower bound of a distance to things that do not move, valid with the
+  // vehicle's bodies at `poses`.
+  struct Floor {
+    double floor_m = -std::numeric_limits<double>::infinity();
+    std::vector<btTransform> poses;
+  };
+  void vehicle_box(btVector3& lo, btVector3& hi) const;
+  void measure_obstacle(const btVector3& lo, const btVector3& hi, const btConvexShape& shape, const btTransform& pose,
+                        int id, double bound, Clearance& out) const;
+  void nearest_moving(double cutoff_m, Clearance& out) const;
+  void nearest_static(double cutoff_m, Clearance& out);
+  void nearest_ground(double cutoff_m, Clearance& out);
+  void remember(Floor& floor, double floor_m) const;
+  const VehiclePart* part_of(const btCollisionObject* object) const;
+  bool in_contact(const btCollisionWorld& world) const;
+  // How far any point of the vehicle's bodies may have moved since `floor` was set.
+  double travel_since(const Floor& floor) const;
+
+  std::vector<StaticObstacle> statics_;
+  btDbvt static_tree_;  // leaves: index into statics_
+  btVector3 statics_min_, statics_max_;
+  std::vector<MovingObstacle> moving_;
+  std::vector<Ground> ground_;
+  std::vector<VehiclePart> vehicle_;
+  std::vector<int> candidates_;  // scratch of nearest_obstacle, reused
+  std::vector<TriangleCandidate> triangle_scratch_;  // scratch of nearest_ground, reused
+  int objects_seen_ = -1;      // collision objects in the world when vehicle_ was found
+  double obstacle_hint_m_ = 1.0;  // the last nearest obstacle distance: where the search starts
+  double ground_hint_m_ = 1.0;
+  static constexpr double kSlack_m = 0.5;  // measured beyond a cutoff, to skip the next steps
+  Floor static_floor_;
+  Floor ground_floor_;
+};
+
+}  // namespace campo

@@ -1,0 +1,315 @@
+#include "campo/world.hpp"
+#include "physics/bullet_convert.hpp"
+#include "physics/clearance.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <stdexcept>
+
+#include <btBulletDynamicsCommon.h>
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
+
+namespace campo {
+
+namespace {
+
+// Mover shapes are tagged with negative user indices so hits can name them.
+int mover_tag(std::size_t mover_index) { return -1 - static_cast<int>(mover_index); }
+
+// Compounds of static obstacles get tags far below movers and above vehicles.
+constexpr int kCompoundTagBase = -1000000000;
+int compound_tag(std::size_t k) { return kCompoundTagBase - static_cast<int>(k); }
+
+// Static obstacles are grouped into compounds per friction value and per
+// square cell of this size.
+constexpr double kCompoundCell_m = 8.0;
+struct CompoundKey {
+  double friction;
+  long cell_x;
+  long cell_y;
+  bool operator==(const CompoundKey&) const = default;
+};
+
+// Closest hit that also remembers which child of a compound was hit.
+struct ClosestRayWithChild : btCollisionWorld::ClosestRayResultCallback {
+  using ClosestRayResultCallback::ClosestRayResultCallback;
+  int child = -1;
+  btScalar addSingleResult(btCollisionWorld::LocalRayResult& r, bool normal_in_world) override {
+    child = r.m_localShapeInfo ? r.m_localShapeInfo->m_triangleIndex : -1;
+    return ClosestRayResultCallback::addSingleResult(r, normal_in_world);
+  }
+};
+
+}  // namespace
+
+struct World::Impl {
+  // Declaration order is destruction order in reverse: the dynamics world goes
+  // first, then bodies, then shapes, then the infrastructure it used.
+  btDefaultCollisionConfiguration collision_config;
+  btCollisionDispatcher dispatcher{&collision_config};
+  btDbvtBroadphase broadphase;
+  btSequentialImpulseConstraintSolver solver;
+  std::vector<std::unique_ptr<btCollisionShape>> shapes;
+  // Static obstacles share compound bodies (one per friction value): Bullet
+  // walks every collision object each step, so hundreds of posts as separate
+  // bodies would cost more than the vehicle. Child i of compounds[k] is
+  // scene shape compound_children[k][i].
+  std::vector<std::unique_ptr<btCompoundShape>> compounds;
+  std::vector<std::vector<int>> compound_children;
+  std::vector<std::unique_ptr<btDefaultMotionState>> motion_states;
+  std::vector<std::unique_ptr<btRigidBody>> bodies;
+  std::vector<btRigidBody*> shape_bodies;  // by Scene::shapes index; null inside a compound
+  std::vector<btRigidBody*> mover_bodies;  // by Scene::movers index
+  std::vector<btRigidBody*> moving_bodies;  // in moving_bodies(scene) order: dynamic shapes, then movers
+  ClearanceQuery clearance;
+  std::unique_ptr<btDiscreteDynamicsWorld> dynamics;
+  std::int64_t steps = 0;
+
+  Impl() {
+    dynamics = std::make_unique<btDiscreteDynamicsWorld>(&dispatcher, &broadphase, &solver,
+                                                         &collision_config);
+    // Static bodies never move: refresh only the bounding boxes of active ones
+    // (by default Bullet recomputes every box every step).
+    dynamics->setForceUpdateAllAabbs(false);
+  }
+  ~Impl() {
+    for (auto& body : bodies) dynamics->removeRigidBody(body.get());
+    dynamics.reset();
+  }
+
+  // Bullet pads cylinders and cones with a collision margin (4 cm) and
+  // rounds the edges of boxes with it, which would make obstacles differ
+  // from what the LIDAR sees and what clearance measures; dynamic bodies
+  // keep it for contact stability.
+  static void set_exact(btCollisionShape& shape) {
+    if (shape.getShapeType() != SPHERE_SHAPE_PROXYTYPE) shape.setMargin(0.0);
+  }
+
+  std::unique_ptr<btCollisionShape> make_shape(const Shape& shape) {
+    switch (shape.type) {
+      case ShapeType::cuboid:
+        return std::make_unique<btBoxShape>(to_bt(shape.size_m * 0.5));
+      case ShapeType::cylinder:
+        return std::make_unique<btCylinderShapeZ>(
+            btVector3(shape.radius_m, shape.radius_m, shape.height_m * 0.5));
+      case ShapeType::sphere:
+        return std::make_unique<btSphereShape>(shape.radius_m);
+      case ShapeType::cone:
+        return std::make_unique<btConeShapeZ>(shape.radius_m, shape.height_m);
+      case ShapeType::plane:
+        return std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0.0);
+      case ShapeType::heightfield: {
+        const HeightGrid& grid = *shape.terrain;
+        auto terrain = std::make_unique<btHeightfieldTerrainShape>(
+            grid.cols, grid.rows, grid.heights_m.data(), grid.min_height_m(), grid.max_height_m(),
+            2, false);
+        terrain->setLocalScaling(btVector3(grid.spacing_x_m, grid.spacing_y_m, 1.0));
+        terrain->buildAccelerator();
+        return terrain;
+      }
+    }
+    throw std::logic_error("unhandled shape type");
+  }
+
+  btTransform body_transform(const Shape& shape) const {
+    btTransform t = to_bt(shape.pose);
+    if (shape.type == ShapeType::heightfield) {
+      // Bullet centres a heightfield vertically on the middle of its height range.
+      const double mid = 0.5 * (shape.terrain->min_height_m() + shape.terrain->max_height_m());
+      t.setOrigin(t.getOrigin() + t.getBasis().getColumn(2) * mid);
+    }
+    return t;
+  }
+
+  btRigidBody* add_body(const Shape& shape, int tag, bool kinematic) {
+    shapes.push_back(make_shape(shape));
+    btCollisionShape* collision_shape = shapes.back().get();
+    if (shape.is_static || kinematic) set_exact(*collision_shape);
+    const bool dynamic = !shape.is_static && !kinematic;
+    const double mass = dynamic ? shape.mass_kg : 0.0;
+    btVector3 inertia(0, 0, 0);
+    if (dynamic) collision_shape->calculateLocalInertia(mass, inertia);
+    motion_states.push_back(std::make_unique<btDefaultMotionState>(body_transform(shape)));
+    btRigidBody::btRigidBodyConstructionInfo info(mass, motion_states.back().get(),
+                                                  collision_shape, inertia);
+    info.m_friction = shape.friction;
+    bodies.push_back(std::make_unique<btRigidBody>(info));
+    btRigidBody* body = bodies.back().get();
+    body->setUserIndex(tag);
+    if (kinematic) {
+      body->setCollisionFlags(body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+      body->setActivationState(DISABLE_DEACTIVATION);
+    }
+    dynamics->addRigidBody(body);
+    return body;
+  }
+};
+
+World::World(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()) {
+  impl_->dynamics->setGravity(to_bt(scene.world.gravity_mps2));
+  Impl& d = *impl_;
+  d.shape_bodies.assign(scene.shapes.size(), nullptr);
+  std::vector<double> compound_friction;
+  std::vector<CompoundKey> compound_keys;
+  for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
+    const Shape& shape = scene.shapes[i];
+    const bool obstacle = shape.is_static && shape.type != ShapeType::plane && shape.type != ShapeType::heightfield;
+    if (!obstacle) {
+      d.shape_bodies[i] = d.add_body(shape, static_cast<int>(i), false);
+      continue;
+    }
+    // Group by friction and by a coarse grid cell of the position, so a
+    // vehicle's box overlaps few compounds with few children each.
+    const Eigen::Vector3d p = shape.pose.translation();
+    const CompoundKey key{shape.friction, static_cast<long>(std::floor(p.x() / kCompoundCell_m)),
+                          static_cast<long>(std::floor(p.y() / kCompoundCell_m))};
+    auto k = static_cast<std::size_t>(std::find(compound_keys.begin(), compound_keys.end(), key) - compound_keys.begin());
+    if (k == compound_keys.size()) {
+      compound_keys.push_back(key);
+      compound_friction.push_back(shape.friction);
+      d.compounds.push_back(std::make_unique<btCompoundShape>());
+      d.compound_children.emplace_back();
+    }
+    d.shapes.push_back(d.make_shape(shape));
+    d.set_exact(*d.shapes.back());
+    d.compounds[k]->addChildShape(to_bt(shape.pose), d.shapes.back().get());
+    d.clearance.add_static_obstacle(static_cast<const btConvexShape&>(*d.shapes.back()), to_bt(shape.pose),
+                                    static_cast<int>(i));
+    d.compound_children[k].push_back(static_cast<int>(i));
+  }
+  for (std::size_t k = 0; k < d.compounds.size(); ++k) {
+    btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, d.compounds[k].get());
+    info.m_friction = compound_friction[k];
+    d.bodies.push_back(std::make_unique<btRigidBody>(info));
+    d.bodies.back()->setUserIndex(compound_tag(k));
+    d.dynamics->addRigidBody(d.bodies.back().get());
+  }
+  for (std::size_t i = 0; i < scene.movers.size(); ++i) {
+    impl_->mover_bodies.push_back(impl_->add_body(scene.movers[i].shape, mover_tag(i), true));
+  }
+  // What clearance measures against: every shape but the vehicles'.
+  for (const MovingBody& body : moving_bodies(scene)) {
+    btRigidBody* rigid = body.id >= 0 ? d.shape_bodies[static_cast<std::size_t>(body.id)]
+                                      : d.mover_bodies[static_cast<std::size_t>(-1 - body.id)];
+    d.moving_bodies.push_back(rigid);
+    d.clearance.add_moving_obstacle(*rigid, body.id);
+  }
+  for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
+    const ShapeType type = scene.shapes[i].type;
+    if (type == ShapeType::plane || type == ShapeType::heightfield) {
+      d.clearance.add_ground(*d.shape_bodies[i], scene.shapes[i].terrain.get());
+    }
+  }
+}
+
+World::~World() = default;
+
+double World::time_s() const {
+  return static_cast<double>(impl_->steps) * scene_.world.physics_step_s;
+}
+
+std::int64_t World::step_count() const { return impl_->steps; }
+
+void World::step() {
+  const double dt = scene_.world.physics_step_s;
+  const double t_next = static_cast<double>(impl_->steps + 1) * dt;
+  // Kinematic movers: Bullet reads their motion state to derive velocities.
+  for (std::size_t i = 0; i < scene_.movers.size(); ++i) {
+    const Mover& mover = scene_.movers[i];
+    btTransform t = impl_->body_transform(mover.shape);
+    t.setOrigin(to_bt(mover.position_at(t_next)));
+    impl_->mover_bodies[i]->getMotionState()->setWorldTransform(t);
+  }
+  impl_->dynamics->stepSimulation(dt, 1, dt);
+  ++impl_->steps;
+}
+
+std::optional<double> World::terrain_height(double x_m, double y_m) const {
+  return scene_.ground_height(x_m, y_m);
+}
+
+std::optional<WorldRayHit> World::ray_test(const Eigen::Vector3d& from,
+                                           const Eigen::Vector3d& to) const {
+  ClosestRayWithChild callback(to_bt(from), to_bt(to));
+  impl_->dynamics->rayTest(to_bt(from), to_bt(to), callback);
+  if (!callback.hasHit()) return std::nullopt;
+  WorldRayHit hit;
+  hit.point_m = from_bt(callback.m_hitPointWorld);
+  hit.normal = from_bt(callback.m_hitNormalWorld).normalized();
+  hit.distance_m = (hit.point_m - from).norm();
+  hit.shape = callback.m_collisionObject->getUserIndex();
+  if (hit.shape <= kCompoundTagBase && hit.shape > kVehicleBodyTag) {
+    const auto& children = impl_->compound_children[static_cast<std::size_t>(kCompoundTagBase - hit.shape)];
+    hit.shape = children.at(static_cast<std::size_t>(callback.child));
+  }
+  return hit;
+}
+
+void World::moving_body_poses(std::vector<Eigen::Isometry3d>& out) const {
+  out.resize(impl_->moving_bodies.size());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const btTransform& t = impl_->moving_bodies[i]->getWorldTransform();
+    const btMatrix3x3& b = t.getBasis();
+    Eigen::Matrix3d r;
+    for (int row = 0; row < 3; ++row) r.row(row) << b[row].x(), b[row].y(), b[row].z();
+    out[i].linear() = r;
+    out[i].translation() = from_bt(t.getOrigin());
+  }
+}
+
+Clearance World::vehicle_clearance(double obstacle_cutoff_m, double ground_cutoff_m) const {
+  return impl_->clearance.measure(*impl_->dynamics, obstacle_cutoff_m, ground_cutoff_m);
+}
+
+BodyState World::shape_state(int shape_index) const {
+  const btRigidBody* body = impl_->shape_bodies.at(static_cast<std::size_t>(shape_index));
+  BodyState state;
+  if (!body) {  // a static obstacle: where the scene put it, at rest
+    const Eigen::Isometry3d& pose = scene_.shapes[static_cast<std::size_t>(shape_index)].pose;
+    state.position_m = pose.translation();
+    state.orientation = Eigen::Quaterniond(pose.linear());
+    return state;
+  }
+  const btTransform& t = body->getWorldTransform();
+  state.position_m = from_bt(t.getOrigin());
+  const btQuaternion q = t.getRotation();
+  state.orientation = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z());
+  state.linear_velocity_mps = from_bt(body->getLinearVelocity());
+  state.angular_velocity_radps = from_bt(body->getAngularVelocity());
+  return state;
+}
+
+std::uint64_t World::state_hash() const {
+  // FNV-1a over the exact bit patterns: any difference in any body shows.
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  const auto mix = [&h](double v) {
+    const auto bits = std::bit_cast<std::uint64_t>(v);
+    for (int i = 0; i < 8; ++i) {
+      h ^= (bits >> (8 * i)) & 0xffU;
+      h *= 0x100000001b3ULL;
+    }
+  };
+  const auto mix_vector = [&mix](const btVector3& v) {
+    mix(v.x());
+    mix(v.y());
+    mix(v.z());
+  };
+  // Every body in the dynamics world, vehicles' included, in insertion order.
+  const btCollisionObjectArray& objects = impl_->dynamics->getCollisionObjectArray();
+  for (int i = 0; i < objects.size(); ++i) {
+    const btCollisionObject* object = objects[i];
+    const btTransform& t = object->getWorldTransform();
+    mix_vector(t.getOrigin());
+    for (int r = 0; r < 3; ++r) mix_vector(t.getBasis().getRow(r));
+    if (const btRigidBody* body = btRigidBody::upcast(object)) {
+      mix_vector(body->getLinearVelocity());
+      mix_vector(body->getAngularVelocity());
+    }
+  }
+  return h;
+}
+
+btDiscreteDynamicsWorld& World::bullet() { return *impl_->dynamics; }
+
+}  // namespace campo

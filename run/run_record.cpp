@@ -1,0 +1,169 @@
+#include "campo/run_record.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "run/event_log.hpp"
+#include "run/provenance.hpp"
+#include "sensors/scan_io.hpp"
+
+namespace campo {
+
+namespace {
+
+// Names and values of a flat view of a JSON object of numbers and arrays of numbers.
+void flatten(const nlohmann::json& j, const std::string& prefix, std::vector<std::string>* names,
+             std::vector<double>* values) {
+  if (j.is_number()) {
+    if (names) names->push_back(prefix);
+    if (values) values->push_back(j.get<double>());
+  } else if (j.is_object()) {
+    for (const auto& [key, v] : j.items()) flatten(v, prefix.empty() ? key : prefix + "_" + key, names, values);
+  } else if (j.is_array()) {
+    for (std::size_t i = 0; i < j.size(); ++i) flatten(j[i], prefix + "_" + std::to_string(i), names, values);
+  }
+}
+
+nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+struct CommandFields {
+  Eigen::Vector3d point = Eigen::Vector3d::Constant(std::nan(""));
+  double speed = std::nan("");
+  double v = std::nan("");
+  double w = std::nan("");
+};
+
+CommandFields fields_of(const Command& c) {
+  CommandFields f;
+  std::visit(
+      [&f](const auto& cmd) {
+        using T = std::decay_t<decltype(cmd)>;
+        if constexpr (std::is_same_v<T, command::Hold>) f.point = cmd.position_m;
+        if constexpr (std::is_same_v<T, command::GoTo>) {
+          f.point = cmd.target_m;
+          f.speed = cmd.speed_mps;
+        }
+        if constexpr (std::is_same_v<T, command::Face>) f.point = cmd.point_m;
+        if constexpr (std::is_same_v<T, command::Altitude>) f.point.z() = cmd.z_m;
+        if constexpr (std::is_same_v<T, command::Twist>) {
+          f.v = cmd.v_mps;
+          f.w = cmd.w_radps;
+        }
+      },
+      c);
+  return f;
+}
+
+void append(std::string& out, double v) {
+  char buffer[32];
+  const int n = std::isnan(v) ? std::snprintf(buffer, sizeof buffer, ",") : std::snprintf(buffer, sizeof buffer, ",%.9g", v);
+  out.append(buffer, static_cast<std::size_t>(n));
+}
+
+// Relative data files of the scene (CSV/PNG terrain) resolve against this.
+nlohmann::json with_data_dir(nlohmann::json provenance, const Scene& scene) {
+  const std::filesystem::path dir = std::filesystem::path(scene.source_path).parent_path();
+  provenance["scene"]["data_dir"] = std::filesystem::absolute(dir.empty() ? std::filesystem::path(".") : dir).string();
+  return provenance;
+}
+
+}  // namespace
+
+std::string trajectory_csv(const EpisodeResult& result) {
+  std::vector<std::string> actuator_names;
+  if (!result.trajectory.empty()) flatten(result.trajectory.front().actuators, "", &actuator_names, nullptr);
+  std::string out =
+      "time_s,x_m,y_m,z_m,roll_deg,pitch_deg,yaw_deg,vx_mps,vy_mps,vz_mps,wx_radps,wy_radps,wz_radps,"
+      "command,cmd_x_m,cmd_y_m,cmd_z_m,cmd_speed_mps,cmd_v_mps,cmd_w_radps,clearance_m,"
+      "est_x_m,est_y_m,est_z_m,height_above_ground_m";
+  for (const auto& name : actuator_names) out += "," + name;
+  out += "\n";
+  std::vector<double> actuators;
+  for (const TrajectorySample& s : result.trajectory) {
+    char buffer[32];
+    out.append(buffer, static_cast<std::size_t>(std::snprintf(buffer, sizeof buffer, "%.6f", s.time_s)));
+    for (int i = 0; i < 3; ++i) append(out, s.state.position_m[i]);
+    const Eigen::Vector3d rpy = rpy_deg_from_rotation(s.state.orientation.toRotationMatrix());
+    for (int i = 0; i < 3; ++i) append(out, rpy[i]);
+    for (int i = 0; i < 3; ++i) append(out, s.state.linear_velocity_mps[i]);
+    for (int i = 0; i < 3; ++i) append(out, s.state.angular_velocity_radps[i]);
+    out += ",";
+    out += command_name(s.command);
+    const CommandFields f = fields_of(s.command);
+    for (int i = 0; i < 3; ++i) append(out, f.point[i]);
+    append(out, f.speed);
+    append(out, f.v);
+    append(out, f.w);
+    append(out, s.clearance_m);
+    for (int i = 0; i < 3; ++i) append(out, s.estimated_position_m[i]);
+    append(out, s.height_above_ground_m);
+    actuators.clear();
+    flatten(s.actuators, "", nullptr, &actuators);
+    for (std::size_t i = 0; i < actuator_names.size(); ++i) append(out, i < actuators.size() ? actuators[i] : std::nan(""));
+    out += "\n";
+  }
+  return out;
+}
+
+nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const EpisodeOptions& options,
+                        const std::vector<std::string>& overrides) {
+  nlohmann::json final_body_poses = nlohmann::json::array();
+  const std::vector<MovingBody> bodies = moving_bodies(scene);
+  for (std::size_t i = 0; i < bodies.size() && i < result.final_body_poses.size(); ++i) {
+    const Eigen::Isometry3d& pose = result.final_body_poses[i];
+    final_body_poses.push_back({{"alias", bodies[i].shape->alias},
+                                {"position_m", vector_json(pose.translation())},
+                                {"rpy_deg", vector_json(rpy_deg_from_rotation(pose.linear()))}});
+  }
+  const VehicleDef& def = scene.vehicles.at(options.vehicle_index);
+  nlohmann::json sensors = nlohmann::json::array();
+  for (const SensorDef& s : def.sensors) {
+    sensors.push_back(sensor_json(s));
+  }
+  nlohmann::json mission = nlohmann::json::array();
+  for (const Waypoint& wp : def.mission) {
+    nlohmann::json j = {{"position_m", vector_json(wp.position_m)}};
+    if (wp.heading_deg) j["heading_deg"] = *wp.heading_deg;
+    mission.push_back(j);
+  }
+  const WorldConfig& w = scene.world;
+  std::size_t bounded = 0;
+  for (const PlannerEvent& e : result.events) {
+    bounded += e.decisions.is_object() && (e.decisions.contains("thinned") || e.decisions.contains("omitted"));
+  }
+  return {
+      {"metrics", to_json(result.metrics)},
+      {"provenance", with_data_dir(provenance(scene), scene)},
+      {"overrides", overrides},
+      {"parameters",
+       {{"world",
+         {{"gravity_mps2", vector_json(w.gravity_mps2)},
+          {"physics_step_s", w.physics_step_s},
+          {"control_rate_hz", w.control_rate_hz},
+          {"sensor_rate_hz", w.sensor_rate_hz},
+          {"time_limit_s", w.time_limit_s},
+          {"geo_reference",
+           {{"latitude_deg", w.geo_reference.latitude_deg},
+            {"longitude_deg", w.geo_reference.longitude_deg},
+            {"altitude_m", w.geo_reference.altitude_m},
+            {"projection", to_string(w.geo_reference.projection)},
+            {"position_m", {w.geo_reference.position_m.x(), w.geo_reference.position_m.y()}}}},
+          {"seed", w.seed}}},
+        {"vehicle",
+         {{"alias", def.alias},
+          {"type", to_string(def.type)},
+          {"start_position_m", vector_json(def.pose.translation())},
+          {"start_rpy_deg", vector_json(rpy_deg_from_rotation(def.pose.linear()))},
+          {"parameters", result.vehicle_parameters}}},
+        {"planner", {{"name", def.planner.name}, {"parameters", result.planner_parameters}}},
+        {"sensors", sensors},
+        {"mission", mission},
+        {"stop_on_collision", options.stop_on_collision}}},
+      {"final_state_hash", result.final_state_hash},
+      {"final_body_poses", final_body_poses},
+      // The decisions themselves are in events.jsonl, so this file does not grow with the run.
+      {"event_log", {{"file", kEventsFile}, {"count", result.events.size()}, {"bounded", bounded}}},
+  };
+}
+
+}  // namespace campo

@@ -1,0 +1,831 @@
+#include "campo/scene_loader.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+#include <openssl/evp.h>
+
+#include "scene/generators.hpp"
+#include "scene/geodesy.hpp"
+#include "scene/heightfield_sources.hpp"
+
+namespace campo {
+
+namespace {
+
+// Every length, size and spacing of a scene (positions are in [-1e6, 1e6] m):
+// beyond these, geometry, physics and figures lose their meaning in doubles.
+const Range kLength{0.0, 1e6, true, false};
+// Terrain heights, however they are given (expression, CSV, PNG).
+const Range kTerrainHeight = Range::closed(-1e5, 1e5);
+
+constexpr std::string_view kTypes[] = {
+    "cuboid", "cylinder", "sphere", "cone", "plane", "heightfield", "dummy",
+    "rolling_terrain", "trees", "vineyard", "grid_obstacles", "mover", "quadrotor", "rover"};
+
+bool valid_alias(const std::string& alias) {
+  for (char c : alias) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-' || c == '.';
+    if (!ok) return false;
+  }
+  return !alias.empty() && alias.size() <= 64;
+}
+
+Color read_color(const JsonNode& node) {
+  const Eigen::Vector3d c = node.as_vector3(Range::closed(0.0, 1.0));
+  return {c.x(), c.y(), c.z()};
+}
+
+// Reads "[min, max]" with min <= max, each in `range`.
+Eigen::Vector2d read_interval(const JsonNode& node, const Range& range) {
+  const Eigen::Vector2d v = node.as_vector2(range);
+  if (v.x() > v.y()) node.fail("[min, max] with min <= max");
+  return v;
+}
+
+void read_interval(ObjectReader& r, std::string_view key, Eigen::Vector2d& out, const Range& range) {
+  if (auto v = r.optional(key)) out = read_interval(*v, range);
+}
+
+// A rate or step as a reader would write it: up to 12 significant digits (80, 26.6666666667).
+std::string format_rate(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.12g", value);
+  return text;
+}
+
+// What a rate must be at this physics step, with the valid rates nearest `rate_hz`:
+// "a rate that divides the physics rate 240 Hz (1 / physics_step_s) into a whole number of
+// steps, such as 240, 120, 80 or 60" (for 100 Hz).
+std::string dividing_rate_expectation(double rate_hz, double physics_step_s) {
+  const std::vector<double> rates = dividing_rates_near(rate_hz, physics_step_s);
+  std::string list;
+  for (std::size_t i = 0; i < rates.size(); ++i) {
+    list += (i == 0 ? "" : i + 1 == rates.size() ? " or " : ", ") + format_rate(rates[i]);
+  }
+  return "a rate that divides the physics rate " + format_rate(1.0 / physics_step_s) +
+         " Hz (1 / physics_step_s) into a whole number of steps, such as " + list;
+}
+
+// A rate read at `node` must be a whole number of physics steps per period (no silent rounding).
+void check_rate(const JsonNode& node, double rate_hz, double physics_step_s) {
+  if (steps_per_period(rate_hz, physics_step_s) == 0) node.fail(dividing_rate_expectation(rate_hz, physics_step_s));
+}
+
+// Runs a generator; its complaints about the config become input errors at `at`.
+template <class Generate>
+auto generated(const JsonNode& at, Generate generate) -> decltype(generate()) {
+  try {
+    return generate();
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(at.file(), at.pointer(), e.what());
+  }
+}
+
+class Loader {
+ public:
+  Loader(const SceneLimits& limits, std::filesystem::path base_dir)
+      : limits_(limits), base_dir_(std::move(base_dir)) {}
+
+  Scene load(const JsonNode& root) {
+    ObjectReader r(root);
+    if (auto v = r.optional("campo_scene")) {
+      if (v->as_int(1, 1000) != 1) v->fail("format version 1");
+    }
+    r.read("name", scene_.name);
+    std::string description;
+    r.read("description", description);
+    if (auto world = r.optional("world")) read_world(*world);
+    read_objects(r.required("objects"), Eigen::Isometry3d::Identity(), 0);
+    r.finish();
+    // Missions last: they may name frames and grids declared anywhere.
+    for (auto& [vehicle_index, mission] : pending_missions_) {
+      VehicleDef& vehicle = scene_.vehicles[vehicle_index];
+      vehicle.mission = read_mission(mission, vehicle.mission_area_m, vehicle.gates);
+    }
+    return std::move(scene_);
+  }
+
+ private:
+  void read_world(const JsonNode& node) {
+    ObjectReader r(node);
+    WorldConfig& w = scene_.world;
+    r.read("gravity_mps2", w.gravity_mps2, Range::closed(-100.0, 100.0));
+    r.read("physics_step_s", w.physics_step_s, Range::closed(1e-5, 0.1));
+    r.read("control_rate_hz", w.control_rate_hz, Range::closed(0.1, 10000.0));
+    r.read("sensor_rate_hz", w.sensor_rate_hz, Range::closed(0.01, 10000.0));
+    check_world_rate(r, "control_rate_hz", w.control_rate_hz);
+    check_world_rate(r, "sensor_rate_hz", w.sensor_rate_hz);
+    r.read("time_limit_s", w.time_limit_s, {0.0, 1e6, true, false});
+    r.read_seed("seed", w.seed);
+    if (auto geo = r.optional("geo_reference")) {
+      ObjectReader g(*geo);
+      g.read("latitude_deg", w.geo_reference.latitude_deg, Range::closed(-90.0, 90.0));
+      g.read("longitude_deg", w.geo_reference.longitude_deg, Range::closed(-180.0, 180.0));
+      g.read("altitude_m", w.geo_reference.altitude_m, Range::closed(-1e4, 1e5));
+      if (auto projection = g.optional("projection")) {
+        w.geo_reference.projection = projection->as_choice({"wgs84_enu", "sphere_no_coslat"}) == 0
+                                         ? GeoProjection::wgs84_enu
+                                         : GeoProjection::sphere_no_coslat;
+      }
+      g.read("position_m", w.geo_reference.position_m, Range::closed(-1e6, 1e6));
+      g.finish();
+    }
+    r.finish();
+  }
+
+  // A world rate, set or default, at the physics step, set or default: the
+  // error points at the rate when the file sets it, else at the step.
+  void check_world_rate(ObjectReader& r, std::string_view key, double rate_hz) {
+    const double dt = scene_.world.physics_step_s;
+    if (auto rate = r.optional(key)) return check_rate(*rate, rate_hz, dt);
+    if (steps_per_period(rate_hz, dt) > 0) return;
+    const JsonNode step = *r.optional("physics_step_s");  // present: the defaults agree with each other
+    step.fail("a step that divides the period of the default " + std::string(key) + " " + format_rate(rate_hz) +
+              " Hz, or else /world/" + std::string(key) + " set to " + dividing_rate_expectation(rate_hz, dt));
+  }
+
+  void read_objects(const JsonNode& node, const Eigen::Isometry3d& parent, int depth) {
+    if (depth > limits_.max_child_depth) {
+      node.fail("children nested at most " + std::to_string(limits_.max_child_depth) + " deep");
+    }
+    for (const JsonNode& object : node.as_array(0, static_cast<std::size_t>(limits_.max_objects))) {
+      if (++object_count_ > limits_.max_objects) {
+        object.fail("at most " + std::to_string(limits_.max_objects) + " objects in a scene");
+      }
+      read_object(object, parent, depth);
+    }
+  }
+
+  std::string claim_alias(ObjectReader& r) {
+    const JsonNode node = r.required("alias");
+    const std::string alias = node.as_string();
+    if (!valid_alias(alias)) node.fail("an alias of 1-64 letters, digits, '_', '-' or '.'");
+    const auto [it, inserted] = alias_pointers_.emplace(alias, node.pointer());
+    if (!inserted) {
+      throw InputError(node.file(), node.pointer(),
+                       "duplicate alias \"" + alias + "\" (first used at " + it->second + ")");
+    }
+    return alias;
+  }
+
+  // World pose of an object: parent * local, with z optionally measured from the ground.
+  Eigen::Isometry3d read_pose(ObjectReader& r, const Eigen::Isometry3d& parent) {
+    auto node = r.optional("pose");
+    if (!node) return parent;
+    ObjectReader p(*node);
+    Pose pose;
+    p.read("position_m", pose.position_m, Range::closed(-1e6, 1e6));
+    p.read("rpy_deg", pose.rpy_deg, Range::closed(-360.0, 360.0));
+    bool above_ground = false;
+    p.read("above_ground", above_ground);
+    p.finish();
+    Eigen::Isometry3d world = parent * to_isometry(pose);
+    if (above_ground) {
+      const Eigen::Vector3d t = world.translation();
+      const auto ground = scene_.ground_height(t.x(), t.y());
+      if (!ground) {
+        throw InputError(node->file(), node->pointer() + "/above_ground",
+                         "no terrain below (" + std::to_string(t.x()) + ", " +
+                             std::to_string(t.y()) + "); declare the terrain before this object");
+      }
+      world.translation().z() = *ground + pose.position_m.z();
+    }
+    return world;
+  }
+
+  // Keys shared by every shape: static, mass, colour, friction.
+  void read_shape_properties(ObjectReader& r, Shape& shape) {
+    r.read("static", shape.is_static);
+    r.read("mass_kg", shape.mass_kg, Range{0.0, 1e9, true, false});
+    r.read("friction", shape.friction, Range::closed(0.0, 10.0));
+    if (auto c = r.optional("color")) shape.color = read_color(*c);
+    if (!shape.is_static && shape.mass_kg <= 0.0) {
+      throw InputError(r.node().file(), r.node().pointer(),
+                       "a non-static shape needs \"mass_kg\" > 0");
+    }
+  }
+
+  // Geometry keys of a primitive shape type.
+  void read_primitive(ObjectReader& r, Shape& shape) {
+    switch (shape.type) {
+      case ShapeType::cuboid:
+        shape.size_m = r.required("size_m").as_vector3(kLength);
+        break;
+      case ShapeType::cylinder:
+      case ShapeType::cone:
+        shape.radius_m = r.required("radius_m").as_number(kLength);
+        shape.height_m = r.required("height_m").as_number(kLength);
+        break;
+      case ShapeType::sphere:
+        shape.radius_m = r.required("radius_m").as_number(kLength);
+        break;
+      case ShapeType::plane:
+      case ShapeType::heightfield:
+        break;
+    }
+  }
+
+  void add_shape(Shape shape, const JsonNode& at) {
+    if (static_cast<long>(scene_.shapes.size()) >= limits_.max_shapes) {
+      at.fail("a scene of at most " + std::to_string(limits_.max_shapes) + " shapes");
+    }
+    if (shape.source.empty()) shape.source = at.pointer();
+    scene_.shapes.push_back(std::move(shape));
+  }
+
+  void add_generated(std::vector<Shape> shapes, const JsonNode& at,
+                     const Eigen::Isometry3d& placement = Eigen::Isometry3d::Identity()) {
+    if (static_cast<long>(scene_.shapes.size() + shapes.size()) > limits_.max_shapes) {
+      at.fail("a scene of at most " + std::to_string(limits_.max_shapes) + " shapes");
+    }
+    for (Shape& s : shapes) {
+      s.pose = placement * s.pose;
+      s.source = at.pointer();
+      scene_.shapes.push_back(std::move(s));
+    }
+  }
+
+  // The ground so far, for generators that stand things on it. Only the ground
+  // shapes are visited per query (a scene may hold 200000 shapes); the
+  // function is used before the generated shapes are added.
+  GroundFunction ground_function() const {
+    std::vector<const Shape*> ground;
+    for (const Shape& shape : scene_.shapes) {
+      if (shape.type == ShapeType::heightfield || shape.type == ShapeType::plane) ground.push_back(&shape);
+    }
+    return [ground = std::move(ground)](double x, double y) {
+      std::optional<double> best;
+      for (const Shape* shape : ground) {
+        const auto h = ground_height_of(*shape, x, y);
+        if (h && (!best || *h > *best)) best = h;
+      }
+      return best.value_or(0.0);
+    };
+  }
+
+  void read_object(const JsonNode& node, const Eigen::Isometry3d& parent, int depth) {
+    ObjectReader r(node);
+    const std::string alias = claim_alias(r);
+    const JsonNode type_node = r.required("type");
+    const std::string type(kTypes[type_node.as_choice({std::begin(kTypes), std::end(kTypes)})]);
+
+    if (const auto shape_type = shape_type_from_string(type)) {
+      Shape shape;
+      shape.alias = alias;
+      shape.type = *shape_type;
+      shape.pose = read_pose(r, parent);
+      read_shape_properties(r, shape);
+      if (shape.type == ShapeType::heightfield) {
+        read_heightfield(r, shape);
+      } else {
+        read_primitive(r, shape);
+      }
+      if (!shape.is_static && (shape.type == ShapeType::plane || shape.type == ShapeType::heightfield)) {
+        throw InputError(node.file(), child_pointer(node.pointer(), "static"),
+                         "expected true: planes and heightfields are always static");
+      }
+      const Eigen::Isometry3d frame = shape.pose;
+      add_shape(std::move(shape), node);
+      if (auto children = r.optional("children")) read_objects(*children, frame, depth + 1);
+    } else if (type == "dummy") {
+      Frame frame{alias, read_pose(r, parent)};
+      scene_.frames.push_back(frame);
+      if (auto children = r.optional("children")) read_objects(*children, frame.pose, depth + 1);
+    } else if (type == "rolling_terrain") {
+      read_rolling_terrain(r, alias, parent);
+    } else if (type == "trees") {
+      read_trees(r, alias);
+    } else if (type == "vineyard") {
+      read_vineyard(r, alias, parent);
+    } else if (type == "grid_obstacles") {
+      read_grid_obstacles(r, alias);
+    } else if (type == "mover") {
+      read_mover(r, alias, parent);
+    } else {
+      read_vehicle(r, alias, *vehicle_type_from_string(type), parent);
+    }
+    r.finish();
+  }
+
+  void check_vertex_count(const JsonNode& at, const Eigen::Vector2d& size_m, double spacing_m) {
+    const double vertices = (std::round(size_m.x() / spacing_m) + 1) * (std::round(size_m.y() / spacing_m) + 1);
+    if (vertices > static_cast<double>(kMaxHeightfieldVertices)) {
+      at.fail("a grid of at most " + std::to_string(kMaxHeightfieldVertices) +
+              " vertices (size / spacing too fine)");
+    }
+  }
+
+  void read_heightfield(ObjectReader& r, Shape& shape) {
+    const JsonNode& node = r.node();
+    const Eigen::Vector3d rpy = rpy_deg_from_rotation(shape.pose.linear());
+    if (std::abs(rpy.x()) > 1e-9 || std::abs(rpy.y()) > 1e-9) {
+      throw InputError(node.file(), child_pointer(node.pointer(), "pose"),
+                       "expected a heightfield pose without roll or pitch");
+    }
+    const auto expression = r.optional("expression");
+    const auto csv = r.optional("csv");
+    const auto png = r.optional("png");
+    if (static_cast<int>(expression.has_value()) + csv.has_value() + png.has_value() != 1) {
+      throw InputError(node.file(), node.pointer(),
+                       "expected exactly one height source: \"expression\", \"csv\" or \"png\"");
+    }
+    Eigen::Vector2d size_m(100.0, 100.0);
+    double spacing_m = 1.0;
+    double height_scale_m = 1.0;
+    double min_height_m = 0.0;
+    const JsonNode& source = expression ? *expression : csv ? *csv : *png;
+    if (expression) {
+      r.read("size_m", size_m, kLength);
+      r.read("spacing_m", spacing_m, kLength);
+      check_vertex_count(node, size_m, spacing_m);
+      shape.terrain = std::make_shared<HeightGrid>(generated(source, [&] {
+        return heightgrid_from_expression(expression->as_string(), size_m, spacing_m, shape.pose);
+      }));
+    } else if (csv) {
+      r.read("spacing_m", spacing_m, kLength);
+      const auto path = resolve_path(*csv);
+      shape.terrain = std::make_shared<HeightGrid>(
+          generated(source, [&] { return heightgrid_from_csv(path, spacing_m); }));
+    } else {
+      r.read("size_m", size_m, kLength);
+      r.read("height_scale_m", height_scale_m, kLength);
+      r.read("min_height_m", min_height_m, Range::closed(-1e4, 1e4));
+      const auto path = resolve_path(*png);
+      shape.terrain = std::make_shared<HeightGrid>(generated(
+          source, [&] { return heightgrid_from_png(path, size_m, height_scale_m, min_height_m); }));
+    }
+    check_heights(source, *shape.terrain);
+  }
+
+  // Heights far beyond any terrain would overflow sizes derived from them
+  // (boxes standing on the ground, figure axes), so they are refused here.
+  static void check_heights(const JsonNode& source, const HeightGrid& grid) {
+    for (int row = 0; row < grid.rows; ++row) {
+      for (int col = 0; col < grid.cols; ++col) {
+        const double h = grid.at(col, row);
+        if (!kTerrainHeight.contains(h)) {
+          std::ostringstream got;
+          got << h;
+          throw InputError(source.file(), source.pointer(),
+                           "expected terrain heights that are " + kTerrainHeight.describe() + " m, got " +
+                               got.str() + " at vertex (column " + std::to_string(col) + ", row " +
+                               std::to_string(row) + ")");
+        }
+      }
+    }
+  }
+
+  std::filesystem::path resolve_path(const JsonNode& node) {
+    std::filesystem::path p = node.as_string();
+    if (p.is_relative()) p = base_dir_ / p;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec)) {
+      throw InputError(node.file(), node.pointer(),
+                       "expected a readable file, but \"" + p.string() + "\" does not exist");
+    }
+    return p;
+  }
+
+  void read_rolling_terrain(ObjectReader& r, const std::string& alias,
+                            const Eigen::Isometry3d& parent) {
+    RollingTerrainConfig c;
+    r.read("size_m", c.size_m, kLength);
+    r.read("spacing_m", c.spacing_m, kLength);
+    r.read("amplitude_m", c.amplitude_m, Range::closed(0.0, 1e4));
+    r.read("wavelength_m", c.wavelength_m, kLength);
+    r.read("waves", c.waves, 1, 32);
+    r.read_seed("seed", c.seed);
+    check_vertex_count(r.node(), c.size_m, c.spacing_m);
+    Shape shape;
+    shape.alias = alias;
+    shape.type = ShapeType::heightfield;
+    shape.pose = read_pose(r, parent);
+    const Eigen::Vector3d rpy = rpy_deg_from_rotation(shape.pose.linear());
+    if (std::abs(rpy.x()) > 1e-9 || std::abs(rpy.y()) > 1e-9) {
+      throw InputError(r.node().file(), child_pointer(r.node().pointer(), "pose"),
+                       "expected a terrain pose without roll or pitch");
+    }
+    shape.color = {0.45, 0.6, 0.3};
+    if (auto col = r.optional("color")) shape.color = read_color(*col);
+    r.read("friction", shape.friction, Range::closed(0.0, 10.0));
+    shape.terrain = std::make_shared<HeightGrid>(generated(r.node(), [&] { return make_rolling_terrain(c); }));
+    add_shape(std::move(shape), r.node());
+  }
+
+  void read_trees(ObjectReader& r, const std::string& alias) {
+    TreesConfig c;
+    r.read("area_min_m", c.area_min_m, Range::closed(-1e6, 1e6));
+    r.read("area_max_m", c.area_max_m, Range::closed(-1e6, 1e6));
+    if ((c.area_max_m.array() <= c.area_min_m.array()).any()) {
+      r.fail("\"area_max_m\" greater than \"area_min_m\" in x and y");
+    }
+    r.read("count", c.count, 0, limits_.max_trees);
+    r.read("min_spacing_m", c.min_spacing_m, Range::non_negative());
+    read_interval(r, "trunk_radius_m", c.trunk_radius_m, kLength);
+    read_interval(r, "trunk_height_m", c.trunk_height_m, kLength);
+    if (auto crown = r.optional("crown")) {
+      c.crown = crown->as_choice({"sphere", "cone"}) == 0 ? CrownShape::sphere : CrownShape::cone;
+    }
+    read_interval(r, "crown_radius_m", c.crown_radius_m, kLength);
+    r.read("crown_height_ratio", c.crown_height_ratio, Range{0.0, 1e3, true, false});
+    if (auto keep_out = r.optional("keep_out")) {
+      for (const JsonNode& zone : keep_out->as_array(0, 1000)) {
+        ObjectReader z(zone);
+        const Eigen::Vector2d center = z.required("center_m").as_vector2(Range::closed(-1e6, 1e6));
+        const double radius = z.required("radius_m").as_number(kLength);
+        z.finish();
+        c.keep_out.emplace_back(center.x(), center.y(), radius);
+      }
+    }
+    r.read_seed("seed", c.seed);
+    add_generated(generated(r.node(), [&] { return make_trees(c, alias, ground_function()); }), r.node());
+  }
+
+  void read_vineyard(ObjectReader& r, const std::string& alias, const Eigen::Isometry3d& parent) {
+    VineyardConfig c;
+    r.read("field_size_m", c.field_size_m, kLength);
+    r.read("row_count", c.row_count, 1, 500);
+    r.read("row_spacing_m", c.row_spacing_m, kLength);
+    r.read("headland_m", c.headland_m, Range::non_negative());
+    r.read("post_spacing_m", c.post_spacing_m, kLength);
+    r.read("post_radius_m", c.post_radius_m, kLength);
+    r.read("post_height_m", c.post_height_m, kLength);
+    r.read("canopy_width_m", c.canopy_width_m, kLength);
+    r.read("canopy_bottom_m", c.canopy_bottom_m, Range::non_negative());
+    r.read("canopy_top_m", c.canopy_top_m, kLength);
+    r.read("fence_height_m", c.fence_height_m, kLength);
+    r.read("fence_thickness_m", c.fence_thickness_m, kLength);
+    r.read("obstacle_count", c.obstacle_count, 0, limits_.max_generated_obstacles);
+    read_interval(r, "obstacle_size_m", c.obstacle_size_m, kLength);
+    r.read("obstacle_passage_m", c.obstacle_passage_m, Range::non_negative());
+    r.read_seed("seed", c.seed);
+    const double posts_per_row = std::floor(c.field_size_m.y() / c.post_spacing_m) + 2;
+    if (posts_per_row * c.row_count > static_cast<double>(limits_.max_vineyard_posts)) {
+      r.fail("at most " + std::to_string(limits_.max_vineyard_posts) +
+             " posts (row_count x row length / post_spacing_m)");
+    }
+    const Eigen::Isometry3d placement = read_pose(r, parent);
+    add_generated(generated(r.node(), [&] { return make_vineyard(c, alias); }), r.node(), placement);
+  }
+
+  // Reads "[first, last]" or a single index, 1-based, within [1, max].
+  std::pair<int, int> read_index_range(const JsonNode& node, int max) {
+    if (node.value().is_array()) {
+      const auto items = node.as_array(2, 2);
+      const int first = static_cast<int>(items[0].as_int(1, max));
+      const int last = static_cast<int>(items[1].as_int(first, max));
+      return {first, last};
+    }
+    const int index = static_cast<int>(node.as_int(1, max));
+    return {index, index};
+  }
+
+  void read_grid_obstacles(ObjectReader& r, const std::string& alias) {
+    GridObstaclesConfig c;
+    r.read("origin_m", c.origin_m, Range::closed(-1e6, 1e6));
+    r.read("cell_size_m", c.cell_size_m, kLength);
+    r.read("rows", c.rows, 1, limits_.max_grid_cells_per_axis);
+    r.read("cols", c.cols, 1, limits_.max_grid_cells_per_axis);
+    if (auto boxes = r.optional("boxes")) {
+      for (const JsonNode& box_node :
+           boxes->as_array(0, static_cast<std::size_t>(limits_.max_generated_obstacles))) {
+        ObjectReader b(box_node);
+        GridBox box;
+        std::tie(box.row_first, box.row_last) = read_index_range(b.required("rows"), c.rows);
+        std::tie(box.col_first, box.col_last) = read_index_range(b.required("cols"), c.cols);
+        box.height_m = b.required("height_m").as_number(kLength);
+        b.finish();
+        c.boxes.push_back(box);
+      }
+    }
+    add_generated(generated(r.node(), [&] { return make_grid_obstacles(c, alias, ground_function()); }),
+                  r.node());
+    grids_.emplace(alias, c);
+  }
+
+  void read_mover(ObjectReader& r, const std::string& alias, const Eigen::Isometry3d& parent) {
+    Mover mover;
+    mover.shape.alias = alias;
+    mover.shape.pose = read_pose(r, parent);
+    {
+      const JsonNode shape_node = r.required("shape");
+      ObjectReader s(shape_node);
+      const auto type = s.required("type").as_choice({"cuboid", "cylinder", "sphere", "cone"});
+      mover.shape.type = *shape_type_from_string(std::array{"cuboid", "cylinder", "sphere", "cone"}[type]);
+      read_primitive(s, mover.shape);
+      if (auto c = s.optional("color")) mover.shape.color = read_color(*c);
+      s.finish();
+    }
+    for (const JsonNode& point : r.required("path_m").as_array(2, static_cast<std::size_t>(limits_.max_waypoints))) {
+      mover.path_m.push_back(parent * point.as_vector3(Range::closed(-1e6, 1e6)));
+    }
+    r.read("speed_mps", mover.speed_mps, Range::closed(1e-3, 100.0));
+    r.read("start_time_s", mover.start_time_s, Range::non_negative());
+    r.read("loop", mover.loop);
+    mover.shape.source = r.node().pointer();
+    mover.shape.pose.translation() = mover.path_m.front();
+    scene_.movers.push_back(std::move(mover));
+  }
+
+  void read_vehicle(ObjectReader& r, const std::string& alias, VehicleType type,
+                    const Eigen::Isometry3d& parent) {
+    if (static_cast<int>(scene_.vehicles.size()) >= limits_.max_vehicles) {
+      r.fail("at most " + std::to_string(limits_.max_vehicles) + " vehicles");
+    }
+    VehicleDef vehicle;
+    vehicle.alias = alias;
+    vehicle.type = type;
+    vehicle.pose = read_pose(r, parent);
+    if (auto sensors = r.optional("sensors")) {
+      std::map<std::string, std::string> sensor_aliases;
+      for (const JsonNode& s : sensors->as_array(0, static_cast<std::size_t>(limits_.max_sensors))) {
+        ObjectReader sr(s);
+        const JsonNode alias_node = sr.required("alias");
+        const std::string sensor_alias = alias_node.as_string();
+        if (!valid_alias(sensor_alias)) alias_node.fail("an alias of 1-64 letters, digits, '_', '-' or '.'");
+        if (!sensor_aliases.emplace(sensor_alias, alias_node.pointer()).second) {
+          throw InputError(alias_node.file(), alias_node.pointer(),
+                           "duplicate sensor alias \"" + sensor_alias + "\" on vehicle \"" + alias + "\"");
+        }
+        vehicle.sensors.push_back(parse_sensor(s, limits_));
+        // 0 = world.sensor_rate_hz, checked with the world.
+        const double rate_hz = vehicle.sensors.back().lidar.rate_hz;
+        if (rate_hz > 0.0) check_rate(*sr.optional("rate_hz"), rate_hz, scene_.world.physics_step_s);
+      }
+    }
+    vehicle.planner.params = {nlohmann::json::object(), r.node().file(),
+                              child_pointer(child_pointer(r.node().pointer(), "planner"), "params")};
+    if (auto planner = r.optional("planner")) {
+      ObjectReader p(*planner);
+      const JsonNode name = p.required("name");
+      vehicle.planner.name = name.as_string();
+      vehicle.planner.name_pointer = name.pointer();
+      if (auto params = p.optional("params")) vehicle.planner.params = read_params_block(*params);
+      p.finish();
+    }
+    vehicle.params = {nlohmann::json::object(), r.node().file(), child_pointer(r.node().pointer(), "params")};
+    if (auto params = r.optional("params")) vehicle.params = read_params_block(*params);
+    if (auto noise = r.optional("state_noise")) vehicle.state_noise = read_state_noise(*noise);
+    if (auto mission = r.optional("mission")) {
+      pending_missions_.emplace_back(scene_.vehicles.size(), *mission);
+    }
+    scene_.vehicles.push_back(std::move(vehicle));
+  }
+
+  static StateNoiseConfig read_state_noise(const JsonNode& node) {
+    ObjectReader r(node);
+    StateNoiseConfig c;
+    r.read("position_stddev_m", c.position_stddev_m, Range::closed(0.0, 1e3));
+    r.read("altitude_stddev_m", c.altitude_stddev_m, Range::closed(0.0, 1e3));
+    r.read("velocity_stddev_mps", c.velocity_stddev_mps, Range::closed(0.0, 1e3));
+    r.read("heading_stddev_deg", c.heading_stddev_deg, Range::closed(0.0, 180.0));
+    r.read("bias_walk_m_per_sqrt_s", c.bias_walk_m_per_sqrt_s, Range::closed(0.0, 1e3));
+    r.read("rate_hz", c.rate_hz, Range::closed(0.0, 10000.0));
+    r.finish();
+    return c;
+  }
+
+  static ParamsBlock read_params_block(const JsonNode& node) {
+    if (!node.value().is_object()) node.fail("an object");
+    return {node.value(), node.file(), node.pointer()};
+  }
+
+  // The waypoints; `area` becomes the extent of the mission's grid, if any.
+  std::vector<Waypoint> read_mission(const JsonNode& node, std::optional<Eigen::AlignedBox2d>& area,
+                                     std::vector<MissionGate>& gates) {
+    ObjectReader r(node);
+    const GridObstaclesConfig* grid = nullptr;
+    if (auto g = r.optional("grid")) {
+      const auto it = grids_.find(g->as_string());
+      if (it == grids_.end()) g->fail("the alias of a grid_obstacles object");
+      grid = &it->second;
+      area = Eigen::AlignedBox2d(grid->origin_m, grid->origin_m + grid->cell_size_m * Eigen::Vector2d(grid->cols, grid->rows));
+    }
+    std::vector<Waypoint> waypoints;
+    for (const JsonNode& wp :
+         r.required("waypoints").as_array(1, static_cast<std::size_t>(limits_.max_waypoints))) {
+      waypoints.push_back(read_waypoint(wp, grid));
+    }
+    if (auto list = r.optional("gates")) {
+      if (!grid) list->fail("a mission with \"grid\" naming a grid_obstacles object");
+      for (const JsonNode& gate : list->as_array(1, 16)) gates.push_back(read_gate(gate, *grid, gates));
+    }
+    r.finish();
+    return waypoints;
+  }
+
+  // A gate: a named block of cells of the mission's grid, optionally only
+  // below a height above ground.
+  MissionGate read_gate(const JsonNode& node, const GridObstaclesConfig& grid, const std::vector<MissionGate>& before) {
+    ObjectReader r(node);
+    MissionGate gate;
+    const JsonNode name = r.required("name");
+    gate.name = name.as_string();
+    const bool valid = !gate.name.empty() && gate.name.size() <= 32 && std::islower(static_cast<unsigned char>(gate.name[0])) &&
+                       std::all_of(gate.name.begin(), gate.name.end(), [](char c) {
+                         return std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_';
+                       });
+    if (!valid) name.fail("a name of lower-case letters, digits and '_', starting with a letter (up to 32)");
+    for (const MissionGate& other : before) {
+      if (other.name == gate.name) name.fail("a gate name not used before in this mission");
+    }
+    const auto range = [&](std::string_view key, int count) {
+      const JsonNode node = r.required(key);
+      const auto items = node.as_array(2, 2);
+      const int lo = static_cast<int>(items[0].as_int(1, count));
+      const int hi = static_cast<int>(items[1].as_int(lo, count));
+      return std::pair{lo, hi};
+    };
+    const auto [row_lo, row_hi] = range("rows", grid.rows);
+    const auto [col_lo, col_hi] = range("cols", grid.cols);
+    const double c = grid.cell_size_m;
+    gate.area_m = Eigen::AlignedBox2d(grid.origin_m + c * Eigen::Vector2d(col_lo - 1, row_lo - 1),
+                                      grid.origin_m + c * Eigen::Vector2d(col_hi, row_hi));
+    if (auto agl = r.optional("max_agl_m")) gate.max_agl_m = agl->as_number(Range::closed(-1e4, 1e5));
+    r.finish();
+    return gate;
+  }
+
+  // A waypoint is exactly one of: position_m [x,y,z] | [x,y] with agl_m,
+  // frame (dummy alias), geodetic [lat, lon, alt] | [lat, lon] with agl_m,
+  // cell [row, col] with agl_m.
+  Waypoint read_waypoint(const JsonNode& node, const GridObstaclesConfig* grid) {
+    ObjectReader r(node);
+    Waypoint wp;
+    const auto position = r.optional("position_m");
+    const auto frame = r.optional("frame");
+    const auto geodetic = r.optional("geodetic");
+    const auto cell = r.optional("cell");
+    const auto agl = r.optional("agl_m");
+    if (static_cast<int>(position.has_value()) + frame.has_value() + geodetic.has_value() +
+            cell.has_value() != 1) {
+      r.fail("a waypoint with exactly one of \"position_m\", \"frame\", \"geodetic\", \"cell\"");
+    }
+    Eigen::Vector2d xy;
+    if (position) {
+      const auto items = position->as_array(2, 3);
+      if (items.size() == 3 && agl) agl->fail("no \"agl_m\" with a 3D position_m");
+      if (items.size() == 2 && !agl) position->fail("[x, y, z], or [x, y] with \"agl_m\"");
+      const Range coordinate = Range::closed(-1e6, 1e6);
+      wp.position_m = {items[0].as_number(coordinate), items[1].as_number(coordinate),
+                       items.size() == 3 ? items[2].as_number(coordinate) : 0.0};
+      xy = wp.position_m.head<2>();
+    } else if (frame) {
+      const Frame* f = scene_.find_frame(frame->as_string());
+      if (!f) frame->fail("the alias of a dummy object");
+      wp.position_m = f->pose.translation();
+      xy = wp.position_m.head<2>();
+    } else if (geodetic) {
+      const auto g = geodetic->as_array(2, 3);
+      if (g.size() == 3 && agl) agl->fail("no \"agl_m\" with a geodetic [lat, lon, alt]");
+      if (g.size() == 2 && !agl) geodetic->fail("[lat, lon, alt], or [lat, lon] with \"agl_m\"");
+      wp.position_m = geodetic_to_local(scene_.world.geo_reference, g[0].as_number(Range::closed(-90.0, 90.0)),
+                                        g[1].as_number(Range::closed(-180.0, 180.0)),
+                                        g.size() == 3 ? g[2].as_number(Range::closed(-1e4, 1e5)) : 0.0);
+      xy = wp.position_m.head<2>();
+    } else {
+      if (!grid) cell->fail("a mission with \"grid\" naming a grid_obstacles object");
+      const auto rc = cell->as_array(2, 2);
+      xy = grid_cell_center(*grid, static_cast<int>(rc[0].as_int(1, grid->rows)),
+                            static_cast<int>(rc[1].as_int(1, grid->cols)));
+      if (!agl) cell->fail("a cell waypoint with \"agl_m\"");
+      wp.position_m.head<2>() = xy;
+    }
+    if (agl) {
+      if (frame) agl->fail("no \"agl_m\" with a frame waypoint");
+      const auto ground = scene_.ground_height(xy.x(), xy.y());
+      if (!ground) agl->fail("a waypoint above terrain (none below this point)");
+      wp.position_m.z() = *ground + agl->as_number(Range::closed(-1e4, 1e5));
+    }
+    if (auto heading = r.optional("heading_deg")) {
+      wp.heading_deg = heading->as_number(Range::closed(-360.0, 360.0));
+    }
+    r.finish();
+    return wp;
+  }
+
+  const SceneLimits& limits_;
+  std::filesystem::path base_dir_;
+  Scene scene_;
+  std::map<std::string, std::string> alias_pointers_;
+  std::map<std::string, GridObstaclesConfig> grids_;
+  std::vector<std::pair<std::size_t, JsonNode>> pending_missions_;
+  int object_count_ = 0;
+};
+
+}  // namespace
+
+SensorDef parse_sensor(const JsonNode& node, const SceneLimits& limits) {
+  ObjectReader r(node);
+  SensorDef sensor;
+  if (auto alias = r.optional("alias")) sensor.alias = alias->as_string();
+  const JsonNode type = r.required("type");
+  sensor.type = type.as_choice({"lidar", "depth_camera"}) == 0 ? SensorType::lidar : SensorType::depth_camera;
+  LidarConfig& c = sensor.lidar;
+  if (auto preset = r.optional("preset")) {
+    const auto names = lidar_preset_names();
+    std::vector<std::string_view> choices(names.begin(), names.end());
+    c = *lidar_preset(choices[preset->as_choice(choices)]);
+  }
+  if (r.has("beams") && (r.has("fov_deg") || r.has("resolution"))) {
+    r.fail("either \"beams\" or a grid (\"fov_deg\", \"resolution\"), not both");
+  }
+  // A grid given here replaces a preset's explicit beams.
+  if (r.has("fov_deg") || r.has("resolution")) c.beams.clear();
+  if (auto fov = r.optional("fov_deg")) {
+    const auto items = fov->as_array(2, 2);
+    c.fov_h_deg = items[0].as_number({0.0, 360.0, true, false});
+    c.fov_v_deg = items[1].as_number({0.0, 180.0, false, true});
+  }
+  if (auto res = r.optional("resolution")) {
+    const auto items = res->as_array(2, 2);
+    c.cols = static_cast<int>(items[0].as_int(1, 65536));
+    c.rows = static_cast<int>(items[1].as_int(1, 65536));
+    if (static_cast<long>(c.cols) * c.rows > limits.max_beams) {
+      res->fail("at most " + std::to_string(limits.max_beams) + " beams (cols x rows)");
+    }
+  }
+  if (auto beams = r.optional("beams")) {
+    c.beams.clear();
+    for (const JsonNode& b : beams->as_array(1, static_cast<std::size_t>(limits.max_beams))) {
+      const Eigen::Vector2d ae = b.as_vector2();
+      if (std::abs(ae.x()) > 180.0) b.fail("[azimuth_deg in [-180, 180], elevation_deg in [-90, 90]]");
+      if (std::abs(ae.y()) > 90.0) b.fail("[azimuth_deg in [-180, 180], elevation_deg in [-90, 90]]");
+      c.beams.push_back({ae.x(), ae.y()});
+    }
+  }
+  if (auto range = r.optional("range_m")) {
+    const Eigen::Vector2d mm = range->as_vector2(Range::non_negative());
+    if (!(mm.x() < mm.y()) || mm.y() > 1e5) range->fail("[min, max] with 0 <= min < max <= 100000");
+    c.min_range_m = mm.x();
+    c.max_range_m = mm.y();
+  }
+  r.read("noise_stddev_m", c.noise_stddev_m, Range::closed(0.0, 100.0));
+  r.read("dropout_probability", c.dropout_probability, Range::closed(0.0, 1.0));
+  r.read("quantization_m", c.quantization_m, Range::closed(0.0, 100.0));
+  r.read("rate_hz", c.rate_hz, Range::closed(0.0, 10000.0));
+  r.read_seed("seed", c.seed);
+  if (auto mount = r.optional("mount")) {
+    ObjectReader m(*mount);
+    m.read("position_m", c.mount.position_m, Range::closed(-100.0, 100.0));
+    m.read("rpy_deg", c.mount.rpy_deg, Range::closed(-360.0, 360.0));
+    m.finish();
+  }
+  if (sensor.type == SensorType::depth_camera) {
+    // One perspective render covers the grid: both angles well below 180 deg.
+    if (!c.beams.empty()) r.fail("a depth camera with a beam grid (\"fov_deg\", \"resolution\"), not explicit beams");
+    if (c.noise_stddev_m > 0.0 || c.dropout_probability > 0.0) {
+      r.fail("a depth camera without \"noise_stddev_m\" or \"dropout_probability\" (only the LIDAR models them)");
+    }
+    if (c.fov_h_deg > kMaxDepthCameraFov_deg || c.fov_v_deg > kMaxDepthCameraFov_deg) {
+      r.fail("a depth camera field of view of at most " + std::to_string(static_cast<int>(kMaxDepthCameraFov_deg)) +
+             " deg each way");
+    }
+  }
+  r.finish();
+  return sensor;
+}
+
+std::string sha256_hex(const std::string& bytes) {
+  std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
+  unsigned int length = 0;
+  EVP_Digest(bytes.data(), bytes.size(), digest.data(), &length, EVP_sha256(), nullptr);
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  for (unsigned int i = 0; i < length; ++i) {
+    out += kHex[digest[i] >> 4];
+    out += kHex[digest[i] & 0xf];
+  }
+  return out;
+}
+
+Scene parse_scene(const nlohmann::json& document, const std::string& source,
+                  const std::filesystem::path& base_dir, const std::string& source_sha256,
+                  const SceneLimits& limits) {
+  Loader loader(limits, base_dir);
+  Scene scene = loader.load(JsonNode(document, source, ""));
+  if (scene.name.empty()) scene.name = std::filesystem::path(source).stem().string();
+  scene.source_path = source;
+  scene.source_sha256 = source_sha256;
+  return scene;
+}
+
+Scene load_scene(const std::filesystem::path& path, const SceneLimits& limits) {
+  return load_scene_text(read_text_file(path, limits.json), path, limits);
+}
+
+Scene load_scene_text(const std::string& text, const std::filesystem::path& path, const SceneLimits& limits) {
+  const nlohmann::json document = parse_json_text(text, path.string(), limits.json);
+  return parse_scene(document, path.string(), path.parent_path(), sha256_hex(text), limits);
+}
+
+}  // namespace campo

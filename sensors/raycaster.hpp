@@ -1,0 +1,48 @@
+#pragma once
+/// Batched ray casting against the scene geometry (Embree BVH over exactly
+/// the shapes the Bullet world collides with: analytic primitives, and the
+/// heightfield triangulated the way Bullet triangulates it).
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include <Eigen/Geometry>
+
+#include "campo/scene.hpp"
+
+namespace campo {
+
+/// Result of one ray: distance along the ray, or no hit.
+struct RayHit {
+  float distance_m;     ///< +infinity when nothing was hit within range
+  std::int32_t shape;   ///< index into Scene::shapes, or -(1 + mover index); kNoShape for no hit
+  static constexpr std::int32_t kNoShape = INT32_MIN;
+};
+
+class RayCaster {
+ public:
+  /// Builds the acceleration structure: the static shapes once, and the
+  /// moving bodies (moving_bodies(scene)) at their poses at t = 0.
+  /// `scene` must outlive the caster.
+  explicit RayCaster(const Scene& scene);
+  ~RayCaster();
+  RayCaster(const RayCaster&) = delete;
+  RayCaster& operator=(const RayCaster&) = delete;
+
+  /// Places the moving bodies: one world-frame pose per moving_bodies(scene)
+  /// entry, in that order (World::moving_body_poses, or scripted_poses).
+  /// Throws std::invalid_argument for a wrong count.
+  void set_poses(std::span<const Eigen::Isometry3d> poses);
+
+  /// Casts one ray per direction from `origin`; directions are unit vectors in
+  /// the world frame. Hits nearer than min_range_m are ignored (the ray
+  /// continues); hits beyond max_range_m are misses. No allocation.
+  void cast(const Eigen::Vector3d& origin, std::span<const Eigen::Vector3f> directions,
+            float min_range_m, float max_range_m, std::span<RayHit> hits) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace campo

@@ -1,0 +1,16 @@
+#pragma once
+/// Builds any range sensor: the ray-cast LIDAR, or the OSMesa depth camera.
+#include <memory>
+
+#include "campo/range_sensor.hpp"
+
+namespace campo {
+
+/// A RangeSensor for `def` of either type.
+std::unique_ptr<RangeSensor> make_range_sensor(const Scene& scene, const SensorDef& def, std::uint64_t world_seed);
+
+/// A SensorFactory for the sensors of one scene: its depth cameras share one
+/// scene mesh, built when the first of them is made.
+SensorFactory range_sensor_factory();
+
+}  // namespace campo

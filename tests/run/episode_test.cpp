@@ -1,0 +1,383 @@
+// The closed loop with a kinematic stand-in vehicle, so the loop's own logic
+// (rates, outcomes, metrics) is checked against hand-computed values.
+#include "campo/episode.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include <btBulletDynamicsCommon.h>
+#include <gtest/gtest.h>
+
+#include "campo/run_record.hpp"
+#include "campo/scene_loader.hpp"
+
+namespace campo {
+namespace {
+
+// Moves exactly at the commanded speed toward a GoTo target. Its collision
+// shape is a kinematic sphere of radius 0.5 m in the world, so clearance and
+// collisions are measured on it as on a real vehicle.
+class PointVehicle final : public Vehicle {
+ public:
+  PointVehicle(World& world, const VehicleDef& def)
+      : world_(world.bullet()), shape_(0.5), body_(btRigidBody::btRigidBodyConstructionInfo(0.0, nullptr, &shape_)) {
+    state_.position_m = def.pose.translation();
+    body_.setCollisionFlags(body_.getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    body_.setUserIndex(kVehicleBodyTag);
+    place();
+    world_.addRigidBody(&body_);
+  }
+  ~PointVehicle() override { world_.removeRigidBody(&body_); }
+  VehicleType type() const override { return VehicleType::quadrotor; }
+  void command(const Command& c) override { command_ = c; }
+  void pre_step(double dt) override {
+    if (const auto* go = std::get_if<command::GoTo>(&command_)) {
+      const Eigen::Vector3d d = go->target_m - estimated_state().position_m;
+      const double step = std::min(d.norm(), go->speed_mps * dt);
+      if (d.norm() > 0) state_.position_m += d.normalized() * step;
+    }
+    place();
+  }
+  VehicleState state() const override { return state_; }
+  bool stable() const override { return true; }
+  nlohmann::json actuators() const override { return {{"speed", 1.0}}; }
+  nlohmann::json parameters() const override { return {{"kind", "point"}}; }
+
+ private:
+  void place() {
+    body_.setWorldTransform(btTransform(btQuaternion::getIdentity(),
+                                        btVector3(state_.position_m.x(), state_.position_m.y(), state_.position_m.z())));
+  }
+  btDiscreteDynamicsWorld& world_;
+  btSphereShape shape_;
+  btRigidBody body_;
+  VehicleState state_;
+  Command command_;
+};
+
+std::unique_ptr<Vehicle> make_point(World& world, const VehicleDef& def) {
+  return std::make_unique<PointVehicle>(world, def);
+}
+
+// Goes to each waypoint in turn at 1 m/s; counts fresh scans.
+class Follower final : public Planner {
+ public:
+  PlanResult plan(const Observation& o) override {
+    PlanResult r;
+    for (const auto& s : o.sensors) fresh_scans += s.fresh;
+    while (next_ < o.mission.size() && (o.state.position_m - o.mission[next_].position_m).norm() < 1e-6) ++next_;
+    if (next_ == o.mission.size()) {
+      r.status = PlanStatus::reached;
+      r.reason = "done";
+      return r;
+    }
+    if (give_up_at >= 0 && o.time_s >= give_up_at) {
+      r.status = PlanStatus::no_path;
+      r.reason = "walled in";
+      return r;
+    }
+    r.command = command::GoTo{o.mission[next_].position_m, 1.0, false};
+    return r;
+  }
+  nlohmann::json parameters() const override { return nlohmann::json::object(); }
+  static inline int fresh_scans = 0;
+  static inline double give_up_at = -1;
+
+ private:
+  std::size_t next_ = 0;
+};
+
+std::unique_ptr<Planner> make_follower(const PlannerSpec&, const PlannerContext&) { return std::make_unique<Follower>(); }
+
+// `extra_objects`: more objects, each followed by a comma.
+Scene scene_with(const std::string& extra_world = "", const std::string& extra_objects = "") {
+  return parse_scene(nlohmann::json::parse(R"j({"world": {"physics_step_s": 0.01, "control_rate_hz": 20,
+    "sensor_rate_hz": 5, "time_limit_s": 30)j" + extra_world + R"j(}, "objects": [)j" + extra_objects + R"j(
+    {"alias": "post", "type": "cylinder", "radius_m": 0.5, "height_m": 4, "pose": {"position_m": [5, 2, 2]}},
+    {"alias": "v", "type": "quadrotor", "pose": {"position_m": [0, 0, 1]},
+     "sensors": [{"alias": "s", "type": "lidar", "preset": "scanner3d", "resolution": [4, 4]}],
+     "mission": {"waypoints": [{"position_m": [3, 0, 1]}, {"position_m": [3, 4, 1]}]}}]})j"),
+                     "inline.json", std::filesystem::temp_directory_path());
+}
+
+class EpisodeTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    Follower::fresh_scans = 0;
+    Follower::give_up_at = -1;
+  }
+};
+
+TEST_F(EpisodeTest, ReachesTheGoalWithExactMetrics) {
+  const Scene scene = scene_with();
+  const EpisodeResult r = run_episode(scene, &make_point, &make_follower);
+  const EpisodeMetrics& m = r.metrics;
+  EXPECT_EQ(m.outcome, Outcome::reached);
+  EXPECT_EQ(m.reason, "done");
+  // 7 m at 1 m/s, planner at 20 Hz: the arrival is noticed at the next tick.
+  EXPECT_NEAR(m.sim_time_s, 7.0, 0.05 + 1e-9);
+  EXPECT_NEAR(m.path_length_m, 7.0, 1e-9);
+  EXPECT_NEAR(m.path_ratio, 1.0, 1e-9);
+  // Closest approach: the post axis (5, 2) is 2 m from the second leg at
+  // (3, 2); less the post's and the vehicle's radius. Exact: GJK between the shapes.
+  EXPECT_NEAR(m.min_clearance_m, 2.0 - 0.5 - 0.5, 1e-6);
+  EXPECT_EQ(m.nearest_obstacle, "post");
+  EXPECT_NEAR(m.min_clearance_time_s, 5.0, 0.01);
+  // No ground in this scene.
+  EXPECT_TRUE(std::isinf(m.min_ground_clearance_m));
+  EXPECT_EQ(m.collisions, 0);
+  EXPECT_EQ(m.planner_calls, static_cast<int>(r.trajectory.size()));
+  EXPECT_NEAR(m.planner_calls, 7.0 * 20 + 1, 2);
+  // Sensors at 5 Hz: one fresh scan per 4 planner calls.
+  EXPECT_NEAR(Follower::fresh_scans, 7.0 * 5 + 1, 2);
+  EXPECT_EQ(r.trajectory.front().time_s, 0.0);
+  EXPECT_NEAR(r.trajectory[1].time_s, 0.05, 1e-12);
+}
+
+TEST_F(EpisodeTest, TimesOut) {
+  const Scene scene = scene_with();
+  Scene slow = scene;
+  slow.world.time_limit_s = 2.0;
+  const EpisodeResult r = run_episode(slow, &make_point, &make_follower);
+  EXPECT_EQ(r.metrics.outcome, Outcome::timeout);
+  EXPECT_NEAR(r.metrics.sim_time_s, 2.0, 1e-9);
+  EXPECT_NEAR(r.metrics.path_length_m, 2.0, 1e-9);
+}
+
+TEST_F(EpisodeTest, StopsAtTheFirstCollisionOrCountsThem) {
+  // A thin wall across the first leg: the sphere (radius 0.5) touches its
+  // face at x = 2.005 when its centre reaches x = 1.505, at t = 1.505 s,
+  // found after the physics step that ends at 1.51 s.
+  const Scene scene = scene_with("", R"j({"alias": "wall", "type": "cuboid", "size_m": [0.095, 0.8, 2],
+    "pose": {"position_m": [2.0525, 0, 1]}},)j");
+  EpisodeResult r = run_episode(scene, &make_point, &make_follower);
+  EXPECT_EQ(r.metrics.outcome, Outcome::collision);
+  EXPECT_EQ(r.metrics.collisions, 1);
+  EXPECT_NEAR(r.metrics.sim_time_s, 1.51, 1e-9);
+  EXPECT_EQ(r.metrics.reason, "collision with wall at t = 1.510000 s");
+  // Touching is clearance <= 0: the two always agree.
+  EXPECT_LE(r.metrics.min_clearance_m, 0.0);
+  EXPECT_NEAR(r.metrics.min_clearance_m, -0.005, 1e-6);
+  EpisodeOptions keep_going;
+  keep_going.stop_on_collision = false;
+  r = run_episode(scene, &make_point, &make_follower, keep_going);
+  EXPECT_EQ(r.metrics.outcome, Outcome::reached);
+  EXPECT_EQ(r.metrics.collisions, 1);  // one contact episode, however long
+  // Passing through, the sphere's centre crosses the wall: overlap of its radius plus half the wall.
+  EXPECT_NEAR(r.metrics.min_clearance_m, -(0.5 + 0.0475), 3e-3);
+}
+
+TEST_F(EpisodeTest, PlannerGivingUpAbortsWithItsReason) {
+  Follower::give_up_at = 1.0;
+  const EpisodeResult r = run_episode(scene_with(), &make_point, &make_follower);
+  EXPECT_EQ(r.metrics.outcome, Outcome::aborted);
+  EXPECT_EQ(r.metrics.reason, "no_path: walled in");
+  EXPECT_NEAR(r.metrics.sim_time_s, 1.0, 1e-9);
+}
+
+TEST_F(EpisodeTest, MetricsJsonUsesTheDocumentedNames) {
+  const nlohmann::json j = to_json(run_episode(scene_with(), &make_point, &make_follower).metrics);
+  for (const char* key : {"outcome", "reason", "sim_time_s", "wall_time_s", "path_length_m", "path_ratio",
+                          "min_clearance_m", "collisions", "planner_time_ms_mean", "planner_time_ms_max",
+                          "cross_track_rms_m", "cross_track_mean_m", "cross_track_max_m", "avoiding_time_s"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["outcome"], "reached");
+}
+
+TEST_F(EpisodeTest, RecordsTrajectoryAndRunFile) {
+  const Scene scene = scene_with();
+  const EpisodeResult r = run_episode(scene, &make_point, &make_follower);
+  const std::string csv = trajectory_csv(r);
+  const auto header_end = csv.find('\n');
+  const std::string header = csv.substr(0, header_end);
+  EXPECT_EQ(header.rfind("time_s,x_m,y_m,z_m,roll_deg,pitch_deg,yaw_deg,", 0), 0u);
+  EXPECT_NE(header.find(",command,"), std::string::npos);
+  EXPECT_EQ(header.substr(header.rfind(',') + 1), "speed");  // actuator columns come last
+  const auto rows = static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')) - 1;
+  EXPECT_EQ(rows, r.trajectory.size());
+  // Every row has as many fields as the header.
+  const auto fields = std::count(header.begin(), header.end(), ',');
+  std::size_t start = header_end + 1;
+  while (start < csv.size()) {
+    const auto end = csv.find('\n', start);
+    EXPECT_EQ(std::count(csv.begin() + static_cast<long>(start), csv.begin() + static_cast<long>(end), ','), fields);
+    start = end + 1;
+  }
+  const nlohmann::json run = run_json(scene, r, {}, {"/world/seed=3"});
+  EXPECT_EQ(run["metrics"]["outcome"], "reached");
+  EXPECT_EQ(run["overrides"][0], "/world/seed=3");
+  EXPECT_EQ(run["parameters"]["vehicle"]["parameters"]["kind"], "point");
+  EXPECT_EQ(run["parameters"]["mission"].size(), 2u);
+  EXPECT_EQ(run["parameters"]["sensors"][0]["resolution"], nlohmann::json({4, 4}));
+  EXPECT_TRUE(run["provenance"].contains("campo_version"));
+}
+
+
+// ---------------------------------------------------------------- route metrics
+
+TrajectorySample sample_at(double t, double x, double y, double z = 0.0) {
+  TrajectorySample s;
+  s.time_s = t;
+  s.state.position_m = {x, y, z};
+  return s;
+}
+
+nlohmann::json path_json(const std::vector<Eigen::Vector3d>& points) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const auto& p : points) j.push_back({p.x(), p.y(), p.z()});
+  return j;
+}
+
+// Horizontal distance to the polyline, every segment tried.
+double brute_force_distance(const std::vector<Eigen::Vector3d>& route, const Eigen::Vector3d& q) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < route.size() || (i == 0 && route.size() == 1); ++i) {
+    const Eigen::Vector2d a = route[i].head<2>(), b = route[std::min(i + 1, route.size() - 1)].head<2>();
+    const Eigen::Vector2d p = q.head<2>();
+    double t = 0.0;
+    if ((b - a).squaredNorm() > 0.0) t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+    best = std::min(best, (a + t * (b - a) - p).norm());
+  }
+  return best;
+}
+
+TEST(CrossTrackError, MatchesBruteForceOnRandomRoutes) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    // Routes: random walks (coherent, like a planner's) and, every third trial, scattered points;
+    // a few of one or two points and some repeated points (zero-length segments).
+    std::vector<PlannerEvent> events;
+    std::vector<std::pair<double, std::vector<Eigen::Vector3d>>> routes;  // (time set, points)
+    const int route_count = 1 + trial % 4;
+    for (int r = 0; r < route_count; ++r) {
+      const std::size_t n = trial == 1 && r == 0 ? 1 : trial == 2 ? 2 : 1 + rng() % 600;
+      std::vector<Eigen::Vector3d> route;
+      Eigen::Vector3d p(50.0 * unit(rng), 50.0 * unit(rng), 5.0 * unit(rng));
+      for (std::size_t i = 0; i < n; ++i) {
+        if (trial % 3 == 0) p = {60.0 * unit(rng), 60.0 * unit(rng), 0.0};
+        else if (rng() % 10 != 0) p += Eigen::Vector3d(2.0 * unit(rng), 2.0 * unit(rng), unit(rng));
+        route.push_back(p);
+      }
+      const double t = r == 0 ? 1.0 : 1.0 + 10.0 * r + (rng() % 3);  // also at a sample's exact time
+      routes.emplace_back(t, route);
+      events.push_back({t, {{"planned_path", path_json(route)}}});
+      if (rng() % 2) events.push_back({t + 0.5, {{"avoiding", true}}});  // other decisions are ignored
+    }
+    std::vector<TrajectorySample> trajectory;
+    double sum = 0.0, max = 0.0;
+    std::size_t measured = 0;
+    for (int i = 0; i < 2000; ++i) {
+      const double t = 0.05 * i;
+      // Near the route mostly, sometimes far away.
+      const double spread = i % 50 == 0 ? 500.0 : 70.0;
+      trajectory.push_back(sample_at(t, spread * unit(rng), spread * unit(rng), 3.0 * unit(rng)));
+      const std::vector<Eigen::Vector3d>* in_force = nullptr;
+      for (const auto& [since, route] : routes) {
+        if (since <= t) in_force = &route;
+      }
+      if (!in_force) continue;
+      const double d = brute_force_distance(*in_force, trajectory.back().state.position_m);
+      sum += d * d;
+      max = std::max(max, d);
+      ++measured;
+    }
+    const CrossTrack c = cross_track_error(trajectory, events);
+    ASSERT_EQ(c.samples, measured) << "trial " << trial;
+    EXPECT_NEAR(c.rms_m, std::sqrt(sum / measured), 1e-9) << "trial " << trial;
+    EXPECT_NEAR(c.max_m, max, 1e-9) << "trial " << trial;
+  }
+}
+
+TEST(CrossTrackError, MeasuresEachSampleAgainstTheRouteInForce) {
+  // Route A along y = 0 from t = 1, route B along y = 10 from t = 2 (recorded at a sample's time).
+  const std::vector<PlannerEvent> events{
+      {1.0, {{"planned_path", {{0, 0, 0}, {10, 0, 0}}}}},
+      {2.0, {{"planned_path", {{0, 10, 0}, {10, 10, 0}}}}},
+  };
+  const std::vector<TrajectorySample> trajectory{
+      sample_at(0.5, 5, 100),  // before any route: skipped
+      sample_at(1.0, 5, 3),    // A: 3
+      sample_at(1.5, 13, 4),   // A: beyond the end, 5
+      sample_at(2.0, 5, 6, 40),  // B: 4 (height ignored)
+  };
+  const CrossTrack c = cross_track_error(trajectory, events);
+  EXPECT_EQ(c.samples, 3u);
+  EXPECT_NEAR(c.rms_m, std::sqrt((9.0 + 25.0 + 16.0) / 3.0), 1e-12);
+  EXPECT_NEAR(c.mean_m, (3.0 + 5.0 + 4.0) / 3.0, 1e-12);
+  EXPECT_NEAR(c.max_m, 5.0, 1e-12);
+}
+
+TEST(CrossTrackError, IsZeroWithoutAPlannedPath) {
+  const std::vector<TrajectorySample> trajectory{sample_at(0.0, 1, 2), sample_at(1.0, 3, 4)};
+  const std::vector<PlannerEvent> events{{0.0, {{"planned_waypoint", {1, 1, 1}}}}, {0.5, {{"avoiding", true}}}};
+  const CrossTrack c = cross_track_error(trajectory, events);
+  EXPECT_EQ(c.samples, 0u);
+  EXPECT_EQ(c.rms_m, 0.0);
+  EXPECT_EQ(c.max_m, 0.0);
+  // An empty planned path leaves no route until the next.
+  const std::vector<PlannerEvent> cleared{{0.0, {{"planned_path", {{0, 0, 0}, {9, 0, 0}}}}},
+                                          {0.5, {{"planned_path", nlohmann::json::array()}}}};
+  const CrossTrack c2 = cross_track_error(trajectory, cleared);
+  EXPECT_EQ(c2.samples, 1u);
+  EXPECT_NEAR(c2.max_m, 2.0, 1e-12);
+}
+
+TEST(AvoidingTime, AddsTheIntervalsBetweenOnAndOff) {
+  const std::vector<PlannerEvent> events{
+      {1.0, {{"avoiding", true}}},
+      {1.5, {{"avoiding", true}}},   // already on: nothing changes
+      {3.0, {{"avoiding", false}}},  // 2 s
+      {4.0, {{"avoiding", false}}},  // already off
+      {5.0, {{"replan", {{"time_ms", 1.0}}}}},
+      {6.5, {{"avoiding", true}}},
+      {7.0, {{"avoiding", false}}},  // 0.5 s
+      {9.0, {{"avoiding", true}}},   // on until the end: 1.25 s
+  };
+  EXPECT_NEAR(avoiding_time(events, 10.25), 2.0 + 0.5 + 1.25, 1e-12);
+  EXPECT_NEAR(avoiding_time(std::span(events).first(7), 10.25), 2.5, 1e-12);
+  EXPECT_EQ(avoiding_time({}, 10.0), 0.0);
+}
+
+// Records a route 0.5 m left of the first leg and right of the second and avoids between t = 1 and t = 2.
+class RouteRecorder final : public Planner {
+ public:
+  PlanResult plan(const Observation& o) override {
+    PlanResult r = inner_.plan(o);
+    if (o.time_s == 0.0) r.decisions = {{"planned_path", {{0, 0.5, 1}, {3.5, 0.5, 1}, {3.5, 4, 1}}}};
+    if (std::abs(o.time_s - 1.0) < 1e-9) r.decisions = {{"avoiding", true}};
+    if (std::abs(o.time_s - 2.0) < 1e-9) r.decisions = {{"avoiding", false}};
+    return r;
+  }
+  nlohmann::json parameters() const override { return nlohmann::json::object(); }
+
+ private:
+  Follower inner_;
+};
+
+TEST_F(EpisodeTest, MeasuresCrossTrackAndAvoidingFromTheDecisions) {
+  const EpisodeResult r = run_episode(scene_with(), &make_point, [](const PlannerSpec&, const PlannerContext&) {
+    return std::unique_ptr<Planner>(std::make_unique<RouteRecorder>());
+  });
+  const EpisodeMetrics& m = r.metrics;
+  ASSERT_EQ(m.outcome, Outcome::reached);
+  // Both legs run 0.5 m beside the route, except near the corner, where the route is nearer.
+  EXPECT_NEAR(m.cross_track_max_m, 0.5, 1e-9);
+  EXPECT_GT(m.cross_track_rms_m, 0.45);
+  EXPECT_LE(m.cross_track_rms_m, 0.5 + 1e-9);
+  EXPECT_NEAR(m.avoiding_time_s, 1.0, 1e-9);
+  const nlohmann::json j = to_json(m);
+  EXPECT_EQ(j["cross_track_max_m"], m.cross_track_max_m);
+  EXPECT_EQ(j["avoiding_time_s"], m.avoiding_time_s);
+  // The plain follower records neither.
+  const EpisodeMetrics plain = run_episode(scene_with(), &make_point, &make_follower).metrics;
+  EXPECT_EQ(plain.cross_track_rms_m, 0.0);
+  EXPECT_EQ(plain.cross_track_max_m, 0.0);
+  EXPECT_EQ(plain.avoiding_time_s, 0.0);
+}
+
+}  // namespace
+}  // namespace campo

@@ -1,0 +1,346 @@
+#include "tools/run_figures.hpp"
+
+#include <algorithm>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "campo/json_reader.hpp"
+#include "core/image_io.hpp"
+#include "planners/depth_reactive.hpp"
+#include "render/snapshot.hpp"
+#include "scene/scene_mesh.hpp"
+
+namespace campo::cli {
+
+namespace {
+
+std::filesystem::path write_png(const cv::Mat& image, const std::filesystem::path& path) {
+  // Fixed compression settings: the same figure gives the same bytes.
+  write_png_file(image, path, {cv::IMWRITE_PNG_COMPRESSION, 6});
+  return path;
+}
+
+std::string title_of(const RecordedRun& run, const std::string& what) {
+  const auto& p = run.record.at("parameters");
+  return run.scene.name + " - " + p.at("vehicle").at("type").get<std::string>() + " - " +
+         p.at("planner").at("name").get<std::string>() + " - " + run.view.outcome + " - " + what;
+}
+
+std::string record_file(const RecordedRun& run) { return (run.dir / "run.json").string(); }
+
+// A recorded depth map (16-bit PNG, sensors/depth_image.hpp) back as CV_32F in [0, 1].
+cv::Mat read_depth_png(const std::filesystem::path& file) {
+  const cv::Mat gray16 = read_image_file(file, cv::IMREAD_UNCHANGED);
+  if (gray16.type() != CV_16U) throw InputError(file.string(), "", "expected a 16-bit grey depth map");
+  cv::Mat depth;
+  gray16.convertTo(depth, CV_32F, 1.0 / 65535.0);
+  return depth;
+}
+
+// A depth figure grey and colour-mapped: out_dir/depth_figures/<stem>_grey.png and _colour.png.
+std::vector<std::filesystem::path> write_depth_pair(const cv::Mat& depth, const DepthOverlays& overlays,
+                                                    const std::string& title, const std::filesystem::path& out_dir,
+                                                    const std::string& stem) {
+  const auto dir = out_dir / "depth_figures";
+  std::filesystem::create_directories(dir);
+  return {write_png(draw_depth(depth, overlays, false, title + " (grey)"), dir / (stem + "_grey.png")),
+          write_png(draw_depth(depth, overlays, true, title + " (colour)"), dir / (stem + "_colour.png"))};
+}
+
+// The angular grid of sensor `alias` as run.json's parameters.sensors recorded it.
+DepthGrid recorded_grid(const RecordedRun& run, const std::string& alias) {
+  for (const auto& s : run.record.at("parameters").at("sensors")) {
+    if (s.value("alias", "") != alias) continue;
+    const auto& resolution = s.at("resolution");
+    const auto& fov = s.at("fov_deg");
+    return {resolution.at(0).get<int>(), resolution.at(1).get<int>(), fov.at(0).get<double>(), fov.at(1).get<double>(),
+            s.at("range_m").at(1).get<double>()};
+  }
+  throw InputError(record_file(run), "/parameters/sensors", "no sensor \"" + alias + "\", which replanning read");
+}
+
+cv::Point2d point2d(const nlohmann::json& j) { return {j.at(0).get<double>(), j.at(1).get<double>()}; }
+Eigen::Vector2i vector2i(const nlohmann::json& j) { return {j.at(0).get<int>(), j.at(1).get<int>()}; }
+cv::Point to_cv(const Eigen::Vector2i& p) { return {p.x(), p.y()}; }
+
+// The overlays of one replanning step, recomputed as depth_reactive.cpp computes
+// them. The 16-bit file rounds values by at most 1 / 131070, so the maps match
+// the planner's except, rarely, at a pixel that close to a layer boundary or t.
+DepthOverlays replan_overlays(const cv::Mat& depth, const nlohmann::json& replan, const DepthReactiveConfig& config,
+                              const DepthGrid& grid) {
+  DepthOverlays o;
+  o.dilated = dilate_depth_map(depth, dilation_params(config, grid));
+  const cv::Point2d projection = point2d(replan.at("pixel"));
+  const cv::Point2d radius = point2d(replan.at("radius_px"));
+  o.waypoint_projection = projection;
+  o.safety_ellipse_px = {radius.x, radius.y};
+  if (replan.contains("threshold")) {
+    o.threshold = replan["threshold"].get<double>();
+    o.thresholded = threshold_free(o.dilated, *o.threshold);
+  }
+  if (replan.contains("chosen_pixel")) {
+    const Eigen::Vector2i chosen = vector2i(replan["chosen_pixel"]);
+    const Eigen::Vector2i edge = vector2i(replan.at("edge_pixel"));
+    o.chosen_pixel = to_cv(chosen);
+    // TrovaWP's scan from the chosen pixel toward W', up to the obstacle edge;
+    // an edge at the chosen pixel itself means the scan met none and ran on.
+    for (const Eigen::Vector2i& q : pixel_segment(depth.size(), chosen, {projection.x, projection.y})) {
+      o.scan_line.push_back(to_cv(q));
+      if (q == edge && edge != chosen) break;
+    }
+    o.new_waypoint_pixel = to_cv(vector2i(replan.at("waypoint_pixel")));
+  }
+  return o;
+}
+
+// "two_barriers - replan 3 at 12.4 s - target invisible -> new waypoint".
+std::string replan_title(const RecordedRun& run, const ReplanStep& step) {
+  std::string action = step.record.value("action", "");
+  std::replace(action.begin(), action.end(), '_', ' ');
+  std::ostringstream title;
+  title << run.scene.name << " - replan " << step.index << " at " << std::fixed << std::setprecision(1) << step.time_s
+        << " s - " << step.record.value("role", "") << " " << step.record.value("visibility", "") << " -> " << action;
+  return title.str();
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const std::string& kind,
+                                                const std::filesystem::path& out_dir) {
+  FigureStyle style;
+  if (kind == "map") {
+    style.title = title_of(run, "map");
+    return {write_png(draw_map(run.scene, run.view, style), out_dir / "map.png")};
+  }
+  if (kind == "side") {
+    style.title = title_of(run, "side view");
+    return {write_png(draw_side_view(run.scene, run.view, style), out_dir / "side.png")};
+  }
+  if (kind == "heightmap") {
+    if (run.view.height_map.empty()) {
+      throw InputError(record_file(run), "/events",
+                       "no height map: only dstar_lite_3d with column mapping records one (octomap mapping keeps "
+                       "what lies under an overhang, which a height map cannot show: see the side view)");
+    }
+    style.title = title_of(run, "reconstructed height map");
+    return {write_png(draw_height_map(run.scene, run.view, style), out_dir / "heightmap.png")};
+  }
+  if (kind == "snapshot") {
+    std::vector<Eigen::Vector3d> path;
+    for (const TrackPoint& p : run.view.track) path.push_back(p.position_m);
+    const SceneMesh mesh = build_scene_mesh(run.scene);
+    const SnapshotCamera camera = default_snapshot_camera(run.scene, path);
+    std::optional<Eigen::Isometry3d> pose;
+    if (!path.empty()) pose = Eigen::Isometry3d(Eigen::Translation3d(path.back()));
+    const auto type = vehicle_type_from_string(run.record.at("parameters").at("vehicle").at("type").get<std::string>());
+    return {write_png(render_snapshot(run.scene, mesh, camera, path, pose, type.value_or(VehicleType::quadrotor)),
+                      out_dir / "snapshot.png")};
+  }
+  if (kind == "depth") {
+    // Every recorded depth map (campo run --record-depth), grey and colour-mapped.
+    std::vector<std::filesystem::path> frames, written;
+    const auto depth_dir = run.dir / "depth";
+    if (std::filesystem::is_directory(depth_dir)) {
+      for (const auto& e : std::filesystem::directory_iterator(depth_dir)) {
+        if (e.path().extension() == ".png") frames.push_back(e.path());
+      }
+    }
+    std::sort(frames.begin(), frames.end());
+    if (frames.empty()) {
+      throw InputError(depth_dir.string(), "", "no recorded depth maps; run with --record-depth N");
+    }
+    for (const auto& frame : frames) {
+      const std::string stem = frame.stem().string();
+      for (auto& file : write_depth_pair(read_depth_png(frame), {}, stem, out_dir, stem)) written.push_back(std::move(file));
+    }
+    return written;
+  }
+  throw std::invalid_argument("unknown figure kind " + kind);
+}
+
+std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::optional<std::vector<int>>& indices) {
+  const std::string file = record_file(run);
+  const std::string planner = run.record.value("/parameters/planner/name"_json_pointer, std::string());
+  if (planner != "depth_reactive") {
+    throw InputError(file, "/parameters/planner/name",
+                     "expected \"depth_reactive\", whose replanning steps --step draws, got \"" + planner + "\"");
+  }
+  std::vector<ReplanStep> recorded;
+  try {
+    const nlohmann::json& events = run.events;
+    for (std::size_t e = 0; e < events.size(); ++e) {
+      const nlohmann::json& decisions = events[e].at("decisions");
+      if (!decisions.contains("replan")) continue;
+      ReplanStep step;
+      step.record = decisions["replan"];
+      step.index = step.record.at("index").get<int>();
+      step.time_s = events[e].at("time_s").get<double>();
+      step.depth_file = run.dir / "replans" / replan_depth_file(step.index);
+      recorded.push_back(std::move(step));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file, "/events", std::string("malformed run record: ") + e.what());
+  }
+  std::vector<ReplanStep> steps;
+  if (!indices) {
+    if (recorded.empty()) throw InputError(file, "/events", "no replanning steps recorded");
+    steps = recorded;
+  }
+  for (const int k : indices.value_or(std::vector<int>{})) {
+    const auto it = std::find_if(recorded.begin(), recorded.end(), [k](const ReplanStep& s) { return s.index == k; });
+    if (it == recorded.end()) {
+      const std::string held = recorded.empty() ? "none" : "steps " + std::to_string(recorded.front().index) + " to " +
+                                                               std::to_string(recorded.back().index);
+      throw InputError(file, "/events", "no replanning step " + std::to_string(k) + " (the run recorded " + held + ")");
+    }
+    steps.push_back(*it);
+  }
+  for (const ReplanStep& step : steps) {
+    if (!std::filesystem::is_regular_file(step.depth_file)) {
+      throw InputError(step.depth_file.string(), "",
+                       "missing: expected the depth map replanning step " + std::to_string(step.index) +
+                           " read (was the run made with --no-replan-depth?)");
+    }
+  }
+  return steps;
+}
+
+std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, const std::vector<ReplanStep>& steps,
+                                                        const std::filesystem::path& out_dir) {
+  const std::string file = record_file(run);
+  const auto params = "/parameters/planner/parameters"_json_pointer;
+  if (!run.record.contains(params)) throw InputError(file, params.to_string(), "missing; expected the planner's parameters");
+  const DepthReactiveConfig config = parse_depth_reactive_config({run.record.at(params), file, params.to_string()});
+  std::vector<std::filesystem::path> written;
+  for (const ReplanStep& step : steps) {
+    DepthOverlays overlays;
+    cv::Mat depth;
+    try {
+      const std::string sensor = step.record.at("sensor").get<std::string>();
+      const DepthGrid grid = recorded_grid(run, sensor);
+      depth = read_depth_png(step.depth_file);
+      if (depth.cols != grid.cols || depth.rows != grid.rows) {
+        throw InputError(step.depth_file.string(), "",
+                         "expected a " + std::to_string(grid.cols) + " x " + std::to_string(grid.rows) +
+                             " depth map, the resolution of sensor \"" + sensor + "\"");
+      }
+      overlays = replan_overlays(depth, step.record, config, grid);
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(file, "/events", "malformed replanning step " + std::to_string(step.index) + ": " + e.what());
+    }
+    const std::string stem = std::filesystem::path(replan_depth_file(step.index)).stem().string();
+    for (auto& f : write_depth_pair(depth, overlays, replan_title(run, step), out_dir, stem)) written.push_back(std::move(f));
+  }
+  return written;
+}
+
+namespace {
+
+// A follow-the-gap decision of a rover_route run ("gap" event).
+struct GapDecision {
+  double time_s = 0.0;
+  std::optional<double> relative_deg;  // chosen gap's heading relative to the route, positive left
+  std::optional<double> center_deg;    // its centre, the same way: which side of the route the opening is
+  double route_heading_deg = 0.0;
+};
+
+std::vector<GapDecision> gap_decisions(const RecordedRun& run) {
+  std::vector<GapDecision> out;
+  try {
+    for (const auto& event : run.events) {
+      const auto& d = event.at("decisions");
+      const auto g = d.find("gap");
+      if (g == d.end()) continue;
+      GapDecision decision;
+      decision.time_s = event.at("time_s").get<double>();
+      decision.route_heading_deg = g->at("route_heading_deg").get<double>();
+      if (g->contains("gap_heading_deg")) decision.relative_deg = (*g)["gap_heading_deg"].get<double>();
+      if (g->contains("gap_center_deg")) decision.center_deg = (*g)["gap_center_deg"].get<double>();
+      out.push_back(decision);
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(record_file(run), "/events", std::string("malformed gap decision: ") + e.what());
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> gap_switch_instants(const RecordedRun& run) {
+  const std::vector<GapDecision> gaps = gap_decisions(run);
+  const auto chosen =
+      std::find_if(gaps.begin(), gaps.end(), [](const GapDecision& g) { return g.center_deg.has_value(); });
+  if (chosen == gaps.end()) {
+    throw InputError(record_file(run), "/events", "no follow-the-gap decision with a chosen gap (\"gap\" events)");
+  }
+  // Sides by the gap's centre: the heading is blended toward the goal and may cross the route.
+  const bool left_first = *chosen->center_deg > 0.0;
+  const auto other = std::find_if(chosen, gaps.end(), [&](const GapDecision& g) {
+    return g.center_deg && (*g.center_deg > 0.0) != left_first;
+  });
+  if (other == gaps.end()) {
+    throw InputError(record_file(run), "/events", "the chosen gap never changed sides; give the instants with --at");
+  }
+  // Back on the route: 2 s after the avoidance the switch belongs to ended (else the last gap decision).
+  double end = gaps.back().time_s;
+  for (const auto& [from, until] : run.view.avoiding_s) {
+    if (from <= other->time_s && until >= other->time_s) end = until + 2.0;
+  }
+  if (!run.view.track.empty()) end = std::min(end, run.view.track.back().time_s);
+  return {chosen->time_s, 0.5 * (chosen->time_s + other->time_s), other->time_s, end};
+}
+
+std::filesystem::path write_sequence(const RecordedRun& run, std::vector<double> times_s,
+                                     const std::filesystem::path& out_dir) {
+  if (times_s.empty()) times_s = gap_switch_instants(run);
+  const std::vector<GapDecision> gaps = gap_decisions(run);
+  std::vector<SequencePanel> panels;
+  for (std::size_t i = 0; i < times_s.size(); ++i) {
+    SequencePanel panel;
+    panel.time_s = times_s[i];
+    std::ostringstream caption;
+    caption << "(" << static_cast<char>('a' + i % 26) << ") " << std::fixed << std::setprecision(1) << panel.time_s
+            << " s";
+    // The latest gap decision at or before the instant, if avoidance was on then.
+    const GapDecision* latest = nullptr;
+    for (const GapDecision& g : gaps) {
+      if (g.time_s <= panel.time_s + 1e-9) latest = &g;
+    }
+    const bool avoiding = std::any_of(run.view.avoiding_s.begin(), run.view.avoiding_s.end(), [&](const auto& a) {
+      return a.first <= panel.time_s && panel.time_s < a.second;
+    });
+    if (latest && latest->relative_deg && latest->center_deg && avoiding) {
+      const double rel = *latest->relative_deg;
+      caption << " - gap on the " << (*latest->center_deg > 0.0 ? "left" : "right") << ", heading " << std::showpos
+              << std::setprecision(0) << rel << std::noshowpos << " deg (arrow)";
+      panel.heading_deg = latest->route_heading_deg + rel;
+    } else {
+      caption << " - following the route";
+    }
+    panel.caption = caption.str();
+    panels.push_back(std::move(panel));
+  }
+  // The chassis as the run's vehicle parameters give it (rover), else 1.5 m x 1.0 m (003 §3.1).
+  Eigen::Vector2d footprint(1.5, 1.0);
+  const auto size = "/parameters/vehicle/params/chassis_size_m"_json_pointer;
+  if (run.record.contains(size) && run.record.at(size).is_array() && run.record.at(size).size() >= 2) {
+    footprint = {run.record.at(size).at(0).get<double>(), run.record.at(size).at(1).get<double>()};
+  }
+  FigureStyle style;
+  style.max_size_px = 700;
+  style.margin_m = 1.5;
+  return write_png(draw_sequence(run.scene, run.view, panels, footprint, style), out_dir / "sequence.png");
+}
+
+std::filesystem::path write_overlay(const std::vector<RecordedRun>& runs, const std::filesystem::path& out_dir) {
+  std::vector<RunView> views;
+  for (const auto& r : runs) views.push_back(r.view);
+  FigureStyle style;
+  style.title = runs.front().scene.name + " - " + std::to_string(runs.size()) + " runs";
+  return write_png(draw_overlay(runs.front().scene, views, style), out_dir / "overlay.png");
+}
+
+}  // namespace campo::cli
