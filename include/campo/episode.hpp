@@ -148,7 +148,7 @@ struct EpisodeResult {
 struct EpisodeOptions {
   std::size_t vehicle_index = 0;  ///< which of the scene's vehicles runs the mission
   bool stop_on_collision = true;  ///< end the run at the first collision
-  /// Builds the vehicle's sensors (render/ make_range_sensor adds depth cameras).
+  /// Builds the vehicle's sensors (sensors/sensor_factory.hpp range_sensor_factory adds depth cameras).
   SensorFactory make_sensor = &make_lidar_sensor;
   /// Called after every scan with the sensor index and its fresh scan (e.g. to record depth maps).
   std::function<void(std::size_t sensor, const LidarScan& scan)> on_scan;
