@@ -12,13 +12,17 @@ namespace campo {
 
 namespace {
 
+constexpr VehicleType kBoth[] = {VehicleType::quadrotor, VehicleType::rover};
+constexpr VehicleType kQuadrotor[] = {VehicleType::quadrotor};
+constexpr VehicleType kRover[] = {VehicleType::rover};
+
 constexpr std::array kPlanners{
-    PlannerEntry{"straight", "head for each mission waypoint in turn in a straight line", &make_straight_planner},
+    PlannerEntry{"straight", "head for each mission waypoint in turn in a straight line", &make_straight_planner, kBoth},
     PlannerEntry{"depth_reactive", "seed 000: reactive quadrotor navigation on dilated depth maps (TrovaWP, wall following)",
-                 &make_depth_reactive_planner},
-    PlannerEntry{"dstar_lite_3d", "seed 001: D* Lite on a LIDAR-mapped 3D grid, flying cell to cell", &make_dstar_lite_3d_planner},
+                 &make_depth_reactive_planner, kQuadrotor},
+    PlannerEntry{"dstar_lite_3d", "seed 001: D* Lite on a LIDAR-mapped 3D grid, flying cell to cell", &make_dstar_lite_3d_planner, kQuadrotor},
     PlannerEntry{"rover_route", "seed 003: Dubins (or A*/RRT*) route, pure pursuit, follow-the-gap (or VFH+) avoidance",
-                 &make_rover_route_planner},
+                 &make_rover_route_planner, kRover},
 };
 
 }  // namespace

@@ -18,6 +18,8 @@ struct PlannerEntry {
   std::string_view name;
   std::string_view description;
   PlannerFactory create;
+  /// The vehicle types it drives; creating it for another is an InputError.
+  std::span<const VehicleType> vehicles;
 };
 
 std::span<const PlannerEntry> planner_registry();
