@@ -1,5 +1,5 @@
 #pragma once
-/// Drawing primitives shared by the report figures (render/figures.cpp):
+/// Drawing primitives shared by the report figures (render/figures.hpp lists them):
 /// text, axes, markers, dashed lines, legends and colour bars. Private to
 /// render/. All drawing is anti-aliased with sub-pixel coordinates; a point
 /// is in drawing coordinates, where pixel centres are integers.

@@ -1,0 +1,457 @@
+#include "render/map_plot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <utility>
+
+#include <opencv2/imgproc.hpp>
+
+namespace campo::figure {
+namespace {
+
+const cv::Scalar kDiscardedWaypoint = rgb(200, 40, 120);
+const cv::Scalar kPlannedPath = rgb(60, 60, 60);
+const cv::Scalar kNominalRoute = rgb(190, 0, 150);  // straight legs through the mission (001 Fig. 5.3/5.7/5.11)
+const cv::Scalar kSensorHit = rgb(214, 39, 40);
+const cv::Scalar kNeutralMarker = rgb(120, 120, 120);  // legend symbols whose colour is the run's
+const cv::Scalar kAvoiding = rgb(255, 196, 100);  // pale amber band under the track while avoiding
+constexpr int kAvoidingBandPx = 15;               // its width: 5 px of amber each side of the track's halo
+constexpr int kMinColorbarPx = 160;
+constexpr int kMaxColorbarPx = 320;
+constexpr int kScaleBlockPx = 52; // scale bar and north arrow
+constexpr int kPanelGapPx = 24;   // between the blocks of the legend column
+constexpr double kSameSpotM = 0.25;  // markers closer than this are drawn once in overlays
+
+cv::Scalar to_scalar(const cv::Vec3b& v) { return {double(v[0]), double(v[1]), double(v[2])}; }
+
+bool contains_near(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& p) {
+  return std::any_of(points.begin(), points.end(), [&](const auto& q) { return (xy(q) - xy(p)).norm() < kSameSpotM; });
+}
+
+// The track's positions from time `from` to `to`, interpolated at both ends; empty when
+// the track is or the interval is inverted.
+std::vector<Eigen::Vector3d> track_between(const std::vector<TrackPoint>& track, double from, double to) {
+  std::vector<Eigen::Vector3d> out;
+  if (track.empty() || !(from <= to)) return out;
+  const auto by_time = [](const TrackPoint& p, double t) { return p.time_s < t; };
+  const auto at = [&](double t) -> Eigen::Vector3d {
+    const auto next = std::lower_bound(track.begin(), track.end(), t, by_time);
+    if (next == track.begin()) return next->position_m;
+    if (next == track.end()) return track.back().position_m;
+    const TrackPoint& a = *(next - 1);
+    const double span = next->time_s - a.time_s;
+    const double f = span > 0.0 ? (t - a.time_s) / span : 1.0;
+    return a.position_m + f * (next->position_m - a.position_m);
+  };
+  out.push_back(at(from));
+  for (auto it = std::upper_bound(track.begin(), track.end(), from, [](double t, const TrackPoint& p) { return t < p.time_s; });
+       it != track.end() && it->time_s < to; ++it) {
+    out.push_back(it->position_m);
+  }
+  out.push_back(at(to));
+  return out;
+}
+
+LegendEntry gradient_entry(std::string text) {
+  return {[](cv::Mat& image, cv::Point2d c) {
+            figure::polyline(image, {c + cv::Point2d(-16, 0), c + cv::Point2d(16, 0)}, kTrackHalo, 5);
+            for (int i = 0; i < 8; ++i) {
+              const cv::Point2d a = c + cv::Point2d(-16 + 4 * i, 0), b = a + cv::Point2d(4, 0);
+              cv::line(image, figure::fixed(a), figure::fixed(b), to_scalar(sequential_color(i / 7.0)), 3, cv::LINE_AA,
+                       figure::kShift);
+            }
+          },
+          std::move(text)};
+}
+
+void sensor_hit_marker(cv::Mat& image, cv::Point2d c) {
+  cv::circle(image, figure::fixed(c), 2 << figure::kShift, kSensorHit, cv::FILLED, cv::LINE_AA, figure::kShift);
+}
+
+Eigen::AlignedBox2d map_bounds(const Scene& scene, const std::vector<const RunView*>& runs,
+                               const std::vector<Footprint>& solids, double margin_m) {
+  Eigen::AlignedBox2d box;
+  // A mission given on a grid (seed 001's fields) shows the whole grid.
+  if (!runs.empty()) {
+    for (const VehicleDef& vehicle : scene.vehicles) {
+      if (vehicle.mission_area_m) box.extend(*vehicle.mission_area_m);
+    }
+  }
+  for (const RunView* run : runs) {
+    for (const auto& p : run->track) box.extend(xy(p.position_m));
+    for (const auto& w : run->mission) box.extend(xy(w.position_m));
+    for (const auto& p : run->planned) box.extend(xy(p));
+    for (const auto& p : run->discarded) box.extend(xy(p));
+    for (const auto& p : run->planned_path) box.extend(xy(p));
+  }
+  if (box.isEmpty()) {  // nothing recorded: the whole scene
+    for (const auto& f : solids) box.extend(f.box_m);
+  }
+  if (box.isEmpty()) box = Eigen::AlignedBox2d(Eigen::Vector2d(-10.0, -10.0), Eigen::Vector2d(10.0, 10.0));
+  // At least 2 m across, so that a single point still gives a readable map.
+  const Eigen::Vector2d grow = (Eigen::Vector2d::Constant(2.0) - box.sizes()).cwiseMax(0.0) / 2.0;
+  box = Eigen::AlignedBox2d(box.min() - grow, box.max() + grow);
+  const Eigen::Vector2d margin = Eigen::Vector2d::Constant(margin_m);
+  box = Eigen::AlignedBox2d(box.min() - margin, box.max() + margin);
+  // Obstacles cut by the border are shown whole when that grows the map by at most the margin.
+  const Eigen::AlignedBox2d limit(box.min() - margin, box.max() + margin);
+  Eigen::AlignedBox2d grown = box;
+  for (const auto& f : solids) {
+    if (f.box_m.intersects(box) && limit.contains(f.box_m)) grown.extend(f.box_m);
+  }
+  return grown;
+}
+
+// The nominal route of a run: straight legs from its start through every mission waypoint.
+bool has_nominal_route(const RunView& run) { return !run.track.empty() && !run.mission.empty(); }
+std::vector<Eigen::Vector3d> nominal_route(const RunView& run) {
+  std::vector<Eigen::Vector3d> route{run.track.front().position_m};
+  for (const Waypoint& w : run.mission) route.push_back(w.position_m);
+  return route;
+}
+
+}  // namespace
+
+void add_symbol_entries(MapPlan& plan, const Scene& scene) {
+  auto& legend = plan.legend;
+  const bool overlay = plan.overlay;
+  const auto any = [&](auto member) {
+    return std::any_of(plan.runs.begin(), plan.runs.end(), [&](const RunView* r) { return !(r->*member).empty(); });
+  };
+  // A height map shows what was mapped and flown, not the planner's steps.
+  const bool steps = !plan.height_map;
+  if (steps && std::any_of(plan.runs.begin(), plan.runs.end(), [](const RunView* r) { return r->planned_path.size() >= 2; })) {
+    legend.push_back(line_entry(overlay ? kNeutralMarker : kPlannedPath, 1, "planned path", true));
+  }
+  if (steps && !overlay && has_nominal_route(*plan.runs.front())) {
+    legend.push_back(line_entry(kNominalRoute, 2, "nominal route", true));
+  }
+  if (!plan.movers.empty()) {
+    const cv::Scalar c = figure::shade(to_bgr(scene.movers[plan.movers.front()].shape.color), 0.7);
+    legend.push_back(line_entry(c, 2, "moving obstacle path", true));
+  }
+  if (plan.height_map) {
+    if (!plan.footprints.empty()) legend.push_back(line_entry(figure::kInk, 1, "obstacle in the scene"));
+  } else if (!plan.footprints.empty()) {
+    // The colour of the largest obstacle stands for all.
+    const auto area = [](const Footprint& f) { return f.box_m.volume(); };
+    const Footprint& largest = *std::max_element(plan.footprints.begin(), plan.footprints.end(),
+                                                 [&](const Footprint& a, const Footprint& b) { return area(a) < area(b); });
+    const cv::Scalar c = to_bgr(largest.shape->color);
+    legend.push_back(patch_entry(c, figure::shade(c, 0.6), "obstacle"));
+  }
+  if (plan.contour_interval_m > 0.0) {
+    legend.push_back(line_entry(plan.ground.contour_color(), 1,
+                                "contours every " + figure::format_number(plan.contour_interval_m, plan.contour_interval_m) + " m"));
+  }
+  if (!plan.starts.empty()) legend.push_back(marker_entry(figure::start_marker, "start"));
+  const std::size_t intermediate = plan.mission.empty() ? 0 : plan.mission.size() - 1;
+  const auto count_reached = [&](bool reached) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < intermediate; ++i) n += plan.mission_reached[i] == reached;
+    return n;
+  };
+  if (overlay && intermediate > 0) {
+    legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, false); },
+                                  "mission waypoint"));
+  } else if (!overlay) {
+    if (count_reached(true) > 0) {
+      legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, true); },
+                                    "waypoint, reached"));
+    }
+    if (count_reached(false) > 0) {
+      legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, false); },
+                                    "waypoint, not reached"));
+    }
+  }
+  if (!plan.mission.empty()) {
+    const bool reached = overlay || plan.mission_reached.back();
+    legend.push_back(marker_entry([reached](cv::Mat& m, cv::Point2d c) { figure::goal_marker(m, c, reached); },
+                                  reached ? "goal" : "goal, not reached"));
+  }
+  const cv::Scalar planned = overlay ? kNeutralMarker : kPlannedWaypoint;
+  const cv::Scalar discarded = overlay ? kNeutralMarker : kDiscardedWaypoint;
+  if (steps && any(&RunView::planned)) {
+    legend.push_back(marker_entry([planned](cv::Mat& m, cv::Point2d c) { figure::diamond_marker(m, c, planned); },
+                                  "planned waypoint"));
+  }
+  if (steps && any(&RunView::discarded)) {
+    legend.push_back(marker_entry([discarded](cv::Mat& m, cv::Point2d c) { figure::cross_marker(m, c, discarded); },
+                                  "discarded waypoint"));
+  }
+  if (!overlay && steps && any(&RunView::sensor_hits)) {
+    legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d c) { sensor_hit_marker(m, c); }, "LIDAR hit"));
+  }
+}
+
+MapPlan plan_map(const Scene& scene, std::vector<const RunView*> runs, const FigureStyle& style, bool overlay) {
+  check_style(style);
+  MapPlan plan(scene);
+  plan.runs = std::move(runs);
+  plan.overlay = overlay;
+  std::vector<Footprint> solids = figure::solid_footprints(scene);
+  plan.bounds = style.bounds_m ? *style.bounds_m : map_bounds(scene, plan.runs, solids, style.margin_m);
+  for (auto& f : solids) {
+    if (f.box_m.intersects(plan.bounds)) plan.footprints.push_back(std::move(f));
+  }
+  for (std::size_t i = 0; i < scene.movers.size(); ++i) {
+    Eigen::AlignedBox2d path;
+    for (const auto& p : scene.movers[i].path_m) path.extend(xy(p));
+    if (!path.intersects(plan.bounds)) continue;
+    plan.movers.push_back(i);
+    plan.mover_footprints.push_back(figure::footprint(scene.movers[i].shape));
+  }
+  plan.contour_interval_m = plan.ground.contour_interval(plan.bounds);
+
+  for (const RunView* run : plan.runs) {
+    if (!run->track.empty() && !contains_near(plan.starts, run->track.front().position_m)) {
+      plan.starts.push_back(run->track.front().position_m);
+    }
+    for (std::size_t i = 0; i < run->mission.size(); ++i) {
+      // Runs of one scene share their mission: list each waypoint once.
+      const bool known = overlay && std::any_of(plan.mission.begin(), plan.mission.end(), [&](const Waypoint& w) {
+        return (w.position_m - run->mission[i].position_m).norm() < kSameSpotM;
+      });
+      if (known) continue;
+      plan.mission.push_back(run->mission[i]);
+      plan.mission_reached.push_back(is_reached(*run, i));
+    }
+  }
+
+  if (!overlay && plan.runs.front()->track.size() >= 2) {
+    const auto& track = plan.runs.front()->track;
+    plan.colorbar = true;
+    plan.coloring = style.coloring;
+    if (style.coloring == TrackColoring::time) {
+      plan.value_lo = track.front().time_s;
+      plan.value_hi = track.back().time_s;
+      plan.colorbar_caption = "time (s)";
+    } else {
+      plan.value_lo = 0.0;
+      plan.value_hi = 0.0;
+      for (const auto& p : track) plan.value_hi = std::max(plan.value_hi, p.speed_mps);
+      plan.colorbar_caption = "speed (m/s)";
+    }
+    if (!(plan.value_hi - plan.value_lo > 1e-9)) plan.value_hi = plan.value_lo + 1.0;
+    plan.legend.push_back(gradient_entry(style.coloring == TrackColoring::time ? "track, by time" : "track, by speed"));
+    if (!plan.runs.front()->avoiding_s.empty()) plan.legend.push_back(line_entry(kAvoiding, 11, "avoiding obstacle"));
+  }
+  if (overlay) {
+    for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+      const RunView& r = *plan.runs[i];
+      std::string text = r.label.empty() ? "run " + std::to_string(i + 1) : r.label;
+      if (!r.outcome.empty()) text += " (" + r.outcome + ")";
+      plan.legend.push_back(line_entry(run_color(i), 3, text));
+    }
+  }
+  add_symbol_entries(plan, scene);
+  return plan;
+}
+
+FigureLayout layout_map(const MapPlan& plan, const FigureStyle& style) {
+  const Eigen::Vector2d size = plan.bounds.sizes();
+  const double px_per_m = style.max_size_px / size.maxCoeff();
+  const int width = std::max(1, static_cast<int>(std::lround(size.x() * px_per_m)));
+  int height = std::max(1, static_cast<int>(std::lround(size.y() * px_per_m)));
+  const int legend_h = plan.legend.empty() ? 0 : figure::legend_height(plan.legend.size());
+  const int colorbar_room = plan.colorbar ? kPanelGapPx + figure::kColorbarCaptionPx : 0;
+  const int needed = legend_h + colorbar_room + (plan.colorbar ? kMinColorbarPx : 0) + kPanelGapPx + kScaleBlockPx;
+  Eigen::Vector2d min = plan.bounds.min();
+  // A flat map grows north and south to make room for the legend column.
+  if (height < needed) {
+    min.y() -= 0.5 * (needed - height) / px_per_m;
+    height = needed;
+  }
+  FigureLayout l;
+  l.image_px = {kFigureLeftPx + width + kFigurePanelPx, kFigureTitlePx + height + kFigureBottomPx};
+  l.title_px = {0, 0, l.image_px.width, kFigureTitlePx};
+  l.plot_px = {kFigureLeftPx, kFigureTitlePx, width, height};
+  const int panel_x = kFigureLeftPx + width + kLegendGapPx;
+  if (legend_h > 0) l.legend_px = {panel_x, kFigureTitlePx, kPanelInnerPx, legend_h};
+  int y = kFigureTitlePx + legend_h + colorbar_room;
+  if (plan.colorbar) {
+    const int bar = std::min(kMaxColorbarPx, height - (needed - kMinColorbarPx));
+    l.colorbar_px = {panel_x + 8, y, 20, bar};
+    y += bar;
+  }
+  l.scalebar_px = {panel_x, y + kPanelGapPx, kPanelInnerPx, kScaleBlockPx};
+  l.min = min;
+  l.px_per_unit = Eigen::Vector2d::Constant(px_per_m);
+  return l;
+}
+
+namespace {
+
+void draw_footprint(cv::Mat& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& fill) {
+  const std::vector<cv::Point> outline = figure::fixed(to.all(f.outline_m));
+  cv::fillConvexPoly(plot, outline, fill, cv::LINE_AA, figure::kShift);
+  cv::polylines(plot, outline, true, figure::shade(fill, 0.6), 1, cv::LINE_AA, figure::kShift);
+}
+
+// Scale bar with its length above, and a north arrow on the right, in `box`.
+void draw_scale_bar(cv::Mat& image, const cv::Rect& box, double px_per_m) {
+  // The longest 1-2-5 length that fits left of the arrow.
+  const double limit_m = (box.width - 60.0) / px_per_m;
+  const double decade = std::pow(10.0, std::floor(std::log10(limit_m)));
+  double length_m = decade;
+  for (const double m : {5.0, 2.0}) {
+    if (m * decade <= limit_m) {
+      length_m = m * decade;
+      break;
+    }
+  }
+  const double bar_px = length_m * px_per_m;
+  const double x0 = box.x + 8.0, y0 = box.y + 30.0;
+  cv::rectangle(image, figure::fixed({x0, y0}), figure::fixed({x0 + bar_px / 2, y0 + 7}), figure::kInk, cv::FILLED,
+                cv::LINE_AA, figure::kShift);
+  cv::rectangle(image, figure::fixed({x0, y0}), figure::fixed({x0 + bar_px, y0 + 7}), figure::kInk, 1, cv::LINE_AA,
+                figure::kShift);
+  figure::put_text(image, "0", {x0, box.y + 16.0}, figure::kTickFont, figure::kInk, Align::centre);
+  figure::put_text(image, figure::format_number(length_m, length_m) + " m", {x0 + bar_px, box.y + 16.0},
+                   figure::kTickFont, figure::kInk, Align::centre);
+  const cv::Point2d tip(box.x + box.width - 24.0, box.y + 18.0), tail(tip.x, box.y + 46.0);
+  cv::arrowedLine(image, figure::fixed(tail), figure::fixed(tip), figure::kInk, 2, cv::LINE_AA, figure::kShift, 0.35);
+  figure::put_text(image, "N", {tip.x, box.y + 6.0}, figure::kLabelFont, figure::kInk, Align::centre);
+}
+
+// Numbered operator waypoints, the goal last. Waypoints on the same spot
+// (e.g. at two altitudes) share one marker labelled with all their numbers;
+// so does one under a start marker, which is drawn over it.
+void draw_mission(cv::Mat& plot, const PlotMapper& to, const MapPlan& plan) {
+  const std::size_t n = plan.mission.size();
+  std::vector<std::vector<std::size_t>> groups;
+  for (std::size_t i = 0; i < n; ++i) {
+    const cv::Point2d p = to(plan.mission[i].position_m);
+    const auto same = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
+      return cv::norm(to(plan.mission[g.front()].position_m) - p) < 4.0;
+    });
+    if (same != groups.end()) same->push_back(i);
+    else groups.push_back({i});
+  }
+  for (const auto& group : groups) {
+    const cv::Point2d p = to(plan.mission[group.front()].position_m);
+    const bool has_goal = group.back() + 1 == n;
+    if (has_goal) figure::goal_marker(plot, p, plan.overlay || plan.mission_reached.back());
+    else figure::waypoint_marker(plot, p, static_cast<int>(group.front() + 1), !plan.overlay && plan.mission_reached[group.front()]);
+    const bool under_start = std::any_of(plan.starts.begin(), plan.starts.end(),
+                                         [&](const Eigen::Vector3d& s) { return cv::norm(to(s) - p) < 12.0; });
+    if (group.size() == 1 && !under_start && (!has_goal || n == 1)) continue;
+    std::string numbers;
+    for (std::size_t i : group) numbers += (numbers.empty() ? "" : ", ") + std::to_string(i + 1);
+    // Right of the marker, or left of it when that would leave the plot.
+    const bool fits = p.x + 15.0 + figure::text_size(numbers, figure::kTickFont).width < plot.cols - 2;
+    figure::put_text(plot, numbers, p + cv::Point2d(fits ? 15 : -15, -12), figure::kTickFont, figure::kInk,
+                     fits ? Align::left : Align::right, true);
+  }
+}
+
+// Mapped cells as filled squares coloured by height; unmapped cells keep the ground.
+void paint_height_map(cv::Mat& plot, const PlotMapper& to, const HeightMapView& map, double lo, double hi) {
+  for (int row = 0; row < map.rows; ++row) {
+    for (int col = 0; col < map.columns; ++col) {
+      const double top = map.top_m[static_cast<std::size_t>(row) * map.columns + col];
+      if (std::isnan(top)) continue;
+      const Eigen::Vector2d sw = map.origin_m + map.cell_size_m * Eigen::Vector2d(col, row);
+      const cv::Point2d a = to(sw), b = to(Eigen::Vector2d(sw + Eigen::Vector2d::Constant(map.cell_size_m)));
+      cv::rectangle(plot, figure::fixed(a), figure::fixed(b), to_scalar(sequential_color((top - lo) / (hi - lo))),
+                    cv::FILLED, cv::LINE_8, figure::kShift);
+    }
+  }
+}
+
+}  // namespace
+
+cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLayout& layout,
+                        const std::string& title) {
+  cv::Mat image(layout.image_px, CV_8UC3, figure::kWhite);
+  cv::Mat plot = image(layout.plot_px);
+  const PlotMapper to{layout};
+  const double px_per_m = layout.px_per_unit.x();
+
+  const Eigen::Vector2d top_left = layout.min + Eigen::Vector2d(0.5, layout.plot_px.height - 0.5) / px_per_m;
+  plan.ground.paint(plot, top_left, px_per_m, plan.contour_interval_m);
+  if (plan.height_map) {
+    paint_height_map(plot, to, *plan.height_map, plan.value_lo, plan.value_hi);
+    for (const auto& f : plan.footprints) {
+      cv::polylines(plot, figure::fixed(to.all(f.outline_m)), true, figure::kInk, 1, cv::LINE_AA, figure::kShift);
+    }
+  } else {
+    for (const auto& f : plan.footprints) draw_footprint(plot, to, f, to_bgr(f.shape->color));
+  }
+  for (std::size_t k = 0; k < plan.movers.size(); ++k) {
+    const Mover& m = scene.movers[plan.movers[k]];
+    const cv::Scalar c = to_bgr(m.shape.color);
+    draw_footprint(plot, to, plan.mover_footprints[k], figure::lighten(c, 0.3));
+    figure::dashed_polyline(plot, to.all(m.path_m), figure::shade(c, 0.7), 2, 10.0, 6.0);
+  }
+
+  for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+    const RunView& run = *plan.runs[i];
+    const cv::Scalar own = run_color(i);
+    if (!plan.overlay && !plan.height_map) {
+      // Under everything else of the run, so the planned path and the track stay visible.
+      for (const auto& [from, until] : run.avoiding_s) {
+        const std::vector<cv::Point2d> band = to.all(track_between(run.track, from, until));
+        std::vector<cv::Point2d> thinned;
+        for (std::size_t k : thin_out(band)) thinned.push_back(band[k]);
+        if (thinned.size() == 1) thinned.push_back(thinned.front());  // a single spot: a round blob
+        figure::polyline(plot, thinned, kAvoiding, kAvoidingBandPx);
+      }
+    }
+    if (!plan.height_map) {
+      figure::dashed_polyline(plot, to.all(run.planned_path), plan.overlay ? own : kPlannedPath, 1, 7.0, 5.0);
+    }
+    std::vector<cv::Point2d> track;
+    for (const auto& p : run.track) track.push_back(to(p.position_m));
+    const std::vector<std::size_t> kept = thin_out(track);
+    std::vector<cv::Point2d> line;
+    for (std::size_t k : kept) line.push_back(track[k]);
+    if (plan.overlay || plan.height_map) {
+      figure::polyline(plot, line, figure::kWhite, 5);
+      figure::polyline(plot, line, plan.height_map ? kTrackHalo : own, plan.height_map ? 2 : 3);
+      continue;
+    }
+    figure::polyline(plot, line, kTrackHalo, 5);
+    for (std::size_t k = 1; k < kept.size(); ++k) {
+      const TrackPoint& p = run.track[kept[k]];
+      const double value = plan.coloring == TrackColoring::time ? p.time_s : p.speed_mps;
+      const double f = (value - plan.value_lo) / (plan.value_hi - plan.value_lo);
+      cv::line(plot, figure::fixed(line[k - 1]), figure::fixed(line[k]), to_scalar(sequential_color(f)), 3,
+               cv::LINE_AA, figure::kShift);
+    }
+  }
+  if (!plan.overlay && !plan.height_map) {
+    for (const auto& p : plan.runs.front()->sensor_hits) sensor_hit_marker(plot, to(p));
+  }
+  for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+    const RunView& run = *plan.runs[i];
+    if (plan.height_map) break;  // the height map shows what was mapped, not the planner's steps
+    for (const auto& p : run.planned) {
+      figure::diamond_marker(plot, to(p), plan.overlay ? run_color(i) : kPlannedWaypoint);
+    }
+    for (const auto& p : run.discarded) {
+      figure::cross_marker(plot, to(p), plan.overlay ? run_color(i) : kDiscardedWaypoint);
+    }
+  }
+  // Over the track, the hits and the planned waypoints, thin and dashed, so that where the track leaves it both show.
+  if (!plan.overlay && !plan.height_map && has_nominal_route(*plan.runs.front())) {
+    figure::dashed_polyline(plot, to.all(nominal_route(*plan.runs.front())), kNominalRoute, 2, 9.0, 6.0);
+  }
+  draw_mission(plot, to, plan);
+  for (const auto& s : plan.starts) figure::start_marker(plot, to(s));
+
+  const figure::PlotFrame frame{layout.plot_px, layout.min.x(), layout.min.x() + layout.plot_px.width / px_per_m,
+                                layout.min.y(), layout.min.y() + layout.plot_px.height / px_per_m};
+  figure::draw_axes(image, frame, "x, east (m)", "y, north (m)");
+  if (!plan.legend.empty()) figure::draw_legend(image, layout.legend_px, plan.legend);
+  draw_scale_bar(image, layout.scalebar_px, px_per_m);
+  if (plan.colorbar) {
+    figure::draw_colorbar(image, layout.colorbar_px, plan.value_lo, plan.value_hi, plan.colorbar_caption,
+                          sequential_color);
+  }
+  figure::put_title(image, title, layout.title_px);
+  return image;
+}
+
+}  // namespace campo::figure

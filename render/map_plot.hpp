@@ -1,0 +1,73 @@
+#pragma once
+/// The machinery of the map-like figures (map, overlay, height map and the
+/// panels of a sequence): what a map shows (MapPlan, plan_map), where its
+/// parts go (layout_map) and drawing it (draw_map_figure). Private to render/.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <opencv2/core.hpp>
+
+#include "campo/scene.hpp"
+#include "render/figure_canvas.hpp"
+#include "render/figure_parts.hpp"
+#include "render/figure_scene.hpp"
+#include "render/figure_style.hpp"
+
+namespace campo::figure {
+
+/// Dark outline drawn under tracks, and the track of height maps.
+inline const cv::Scalar kTrackHalo = rgb(40, 40, 40);
+
+/// Everything a map shows, decided before the layout because the legend's size depends on it.
+struct MapPlan {
+  explicit MapPlan(const Scene& scene) : ground(scene) {}
+  std::vector<const RunView*> runs;
+  bool overlay = false;
+  Eigen::AlignedBox2d bounds;
+  Ground ground;
+  double contour_interval_m = 0.0;
+  std::vector<Footprint> footprints;        // visible solids, lowest top first
+  std::vector<std::size_t> movers;          // indices of visible movers
+  std::vector<Footprint> mover_footprints;  // at their first point, aligned with `movers`
+  std::vector<Eigen::Vector3d> starts;      // distinct
+  std::vector<Waypoint> mission;            // distinct operator waypoints; the last is the goal
+  std::vector<bool> mission_reached;        // single-run maps only
+  bool colorbar = false;
+  TrackColoring coloring = TrackColoring::time;
+  double value_lo = 0.0, value_hi = 1.0;    // range of the track colouring
+  std::string colorbar_caption;
+  std::vector<LegendEntry> legend;
+  const HeightMapView* height_map = nullptr;  // a height-map figure: cells coloured, obstacles outlined
+};
+
+/// The plan of a map of one run (`overlay` false: the track coloured as
+/// style.coloring says, with a colour bar) or of several runs overlaid, one
+/// colour each; std::invalid_argument for a bad style.
+MapPlan plan_map(const Scene& scene, std::vector<const RunView*> runs, const FigureStyle& style, bool overlay);
+/// Appends to plan.legend an entry for every kind of symbol the plan shows.
+void add_symbol_entries(MapPlan& plan, const Scene& scene);
+/// Where the parts of the planned map go (FigureLayout, figure_style.hpp).
+FigureLayout layout_map(const MapPlan& plan, const FigureStyle& style);
+/// Draws the planned map with `layout` under `title`.
+cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLayout& layout,
+                        const std::string& title);
+
+// Drawing coordinates relative to the plot area, whose image view clips what lies outside.
+struct PlotMapper {
+  const FigureLayout& layout;
+  cv::Point2d operator()(const Eigen::Vector2d& p) const {
+    return layout.to_px(p) - cv::Point2d(layout.plot_px.x, layout.plot_px.y);
+  }
+  cv::Point2d operator()(const Eigen::Vector3d& p) const { return (*this)(xy(p)); }
+  template <class Points>
+  std::vector<cv::Point2d> all(const Points& points) const {
+    std::vector<cv::Point2d> out;
+    for (const auto& p : points) out.push_back((*this)(p));
+    return out;
+  }
+};
+
+}  // namespace campo::figure

@@ -1,0 +1,297 @@
+#include "render/side_view_figure.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+#include "render/figure_canvas.hpp"
+#include "render/figure_parts.hpp"
+#include "render/figure_scene.hpp"
+
+namespace campo {
+
+using figure::check_style;
+using figure::Footprint;
+using figure::Ground;
+using figure::is_reached;
+using figure::kLegendGapPx;
+using figure::kPanelInnerPx;
+using figure::LegendEntry;
+using figure::line_entry;
+using figure::marker_entry;
+using figure::patch_entry;
+using figure::rgb;
+using figure::run_title;
+using figure::thin_out;
+using figure::to_bgr;
+using figure::xy;
+
+namespace {
+
+const cv::Scalar kVehicleLine = rgb(31, 119, 180);
+
+struct Profile {
+  std::vector<double> distance_m;  // horizontal, along the track
+  std::vector<double> altitude_m;
+  std::vector<double> ground_m;    // NaN where there is no ground
+  cv::Scalar ground_color;
+  struct Crossing {
+    std::size_t solid;        // index into `solids`
+    std::size_t first, last;  // samples above or below it
+  };
+  std::vector<Footprint> solids;   // lowest top first
+  std::vector<Crossing> crossings; // in the order of `solids`
+  std::vector<std::pair<double, std::size_t>> waypoints;  // (distance of closest approach, mission index)
+  double x0 = 0.0, x1 = 1.0, y0 = 0.0, y1 = 1.0;
+  std::vector<LegendEntry> legend;
+};
+
+// Runs of consecutive samples where `keep(i)` holds, as [first, last] index pairs.
+template <class Keep>
+std::vector<std::pair<std::size_t, std::size_t>> runs_where(std::size_t n, Keep keep) {
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  for (std::size_t i = 0; i < n;) {
+    if (!keep(i)) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j + 1 < n && keep(j + 1)) ++j;
+    out.emplace_back(i, j);
+    i = j + 1;
+  }
+  return out;
+}
+
+Profile profile_of(const Scene& scene, const RunView& run) {
+  Profile p;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const Ground ground(scene);
+  double s = 0.0;
+  Eigen::AlignedBox2d track_box;
+  for (std::size_t i = 0; i < run.track.size(); ++i) {
+    const Eigen::Vector3d& q = run.track[i].position_m;
+    if (i > 0) s += (xy(q) - xy(run.track[i - 1].position_m)).norm();
+    p.distance_m.push_back(s);
+    p.altitude_m.push_back(q.z());
+    const auto g = ground.height(q.x(), q.y());
+    p.ground_m.push_back(g ? *g : nan);
+    track_box.extend(xy(q));
+  }
+  p.ground_color = ground.color();
+  p.solids = figure::solid_footprints(scene);
+  for (std::size_t k = 0; k < p.solids.size(); ++k) {
+    const Footprint& f = p.solids[k];
+    if (!f.box_m.intersects(track_box)) continue;
+    for (const auto& [a, b] : runs_where(run.track.size(), [&](std::size_t i) { return f.contains(xy(run.track[i].position_m)); })) {
+      p.crossings.push_back({k, a, b});
+    }
+  }
+  for (std::size_t w = 0; w < run.mission.size(); ++w) {
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < run.track.size(); ++i) {
+      const double d = (run.track[i].position_m - run.mission[w].position_m).norm();
+      if (d < best) {
+        best = d;
+        at = i;
+      }
+    }
+    if (!run.track.empty()) p.waypoints.emplace_back(p.distance_m[at], w);
+  }
+
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  const auto extend = [&](double v) {
+    if (std::isnan(v)) return;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  };
+  for (std::size_t i = 0; i < p.distance_m.size(); ++i) {
+    extend(p.altitude_m[i]);
+    extend(p.ground_m[i]);
+  }
+  for (const auto& c : p.crossings) extend(p.solids[c.solid].top_m);
+  for (const auto& [d, w] : p.waypoints) extend(run.mission[w].position_m.z());
+  if (!(hi >= lo)) {  // no track
+    lo = 0.0;
+    hi = 1.0;
+  }
+  const double pad = std::max(0.1 * (hi - lo), 0.3);
+  p.y0 = lo - pad;
+  p.y1 = hi + pad;
+  const double length = std::max(s, 1.0);
+  p.x0 = -0.02 * length;
+  p.x1 = 1.02 * length;
+
+  if (!run.track.empty()) p.legend.push_back(line_entry(kVehicleLine, 2, "vehicle altitude"));
+  if (std::any_of(p.ground_m.begin(), p.ground_m.end(), [](double g) { return !std::isnan(g); })) {
+    p.legend.push_back(patch_entry(figure::lighten(p.ground_color, 0.45), figure::shade(p.ground_color, 0.6),
+                                   "ground beneath track"));
+  }
+  if (!p.crossings.empty()) {
+    const cv::Scalar c = to_bgr(p.solids[p.crossings.back().solid].shape->color);
+    p.legend.push_back(patch_entry(c, figure::shade(c, 0.6), "obstacle on the track"));
+  }
+  if (!run.track.empty()) p.legend.push_back(marker_entry(figure::start_marker, "start"));
+  bool reached = false, missed = false;
+  for (const auto& [d, w] : p.waypoints) {
+    if (w + 1 == run.mission.size()) continue;
+    (is_reached(run, w) ? reached : missed) = true;
+  }
+  if (reached) {
+    p.legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, true); },
+                                    "waypoint, reached"));
+  }
+  if (missed) {
+    p.legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, false); },
+                                    "waypoint, not reached"));
+  }
+  if (!p.waypoints.empty()) {
+    const bool goal = is_reached(run, run.mission.size() - 1);
+    p.legend.push_back(marker_entry([goal](cv::Mat& m, cv::Point2d c) { figure::goal_marker(m, c, goal); },
+                                    goal ? "goal" : "goal, not reached"));
+  }
+  return p;
+}
+
+bool has_ground(const Profile& p) {
+  return std::any_of(p.ground_m.begin(), p.ground_m.end(), [](double g) { return !std::isnan(g); });
+}
+
+FigureLayout layout_side_view(const Profile& p, const FigureStyle& style) {
+  const int width = style.max_size_px;
+  const int legend_h = p.legend.empty() ? 0 : figure::legend_height(p.legend.size());
+  const int height = std::max({240, static_cast<int>(std::lround(0.35 * style.max_size_px)), legend_h});
+  FigureLayout l;
+  l.image_px = {kFigureLeftPx + width + kFigurePanelPx, kFigureTitlePx + height + kFigureBottomPx};
+  if (has_ground(p) && !p.distance_m.empty()) {
+    const int agl_h = std::max(120, static_cast<int>(std::lround(0.12 * style.max_size_px)));
+    l.agl_plot_px = {kFigureLeftPx, kFigureTitlePx + height + kFigureBottomPx, width, agl_h};
+    l.image_px.height += agl_h + kFigureBottomPx;
+  }
+  l.title_px = {0, 0, l.image_px.width, kFigureTitlePx};
+  l.plot_px = {kFigureLeftPx, kFigureTitlePx, width, height};
+  if (legend_h > 0) {
+    l.legend_px = {kFigureLeftPx + width + kLegendGapPx, kFigureTitlePx, kPanelInnerPx, legend_h};
+  }
+  l.min = {p.x0, p.y0};
+  l.px_per_unit = {width / (p.x1 - p.x0), height / (p.y1 - p.y0)};
+  return l;
+}
+
+// The height above the ground beneath the track, on the profile's distance
+// axis, over the band between its smallest and largest value (shaded, both
+// labelled), with the ground itself as the zero line.
+void draw_height_above_ground(cv::Mat& image, const Profile& p, const cv::Rect& plot_px) {
+  std::vector<double> agl(p.distance_m.size(), std::numeric_limits<double>::quiet_NaN());
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t i = 0; i < agl.size(); ++i) {
+    if (std::isnan(p.ground_m[i])) continue;
+    agl[i] = p.altitude_m[i] - p.ground_m[i];
+    lo = std::min(lo, agl[i]);
+    hi = std::max(hi, agl[i]);
+  }
+  const double pad = std::max(0.15 * (hi - lo), 0.3);
+  const figure::PlotFrame frame{plot_px, p.x0, p.x1, std::min(0.0, lo - pad), hi + pad};
+  figure::draw_grid(image, frame);
+  cv::Mat plot = image(plot_px);
+  const cv::Point2d origin(plot_px.x, plot_px.y);
+  const auto to = [&](double s, double h) { return frame.to_px(s, h) - origin; };
+  const cv::Scalar band = figure::lighten(kVehicleLine, 0.8);
+  cv::rectangle(plot, figure::fixed(to(p.x0, hi)), figure::fixed(to(p.x1, lo)), band, cv::FILLED,
+                cv::LINE_AA, figure::kShift);
+  const cv::Scalar ground_edge = figure::shade(p.ground_color, 0.6);
+  figure::polyline(plot, {to(p.x0, 0.0), to(p.x1, 0.0)}, ground_edge, 2);
+  for (const auto& [a, b] : runs_where(agl.size(), [&](std::size_t i) { return !std::isnan(agl[i]); })) {
+    std::vector<cv::Point2d> curve;
+    for (std::size_t i = a; i <= b; ++i) curve.push_back(to(p.distance_m[i], agl[i]));
+    std::vector<cv::Point2d> line;
+    for (std::size_t k : thin_out(curve)) line.push_back(curve[k]);
+    figure::polyline(plot, line, kVehicleLine, 2);
+  }
+  figure::draw_axes(image, frame, "distance along track, horizontal (m)", "above ground (m)");
+  const double label_x = plot_px.x + plot_px.width + 12.0;
+  figure::put_text(image, "highest " + figure::format_number(hi, 0.01) + " m", {label_x, origin.y + to(p.x1, hi).y},
+                   figure::kLabelFont, figure::kInk);
+  figure::put_text(image, "lowest " + figure::format_number(lo, 0.01) + " m", {label_x, origin.y + to(p.x1, lo).y},
+                   figure::kLabelFont, figure::kInk);
+}
+
+cv::Mat draw_side_figure(const RunView& run, const Profile& p, const FigureLayout& layout,
+                         const std::string& title) {
+  cv::Mat image(layout.image_px, CV_8UC3, figure::kWhite);
+  const figure::PlotFrame frame{layout.plot_px, p.x0, p.x1, p.y0, p.y1};
+  figure::draw_grid(image, frame);
+  cv::Mat plot = image(layout.plot_px);
+  const cv::Point2d origin(layout.plot_px.x, layout.plot_px.y);
+  const auto to = [&](double s, double z) { return frame.to_px(s, z) - origin; };
+  const std::size_t n = p.distance_m.size();
+  // Half-way to the neighbouring samples, so that a run of one sample still has a width.
+  const auto left_edge = [&](std::size_t i) { return i == 0 ? p.distance_m[0] : 0.5 * (p.distance_m[i - 1] + p.distance_m[i]); };
+  const auto right_edge = [&](std::size_t i) {
+    return i + 1 == n ? p.distance_m[i] : 0.5 * (p.distance_m[i] + p.distance_m[i + 1]);
+  };
+
+  // Obstacles over their vertical extent; the ground drawn next hides what is buried.
+  for (const auto& c : p.crossings) {
+    const Footprint& f = p.solids[c.solid];
+    const double top = f.top_m, bottom = std::max(f.bottom_m, p.y0 - 2.0 / layout.px_per_unit.y());
+    const std::vector<cv::Point2d> block{to(left_edge(c.first), bottom), to(left_edge(c.first), top),
+                                         to(right_edge(c.last), top), to(right_edge(c.last), bottom)};
+    const cv::Scalar colour = to_bgr(f.shape->color);
+    const std::vector<cv::Point> outline = figure::fixed(block);
+    cv::fillConvexPoly(plot, outline, colour, cv::LINE_AA, figure::kShift);
+    cv::polylines(plot, outline, true, figure::shade(colour, 0.6), 1, cv::LINE_AA, figure::kShift);
+  }
+  const cv::Scalar fill = figure::lighten(p.ground_color, 0.45), edge = figure::shade(p.ground_color, 0.6);
+  for (const auto& [a, b] : runs_where(n, [&](std::size_t i) { return !std::isnan(p.ground_m[i]); })) {
+    std::vector<cv::Point2d> surface;
+    for (std::size_t i = a; i <= b; ++i) surface.push_back(to(p.distance_m[i], p.ground_m[i]));
+    std::vector<cv::Point2d> area = surface;
+    area.push_back(to(p.distance_m[b], p.y0) + cv::Point2d(0, 2));
+    area.push_back(to(p.distance_m[a], p.y0) + cv::Point2d(0, 2));
+    const std::vector<std::vector<cv::Point>> polygons{figure::fixed(area)};
+    cv::fillPoly(plot, polygons, fill, cv::LINE_AA, figure::kShift);
+    figure::polyline(plot, surface, edge, 2);
+  }
+  std::vector<cv::Point2d> curve;
+  for (std::size_t i = 0; i < n; ++i) curve.push_back(to(p.distance_m[i], p.altitude_m[i]));
+  std::vector<cv::Point2d> line;
+  for (std::size_t k : thin_out(curve)) line.push_back(curve[k]);
+  figure::polyline(plot, line, kVehicleLine, 2);
+  for (const auto& [d, w] : p.waypoints) {
+    const cv::Point2d at = to(d, run.mission[w].position_m.z());
+    if (w + 1 == run.mission.size()) {
+      figure::goal_marker(plot, at, is_reached(run, w));
+    } else {
+      figure::waypoint_marker(plot, at, static_cast<int>(w + 1), is_reached(run, w));
+    }
+  }
+  if (n > 0) figure::start_marker(plot, curve.front());
+
+  figure::draw_axes(image, frame, "distance along track, horizontal (m)", "altitude (m)");
+  if (!layout.agl_plot_px.empty()) draw_height_above_ground(image, p, layout.agl_plot_px);
+  if (!p.legend.empty()) figure::draw_legend(image, layout.legend_px, p.legend);
+  figure::put_title(image, title, layout.title_px);
+  return image;
+}
+
+}  // namespace
+
+FigureLayout side_view_layout(const Scene& scene, const RunView& run, const FigureStyle& style) {
+  check_style(style);
+  return layout_side_view(profile_of(scene, run), style);
+}
+
+cv::Mat draw_side_view(const Scene& scene, const RunView& run, const FigureStyle& style) {
+  check_style(style);
+  const Profile p = profile_of(scene, run);
+  return draw_side_figure(run, p, layout_side_view(p, style), run_title(style, run, "altitude profile"));
+}
+
+}  // namespace campo
