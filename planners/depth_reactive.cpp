@@ -86,36 +86,7 @@ class DepthReactivePlanner final : public Planner {
     return result;
   }
 
-  nlohmann::json parameters() const override {
-    const DepthReactiveConfig& c = config_;
-    nlohmann::json p = {{"speed_mps", c.speed_mps},
-            {"tolerance_m", c.tolerance_m},
-            {"safety_radius_m", c.safety_radius_m},
-            {"vehicle_radius_m", c.vehicle_radius_m},
-            {"layers", c.layers},
-            {"structuring_element", c.structuring_element == StructuringShape::square ? "square" : "disc"},
-            {"layer_radii", c.layer_radii == LayerRadii::margin ? "margin" : "as_printed"},
-            {"dilation_margin_m", c.dilation_margin_m},
-            {"dilation_radius_deg", c.dilation_radius_deg},
-            {"altitude_penalty", c.altitude_penalty},
-            {"threshold_cap", c.threshold_cap},
-            {"min_waypoint_distance_m", c.min_waypoint_distance_m},
-            {"max_candidates", c.max_candidates},
-            {"yaw_tolerance_deg", c.yaw_tolerance_deg},
-            {"max_elevation_deg", c.max_elevation_deg},
-            {"monitor_min_range_m", c.monitor_min_range_m},
-            {"visible_margin_px", c.visible_margin_px},
-            {"wall_scan_deg", c.wall_scan_deg},
-            {"wall_turn_step_deg", c.wall_turn_step_deg},
-            {"wall_sector_deg", c.wall_sector_deg},
-            {"wall_band_deg", c.wall_band_deg},
-            {"wall_free_fraction", c.wall_free_fraction},
-            {"wall_step_m", c.wall_step_m},
-            {"max_replans", c.max_replans}};
-    // In the form parse_depth_reactive_config reads: no sensor key when none was chosen.
-    if (!c.sensor.empty()) p["sensor"] = c.sensor;
-    return p;
-  }
+  nlohmann::json parameters() const override { return depth_reactive_config_fields().write(config_); }
 
  private:
   enum class Phase {
@@ -390,40 +361,64 @@ class DepthReactivePlanner final : public Planner {
 
 }  // namespace
 
+const ConfigFields<DepthReactiveConfig>& depth_reactive_config_fields() {
+  using C = DepthReactiveConfig;
+  static const ConfigFields<C> fields =
+      ConfigFields<C>()
+          .text("sensor", &C::sensor, "alias of the depth source; none: the vehicle's first grid sensor")
+          .omitted_when_default()
+          .number("speed_mps", &C::speed_mps, Range::closed(0.01, 20.0), "m/s", "cruise speed (seed 000 flew at 0.6 m/s)")
+          .number("tolerance_m", &C::tolerance_m, Range::positive(), "m", "a waypoint is reached within this distance")
+          .number("safety_radius_m", &C::safety_radius_m, Range::positive(), "m",
+                  "r of ControllaVisibilita, on top of the dilation margin")
+          .number("vehicle_radius_m", &C::vehicle_radius_m, Range::non_negative(), "m",
+                  "added to the obstacle-edge distance in TrovaWP")
+          .integer("layers", &C::layers, {1, 64}, "",
+                   "n of DilataMappa for `as_printed` (`margin` makes one layer per distinct radius)")
+          .choice("structuring_element", &C::structuring_element,
+                  {{"square", StructuringShape::square}, {"disc", StructuringShape::disc}},
+                  "shape of DilataMappa's structuring element")
+          .choice("layer_radii", &C::layer_radii, {{"margin", LayerRadii::margin}, {"as_printed", LayerRadii::as_printed}},
+                  "how the structuring element shrinks over the layers: keeping a metric margin, or Algorithm 1 as "
+                  "printed (r s / n)")
+          .number("dilation_margin_m", &C::dilation_margin_m, Range::non_negative(), "m",
+                  "margin kept around obstacles (`margin`): the drone's bounding radius 0.43 m + 0.07 m")
+          .number("dilation_radius_deg", &C::dilation_radius_deg, Range::closed(0.0, 90.0), "deg",
+                  "r of `as_printed` (seed 000: 49 px at 256 px over 90 deg)")
+          .number("altitude_penalty", &C::altitude_penalty, Range::non_negative(), "1/px",
+                  "k of TrovaWP's cost, per pixel of altitude change")
+          .number("threshold_cap", &C::threshold_cap, Range::closed(0.05, 1.0), "", "cap of TrovaWP's threshold t")
+          .number("min_waypoint_distance_m", &C::min_waypoint_distance_m, Range::non_negative(), "m",
+                  "TrovaWP skips nearer waypoints")
+          .integer("max_candidates", &C::max_candidates, {1, 1'000'000}, "",
+                   "TrovaWP candidates tried before wall following")
+          .number("yaw_tolerance_deg", &C::yaw_tolerance_deg, Range::closed(0.1, 45.0), "deg",
+                  "ControllaRotazione: aligned within this")
+          .number("max_elevation_deg", &C::max_elevation_deg, Range::closed(1.0, 80.0), "deg",
+                  "ControllaAltitudine: change altitude until the waypoint is within this elevation")
+          .number("monitor_min_range_m", &C::monitor_min_range_m, Range::non_negative(), "m",
+                  "VaiVerso stops checking occlusion this close to the waypoint")
+          .number("visible_margin_px", &C::visible_margin_px, Range::closed(0.0, 100.0), "px",
+                  "hysteresis: the target's neighbourhood this much wider to decide, VaiVerso's this much narrower "
+                  "on the way")
+          .number("wall_scan_deg", &C::wall_scan_deg, Range::closed(1.0, 180.0), "deg",
+                  "wall following: look this far either side of the goal (000 §4.4.3)")
+          .number("wall_turn_step_deg", &C::wall_turn_step_deg, Range::closed(1.0, 180.0), "deg",
+                  "wall following: then turn toward the freer side in these steps")
+          .number("wall_sector_deg", &C::wall_sector_deg, Range::closed(1.0, 360.0), "deg",
+                  "wall following: width of the navigable sector that must be free")
+          .number("wall_band_deg", &C::wall_band_deg, Range::closed(0.0, 90.0), "deg",
+                  "wall following: rows within this elevation of the horizon are looked at")
+          .number("wall_free_fraction", &C::wall_free_fraction, Range::closed(0.0, 1.0), "",
+                  "wall following: fraction of the sector that must be free")
+          .number("wall_step_m", &C::wall_step_m, Range::positive(), "m",
+                  "wall following: distance of a wall-following waypoint")
+          .integer("max_replans", &C::max_replans, {1, 1'000'000}, "", "give up after this many replanning steps");
+  return fields;
+}
+
 DepthReactiveConfig parse_depth_reactive_config(const ParamsBlock& params) {
-  DepthReactiveConfig c;
-  ObjectReader r(JsonNode(params.values, params.file, params.pointer));
-  r.read("sensor", c.sensor);
-  r.read("speed_mps", c.speed_mps, Range::closed(0.01, 20.0));
-  r.read("tolerance_m", c.tolerance_m, Range::positive());
-  r.read("safety_radius_m", c.safety_radius_m, Range::positive());
-  r.read("vehicle_radius_m", c.vehicle_radius_m, Range::non_negative());
-  r.read("layers", c.layers, 1, 64);
-  if (const auto shape = r.optional("structuring_element")) {
-    c.structuring_element = shape->as_choice({"square", "disc"}) == 0 ? StructuringShape::square : StructuringShape::disc;
-  }
-  if (const auto rule = r.optional("layer_radii")) {
-    c.layer_radii = rule->as_choice({"margin", "as_printed"}) == 0 ? LayerRadii::margin : LayerRadii::as_printed;
-  }
-  r.read("dilation_margin_m", c.dilation_margin_m, Range::non_negative());
-  r.read("dilation_radius_deg", c.dilation_radius_deg, Range::closed(0.0, 90.0));
-  r.read("altitude_penalty", c.altitude_penalty, Range::non_negative());
-  r.read("threshold_cap", c.threshold_cap, Range::closed(0.05, 1.0));
-  r.read("min_waypoint_distance_m", c.min_waypoint_distance_m, Range::non_negative());
-  r.read("max_candidates", c.max_candidates, 1, 1'000'000);
-  r.read("yaw_tolerance_deg", c.yaw_tolerance_deg, Range::closed(0.1, 45.0));
-  r.read("max_elevation_deg", c.max_elevation_deg, Range::closed(1.0, 80.0));
-  r.read("monitor_min_range_m", c.monitor_min_range_m, Range::non_negative());
-  r.read("visible_margin_px", c.visible_margin_px, Range::closed(0.0, 100.0));
-  r.read("wall_scan_deg", c.wall_scan_deg, Range::closed(1.0, 180.0));
-  r.read("wall_turn_step_deg", c.wall_turn_step_deg, Range::closed(1.0, 180.0));
-  r.read("wall_sector_deg", c.wall_sector_deg, Range::closed(1.0, 360.0));
-  r.read("wall_band_deg", c.wall_band_deg, Range::closed(0.0, 90.0));
-  r.read("wall_free_fraction", c.wall_free_fraction, Range::closed(0.0, 1.0));
-  r.read("wall_step_m", c.wall_step_m, Range::positive());
-  r.read("max_replans", c.max_replans, 1, 1'000'000);
-  r.finish();
-  return c;
+  return depth_reactive_config_fields().read(params);
 }
 
 DilationParams dilation_params(const DepthReactiveConfig& c, const DepthGrid& grid) {

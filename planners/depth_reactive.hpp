@@ -13,6 +13,7 @@
 #include <memory>
 #include <string>
 
+#include "campo/config_fields.hpp"
 #include "campo/planner.hpp"
 #include "planners/depth_reactive_steps.hpp"
 
@@ -60,6 +61,9 @@ struct DepthReactiveConfig {
 };
 
 std::unique_ptr<Planner> make_depth_reactive_planner(const ParamsBlock& params, const PlannerContext& context);
+
+/// The fields of `params` (keys as DepthReactiveConfig's members); parameters() writes them back.
+const ConfigFields<DepthReactiveConfig>& depth_reactive_config_fields();
 
 /// The configuration of `params` (keys as DepthReactiveConfig's fields;
 /// structuring_element "square" | "disc", layer_radii "margin" |

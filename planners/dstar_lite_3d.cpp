@@ -142,33 +142,7 @@ class DStarLite3dPlanner final : public Planner {
     return result;
   }
 
-  nlohmann::json parameters() const override {
-    const DStarLite3dConfig& c = config_;
-    nlohmann::json p = {{"columns", c.columns},
-                        {"rows", c.rows},
-                        {"levels", c.levels},
-                        {"cell_size_m", c.cell_size_m},
-                        {"level_spacing_m", c.level_spacing_m},
-                        {"ground_level", c.ground_level},
-                        {"origin_m", {c.origin_m.x(), c.origin_m.y()}},
-                        {"connectivity", c.connectivity == grid::Connectivity::six ? "six" : "twenty_six"},
-                        {"climb_cost_cells", c.climb_cost_cells},
-                        {"speed_mps", c.speed_mps},
-                        {"tolerance_m", c.tolerance_m},
-                        {"lookahead_cells", c.lookahead_cells},
-                        {"cell_reached_m", c.cell_reached_m},
-                        {"mapping", c.mapping == Mapping3d::columns ? "columns" : "octomap"}};
-    if (c.mapping == Mapping3d::octomap) {
-      const OctoMap3dConfig& m = c.octomap;
-      p["octomap"] = {{"resolution_m", m.resolution_m},         {"probability_hit", m.probability_hit},
-                      {"probability_miss", m.probability_miss}, {"occupied_threshold", m.occupied_threshold},
-                      {"clamping_min", m.clamping_min},         {"clamping_max", m.clamping_max},
-                      {"vehicle_radius_m", m.vehicle_radius_m}};
-    }
-    // In the form parse_dstar_lite_3d_config reads: no sensor key when none was chosen.
-    if (!c.sensor.empty()) p["sensor"] = c.sensor;
-    return p;
-  }
+  nlohmann::json parameters() const override { return dstar_lite_3d_config_fields().write(config_); }
 
  private:
   // Where the search starts: the vehicle's cell once it is near that cell's
@@ -293,45 +267,81 @@ GridMap3dConfig grid_map_config(const DStarLite3dConfig& c, double ground_z_m) {
   return {c.columns, c.rows, c.levels, c.cell_size_m, c.level_spacing_m, c.ground_level, c.origin_m, ground_z_m};
 }
 
+namespace {
+
+const ConfigFields<OctoMap3dConfig>& octomap_config_fields() {
+  using O = OctoMap3dConfig;
+  // The clamping bounds lie either side of the threshold read before them.
+  const DependentBound<O, Range> below_threshold{
+      [](const O& m) { return Range{0.0, m.occupied_threshold, true, true}; }, "(0, occupied_threshold)"};
+  const DependentBound<O, Range> above_threshold{
+      [](const O& m) { return Range{m.occupied_threshold, 1.0, true, true}; }, "(occupied_threshold, 1)"};
+  static const ConfigFields<O> fields =
+      ConfigFields<O>()
+          .number("resolution_m", &O::resolution_m, Range::closed(0.05, 10.0), "m",
+                  "octree voxel side; half a 1.5 m cell, so voxel faces fall on cell sides (origin at a multiple of "
+                  "0.75 m)")
+          .number("probability_hit", &O::probability_hit, Range{0.5, 1.0, true, true}, "",
+                  "occupancy probability a return gives its voxel (OctoMap's default)")
+          .number("probability_miss", &O::probability_miss, Range{0.0, 0.5, true, true}, "",
+                  "occupancy probability a crossing ray gives a voxel (OctoMap's default)")
+          .number("occupied_threshold", &O::occupied_threshold, Range{0.0, 1.0, true, true}, "",
+                  "a voxel is occupied above this probability")
+          .number("clamping_min", &O::clamping_min, below_threshold, "",
+                  "occupancy probability clamped below here (OctoMap's default)")
+          .number("clamping_max", &O::clamping_max, above_threshold, "",
+                  "occupancy probability clamped above here (OctoMap's default)")
+          .number("vehicle_radius_m", &O::vehicle_radius_m, Range::closed(0.0, 100.0), "m",
+                  "planning cells within this distance of an occupied voxel are blocked (the quadrotor's rotors are "
+                  "0.225 m from its centre)");
+  return fields;
+}
+
+}  // namespace
+
+const ConfigFields<DStarLite3dConfig>& dstar_lite_3d_config_fields() {
+  using C = DStarLite3dConfig;
+  static const ConfigFields<C> fields =
+      ConfigFields<C>()
+          .text("sensor", &C::sensor, "alias of the LIDAR whose hits map the grid; none: the vehicle's first sensor")
+          .omitted_when_default()
+          .integer("columns", &C::columns, {1, 4000}, "", "grid cells along x (east)")
+          .integer("rows", &C::rows, {1, 4000}, "", "grid cells along y (north)")
+          .integer("levels", &C::levels, {1, 1000}, "", "grid levels along z (001: 9, from -14 m to +42 m about "
+                   "take-off ground)")
+          .number("cell_size_m", &C::cell_size_m, Range::closed(kMinCellSizeM, kMaxCellSizeM), "m",
+                  "horizontal cell side (001: 1.5 m)")
+          .number("level_spacing_m", &C::level_spacing_m, Range::closed(kMinCellSizeM, kMaxCellSizeM), "m",
+                  "vertical distance between levels (001: 7 m)")
+          .integer("ground_level", &C::ground_level,
+                   DependentBound<C, IntRange>{[](const C& c) { return IntRange{0, c.levels - 1}; }, "[0, levels - 1]"},
+                   "", "index of the level at take-off ground height (001: 2)")
+          .vector("origin_m", &C::origin_m, Range{}, "m", "world x, y of the grid's south-west corner")
+          .choice("connectivity", &C::connectivity,
+                  {{"six", grid::Connectivity::six}, {"twenty_six", grid::Connectivity::twenty_six}},
+                  "moves between face neighbours only, or to all 26 neighbours")
+          .number("climb_cost_cells", &C::climb_cost_cells, Range::closed(0.0, 1000.0), "cell moves",
+                  "cost of a move of one level up or down, in horizontal cell moves; 0: its length, "
+                  "`level_spacing_m / cell_size_m` (4.67); 001 gave every move cost 1")
+          .number("speed_mps", &C::speed_mps, Range::closed(0.01, 20.0), "m/s", "cruise speed (001 flew at 1 m/s)")
+          .number("tolerance_m", &C::tolerance_m, Range::positive(), "m",
+                  "a mission waypoint is reached within this distance")
+          .integer("lookahead_cells", &C::lookahead_cells, {1, 100}, "",
+                   "fly up to this many cells ahead along a straight run of the path")
+          .number("cell_reached_m", &C::cell_reached_m, Range::positive(), "m",
+                  "the search's start moves to the vehicle's cell within this distance of its centre")
+          .choice("mapping", &C::mapping, {{"columns", Mapping3d::columns}, {"octomap", Mapping3d::octomap}},
+                  "`columns` (001 §4.2.4: a hit blocks its cell and the cells below it) or `octomap` (3D occupancy "
+                  "from the rays)")
+          .nested("octomap", &C::octomap, octomap_config_fields(),
+                  "the octree's settings; only with `mapping` `octomap` (and written only then)")
+          .only_when([](const C& c) { return c.mapping == Mapping3d::octomap; },
+                     "octomap settings need \"mapping\": \"octomap\"");
+  return fields;
+}
+
 DStarLite3dConfig parse_dstar_lite_3d_config(const ParamsBlock& params) {
-  DStarLite3dConfig c;
-  ObjectReader r(JsonNode(params.values, params.file, params.pointer));
-  r.read("sensor", c.sensor);
-  r.read("columns", c.columns, 1, 4000);
-  r.read("rows", c.rows, 1, 4000);
-  r.read("levels", c.levels, 1, 1000);
-  r.read("cell_size_m", c.cell_size_m, Range::closed(kMinCellSizeM, kMaxCellSizeM));
-  r.read("level_spacing_m", c.level_spacing_m, Range::closed(kMinCellSizeM, kMaxCellSizeM));
-  r.read("ground_level", c.ground_level, 0, c.levels - 1);
-  r.read("origin_m", c.origin_m);
-  if (const auto connectivity = r.optional("connectivity")) {
-    c.connectivity = connectivity->as_choice({"six", "twenty_six"}) == 0 ? grid::Connectivity::six
-                                                                          : grid::Connectivity::twenty_six;
-  }
-  r.read("climb_cost_cells", c.climb_cost_cells, Range::closed(0.0, 1000.0));
-  r.read("speed_mps", c.speed_mps, Range::closed(0.01, 20.0));
-  r.read("tolerance_m", c.tolerance_m, Range::positive());
-  r.read("lookahead_cells", c.lookahead_cells, 1, 100);
-  r.read("cell_reached_m", c.cell_reached_m, Range::positive());
-  if (const auto mapping = r.optional("mapping")) {
-    c.mapping = mapping->as_choice({"columns", "octomap"}) == 0 ? Mapping3d::columns : Mapping3d::octomap;
-  }
-  if (const auto octomap = r.optional("octomap")) {
-    if (c.mapping != Mapping3d::octomap) {
-      throw InputError(octomap->file(), octomap->pointer(), "octomap settings need \"mapping\": \"octomap\"");
-    }
-    OctoMap3dConfig& m = c.octomap;
-    ObjectReader o(*octomap);
-    o.read("resolution_m", m.resolution_m, Range::closed(0.05, 10.0));
-    o.read("probability_hit", m.probability_hit, Range{0.5, 1.0, true, true});
-    o.read("probability_miss", m.probability_miss, Range{0.0, 0.5, true, true});
-    o.read("occupied_threshold", m.occupied_threshold, Range{0.0, 1.0, true, true});
-    o.read("clamping_min", m.clamping_min, Range{0.0, m.occupied_threshold, true, true});
-    o.read("clamping_max", m.clamping_max, Range{m.occupied_threshold, 1.0, true, true});
-    o.read("vehicle_radius_m", m.vehicle_radius_m, Range::closed(0.0, 100.0));
-    o.finish();
-  }
-  r.finish();
+  DStarLite3dConfig c = dstar_lite_3d_config_fields().read(params);
   check_grid_size(c, params);
   return c;
 }

@@ -12,6 +12,7 @@
 #include <memory>
 #include <string>
 
+#include "campo/config_fields.hpp"
 #include "campo/planner.hpp"
 #include "grid/grid_graph.hpp"
 #include "planners/grid_map3d.hpp"
@@ -61,6 +62,10 @@ inline constexpr double kMaxCellSizeM = 1000.0;
 void check_grid_size(const DStarLite3dConfig& config, const ParamsBlock& params);
 
 std::unique_ptr<Planner> make_dstar_lite_3d_planner(const ParamsBlock& params, const PlannerContext& context);
+
+/// The fields of `params` (keys as DStarLite3dConfig's members, "octomap" an
+/// object of OctoMap3dConfig's); parameters() writes them back.
+const ConfigFields<DStarLite3dConfig>& dstar_lite_3d_config_fields();
 
 /// The configuration of `params` (keys as DStarLite3dConfig's fields;
 /// connectivity "six" | "twenty_six"; mapping "columns" | "octomap", the

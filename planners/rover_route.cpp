@@ -28,92 +28,109 @@ using Clock = std::chrono::steady_clock;
 
 // ---------------------------------------------------------------- parameters
 
-// One list of fields per nested configuration serves reading and writing.
-struct FieldReader {
-  ObjectReader& r;
-  void operator()(std::string_view key, double& v, const Range& range) { r.read(key, v, range); }
-  void operator()(std::string_view key, int& v, std::int64_t lo, std::int64_t hi) { r.read(key, v, lo, hi); }
-  void operator()(std::string_view key, std::uint64_t& v) { r.read_seed(key, v); }
-  void operator()(std::string_view key, bool& v) { r.read(key, v); }
-};
-
-struct FieldWriter {
-  nlohmann::json& j;
-  void operator()(std::string_view key, double v, const Range&) { j[std::string(key)] = v; }
-  void operator()(std::string_view key, int v, std::int64_t, std::int64_t) { j[std::string(key)] = v; }
-  void operator()(std::string_view key, std::uint64_t v) { j[std::string(key)] = v; }
-  void operator()(std::string_view key, bool v) { j[std::string(key)] = v; }
-};
-
-template <class Visit>
-void fields(PurePursuitConfig& c, Visit&& f) {
-  f("lookahead_m", c.lookahead_m, Range::positive());
-  f("turn_gain_per_s", c.turn_gain_per_s, Range::positive());
-  f("max_yaw_rate_rad_s", c.max_yaw_rate_rad_s, Range::positive());
-  f("max_speed_m_s", c.max_speed_m_s, Range::closed(0.01, 10.0));
-  f("min_speed_m_s", c.min_speed_m_s, Range::closed(0.0, 10.0));
-  f("slowdown_turn_error_rad", c.slowdown_turn_error_rad, Range::positive());
-  f("goal_tolerance_m", c.goal_tolerance_m, Range::positive());
+const ConfigFields<PurePursuitConfig>& pure_pursuit_config_fields() {
+  using P = PurePursuitConfig;
+  static const ConfigFields<P> fields =
+      ConfigFields<P>()
+          .number("lookahead_m", &P::lookahead_m, Range::positive(), "m", "radius of the lookahead circle")
+          .number("turn_gain_per_s", &P::turn_gain_per_s, Range::positive(), "1/s",
+                  "k_turn: yaw rate per radian of turn error")
+          .number("max_yaw_rate_rad_s", &P::max_yaw_rate_rad_s, Range::positive(), "rad/s", "yaw rate limit")
+          .number("max_speed_m_s", &P::max_speed_m_s, Range::closed(0.01, 10.0), "m/s",
+                  "speed when heading straight at the goal point")
+          .number("min_speed_m_s", &P::min_speed_m_s, Range::closed(0.0, 10.0), "m/s",
+                  "speed at a turn error of `slowdown_turn_error_rad` or more")
+          .number("slowdown_turn_error_rad", &P::slowdown_turn_error_rad, Range::positive(), "rad",
+                  "turn error at which the speed has fallen to the minimum")
+          .number("goal_tolerance_m", &P::goal_tolerance_m, Range::positive(), "m",
+                  "the end is reached within this distance of the last point");
+  return fields;
 }
 
-template <class Visit>
-void fields(FollowTheGapConfig& c, Visit&& f) {
-  f("activation_range_m", c.activation_range_m, Range::positive());
-  f("bubble_radius_m", c.bubble_radius_m, Range::positive());
-  f("gap_jump_m", c.gap_jump_m, Range::positive());
-  f("free_range_m", c.free_range_m, Range::non_negative());
-  f("grow_gap_edges", c.grow_gap_edges);
-  f("alpha_m", c.alpha_m, Range::non_negative());
-  f("k_width", c.k_width, Range::non_negative());
-  f("k_heading", c.k_heading, Range::non_negative());
-  f("hysteresis_bonus", c.hysteresis_bonus, Range::non_negative());
+const ConfigFields<FollowTheGapConfig>& follow_the_gap_config_fields() {
+  using F = FollowTheGapConfig;
+  static const ConfigFields<F> fields =
+      ConfigFields<F>()
+          .number("activation_range_m", &F::activation_range_m, Range::positive(), "m",
+                  "length of the route ahead checked for obstacles in the way (003 §3.6)")
+          .number("bubble_radius_m", &F::bubble_radius_m, Range::positive(), "m",
+                  "R: the rover's half-diagonal plus a margin")
+          .number("gap_jump_m", &F::gap_jump_m, Range::positive(), "m",
+                  "003's gaps only: a range step between neighbouring beams above this splits a gap")
+          .number("free_range_m", &F::free_range_m, Range::non_negative(), "m",
+                  "> 0: free-space gaps, maximal runs of beams a disc of radius R drives farther than this along; "
+                  "0: 003's gaps")
+          .flag("grow_gap_edges", &F::grow_gap_edges,
+                "003's gaps only: grow the near side of every range step bounding a gap by R (003 §2.4.2)")
+          .number("alpha_m", &F::alpha_m, Range::non_negative(), "m",
+                  "a in phi_gap: weight of the gap centre against the goal")
+          .number("k_width", &F::k_width, Range::non_negative(), "1/m",
+                  "k1: score per metre of width times normalised depth")
+          .number("k_heading", &F::k_heading, Range::non_negative(), "1/rad",
+                  "k2: score per radian of alignment with the goal")
+          .number("hysteresis_bonus", &F::hysteresis_bonus, Range::non_negative(), "",
+                  "added to the score of the gap overlapping the previous choice");
+  return fields;
 }
 
-template <class Visit>
-void fields(VfhPlusConfig& c, Visit&& f) {
-  f("sectors", c.sectors, 4, 3600);
-  f("window_radius_m", c.window_radius_m, Range::positive());
-  f("magnitude_a", c.magnitude_a, Range{1.0});
-  f("robot_radius_m", c.robot_radius_m, Range::non_negative());
-  f("safety_distance_m", c.safety_distance_m, Range::non_negative());
-  f("threshold_low", c.threshold_low, Range::non_negative());
-  f("threshold_high", c.threshold_high, Range::non_negative());
-  f("min_turning_radius_m", c.min_turning_radius_m, Range::non_negative());
-  f("wide_opening_sectors", c.wide_opening_sectors, 1, 3600);
-  f("mu_target", c.mu_target, Range::non_negative());
-  f("mu_heading", c.mu_heading, Range::non_negative());
-  f("mu_previous", c.mu_previous, Range::non_negative());
+const ConfigFields<VfhPlusConfig>& vfh_plus_config_fields() {
+  using V = VfhPlusConfig;
+  static const ConfigFields<V> fields =
+      ConfigFields<V>()
+          .integer("sectors", &V::sectors, {4, 3600}, "", "n; sectors of 360 deg / n")
+          .number("window_radius_m", &V::window_radius_m, Range::positive(), "m",
+                  "cells within this distance form the active window; also the range checked for obstacles in the way")
+          .number("magnitude_a", &V::magnitude_a, Range{1.0}, "",
+                  "magnitude of an occupied cell at the robot's centre (a in m = a - b d^2)")
+          .number("robot_radius_m", &V::robot_radius_m, Range::non_negative(), "m", "r_r")
+          .number("safety_distance_m", &V::safety_distance_m, Range::non_negative(), "m",
+                  "d_s; obstacle cells are enlarged by r_r + d_s")
+          .number("threshold_low", &V::threshold_low, Range::non_negative(), "",
+                  "below this a sector is free (in occupied-cell magnitudes)")
+          .number("threshold_high", &V::threshold_high, Range::non_negative(), "",
+                  "above this a sector is blocked; at least `threshold_low`")
+          .number("min_turning_radius_m", &V::min_turning_radius_m, Range::non_negative(), "m",
+                  "left and right; 0 masks only the robot's own disc")
+          .integer("wide_opening_sectors", &V::wide_opening_sectors, {1, 3600}, "",
+                   "s_max: openings with more free sectors are wide")
+          .number("mu_target", &V::mu_target, Range::non_negative(), "",
+                  "mu1, weight of the distance to the target direction")
+          .number("mu_heading", &V::mu_heading, Range::non_negative(), "",
+                  "mu2, of the distance to the current heading")
+          .number("mu_previous", &V::mu_previous, Range::non_negative(), "",
+                  "mu3, of the distance to the previous direction; mu1 > mu2 + mu3");
+  return fields;
 }
 
-template <class Visit>
-void fields(RrtStarConfig& c, Visit&& f) {
-  f("seed", c.seed);
-  f("step_m", c.step_m, Range::positive());
-  f("rewire_radius_m", c.rewire_radius_m, Range::non_negative());
-  f("rewire_gamma_m", c.rewire_gamma_m, Range::non_negative());
-  f("goal_radius_m", c.goal_radius_m, Range::positive());
-  f("goal_bias", c.goal_bias, Range::closed(0.0, 1.0));
-  f("max_iterations", c.max_iterations, 0, 10'000'000);
-}
-
-template <class Config>
-void read_nested(ObjectReader& r, std::string_view key, Config& c) {
-  if (const auto node = r.optional(key)) {
-    ObjectReader nested(*node);
-    fields(c, FieldReader{nested});
-    nested.finish();
-  }
-}
-
-template <class Config>
-nlohmann::json write_nested(Config c) {
-  nlohmann::json j = nlohmann::json::object();
-  fields(c, FieldWriter{j});
-  return j;
+const ConfigFields<RrtStarConfig>& rrt_star_config_fields() {
+  using R = RrtStarConfig;
+  static const ConfigFields<R> fields =
+      ConfigFields<R>()
+          .seed("seed", &R::seed, "of the sampler; without an `rrt_star` object, the world's seed")
+          .number("step_m", &R::step_m, Range::positive(), "m",
+                  "lambda: the farthest a new node lies from its nearest node; at least 0.001 and at most 10^6 "
+                  "(see [grid.md](grid.md#rrt_star))")
+          .number("rewire_radius_m", &R::rewire_radius_m, Range::non_negative(), "m",
+                  "> 0: fixed rewiring radius; 0: shrinking, min(gamma (log n / n)^(1/2), lambda); at most 10^6")
+          .number("rewire_gamma_m", &R::rewire_gamma_m, Range::non_negative(), "m",
+                  "gamma of the shrinking radius; 0: from the free area; at most 10^6")
+          .number("goal_radius_m", &R::goal_radius_m, Range::positive(), "m", "a node this near the goal solves it")
+          .number("goal_bias", &R::goal_bias, Range::closed(0.0, 1.0), "", "probability of sampling the goal itself")
+          .integer("max_iterations", &R::max_iterations, {0, 10'000'000}, "",
+                   "the budget; a new node considers at most ⌈3e ln n⌉ neighbours");
+  return fields;
 }
 
 constexpr std::array<std::string_view, 3> kGlobalNames{"dubins", "astar", "rrt_star"};
 constexpr std::array<std::string_view, 3> kLocalNames{"follow_the_gap", "vfh_plus", "none"};
+
+// The choices of a field from a name table indexed by the enum's values.
+template <class Enum, std::size_t N>
+std::vector<std::pair<std::string, Enum>> enum_choices(const std::array<std::string_view, N>& names) {
+  std::vector<std::pair<std::string, Enum>> choices;
+  for (std::size_t i = 0; i < N; ++i) choices.emplace_back(std::string(names[i]), static_cast<Enum>(i));
+  return choices;
+}
 
 // ---------------------------------------------------------------- routes
 
@@ -311,41 +328,18 @@ class RoverRoutePlanner final : public Planner {
       w = std::clamp(config_.avoid_turn_gain * error, -config_.pure_pursuit.max_yaw_rate_rad_s,
                      config_.pure_pursuit.max_yaw_rate_rad_s);
       v = config_.avoid_speed_mps * std::max(0.0, std::cos(error));
-      if (blocked_ahead_ || std::abs(error) > M_PI / 3.0) v = 0.0;
-      if (blocked_ahead_ && std::abs(error) < kBlockedTurnRad) {
+      if (blocked_ahead_ || std::abs(error) > config_.avoid_stop_heading_deg * M_PI / 180.0) v = 0.0;
+      if (blocked_ahead_ && std::abs(error) < config_.blocked_turn_rad) {
         // Stopped by an obstacle at one side of the way ahead while the heading is straight on:
         // turning in place toward that heading would never end. Turn away from the obstacle's side.
-        w = (blocked_left_ ? -1.0 : 1.0) * config_.avoid_turn_gain * kBlockedTurnRad;
+        w = (blocked_left_ ? -1.0 : 1.0) * config_.avoid_turn_gain * config_.blocked_turn_rad;
       }
     }
     result.command = guarded(v, w, position, heading);
     return result;
   }
 
-  nlohmann::json parameters() const override {
-    const RoverRouteConfig& c = config_;
-    nlohmann::json p = {{"global", kGlobalNames[static_cast<std::size_t>(c.global)]},
-                        {"local", kLocalNames[static_cast<std::size_t>(c.local)]},
-                        {"turning_radius_m", c.turning_radius_m},
-                        {"route_step_m", c.route_step_m},
-                        {"waypoint_tolerance_m", c.waypoint_tolerance_m},
-                        {"clearance_m", c.clearance_m},
-                        {"occupancy_resolution_m", c.occupancy_resolution_m},
-                        {"corridor_half_width_m", c.corridor_half_width_m},
-                        {"release_margin_m", c.release_margin_m},
-                        {"avoid_speed_mps", c.avoid_speed_mps},
-                        {"avoid_turn_gain", c.avoid_turn_gain},
-                        {"stop_distance_m", c.stop_distance_m},
-                        {"footprint_half_length_m", c.footprint_half_length_m},
-                        {"footprint_half_width_m", c.footprint_half_width_m},
-                        {"guard_horizon_s", c.guard_horizon_s},
-                        {"pure_pursuit", write_nested(c.pure_pursuit)},
-                        {"follow_the_gap", write_nested(c.follow_the_gap)},
-                        {"vfh_plus", write_nested(c.vfh_plus)},
-                        {"rrt_star", write_nested(c.rrt_star)}};
-    if (!c.sensor.empty()) p["sensor"] = c.sensor;
-    return p;
-  }
+  nlohmann::json parameters() const override { return rover_route_config_fields().write(config_); }
 
  private:
   bool build_route(const Observation& o, PlanResult& result) {
@@ -409,9 +403,10 @@ class RoverRoutePlanner final : public Planner {
       waypoint_route_index_.push_back(static_cast<int>(best));
       from = best;
     }
-    // The route as planned, every 0.25 m (a chord error under 4 mm on 2 m arcs), at the rover's height.
+    // The route as planned, every record_path_step_m, at the rover's height.
     nlohmann::json points = nlohmann::json::array();
-    const auto every = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.25 / config_.route_step_m)));
+    const auto every = std::max<std::size_t>(
+        1, static_cast<std::size_t>(std::lround(config_.record_path_step_m / config_.route_step_m)));
     for (std::size_t i = 0; i < route_.size(); i += every) {
       points.push_back(to_json(Eigen::Vector3d(route_[i].x(), route_[i].y(), o.state.position_m.z())));
     }
@@ -486,7 +481,8 @@ class RoverRoutePlanner final : public Planner {
       record_gap(gap, heading, goal_bearing, from);
     } else {
       // VFH+ on a local grid of this scan's hits around the rover.
-      const OccupancyGrid local = scan_grid(scan, position, config_.vfh_plus.window_radius_m + 1.0);
+      const OccupancyGrid local = scan_grid(scan, position, config_.vfh_plus.window_radius_m + config_.vfh_grid_margin_m,
+                                                config_.vfh_grid_resolution_m);
       const VfhPlusResult vfh = vfh_plus_step(local, position, heading, step.goal, config_.vfh_plus, vfh_state_);
       if (vfh.direction_rad) {
         avoid_heading_rad_ = wrap_to_pi(*vfh.direction_rad - heading);
@@ -518,18 +514,18 @@ class RoverRoutePlanner final : public Planner {
     gap_record_ = std::move(g);
   }
 
-  // The first of (v, w), (v/2, w), (v, 0), (0, w), (-kReverseMps, 0), (0, 0) whose motion over
+  // The first of (v, w), (v/2, w), (v, 0), (0, w), (-guard_reverse_speed_mps, 0), (0, 0) whose motion over
   // the horizon keeps the footprint off every point of the latest scan. Straight on comes before
   // turning in place: a turn refused while passing an obstacle is usually possible just past it.
   command::Twist guarded(double v, double w, const Eigen::Vector2d& position, double heading) const {
     if (recent_points_.empty()) return {v, w};
     const auto touches = [&](double cv, double cw) {
-      constexpr double kDt = 0.1;
+      const double dt = config_.guard_step_s;
       Eigen::Vector2d p = position;
       double th = heading;
-      for (double t = kDt; t <= config_.guard_horizon_s + 1e-9; t += kDt) {
-        p += cv * kDt * Eigen::Vector2d(std::cos(th + 0.5 * cw * kDt), std::sin(th + 0.5 * cw * kDt));
-        th += cw * kDt;
+      for (double t = dt; t <= config_.guard_horizon_s + 1e-9; t += dt) {
+        p += cv * dt * Eigen::Vector2d(std::cos(th + 0.5 * cw * dt), std::sin(th + 0.5 * cw * dt));
+        th += cw * dt;
         const double c = std::cos(th), s = std::sin(th);
         for (const Eigen::Vector2d& q : recent_points_) {
           const double dx = q.x() - p.x(), dy = q.y() - p.y();
@@ -542,7 +538,7 @@ class RoverRoutePlanner final : public Planner {
       return false;
     };
     // Last, back off slowly (remembered hits cover what the sensor cannot see behind).
-    for (const auto& [cv, cw] : {std::pair{v, w}, std::pair{0.5 * v, w}, std::pair{v, 0.0}, std::pair{0.0, w}, std::pair{-kReverseMps, 0.0}}) {
+    for (const auto& [cv, cw] : {std::pair{v, w}, std::pair{0.5 * v, w}, std::pair{v, 0.0}, std::pair{0.0, w}, std::pair{-config_.guard_reverse_speed_mps, 0.0}}) {
       if (!touches(cv, cw)) return {cv, cw};
     }
     return {0.0, 0.0};
@@ -553,7 +549,8 @@ class RoverRoutePlanner final : public Planner {
   // scan sees through (a longer range on its beam) is gone — the trail a
   // moving obstacle leaves; one out of the sensor's view stays.
   void remember(const LidarScan& scan, const LidarConfig& lidar, const Eigen::Vector2d& position) {
-    const double reach = config_.footprint_half_length_m + config_.guard_horizon_s * config_.pure_pursuit.max_speed_m_s + 1.0;
+    const double reach = config_.footprint_half_length_m + config_.guard_horizon_s * config_.pure_pursuit.max_speed_m_s +
+                          config_.memory_margin_m;
     const Eigen::Vector2d sensor = scan.sensor_pose.translation().head<2>();
     const double sensor_yaw = std::atan2(scan.sensor_pose.linear()(1, 0), scan.sensor_pose.linear()(0, 0));
     const bool fan = lidar.beams.size() > 1 && scan.ranges_m.size() == lidar.beams.size();
@@ -564,12 +561,12 @@ class RoverRoutePlanner final : public Planner {
       const Eigen::Vector2d d = q - sensor;
       const double beam = std::round((wrap_to_pi(std::atan2(d.y(), d.x()) - sensor_yaw) * 180.0 / M_PI - first) / step);
       if (beam < 0.0 || beam >= static_cast<double>(scan.ranges_m.size())) return false;
-      return scan.ranges_m[static_cast<std::size_t>(beam)] > d.norm() + 0.2;
+      return scan.ranges_m[static_cast<std::size_t>(beam)] > d.norm() + config_.see_through_margin_m;
     };
-    // One point per 5 cm cell, so a rover standing still does not pile up copies.
-    const auto key = [](const Eigen::Vector2d& q) {
-      return (static_cast<std::int64_t>(std::floor(q.x() / 0.05)) << 32) ^
-             static_cast<std::int64_t>(static_cast<std::uint32_t>(std::floor(q.y() / 0.05)));
+    // One point per memory cell, so a rover standing still does not pile up copies.
+    const auto key = [cell = config_.memory_cell_m](const Eigen::Vector2d& q) {
+      return (static_cast<std::int64_t>(std::floor(q.x() / cell)) << 32) ^
+             static_cast<std::int64_t>(static_cast<std::uint32_t>(std::floor(q.y() / cell)));
     };
     cells_.clear();
     std::size_t kept = 0;
@@ -584,9 +581,10 @@ class RoverRoutePlanner final : public Planner {
     }
   }
 
-  static OccupancyGrid scan_grid(const LidarScan& scan, const Eigen::Vector2d& centre, double half_size_m) {
+  static OccupancyGrid scan_grid(const LidarScan& scan, const Eigen::Vector2d& centre, double half_size_m,
+                                 double resolution_m) {
     OccupancyGrid g;
-    g.resolution_m = 0.1;
+    g.resolution_m = resolution_m;
     g.cols = g.rows = static_cast<int>(std::ceil(2.0 * half_size_m / g.resolution_m));
     g.origin_m = centre - Eigen::Vector2d::Constant(half_size_m);
     g.occupied.assign(static_cast<std::size_t>(g.cols) * g.rows, 0);
@@ -597,11 +595,11 @@ class RoverRoutePlanner final : public Planner {
     return g;
   }
 
-  // The route point nearest the rover, within 5 m of route back and 30 m ahead of the last one pursued.
+  // The route point nearest the rover, within rejoin_behind_m of route back and rejoin_ahead_m ahead of the last one pursued.
   std::size_t nearest_route_point(const Eigen::Vector2d& position) const {
     const auto pursued = static_cast<std::size_t>(pursuit_.last_found_index);
-    const auto back = static_cast<std::size_t>(std::lround(5.0 / config_.route_step_m));
-    const auto window = static_cast<std::size_t>(std::lround(30.0 / config_.route_step_m));
+    const auto back = static_cast<std::size_t>(std::lround(config_.rejoin_behind_m / config_.route_step_m));
+    const auto window = static_cast<std::size_t>(std::lround(config_.rejoin_ahead_m / config_.route_step_m));
     std::size_t best = pursued;
     double best_d = std::numeric_limits<double>::infinity();
     for (std::size_t i = pursued > back ? pursued - back : 0; i < route_.size() && i <= pursued + window; ++i) {
@@ -614,10 +612,10 @@ class RoverRoutePlanner final : public Planner {
     return best;
   }
 
-  // The nearest route point within 30 m ahead of the last one pursued.
+  // The nearest route point within rejoin_ahead_m ahead of the last one pursued.
   void rejoin(const Eigen::Vector2d& position) {
     const auto first = static_cast<std::size_t>(pursuit_.last_found_index);
-    const std::size_t window = static_cast<std::size_t>(std::lround(30.0 / config_.route_step_m));
+    const std::size_t window = static_cast<std::size_t>(std::lround(config_.rejoin_ahead_m / config_.route_step_m));
     std::size_t best = first;
     double best_d = std::numeric_limits<double>::infinity();
     for (std::size_t i = first; i < route_.size() && i <= first + window; ++i) {
@@ -644,42 +642,98 @@ class RoverRoutePlanner final : public Planner {
   double avoid_heading_rad_ = 0.0;   ///< robot frame, from the latest scan
   nlohmann::json gap_record_;        ///< follow-the-gap's choice on the latest scan, for the record
   bool blocked_left_ = false;        ///< the obstacle that stops the rover lies left of its centre line
-  static constexpr double kReverseMps = 0.2;
-  static constexpr double kBlockedTurnRad = 0.35;  ///< least heading error turned for when stopped (20 deg)
   std::vector<Eigen::Vector2d> recent_points_;  ///< scan hits near the rover, world frame
   std::unordered_set<std::int64_t> cells_;      ///< scratch: 5 cm cells of recent_points_
 };
 
 }  // namespace
 
+const ConfigFields<RoverRouteConfig>& rover_route_config_fields() {
+  using C = RoverRouteConfig;
+  static const ConfigFields<C> fields =
+      ConfigFields<C>()
+          .text("sensor", &C::sensor, "alias of the planar LIDAR (`planar180`); none: the vehicle's first sensor")
+          .omitted_when_default()
+          .choice("global", &C::global, enum_choices<GlobalRoute>(kGlobalNames),
+                  "the global route: Dubins paths through the waypoints, or A* / RRT* on the occupancy grid, smoothed")
+          .choice("local", &C::local, enum_choices<LocalAvoidance>(kLocalNames),
+                  "the local planner that steers while an obstacle is in the way")
+          .number("turning_radius_m", &C::turning_radius_m, Range::closed(0.05, 100.0), "m",
+                  "Dubins radius; smallest fillet of grid routes and their straight lead at each waypoint")
+          .number("route_step_m", &C::route_step_m, Range::closed(0.01, 5.0), "m", "spacing of the route polyline")
+          .number("waypoint_tolerance_m", &C::waypoint_tolerance_m, Range::positive(), "m",
+                  "a mission waypoint is passed within this distance")
+          .number("clearance_m", &C::clearance_m, Range::non_negative(), "m",
+                  "inflation of the occupancy grid for `astar` and `rrt_star`")
+          .number("occupancy_resolution_m", &C::occupancy_resolution_m, Range::closed(0.01, 10.0), "m",
+                  "cell of that grid")
+          .number("corridor_half_width_m", &C::corridor_half_width_m, Range::positive(), "m",
+                  "distance from the route ahead within which a hit is \"in the way\"; also the width of the stop "
+                  "check ahead")
+          .number("release_margin_m", &C::release_margin_m, Range::non_negative(), "m",
+                  "avoidance ends once this much wider a corridor is clear")
+          .number("avoid_speed_mps", &C::avoid_speed_mps, Range::closed(0.0, 10.0), "m/s",
+                  "forward speed while avoiding (times cos of the heading error)")
+          .number("avoid_turn_gain", &C::avoid_turn_gain, Range::positive(), "1/s",
+                  "yaw rate per radian of heading error while avoiding")
+          .number("stop_distance_m", &C::stop_distance_m, Range::non_negative(), "m",
+                  "an obstacle nearer ahead of the sensor stops the rover (it still turns)")
+          .number("footprint_half_length_m", &C::footprint_half_length_m, Range::positive(), "m",
+                  "guard footprint: 003's chassis is 1.5 m long, plus a margin")
+          .number("footprint_half_width_m", &C::footprint_half_width_m, Range::positive(), "m",
+                  "guard footprint: and 1.0 m wide, plus a margin")
+          .number("guard_horizon_s", &C::guard_horizon_s, Range::closed(0.0, 10.0), "s",
+                  "how far ahead the guard drives each command")
+          .number("guard_step_s", &C::guard_step_s, Range::closed(0.01, 1.0), "s",
+                  "time step of the guard's drive (written only when changed)")
+          .omitted_when_default()
+          .number("guard_reverse_speed_mps", &C::guard_reverse_speed_mps, Range::closed(0.0, 10.0), "m/s",
+                  "the guard's last resort before stopping: back off at this speed (written only when changed)")
+          .omitted_when_default()
+          .number("avoid_stop_heading_deg", &C::avoid_stop_heading_deg, Range::closed(0.0, 180.0), "deg",
+                  "while avoiding, the rover stops (and only turns) above this heading error (written only when "
+                  "changed)")
+          .omitted_when_default()
+          .number("blocked_turn_rad", &C::blocked_turn_rad, Range::closed(0.0, 3.15), "rad",
+                  "stopped by an obstacle at one side with the heading straight on, turn away from it as for this "
+                  "heading error (written only when changed)")
+          .omitted_when_default()
+          .number("memory_margin_m", &C::memory_margin_m, Range::closed(0.0, 10.0), "m",
+                  "scan hits are remembered within the guard's reach plus this (written only when changed)")
+          .omitted_when_default()
+          .number("memory_cell_m", &C::memory_cell_m, Range::closed(0.01, 1.0), "m",
+                  "one remembered hit per square cell of this side (written only when changed)")
+          .omitted_when_default()
+          .number("see_through_margin_m", &C::see_through_margin_m, Range::closed(0.0, 10.0), "m",
+                  "a remembered hit is forgotten once its beam reads this much farther (written only when changed)")
+          .omitted_when_default()
+          .number("vfh_grid_resolution_m", &C::vfh_grid_resolution_m, Range::closed(0.05, 1.0), "m",
+                  "VFH+: cell of the grid of one scan's hits (written only when changed)")
+          .omitted_when_default()
+          .number("vfh_grid_margin_m", &C::vfh_grid_margin_m, Range::closed(0.0, 10.0), "m",
+                  "VFH+: that grid reaches this far beyond the active window (written only when changed)")
+          .omitted_when_default()
+          .number("rejoin_behind_m", &C::rejoin_behind_m, Range::closed(0.0, 100.0), "m",
+                  "the route point nearest the rover is looked for this far behind the one pursued (written only "
+                  "when changed)")
+          .omitted_when_default()
+          .number("rejoin_ahead_m", &C::rejoin_ahead_m, Range::closed(0.0, 100.0), "m",
+                  "and this far ahead of it, also when rejoining the route after avoidance (written only when "
+                  "changed)")
+          .omitted_when_default()
+          .number("record_path_step_m", &C::record_path_step_m, Range::closed(0.01, 100.0), "m",
+                  "spacing of the planned path in the record (written only when changed)")
+          .omitted_when_default()
+          .nested("pure_pursuit", &C::pure_pursuit, pure_pursuit_config_fields(), "pure pursuit of the route")
+          .nested("follow_the_gap", &C::follow_the_gap, follow_the_gap_config_fields(),
+                  "follow-the-gap (`local` `follow_the_gap`)")
+          .nested("vfh_plus", &C::vfh_plus, vfh_plus_config_fields(), "VFH+ (`local` `vfh_plus`)")
+          .nested("rrt_star", &C::rrt_star, rrt_star_config_fields(), "RRT* (`global` `rrt_star`)");
+  return fields;
+}
+
 RoverRouteConfig parse_rover_route_config(const ParamsBlock& params) {
-  RoverRouteConfig c;
-  ObjectReader r(JsonNode(params.values, params.file, params.pointer));
-  r.read("sensor", c.sensor);
-  if (const auto global = r.optional("global")) {
-    c.global = static_cast<GlobalRoute>(global->as_choice(std::vector<std::string_view>(kGlobalNames.begin(), kGlobalNames.end())));
-  }
-  if (const auto local = r.optional("local")) {
-    c.local = static_cast<LocalAvoidance>(local->as_choice(std::vector<std::string_view>(kLocalNames.begin(), kLocalNames.end())));
-  }
-  r.read("turning_radius_m", c.turning_radius_m, Range::closed(0.05, 100.0));
-  r.read("route_step_m", c.route_step_m, Range::closed(0.01, 5.0));
-  r.read("waypoint_tolerance_m", c.waypoint_tolerance_m, Range::positive());
-  r.read("clearance_m", c.clearance_m, Range::non_negative());
-  r.read("occupancy_resolution_m", c.occupancy_resolution_m, Range::closed(0.01, 10.0));
-  r.read("corridor_half_width_m", c.corridor_half_width_m, Range::positive());
-  r.read("release_margin_m", c.release_margin_m, Range::non_negative());
-  r.read("avoid_speed_mps", c.avoid_speed_mps, Range::closed(0.0, 10.0));
-  r.read("avoid_turn_gain", c.avoid_turn_gain, Range::positive());
-  r.read("stop_distance_m", c.stop_distance_m, Range::non_negative());
-  r.read("footprint_half_length_m", c.footprint_half_length_m, Range::positive());
-  r.read("footprint_half_width_m", c.footprint_half_width_m, Range::positive());
-  r.read("guard_horizon_s", c.guard_horizon_s, Range::closed(0.0, 10.0));
-  read_nested(r, "pure_pursuit", c.pure_pursuit);
-  read_nested(r, "follow_the_gap", c.follow_the_gap);
-  read_nested(r, "vfh_plus", c.vfh_plus);
-  read_nested(r, "rrt_star", c.rrt_star);
-  r.finish();
+  RoverRouteConfig c = rover_route_config_fields().read(params);
   try {
     validate(c.vfh_plus);
     validate(c.rrt_star);

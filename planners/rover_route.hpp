@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "campo/config_fields.hpp"
 #include "campo/planner.hpp"
 #include "planners/follow_the_gap.hpp"
 #include "planners/path_smoothing.hpp"
@@ -55,6 +56,23 @@ struct RoverRouteConfig {
   double footprint_half_length_m = 0.85;  ///< 003's chassis is 1.5 m long, plus a margin
   double footprint_half_width_m = 0.6;    ///< and 1.0 m wide, plus a margin
   double guard_horizon_s = 1.0;
+  double guard_step_s = 0.1;              ///< time step of the guard's drive over the horizon, s
+  double guard_reverse_speed_mps = 0.2;   ///< the guard's last resort before stopping: back off at this speed
+  /// While avoiding, the rover stops (and only turns) above this heading error.
+  double avoid_stop_heading_deg = 60.0;
+  /// Stopped close ahead by an obstacle at one side with the heading straight
+  /// on, the rover turns away from that side as if its heading error were this (20 deg).
+  double blocked_turn_rad = 0.35;
+  /// Scan hits are remembered within the guard's reach (footprint, horizon at
+  /// full speed) plus this margin: the sensor looks ahead, so an obstacle being passed is only in earlier scans.
+  double memory_margin_m = 1.0;
+  double memory_cell_m = 0.05;            ///< one remembered hit per square cell of this side
+  double see_through_margin_m = 0.2;      ///< a remembered hit is forgotten once its beam reads this much farther
+  double vfh_grid_resolution_m = 0.1;     ///< VFH+: cell of the grid of one scan's hits around the rover
+  double vfh_grid_margin_m = 1.0;         ///< VFH+: that grid reaches this far beyond the active window
+  double rejoin_behind_m = 5.0;           ///< the nearest route point is looked for this far behind the one pursued
+  double rejoin_ahead_m = 30.0;           ///< and this far ahead of it (also when rejoining after avoidance)
+  double record_path_step_m = 0.25;       ///< spacing of the planned path in the record (a chord error under 4 mm on 2 m arcs)
   PurePursuitConfig pure_pursuit;
   FollowTheGapConfig follow_the_gap;
   VfhPlusConfig vfh_plus;
@@ -78,6 +96,12 @@ inline constexpr std::int64_t kMaxRouteGridCells = 16'000'000;
 void check_rover_route_extent(const RoverRouteConfig& config, const VehicleDef& vehicle, const Scene& scene);
 
 std::unique_ptr<Planner> make_rover_route_planner(const ParamsBlock& params, const PlannerContext& context);
+
+/// The fields of `params` (keys as RoverRouteConfig's members; nested objects
+/// "pure_pursuit", "follow_the_gap", "vfh_plus", "rrt_star"); parameters()
+/// writes them back, the fields from guard_step_s to record_path_step_m only
+/// when they differ from their defaults.
+const ConfigFields<RoverRouteConfig>& rover_route_config_fields();
 
 /// The configuration of `params` (keys as RoverRouteConfig's fields; global
 /// "dubins" | "astar" | "rrt_star"; local "follow_the_gap" | "vfh_plus" |

@@ -26,9 +26,7 @@ class StraightPlanner final : public Planner {
     return result;
   }
 
-  nlohmann::json parameters() const override {
-    return {{"speed_mps", config_.speed_mps}, {"tolerance_m", config_.tolerance_m}, {"horizontal", config_.horizontal}};
-  }
+  nlohmann::json parameters() const override { return straight_config_fields().write(config_); }
 
  private:
   double distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const {
@@ -41,6 +39,18 @@ class StraightPlanner final : public Planner {
 
 }  // namespace
 
+const ConfigFields<StraightConfig>& straight_config_fields() {
+  static const ConfigFields<StraightConfig> fields =
+      ConfigFields<StraightConfig>()
+          .number("speed_mps", &StraightConfig::speed_mps, Range::closed(0.01, 20.0), "m/s",
+                  "cruise speed (the rover's default: 0.5)")
+          .number("tolerance_m", &StraightConfig::tolerance_m, Range::positive(), "m",
+                  "a waypoint counts as reached within this distance (the rover's default: 0.5)")
+          .flag("horizontal", &StraightConfig::horizontal,
+                "measure distance in x, y only (the rover's default: true)");
+  return fields;
+}
+
 std::unique_ptr<Planner> make_straight_planner(const ParamsBlock& params, const PlannerContext& context) {
   StraightConfig config;
   if (context.vehicle == VehicleType::rover) {
@@ -48,11 +58,7 @@ std::unique_ptr<Planner> make_straight_planner(const ParamsBlock& params, const 
     config.tolerance_m = 0.5;
     config.horizontal = true;
   }
-  ObjectReader r(JsonNode(params.values, params.file, params.pointer));
-  r.read("speed_mps", config.speed_mps, Range::closed(0.01, 20.0));
-  r.read("tolerance_m", config.tolerance_m, Range::positive());
-  r.read("horizontal", config.horizontal);
-  r.finish();
+  straight_config_fields().read(params, config);
   return std::make_unique<StraightPlanner>(config);
 }
 

@@ -3,6 +3,7 @@
 /// The simplest closed-loop planner, and the baseline the others are compared to.
 #include <memory>
 
+#include "campo/config_fields.hpp"
 #include "campo/planner.hpp"
 
 namespace campo {
@@ -12,6 +13,10 @@ struct StraightConfig {
   double tolerance_m = 0.3;  ///< a waypoint counts as reached within this distance
   bool horizontal = false;   ///< measure distance in x, y only (default true for the rover)
 };
+
+/// The fields of `params` (parameters() writes them back). The table's
+/// defaults are the quadrotor's; the rover's differ (make_straight_planner).
+const ConfigFields<StraightConfig>& straight_config_fields();
 
 std::unique_ptr<Planner> make_straight_planner(const ParamsBlock& params, const PlannerContext& context);
 

@@ -25,105 +25,79 @@ std::string format(double v) {
   return s.str();
 }
 
-// One table per struct for both directions (reading and printing), so the
-// JSON keys of parse_quadrotor_config() and to_json() cannot drift apart.
-template <typename Struct>
-struct NumberField {
-  std::string_view key;
-  double Struct::*member;
-  Range range;
-};
-
-template <typename Struct>
-struct VectorField {
-  std::string_view key;
-  Eigen::Vector3d Struct::*member;
-  Range range;
-};
-
-struct PidField {
-  std::string_view key;
-  PidConfig QuadrotorControllerConfig::*member;
-};
-
-const NumberField<QuadrotorConfig> kNumbers[] = {
-    {"mass_kg", &QuadrotorConfig::mass_kg, Range::positive()},
-    {"arm_length_m", &QuadrotorConfig::arm_length_m, Range::positive()},
-    {"thrust_coefficient", &QuadrotorConfig::thrust_coefficient, Range::positive()},
-    {"torque_coefficient", &QuadrotorConfig::torque_coefficient, Range::positive()},
-    {"motor_time_constant_s", &QuadrotorConfig::motor_time_constant_s, Range::positive()},
-    {"min_rotor_speed_radps", &QuadrotorConfig::min_rotor_speed_radps, Range::non_negative()},
-    {"max_rotor_speed_radps", &QuadrotorConfig::max_rotor_speed_radps, Range::positive()},
-    {"linear_drag_n_per_mps", &QuadrotorConfig::linear_drag_n_per_mps, Range::non_negative()},
-    {"angular_drag_nm_per_radps", &QuadrotorConfig::angular_drag_nm_per_radps, Range::non_negative()},
-    {"stable_linear_speed_mps", &QuadrotorConfig::stable_linear_speed_mps, Range::positive()},
-    {"stable_angular_speed_radps", &QuadrotorConfig::stable_angular_speed_radps, Range::positive()},
-};
-
-const VectorField<QuadrotorConfig> kVectors[] = {
-    {"inertia_kgm2", &QuadrotorConfig::inertia_kgm2, Range::positive()},
-    {"collision_half_extents_m", &QuadrotorConfig::collision_half_extents_m, Range::positive()},
-};
-
-const NumberField<QuadrotorControllerConfig> kControllerNumbers[] = {
-    {"speed_limit_mps", &QuadrotorControllerConfig::speed_limit_mps, Range::positive()},
-    {"max_tilt_deg", &QuadrotorControllerConfig::max_tilt_deg, {0.0, 80.0, true, false}},
-    {"braking_decel_mps2", &QuadrotorControllerConfig::braking_decel_mps2, Range::positive()},
-    {"face_min_distance_m", &QuadrotorControllerConfig::face_min_distance_m, Range::non_negative()},
-};
-
-const PidField kPids[] = {
-    {"position", &QuadrotorControllerConfig::position},
-    {"velocity_xy", &QuadrotorControllerConfig::velocity_xy},
-    {"velocity_z", &QuadrotorControllerConfig::velocity_z},
-    {"attitude_rp", &QuadrotorControllerConfig::attitude_rp},
-    {"attitude_yaw", &QuadrotorControllerConfig::attitude_yaw},
-    {"rate_rp", &QuadrotorControllerConfig::rate_rp},
-    {"rate_yaw", &QuadrotorControllerConfig::rate_yaw},
-};
-
-const NumberField<PidConfig> kPidNumbers[] = {
-    {"kp", &PidConfig::kp, Range::non_negative()},
-    {"ki", &PidConfig::ki, Range::non_negative()},
-    {"kd", &PidConfig::kd, Range::non_negative()},
-    {"integral_limit", &PidConfig::integral_limit, Range::positive()},
-    {"output_limit", &PidConfig::output_limit, Range::positive()},
-};
-
-template <typename Struct>
-void read_numbers(ObjectReader& r, Struct& out, const auto& fields) {
-  for (const auto& f : fields) r.read(f.key, out.*f.member, f.range);
+const ConfigFields<PidConfig>& pid_config_fields() {
+  static const ConfigFields<PidConfig> fields =
+      ConfigFields<PidConfig>()
+          .number("kp", &PidConfig::kp, Range::non_negative(), "out/err", "proportional gain")
+          .number("ki", &PidConfig::ki, Range::non_negative(), "out/(err s)", "integral gain")
+          .number("kd", &PidConfig::kd, Range::non_negative(), "out/(err/s)", "derivative gain")
+          .number("integral_limit", &PidConfig::integral_limit, Range::positive(), "out",
+                  "bound on the magnitude of the integral term")
+          .number("output_limit", &PidConfig::output_limit, Range::positive(), "out",
+                  "bound on the magnitude of the output");
+  return fields;
 }
 
-template <typename Struct>
-void write_numbers(nlohmann::json& j, const Struct& in, const auto& fields) {
-  for (const auto& f : fields) j[std::string(f.key)] = in.*f.member;
-}
-
-QuadrotorControllerConfig read_controller(const JsonNode& node, QuadrotorControllerConfig c) {
-  ObjectReader r(node);
-  read_numbers(r, c, kControllerNumbers);
-  for (const PidField& pid : kPids) {
-    if (auto sub = r.optional(pid.key)) {
-      ObjectReader pr(*sub);
-      read_numbers(pr, c.*pid.member, kPidNumbers);
-      pr.finish();
-    }
-  }
-  r.finish();
-  return c;
+const ConfigFields<QuadrotorControllerConfig>& controller_config_fields() {
+  using C = QuadrotorControllerConfig;
+  static const ConfigFields<C> fields =
+      ConfigFields<C>()
+          .number("speed_limit_mps", &C::speed_limit_mps, Range::positive(), "m/s",
+                  "speed of hold, face and altitude moves (000 flew at 0.6 m/s)")
+          .number("max_tilt_deg", &C::max_tilt_deg, {0.0, 80.0, true, false}, "deg", "bound on the commanded tilt")
+          .number("braking_decel_mps2", &C::braking_decel_mps2, Range::positive(), "m/s²",
+                  "planned deceleration to stop at a target")
+          .number("face_min_distance_m", &C::face_min_distance_m, Range::non_negative(), "m",
+                  "`go_to` turns toward its target only when farther (horizontally)")
+          .nested("position", &C::position, pid_config_fields(),
+                  "position loop per world axis, m → m/s; the output limit is the highest speed commanded")
+          .nested("velocity_xy", &C::velocity_xy, pid_config_fields(), "horizontal velocity loop, m/s → m/s²")
+          .nested("velocity_z", &C::velocity_z, pid_config_fields(),
+                  "vertical velocity loop, m/s → m/s² (added to the gravity feed-forward)")
+          .nested("attitude_rp", &C::attitude_rp, pid_config_fields(), "roll and pitch attitude loop, rad → rad/s")
+          .nested("attitude_yaw", &C::attitude_yaw, pid_config_fields(),
+                  "yaw attitude loop, rad → rad/s; the output limit is the turn rate")
+          .nested("rate_rp", &C::rate_rp, pid_config_fields(), "roll and pitch body rate loop, rad/s → rad/s²")
+          .nested("rate_yaw", &C::rate_yaw, pid_config_fields(), "yaw body rate loop, rad/s → rad/s²");
+  return fields;
 }
 
 }  // namespace
 
+const ConfigFields<QuadrotorConfig>& quadrotor_config_fields() {
+  using C = QuadrotorConfig;
+  static const ConfigFields<C> fields =
+      ConfigFields<C>()
+          .number("mass_kg", &C::mass_kg, Range::positive(), "kg", "the whole vehicle")
+          .vector("inertia_kgm2", &C::inertia_kgm2, Range::positive(), "kg m²", "principal moments about body x, y, z")
+          .number("arm_length_m", &C::arm_length_m, Range::positive(), "m", "centre to rotor axis")
+          .number("thrust_coefficient", &C::thrust_coefficient, Range::positive(), "N/(rad/s)²",
+                  "k_f: hovers at 607 rad/s, 61 % of max")
+          .number("torque_coefficient", &C::torque_coefficient, Range::positive(), "N m/(rad/s)²",
+                  "k_m (k_m/k_f = 16 mm, a 10-inch propeller)")
+          .number("motor_time_constant_s", &C::motor_time_constant_s, Range::positive(), "s",
+                  "first-order lag of rotor speed")
+          .number("min_rotor_speed_radps", &C::min_rotor_speed_radps, Range::non_negative(), "rad/s",
+                  "idle speed in flight")
+          .number("max_rotor_speed_radps", &C::max_rotor_speed_radps, Range::positive(), "rad/s",
+                  "above `min_rotor_speed_radps`; thrust-to-weight 2.7")
+          .number("linear_drag_n_per_mps", &C::linear_drag_n_per_mps, Range::non_negative(), "N/(m/s)",
+                  "drag force -c v")
+          .number("angular_drag_nm_per_radps", &C::angular_drag_nm_per_radps, Range::non_negative(), "N m/(rad/s)",
+                  "drag torque -c ω")
+          .vector("collision_half_extents_m", &C::collision_half_extents_m, Range::positive(), "m",
+                  "collision box (frame and propellers)")
+          .number("stable_linear_speed_mps", &C::stable_linear_speed_mps, Range::positive(), "m/s",
+                  "`stable` below this speed (000 stabilize())")
+          .number("stable_angular_speed_radps", &C::stable_angular_speed_radps, Range::positive(), "rad/s",
+                  "and below this angular speed")
+          .nested("controller", &C::controller, controller_config_fields(),
+                  "gains and behaviour shaping; the loops outer to inner, each a PID with an integral clamp");
+  return fields;
+}
+
 QuadrotorConfig parse_quadrotor_config(const ParamsBlock& params) {
-  QuadrotorConfig c;
-  const JsonNode node(params.values, params.file, params.pointer);
-  ObjectReader r(node);
-  read_numbers(r, c, kNumbers);
-  for (const auto& f : kVectors) r.read(f.key, c.*f.member, f.range);
-  if (auto controller = r.optional("controller")) c.controller = read_controller(*controller, c.controller);
-  r.finish();
+  const QuadrotorConfig c = quadrotor_config_fields().read(params);
 
   // Checks across fields, reported at the field a user would change.
   const auto fail = [&](std::string_view key, const std::string& message) {
@@ -142,23 +116,7 @@ QuadrotorConfig parse_quadrotor_config(const ParamsBlock& params) {
   return c;
 }
 
-nlohmann::json to_json(const QuadrotorConfig& config) {
-  nlohmann::json j = nlohmann::json::object();
-  write_numbers(j, config, kNumbers);
-  for (const auto& f : kVectors) {
-    const Eigen::Vector3d& v = config.*f.member;
-    j[std::string(f.key)] = {v.x(), v.y(), v.z()};
-  }
-  nlohmann::json controller = nlohmann::json::object();
-  write_numbers(controller, config.controller, kControllerNumbers);
-  for (const PidField& pid : kPids) {
-    nlohmann::json p = nlohmann::json::object();
-    write_numbers(p, config.controller.*pid.member, kPidNumbers);
-    controller[std::string(pid.key)] = p;
-  }
-  j["controller"] = controller;
-  return j;
-}
+nlohmann::json to_json(const QuadrotorConfig& config) { return quadrotor_config_fields().write(config); }
 
 QuadrotorModel model_of(const QuadrotorConfig& config, const Eigen::Vector3d& gravity_mps2) {
   QuadrotorModel m;

@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "campo/config_fields.hpp"
 #include "campo/scene.hpp"
 #include "campo/vehicle.hpp"
 #include "campo/world.hpp"
@@ -37,6 +38,9 @@ struct QuadrotorConfig {
   double stable_angular_speed_radps = 0.05;                   ///< and below this angular speed, > 0
   QuadrotorControllerConfig controller;                       ///< gains and behaviour shaping
 };
+
+/// The fields of a "params" block (the controller's loops as nested objects).
+const ConfigFields<QuadrotorConfig>& quadrotor_config_fields();
 
 /// The preset with the overrides of `params` (keys as in to_json(); the
 /// controller's loops as nested objects). Unknown keys, wrong types,

@@ -27,59 +27,67 @@ double wrap_angle(double a) {
   return a <= -kPi ? a + 2.0 * kPi : a;
 }
 
-// One table of the scalar parameters serves parsing and printing.
-struct NumberField {
-  std::string_view key;
-  double RoverConfig::*member;
-  Range range;
-};
+}  // namespace
 
-const std::vector<NumberField>& number_fields() {
-  static const std::vector<NumberField> fields = {
-      {"chassis_mass_kg", &RoverConfig::chassis_mass_kg, Range::positive()},
-      {"chassis_friction", &RoverConfig::chassis_friction, Range::closed(0.0, 10.0)},
-      {"wheel_radius_m", &RoverConfig::wheel_radius_m, Range::positive()},
-      {"wheel_mass_kg", &RoverConfig::wheel_mass_kg, Range::positive()},
-      {"wheel_friction", &RoverConfig::wheel_friction, Range::closed(0.0, 10.0)},
-      {"half_track_m", &RoverConfig::half_track_m, Range::positive()},
-      {"wheelbase_m", &RoverConfig::wheelbase_m, Range::positive()},
-      {"axle_drop_m", &RoverConfig::axle_drop_m, Range{}},
-      {"max_wheel_torque_nm", &RoverConfig::max_wheel_torque_nm, Range::positive()},
-      {"max_wheel_speed_radps", &RoverConfig::max_wheel_speed_radps, Range::positive()},
-      {"max_wheel_accel_radps2", &RoverConfig::max_wheel_accel_radps2, Range::non_negative()},
-      {"hold_gain", &RoverConfig::hold_gain, Range::positive()},
-      {"speed_kp", &RoverConfig::speed_kp, Range::non_negative()},
-      {"speed_ki", &RoverConfig::speed_ki, Range::non_negative()},
-      {"speed_integral_max_mps", &RoverConfig::speed_integral_max_mps, Range::non_negative()},
-      {"yaw_rate_kp", &RoverConfig::yaw_rate_kp, Range::non_negative()},
-      {"yaw_rate_ki", &RoverConfig::yaw_rate_ki, Range::non_negative()},
-      {"yaw_rate_integral_max_radps", &RoverConfig::yaw_rate_integral_max_radps, Range::non_negative()},
-      {"heading_gain", &RoverConfig::heading_gain, Range::positive()},
-      {"max_yaw_rate_radps", &RoverConfig::max_yaw_rate_radps, Range::positive()},
-      {"approach_gain", &RoverConfig::approach_gain, Range::positive()},
-      {"turn_in_place_deg", &RoverConfig::turn_in_place_deg, Range{0.0, 180.0, true, false}},
-      {"arrival_radius_m", &RoverConfig::arrival_radius_m, Range::positive()},
-      {"face_tolerance_deg", &RoverConfig::face_tolerance_deg, Range::positive()},
-      {"stable_speed_mps", &RoverConfig::stable_speed_mps, Range::positive()},
-      {"stable_rate_radps", &RoverConfig::stable_rate_radps, Range::positive()},
-  };
+const ConfigFields<RoverConfig>& rover_config_fields() {
+  using C = RoverConfig;
+  static const ConfigFields<C> fields =
+      ConfigFields<C>()
+          .vector("chassis_size_m", &C::chassis_size_m, Range::positive(), "m", "length x, width y, height z")
+          .number("chassis_mass_kg", &C::chassis_mass_kg, Range::positive(), "kg",
+                  "with four 2.5 kg wheels the rover weighs 50 kg")
+          .number("chassis_friction", &C::chassis_friction, Range::closed(0.0, 10.0), "",
+                  "Bullet multiplies it by the other body's friction")
+          .number("wheel_radius_m", &C::wheel_radius_m, Range::positive(), "m", "r")
+          .number("wheel_mass_kg", &C::wheel_mass_kg, Range::positive(), "kg", "each")
+          .number("wheel_friction", &C::wheel_friction, Range::closed(0.0, 10.0), "",
+                  "times the ground's friction (0.8 by default): the tyre-ground coefficient")
+          .number("half_track_m", &C::half_track_m, Range::positive(), "m",
+                  "l, lateral offset of the wheel centres from the centre line")
+          .number("wheelbase_m", &C::wheelbase_m, Range::positive(), "m", "front to rear axle")
+          .number("axle_drop_m", &C::axle_drop_m, Range{}, "m",
+                  "axles below the chassis centre (the centre rests at r + this = 0.4 m); r + this must exceed half "
+                  "the chassis height")
+          .number("max_wheel_torque_nm", &C::max_wheel_torque_nm, Range::positive(), "N m", "per motor")
+          .number("max_wheel_speed_radps", &C::max_wheel_speed_radps, Range::positive(), "rad/s",
+                  "per motor (2 m/s at the rim)")
+          .number("max_wheel_accel_radps2", &C::max_wheel_accel_radps2, Range::non_negative(), "rad/s²",
+                  "second-order actuation limit (003 §3.5); 0 = off")
+          .number("hold_gain", &C::hold_gain, Range::positive(), "1/s",
+                  "wheel angle servo while holding: wheel speed target = -gain * wheel angle error")
+          .integer("joint_solver_iterations", &C::joint_solver_iterations, {1, 1000}, "",
+                   "Bullet solver iterations of the wheel hinges while driving")
+          .integer("hold_solver_iterations", &C::hold_solver_iterations, {1, 1000}, "",
+                   "and while holding (fewer make the locked wheels jitter)")
+          .number("speed_kp", &C::speed_kp, Range::non_negative(), "(m/s)/(m/s)", "forward-speed correction: P gain")
+          .number("speed_ki", &C::speed_ki, Range::non_negative(), "1/s", "forward-speed correction: I gain")
+          .number("speed_integral_max_mps", &C::speed_integral_max_mps, Range::non_negative(), "m/s",
+                  "forward-speed correction: integral bound")
+          .number("yaw_rate_kp", &C::yaw_rate_kp, Range::non_negative(), "(rad/s)/(rad/s)", "yaw-rate correction: P gain")
+          .number("yaw_rate_ki", &C::yaw_rate_ki, Range::non_negative(), "1/s", "yaw-rate correction: I gain")
+          .number("yaw_rate_integral_max_radps", &C::yaw_rate_integral_max_radps, Range::non_negative(), "rad/s",
+                  "yaw-rate correction: integral bound (turning in place takes wheel speeds ~4x the kinematic ones)")
+          .number("heading_gain", &C::heading_gain, Range::positive(), "1/s",
+                  "yaw rate per heading error (`go_to`, `face`)")
+          .number("max_yaw_rate_radps", &C::max_yaw_rate_radps, Range::positive(), "rad/s", "for `go_to` and `face`")
+          .number("approach_gain", &C::approach_gain, Range::positive(), "1/s",
+                  "`go_to` speed per remaining distance")
+          .number("turn_in_place_deg", &C::turn_in_place_deg, Range{0.0, 180.0, true, false}, "deg",
+                  "`go_to` turns in place above this heading error")
+          .number("arrival_radius_m", &C::arrival_radius_m, Range::positive(), "m", "`go_to` stops within this distance")
+          .number("face_tolerance_deg", &C::face_tolerance_deg, Range::positive(), "deg",
+                  "`face` stops within this heading error")
+          .number("stable_speed_mps", &C::stable_speed_mps, Range::positive(), "m/s", "`stable` below this speed")
+          .number("stable_rate_radps", &C::stable_rate_radps, Range::positive(), "rad/s",
+                  "and below this angular speed");
   return fields;
 }
 
-}  // namespace
-
 RoverConfig parse_rover_config(const ParamsBlock& params) {
-  RoverConfig c;
-  const JsonNode node(params.values, params.file, params.pointer);
-  ObjectReader reader(node);
-  reader.read("chassis_size_m", c.chassis_size_m, Range::positive());
-  for (const NumberField& f : number_fields()) reader.read(f.key, c.*f.member, f.range);
-  reader.read("joint_solver_iterations", c.joint_solver_iterations, 1, 1000);
-  reader.read("hold_solver_iterations", c.hold_solver_iterations, 1, 1000);
-  reader.finish();
+  const RoverConfig c = rover_config_fields().read(params);
   if (c.axle_drop_m + c.wheel_radius_m <= 0.5 * c.chassis_size_m.z()) {
     // The chassis would rest on its belly instead of on the wheels.
-    const auto at = reader.has("axle_drop_m") ? "axle_drop_m" : "wheel_radius_m";
+    const auto at = params.values.contains("axle_drop_m") ? "axle_drop_m" : "wheel_radius_m";
     throw InputError(params.file, child_pointer(params.pointer, at),
                      "expected axle_drop_m + wheel_radius_m > half the chassis height (" +
                          std::to_string(0.5 * c.chassis_size_m.z()) + " m)");
@@ -87,14 +95,7 @@ RoverConfig parse_rover_config(const ParamsBlock& params) {
   return c;
 }
 
-nlohmann::json to_json(const RoverConfig& c) {
-  nlohmann::json j = nlohmann::json::object();
-  j["chassis_size_m"] = {c.chassis_size_m.x(), c.chassis_size_m.y(), c.chassis_size_m.z()};
-  for (const NumberField& f : number_fields()) j[std::string(f.key)] = c.*f.member;
-  j["joint_solver_iterations"] = c.joint_solver_iterations;
-  j["hold_solver_iterations"] = c.hold_solver_iterations;
-  return j;
-}
+nlohmann::json to_json(const RoverConfig& c) { return rover_config_fields().write(c); }
 
 // The Bullet objects of one rover; declaration order makes the destructor
 // remove constraints before bodies and free bodies before their shapes.

@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "campo/config_fields.hpp"
 #include "campo/scene.hpp"
 #include "campo/vehicle.hpp"
 #include "campo/world.hpp"
@@ -76,6 +77,9 @@ struct RoverConfig {
   double stable_speed_mps = 0.05;       ///< > 0, stable() below this linear speed
   double stable_rate_radps = 0.05;      ///< > 0, and below this angular speed
 };
+
+/// The fields of a "params" block.
+const ConfigFields<RoverConfig>& rover_config_fields();
 
 /// The preset overridden by the keys of `params` (the names of the
 /// RoverConfig fields); unknown keys and bad values throw InputError naming

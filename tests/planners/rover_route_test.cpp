@@ -57,6 +57,47 @@ TEST(RoverRoute, ParsesParamsStrictlyAndRoundTrips) {
   EXPECT_THROW(make_rover_route_planner({}, {VehicleType::quadrotor, nullptr}), InputError);
 }
 
+TEST(RoverRoute, FormerLiteralTunablesAreWrittenOnlyWhenChanged) {
+  // At their defaults they stay out of parameters(), as before they were fields.
+  const nlohmann::json defaults =
+      make_rover_route_planner(params(nlohmann::json::object()), {VehicleType::rover, nullptr})->parameters();
+  for (const char* key : {"guard_step_s", "guard_reverse_speed_mps", "avoid_stop_heading_deg", "blocked_turn_rad",
+                          "memory_margin_m", "memory_cell_m", "see_through_margin_m", "vfh_grid_resolution_m",
+                          "vfh_grid_margin_m", "rejoin_behind_m", "rejoin_ahead_m", "record_path_step_m"}) {
+    EXPECT_FALSE(defaults.contains(key)) << key;
+  }
+  EXPECT_TRUE(defaults.contains("guard_horizon_s"));
+  EXPECT_FALSE(defaults.contains("sensor"));
+
+  // The behaviour they had: 60 deg is pi / 3 exactly, so the stop test is the one it was.
+  const RoverRouteConfig c = parse_rover_route_config(params(nlohmann::json::object()));
+  EXPECT_EQ(c.avoid_stop_heading_deg * M_PI / 180.0, M_PI / 3.0);
+  EXPECT_EQ(c.guard_step_s, 0.1);
+  EXPECT_EQ(c.guard_reverse_speed_mps, 0.2);
+  EXPECT_EQ(c.blocked_turn_rad, 0.35);
+  EXPECT_EQ(c.rejoin_ahead_m, 30.0);
+
+  // Changed, they are written and read back.
+  const nlohmann::json changed =
+      make_rover_route_planner(params({{"guard_step_s", 0.05}, {"rejoin_ahead_m", 12.5}, {"sensor", "front"}}),
+                               {VehicleType::rover, nullptr})
+          ->parameters();
+  EXPECT_EQ(changed["guard_step_s"], 0.05);
+  EXPECT_EQ(changed["rejoin_ahead_m"], 12.5);
+  EXPECT_EQ(changed["sensor"], "front");
+  const RoverRouteConfig back = parse_rover_route_config(params(changed));
+  EXPECT_EQ(back.guard_step_s, 0.05);
+  EXPECT_EQ(back.rejoin_ahead_m, 12.5);
+  EXPECT_EQ(back.memory_cell_m, 0.05);
+
+  try {
+    parse_rover_route_config(params({{"guard_step_s", 0.0}}));
+    ADD_FAILURE() << "accepted guard_step_s 0";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "scene.json: /objects/3/planner/params/guard_step_s: expected a number in [0.01, 1], got 0.0");
+  }
+}
+
 // A rover at the origin with a mission of the given waypoints (x, y) and
 // one box obstacle, planned by rover_route with `params`.
 Scene far_scene(const std::vector<std::array<double, 2>>& waypoints, nlohmann::json planner_params) {
