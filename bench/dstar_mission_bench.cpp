@@ -48,7 +48,7 @@ RecordedMission record(const std::string& scene_name) {
   std::vector<PlannerEvent> events;
   EpisodeOptions options;
   options.on_plan = [&events](const Observation& o, const PlanResult& plan) {
-    if (!plan.decisions.is_null()) events.push_back({o.time_s, plan.decisions});
+    if (!plan.decisions.empty()) events.push_back({o.time_s, plan.decisions});
   };
   const EpisodeResult flown = run_episode(scene, &make_vehicle, &create_planner, options);
   const DStarLite3dConfig config = parse_dstar_lite_3d_config(scene.vehicles.front().planner.params);
@@ -60,12 +60,12 @@ RecordedMission record(const std::string& scene_name) {
   std::vector<grid::CellChange> pending;
   std::optional<grid::Cell> goal;
   for (const PlannerEvent& e : events) {
-    for (const nlohmann::json& p : e.decisions.value("lidar_hits", nlohmann::json::array())) {
+    for (const nlohmann::json& p : e.decisions.extras.value("lidar_hits", nlohmann::json::array())) {
       const auto changed = map.mark_hit({p[0].get<double>(), p[1].get<double>(), p[2].get<double>()});
       pending.insert(pending.end(), changed.begin(), changed.end());
     }
-    if (!e.decisions.contains("replan")) continue;
-    const nlohmann::json& r = e.decisions["replan"];
+    if (!e.decisions.replan) continue;
+    const nlohmann::json& r = e.decisions.replan->details;
     Moment m{cell(r["start_cell"]), cell(r["goal_cell"]), std::move(pending), false};
     pending.clear();
     m.new_leg = !goal || !(*goal == m.goal);

@@ -65,9 +65,9 @@ class DepthReactivePlanner final : public Planner {
       if ((o.state.position_m - top.position_m).norm() > config_.tolerance_m) break;
       discarded_.clear();  // from a new place the same waypoints may be worth proposing again
       if (top.temporary) {
-        decide(result, "reached_intermediate", to_json(top.position_m));
+        result.decisions.reached_intermediate = top.position_m;
       } else {
-        result.decisions["reached_waypoints"].push_back(next_target_++);
+        result.decisions.reached_waypoints.push_back(static_cast<int>(next_target_++));
       }
       // Stop at the waypoint reached (not where the drone is, still moving,
       // which would overshoot it by the braking distance) before turning.
@@ -115,8 +115,6 @@ class DepthReactivePlanner final : public Planner {
     }
     return nullptr;
   }
-
-  void decide(PlanResult& result, const char* key, nlohmann::json value) { result.decisions[key] = std::move(value); }
 
   void enter(Phase phase, const Observation& o) {
     phase_ = phase;
@@ -200,8 +198,8 @@ class DepthReactivePlanner final : public Planner {
       }
     }
 
-    nlohmann::json replan = replan_record(reading, scan, entry, check);
-    if (marginal) replan["marginal"] = true;
+    ReplanDecision replan = replan_record(reading, scan, entry, check);
+    if (marginal) replan.details["marginal"] = true;
     std::string action;
     if (check.visibility == Visibility::visible) {
       action = "fly";
@@ -223,21 +221,21 @@ class DepthReactivePlanner final : public Planner {
       const WaypointSearch search =
           find_waypoint(dilated, grid, check.pixel, check.waypoint_range_m / grid.max_range_m,
                         check.obstacle_range_m / grid.max_range_m, find_waypoint_params(config_), avoid);
-      replan["search_ms"] = elapsed_ms(search_start);
-      replan["threshold"] = search.threshold;
-      replan["candidates"] = search.candidates;
+      replan.details["search_ms"] = elapsed_ms(search_start);
+      replan.details["threshold"] = search.threshold;
+      replan.details["candidates"] = search.candidates;
       if (search.found) {
         const FoundWaypoint& f = *search.found;
         const Eigen::Vector3d waypoint = scan.sensor_pose * (f.direction_sensor * f.range_m);
-        replan["chosen_pixel"] = to_json(f.pixel);
-        replan["edge_pixel"] = to_json(f.edge_pixel);
-        replan["waypoint_pixel"] = to_json(f.waypoint_pixel);
-        replan["edge_range_m"] = f.edge_range_m;
-        replan["new_waypoint_range_m"] = f.range_m;
-        replan["tried"] = f.tried;
+        replan.details["chosen_pixel"] = to_json(f.pixel);
+        replan.details["edge_pixel"] = to_json(f.edge_pixel);
+        replan.details["waypoint_pixel"] = to_json(f.waypoint_pixel);
+        replan.details["edge_range_m"] = f.edge_range_m;
+        replan.details["new_waypoint_range_m"] = f.range_m;
+        replan.details["tried"] = f.tried;
         action = "new_waypoint";
         stack_.push_back({waypoint, true});
-        decide(result, "planned_waypoint", to_json(waypoint));
+        result.decisions.planned_waypoint = waypoint;
         enter(Phase::align, o);
       } else {
         action = "wall_following";
@@ -245,33 +243,33 @@ class DepthReactivePlanner final : public Planner {
         enter(Phase::wall_look, o);
       }
     }
-    replan["action"] = action;
-    replan["dilation_ms"] = dilation_ms;
-    replan["time_ms"] = elapsed_ms(start);
-    decide(result, "replan", std::move(replan));
+    replan.details["action"] = action;
+    replan.details["dilation_ms"] = dilation_ms;
+    replan.time_ms = elapsed_ms(start);
+    result.decisions.replan = std::move(replan);
     if (result.status == PlanStatus::running && replans_ >= config_.max_replans) {
       result.status = PlanStatus::aborted;
       result.reason = "gave up after " + std::to_string(replans_) + " replanning steps";
     }
   }
 
-  nlohmann::json replan_record(const SensorReading& reading, const LidarScan& scan, const StackEntry& entry,
+  ReplanDecision replan_record(const SensorReading& reading, const LidarScan& scan, const StackEntry& entry,
                                const VisibilityCheck& check) {
-    return {{"index", replans_++},
-            {"sensor", reading.alias},
-            {"scan_time_s", scan.time_s},
-            {"waypoint", to_json(entry.position_m)},
-            {"role", entry.temporary ? "intermediate" : "target"},
-            {"visibility", to_string(check.visibility)},
-            {"pixel", to_json(check.pixel)},
-            {"radius_px", to_json(Eigen::Vector2d(check.radius_x_px, check.radius_y_px))},
-            {"waypoint_range_m", check.waypoint_range_m},
-            {"obstacle_range_m", check.obstacle_range_m}};
+    return {.index = replans_++,
+            .sensor = std::string(reading.alias),
+            .details = {{"scan_time_s", scan.time_s},
+                        {"waypoint", to_json(entry.position_m)},
+                        {"role", entry.temporary ? "intermediate" : "target"},
+                        {"visibility", to_string(check.visibility)},
+                        {"pixel", to_json(check.pixel)},
+                        {"radius_px", to_json(Eigen::Vector2d(check.radius_x_px, check.radius_y_px))},
+                        {"waypoint_range_m", check.waypoint_range_m},
+                        {"obstacle_range_m", check.obstacle_range_m}}};
   }
 
   void discard(const Observation& o, PlanResult& result) {
     discarded_.push_back(stack_.back().position_m);
-    decide(result, "discarded_waypoint", to_json(stack_.back().position_m));
+    result.decisions.discarded_waypoint = stack_.back().position_m;
     stack_.pop_back();
     enter(Phase::align, o);
   }
@@ -292,10 +290,10 @@ class DepthReactivePlanner final : public Planner {
                                                    config_.safety_radius_m, -config_.visible_margin_px);
     if (check.visibility == Visibility::visible) return;
     // Occluded on the way: stop here and decide again once still.
-    nlohmann::json replan = replan_record(reading, *reading.scan, entry, check);
-    replan["action"] = "stop";
-    replan["time_ms"] = elapsed_ms(start);
-    decide(result, "replan", std::move(replan));
+    ReplanDecision replan = replan_record(reading, *reading.scan, entry, check);
+    replan.details["action"] = "stop";
+    replan.time_ms = elapsed_ms(start);
+    result.decisions.replan = std::move(replan);
     command_ = command::Hold{o.state.position_m, o.state.yaw_rad()};
     enter(Phase::align, o);
   }
@@ -330,7 +328,7 @@ class DepthReactivePlanner final : public Planner {
         result.reason = "cannot get around the obstacle: no free sector within 180 deg of the goal";
       }
     }
-    decide(result, "wall_following", std::move(record));
+    result.decisions.extras["wall_following"] = std::move(record);
   }
 
   void place_wall_waypoint(const Observation& o, const cv::Mat& dilated,
@@ -340,8 +338,8 @@ class DepthReactivePlanner final : public Planner {
     const double yaw = o.state.yaw_rad();
     const Eigen::Vector3d waypoint = o.state.position_m + range * Eigen::Vector3d(std::cos(yaw), std::sin(yaw), 0.0);
     record["waypoint"] = to_json(waypoint);
-    decide(result, "wall_following", record);
-    decide(result, "planned_waypoint", to_json(waypoint));
+    result.decisions.extras["wall_following"] = record;
+    result.decisions.planned_waypoint = waypoint;
     stack_.push_back({waypoint, true});
     enter(Phase::align, o);
   }

@@ -40,10 +40,10 @@ class DStarLite3dPlanner final : public Planner {
       if (config_.mapping == Mapping3d::octomap) octomap_.emplace(map_->config(), config_.octomap);
       // A height map only where the map is one (an octree keeps what lies under an overhang).
       if (!octomap_) {
-        result.decisions["height_map_grid"] = {{"origin_m", {config_.origin_m.x(), config_.origin_m.y()}},
-                                               {"cell_size_m", config_.cell_size_m},
-                                               {"columns", config_.columns},
-                                               {"rows", config_.rows}};
+        result.decisions.extras["height_map_grid"] = {{"origin_m", {config_.origin_m.x(), config_.origin_m.y()}},
+                                                      {"cell_size_m", config_.cell_size_m},
+                                                      {"columns", config_.columns},
+                                                      {"rows", config_.rows}};
       }
       // Moves cost their length: a 7 m climb costs 4.7 cells of 1.5 m, not one,
       // so the drone weaves between buildings at its altitude rather than
@@ -53,7 +53,7 @@ class DStarLite3dPlanner final : public Planner {
 
     // Mission waypoints already reached.
     while (next_ < o.mission.size() && (o.state.position_m - o.mission[next_].position_m).norm() <= config_.tolerance_m) {
-      result.decisions["reached_waypoints"].push_back(next_++);
+      result.decisions.reached_waypoints.push_back(static_cast<int>(next_++));
       leg_started_ = false;
     }
     if (next_ >= o.mission.size()) {
@@ -111,14 +111,14 @@ class DStarLite3dPlanner final : public Planner {
     if (replan) {
       grid::SearchResult found = search_->plan();
       const double time_ms = std::chrono::duration<double, std::milli>(Clock::now() - started).count();
-      result.decisions["replan"] = {{"index", replans_++},
-                                    {"sensor", std::string(lidar->alias)},
-                                    {"start_cell", to_json(*start)},
-                                    {"goal_cell", to_json(goal)},
-                                    {"changed_cells", changes.size()},
-                                    {"expansions", found.expansions},
-                                    {"mapping_ms", mapping_ms},
-                                    {"time_ms", time_ms}};
+      result.decisions.replan = ReplanDecision{.index = replans_++,
+                                               .sensor = std::string(lidar->alias),
+                                               .time_ms = time_ms,
+                                               .details = {{"start_cell", to_json(*start)},
+                                                           {"goal_cell", to_json(goal)},
+                                                           {"changed_cells", changes.size()},
+                                                           {"expansions", found.expansions},
+                                                           {"mapping_ms", mapping_ms}}};
       if (found.status != grid::SearchStatus::found) {
         result.status = PlanStatus::no_path;
         result.reason = "no path from cell " + to_json(*start).dump() + " to mission waypoint " +
@@ -136,7 +136,7 @@ class DStarLite3dPlanner final : public Planner {
     const Eigen::Vector3d target = next_target(o.mission[next_].position_m);
     if (target != target_m_) {
       target_m_ = target;
-      result.decisions["planned_waypoint"] = to_json(target);
+      result.decisions.planned_waypoint = target;
     }
     result.command = command::GoTo{target_m_, config_.speed_mps, true};
     return result;
@@ -201,16 +201,16 @@ class DStarLite3dPlanner final : public Planner {
     const auto cm = [](float v) { return std::round(static_cast<double>(v) * 100.0) / 100.0; };
     nlohmann::json hits = nlohmann::json::array();
     for (const Eigen::Vector3f& p : scan.points) hits.push_back({cm(p.x()), cm(p.y()), cm(p.z())});
-    if (!hits.empty()) result.decisions["lidar_hits"] = std::move(hits);
+    if (!hits.empty()) result.decisions.extras["lidar_hits"] = std::move(hits);
     if (octomap_) {
       // Planning cells an occupied voxel now blocks or no longer blocks: [column, row, level].
       nlohmann::json blocked = nlohmann::json::array(), cleared = nlohmann::json::array();
       for (const grid::CellChange& c : changes) {
         (c.state == grid::CellState::blocked ? blocked : cleared).push_back(to_json(c.cell));
       }
-      if (!blocked.empty()) result.decisions["blocked_cells"] = std::move(blocked);
-      if (!cleared.empty()) result.decisions["cleared_cells"] = std::move(cleared);
-      result.decisions["occupied_voxels"] = octomap_->occupied_leaf_count();
+      if (!blocked.empty()) result.decisions.extras["blocked_cells"] = std::move(blocked);
+      if (!cleared.empty()) result.decisions.extras["cleared_cells"] = std::move(cleared);
+      result.decisions.extras["occupied_voxels"] = octomap_->occupied_leaf_count();
       return;
     }
     nlohmann::json columns = nlohmann::json::array();
@@ -222,13 +222,12 @@ class DStarLite3dPlanner final : public Planner {
       const int top = *map_->top_blocked_level(c.x, c.y);
       columns.push_back({c.x, c.y, map_->center({c.x, c.y, top}).z()});
     }
-    if (!columns.empty()) result.decisions["height_map_columns"] = std::move(columns);
+    if (!columns.empty()) result.decisions.extras["height_map_columns"] = std::move(columns);
   }
 
   void record_path(const Eigen::Vector3d& waypoint_m, PlanResult& result) const {
-    nlohmann::json points = nlohmann::json::array();
-    for (std::size_t i = 0; i < path_.size(); ++i) points.push_back(to_json(point(i, waypoint_m)));
-    result.decisions["planned_path"] = std::move(points);
+    std::vector<Eigen::Vector3d>& points = result.decisions.planned_path.emplace();
+    for (std::size_t i = 0; i < path_.size(); ++i) points.push_back(point(i, waypoint_m));
   }
 
   // The next cell of the path, or a few cells ahead along a straight run of it.

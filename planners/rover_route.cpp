@@ -134,8 +134,6 @@ std::vector<std::pair<std::string, Enum>> enum_choices(const std::array<std::str
 
 // ---------------------------------------------------------------- routes
 
-nlohmann::json to_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-
 // Poses the route passes: the vehicle's start (unless the first waypoint is
 // there) and the mission waypoints, headed as given or toward the next one.
 std::vector<dubins::Pose2> route_poses(const Eigen::Vector2d& start, double start_yaw_rad,
@@ -299,17 +297,17 @@ class RoverRoutePlanner final : public Planner {
     while (next_ < o.mission.size() &&
            ((o.mission[next_].position_m.head<2>() - position).norm() <= config_.waypoint_tolerance_m ||
             pursuit_.last_found_index >= waypoint_route_index_[next_])) {
-      result.decisions["reached_waypoints"].push_back(next_++);
+      result.decisions.reached_waypoints.push_back(static_cast<int>(next_++));
     }
 
     if (scanner && scanner->fresh && scanner->scan) {
       remember(*scanner->scan, *scanner->config, position);
       assess_scan(*scanner, position, heading);
-      if (!gap_record_.is_null()) result.decisions["gap"] = std::move(gap_record_);
+      if (!gap_record_.is_null()) result.decisions.extras["gap"] = std::move(gap_record_);
       gap_record_ = nullptr;
     }
     if (avoiding_ != last_avoiding_) {
-      result.decisions["avoiding"] = avoiding_;
+      result.decisions.avoiding = avoiding_;
       last_avoiding_ = avoiding_;
       // Back on the route: pursue from the route point nearest the rover, ahead of where it left.
       if (!avoiding_) rejoin(position);
@@ -404,21 +402,19 @@ class RoverRoutePlanner final : public Planner {
       from = best;
     }
     // The route as planned, every record_path_step_m, at the rover's height.
-    nlohmann::json points = nlohmann::json::array();
+    std::vector<Eigen::Vector3d>& points = result.decisions.planned_path.emplace();
     const auto every = std::max<std::size_t>(
         1, static_cast<std::size_t>(std::lround(config_.record_path_step_m / config_.route_step_m)));
     for (std::size_t i = 0; i < route_.size(); i += every) {
-      points.push_back(to_json(Eigen::Vector3d(route_[i].x(), route_[i].y(), o.state.position_m.z())));
+      points.emplace_back(route_[i].x(), route_[i].y(), o.state.position_m.z());
     }
     if ((route_.size() - 1) % every != 0) {
-      points.push_back(to_json(Eigen::Vector3d(route_.back().x(), route_.back().y(), o.state.position_m.z())));
+      points.emplace_back(route_.back().x(), route_.back().y(), o.state.position_m.z());
     }
-    result.decisions["planned_path"] = std::move(points);
-    result.decisions["replan"] = {
-        {"index", 0},
-        {"global", kGlobalNames[static_cast<std::size_t>(config_.global)]},
-        {"route_points", route_.size()},
-        {"time_ms", std::chrono::duration<double, std::milli>(Clock::now() - started).count()}};
+    result.decisions.replan = ReplanDecision{
+        .index = 0,
+        .time_ms = std::chrono::duration<double, std::milli>(Clock::now() - started).count(),
+        .details = {{"global", kGlobalNames[static_cast<std::size_t>(config_.global)]}, {"route_points", route_.size()}}};
     return true;
   }
 

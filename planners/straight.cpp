@@ -13,7 +13,7 @@ class StraightPlanner final : public Planner {
   PlanResult plan(const Observation& o) override {
     PlanResult result;
     while (next_ < o.mission.size() && distance(o.state.position_m, o.mission[next_].position_m) <= config_.tolerance_m) {
-      result.decisions["reached_waypoints"].push_back(next_);
+      result.decisions.reached_waypoints.push_back(static_cast<int>(next_));
       ++next_;
     }
     if (next_ >= o.mission.size()) {

@@ -45,9 +45,9 @@ struct RunView {
   std::vector<Eigen::Vector3d> planned_path;///< a global planner's planned path, if any
   std::vector<Eigen::Vector3d> sensor_hits; ///< range-sensor hits a mapping planner recorded ("lidar_hits")
   HeightMapView height_map;                 ///< what a mapping planner reconstructed, if any
-  /// Time intervals [start, end] of local obstacle avoidance, s (decisions
-  /// "avoiding": true, then false; one still open at the end closes at the
-  /// last track time), highlighted on the map.
+  /// Time intervals [start, end] of local obstacle avoidance, s
+  /// (Decisions::avoiding true, then false; one still open at the end closes
+  /// at the last track time), highlighted on the map.
   std::vector<std::pair<double, double>> avoiding_s;
   std::string outcome;                      ///< run outcome, for titles
 };

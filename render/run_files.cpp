@@ -94,8 +94,8 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
         throw InputError((dir / "run.json").string(), "/event_log/file", "expected a file name, got " + name.string());
       }
       run.events = read_events_jsonl(dir / name);
-    } else {
-      run.events = run.record.value("events", nlohmann::json::array());
+    } else if (const auto events = run.record.find("events"); events != run.record.end()) {
+      run.events = events_from_json(*events, (dir / "run.json").string(), "/events");
     }
   } catch (const nlohmann::json::exception& e) {
     throw InputError((dir / "run.json").string(), "/event_log", std::string("malformed run record: ") + e.what());
@@ -115,17 +115,19 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
     // waypoints set or dropped, a planned path, obstacle avoidance switched on and off.
     bool avoiding = false;
     double avoiding_since = 0.0;
-    for (const auto& event : run.events) {
-      const auto& d = event.at("decisions");
-      if (const auto a = d.find("avoiding"); a != d.end() && a->is_boolean()) {
-        const double t = event.at("time_s").get<double>();
-        if (a->get<bool>() && !avoiding) avoiding_since = t;
-        if (!a->get<bool>() && avoiding) v.avoiding_s.emplace_back(avoiding_since, t);
-        avoiding = a->get<bool>();
+    for (const PlannerEvent& event : run.events) {
+      const Decisions& typed = event.decisions;
+      if (typed.avoiding) {
+        if (*typed.avoiding && !avoiding) avoiding_since = event.time_s;
+        if (!*typed.avoiding && avoiding) v.avoiding_s.emplace_back(avoiding_since, event.time_s);
+        avoiding = *typed.avoiding;
       }
-      for (const auto& i : d.value("reached_waypoints", nlohmann::json::array())) v.reached.push_back(i.get<int>());
-      if (d.contains("planned_waypoint")) v.planned.push_back(vector3(d["planned_waypoint"]));
-      if (d.contains("discarded_waypoint")) v.discarded.push_back(vector3(d["discarded_waypoint"]));
+      v.reached.insert(v.reached.end(), typed.reached_waypoints.begin(), typed.reached_waypoints.end());
+      if (typed.planned_waypoint) v.planned.push_back(*typed.planned_waypoint);
+      if (typed.discarded_waypoint) v.discarded.push_back(*typed.discarded_waypoint);
+      if (typed.planned_path) v.planned_path = *typed.planned_path;
+      // The mapping planners' own decisions (docs/planners.md, dstar_lite_3d).
+      const nlohmann::json& d = typed.extras;
       if (d.contains("lidar_hits")) {
         for (const auto& p : d["lidar_hits"]) v.sensor_hits.push_back(vector3(p));
       }
@@ -148,10 +150,6 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
           throw InputError((dir / "run.json").string(), "", "height_map_columns: column outside the height_map_grid");
         }
         h.top_m[static_cast<std::size_t>(y) * h.columns + x] = c.at(2).get<double>();
-      }
-      if (d.contains("planned_path")) {
-        v.planned_path.clear();
-        for (const auto& p : d["planned_path"]) v.planned_path.push_back(vector3(p));
       }
     }
     if (avoiding) {  // still on at the end: up to the last sample

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "campo/episode.hpp"
 #include "campo/scene.hpp"
 #include "render/figures.hpp"
 
@@ -15,9 +16,9 @@ namespace campo {
 struct RecordedRun {
   std::filesystem::path dir;
   nlohmann::json record;  ///< run.json
-  /// The planner decisions, [{"time_s", "decisions"}] in time order: events.jsonl
-  /// (run.json's event_log), or the "events" array of run.json in runs recorded before it.
-  nlohmann::json events;
+  /// The planner decisions in time order: events.jsonl (run.json's
+  /// event_log), or the "events" array of run.json in runs recorded before it.
+  std::vector<PlannerEvent> events;
   Scene scene;            ///< from scene.json, the effective scene of the run
   RunView view;           ///< track, mission and planner decisions
 };

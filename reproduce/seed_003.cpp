@@ -104,14 +104,14 @@ void fig_46(const Workbench& bench, Claim& claim) {
   // The chosen gaps in time order: which side of the route each lies on (its centre) and the heading steered for.
   std::vector<std::vector<std::string>> rows;
   std::vector<int> sides;
-  for (const auto& event : run.events) {
-    const auto* gap = event.at("decisions").contains("gap") ? &event.at("decisions").at("gap") : nullptr;
+  for (const PlannerEvent& event : run.events) {
+    const auto* gap = event.decisions.extras.contains("gap") ? &event.decisions.extras.at("gap") : nullptr;
     if (!gap || !gap->contains("gap_center_deg")) continue;
     const double center = gap->at("gap_center_deg").get<double>();
     const int side = center > 0.0 ? 1 : -1;
     if (sides.empty() || sides.back() != side) {
       sides.push_back(side);
-      rows.push_back({fixed(event.at("time_s").get<double>(), 1), side > 0 ? "left" : "right", fixed(center, 1),
+      rows.push_back({fixed(event.time_s, 1), side > 0 ? "left" : "right", fixed(center, 1),
                       fixed(gap->at("gap_heading_deg").get<double>(), 1)});
     }
   }

@@ -66,17 +66,14 @@ void route_metrics(const VehicleDef& def, const Eigen::Vector3d& start, const st
   }
 }
 
-// Counts the decisions of planner.hpp's keys into the metrics.
+// Counts the planner's decisions into the metrics.
 void count_decisions(const std::vector<PlannerEvent>& events, EpisodeMetrics& m) {
   std::vector<double> replan_ms;
   for (const PlannerEvent& e : events) {
-    if (!e.decisions.is_object()) continue;
-    m.waypoints_planned += e.decisions.contains("planned_waypoint");
-    m.waypoints_reached += e.decisions.contains("reached_intermediate");
-    m.waypoints_discarded += e.decisions.contains("discarded_waypoint");
-    if (const auto replan = e.decisions.find("replan"); replan != e.decisions.end()) {
-      replan_ms.push_back(replan->value("time_ms", 0.0));
-    }
+    m.waypoints_planned += e.decisions.planned_waypoint.has_value();
+    m.waypoints_reached += e.decisions.reached_intermediate.has_value();
+    m.waypoints_discarded += e.decisions.discarded_waypoint.has_value();
+    if (e.decisions.replan) replan_ms.push_back(e.decisions.replan->time_ms);
   }
   m.replans = static_cast<int>(replan_ms.size());
   if (replan_ms.empty()) return;
@@ -179,16 +176,11 @@ class RouteDistance {
   std::size_t hint_ = 0;
 };
 
-// The (x, y) of a "planned_path" decision's points; malformed points are left out.
-std::vector<Eigen::Vector2d> route_points(const nlohmann::json& path) {
+// The (x, y) of a planned path's points.
+std::vector<Eigen::Vector2d> route_points(const std::vector<Eigen::Vector3d>& path) {
   std::vector<Eigen::Vector2d> points;
-  if (!path.is_array()) return points;
   points.reserve(path.size());
-  for (const auto& p : path) {
-    if (p.is_array() && p.size() >= 2 && p[0].is_number() && p[1].is_number()) {
-      points.emplace_back(p[0].get<double>(), p[1].get<double>());
-    }
-  }
+  for (const Eigen::Vector3d& p : path) points.push_back(p.head<2>());
   return points;
 }
 
@@ -197,14 +189,12 @@ std::vector<Eigen::Vector2d> route_points(const nlohmann::json& path) {
 CrossTrack cross_track_error(std::span<const TrajectorySample> trajectory, std::span<const PlannerEvent> events) {
   CrossTrack result;
   std::optional<RouteDistance> route;
-  const nlohmann::json* pending = nullptr;  // the latest planned path, built when a sample needs it
+  const std::vector<Eigen::Vector3d>* pending = nullptr;  // the latest planned path, built when a sample needs it
   std::size_t e = 0;
   double sum = 0.0, sum_squares = 0.0, max_squared = 0.0;
   for (const TrajectorySample& s : trajectory) {
     for (; e < events.size() && events[e].time_s <= s.time_s; ++e) {
-      const nlohmann::json& d = events[e].decisions;
-      if (!d.is_object()) continue;
-      if (const auto path = d.find("planned_path"); path != d.end()) pending = &*path;
+      if (const auto& path = events[e].decisions.planned_path) pending = &*path;
     }
     if (pending) {
       std::vector<Eigen::Vector2d> points = route_points(*pending);
@@ -232,10 +222,8 @@ double avoiding_time(std::span<const PlannerEvent> events, double end_time_s) {
   bool on = false;
   double since = 0.0;
   for (const PlannerEvent& e : events) {
-    if (!e.decisions.is_object()) continue;
-    const auto avoiding = e.decisions.find("avoiding");
-    if (avoiding == e.decisions.end() || !avoiding->is_boolean()) continue;
-    const bool now = avoiding->get<bool>();
+    if (!e.decisions.avoiding) continue;
+    const bool now = *e.decisions.avoiding;
     if (now && !on) since = e.time_s;
     if (!now && on) total += e.time_s - since;
     on = now;
@@ -396,21 +384,15 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
       ++m.planner_calls;
       planner_ms_total += ms;
       m.planner_time_ms_max = std::max(m.planner_time_ms_max, ms);
-      if (plan.decisions.is_object()) {
-        for (const auto& index : plan.decisions.value("reached_waypoints", nlohmann::json::array())) {
-          const auto i = index.is_number_integer() ? index.get<std::int64_t>() : -1;
-          if (i >= 0 && static_cast<std::size_t>(i) < reached_at.size()) {
-            reached_at[static_cast<std::size_t>(i)] = truth.position_m;
-            reached_sample[static_cast<std::size_t>(i)] = result.trajectory.size();
-          }
+      for (const int i : plan.decisions.reached_waypoints) {
+        if (i >= 0 && static_cast<std::size_t>(i) < reached_at.size()) {
+          reached_at[static_cast<std::size_t>(i)] = truth.position_m;
+          reached_sample[static_cast<std::size_t>(i)] = result.trajectory.size();
         }
       }
       // Bounded as recorded (run/event_log.hpp): a scan's thousands of hits would otherwise make the record
       // grow with every scan; the metrics below read the same bounded decisions the files keep.
-      if (!plan.decisions.is_null()) {
-        bound_decisions(plan.decisions);
-        result.events.push_back({t, std::move(plan.decisions)});
-      }
+      if (!plan.decisions.empty()) result.events.push_back({t, bounded_decisions(std::move(plan.decisions))});
       // Exact obstacle clearance for the record; the ground only as far as
       // it could lower its minimum (far terrain costs many triangles).
       const Clearance clearance = world.vehicle_clearance(kExact, minima.ground_cutoff());

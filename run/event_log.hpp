@@ -22,6 +22,34 @@ inline constexpr std::size_t kEventLineMaxBytes = 256u << 10;
 /// The events file next to run.json.
 inline constexpr const char* kEventsFile = "events.jsonl";
 
+/// The JSON record of a planner's decisions (docs/running.md, "Planner
+/// decisions in the record"): each typed field that was decided under its
+/// name, beside the planner's extras; a replanning step is one object of its
+/// index, sensor and time_ms with the planner's details. The one writer of
+/// decisions: events.jsonl and everything reading them back agree through
+/// it and decisions_from_json. std::invalid_argument when the extras (or a
+/// replanning step's details) are not a JSON object or use a typed field's
+/// name, which would make the record ambiguous.
+nlohmann::json decisions_to_json(Decisions decisions);
+
+/// Decisions read back from their JSON record (an object): the typed fields
+/// from their keys, every other key into extras as it is. InputError naming
+/// `file`, the JSON pointer of the offending value (under `pointer`, that of
+/// the record) and what was expected when the record is not an object or a
+/// typed field is malformed.
+Decisions decisions_from_json(nlohmann::json record, const std::string& file, const std::string& pointer);
+
+/// One recorded event {"time_s": T, "decisions": {...}} read back; InputError
+/// as decisions_from_json, or naming `pointer` when it is not such an event.
+PlannerEvent event_from_json(nlohmann::json record, const std::string& file, const std::string& pointer);
+
+/// The decisions as they are recorded: bound_decisions applied to their JSON
+/// record, read back. What the metrics read, so that they agree with the files.
+Decisions bounded_decisions(Decisions decisions);
+
+/// Whether bound_decisions thinned or cut these decisions (their `thinned` or `omitted` note).
+bool was_bounded(const Decisions& decisions);
+
 /// Bounds one event's decisions in place. An array of more than
 /// kEventArrayMaxEntries entries, at any depth, keeps that many, evenly spaced
 /// and including its first and last (a thinned path still starts and ends
@@ -38,9 +66,14 @@ std::string event_line(const PlannerEvent& event);
 /// The events, one line each, in time order.
 std::string events_jsonl(const std::vector<PlannerEvent>& events);
 
-/// events.jsonl read back as a JSON array of {"time_s", "decisions"}; an
-/// InputError naming the file and line for a line that is too long or not an
-/// event.
-nlohmann::json read_events_jsonl(const std::filesystem::path& path);
+/// events.jsonl read back; an InputError naming the file and line for a line
+/// that is too long or not an event (event_from_json).
+std::vector<PlannerEvent> read_events_jsonl(const std::filesystem::path& path);
+
+/// The `events` array of a run.json recorded before events.jsonl existed, read
+/// back as event_from_json reads each; InputError naming `file` and the
+/// offending JSON pointer under `pointer`.
+std::vector<PlannerEvent> events_from_json(const nlohmann::json& events, const std::string& file,
+                                           const std::string& pointer);
 
 }  // namespace campo

@@ -129,7 +129,7 @@ nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const E
   const WorldConfig& w = scene.world;
   std::size_t bounded = 0;
   for (const PlannerEvent& e : result.events) {
-    bounded += e.decisions.is_object() && (e.decisions.contains("thinned") || e.decisions.contains("omitted"));
+    bounded += was_bounded(e.decisions);
   }
   return {
       {"metrics", to_json(result.metrics)},

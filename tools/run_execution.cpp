@@ -74,16 +74,15 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   // The depth map each replanning used, for `campo render --kind depth --step K`.
   if (request.record_replans) {
     options.on_plan = [&](const Observation& observation, const PlanResult& plan) {
-      if (!plan.decisions.is_object() || !plan.decisions.contains("replan")) return;
-      const nlohmann::json& replan = plan.decisions["replan"];
-      const std::string sensor = replan.value("sensor", "");
+      const std::optional<ReplanDecision>& replan = plan.decisions.replan;
+      if (!replan || !replan->sensor) return;
       for (const SensorReading& reading : observation.sensors) {
         // Only image sensors give a depth map worth drawing (not a leddar's single row).
         const bool image = reading.config->beams.empty() && reading.config->rows > 1;
-        if (reading.alias != sensor || !reading.scan || !image) continue;
+        if (reading.alias != *replan->sensor || !reading.scan || !image) continue;
         std::filesystem::create_directories(output().path("replans"));
         write_depth_png(depth_map(*reading.scan, *reading.config),
-                        output().path("replans") / replan_depth_file(replan.at("index").get<int>()));
+                        output().path("replans") / replan_depth_file(replan->index));
       }
     };
   }

@@ -98,11 +98,12 @@ DepthOverlays replan_overlays(const cv::Mat& depth, const nlohmann::json& replan
 
 // "two_barriers - replan 3 at 12.4 s - target invisible -> new waypoint".
 std::string replan_title(const RecordedRun& run, const ReplanStep& step) {
-  std::string action = step.record.value("action", "");
+  const nlohmann::json& details = step.decision.details;
+  std::string action = details.value("action", "");
   std::replace(action.begin(), action.end(), '_', ' ');
   std::ostringstream title;
-  title << run.scene.name << " - replan " << step.index << " at " << std::fixed << std::setprecision(1) << step.time_s
-        << " s - " << step.record.value("role", "") << " " << step.record.value("visibility", "") << " -> " << action;
+  title << run.scene.name << " - replan " << step.decision.index << " at " << std::fixed << std::setprecision(1) << step.time_s
+        << " s - " << details.value("role", "") << " " << details.value("visibility", "") << " -> " << action;
   return title.str();
 }
 
@@ -169,20 +170,10 @@ std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::opt
                      "expected \"depth_reactive\", whose replanning steps --step draws, got \"" + planner + "\"");
   }
   std::vector<ReplanStep> recorded;
-  try {
-    const nlohmann::json& events = run.events;
-    for (std::size_t e = 0; e < events.size(); ++e) {
-      const nlohmann::json& decisions = events[e].at("decisions");
-      if (!decisions.contains("replan")) continue;
-      ReplanStep step;
-      step.record = decisions["replan"];
-      step.index = step.record.at("index").get<int>();
-      step.time_s = events[e].at("time_s").get<double>();
-      step.depth_file = run.dir / "replans" / replan_depth_file(step.index);
-      recorded.push_back(std::move(step));
-    }
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(file, "/events", std::string("malformed run record: ") + e.what());
+  for (const PlannerEvent& event : run.events) {
+    if (!event.decisions.replan) continue;
+    const ReplanDecision& replan = *event.decisions.replan;
+    recorded.push_back({event.time_s, replan, run.dir / "replans" / replan_depth_file(replan.index)});
   }
   std::vector<ReplanStep> steps;
   if (!indices) {
@@ -190,10 +181,11 @@ std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::opt
     steps = recorded;
   }
   for (const int k : indices.value_or(std::vector<int>{})) {
-    const auto it = std::find_if(recorded.begin(), recorded.end(), [k](const ReplanStep& s) { return s.index == k; });
+    const auto it = std::find_if(recorded.begin(), recorded.end(), [k](const ReplanStep& s) { return s.decision.index == k; });
     if (it == recorded.end()) {
-      const std::string held = recorded.empty() ? "none" : "steps " + std::to_string(recorded.front().index) + " to " +
-                                                               std::to_string(recorded.back().index);
+      const std::string held = recorded.empty() ? "none"
+                                                : "steps " + std::to_string(recorded.front().decision.index) + " to " +
+                                                      std::to_string(recorded.back().decision.index);
       throw InputError(file, "/events", "no replanning step " + std::to_string(k) + " (the run recorded " + held + ")");
     }
     steps.push_back(*it);
@@ -201,7 +193,7 @@ std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::opt
   for (const ReplanStep& step : steps) {
     if (!std::filesystem::is_regular_file(step.depth_file)) {
       throw InputError(step.depth_file.string(), "",
-                       "missing: expected the depth map replanning step " + std::to_string(step.index) +
+                       "missing: expected the depth map replanning step " + std::to_string(step.decision.index) +
                            " read (was the run made with --no-replan-depth?)");
     }
   }
@@ -219,7 +211,11 @@ std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, 
     DepthOverlays overlays;
     cv::Mat depth;
     try {
-      const std::string sensor = step.record.at("sensor").get<std::string>();
+      if (!step.decision.sensor) {
+        throw InputError(file, "/events", "replanning step " + std::to_string(step.decision.index) +
+                                              " names no sensor; expected the one whose depth map it read");
+      }
+      const std::string& sensor = *step.decision.sensor;
       const DepthGrid grid = recorded_grid(run, sensor);
       depth = read_depth_png(step.depth_file);
       if (depth.cols != grid.cols || depth.rows != grid.rows) {
@@ -227,11 +223,11 @@ std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, 
                          "expected a " + std::to_string(grid.cols) + " x " + std::to_string(grid.rows) +
                              " depth map, the resolution of sensor \"" + sensor + "\"");
       }
-      overlays = replan_overlays(depth, step.record, config, grid);
+      overlays = replan_overlays(depth, step.decision.details, config, grid);
     } catch (const nlohmann::json::exception& e) {
-      throw InputError(file, "/events", "malformed replanning step " + std::to_string(step.index) + ": " + e.what());
+      throw InputError(file, "/events", "malformed replanning step " + std::to_string(step.decision.index) + ": " + e.what());
     }
-    const std::string stem = std::filesystem::path(replan_depth_file(step.index)).stem().string();
+    const std::string stem = std::filesystem::path(replan_depth_file(step.decision.index)).stem().string();
     for (auto& f : write_depth_pair(depth, overlays, replan_title(run, step), out_dir, stem)) written.push_back(std::move(f));
   }
   return written;
@@ -250,12 +246,12 @@ struct GapDecision {
 std::vector<GapDecision> gap_decisions(const RecordedRun& run) {
   std::vector<GapDecision> out;
   try {
-    for (const auto& event : run.events) {
-      const auto& d = event.at("decisions");
+    for (const PlannerEvent& event : run.events) {
+      const nlohmann::json& d = event.decisions.extras;
       const auto g = d.find("gap");
       if (g == d.end()) continue;
       GapDecision decision;
-      decision.time_s = event.at("time_s").get<double>();
+      decision.time_s = event.time_s;
       decision.route_heading_deg = g->at("route_heading_deg").get<double>();
       if (g->contains("gap_heading_deg")) decision.relative_deg = (*g)["gap_heading_deg"].get<double>();
       if (g->contains("gap_center_deg")) decision.center_deg = (*g)["gap_center_deg"].get<double>();

@@ -17,11 +17,10 @@ inline const std::vector<std::string> kRunFigureKinds{"map", "side", "depth", "s
 std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const std::string& kind,
                                                 const std::filesystem::path& out_dir);
 
-/// One replanning step of a depth_reactive run (docs/running.md, "replan").
+/// One replanning step of a depth_reactive run (Decisions::replan, docs/planners.md).
 struct ReplanStep {
-  int index = 0;
   double time_s = 0.0;                  ///< when the planner decided, simulated seconds
-  nlohmann::json record;                ///< its events[].decisions.replan object
+  ReplanDecision decision;              ///< the step as recorded (its index, sensor and the planner's details)
   std::filesystem::path depth_file;     ///< the depth map it read, replans/replan_KKKK.png
 };
 

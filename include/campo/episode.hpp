@@ -67,23 +67,23 @@ struct EpisodeMetrics {
   int planner_calls = 0;
   double planner_time_ms_mean = 0.0;  ///< measured
   double planner_time_ms_max = 0.0;   ///< measured
-  // From the planner's decisions (planner.hpp keys); zero for planners that do not set them.
-  int waypoints_planned = 0;    ///< intermediate waypoints set ("planned_waypoint")
-  int waypoints_reached = 0;    ///< intermediate waypoints reached ("reached_intermediate")
-  int waypoints_discarded = 0;  ///< intermediate waypoints dropped ("discarded_waypoint")
-  int replans = 0;              ///< replanning steps ("replan")
-  double replan_time_ms_median = 0.0;  ///< measured ("replan"/"time_ms")
+  // From the planner's decisions (planner.hpp, Decisions); zero for planners that do not set them.
+  int waypoints_planned = 0;    ///< intermediate waypoints set (Decisions::planned_waypoint)
+  int waypoints_reached = 0;    ///< intermediate waypoints reached (Decisions::reached_intermediate)
+  int waypoints_discarded = 0;  ///< intermediate waypoints dropped (Decisions::discarded_waypoint)
+  int replans = 0;              ///< replanning steps (Decisions::replan)
+  double replan_time_ms_median = 0.0;  ///< measured (ReplanDecision::time_ms)
   double replan_time_ms_max = 0.0;     ///< measured
   /// Horizontal (x, y) distance of the vehicle, at every trajectory sample,
-  /// to the route in force then: the latest "planned_path" recorded at or
+  /// to the route in force then: the latest planned path recorded at or
   /// before the sample, as a polyline. Root mean square, mean and maximum
   /// over the samples that have a route (cross_track_error); zero when the
   /// planner records no planned path.
   double cross_track_rms_m = 0.0;
   double cross_track_mean_m = 0.0;
   double cross_track_max_m = 0.0;
-  /// Simulated time spent in local obstacle avoidance: from each "avoiding":
-  /// true to the next "avoiding": false, or to the end of the run (avoiding_time).
+  /// Simulated time spent in local obstacle avoidance: from each decision
+  /// avoiding true to the next avoiding false, or to the end of the run (avoiding_time).
   double avoiding_time_s = 0.0;
   /// Per mission leg, as "leg<k>_path_length_m" and "leg<k>_lateral_before_climb_m".
   std::vector<LegMetrics> legs;
@@ -105,10 +105,12 @@ struct TrajectorySample {
   nlohmann::json actuators;
 };
 
-/// A planner decision with the time it was taken (for run.json and figures).
+/// A planner's decisions with the time it took them (events.jsonl, run/event_log.hpp).
 struct PlannerEvent {
   double time_s = 0.0;
-  nlohmann::json decisions;
+  Decisions decisions;
+
+  bool operator==(const PlannerEvent&) const = default;
 };
 
 /// Cross-track error of a trajectory against the routes its planner recorded.
@@ -120,15 +122,15 @@ struct CrossTrack {
 };
 
 /// The cross-track metrics of EpisodeMetrics from the samples and the events,
-/// both in time order. A "planned_path" decision (list of [x, y, z]; z is
-/// ignored) becomes the route for the samples at or after its time until the
-/// next one; an empty list leaves no route (samples skipped until the next),
+/// both in time order. A planned path decision (z is ignored) becomes the
+/// route for the samples at or after its time until the next one; an empty
+/// one leaves no route (samples skipped until the next),
 /// a single point is a route of one point. Samples before the first planned
 /// path are skipped; with none measured, everything is zero. Exact (the
 /// distance to the nearest segment), in about log(route segments) per sample.
 CrossTrack cross_track_error(std::span<const TrajectorySample> trajectory, std::span<const PlannerEvent> events);
 
-/// Total time between each "avoiding": true decision and the next "avoiding":
+/// Total time between each decision avoiding true and the next avoiding
 /// false (repeated values change nothing); an avoidance still on at the end
 /// counts up to `end_time_s`. Events in time order.
 double avoiding_time(std::span<const PlannerEvent> events, double end_time_s);

@@ -3,10 +3,13 @@
 /// control rate and returns a command with a typed status, plus the decisions
 /// it took for the record. Planners see plain data only, never Bullet.
 /// Implementations and the registry live in planners/.
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include "campo/lidar_scan.hpp"
@@ -45,21 +48,56 @@ enum class PlanStatus {
 };
 std::string_view to_string(PlanStatus status);
 
+/// One replanning step of a planner. The metrics count the steps and take
+/// the median and maximum of their times; `campo render --kind depth --step K`
+/// finds a step by its index.
+struct ReplanDecision {
+  int index = 0;                        ///< the planner's count of its steps, 0 for the first
+  std::optional<std::string> sensor{};  ///< alias of the sensor whose reading the step used, if it read one
+  double time_ms = 0.0;                 ///< measured wall-clock time of the step, ms
+  /// The planner's own inputs and outputs of the step (a JSON object under
+  /// keys other than "index", "sensor" and "time_ms"), recorded beside them.
+  nlohmann::json details = nlohmann::json::object();
+
+  bool operator==(const ReplanDecision&) const = default;
+};
+
+/// What a planner decided in one call, for the record (events.jsonl,
+/// docs/running.md). The typed fields are the decisions the metrics and
+/// figures read; run/event_log.hpp writes them to JSON and reads them back.
+/// Positions are world coordinates, m. A field left empty was not decided.
+/// Every field has an initializer, so designated initializers may name only
+/// the fields decided.
+struct Decisions {
+  /// Indices into the mission of the waypoints reached this call, in the order reached.
+  std::vector<int> reached_waypoints{};
+  std::optional<Eigen::Vector3d> planned_waypoint{};      ///< an intermediate waypoint set
+  std::optional<Eigen::Vector3d> reached_intermediate{};  ///< an intermediate waypoint reached
+  std::optional<Eigen::Vector3d> discarded_waypoint{};    ///< an intermediate waypoint dropped
+  /// The global route (a polyline) when it is set or changes: the cross-track
+  /// metrics measure against the latest one; an empty route leaves none.
+  std::optional<std::vector<Eigen::Vector3d>> planned_path{};
+  /// Local obstacle avoidance took over from route following (true) or handed
+  /// back (false), recorded at each switch: the avoiding time, the map's amber band.
+  std::optional<bool> avoiding{};
+  std::optional<ReplanDecision> replan{};  ///< the replanning step taken this call
+  /// The planner's other decisions (a JSON object), free-form, under keys other
+  /// than the typed fields' names: recorded beside them, for its own figures.
+  nlohmann::json extras = nlohmann::json::object();
+
+  /// Whether there is nothing to record.
+  bool empty() const {
+    return reached_waypoints.empty() && !planned_waypoint && !reached_intermediate && !discarded_waypoint &&
+           !planned_path && !avoiding && !replan && extras.empty();
+  }
+  bool operator==(const Decisions&) const = default;
+};
+
 struct PlanResult {
   PlanStatus status = PlanStatus::running;
   Command command;
   std::string reason;        ///< why, for any status but running
-  /// What it decided this call, null when nothing to record. Keys the
-  /// metrics and figures understand: "reached_waypoints" (indices of mission
-  /// waypoints reached), "planned_waypoint" / "reached_intermediate" /
-  /// "discarded_waypoint" ([x, y, z] of an intermediate waypoint set, reached,
-  /// dropped), "planned_path" (list of [x, y, z]: the global route, recorded
-  /// when it is set or changes; the cross-track metrics measure against it),
-  /// "avoiding" (bool, recorded when local obstacle avoidance switches on
-  /// (true) or off (false): the avoiding time, highlighted on the map),
-  /// "replan" (object with "index", "sensor" and "time_ms" for each
-  /// replanning step).
-  nlohmann::json decisions;
+  Decisions decisions;       ///< what it decided this call, empty when nothing to record
 };
 
 /// What a planner may know when it is created.

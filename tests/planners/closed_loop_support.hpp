@@ -27,12 +27,10 @@ inline EpisodeResult run_bundled(const std::string& name, const std::string& pla
   return run_episode(scene, &make_vehicle, &create_planner);
 }
 
-/// Mission waypoints the planner reported reached ("reached_waypoints").
+/// Mission waypoints the planner reported reached (Decisions::reached_waypoints).
 inline int waypoints_reached(const EpisodeResult& r) {
   int reached = 0;
-  for (const PlannerEvent& e : r.events) {
-    if (e.decisions.contains("reached_waypoints")) reached += static_cast<int>(e.decisions["reached_waypoints"].size());
-  }
+  for (const PlannerEvent& e : r.events) reached += static_cast<int>(e.decisions.reached_waypoints.size());
   return reached;
 }
 

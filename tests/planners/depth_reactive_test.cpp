@@ -72,9 +72,10 @@ TEST(DepthReactive, FliesToAVisibleTarget) {
   const auto* go = std::get_if<command::GoTo>(&r.command);
   ASSERT_NE(go, nullptr);
   EXPECT_EQ(go->target_m, Eigen::Vector3d(6.0, 0.0, 1.5));
-  EXPECT_EQ(r.decisions["replan"]["visibility"], "visible");
-  EXPECT_EQ(r.decisions["replan"]["action"], "fly");
-  EXPECT_EQ(r.decisions["replan"]["index"], 0);
+  ASSERT_TRUE(r.decisions.replan.has_value());
+  EXPECT_EQ(r.decisions.replan->details["visibility"], "visible");
+  EXPECT_EQ(r.decisions.replan->details["action"], "fly");
+  EXPECT_EQ(r.decisions.replan->index, 0);
 }
 
 TEST(DepthReactive, WaitsForAScanTakenAtRest) {
@@ -96,7 +97,7 @@ TEST(DepthReactive, TurnsTowardTheTargetFirst) {
   const auto* face = std::get_if<command::Face>(&r.command);
   ASSERT_NE(face, nullptr);
   EXPECT_EQ(face->point_m, Eigen::Vector3d(0.0, 6.0, 1.5));
-  EXPECT_TRUE(r.decisions.is_null());
+  EXPECT_TRUE(r.decisions.empty());
 }
 
 TEST(DepthReactive, ClimbsWhenTheTargetIsFarAboveTheFieldOfView) {
@@ -112,7 +113,8 @@ TEST(DepthReactive, AnUnreachableTargetEndsTheRun) {
   const PlanResult r = planner()->plan(hover.observation);
   EXPECT_EQ(r.status, PlanStatus::no_path);
   EXPECT_THAT(r.reason, HasSubstr("target unreachable"));
-  EXPECT_EQ(r.decisions["replan"]["visibility"], "unreachable");
+  ASSERT_TRUE(r.decisions.replan.has_value());
+  EXPECT_EQ(r.decisions.replan->details["visibility"], "unreachable");
 }
 
 TEST(DepthReactive, WallFollowingWhenTheDilatedMapIsFull) {
@@ -120,9 +122,10 @@ TEST(DepthReactive, WallFollowingWhenTheDilatedMapIsFull) {
   const auto p = planner();
   const PlanResult first = p->plan(hover.observation);
   EXPECT_EQ(first.status, PlanStatus::running);
-  EXPECT_EQ(first.decisions["replan"]["visibility"], "invisible");
-  EXPECT_EQ(first.decisions["replan"]["candidates"], 0);
-  EXPECT_EQ(first.decisions["replan"]["action"], "wall_following");
+  ASSERT_TRUE(first.decisions.replan.has_value());
+  EXPECT_EQ(first.decisions.replan->details["visibility"], "invisible");
+  EXPECT_EQ(first.decisions.replan->details["candidates"], 0);
+  EXPECT_EQ(first.decisions.replan->details["action"], "wall_following");
   // Then it looks 60 deg to the left of the goal direction.
   hover.observation.time_s = 1.0 / 60.0;
   const PlanResult second = p->plan(hover.observation);
@@ -142,14 +145,14 @@ TEST(DepthReactive, FindsAWaypointBesideABarrier) {
     }
   }
   const PlanResult r = planner()->plan(hover.observation);
-  EXPECT_EQ(r.decisions["replan"]["action"], "new_waypoint");
-  ASSERT_TRUE(r.decisions.contains("planned_waypoint"));
-  const Eigen::Vector3d w(r.decisions["planned_waypoint"][0], r.decisions["planned_waypoint"][1],
-                          r.decisions["planned_waypoint"][2]);
+  ASSERT_TRUE(r.decisions.replan.has_value());
+  EXPECT_EQ(r.decisions.replan->details["action"], "new_waypoint");
+  ASSERT_TRUE(r.decisions.planned_waypoint.has_value());
+  const Eigen::Vector3d w = *r.decisions.planned_waypoint;
   EXPECT_LT(w.y(), 0.0);           // to the right, where it is free
   // Beyond the barrier's edge: every pixel of the barrier reads 4 m, so the
   // waypoint lies farther than 4 m from the sensor (edge + vehicle radius).
-  EXPECT_GT(r.decisions["replan"]["new_waypoint_range_m"].get<double>(), 4.0);
+  EXPECT_GT(r.decisions.replan->details["new_waypoint_range_m"].get<double>(), 4.0);
   EXPECT_NEAR(w.z(), 1.5, 0.3);    // about level: climbing costs more
 }
 

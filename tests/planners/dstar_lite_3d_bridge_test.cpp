@@ -51,7 +51,7 @@ double highest_planned_z(const std::string& mapping) {
   const PlanResult r = planner->plan(o);
   EXPECT_EQ(r.status, PlanStatus::running);
   double highest = -1e9;
-  for (const nlohmann::json& p : r.decisions["planned_path"]) highest = std::max(highest, p[2].get<double>());
+  for (const Eigen::Vector3d& p : r.decisions.planned_path.value()) highest = std::max(highest, p.z());
   return highest;
 }
 
@@ -174,7 +174,7 @@ TEST(DStarLite3dBridge, OctomapFliesUnderTheDeck) {
   EXPECT_LT(c.highest_m, kDeckBottomM);
   // It mapped with the octree: planning cells were blocked (the deck's level, the piers).
   int blocked_events = 0;
-  for (const PlannerEvent& e : r.events) blocked_events += e.decisions.contains("blocked_cells") ? 1 : 0;
+  for (const PlannerEvent& e : r.events) blocked_events += e.decisions.extras.contains("blocked_cells") ? 1 : 0;
   EXPECT_GT(blocked_events, 0);
 }
 

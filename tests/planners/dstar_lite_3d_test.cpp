@@ -19,8 +19,6 @@ using ::testing::HasSubstr;
 
 ParamsBlock params(nlohmann::json values) { return {std::move(values), "scene.json", "/objects/2/planner/params"}; }
 
-Eigen::Vector3d vec(const nlohmann::json& j) { return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()}; }
-
 // Synthetic observations on seed 001's grid with take-off ground at z = 0:
 // cell (x, y, z) has its centre at (0.75 + 1.5 x, 0.75 + 1.5 y, 7 (z - 2)).
 Eigen::Vector3d center(int x, int y, int z) { return {0.75 + 1.5 * x, 0.75 + 1.5 * y, 7.0 * (z - 2)}; }
@@ -57,42 +55,47 @@ TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
   EXPECT_EQ(r.status, PlanStatus::running);
   EXPECT_EQ(goto_target(r), center(0, 0, 4));
   EXPECT_DOUBLE_EQ(std::get<command::GoTo>(r.command).speed_mps, 1.0);
-  EXPECT_EQ(r.decisions["replan"]["index"], 0);
-  EXPECT_EQ(r.decisions["replan"]["sensor"], "leddar");
-  EXPECT_EQ(r.decisions["planned_path"].size(), 3u);
+  ASSERT_TRUE(r.decisions.replan.has_value());
+  EXPECT_EQ(r.decisions.replan->index, 0);
+  EXPECT_EQ(r.decisions.replan->sensor, "leddar");
+  ASSERT_TRUE(r.decisions.planned_path.has_value());
+  EXPECT_EQ(r.decisions.planned_path->size(), 3u);
 
   // Waypoint 0 reached: the next leg runs east along level 4, three cells ahead at a time.
   r = planner->plan(feed.at(center(0, 0, 4) + Eigen::Vector3d(0.1, 0.0, 0.2)));
-  EXPECT_EQ(r.decisions["reached_waypoints"], nlohmann::json({0}));
+  EXPECT_EQ(r.decisions.reached_waypoints, std::vector<int>{0});
   EXPECT_EQ(goto_target(r), center(3, 0, 4));
-  EXPECT_EQ(r.decisions["planned_path"].size(), 7u);
+  ASSERT_TRUE(r.decisions.planned_path.has_value());
+  EXPECT_EQ(r.decisions.planned_path->size(), 7u);
 
   // A hit on a roof at level 4 in column (2, 0) blocks levels 0..4 there: only
   // those five cells go to D* Lite, and the new path avoids them.
   r = planner->plan(feed.at(center(0, 0, 4), {Eigen::Vector3f(3.0f, 0.75f, 14.5f)}));
-  EXPECT_EQ(r.decisions["replan"]["index"], 2);
-  EXPECT_EQ(r.decisions["replan"]["changed_cells"], 5);
-  EXPECT_GT(r.decisions["replan"]["expansions"].get<int>(), 0);
-  EXPECT_GE(r.decisions["replan"]["time_ms"].get<double>(), 0.0);
-  ASSERT_TRUE(r.decisions.contains("planned_path"));
-  for (const nlohmann::json& p : r.decisions["planned_path"]) {
-    const Eigen::Vector3d point = vec(p);
-    EXPECT_FALSE((point - Eigen::Vector3d(3.75, 0.75, point.z())).norm() < 0.1 && point.z() < 15.0) << p;
+  ASSERT_TRUE(r.decisions.replan.has_value());
+  EXPECT_EQ(r.decisions.replan->index, 2);
+  EXPECT_EQ(r.decisions.replan->details["changed_cells"], 5);
+  EXPECT_GT(r.decisions.replan->details["expansions"].get<int>(), 0);
+  EXPECT_GE(r.decisions.replan->time_ms, 0.0);
+  ASSERT_TRUE(r.decisions.planned_path.has_value());
+  for (const Eigen::Vector3d& point : *r.decisions.planned_path) {
+    EXPECT_FALSE((point - Eigen::Vector3d(3.75, 0.75, point.z())).norm() < 0.1 && point.z() < 15.0)
+        << point.transpose();
   }
-  EXPECT_EQ(vec(r.decisions["planned_path"].back()), center(6, 0, 4));
+  EXPECT_EQ(r.decisions.planned_path->back(), center(6, 0, 4));
 
-  const nlohmann::json path = r.decisions["planned_path"];
+  const std::vector<Eigen::Vector3d> path = *r.decisions.planned_path;
 
   // The same hit again changes nothing: no replan while the vehicle stays in its cell.
   r = planner->plan(feed.at(center(0, 0, 4), {Eigen::Vector3f(3.0f, 0.75f, 14.5f)}));
-  EXPECT_TRUE(r.decisions.is_null() || !r.decisions.contains("replan"));
+  EXPECT_FALSE(r.decisions.replan.has_value());
 
   // Moving one cell along the path moves D* Lite's start (k_m); the rest of
   // the plan holds, so no new path is recorded.
-  r = planner->plan(feed.at(vec(path[1])));
-  EXPECT_EQ(r.decisions["replan"]["index"], 3);
-  EXPECT_EQ(r.decisions["replan"]["changed_cells"], 0);
-  EXPECT_FALSE(r.decisions.contains("planned_path"));
+  r = planner->plan(feed.at(path[1]));
+  ASSERT_TRUE(r.decisions.replan.has_value());
+  EXPECT_EQ(r.decisions.replan->index, 3);
+  EXPECT_EQ(r.decisions.replan->details["changed_cells"], 0);
+  EXPECT_FALSE(r.decisions.planned_path.has_value());
 }
 
 TEST(DStarLite3d, ReportsNoPathWhenTheGoalColumnIsBlocked) {
@@ -116,7 +119,7 @@ TEST(DStarLite3d, NeedsItsSensorAndReachesTheLastWaypoint) {
   planner = make_dstar_lite_3d_planner({}, {VehicleType::quadrotor, nullptr});
   r = planner->plan(feed.at(center(1, 1, 3)));
   EXPECT_EQ(r.status, PlanStatus::reached);
-  EXPECT_EQ(r.decisions["reached_waypoints"], nlohmann::json({0}));
+  EXPECT_EQ(r.decisions.reached_waypoints, std::vector<int>{0});
 }
 
 TEST(DStarLite3d, ParsesParamsStrictly) {
@@ -204,7 +207,7 @@ TEST(DStarLite3dClosedLoop, ObstacleField) {
   expect_solved(r, 9, "obstacle_field");
   // At 28 m above ground the tall blocks on the route were mapped and avoided: the path changed on the way.
   int changed_paths = 0;
-  for (const PlannerEvent& e : r.events) changed_paths += e.decisions.contains("planned_path") ? 1 : 0;
+  for (const PlannerEvent& e : r.events) changed_paths += e.decisions.planned_path.has_value() ? 1 : 0;
   EXPECT_GT(changed_paths, 9);
   // Not 001 §5.1's slot (a deviation the scene states): the last leg comes south along column 46, where
   // passing west of the block at rows 49-50, columns 46-49 (column 45) is 6 cells shorter than the slot

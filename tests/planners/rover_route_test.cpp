@@ -189,8 +189,8 @@ TEST(RoverRouteClosedLoop, FollowsTheDubinsRouteRowByRow) {
 bool avoided_between(const EpisodeResult& r, double t0, double t1) {
   double t_on = -1.0;
   for (const PlannerEvent& e : r.events) {
-    if (!e.decisions.contains("avoiding")) continue;
-    if (e.decisions["avoiding"].get<bool>()) {
+    if (!e.decisions.avoiding) continue;
+    if (*e.decisions.avoiding) {
       t_on = e.time_s;
     } else if (t_on > t0 && t_on < t1) {
       return true;
@@ -257,7 +257,7 @@ TEST(RoverRouteClosedLoop, FollowTheGapGetsPastTheStaticObstacles) {
 TEST(RoverRouteClosedLoop, RrtStarAsTheGlobalPlanner) {
   const EpisodeResult r = drive({kNoStaticObstacles, kWalkerAway, kFollowTheGap, "/objects/rover/planner/params/global=rrt_star"});
   expect_route_driven(r, "rrt_star", 0.0);  // its route keeps clearance_m = 0.8 m from the rows
-  EXPECT_EQ(r.events.front().decisions["replan"]["global"], "rrt_star");
+  EXPECT_EQ(r.events.front().decisions.replan.value().details["global"], "rrt_star");
 }
 
 // Each A* leg leaves its waypoint and reaches the next straight along their
@@ -269,18 +269,18 @@ TEST(RoverRouteClosedLoop, AStarAsTheGlobalPlanner) {
   expect_route_driven(r, "astar", 0.5);
   EXPECT_LT(r.metrics.cross_track_rms_m, 0.1);
   EXPECT_LT(r.metrics.cross_track_max_m, 0.4);
-  EXPECT_EQ(r.events.front().decisions["replan"]["global"], "astar");
+  EXPECT_EQ(r.events.front().decisions.replan.value().details["global"], "astar");
 }
 
 // ---------------------------------------------------------------- seed 003 Fig. 45 and Fig. 46
 
-// Avoidance episodes [on, off] (s), from the "avoiding" decisions.
+// Avoidance episodes [on, off] (s), from the avoiding decisions.
 std::vector<std::pair<double, double>> avoidance_episodes(const EpisodeResult& r) {
   std::vector<std::pair<double, double>> out;
   double on = -1.0;
   for (const PlannerEvent& e : r.events) {
-    if (!e.decisions.contains("avoiding")) continue;
-    if (e.decisions["avoiding"].get<bool>()) {
+    if (!e.decisions.avoiding) continue;
+    if (*e.decisions.avoiding) {
       on = e.time_s;
     } else if (on >= 0.0) {
       out.emplace_back(on, e.time_s);
@@ -379,8 +379,9 @@ TEST(RoverRouteClosedLoop, Fig46SwitchesToTheLeftGapWhenTheWalkerCutsOffTheRight
   };
   std::vector<Choice> choices;
   for (const PlannerEvent& e : r.events) {
-    if (!e.decisions.contains("gap") || !e.decisions["gap"].contains("gap_center_deg")) continue;
-    const auto& g = e.decisions["gap"];
+    const nlohmann::json& extras = e.decisions.extras;
+    if (!extras.contains("gap") || !extras["gap"].contains("gap_center_deg")) continue;
+    const auto& g = extras["gap"];
     choices.push_back({e.time_s, g["gap_center_deg"].get<double>(), g["gap_heading_deg"].get<double>()});
   }
   ASSERT_FALSE(choices.empty());

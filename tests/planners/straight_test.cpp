@@ -27,7 +27,7 @@ TEST(StraightPlanner, HeadsForEachWaypointInTurn) {
   EXPECT_DOUBLE_EQ(std::get<command::GoTo>(r.command).speed_mps, 0.6);
   r = planner->plan(at({9.9, 0, 2}, mission));  // within 0.3 m
   EXPECT_EQ(std::get<command::GoTo>(r.command).target_m, mission[1].position_m);
-  EXPECT_EQ(r.decisions["reached_waypoints"], nlohmann::json({0}));
+  EXPECT_EQ(r.decisions.reached_waypoints, std::vector<int>{0});
   r = planner->plan(at({10, 9.8, 2.1}, mission));
   EXPECT_EQ(r.status, PlanStatus::reached);
   EXPECT_TRUE(std::holds_alternative<command::Hold>(r.command));

@@ -15,6 +15,7 @@
 
 #include "campo/scene_loader.hpp"
 #include "render/run_files.hpp"
+#include "run/event_log.hpp"
 #include "tests/render/figure_test_support.hpp"
 
 namespace campo {
@@ -195,6 +196,7 @@ TEST(FiguresMap, HighlightsTheTrackWhileAvoiding) {
 }
 
 TEST(FiguresMap, ReadsAvoidanceIntervalsFromTheRunRecord) {
+  const auto avoiding = [](bool on) { return decisions_to_json({.avoiding = on}); };
   const auto dir = std::filesystem::temp_directory_path() / "campo_figures_avoiding";
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "scene.json") << R"j({"objects": []})j";
@@ -207,11 +209,11 @@ TEST(FiguresMap, ReadsAvoidanceIntervalsFromTheRunRecord) {
       {"metrics", {{"outcome", "reached"}}},
       {"parameters", {{"mission", nlohmann::json::array({{{"position_m", {10, 0, 0}}}})}}},
       {"events",
-       {{{"time_s", 1.0}, {"decisions", {{"avoiding", true}}}},
-        {{"time_s", 2.0}, {"decisions", {{"avoiding", true}}}},  // still on
-        {{"time_s", 3.5}, {"decisions", {{"avoiding", false}}}},
-        {{"time_s", 4.0}, {"decisions", {{"avoiding", false}}}},  // already off
-        {{"time_s", 6.0}, {"decisions", {{"avoiding", true}}}}}},  // open: closes at the last track time
+       {{{"time_s", 1.0}, {"decisions", avoiding(true)}},
+        {{"time_s", 2.0}, {"decisions", avoiding(true)}},  // still on
+        {{"time_s", 3.5}, {"decisions", avoiding(false)}},
+        {{"time_s", 4.0}, {"decisions", avoiding(false)}},  // already off
+        {{"time_s", 6.0}, {"decisions", avoiding(true)}}}},  // open: closes at the last track time
   };
   std::ofstream(dir / "run.json") << record.dump();
   const RecordedRun run = load_run_dir(dir);

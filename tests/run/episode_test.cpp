@@ -225,11 +225,8 @@ TrajectorySample sample_at(double t, double x, double y, double z = 0.0) {
   return s;
 }
 
-nlohmann::json path_json(const std::vector<Eigen::Vector3d>& points) {
-  nlohmann::json j = nlohmann::json::array();
-  for (const auto& p : points) j.push_back({p.x(), p.y(), p.z()});
-  return j;
-}
+Decisions planned(std::vector<Eigen::Vector3d> path) { return {.planned_path = std::move(path)}; }
+Decisions avoiding(bool on) { return {.avoiding = on}; }
 
 // Horizontal distance to the polyline, every segment tried.
 double brute_force_distance(const std::vector<Eigen::Vector3d>& route, const Eigen::Vector3d& q) {
@@ -264,8 +261,8 @@ TEST(CrossTrackError, MatchesBruteForceOnRandomRoutes) {
       }
       const double t = r == 0 ? 1.0 : 1.0 + 10.0 * r + (rng() % 3);  // also at a sample's exact time
       routes.emplace_back(t, route);
-      events.push_back({t, {{"planned_path", path_json(route)}}});
-      if (rng() % 2) events.push_back({t + 0.5, {{"avoiding", true}}});  // other decisions are ignored
+      events.push_back({t, planned(route)});
+      if (rng() % 2) events.push_back({t + 0.5, avoiding(true)});  // other decisions are ignored
     }
     std::vector<TrajectorySample> trajectory;
     double sum = 0.0, max = 0.0;
@@ -295,8 +292,8 @@ TEST(CrossTrackError, MatchesBruteForceOnRandomRoutes) {
 TEST(CrossTrackError, MeasuresEachSampleAgainstTheRouteInForce) {
   // Route A along y = 0 from t = 1, route B along y = 10 from t = 2 (recorded at a sample's time).
   const std::vector<PlannerEvent> events{
-      {1.0, {{"planned_path", {{0, 0, 0}, {10, 0, 0}}}}},
-      {2.0, {{"planned_path", {{0, 10, 0}, {10, 10, 0}}}}},
+      {1.0, planned({{0, 0, 0}, {10, 0, 0}})},
+      {2.0, planned({{0, 10, 0}, {10, 10, 0}})},
   };
   const std::vector<TrajectorySample> trajectory{
       sample_at(0.5, 5, 100),  // before any route: skipped
@@ -313,14 +310,13 @@ TEST(CrossTrackError, MeasuresEachSampleAgainstTheRouteInForce) {
 
 TEST(CrossTrackError, IsZeroWithoutAPlannedPath) {
   const std::vector<TrajectorySample> trajectory{sample_at(0.0, 1, 2), sample_at(1.0, 3, 4)};
-  const std::vector<PlannerEvent> events{{0.0, {{"planned_waypoint", {1, 1, 1}}}}, {0.5, {{"avoiding", true}}}};
+  const std::vector<PlannerEvent> events{{0.0, {.planned_waypoint = Eigen::Vector3d(1, 1, 1)}}, {0.5, avoiding(true)}};
   const CrossTrack c = cross_track_error(trajectory, events);
   EXPECT_EQ(c.samples, 0u);
   EXPECT_EQ(c.rms_m, 0.0);
   EXPECT_EQ(c.max_m, 0.0);
   // An empty planned path leaves no route until the next.
-  const std::vector<PlannerEvent> cleared{{0.0, {{"planned_path", {{0, 0, 0}, {9, 0, 0}}}}},
-                                          {0.5, {{"planned_path", nlohmann::json::array()}}}};
+  const std::vector<PlannerEvent> cleared{{0.0, planned({{0, 0, 0}, {9, 0, 0}})}, {0.5, planned({})}};
   const CrossTrack c2 = cross_track_error(trajectory, cleared);
   EXPECT_EQ(c2.samples, 1u);
   EXPECT_NEAR(c2.max_m, 2.0, 1e-12);
@@ -328,14 +324,14 @@ TEST(CrossTrackError, IsZeroWithoutAPlannedPath) {
 
 TEST(AvoidingTime, AddsTheIntervalsBetweenOnAndOff) {
   const std::vector<PlannerEvent> events{
-      {1.0, {{"avoiding", true}}},
-      {1.5, {{"avoiding", true}}},   // already on: nothing changes
-      {3.0, {{"avoiding", false}}},  // 2 s
-      {4.0, {{"avoiding", false}}},  // already off
-      {5.0, {{"replan", {{"time_ms", 1.0}}}}},
-      {6.5, {{"avoiding", true}}},
-      {7.0, {{"avoiding", false}}},  // 0.5 s
-      {9.0, {{"avoiding", true}}},   // on until the end: 1.25 s
+      {1.0, avoiding(true)},
+      {1.5, avoiding(true)},   // already on: nothing changes
+      {3.0, avoiding(false)},  // 2 s
+      {4.0, avoiding(false)},  // already off
+      {5.0, {.replan = ReplanDecision{.time_ms = 1.0}}},
+      {6.5, avoiding(true)},
+      {7.0, avoiding(false)},  // 0.5 s
+      {9.0, avoiding(true)},   // on until the end: 1.25 s
   };
   EXPECT_NEAR(avoiding_time(events, 10.25), 2.0 + 0.5 + 1.25, 1e-12);
   EXPECT_NEAR(avoiding_time(std::span(events).first(7), 10.25), 2.5, 1e-12);
@@ -347,9 +343,9 @@ class RouteRecorder final : public Planner {
  public:
   PlanResult plan(const Observation& o) override {
     PlanResult r = inner_.plan(o);
-    if (o.time_s == 0.0) r.decisions = {{"planned_path", {{0, 0.5, 1}, {3.5, 0.5, 1}, {3.5, 4, 1}}}};
-    if (std::abs(o.time_s - 1.0) < 1e-9) r.decisions = {{"avoiding", true}};
-    if (std::abs(o.time_s - 2.0) < 1e-9) r.decisions = {{"avoiding", false}};
+    if (o.time_s == 0.0) r.decisions = planned({{0, 0.5, 1}, {3.5, 0.5, 1}, {3.5, 4, 1}});
+    if (std::abs(o.time_s - 1.0) < 1e-9) r.decisions = avoiding(true);
+    if (std::abs(o.time_s - 2.0) < 1e-9) r.decisions = avoiding(false);
     return r;
   }
   nlohmann::json parameters() const override { return nlohmann::json::object(); }

@@ -1,10 +1,14 @@
-// The planner decisions of a run are bounded as they are recorded, and
-// events.jsonl reads back what was written.
+// The planner decisions of a run are written to JSON and read back in one
+// place, bounded as they are recorded, and events.jsonl reads back what was
+// written.
 #include "run/event_log.hpp"
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -22,8 +26,147 @@ nlohmann::json points(std::size_t n) {
   return p;
 }
 
+// Every typed field decided, with the planner's own details and extras.
+Decisions every_field() {
+  Decisions d;
+  d.reached_waypoints = {2, 3};
+  d.planned_waypoint = Eigen::Vector3d(1.5, -2.0, 3.25);
+  d.reached_intermediate = Eigen::Vector3d(0.0, 0.1, 0.2);
+  d.discarded_waypoint = Eigen::Vector3d(-1e-3, 4.0, 7.0);
+  d.planned_path = std::vector<Eigen::Vector3d>{{0, 0, 1}, {0.25, 0, 1}, {0.5, 0.125, 1}};
+  d.avoiding = false;
+  d.replan = ReplanDecision{.index = 7, .sensor = "cam", .time_ms = 12.5, .details = {{"action", "fly"}}};
+  d.extras = {{"gap", {{"gap_center_deg", -4.5}}}, {"lidar_hits", {{1.0, 2.0, 3.0}}}};
+  return d;
+}
+
+TEST(Decisions, TypedToJsonAndBackIsTheSame) {
+  const Decisions d = every_field();
+  EXPECT_EQ(decisions_from_json(decisions_to_json(d), "f", ""), d);
+  // A replanning step without a sensor, a cleared path, nothing else.
+  const Decisions sparse{.planned_path = std::vector<Eigen::Vector3d>{},
+                         .replan = ReplanDecision{.index = 0, .time_ms = 0.5}};
+  const Decisions back = decisions_from_json(decisions_to_json(sparse), "f", "");
+  EXPECT_EQ(back, sparse);
+  EXPECT_TRUE(back.planned_path.has_value());
+  EXPECT_FALSE(back.replan->sensor.has_value());
+  EXPECT_TRUE(Decisions().empty());
+  EXPECT_FALSE(sparse.empty());
+  EXPECT_FALSE((Decisions{.extras = {{"note", 1}}}.empty()));
+}
+
+TEST(Decisions, RecordedAsDocumented) {
+  // docs/running.md, "Planner decisions in the record": one key a field, a replanning step one object with the
+  // planner's details beside its index, sensor and time; keys in order, as events.jsonl has them.
+  EXPECT_EQ(event_line({2.5, every_field()}),
+            R"({"decisions":{"avoiding":false,"discarded_waypoint":[-0.001,4.0,7.0],"gap":{"gap_center_deg":-4.5},)"
+            R"("lidar_hits":[[1.0,2.0,3.0]],"planned_path":[[0.0,0.0,1.0],[0.25,0.0,1.0],[0.5,0.125,1.0]],)"
+            R"("planned_waypoint":[1.5,-2.0,3.25],"reached_intermediate":[0.0,0.1,0.2],"reached_waypoints":[2,3],)"
+            R"("replan":{"action":"fly","index":7,"sensor":"cam","time_ms":12.5}},"time_s":2.5})");
+  EXPECT_EQ(event_line({0.0, Decisions{}}), R"({"decisions":{},"time_s":0.0})");
+}
+
+TEST(Decisions, UnknownKeysLandInExtrasAsTheyAre) {
+  const nlohmann::json record = {{"avoiding", true},
+                                 {"wall_following", {{"offset_deg", 60.0}, {"side", "left"}}},
+                                 {"occupied_voxels", 12},
+                                 {"replan", {{"index", 1}, {"time_ms", 2.0}, {"visibility", "visible"}}}};
+  const Decisions d = decisions_from_json(record, "f", "");
+  EXPECT_EQ(d.avoiding, true);
+  EXPECT_EQ(d.extras, (nlohmann::json{{"wall_following", {{"offset_deg", 60.0}, {"side", "left"}}},
+                                      {"occupied_voxels", 12}}));
+  ASSERT_TRUE(d.replan.has_value());
+  EXPECT_EQ(d.replan->details, (nlohmann::json{{"visibility", "visible"}}));
+  EXPECT_EQ(decisions_to_json(d), record);
+}
+
+TEST(Decisions, AMalformedFieldIsAnErrorNamingItsKey) {
+  const auto error = [](const nlohmann::json& decisions) -> std::string {
+    try {
+      event_from_json({{"time_s", 1.0}, {"decisions", decisions}}, "run.json", "/events/4");
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), "run.json");
+      return e.pointer() + " | " + e.what();
+    }
+    return "no error";
+  };
+  EXPECT_THAT(error({{"planned_waypoint", {1, 2}}}),
+              HasSubstr("/events/4/decisions/planned_waypoint | run.json: /events/4/decisions/planned_waypoint: "
+                        "expected a point [x, y, z] of numbers, m, got"));
+  EXPECT_THAT(error({{"reached_intermediate", "here"}}), HasSubstr("/events/4/decisions/reached_intermediate |"));
+  EXPECT_THAT(error({{"discarded_waypoint", {1, 2, "3"}}}), HasSubstr("/events/4/decisions/discarded_waypoint |"));
+  EXPECT_THAT(error({{"planned_path", {{0, 0, 0}, {1, 1}}}}),
+              HasSubstr("/events/4/decisions/planned_path/1 | run.json: /events/4/decisions/planned_path/1: expected"));
+  EXPECT_THAT(error({{"planned_path", 3}}), HasSubstr("/events/4/decisions/planned_path |"));
+  EXPECT_THAT(error({{"reached_waypoints", {0, -1}}}),
+              HasSubstr("/events/4/decisions/reached_waypoints/1 | run.json: /events/4/decisions/reached_waypoints/1: "
+                        "expected an integer in [0, 2147483647], got"));
+  EXPECT_THAT(error({{"reached_waypoints", 0}}), HasSubstr("/events/4/decisions/reached_waypoints |"));
+  EXPECT_THAT(error({{"avoiding", 1}}), HasSubstr("/events/4/decisions/avoiding | run.json: "
+                                                  "/events/4/decisions/avoiding: expected true or false, got"));
+  EXPECT_THAT(error({{"replan", {{"time_ms", 1.0}}}}), HasSubstr("/events/4/decisions/replan | run.json: "
+                                                                 "/events/4/decisions/replan: expected a replanning "
+                                                                 "step with its \"index\""));
+  EXPECT_THAT(error({{"replan", {{"index", 0}}}}), HasSubstr("with its \"time_ms\""));
+  EXPECT_THAT(error({{"replan", {{"index", 1.5}, {"time_ms", 1.0}}}}), HasSubstr("/events/4/decisions/replan/index |"));
+  EXPECT_THAT(error({{"replan", {{"index", 0}, {"time_ms", "1"}}}}), HasSubstr("/events/4/decisions/replan/time_ms |"));
+  EXPECT_THAT(error({{"replan", {{"index", 0}, {"time_ms", 1}, {"sensor", 2}}}}),
+              HasSubstr("/events/4/decisions/replan/sensor |"));
+  EXPECT_THAT(error({{"replan", true}}), HasSubstr("/events/4/decisions/replan |"));
+  EXPECT_THAT(error(nlohmann::json::array()), HasSubstr("/events/4/decisions | run.json: /events/4/decisions: "
+                                                        "expected an object of planner decisions"));
+  // Not an event at all.
+  EXPECT_THROW(event_from_json({{"decisions", nlohmann::json::object()}}, "run.json", "/events/0"), InputError);
+  EXPECT_THROW(events_from_json(nlohmann::json::object(), "run.json", "/events"), InputError);
+}
+
+TEST(Decisions, ExtrasMayNotTakeATypedFieldsName) {
+  Decisions d;
+  d.extras = {{"avoiding", "maybe"}};
+  EXPECT_THROW(decisions_to_json(d), std::invalid_argument);
+  d.extras = nlohmann::json::array();
+  EXPECT_THROW(decisions_to_json(d), std::invalid_argument);
+  d.extras = nullptr;  // none
+  EXPECT_EQ(decisions_to_json(d), nlohmann::json::object());
+  d.replan = ReplanDecision{.details = {{"time_ms", 3.0}}};
+  EXPECT_THROW(decisions_to_json(d), std::invalid_argument);
+}
+
+TEST(Decisions, RunRecordsWithInlineEventsReadBack) {
+  // run.json of runs recorded before events.jsonl: an "events" array of the same events.
+  const std::vector<PlannerEvent> events{{0.5, every_field()}, {1.0, {.avoiding = true}}};
+  nlohmann::json inline_events = nlohmann::json::array();
+  for (const PlannerEvent& e : events) inline_events.push_back(nlohmann::json::parse(event_line(e)));
+  EXPECT_EQ(events_from_json(inline_events, "run.json", "/events"), events);
+  // Integers where the writer has decimals, as a hand-written or older record may have them.
+  const std::vector<PlannerEvent> read = events_from_json(
+      nlohmann::json::parse(R"([{"time_s": 3, "decisions": {"planned_path": [[0, 0, 1], [2, 0, 1]]}}])"), "run.json",
+      "/events");
+  ASSERT_EQ(read.size(), 1u);
+  EXPECT_EQ(read[0].time_s, 3.0);
+  EXPECT_EQ(read[0].decisions.planned_path, (std::vector<Eigen::Vector3d>{{0, 0, 1}, {2, 0, 1}}));
+}
+
+TEST(Decisions, BoundedAsRecorded) {
+  // A path of 3 k points keeps 2048 of them, its ends included, and says so; the metrics read this.
+  std::vector<Eigen::Vector3d> path;
+  for (int i = 0; i < 3000; ++i) path.emplace_back(i, 0.0, 1.0);
+  const Decisions bounded = bounded_decisions({.planned_path = path, .avoiding = true});
+  ASSERT_TRUE(bounded.planned_path.has_value());
+  ASSERT_EQ(bounded.planned_path->size(), kEventArrayMaxEntries);
+  EXPECT_EQ(bounded.planned_path->front(), path.front());
+  EXPECT_EQ(bounded.planned_path->back(), path.back());
+  EXPECT_EQ(bounded.avoiding, true);
+  EXPECT_EQ(bounded.extras, (nlohmann::json{{"thinned", {{"/planned_path", 3000}}}}));
+  EXPECT_TRUE(was_bounded(bounded));
+  // Short ones are recorded as they are.
+  const Decisions small = every_field();
+  EXPECT_EQ(bounded_decisions(small), small);
+  EXPECT_FALSE(was_bounded(small));
+}
+
 TEST(EventLog, ShortArraysAreKeptAsTheyAre) {
-  nlohmann::json d = {{"lidar_hits", points(kEventArrayMaxEntries)}, {"reached_waypoints", {0}}};
+  nlohmann::json d = decisions_to_json({.reached_waypoints = {0}, .extras = {{"lidar_hits", points(kEventArrayMaxEntries)}}});
   const nlohmann::json before = d;
   EXPECT_FALSE(bound_decisions(d));
   EXPECT_EQ(d, before);
@@ -31,7 +174,8 @@ TEST(EventLog, ShortArraysAreKeptAsTheyAre) {
 
 TEST(EventLog, LongArraysKeepEvenlySpacedEntriesWithTheirEnds) {
   const std::size_t n = 10 * kEventArrayMaxEntries + 7;
-  nlohmann::json d = {{"lidar_hits", points(n)}, {"replan", {{"index", 3}, {"path", points(n)}}}};
+  nlohmann::json d = decisions_to_json(
+      {.replan = ReplanDecision{.index = 3, .details = {{"path", points(n)}}}, .extras = {{"lidar_hits", points(n)}}});
   EXPECT_TRUE(bound_decisions(d));
   ASSERT_EQ(d["lidar_hits"].size(), kEventArrayMaxEntries);
   EXPECT_EQ(d["lidar_hits"].front()[0], 0.0);
@@ -42,20 +186,23 @@ TEST(EventLog, LongArraysKeepEvenlySpacedEntriesWithTheirEnds) {
     EXPECT_GE(step, 10.0);
     EXPECT_LE(step, 11.0);
   }
-  EXPECT_EQ(d["replan"]["path"].size(), kEventArrayMaxEntries);
-  EXPECT_EQ(d["replan"]["index"], 3);
+  const Decisions back = decisions_from_json(d, "f", "");
+  EXPECT_EQ(back.replan.value().details["path"].size(), kEventArrayMaxEntries);
+  EXPECT_EQ(back.replan.value().index, 3);
   EXPECT_EQ(d["thinned"], (nlohmann::json{{"/lidar_hits", n}, {"/replan/path", n}}));
 }
 
 TEST(EventLog, AnOversizedEventDropsItsLargestKeysFirst) {
   // Strings are not thinned: 300 KiB of text leaves the line over its limit.
-  nlohmann::json d = {{"note", std::string(300u << 10, 'x')}, {"avoiding", true}, {"reached_waypoints", {1}}};
+  nlohmann::json d = decisions_to_json(
+      {.reached_waypoints = {1}, .avoiding = true, .extras = {{"note", std::string(300u << 10, 'x')}}});
   EXPECT_TRUE(bound_decisions(d));
   EXPECT_FALSE(d.contains("note"));
-  EXPECT_EQ(d["avoiding"], true);
-  EXPECT_EQ(d["reached_waypoints"], nlohmann::json({1}));
   EXPECT_EQ(d["omitted"]["note"], (300u << 10) + 2);  // its JSON text, quotes included
-  EXPECT_LE(event_line({1.0, d}).size(), kEventLineMaxBytes);
+  const Decisions back = decisions_from_json(d, "f", "");
+  EXPECT_EQ(back.avoiding, true);
+  EXPECT_EQ(back.reached_waypoints, std::vector<int>{1});
+  EXPECT_LE(event_line({1.0, back}).size(), kEventLineMaxBytes);
 }
 
 TEST(EventLog, LinesAreBoundedWhateverThePlannerDecides) {
@@ -64,29 +211,37 @@ TEST(EventLog, LinesAreBoundedWhateverThePlannerDecides) {
   for (int r = 0; r < 100; ++r) rows.push_back(points(kEventArrayMaxEntries));
   nlohmann::json d = {{"rows", rows}, {"index", 1}};
   bound_decisions(d);
-  EXPECT_LE(event_line({123.25, d}).size(), kEventLineMaxBytes);
+  EXPECT_LE(event_line({123.25, decisions_from_json(d, "f", "")}).size(), kEventLineMaxBytes);
   EXPECT_EQ(d["index"], 1);
 }
 
 TEST(EventLog, JsonLinesReadBackAsWritten) {
   const auto file = std::filesystem::temp_directory_path() / "campo_event_log_test.jsonl";
-  const std::vector<PlannerEvent> events{{0.5, {{"planned_waypoint", {1.0, 2.0, 3.0}}}},
-                                         {1.0, {{"avoiding", true}, {"gap", {{"side", "left"}}}}}};
+  const std::vector<PlannerEvent> events{{0.5, {.planned_waypoint = Eigen::Vector3d(1.0, 2.0, 3.0)}},
+                                         {1.0, {.avoiding = true, .extras = {{"gap", {{"side", "left"}}}}}},
+                                         {1.5, every_field()}};
   std::ofstream(file, std::ios::binary) << events_jsonl(events);
-  const nlohmann::json back = read_events_jsonl(file);
-  ASSERT_EQ(back.size(), 2u);
-  EXPECT_EQ(back[0]["time_s"], 0.5);
-  EXPECT_EQ(back[1]["decisions"], events[1].decisions);
+  EXPECT_EQ(read_events_jsonl(file), events);
   // A line past the limit is refused, naming the file and line, before it is read whole.
   std::ofstream(file, std::ios::binary) << events_jsonl(events) << std::string(kEventLineMaxBytes + 1, ' ') << "\n";
   try {
     read_events_jsonl(file);
     ADD_FAILURE() << "expected an InputError";
   } catch (const InputError& e) {
-    EXPECT_THAT(e.what(), HasSubstr(file.string() + ": line 3: expected at most 262144 bytes a line"));
+    EXPECT_THAT(e.what(), HasSubstr(file.string() + ": line 4: expected at most 262144 bytes a line"));
   }
   std::ofstream(file, std::ios::binary) << "{\"decisions\": {}}\n";
   EXPECT_THROW(read_events_jsonl(file), InputError);
+  // A malformed decision names its line and key.
+  std::ofstream(file, std::ios::binary) << events_jsonl(events) << R"({"time_s": 2, "decisions": {"avoiding": "yes"}})"
+                                        << "\n";
+  try {
+    read_events_jsonl(file);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), file.string() + " line 4");
+    EXPECT_EQ(e.pointer(), "/decisions/avoiding");
+  }
   std::filesystem::remove(file);
 }
 
