@@ -169,6 +169,29 @@ TEST_F(PluginCli, ASweepSpecsPluginsReachEveryRunsProcess) {
   EXPECT_THAT(resumed.err, HasSubstr("sweep.json: /plugins: expected the sweep this directory holds"));
 }
 
+TEST_F(PluginCli, ATriagedRunsReproCommandLoadsThePlugins) {
+  fs::copy_file(fixture("two_planners"), dir_ / "plugins.so");
+  write("goto.json", kGotoScene);
+  // fixture_hold gives up after 1 s: the run completes without reaching its goal, so it is triaged.
+  const std::string spec = write("spec.json", R"({"campo_sweep": 1, "plugins": ["plugins.so"], "scenes": ["goto.json"],
+                                                  "planners": ["fixture_hold"]})");
+  const Result r = campo("sweep " + spec + " --out " + (dir_ / "out").string() + " --triage");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json line = nlohmann::json::parse(lines_of(slurp(dir_ / "out" / "results.jsonl")).at(0));
+  EXPECT_EQ(line["metrics"]["outcome"], "aborted");
+  const std::string repro = line["triage"]["repro"];
+  EXPECT_THAT(repro, HasSubstr(" --plugin " + (dir_ / "plugins.so").string() + " "));
+  // The command reruns the run alone, with the plugin's planner, to the same outcome.
+  ASSERT_THAT(repro, StartsWith("campo run "));
+  const Result rerun = campo(repro.substr(std::string("campo ").size()));
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.err;
+  const fs::path rerun_dir = dir_ / "out" / line["triage"]["dir"].get<std::string>() / "rerun";
+  const nlohmann::json record = nlohmann::json::parse(slurp(rerun_dir / "run.json"));
+  EXPECT_EQ(record["metrics"]["outcome"], "aborted");
+  EXPECT_EQ(record["metrics"]["reason"], line["metrics"]["reason"]);
+  EXPECT_EQ(record["provenance"]["planner"]["name"], "fixture_hold");
+}
+
 TEST_F(PluginCli, SweepLoadsPluginsFromTheCommandLineToo) {
   write("goto.json", kGotoScene);
   const std::string spec = write("spec.json", R"({"campo_sweep": 1, "scenes": ["goto.json"],
