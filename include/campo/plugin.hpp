@@ -24,6 +24,8 @@ extern "C" void campo_plugin_register_planner(int abi_version, const char* name,
 #ifndef CAMPO_PLUGIN_NO_MARKER
 /// The plugin marker. Weak, so that every source file of a plugin may include
 /// this header; exported whatever the plugin's default symbol visibility.
+/// (libcampo's registry defines CAMPO_PLUGIN_NO_MARKER before including this
+/// header: libcampo is no plugin.)
 extern "C" __attribute__((weak, visibility("default"))) const int campo_plugin_abi_version = CAMPO_PLUGIN_ABI_VERSION;
 #endif
 
