@@ -432,9 +432,6 @@ FindWaypointParams find_waypoint_params(const DepthReactiveConfig& c) {
 }
 
 std::unique_ptr<Planner> make_depth_reactive_planner(const ParamsBlock& params, const PlannerContext& context) {
-  if (context.vehicle != VehicleType::quadrotor) {
-    throw InputError(params.file, params.pointer, "planner depth_reactive flies a quadrotor only");
-  }
   return std::make_unique<DepthReactivePlanner>(parse_depth_reactive_config(params));
 }
 

@@ -362,9 +362,6 @@ void check_grid_size(const DStarLite3dConfig& c, const ParamsBlock& params) {
 }
 
 std::unique_ptr<Planner> make_dstar_lite_3d_planner(const ParamsBlock& params, const PlannerContext& context) {
-  if (context.vehicle != VehicleType::quadrotor) {
-    throw InputError(params.file, params.pointer, "planner dstar_lite_3d flies a quadrotor only");
-  }
   return std::make_unique<DStarLite3dPlanner>(parse_dstar_lite_3d_config(params));
 }
 

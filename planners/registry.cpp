@@ -1,8 +1,17 @@
 #include "planners/registry.hpp"
 
+#include <algorithm>
 #include <array>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include <dlfcn.h>
+#include <link.h>
 
 #include "campo/json_reader.hpp"
+#include "campo/scene_loader.hpp"
+#include "campo/version.hpp"
 #include "planners/depth_reactive.hpp"
 #include "planners/dstar_lite_3d.hpp"
 #include "planners/rover_route.hpp"
@@ -12,22 +21,225 @@ namespace campo {
 
 namespace {
 
-constexpr VehicleType kBoth[] = {VehicleType::quadrotor, VehicleType::rover};
-constexpr VehicleType kQuadrotor[] = {VehicleType::quadrotor};
-constexpr VehicleType kRover[] = {VehicleType::rover};
+namespace fs = std::filesystem;
 
-constexpr std::array kPlanners{
-    PlannerEntry{"straight", "head for each mission waypoint in turn in a straight line", &make_straight_planner, kBoth},
-    PlannerEntry{"depth_reactive", "seed 000: reactive quadrotor navigation on dilated depth maps (TrovaWP, wall following)",
-                 &make_depth_reactive_planner, kQuadrotor},
-    PlannerEntry{"dstar_lite_3d", "seed 001: D* Lite on a LIDAR-mapped 3D grid, flying cell to cell", &make_dstar_lite_3d_planner, kQuadrotor},
-    PlannerEntry{"rover_route", "seed 003: Dubins (or A*/RRT*) route, pure pursuit, follow-the-gap (or VFH+) avoidance",
-                 &make_rover_route_planner, kRover},
+constexpr VehicleType kQuadrotor = VehicleType::quadrotor;
+constexpr VehicleType kRover = VehicleType::rover;
+
+// The built-in planners, in --list-planners order.
+std::vector<PlannerRegistration> built_in_planners() {
+  return {
+      {"straight", "head for each mission waypoint in turn in a straight line", &make_straight_planner,
+       {kQuadrotor, kRover}},
+      {"depth_reactive", "seed 000: reactive quadrotor navigation on dilated depth maps (TrovaWP, wall following)",
+       &make_depth_reactive_planner, {kQuadrotor}},
+      {"dstar_lite_3d", "seed 001: D* Lite on a LIDAR-mapped 3D grid, flying cell to cell", &make_dstar_lite_3d_planner,
+       {kQuadrotor}},
+      {"rover_route", "seed 003: Dubins (or A*/RRT*) route, pure pursuit, follow-the-gap (or VFH+) avoidance",
+       &make_rover_route_planner, {kRover}},
+  };
+}
+
+// Collects what a plugin's entry point adds.
+class CollectingRegistrar final : public PlannerRegistrar {
+ public:
+  void add(PlannerRegistration planner) override { added.push_back(std::move(planner)); }
+  std::vector<PlannerRegistration> added;
 };
+
+struct LoadedHandle {
+  LoadedPlugin plugin;
+  void* handle = nullptr;
+};
+
+/// The registry's state: the planners of plugins and of programs embedding campo, in order.
+struct Registry {
+  std::vector<PlannerEntry> added;
+  std::vector<LoadedHandle> plugins;
+};
+
+Registry& registry() {
+  static Registry r;
+  return r;
+}
+
+// Built-in planners, then those added so far.
+std::vector<PlannerEntry> admitted_entries() {
+  std::vector<PlannerEntry> entries;
+  for (PlannerRegistration& p : built_in_planners()) {
+    PlannerEntry entry;
+    static_cast<PlannerRegistration&>(entry) = std::move(p);
+    entries.push_back(std::move(entry));
+  }
+  entries.insert(entries.end(), registry().added.begin(), registry().added.end());
+  return entries;
+}
+
+// Names as scenes, specs and command lines write them.
+bool valid_planner_name(const std::string& name) {
+  return !name.empty() && name.size() <= 64 && std::all_of(name.begin(), name.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+  });
+}
+
+std::string abi_mismatch(int built_for) {
+  return "built against campo plugin ABI version " + std::to_string(built_for) + ", but this campo (" +
+         std::string(library_version()) + ") loads plugin ABI version " + std::to_string(library_plugin_abi_version()) +
+         ": rebuild it against this campo";
+}
+
+// Checks the registrations of one source against each other and the planners
+// registered so far; returns the problem ("" when none), to follow the source's
+// name in a message.
+std::string registration_problem(const std::vector<PlannerRegistration>& registrations) {
+  const std::vector<PlannerEntry> known = admitted_entries();
+  for (std::size_t i = 0; i < registrations.size(); ++i) {
+    const PlannerRegistration& r = registrations[i];
+    if (!valid_planner_name(r.name)) {
+      return "registers a planner named \"" + r.name + "\"; expected a name of 1 to 64 letters, digits, '_' and '-'";
+    }
+    if (r.create == nullptr) return "registers planner \"" + r.name + "\" without a factory; expected a PlannerFactory";
+    if (r.vehicles.empty()) {
+      return "registers planner \"" + r.name + "\" for no vehicle type; expected at least one of quadrotor, rover";
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (registrations[j].name == r.name) return "registers planner \"" + r.name + "\" twice; expected each name once";
+    }
+    for (const PlannerEntry& e : known) {
+      if (e.name != r.name) continue;
+      const std::string other = e.source == kBuiltInSource ? std::string("the built-in planner of that name")
+                                                           : "planner \"" + e.name + "\" of " + e.source;
+      return "registers planner \"" + r.name + "\", a name already taken by " + other +
+             "; expected a name no other planner has (rename one of them)";
+    }
+  }
+  return "";
+}
+
+void admit(const std::vector<PlannerRegistration>& registrations, const std::string& source,
+           const std::string& sha256) {
+  for (const PlannerRegistration& r : registrations) {
+    PlannerEntry entry;
+    static_cast<PlannerRegistration&>(entry) = r;
+    entry.source = source;
+    entry.source_sha256 = sha256;
+    registry().added.push_back(std::move(entry));
+  }
+}
+
+// The address of `symbol` in the plugin `handle` itself, or null: dlsym also searches the
+// libraries a plugin depends on, whose symbols are not the plugin's.
+void* own_symbol(void* handle, const char* symbol) {
+  dlerror();
+  void* address = dlsym(handle, symbol);
+  link_map* map = nullptr;
+  Dl_info where{};
+  const bool own = address != nullptr && dlinfo(handle, RTLD_DI_LINKMAP, &map) == 0 && map != nullptr &&
+                   dladdr(address, &where) != 0 && where.dli_fname != nullptr &&
+                   std::string(where.dli_fname) == map->l_name;
+  return own ? address : nullptr;
+}
+
+std::string file_sha256(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return sha256_hex(bytes.str());
+}
 
 }  // namespace
 
-std::span<const PlannerEntry> planner_registry() { return kPlanners; }
+std::vector<PlannerEntry> planner_registry() { return admitted_entries(); }
+
+void add_linked_planners(const std::vector<PlannerRegistration>& planners, const std::string& source) {
+  const std::string problem = registration_problem(planners);
+  if (!problem.empty()) throw InputError(source, "", problem);
+  admit(planners, source, "");
+}
+
+LoadedPlugin load_planner_plugin(const fs::path& path, const std::string& origin, const std::string& pointer) {
+  Registry& reg = registry();
+  const fs::path file = fs::absolute(path).lexically_normal();
+  const auto fail = [&](const std::string& problem) {
+    throw InputError(origin, pointer, "plugin " + file.string() + ": " + problem);
+  };
+  for (const LoadedHandle& loaded : reg.plugins) {
+    if (loaded.plugin.path == file.string()) return loaded.plugin;
+  }
+
+  dlerror();
+  void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (handle == nullptr) {
+    const char* error = dlerror();
+    fail("cannot load it (" + std::string(error ? error : "dlopen failed") +
+         "); expected a planner plugin: a shared library built against campo (docs/extending.md)");
+  }
+  // The same file under another path: dlopen returns the handle it loaded before and runs nothing again.
+  for (const LoadedHandle& loaded : reg.plugins) {
+    if (loaded.handle == handle) {
+      dlclose(handle);
+      return loaded.plugin;
+    }
+  }
+  const auto refuse = [&](const std::string& problem) {
+    dlclose(handle);
+    fail(problem);
+  };
+
+  using AbiVersion = int (*)() noexcept;
+  using Register = void (*)(PlannerRegistrar&);
+  const auto abi = reinterpret_cast<AbiVersion>(own_symbol(handle, "campo_plugin_abi_version"));
+  if (abi == nullptr) {
+    refuse("not a campo planner plugin: it does not define the symbol campo_plugin_abi_version; expected a shared "
+           "library with one CAMPO_REGISTER_PLANNERS(registrar) { ... } (campo/plugin.hpp) in its sources");
+  }
+  const int abi_version = abi();
+  if (abi_version != library_plugin_abi_version()) refuse(abi_mismatch(abi_version));
+  const auto register_planners = reinterpret_cast<Register>(own_symbol(handle, "campo_plugin_register_planners"));
+  if (register_planners == nullptr) {
+    refuse("defines campo_plugin_abi_version but not the symbol campo_plugin_register_planners; expected both from "
+           "CAMPO_REGISTER_PLANNERS(registrar) { ... } (campo/plugin.hpp)");
+  }
+  CollectingRegistrar registrar;
+  try {
+    register_planners(registrar);
+  } catch (const std::exception& e) {
+    refuse(std::string("threw while registering its planners: ") + e.what());
+  }
+  const std::vector<PlannerRegistration>& registrations = registrar.added;
+  if (registrations.empty()) {
+    refuse("registers no planner; expected at least one registrar.add({name, description, factory, vehicles}) in "
+           "its CAMPO_REGISTER_PLANNERS body");
+  }
+  const std::string problem = registration_problem(registrations);
+  if (!problem.empty()) refuse(problem);
+
+  LoadedHandle loaded;
+  loaded.plugin.path = file.string();
+  loaded.plugin.sha256 = file_sha256(file);
+  for (const PlannerRegistration& r : registrations) loaded.plugin.planners.push_back(r.name);
+  loaded.handle = handle;
+  admit(registrations, loaded.plugin.path, loaded.plugin.sha256);
+  reg.plugins.push_back(loaded);
+  return loaded.plugin;
+}
+
+std::vector<LoadedPlugin> loaded_plugins() {
+  std::vector<LoadedPlugin> plugins;
+  for (const LoadedHandle& loaded : registry().plugins) plugins.push_back(loaded.plugin);
+  return plugins;
+}
+
+nlohmann::json planner_provenance(std::string_view name) {
+  if (name.empty()) name = kDefaultPlanner;
+  for (const PlannerEntry& entry : planner_registry()) {
+    if (entry.name != name) continue;
+    nlohmann::json provenance = {{"name", entry.name}, {"source", entry.source}};
+    if (!entry.source_sha256.empty()) provenance["sha256"] = entry.source_sha256;
+    return provenance;
+  }
+  return {{"name", name}, {"source", nullptr}};
+}
 
 void choose_planner(PlannerSpec& spec, std::string_view name, const std::string& origin) {
   if (name != spec.name) spec.params.values = nlohmann::json::object();
@@ -38,13 +250,23 @@ void choose_planner(PlannerSpec& spec, std::string_view name, const std::string&
 
 std::unique_ptr<Planner> create_planner(const PlannerSpec& spec, const PlannerContext& context) {
   const std::string_view name = spec.name.empty() ? kDefaultPlanner : std::string_view(spec.name);
-  for (const PlannerEntry& entry : kPlanners) {
-    if (entry.name == name) return entry.create(spec.params, context);
+  const std::vector<PlannerEntry> entries = planner_registry();
+  for (const PlannerEntry& entry : entries) {
+    if (entry.name != name) continue;
+    if (std::find(entry.vehicles.begin(), entry.vehicles.end(), context.vehicle) == entry.vehicles.end()) {
+      std::string drives;
+      for (VehicleType v : entry.vehicles) drives += (drives.empty() ? "" : " or ") + std::string(to_string(v));
+      throw InputError(spec.params.file, spec.params.pointer,
+                       "planner " + entry.name + " drives a " + drives + " only, not a " +
+                           std::string(to_string(context.vehicle)));
+    }
+    return entry.create(spec.params, context);
   }
   std::string known;
-  for (const PlannerEntry& entry : kPlanners) known += (known.empty() ? "" : ", ") + std::string(entry.name);
+  for (const PlannerEntry& entry : entries) known += (known.empty() ? "" : ", ") + entry.name;
   throw InputError(spec.params.file, spec.name_pointer,
-                   "unknown planner \"" + std::string(name) + "\"; expected one of: " + known);
+                   "unknown planner \"" + std::string(name) + "\"; expected one of: " + known +
+                       " (a plugin's planner needs its plugin: --plugin PATH, or the sweep spec's \"plugins\")");
 }
 
 }  // namespace campo

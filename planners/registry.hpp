@@ -1,31 +1,66 @@
 #pragma once
-/// The one list of planners: name -> factory. Adding a planner is one file
-/// plus one line in registry.cpp.
+/// The one list of planners: name -> factory. The built-in planners are one
+/// file each plus one line in registry.cpp; planner plugins add theirs through
+/// their one entry point when loaded (load_planner_plugin, campo/plugin.hpp).
+#include <filesystem>
 #include <memory>
-#include <span>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "campo/planner.hpp"
+#include "campo/plugin.hpp"
 
 namespace campo {
 
-/// Builds a planner from its parameters; throws InputError (naming the
-/// params block's file and pointer) for bad parameters.
-using PlannerFactory = std::unique_ptr<Planner> (*)(const ParamsBlock& params, const PlannerContext& context);
+/// The source of the planners compiled into libcampo.
+inline constexpr std::string_view kBuiltInSource = "built-in";
 
-struct PlannerEntry {
-  std::string_view name;
-  std::string_view description;
-  PlannerFactory create;
-  /// The vehicle types it drives; creating it for another is an InputError.
-  std::span<const VehicleType> vehicles;
+struct PlannerEntry : PlannerRegistration {
+  /// kBuiltInSource, or the absolute path of the plugin that registered it.
+  std::string source = std::string(kBuiltInSource);
+  std::string source_sha256;  ///< SHA-256 of the plugin file; empty for a built-in planner
 };
 
-std::span<const PlannerEntry> planner_registry();
+/// Every planner: the built-in ones, then those of the plugins in the order
+/// they were loaded.
+std::vector<PlannerEntry> planner_registry();
+
+/// A loaded planner plugin.
+struct LoadedPlugin {
+  std::string path;                   ///< absolute
+  std::string sha256;                 ///< of the file as loaded
+  std::vector<std::string> planners;  ///< the names it registered
+};
+
+/// Loads the planner plugin `path` (dlopen) and registers its planners. A
+/// plugin already loaded (by this or another path to the same file) is not
+/// loaded again. `origin` and `pointer` name where the plugin was asked for
+/// (e.g. "command line" and "--plugin", or a sweep spec and "/plugins/0").
+/// Throws InputError, naming the plugin file and what was expected, when it
+/// cannot be loaded, is no campo plugin, was built against another plugin ABI
+/// version, registers no planner or a name another planner has; nothing is
+/// registered then. Not thread-safe: load plugins before starting threads.
+LoadedPlugin load_planner_plugin(const std::filesystem::path& path, const std::string& origin,
+                                 const std::string& pointer);
+
+/// The plugins loaded so far, in load order.
+std::vector<LoadedPlugin> loaded_plugins();
+
+/// Adds planners compiled into a program that embeds campo (its own list, as
+/// registry.cpp's), checked as a plugin's are; `source` names them in
+/// --list-planners and provenance. Throws InputError at `source` on a problem.
+void add_linked_planners(const std::vector<PlannerRegistration>& planners, const std::string& source);
 
 /// Name of the planner used when a vehicle names none.
 inline constexpr std::string_view kDefaultPlanner = "straight";
+
+/// Provenance of the planner `name` (kDefaultPlanner when empty): {"name",
+/// "source"} and, for a plugin's planner, the plugin's "sha256", so that a
+/// record names the code that produced it.
+nlohmann::json planner_provenance(std::string_view name);
 
 /// Gives a vehicle the planner `name` chosen outside its scene (`origin`
 /// names where, e.g. "command line"): the scene's parameters stay when it is
@@ -34,7 +69,8 @@ inline constexpr std::string_view kDefaultPlanner = "straight";
 void choose_planner(PlannerSpec& spec, std::string_view name, const std::string& origin);
 
 /// Creates the planner `spec` names (kDefaultPlanner when empty); an unknown
-/// name is an InputError at the planner's params file/pointer.
+/// name, or a vehicle type the planner does not declare, is an InputError at
+/// the planner's params file/pointer.
 std::unique_ptr<Planner> create_planner(const PlannerSpec& spec, const PlannerContext& context);
 
 }  // namespace campo

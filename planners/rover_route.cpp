@@ -799,9 +799,6 @@ void check_rover_route_extent(const RoverRouteConfig& c, const VehicleDef& vehic
 }
 
 std::unique_ptr<Planner> make_rover_route_planner(const ParamsBlock& params, const PlannerContext& context) {
-  if (context.vehicle != VehicleType::rover) {
-    throw InputError(params.file, params.pointer, "planner rover_route drives a rover only");
-  }
   RoverRouteConfig config = parse_rover_route_config(params);
   if (context.scene && context.vehicle_def) check_rover_route_extent(config, *context.vehicle_def, *context.scene);
   if (context.scene && !params.values.contains("rrt_star")) {

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "planners/registry.hpp"
 #include "run/event_log.hpp"
 #include "run/provenance.hpp"
 #include "sensors/scan_io.hpp"
@@ -131,9 +132,12 @@ nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const E
   for (const PlannerEvent& e : result.events) {
     bounded += was_bounded(e.decisions);
   }
+  // The planner's code is part of what produced the run: built in, or which plugin file.
+  nlohmann::json run_provenance = with_data_dir(provenance(scene), scene);
+  run_provenance["planner"] = planner_provenance(def.planner.name);
   return {
       {"metrics", to_json(result.metrics)},
-      {"provenance", with_data_dir(provenance(scene), scene)},
+      {"provenance", run_provenance},
       {"overrides", overrides},
       {"parameters",
        {{"world",

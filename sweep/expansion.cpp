@@ -9,6 +9,7 @@
 #include "campo/json_reader.hpp"
 #include "campo/random.hpp"
 #include "campo/scene_loader.hpp"
+#include "campo/version.hpp"
 #include "planners/registry.hpp"
 #include "scene/scene_overrides.hpp"
 
@@ -168,7 +169,7 @@ class SceneExpander {
     // planner, values, seed) and effective document give the same ID in any
     // order or shard, and the name keeps identical documents apart (a scene
     // under two names, a value drawn twice).
-    run.id = sha256_hex(std::string(CAMPO_VERSION) + "\n" + run.name + "\n" + document.dump()).substr(0, 16);
+    run.id = sha256_hex(std::string(library_version()) + "\n" + run.name + "\n" + document.dump()).substr(0, 16);
     return run;
   }
 
@@ -356,7 +357,7 @@ nlohmann::json sweep_manifest(const SweepSpec& spec, const std::vector<SweepRun>
   return {{"spec_file", spec.file.string()},
           {"spec", spec.document},
           {"spec_sha256", spec_sha256(spec)},
-          {"campo_version", CAMPO_VERSION},
+          {"campo_version", library_version()},
           {"runs", list}};
 }
 

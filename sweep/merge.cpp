@@ -31,6 +31,19 @@ SweepDir read_sweep_dir(const std::filesystem::path& dir, std::vector<std::strin
   return sweep;
 }
 
+namespace {
+
+// The plugin files a sweep's planners came from, by content: their paths may differ between the machines of shards.
+nlohmann::json plugin_digests(const nlohmann::json& manifest) {
+  nlohmann::json digests = nlohmann::json::array();
+  for (const nlohmann::json& plugin : manifest.value("plugins", nlohmann::json::array())) {
+    digests.push_back(plugin.is_object() ? plugin.value("sha256", nlohmann::json()) : nlohmann::json());
+  }
+  return digests;
+}
+
+}  // namespace
+
 MergedSweep merge_sweeps(const std::vector<SweepDir>& inputs, bool allow_mismatch) {
   if (inputs.empty()) throw InputError("command line", "DIR", "expected at least one sweep directory to merge");
   const SweepDir& first = inputs.front();
@@ -43,6 +56,13 @@ MergedSweep merge_sweeps(const std::vector<SweepDir>& inputs, bool allow_mismatc
                                first.manifest[key].dump() + "), got " + input.manifest[key].dump() +
                                "; merge runs of one spec and one campo version, or pass --allow-mismatch");
         }
+      }
+      if (plugin_digests(input.manifest) != plugin_digests(first.manifest)) {
+        throw InputError((input.dir / "sweep.json").string(), "/plugins",
+                         "expected the plugin files of " + (first.dir / "sweep.json").string() + " (SHA-256 " +
+                             plugin_digests(first.manifest).dump() + "), got " +
+                             plugin_digests(input.manifest).dump() +
+                             "; merge runs of the same planner plugins, or pass --allow-mismatch");
       }
       for (std::size_t i = 0; i < input.lines.size(); ++i) {
         const nlohmann::json version = input.lines[i].value("campo_version", nlohmann::json());

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "campo/json_reader.hpp"
+#include "campo/version.hpp"
 #include "core/output_dir.hpp"
 
 namespace campo {
@@ -153,8 +154,8 @@ nlohmann::json failed_result(const SweepRun& run, const std::string& reason) {
   nlohmann::json line = result_line(run, "failed");
   line["reason"] = reason;
   line["metrics"] = nullptr;
-  line["campo_version"] = CAMPO_VERSION;
-  line["git_rev"] = CAMPO_GIT_REV;
+  line["campo_version"] = library_version();
+  line["git_rev"] = library_git_revision();
   line["scene_sha256"] = run.scene_sha256;
   return line;
 }

@@ -162,6 +162,20 @@ class SpecParser {
     r.read("name", spec.name);
     r.read("description", spec.description);
 
+    // Loaded by `campo sweep` before the runs are expanded (the parser itself loads nothing).
+    if (auto plugins = r.optional("plugins")) {
+      for (const JsonNode& node : plugins->as_array(0, limits_.max_plugins)) {
+        const std::filesystem::path path(node.as_string());
+        SweepPlugin plugin{(path.is_absolute() ? path : file_.parent_path() / path).lexically_normal(), node.pointer()};
+        for (const SweepPlugin& other : spec.plugins) {
+          if (other.file == plugin.file) {
+            node.fail("plugins named once each (" + plugin.file.string() + " appears twice)");
+          }
+        }
+        spec.plugins.push_back(std::move(plugin));
+      }
+    }
+
     std::set<std::string> labels;
     for (const JsonNode& node : r.required("scenes").as_array(1, limits_.max_scenes)) {
       spec.scenes.push_back(read_scene(node, file_));

@@ -35,6 +35,12 @@ struct SweepPlanner {
   std::string origin;        ///< JSON pointer in the spec file
 };
 
+/// A planner plugin the runs need (docs/extending.md).
+struct SweepPlugin {
+  std::filesystem::path file;  ///< the shared library, relative paths resolved against the spec file's folder
+  std::string origin;          ///< JSON pointer in the spec file
+};
+
 /// One swept parameter: each value in turn is written to every pointer.
 struct SweepAxis {
   std::string name;                   ///< [a-z][a-z0-9_]*, the table column and the ID label
@@ -69,6 +75,7 @@ struct SweepSpec {
   nlohmann::json document;               ///< the spec as read
   std::string name;                      ///< default: the file stem
   std::string description;
+  std::vector<SweepPlugin> plugins;      ///< distinct files, loaded before the runs are expanded
   std::vector<SweepScene> scenes;        ///< at least one, distinct labels
   std::vector<SweepPlanner> planners;    ///< empty: each scene's own planner
   std::vector<SweepOverride> set;        ///< fixed overrides, by pointer (parents before children)
@@ -90,6 +97,7 @@ struct SweepLimits {
   std::size_t max_axes = 8;
   std::size_t max_values = 1000;    ///< per axis
   std::size_t max_planners = 100;
+  std::size_t max_plugins = 16;
   std::size_t max_pointers = 64;    ///< per `set` and per axis
   int max_seeds = 100000;
   std::size_t max_runs = 100000;    ///< after expansion

@@ -6,5 +6,7 @@
 namespace campo::cli {
 
 using campo::bundled_scene;
+using campo::bundled_sweep_spec;
+using campo::file_or_bundled;
 
 }  // namespace campo::cli

@@ -8,6 +8,7 @@
 #include "run/event_log.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
+#include "tools/plugin_options.hpp"
 #include "tools/run_execution.hpp"
 
 namespace campo::cli {
@@ -26,11 +27,18 @@ struct RunOptions {
   bool figures = true;
   int record_depth_every = 0;
   bool record_replans = true;
+  std::vector<std::string> plugins;
+  bool list_planners = false;
 };
 
 int run_run(const RunOptions& o) {
+  load_plugins(o.plugins);
+  if (o.list_planners) {
+    print_planners(std::cout);
+    return kOk;
+  }
   RunRequest request;
-  request.scene = o.scene;
+  request.scene = file_or_bundled(o.scene, &bundled_scene).string();
   request.overrides = o.sets;
   if (o.seed_set) request.overrides.push_back("/world/seed=" + std::to_string(parse_seed(o.seed, "command line", "--seed")));
   request.planner = o.planner;
@@ -66,11 +74,18 @@ int run_run(const RunOptions& o) {
 
 Command add_run(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
-  app.add_option("scene", o->scene, "Scene file (JSON); default: the bundled two_barriers");
+  app.add_option("scene", o->scene,
+                 "Scene file (JSON), or the name of a bundled scene (e.g. vineyard); default: the bundled "
+                 "two_barriers");
   std::string planners;
-  for (const auto& entry : planner_registry()) planners += (planners.empty() ? "" : ", ") + std::string(entry.name);
+  for (const auto& entry : planner_registry()) planners += (planners.empty() ? "" : ", ") + entry.name;
   app.add_option("--planner", o->planner,
-                 "Planner (" + planners + "); default: the scene's, else straight. Another planner than the scene's runs with its default parameters");
+                 "Planner (" + planners + ", or a plugin's); default: the scene's, else straight. Another planner than "
+                 "the scene's runs with its default parameters");
+  add_plugin_option(app, o->plugins);
+  app.add_flag("--list-planners", o->list_planners,
+               "Print every planner (with --plugin, the plugins' too): name, source (built-in or the plugin file) and "
+               "description; run nothing");
   app.add_option("--set", o->sets,
                  "Override a scene field: PATH=VALUE with PATH a JSON pointer; inside arrays of objects an "
                  "alias may stand for the index (e.g. --set /objects/drone/planner/params/speed_mps=1.0). "

@@ -16,12 +16,15 @@
 #include "campo/run_record.hpp"
 #include "campo/scene_loader.hpp"
 #include "core/output_dir.hpp"
+#include "planners/registry.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/process_pool.hpp"
 #include "sweep/progress.hpp"
 #include "sweep/results.hpp"
 #include "sweep/sweep_spec.hpp"
+#include "tools/bundled.hpp"
 #include "tools/commands.hpp"
+#include "tools/plugin_options.hpp"
 #include "tools/run_execution.hpp"
 #include "tools/scene_checks.hpp"
 
@@ -44,6 +47,7 @@ struct SweepOptions {
   bool triage = false;
   bool retry_failed = false;
   double progress_every_s = 10.0;
+  std::vector<std::string> plugins;
 };
 
 struct Shard {
@@ -82,12 +86,12 @@ void check_same_sweep(const fs::path& manifest_file, const nlohmann::json& manif
       }
     }
   }
-  for (const char* key : {"spec_sha256", "campo_version", "shard"}) {
+  for (const char* key : {"spec_sha256", "campo_version", "shard", "plugins"}) {
     if (existing.value(key, nlohmann::json()) != manifest.value(key, nlohmann::json())) {
       throw InputError(manifest_file.string(), std::string("/") + key,
                        "expected the sweep this directory holds (to resume it), but its " + std::string(key) +
                            " was " + existing.value(key, nlohmann::json()).dump() +
-                           "; use a new --out directory for another spec, campo version or shard");
+                           "; use a new --out directory for another spec, campo version, shard or plugin");
     }
   }
 }
@@ -105,6 +109,7 @@ std::string shell_word(const std::string& word) {
 // The one command that runs this run alone, as `campo run` would.
 std::string repro_command(const SweepRun& run, const std::string& triage_dir) {
   std::string command = "campo run " + shell_word(fs::absolute(run.scene_file).lexically_normal().string());
+  for (const LoadedPlugin& plugin : loaded_plugins()) command += " --plugin " + shell_word(plugin.path);
   for (const std::string& o : run.overrides) command += " --set " + shell_word(o);
   return command + " --out " + shell_word(triage_dir + "/rerun");
 }
@@ -223,7 +228,10 @@ class ProgressReport {
 int run_sweep(const SweepOptions& o) {
   // Everything is validated before anything is written.
   const Shard shard = parse_shard(o.shard);
-  const SweepSpec spec = read_sweep_spec(o.spec);
+  const SweepSpec spec = read_sweep_spec(file_or_bundled(o.spec, &bundled_sweep_spec));
+  // Loaded here, so the runs' processes (forked from this one) have their planners.
+  for (const SweepPlugin& plugin : spec.plugins) load_planner_plugin(plugin.file, spec.file.string(), plugin.origin);
+  load_plugins(o.plugins);
   const std::vector<SweepRun> all_runs = expand_sweep(spec, [](const Scene& scene) {
     check_vehicles_and_planners(scene);
     check_runnable(scene);
@@ -238,6 +246,10 @@ int run_sweep(const SweepOptions& o) {
   if (o.out.empty()) throw InputError("command line", "--out", "expected an output directory (or --list)");
   nlohmann::json manifest = sweep_manifest(spec, all_runs);
   if (!o.shard.empty()) manifest["shard"] = {{"index", shard.index}, {"count", shard.count}};
+  // Which plugin files the planners came from: resuming with a rebuilt plugin is another sweep.
+  for (const LoadedPlugin& plugin : loaded_plugins()) {
+    manifest["plugins"].push_back({{"path", plugin.path}, {"sha256", plugin.sha256}, {"planners", plugin.planners}});
+  }
   const fs::path dir = o.out;
   check_same_sweep(dir / "sweep.json", manifest);
   fs::create_directories(dir);
@@ -329,7 +341,10 @@ int run_sweep(const SweepOptions& o) {
 
 Command add_sweep(CLI::App& app) {
   auto o = std::make_shared<SweepOptions>();
-  app.add_option("spec", o->spec, "Sweep spec file (JSON, see docs/sweeps.md)")->required();
+  app.add_option("spec", o->spec,
+                 "Sweep spec file (JSON, see docs/sweeps.md), or the name of a bundled spec (e.g. resolution_000)")
+      ->required();
+  add_plugin_option(app, o->plugins);
   app.add_option("--out", o->out, "Output directory (created if missing; an interrupted sweep resumes there)");
   app.add_flag("--list", o->list,
                "Validate every run and print the manifest, one JSON line per run (id, name, scene, planner, "

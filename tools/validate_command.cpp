@@ -4,19 +4,23 @@
 
 #include "campo/scene_loader.hpp"
 #include "tools/commands.hpp"
+#include "tools/plugin_options.hpp"
 #include "tools/scene_checks.hpp"
 
 namespace campo::cli {
 
 Command add_validate(CLI::App& app) {
   auto files = std::make_shared<std::vector<std::string>>();
+  auto plugins = std::make_shared<std::vector<std::string>>();
   app.add_option("files", *files, "Scene files (JSON) to check")->required();
+  add_plugin_option(app, *plugins);
   app.footer(
       "Every file is checked in full: unknown keys, wrong types, out-of-range values,\n"
       "duplicate aliases, dangling references, unreadable data files, and vehicle and\n"
-      "planner parameters are errors.\n"
+      "planner parameters are errors; a scene naming a plugin's planner needs --plugin.\n"
       "Prints one line per file; exits 0 if all are valid, 2 otherwise.");
-  return [files] {
+  return [files, plugins] {
+    load_plugins(*plugins);
     int failures = 0;
     for (const auto& file : *files) {
       try {

@@ -2,7 +2,9 @@
 /// The planner contract (SPEC §7): a planner receives observations at the
 /// control rate and returns a command with a typed status, plus the decisions
 /// it took for the record. Planners see plain data only, never Bullet.
-/// Implementations and the registry live in planners/.
+/// Implementations and the registry live in planners/; planners built outside
+/// campo register with campo/plugin.hpp (docs/extending.md).
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -117,5 +119,12 @@ class Planner {
   /// The effective parameters, for provenance.
   virtual nlohmann::json parameters() const = 0;
 };
+
+/// Builds a planner from its parameters (the scene's planner "params" block:
+/// `params.values`, at `params.file` and `params.pointer`); throws InputError
+/// (naming that file and a pointer under that block) for bad parameters.
+/// Registered with its name in planners/registry.cpp, or by a plugin with
+/// CAMPO_REGISTER_PLANNERS (campo/plugin.hpp).
+using PlannerFactory = std::unique_ptr<Planner> (*)(const ParamsBlock& params, const PlannerContext& context);
 
 }  // namespace campo

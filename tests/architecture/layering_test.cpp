@@ -28,7 +28,7 @@ const std::map<std::string, std::set<std::string>> kMayInclude = {
     {"vehicles", {"core", "scene", "physics"}},
     {"grid", {}},
     {"planners", {"core", "scene", "sensors", "grid"}},
-    {"run", {"core", "scene", "physics", "sensors"}},
+    {"run", {"core", "scene", "physics", "sensors", "vehicles", "grid", "planners"}},
     {"render", {"core", "scene", "sensors", "run"}},
     {"sweep", {"core", "scene", "sensors", "run", "render", "planners"}},
     {"reproduce", {"core", "scene", "sensors", "run", "render", "sweep", "planners"}},

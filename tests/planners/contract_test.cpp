@@ -4,6 +4,8 @@
 // other vehicle types refused with an InputError, and the goal reached on a trivial mission
 // for every vehicle type the planner declares.
 #include <cmath>
+#include <filesystem>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -74,14 +76,31 @@ void expect_typed(const PlanResult& r, const std::string& where) {
   if (r.status != PlanStatus::running) EXPECT_FALSE(r.reason.empty()) << where << ": " << to_string(r.status);
 }
 
-class PlannerContract : public ::testing::TestWithParam<std::string> {
+// A planner under contract: a registered name, and the plugin that registers it (empty for
+// built-in planners), loaded by the test that needs it so that other tests of this program
+// see only the plugins they load themselves.
+struct Contracted {
+  std::string name;
+  std::string plugin;
+};
+
+void PrintTo(const Contracted& c, std::ostream* os) { *os << c.name << (c.plugin.empty() ? "" : " of " + c.plugin); }
+
+class PlannerContract : public ::testing::TestWithParam<Contracted> {
  protected:
-  const PlannerEntry& entry() const {
-    for (const PlannerEntry& e : planner_registry()) {
-      if (e.name == GetParam()) return e;
+  void SetUp() override {
+    if (!GetParam().plugin.empty()) {
+      load_planner_plugin(std::filesystem::path(CAMPO_TEST_PLUGIN_DIR) / GetParam().plugin, "contract test", "");
     }
-    throw std::logic_error("no planner " + GetParam());
+    for (const PlannerEntry& e : planner_registry()) {
+      if (e.name == GetParam().name) entry_ = e;
+    }
+    ASSERT_EQ(entry_.name, GetParam().name) << "not registered";
   }
+  const PlannerEntry& entry() const { return entry_; }
+
+ private:
+  PlannerEntry entry_;
 };
 
 TEST_P(PlannerContract, DeclaresAtLeastOneVehicleTypeAndADescription) {
@@ -92,7 +111,7 @@ TEST_P(PlannerContract, DeclaresAtLeastOneVehicleTypeAndADescription) {
 TEST_P(PlannerContract, RefusesUndeclaredVehicleTypesWithAnInputError) {
   for (VehicleType v : kVehicleTypes) {
     if (declares(entry(), v)) continue;
-    const Scene scene = trivial_scene(v, GetParam());
+    const Scene scene = trivial_scene(v, GetParam().name);
     EXPECT_THROW(create_planner(scene.vehicles[0].planner, context_of(scene)), InputError) << to_string(v);
   }
 }
@@ -100,7 +119,7 @@ TEST_P(PlannerContract, RefusesUndeclaredVehicleTypesWithAnInputError) {
 TEST_P(PlannerContract, ParametersReadBackToThemselves) {
   for (VehicleType v : kVehicleTypes) {
     if (!declares(entry(), v)) continue;
-    Scene scene = trivial_scene(v, GetParam());
+    Scene scene = trivial_scene(v, GetParam().name);
     const nlohmann::json first = create_planner(scene.vehicles[0].planner, context_of(scene))->parameters();
     ASSERT_TRUE(first.is_object());
     scene.vehicles[0].planner.params.values = first;
@@ -111,7 +130,7 @@ TEST_P(PlannerContract, ParametersReadBackToThemselves) {
 TEST_P(PlannerContract, NoExceptionWithoutSensorsOrBeforeTheFirstScan) {
   for (VehicleType v : kVehicleTypes) {
     if (!declares(entry(), v)) continue;
-    const Scene scene = trivial_scene(v, GetParam());
+    const Scene scene = trivial_scene(v, GetParam().name);
     const VehicleDef& def = scene.vehicles[0];
     Observation o;
     o.vehicle = v;
@@ -139,7 +158,7 @@ TEST_P(PlannerContract, NoExceptionWithoutSensorsOrBeforeTheFirstScan) {
 TEST_P(PlannerContract, ReachesATrivialMissionDeterministicallyWithTypedStatuses) {
   for (VehicleType v : kVehicleTypes) {
     if (!declares(entry(), v)) continue;
-    const Scene scene = trivial_scene(v, GetParam());
+    const Scene scene = trivial_scene(v, GetParam().name);
     EpisodeOptions options;
     options.make_sensor = range_sensor_factory();
     int calls = 0;
@@ -162,14 +181,18 @@ TEST_P(PlannerContract, ReachesATrivialMissionDeterministicallyWithTypedStatuses
   }
 }
 
-std::vector<std::string> registered_names() {
-  std::vector<std::string> names;
-  for (const PlannerEntry& e : planner_registry()) names.emplace_back(e.name);
-  return names;
+// Every built-in planner, the example plugin's (examples/planner_plugin, built in the tree as a
+// fixture) and the fixture plugin's planner that is meant to work.
+std::vector<Contracted> contracted() {
+  std::vector<Contracted> all;
+  for (const PlannerEntry& e : planner_registry()) all.push_back({e.name, ""});
+  all.push_back({"lidar_steer", "lidar_steer.so"});
+  all.push_back({"fixture_goto", "two_planners.so"});
+  return all;
 }
 
-INSTANTIATE_TEST_SUITE_P(Registered, PlannerContract, ::testing::ValuesIn(registered_names()),
-                         [](const auto& info) { return info.param; });
+INSTANTIATE_TEST_SUITE_P(Registered, PlannerContract, ::testing::ValuesIn(contracted()),
+                         [](const auto& info) { return info.param.name; });
 
 }  // namespace
 }  // namespace campo

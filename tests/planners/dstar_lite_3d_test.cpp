@@ -159,7 +159,6 @@ TEST(DStarLite3d, ParsesParamsStrictly) {
   expect_error({{"level_spacing_m", 1e300}}, "/objects/2/planner/params/level_spacing_m");
   expect_error({{"cell_size_m", 0.01}, {"level_spacing_m", 20.0}}, "expected level_spacing_m / cell_size_m <= 1000");
   EXPECT_NO_THROW(parse_dstar_lite_3d_config(params({{"cell_size_m", 0.01}, {"level_spacing_m", 20.0}, {"climb_cost_cells", 1.0}})));
-  EXPECT_THROW(make_dstar_lite_3d_planner({}, {VehicleType::rover, nullptr}), InputError);
 }
 
 // Closed loop on seed 001's scenes (each a fraction of a second in Release),

@@ -61,5 +61,25 @@ TEST(MergeSweeps, RefusesAnotherSpecOrVersionUnlessAllowed) {
             2u);
 }
 
+TEST(MergeSweeps, RefusesShardsOfOtherPluginFilesUnlessAllowed) {
+  SweepDir one = shard("one", {line("a", "completed")});
+  SweepDir two = shard("two", {line("b", "completed")}, "s1", 2);
+  one.manifest["plugins"] = {{{"path", "/home/a/steer.so"}, {"sha256", "aaaa"}, {"planners", {"steer"}}}};
+  // The same file elsewhere (another machine's mount) is the same plugin.
+  two.manifest["plugins"] = {{{"path", "/mnt/a/steer.so"}, {"sha256", "aaaa"}, {"planners", {"steer"}}}};
+  EXPECT_EQ(merge_sweeps({one, two}, false).lines.size(), 2u);
+  two.manifest["plugins"][0]["sha256"] = "bbbb";
+  try {
+    merge_sweeps({one, two}, false);
+    FAIL() << "merged runs of two builds of a plugin";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("two/sweep.json: /plugins: expected the plugin files of one/sweep.json (SHA-256 "
+                                    "[\"aaaa\"]), got [\"bbbb\"]"));
+  }
+  two.manifest.erase("plugins");
+  EXPECT_THROW(merge_sweeps({one, two}, false), InputError);
+  EXPECT_EQ(merge_sweeps({one, two}, true).lines.size(), 2u);
+}
+
 }  // namespace
 }  // namespace campo

@@ -12,6 +12,7 @@
 #include "campo/json_reader.hpp"
 #include "campo/random.hpp"
 #include "campo/scene_loader.hpp"
+#include "campo/version.hpp"
 #include "planners/registry.hpp"
 #include "scene/scene_overrides.hpp"
 #include "sweep/expansion.hpp"
@@ -172,7 +173,7 @@ TEST_F(SweepSpecTest, ExpandsScenesAxesAndSeedsInOrder) {
   EXPECT_EQ(manifest["runs"][3]["name"], run.name);
   EXPECT_EQ(manifest["spec"]["name"], "order");
   EXPECT_EQ(manifest["spec_sha256"], spec_sha256(spec));
-  EXPECT_EQ(manifest["campo_version"], CAMPO_VERSION);
+  EXPECT_EQ(manifest["campo_version"], CAMPO_VERSION_STRING);
 }
 
 // IDs come from what a run is, not where it sits in a spec: the same run has
