@@ -60,8 +60,8 @@ RecordedMission record(const std::string& scene_name) {
   std::vector<grid::CellChange> pending;
   std::optional<grid::Cell> goal;
   for (const PlannerEvent& e : events) {
-    for (const nlohmann::json& p : e.decisions.extras.value("lidar_hits", nlohmann::json::array())) {
-      const auto changed = map.mark_hit({p[0].get<double>(), p[1].get<double>(), p[2].get<double>()});
+    for (const Eigen::Vector3d& p : e.decisions.lidar_hits) {
+      const auto changed = map.mark_hit(p);
       pending.insert(pending.end(), changed.begin(), changed.end());
     }
     if (!e.decisions.replan) continue;

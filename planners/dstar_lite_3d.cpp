@@ -40,10 +40,9 @@ class DStarLite3dPlanner final : public Planner {
       if (config_.mapping == Mapping3d::octomap) octomap_.emplace(map_->config(), config_.octomap);
       // A height map only where the map is one (an octree keeps what lies under an overhang).
       if (!octomap_) {
-        result.decisions.extras["height_map_grid"] = {{"origin_m", {config_.origin_m.x(), config_.origin_m.y()}},
-                                                      {"cell_size_m", config_.cell_size_m},
-                                                      {"columns", config_.columns},
-                                                      {"rows", config_.rows}};
+        result.decisions.height_map_grid = HeightMapGrid{
+            .origin_m = config_.origin_m, .cell_size_m = config_.cell_size_m, .columns = config_.columns,
+            .rows = config_.rows};
       }
       // Moves cost their length: a 7 m climb costs 4.7 cells of 1.5 m, not one,
       // so the drone weaves between buildings at its altitude rather than
@@ -199,9 +198,9 @@ class DStarLite3dPlanner final : public Planner {
   // every column whose reconstructed height rose.
   void record_mapping(const LidarScan& scan, const std::vector<grid::CellChange>& changes, PlanResult& result) const {
     const auto cm = [](float v) { return std::round(static_cast<double>(v) * 100.0) / 100.0; };
-    nlohmann::json hits = nlohmann::json::array();
-    for (const Eigen::Vector3f& p : scan.points) hits.push_back({cm(p.x()), cm(p.y()), cm(p.z())});
-    if (!hits.empty()) result.decisions.extras["lidar_hits"] = std::move(hits);
+    std::vector<Eigen::Vector3d>& hits = result.decisions.lidar_hits;
+    hits.reserve(scan.points.size());
+    for (const Eigen::Vector3f& p : scan.points) hits.emplace_back(cm(p.x()), cm(p.y()), cm(p.z()));
     if (octomap_) {
       // Planning cells an occupied voxel now blocks or no longer blocks: [column, row, level].
       nlohmann::json blocked = nlohmann::json::array(), cleared = nlohmann::json::array();
@@ -213,7 +212,7 @@ class DStarLite3dPlanner final : public Planner {
       result.decisions.extras["occupied_voxels"] = octomap_->occupied_leaf_count();
       return;
     }
-    nlohmann::json columns = nlohmann::json::array();
+    std::vector<HeightMapColumn>& columns = result.decisions.height_map_columns;
     for (std::size_t i = 0; i < changes.size(); ++i) {
       const grid::Cell& c = changes[i].cell;
       const bool listed = std::any_of(changes.begin(), changes.begin() + static_cast<std::ptrdiff_t>(i),
@@ -222,7 +221,6 @@ class DStarLite3dPlanner final : public Planner {
       const int top = *map_->top_blocked_level(c.x, c.y);
       columns.push_back({c.x, c.y, map_->center({c.x, c.y, top}).z()});
     }
-    if (!columns.empty()) result.decisions.extras["height_map_columns"] = std::move(columns);
   }
 
   void record_path(const Eigen::Vector3d& waypoint_m, PlanResult& result) const {

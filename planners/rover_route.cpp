@@ -303,8 +303,7 @@ class RoverRoutePlanner final : public Planner {
     if (scanner && scanner->fresh && scanner->scan) {
       remember(*scanner->scan, *scanner->config, position);
       assess_scan(*scanner, position, heading);
-      if (!gap_record_.is_null()) result.decisions.extras["gap"] = std::move(gap_record_);
-      gap_record_ = nullptr;
+      result.decisions.gap = std::exchange(gap_record_, std::nullopt);
     }
     if (avoiding_ != last_avoiding_) {
       result.decisions.avoiding = avoiding_;
@@ -497,17 +496,16 @@ class RoverRoutePlanner final : public Planner {
     const auto relative_deg = [&](double robot_frame_rad) {
       return wrap_to_pi(robot_frame_rad + heading - route_heading) * 180.0 / M_PI;
     };
-    nlohmann::json g = {{"route_heading_deg", route_heading * 180.0 / M_PI},
-                        {"goal_deg", relative_deg(goal_bearing)},
-                        {"nearest_range_m", gap.nearest_range_m},
-                        {"gaps", gap.gaps.size()}};
+    GapDecision& g = gap_record_.emplace(GapDecision{.gaps = static_cast<int>(gap.gaps.size()),
+                                                     .nearest_range_m = gap.nearest_range_m,
+                                                     .route_heading_deg = route_heading * 180.0 / M_PI,
+                                                     .goal_deg = relative_deg(goal_bearing)});
     if (gap.chosen >= 0) {
       const ScanGap& chosen = gap.gaps[static_cast<std::size_t>(gap.chosen)];
-      g["gap_heading_deg"] = relative_deg(chosen.heading_rad);
-      g["gap_center_deg"] = relative_deg(chosen.center_rad);
-      g["gap_width_m"] = chosen.width_m;
+      g.chosen = ChosenGap{.center_deg = relative_deg(chosen.center_rad),
+                           .heading_deg = relative_deg(chosen.heading_rad),
+                           .width_m = chosen.width_m};
     }
-    gap_record_ = std::move(g);
   }
 
   // The first of (v, w), (v/2, w), (v, 0), (0, w), (-guard_reverse_speed_mps, 0), (0, 0) whose motion over
@@ -636,7 +634,7 @@ class RoverRoutePlanner final : public Planner {
   bool last_avoiding_ = false;       ///< as last recorded
   bool blocked_ahead_ = false;       ///< stop and turn in place
   double avoid_heading_rad_ = 0.0;   ///< robot frame, from the latest scan
-  nlohmann::json gap_record_;        ///< follow-the-gap's choice on the latest scan, for the record
+  std::optional<GapDecision> gap_record_;  ///< follow-the-gap's choice on the latest scan, for the record
   bool blocked_left_ = false;        ///< the obstacle that stops the rover lies left of its centre line
   std::vector<Eigen::Vector2d> recent_points_;  ///< scan hits near the rover, world frame
   std::unordered_set<std::int64_t> cells_;      ///< scratch: 5 cm cells of recent_points_

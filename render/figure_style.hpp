@@ -23,8 +23,8 @@ struct TrackPoint {
   double yaw_deg = 0.0;  ///< heading, counter-clockwise from x (east); 0 when the file has no yaw
 };
 
-/// A planner's reconstructed height map (decisions "height_map_grid", then
-/// "height_map_columns" as columns rise): the top of what it mapped per cell.
+/// A planner's reconstructed height map (Decisions::height_map_grid, then
+/// Decisions::height_map_columns as columns rise): the top of what it mapped per cell.
 struct HeightMapView {
   Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();  ///< south-west corner of cell (0, 0)
   double cell_size_m = 1.0;
@@ -43,7 +43,7 @@ struct RunView {
   std::vector<Eigen::Vector3d> planned;     ///< intermediate waypoints a planner set (reached or not)
   std::vector<Eigen::Vector3d> discarded;   ///< intermediate waypoints a planner dropped
   std::vector<Eigen::Vector3d> planned_path;///< a global planner's planned path, if any
-  std::vector<Eigen::Vector3d> sensor_hits; ///< range-sensor hits a mapping planner recorded ("lidar_hits")
+  std::vector<Eigen::Vector3d> sensor_hits; ///< range-sensor hits a mapping planner recorded (Decisions::lidar_hits)
   HeightMapView height_map;                 ///< what a mapping planner reconstructed, if any
   /// Time intervals [start, end] of local obstacle avoidance, s
   /// (Decisions::avoiding true, then false; one still open at the end closes

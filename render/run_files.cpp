@@ -127,29 +127,25 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
       if (typed.discarded_waypoint) v.discarded.push_back(*typed.discarded_waypoint);
       if (typed.planned_path) v.planned_path = *typed.planned_path;
       // The mapping planners' own decisions (docs/planners.md, dstar_lite_3d).
-      const nlohmann::json& d = typed.extras;
-      if (d.contains("lidar_hits")) {
-        for (const auto& p : d["lidar_hits"]) v.sensor_hits.push_back(vector3(p));
-      }
-      if (d.contains("height_map_grid")) {
-        const auto& g = d["height_map_grid"];
+      v.sensor_hits.insert(v.sensor_hits.end(), typed.lidar_hits.begin(), typed.lidar_hits.end());
+      if (typed.height_map_grid) {
+        const HeightMapGrid& g = *typed.height_map_grid;
         HeightMapView& h = v.height_map;
-        h.origin_m = {g.at("origin_m").at(0).get<double>(), g.at("origin_m").at(1).get<double>()};
-        h.cell_size_m = g.at("cell_size_m").get<double>();
-        h.columns = g.at("columns").get<int>();
-        h.rows = g.at("rows").get<int>();
-        if (h.columns < 1 || h.rows < 1 || static_cast<std::int64_t>(h.columns) * h.rows > (1 << 26)) {
+        h.origin_m = g.origin_m;
+        h.cell_size_m = g.cell_size_m;
+        h.columns = g.columns;
+        h.rows = g.rows;
+        if (static_cast<std::int64_t>(h.columns) * h.rows > (1 << 26)) {
           throw InputError((dir / "run.json").string(), "", "height_map_grid: bad size");
         }
         h.top_m.assign(static_cast<std::size_t>(h.columns) * h.rows, std::numeric_limits<double>::quiet_NaN());
       }
-      for (const auto& c : d.value("height_map_columns", nlohmann::json::array())) {
+      for (const HeightMapColumn& c : typed.height_map_columns) {
         HeightMapView& h = v.height_map;
-        const int x = c.at(0).get<int>(), y = c.at(1).get<int>();
-        if (x < 0 || y < 0 || x >= h.columns || y >= h.rows) {
+        if (c.column >= h.columns || c.row >= h.rows) {
           throw InputError((dir / "run.json").string(), "", "height_map_columns: column outside the height_map_grid");
         }
-        h.top_m[static_cast<std::size_t>(y) * h.columns + x] = c.at(2).get<double>();
+        h.top_m[static_cast<std::size_t>(c.row) * h.columns + c.column] = c.top_m;
       }
     }
     if (avoiding) {  // still on at the end: up to the last sample

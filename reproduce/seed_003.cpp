@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -105,14 +106,14 @@ void fig_46(const Workbench& bench, Claim& claim) {
   std::vector<std::vector<std::string>> rows;
   std::vector<int> sides;
   for (const PlannerEvent& event : run.events) {
-    const auto* gap = event.decisions.extras.contains("gap") ? &event.decisions.extras.at("gap") : nullptr;
-    if (!gap || !gap->contains("gap_center_deg")) continue;
-    const double center = gap->at("gap_center_deg").get<double>();
-    const int side = center > 0.0 ? 1 : -1;
+    const std::optional<GapDecision>& gap = event.decisions.gap;
+    if (!gap || !gap->chosen) continue;
+    const ChosenGap& chosen = *gap->chosen;
+    const int side = chosen.center_deg > 0.0 ? 1 : -1;
     if (sides.empty() || sides.back() != side) {
       sides.push_back(side);
-      rows.push_back({fixed(event.time_s, 1), side > 0 ? "left" : "right", fixed(center, 1),
-                      fixed(gap->at("gap_heading_deg").get<double>(), 1)});
+      rows.push_back({fixed(event.time_s, 1), side > 0 ? "left" : "right", fixed(chosen.center_deg, 1),
+                      fixed(chosen.heading_deg, 1)});
     }
   }
   TargetCheck check;

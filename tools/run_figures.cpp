@@ -235,30 +235,16 @@ std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, 
 
 namespace {
 
-// A follow-the-gap decision of a rover_route run ("gap" event).
-struct GapDecision {
+// A follow-the-gap decision of a rover_route run ("gap" event) and when it was taken.
+struct TimedGap {
   double time_s = 0.0;
-  std::optional<double> relative_deg;  // chosen gap's heading relative to the route, positive left
-  std::optional<double> center_deg;    // its centre, the same way: which side of the route the opening is
-  double route_heading_deg = 0.0;
+  GapDecision gap;
 };
 
-std::vector<GapDecision> gap_decisions(const RecordedRun& run) {
-  std::vector<GapDecision> out;
-  try {
-    for (const PlannerEvent& event : run.events) {
-      const nlohmann::json& d = event.decisions.extras;
-      const auto g = d.find("gap");
-      if (g == d.end()) continue;
-      GapDecision decision;
-      decision.time_s = event.time_s;
-      decision.route_heading_deg = g->at("route_heading_deg").get<double>();
-      if (g->contains("gap_heading_deg")) decision.relative_deg = (*g)["gap_heading_deg"].get<double>();
-      if (g->contains("gap_center_deg")) decision.center_deg = (*g)["gap_center_deg"].get<double>();
-      out.push_back(decision);
-    }
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(record_file(run), "/events", std::string("malformed gap decision: ") + e.what());
+std::vector<TimedGap> gap_decisions(const RecordedRun& run) {
+  std::vector<TimedGap> out;
+  for (const PlannerEvent& event : run.events) {
+    if (event.decisions.gap) out.push_back({event.time_s, *event.decisions.gap});
   }
   return out;
 }
@@ -266,16 +252,16 @@ std::vector<GapDecision> gap_decisions(const RecordedRun& run) {
 }  // namespace
 
 std::vector<double> gap_switch_instants(const RecordedRun& run) {
-  const std::vector<GapDecision> gaps = gap_decisions(run);
+  const std::vector<TimedGap> gaps = gap_decisions(run);
   const auto chosen =
-      std::find_if(gaps.begin(), gaps.end(), [](const GapDecision& g) { return g.center_deg.has_value(); });
+      std::find_if(gaps.begin(), gaps.end(), [](const TimedGap& g) { return g.gap.chosen.has_value(); });
   if (chosen == gaps.end()) {
     throw InputError(record_file(run), "/events", "no follow-the-gap decision with a chosen gap (\"gap\" events)");
   }
   // Sides by the gap's centre: the heading is blended toward the goal and may cross the route.
-  const bool left_first = *chosen->center_deg > 0.0;
-  const auto other = std::find_if(chosen, gaps.end(), [&](const GapDecision& g) {
-    return g.center_deg && (*g.center_deg > 0.0) != left_first;
+  const bool left_first = chosen->gap.chosen->center_deg > 0.0;
+  const auto other = std::find_if(chosen, gaps.end(), [&](const TimedGap& g) {
+    return g.gap.chosen && (g.gap.chosen->center_deg > 0.0) != left_first;
   });
   if (other == gaps.end()) {
     throw InputError(record_file(run), "/events", "the chosen gap never changed sides; give the instants with --at");
@@ -292,7 +278,7 @@ std::vector<double> gap_switch_instants(const RecordedRun& run) {
 std::filesystem::path write_sequence(const RecordedRun& run, std::vector<double> times_s,
                                      const std::filesystem::path& out_dir) {
   if (times_s.empty()) times_s = gap_switch_instants(run);
-  const std::vector<GapDecision> gaps = gap_decisions(run);
+  const std::vector<TimedGap> gaps = gap_decisions(run);
   std::vector<SequencePanel> panels;
   for (std::size_t i = 0; i < times_s.size(); ++i) {
     SequencePanel panel;
@@ -302,16 +288,16 @@ std::filesystem::path write_sequence(const RecordedRun& run, std::vector<double>
             << " s";
     // The latest gap decision at or before the instant, if avoidance was on then.
     const GapDecision* latest = nullptr;
-    for (const GapDecision& g : gaps) {
-      if (g.time_s <= panel.time_s + 1e-9) latest = &g;
+    for (const TimedGap& g : gaps) {
+      if (g.time_s <= panel.time_s + 1e-9) latest = &g.gap;
     }
     const bool avoiding = std::any_of(run.view.avoiding_s.begin(), run.view.avoiding_s.end(), [&](const auto& a) {
       return a.first <= panel.time_s && panel.time_s < a.second;
     });
-    if (latest && latest->relative_deg && latest->center_deg && avoiding) {
-      const double rel = *latest->relative_deg;
-      caption << " - gap on the " << (*latest->center_deg > 0.0 ? "left" : "right") << ", heading " << std::showpos
-              << std::setprecision(0) << rel << std::noshowpos << " deg (arrow)";
+    if (latest && latest->chosen && avoiding) {
+      const double rel = latest->chosen->heading_deg;
+      caption << " - gap on the " << (latest->chosen->center_deg > 0.0 ? "left" : "right") << ", heading "
+              << std::showpos << std::setprecision(0) << rel << std::noshowpos << " deg (arrow)";
       panel.heading_deg = latest->route_heading_deg + rel;
     } else {
       caption << " - following the route";

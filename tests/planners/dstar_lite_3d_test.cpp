@@ -60,6 +60,11 @@ TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
   EXPECT_EQ(r.decisions.replan->sensor, "leddar");
   ASSERT_TRUE(r.decisions.planned_path.has_value());
   EXPECT_EQ(r.decisions.planned_path->size(), 3u);
+  // The first call records the height map's frame (seed 001's grid), and no scan yet.
+  EXPECT_EQ(r.decisions.height_map_grid,
+            (HeightMapGrid{.origin_m = {0.0, 0.0}, .cell_size_m = 1.5, .columns = 100, .rows = 100}));
+  EXPECT_TRUE(r.decisions.lidar_hits.empty());
+  EXPECT_TRUE(r.decisions.height_map_columns.empty());
 
   // Waypoint 0 reached: the next leg runs east along level 4, three cells ahead at a time.
   r = planner->plan(feed.at(center(0, 0, 4) + Eigen::Vector3d(0.1, 0.0, 0.2)));
@@ -67,6 +72,7 @@ TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
   EXPECT_EQ(goto_target(r), center(3, 0, 4));
   ASSERT_TRUE(r.decisions.planned_path.has_value());
   EXPECT_EQ(r.decisions.planned_path->size(), 7u);
+  EXPECT_FALSE(r.decisions.height_map_grid.has_value());  // once
 
   // A hit on a roof at level 4 in column (2, 0) blocks levels 0..4 there: only
   // those five cells go to D* Lite, and the new path avoids them.
@@ -82,12 +88,17 @@ TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
         << point.transpose();
   }
   EXPECT_EQ(r.decisions.planned_path->back(), center(6, 0, 4));
+  // For the figures: the hit, and column (2, 0) whose top is now level 4 (centre z 14 m).
+  EXPECT_EQ(r.decisions.lidar_hits, (std::vector<Eigen::Vector3d>{{3.0, 0.75, 14.5}}));
+  EXPECT_EQ(r.decisions.height_map_columns, (std::vector<HeightMapColumn>{{2, 0, 14.0}}));
 
   const std::vector<Eigen::Vector3d> path = *r.decisions.planned_path;
 
   // The same hit again changes nothing: no replan while the vehicle stays in its cell.
   r = planner->plan(feed.at(center(0, 0, 4), {Eigen::Vector3f(3.0f, 0.75f, 14.5f)}));
   EXPECT_FALSE(r.decisions.replan.has_value());
+  EXPECT_EQ(r.decisions.lidar_hits.size(), 1u);
+  EXPECT_TRUE(r.decisions.height_map_columns.empty());
 
   // Moving one cell along the path moves D* Lite's start (k_m); the rest of
   // the plan holds, so no new path is recorded.

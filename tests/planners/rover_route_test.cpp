@@ -378,10 +378,9 @@ TEST(RoverRouteClosedLoop, Fig46SwitchesToTheLeftGapWhenTheWalkerCutsOffTheRight
   };
   std::vector<Choice> choices;
   for (const PlannerEvent& e : r.events) {
-    const nlohmann::json& extras = e.decisions.extras;
-    if (!extras.contains("gap") || !extras["gap"].contains("gap_center_deg")) continue;
-    const auto& g = extras["gap"];
-    choices.push_back({e.time_s, g["gap_center_deg"].get<double>(), g["gap_heading_deg"].get<double>()});
+    if (!e.decisions.gap || !e.decisions.gap->chosen) continue;
+    const ChosenGap& g = *e.decisions.gap->chosen;
+    choices.push_back({e.time_s, g.center_deg, g.heading_deg});
   }
   ASSERT_FALSE(choices.empty());
   // (a) right first, while the person stands (walks from 8 s).

@@ -26,6 +26,13 @@ nlohmann::json points(std::size_t n) {
   return p;
 }
 
+// The same points, typed.
+std::vector<Eigen::Vector3d> hits(std::size_t n) {
+  std::vector<Eigen::Vector3d> p;
+  for (std::size_t i = 0; i < n; ++i) p.emplace_back(static_cast<double>(i), 0.5, 1.0);
+  return p;
+}
+
 // Every typed field decided, with the planner's own details and extras.
 Decisions every_field() {
   Decisions d;
@@ -36,7 +43,15 @@ Decisions every_field() {
   d.planned_path = std::vector<Eigen::Vector3d>{{0, 0, 1}, {0.25, 0, 1}, {0.5, 0.125, 1}};
   d.avoiding = false;
   d.replan = ReplanDecision{.index = 7, .sensor = "cam", .time_ms = 12.5, .details = {{"action", "fly"}}};
-  d.extras = {{"gap", {{"gap_center_deg", -4.5}}}, {"lidar_hits", {{1.0, 2.0, 3.0}}}};
+  d.lidar_hits = {{1.0, 2.0, 3.0}, {-0.25, 0.5, 12.75}};
+  d.height_map_grid = HeightMapGrid{.origin_m = {-30.0, 7.5}, .cell_size_m = 1.5, .columns = 100, .rows = 80};
+  d.height_map_columns = {{2, 0, 14.0}, {99, 79, -7.0}};
+  d.gap = GapDecision{.gaps = 3,
+                      .nearest_range_m = 1.25,
+                      .route_heading_deg = 90.0,
+                      .goal_deg = -2.5,
+                      .chosen = ChosenGap{.center_deg = -4.5, .heading_deg = -6.0, .width_m = 1.75}};
+  d.extras = {{"wall_following", {{"side", "left"}}}};
   return d;
 }
 
@@ -53,16 +68,32 @@ TEST(Decisions, TypedToJsonAndBackIsTheSame) {
   EXPECT_TRUE(Decisions().empty());
   EXPECT_FALSE(sparse.empty());
   EXPECT_FALSE((Decisions{.extras = {{"note", 1}}}.empty()));
+  EXPECT_FALSE((Decisions{.lidar_hits = {{0, 0, 0}}}.empty()));
+  EXPECT_FALSE((Decisions{.height_map_grid = HeightMapGrid{}}.empty()));
+  EXPECT_FALSE((Decisions{.height_map_columns = {{0, 0, 0.0}}}.empty()));
+  EXPECT_FALSE((Decisions{.gap = GapDecision{}}.empty()));
+  // A scan without a chosen gap: the chosen gap's keys are absent, and stay so.
+  const Decisions no_gap{.gap = GapDecision{.gaps = 0, .nearest_range_m = 3.0, .route_heading_deg = -45.0}};
+  EXPECT_EQ(decisions_to_json(no_gap),
+            (nlohmann::json{{"gap", {{"gaps", 0}, {"nearest_range_m", 3.0}, {"route_heading_deg", -45.0},
+                                     {"goal_deg", 0.0}}}}));
+  EXPECT_EQ(decisions_from_json(decisions_to_json(no_gap), "f", ""), no_gap);
 }
 
 TEST(Decisions, RecordedAsDocumented) {
   // docs/running.md, "Planner decisions in the record": one key a field, a replanning step one object with the
   // planner's details beside its index, sensor and time; keys in order, as events.jsonl has them.
   EXPECT_EQ(event_line({2.5, every_field()}),
-            R"({"decisions":{"avoiding":false,"discarded_waypoint":[-0.001,4.0,7.0],"gap":{"gap_center_deg":-4.5},)"
-            R"("lidar_hits":[[1.0,2.0,3.0]],"planned_path":[[0.0,0.0,1.0],[0.25,0.0,1.0],[0.5,0.125,1.0]],)"
+            R"({"decisions":{"avoiding":false,"discarded_waypoint":[-0.001,4.0,7.0],)"
+            R"("gap":{"gap_center_deg":-4.5,"gap_heading_deg":-6.0,"gap_width_m":1.75,"gaps":3,"goal_deg":-2.5,)"
+            R"("nearest_range_m":1.25,"route_heading_deg":90.0},)"
+            R"("height_map_columns":[[2,0,14.0],[99,79,-7.0]],)"
+            R"("height_map_grid":{"cell_size_m":1.5,"columns":100,"origin_m":[-30.0,7.5],"rows":80},)"
+            R"("lidar_hits":[[1.0,2.0,3.0],[-0.25,0.5,12.75]],)"
+            R"("planned_path":[[0.0,0.0,1.0],[0.25,0.0,1.0],[0.5,0.125,1.0]],)"
             R"("planned_waypoint":[1.5,-2.0,3.25],"reached_intermediate":[0.0,0.1,0.2],"reached_waypoints":[2,3],)"
-            R"("replan":{"action":"fly","index":7,"sensor":"cam","time_ms":12.5}},"time_s":2.5})");
+            R"("replan":{"action":"fly","index":7,"sensor":"cam","time_ms":12.5},)"
+            R"("wall_following":{"side":"left"}},"time_s":2.5})");
   EXPECT_EQ(event_line({0.0, Decisions{}}), R"({"decisions":{},"time_s":0.0})");
 }
 
@@ -115,6 +146,55 @@ TEST(Decisions, AMalformedFieldIsAnErrorNamingItsKey) {
   EXPECT_THAT(error({{"replan", true}}), HasSubstr("/events/4/decisions/replan |"));
   EXPECT_THAT(error(nlohmann::json::array()), HasSubstr("/events/4/decisions | run.json: /events/4/decisions: "
                                                         "expected an object of planner decisions"));
+  EXPECT_THAT(error({{"lidar_hits", {{0, 0, 0}, {1, 2}}}}),
+              HasSubstr("/events/4/decisions/lidar_hits/1 | run.json: /events/4/decisions/lidar_hits/1: expected a "
+                        "point [x, y, z] of numbers, m, got"));
+  EXPECT_THAT(error({{"lidar_hits", "many"}}), HasSubstr("/events/4/decisions/lidar_hits |"));
+  const nlohmann::json grid = {{"origin_m", {0.0, 0.0}}, {"cell_size_m", 1.5}, {"columns", 10}, {"rows", 10}};
+  const auto with = [](nlohmann::json j, const char* key, nlohmann::json value) {
+    j[key] = std::move(value);
+    return j;
+  };
+  EXPECT_THAT(error({{"height_map_grid", with(grid, "cell_size_m", 0.0)}}),
+              HasSubstr("/events/4/decisions/height_map_grid/cell_size_m | run.json: "
+                        "/events/4/decisions/height_map_grid/cell_size_m: expected a number > 0, got"));
+  EXPECT_THAT(error({{"height_map_grid", with(grid, "rows", 0)}}), HasSubstr("/decisions/height_map_grid/rows |"));
+  EXPECT_THAT(error({{"height_map_grid", with(grid, "columns", 2.5)}}),
+              HasSubstr("/decisions/height_map_grid/columns |"));
+  EXPECT_THAT(error({{"height_map_grid", with(grid, "origin_m", nlohmann::json::array({1.0}))}}),
+              HasSubstr("/decisions/height_map_grid/origin_m |"));
+  EXPECT_THAT(error({{"height_map_grid", with(grid, "levels", 3)}}),
+              HasSubstr("/decisions/height_map_grid/levels | run.json: /events/4/decisions/height_map_grid/levels: "
+                        "unknown key \"levels\""));
+  nlohmann::json no_rows = grid;
+  no_rows.erase("rows");
+  EXPECT_THAT(error({{"height_map_grid", no_rows}}),
+              HasSubstr("/events/4/decisions/height_map_grid | run.json: /events/4/decisions/height_map_grid: "
+                        "missing required key \"rows\""));
+  EXPECT_THAT(error({{"height_map_grid", 1.5}}), HasSubstr("/events/4/decisions/height_map_grid |"));
+  EXPECT_THAT(error({{"height_map_columns", {{1, 2, 3.0}, {1, -2, 3.0}}}}),
+              HasSubstr("/events/4/decisions/height_map_columns/1 | run.json: "
+                        "/events/4/decisions/height_map_columns/1: expected a height-map column "
+                        "[column, row, top z]: indices from 0, m, got"));
+  EXPECT_THAT(error({{"height_map_columns", {{1.5, 2, 3.0}}}}), HasSubstr("/decisions/height_map_columns/0 |"));
+  EXPECT_THAT(error({{"height_map_columns", {{1, 2, "3"}}}}), HasSubstr("/decisions/height_map_columns/0 |"));
+  EXPECT_THAT(error({{"height_map_columns", {{1, 2}}}}), HasSubstr("/decisions/height_map_columns/0 |"));
+  EXPECT_THAT(error({{"height_map_columns", 5}}), HasSubstr("/decisions/height_map_columns |"));
+  const nlohmann::json gap = {{"gaps", 2}, {"nearest_range_m", 1.0}, {"route_heading_deg", 0.0}, {"goal_deg", 0.0}};
+  EXPECT_THAT(error({{"gap", with(gap, "gaps", -1)}}),
+              HasSubstr("/events/4/decisions/gap/gaps | run.json: /events/4/decisions/gap/gaps: expected an integer "
+                        "in [0, 2147483647], got"));
+  EXPECT_THAT(error({{"gap", with(gap, "route_heading_deg", "north")}}),
+              HasSubstr("/decisions/gap/route_heading_deg |"));
+  EXPECT_THAT(error({{"gap", with(gap, "nearest_range_m", -1.0)}}), HasSubstr("/decisions/gap/nearest_range_m |"));
+  // A chosen gap has its centre, heading and width together.
+  EXPECT_THAT(error({{"gap", with(gap, "gap_center_deg", 5.0)}}),
+              HasSubstr("/events/4/decisions/gap | run.json: /events/4/decisions/gap: missing required key "
+                        "\"gap_heading_deg\""));
+  EXPECT_THAT(error({{"gap", with(gap, "side", "left")}}), HasSubstr("/decisions/gap/side |"));
+  nlohmann::json no_heading = gap;
+  no_heading.erase("route_heading_deg");
+  EXPECT_THAT(error({{"gap", no_heading}}), HasSubstr("missing required key \"route_heading_deg\""));
   // Not an event at all.
   EXPECT_THROW(event_from_json({{"decisions", nlohmann::json::object()}}, "run.json", "/events/0"), InputError);
   EXPECT_THROW(events_from_json(nlohmann::json::object(), "run.json", "/events"), InputError);
@@ -128,6 +208,11 @@ TEST(Decisions, ExtrasMayNotTakeATypedFieldsName) {
   EXPECT_THROW(decisions_to_json(d), std::invalid_argument);
   d.extras = nullptr;  // none
   EXPECT_EQ(decisions_to_json(d), nlohmann::json::object());
+  d.extras = {{"lidar_hits", nlohmann::json::array()}};
+  EXPECT_THROW(decisions_to_json(d), std::invalid_argument);
+  d.extras = {{"gap", {{"side", "left"}}}};
+  EXPECT_THROW(decisions_to_json(d), std::invalid_argument);
+  d.extras = nullptr;
   d.replan = ReplanDecision{.details = {{"time_ms", 3.0}}};
   EXPECT_THROW(decisions_to_json(d), std::invalid_argument);
 }
@@ -145,6 +230,11 @@ TEST(Decisions, RunRecordsWithInlineEventsReadBack) {
   ASSERT_EQ(read.size(), 1u);
   EXPECT_EQ(read[0].time_s, 3.0);
   EXPECT_EQ(read[0].decisions.planned_path, (std::vector<Eigen::Vector3d>{{0, 0, 1}, {2, 0, 1}}));
+  const Decisions grid = decisions_from_json(
+      nlohmann::json::parse(R"({"height_map_grid": {"origin_m": [1, 2], "cell_size_m": 2, "columns": 3, "rows": 4}})"),
+      "run.json", "/events/0/decisions");
+  EXPECT_EQ(grid.height_map_grid,
+            (HeightMapGrid{.origin_m = {1.0, 2.0}, .cell_size_m = 2.0, .columns = 3, .rows = 4}));
 }
 
 TEST(Decisions, BoundedAsRecorded) {
@@ -159,6 +249,17 @@ TEST(Decisions, BoundedAsRecorded) {
   EXPECT_EQ(bounded.avoiding, true);
   EXPECT_EQ(bounded.extras, (nlohmann::json{{"thinned", {{"/planned_path", 3000}}}}));
   EXPECT_TRUE(was_bounded(bounded));
+  // So are a scan's hits and a height map's columns, typed as they were.
+  std::vector<HeightMapColumn> columns;
+  for (int i = 0; i < 5000; ++i) columns.push_back({i, 2 * i, 0.5 * i});
+  const Decisions mapped = bounded_decisions({.lidar_hits = hits(2049), .height_map_columns = columns});
+  ASSERT_EQ(mapped.lidar_hits.size(), kEventArrayMaxEntries);
+  EXPECT_EQ(mapped.lidar_hits.front(), Eigen::Vector3d(0.0, 0.5, 1.0));
+  EXPECT_EQ(mapped.lidar_hits.back(), Eigen::Vector3d(2048.0, 0.5, 1.0));
+  ASSERT_EQ(mapped.height_map_columns.size(), kEventArrayMaxEntries);
+  EXPECT_EQ(mapped.height_map_columns.front(), columns.front());
+  EXPECT_EQ(mapped.height_map_columns.back(), columns.back());
+  EXPECT_EQ(mapped.extras, (nlohmann::json{{"thinned", {{"/height_map_columns", 5000}, {"/lidar_hits", 2049}}}}));
   // Short ones are recorded as they are.
   const Decisions small = every_field();
   EXPECT_EQ(bounded_decisions(small), small);
@@ -166,7 +267,7 @@ TEST(Decisions, BoundedAsRecorded) {
 }
 
 TEST(EventLog, ShortArraysAreKeptAsTheyAre) {
-  nlohmann::json d = decisions_to_json({.reached_waypoints = {0}, .extras = {{"lidar_hits", points(kEventArrayMaxEntries)}}});
+  nlohmann::json d = decisions_to_json({.reached_waypoints = {0}, .lidar_hits = hits(kEventArrayMaxEntries)});
   const nlohmann::json before = d;
   EXPECT_FALSE(bound_decisions(d));
   EXPECT_EQ(d, before);
@@ -175,7 +276,7 @@ TEST(EventLog, ShortArraysAreKeptAsTheyAre) {
 TEST(EventLog, LongArraysKeepEvenlySpacedEntriesWithTheirEnds) {
   const std::size_t n = 10 * kEventArrayMaxEntries + 7;
   nlohmann::json d = decisions_to_json(
-      {.replan = ReplanDecision{.index = 3, .details = {{"path", points(n)}}}, .extras = {{"lidar_hits", points(n)}}});
+      {.replan = ReplanDecision{.index = 3, .details = {{"path", points(n)}}}, .lidar_hits = hits(n)});
   EXPECT_TRUE(bound_decisions(d));
   ASSERT_EQ(d["lidar_hits"].size(), kEventArrayMaxEntries);
   EXPECT_EQ(d["lidar_hits"].front()[0], 0.0);
@@ -188,6 +289,7 @@ TEST(EventLog, LongArraysKeepEvenlySpacedEntriesWithTheirEnds) {
   }
   const Decisions back = decisions_from_json(d, "f", "");
   EXPECT_EQ(back.replan.value().details["path"].size(), kEventArrayMaxEntries);
+  EXPECT_EQ(back.lidar_hits.size(), kEventArrayMaxEntries);
   EXPECT_EQ(back.replan.value().index, 3);
   EXPECT_EQ(d["thinned"], (nlohmann::json{{"/lidar_hits", n}, {"/replan/path", n}}));
 }
@@ -218,7 +320,7 @@ TEST(EventLog, LinesAreBoundedWhateverThePlannerDecides) {
 TEST(EventLog, JsonLinesReadBackAsWritten) {
   const auto file = std::filesystem::temp_directory_path() / "campo_event_log_test.jsonl";
   const std::vector<PlannerEvent> events{{0.5, {.planned_waypoint = Eigen::Vector3d(1.0, 2.0, 3.0)}},
-                                         {1.0, {.avoiding = true, .extras = {{"gap", {{"side", "left"}}}}}},
+                                         {1.0, {.avoiding = true, .extras = {{"wall_following", {{"side", "left"}}}}}},
                                          {1.5, every_field()}};
   std::ofstream(file, std::ios::binary) << events_jsonl(events);
   EXPECT_EQ(read_events_jsonl(file), events);
@@ -241,6 +343,16 @@ TEST(EventLog, JsonLinesReadBackAsWritten) {
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), file.string() + " line 4");
     EXPECT_EQ(e.pointer(), "/decisions/avoiding");
+  }
+  std::ofstream(file, std::ios::binary) << events_jsonl(events)
+                                        << R"({"time_s": 2, "decisions": {"height_map_columns": [[1, 2, 3.5], [4, 5]]}})"
+                                        << "\n";
+  try {
+    read_events_jsonl(file);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), file.string() + " line 4");
+    EXPECT_EQ(e.pointer(), "/decisions/height_map_columns/1");
   }
   std::filesystem::remove(file);
 }
