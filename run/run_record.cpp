@@ -6,6 +6,7 @@
 #include "planners/registry.hpp"
 #include "run/event_log.hpp"
 #include "run/provenance.hpp"
+#include "scene/world_config.hpp"
 #include "sensors/scan_io.hpp"
 
 namespace campo {
@@ -140,19 +141,7 @@ nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const E
       {"provenance", run_provenance},
       {"overrides", overrides},
       {"parameters",
-       {{"world",
-         {{"gravity_mps2", vector_json(w.gravity_mps2)},
-          {"physics_step_s", w.physics_step_s},
-          {"control_rate_hz", w.control_rate_hz},
-          {"sensor_rate_hz", w.sensor_rate_hz},
-          {"time_limit_s", w.time_limit_s},
-          {"geo_reference",
-           {{"latitude_deg", w.geo_reference.latitude_deg},
-            {"longitude_deg", w.geo_reference.longitude_deg},
-            {"altitude_m", w.geo_reference.altitude_m},
-            {"projection", to_string(w.geo_reference.projection)},
-            {"position_m", {w.geo_reference.position_m.x(), w.geo_reference.position_m.y()}}}},
-          {"seed", w.seed}}},
+       {{"world", world_config_fields().write(w)},
         {"vehicle",
          {{"alias", def.alias},
           {"type", to_string(def.type)},

@@ -13,6 +13,7 @@
 #include "scene/generators.hpp"
 #include "scene/geodesy.hpp"
 #include "scene/heightfield_sources.hpp"
+#include "scene/world_config.hpp"
 
 namespace campo {
 
@@ -116,30 +117,11 @@ class Loader {
 
  private:
   void read_world(const JsonNode& node) {
-    ObjectReader r(node);
     WorldConfig& w = scene_.world;
-    r.read("gravity_mps2", w.gravity_mps2, Range::closed(-100.0, 100.0));
-    r.read("physics_step_s", w.physics_step_s, Range::closed(1e-5, 0.1));
-    r.read("control_rate_hz", w.control_rate_hz, Range::closed(0.1, 10000.0));
-    r.read("sensor_rate_hz", w.sensor_rate_hz, Range::closed(0.01, 10000.0));
+    world_config_fields().read(node, w);
+    ObjectReader r(node);  // the rates' nodes, for the pointers of the checks below
     check_world_rate(r, "control_rate_hz", w.control_rate_hz);
     check_world_rate(r, "sensor_rate_hz", w.sensor_rate_hz);
-    r.read("time_limit_s", w.time_limit_s, {0.0, 1e6, true, false});
-    r.read_seed("seed", w.seed);
-    if (auto geo = r.optional("geo_reference")) {
-      ObjectReader g(*geo);
-      g.read("latitude_deg", w.geo_reference.latitude_deg, Range::closed(-90.0, 90.0));
-      g.read("longitude_deg", w.geo_reference.longitude_deg, Range::closed(-180.0, 180.0));
-      g.read("altitude_m", w.geo_reference.altitude_m, Range::closed(-1e4, 1e5));
-      if (auto projection = g.optional("projection")) {
-        w.geo_reference.projection = projection->as_choice({"wgs84_enu", "sphere_no_coslat"}) == 0
-                                         ? GeoProjection::wgs84_enu
-                                         : GeoProjection::sphere_no_coslat;
-      }
-      g.read("position_m", w.geo_reference.position_m, Range::closed(-1e6, 1e6));
-      g.finish();
-    }
-    r.finish();
   }
 
   // A world rate, set or default, at the physics step, set or default: the
