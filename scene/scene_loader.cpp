@@ -13,6 +13,7 @@
 #include "scene/generators.hpp"
 #include "scene/geodesy.hpp"
 #include "scene/heightfield_sources.hpp"
+#include "scene/sensor_fields.hpp"
 #include "scene/world_config.hpp"
 
 namespace campo {
@@ -712,56 +713,11 @@ SensorDef parse_sensor(const JsonNode& node, const SceneLimits& limits) {
   if (auto alias = r.optional("alias")) sensor.alias = alias->as_string();
   const JsonNode type = r.required("type");
   sensor.type = type.as_choice({"lidar", "depth_camera"}) == 0 ? SensorType::lidar : SensorType::depth_camera;
-  LidarConfig& c = sensor.lidar;
-  if (auto preset = r.optional("preset")) {
-    const auto names = lidar_preset_names();
-    std::vector<std::string_view> choices(names.begin(), names.end());
-    c = *lidar_preset(choices[preset->as_choice(choices)]);
-  }
   if (r.has("beams") && (r.has("fov_deg") || r.has("resolution"))) {
     r.fail("either \"beams\" or a grid (\"fov_deg\", \"resolution\"), not both");
   }
-  // A grid given here replaces a preset's explicit beams.
-  if (r.has("fov_deg") || r.has("resolution")) c.beams.clear();
-  if (auto fov = r.optional("fov_deg")) {
-    const auto items = fov->as_array(2, 2);
-    c.fov_h_deg = items[0].as_number({0.0, 360.0, true, false});
-    c.fov_v_deg = items[1].as_number({0.0, 180.0, false, true});
-  }
-  if (auto res = r.optional("resolution")) {
-    const auto items = res->as_array(2, 2);
-    c.cols = static_cast<int>(items[0].as_int(1, 65536));
-    c.rows = static_cast<int>(items[1].as_int(1, 65536));
-    if (static_cast<long>(c.cols) * c.rows > limits.max_beams) {
-      res->fail("at most " + std::to_string(limits.max_beams) + " beams (cols x rows)");
-    }
-  }
-  if (auto beams = r.optional("beams")) {
-    c.beams.clear();
-    for (const JsonNode& b : beams->as_array(1, static_cast<std::size_t>(limits.max_beams))) {
-      const Eigen::Vector2d ae = b.as_vector2();
-      if (std::abs(ae.x()) > 180.0) b.fail("[azimuth_deg in [-180, 180], elevation_deg in [-90, 90]]");
-      if (std::abs(ae.y()) > 90.0) b.fail("[azimuth_deg in [-180, 180], elevation_deg in [-90, 90]]");
-      c.beams.push_back({ae.x(), ae.y()});
-    }
-  }
-  if (auto range = r.optional("range_m")) {
-    const Eigen::Vector2d mm = range->as_vector2(Range::non_negative());
-    if (!(mm.x() < mm.y()) || mm.y() > 1e5) range->fail("[min, max] with 0 <= min < max <= 100000");
-    c.min_range_m = mm.x();
-    c.max_range_m = mm.y();
-  }
-  r.read("noise_stddev_m", c.noise_stddev_m, Range::closed(0.0, 100.0));
-  r.read("dropout_probability", c.dropout_probability, Range::closed(0.0, 1.0));
-  r.read("quantization_m", c.quantization_m, Range::closed(0.0, 100.0));
-  r.read("rate_hz", c.rate_hz, Range::closed(0.0, 10000.0));
-  r.read_seed("seed", c.seed);
-  if (auto mount = r.optional("mount")) {
-    ObjectReader m(*mount);
-    m.read("position_m", c.mount.position_m, Range::closed(-100.0, 100.0));
-    m.read("rpy_deg", c.mount.rpy_deg, Range::closed(-360.0, 360.0));
-    m.finish();
-  }
+  LidarConfig& c = sensor.lidar;
+  lidar_config_fields(limits).read_fields(r, c);
   if (sensor.type == SensorType::depth_camera) {
     // One perspective render covers the grid: both angles well below 180 deg.
     if (!c.beams.empty()) r.fail("a depth camera with a beam grid (\"fov_deg\", \"resolution\"), not explicit beams");

@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "scene/sensor_fields.hpp"
+
 namespace campo {
 
 namespace {
@@ -51,29 +53,8 @@ std::string points_ply(const LidarScan& scan) {
 }
 
 nlohmann::json sensor_json(const SensorDef& sensor) {
-  const LidarConfig& c = sensor.lidar;
-  nlohmann::json j = {
-      {"type", to_string(sensor.type)},
-      {"preset", c.preset},
-      {"range_m", {c.min_range_m, c.max_range_m}},
-      {"noise_stddev_m", c.noise_stddev_m},
-      {"dropout_probability", c.dropout_probability},
-      {"quantization_m", c.quantization_m},
-      {"rate_hz", c.rate_hz},
-      {"seed", c.seed},
-      {"mount",
-       {{"position_m", {c.mount.position_m.x(), c.mount.position_m.y(), c.mount.position_m.z()}},
-        {"rpy_deg", {c.mount.rpy_deg.x(), c.mount.rpy_deg.y(), c.mount.rpy_deg.z()}}}},
-  };
-  // Explicit beams replace the grid, as in a scene file.
-  if (c.beams.empty()) {
-    j["fov_deg"] = {c.fov_h_deg, c.fov_v_deg};
-    j["resolution"] = {c.cols, c.rows};
-  } else {
-    nlohmann::json beams = nlohmann::json::array();
-    for (const Beam& b : c.beams) beams.push_back({b.azimuth_deg, b.elevation_deg});
-    j["beams"] = beams;
-  }
+  nlohmann::json j = lidar_config_fields().write(sensor.lidar);
+  j["type"] = to_string(sensor.type);
   if (!sensor.alias.empty()) j["alias"] = sensor.alias;
   return j;
 }

@@ -196,6 +196,33 @@ class ConfigFields {
 
   /// The field declared last is written only when it differs from a
   /// default-constructed Config's (and read back as that default when absent).
+  /// A field whose JSON value is not one member (e.g. "range_m": [min, max]
+  /// sets two): `read` takes its node when present, `write` adds it to the
+  /// object (or leaves it out); `accepted` says what the reader takes.
+  ConfigFields& custom(std::string key, std::string unit, std::string accepted, std::string doc,
+                       std::function<void(const JsonNode&, Config&)> read,
+                       std::function<void(const Config&, nlohmann::json&)> write) {
+    Field f;
+    f.key = key;
+    f.read = [key, read = std::move(read)](ObjectReader& r, Config& c) {
+      if (const auto node = r.optional(key)) read(*node, c);
+    };
+    f.write = std::move(write);
+    f.same = [write = f.write](const Config& a, const Config& b) {
+      nlohmann::json ja = nlohmann::json::object(), jb = nlohmann::json::object();
+      write(a, ja);
+      write(b, jb);
+      return ja == jb;
+    };
+    f.document = [key, unit = std::move(unit), accepted = std::move(accepted), doc = std::move(doc),
+                  write = f.write](const Config& defaults, const std::string& prefix, std::vector<FieldDoc>& rows) {
+      nlohmann::json j = nlohmann::json::object();
+      write(defaults, j);
+      rows.push_back({prefix + key, j.contains(key) ? default_text(j[key]) : "none", unit, accepted, doc});
+    };
+    return add(std::move(f));
+  }
+
   ConfigFields& omitted_when_default() {
     Field& f = last();
     f.write = [write = std::move(f.write), same = f.same](const Config& c, nlohmann::json& j) {
@@ -226,8 +253,13 @@ class ConfigFields {
   /// InputError for a key not declared, a wrong type or a value out of range.
   void read(const JsonNode& node, Config& config) const {
     ObjectReader r(node);
-    for (const Field& f : fields_) f.read(r, config);
+    read_fields(r, config);
     r.finish();
+  }
+  /// Reads the declared fields from an object whose other keys the caller
+  /// reads itself (and then calls r.finish()).
+  void read_fields(ObjectReader& r, Config& config) const {
+    for (const Field& f : fields_) f.read(r, config);
   }
   /// The same for a params block (its file and pointer name the errors).
   void read(const ParamsBlock& params, Config& config) const {

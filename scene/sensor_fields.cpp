@@ -1,0 +1,97 @@
+#include "scene/sensor_fields.hpp"
+
+#include <cmath>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace campo {
+
+namespace {
+
+const ConfigFields<Pose>& mount_fields() {
+  static const ConfigFields<Pose> fields =
+      ConfigFields<Pose>()
+          .vector("position_m", &Pose::position_m, Range::closed(-100.0, 100.0), "m", "position on the vehicle body")
+          .vector("rpy_deg", &Pose::rpy_deg, Range::closed(-360.0, 360.0), "deg", "roll, pitch, yaw on the body");
+  return fields;
+}
+
+}  // namespace
+
+ConfigFields<LidarConfig> lidar_config_fields(const SceneLimits& limits) {
+  using C = LidarConfig;
+  const long max_beams = limits.max_beams;
+  const std::string beam_limit = "at most " + std::to_string(max_beams) + " beams";
+  return ConfigFields<C>()
+      // First: a preset gives the starting values of every other field.
+      .custom("preset", "", "`scanner3d`, `leddar_vu8` or `planar180`", "starting values, see below",
+              [](const JsonNode& n, C& c) {
+                const auto names = lidar_preset_names();
+                const std::vector<std::string_view> choices(names.begin(), names.end());
+                c = *lidar_preset(choices[n.as_choice(choices)]);
+              },
+              [](const C& c, nlohmann::json& j) { j["preset"] = c.preset; })
+      // A grid given here replaces a preset's explicit beams; written for grid sensors only.
+      .custom("fov_deg", "deg", "[horizontal (0, 360], vertical [0, 180)]", "field of view",
+              [](const JsonNode& n, C& c) {
+                c.beams.clear();
+                const auto items = n.as_array(2, 2);
+                c.fov_h_deg = items[0].as_number({0.0, 360.0, true, false});
+                c.fov_v_deg = items[1].as_number({0.0, 180.0, false, true});
+              },
+              [](const C& c, nlohmann::json& j) {
+                if (c.beams.empty()) j["fov_deg"] = {c.fov_h_deg, c.fov_v_deg};
+              })
+      .custom("resolution", "", "[cols, rows], each in [1, 65536], " + beam_limit + " (cols x rows)", "beam grid",
+              [max_beams](const JsonNode& n, C& c) {
+                c.beams.clear();
+                const auto items = n.as_array(2, 2);
+                c.cols = static_cast<int>(items[0].as_int(1, 65536));
+                c.rows = static_cast<int>(items[1].as_int(1, 65536));
+                if (static_cast<long>(c.cols) * c.rows > max_beams) {
+                  n.fail("at most " + std::to_string(max_beams) + " beams (cols x rows)");
+                }
+              },
+              [](const C& c, nlohmann::json& j) {
+                if (c.beams.empty()) j["resolution"] = {c.cols, c.rows};
+              })
+      .custom("beams", "deg", "[[azimuth in [-180, 180], elevation in [-90, 90]], ...], " + beam_limit,
+              "explicit beams instead of the grid",
+              [max_beams](const JsonNode& n, C& c) {
+                c.beams.clear();
+                for (const JsonNode& b : n.as_array(1, static_cast<std::size_t>(max_beams))) {
+                  const Eigen::Vector2d ae = b.as_vector2();
+                  if (std::abs(ae.x()) > 180.0 || std::abs(ae.y()) > 90.0) {
+                    b.fail("[azimuth_deg in [-180, 180], elevation_deg in [-90, 90]]");
+                  }
+                  c.beams.push_back({ae.x(), ae.y()});
+                }
+              },
+              [](const C& c, nlohmann::json& j) {
+                if (c.beams.empty()) return;
+                nlohmann::json beams = nlohmann::json::array();
+                for (const Beam& b : c.beams) beams.push_back({b.azimuth_deg, b.elevation_deg});
+                j["beams"] = beams;
+              })
+      .custom("range_m", "m", "[min, max] with 0 <= min < max <= 100000",
+              "nearer returns read 0 in the depth map; farther: no return",
+              [](const JsonNode& n, C& c) {
+                const Eigen::Vector2d mm = n.as_vector2(Range::non_negative());
+                if (!(mm.x() < mm.y()) || mm.y() > 1e5) n.fail("[min, max] with 0 <= min < max <= 100000");
+                c.min_range_m = mm.x();
+                c.max_range_m = mm.y();
+              },
+              [](const C& c, nlohmann::json& j) { j["range_m"] = {c.min_range_m, c.max_range_m}; })
+      .number("noise_stddev_m", &C::noise_stddev_m, Range::closed(0.0, 100.0), "m", "Gaussian range noise")
+      .number("dropout_probability", &C::dropout_probability, Range::closed(0.0, 1.0), "",
+              "chance that a beam returns nothing")
+      .number("quantization_m", &C::quantization_m, Range::closed(0.0, 100.0), "m",
+              "ranges rounded to this step; 0 = off")
+      .number("rate_hz", &C::rate_hz, Range::closed(0.0, 10000.0), "Hz",
+              "scans per second, dividing the physics rate ([rates](#world)); 0 = `world.sensor_rate_hz`")
+      .seed("seed", &C::seed, "noise stream, combined with `world.seed`")
+      .nested("mount", &C::mount, mount_fields(), "pose on the vehicle body");
+}
+
+}  // namespace campo
