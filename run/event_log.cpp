@@ -155,7 +155,9 @@ class DecisionsReader {
     std::vector<Eigen::Vector3d> points;
     points.reserve(list.size());
     for (std::size_t i = 0; i < list.size(); ++i) {
-      points.push_back(point(list[i], [&] { return child_pointer(at, i); }));
+      // A named copy: a lambda may not capture a structured binding (clang, C++20).
+      const std::string& list_pointer = at;
+      points.push_back(point(list[i], [&] { return child_pointer(list_pointer, i); }));
     }
     return points;
   }
