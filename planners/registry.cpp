@@ -66,11 +66,7 @@ Registry& registry() {
 // Built-in planners, then those added so far.
 std::vector<PlannerEntry> admitted_entries() {
   std::vector<PlannerEntry> entries;
-  for (PlannerRegistration& p : built_in_planners()) {
-    PlannerEntry entry;
-    static_cast<PlannerRegistration&>(entry) = std::move(p);
-    entries.push_back(std::move(entry));
-  }
+  for (PlannerRegistration& p : built_in_planners()) entries.push_back({std::move(p), std::string(kBuiltInSource), ""});
   entries.insert(entries.end(), registry().added.begin(), registry().added.end());
   return entries;
 }
@@ -118,13 +114,7 @@ std::string registration_problem(const std::vector<PlannerRegistration>& registr
 
 void admit(const std::vector<PlannerRegistration>& registrations, const std::string& source,
            const std::string& sha256) {
-  for (const PlannerRegistration& r : registrations) {
-    PlannerEntry entry;
-    static_cast<PlannerRegistration&>(entry) = r;
-    entry.source = source;
-    entry.source_sha256 = sha256;
-    registry().added.push_back(std::move(entry));
-  }
+  for (const PlannerRegistration& r : registrations) registry().added.push_back({r, source, sha256});
 }
 
 // The address of `symbol` in the plugin `handle` itself, or null: dlsym also searches the
