@@ -6,6 +6,7 @@
 #include "planners/registry.hpp"
 #include "run/event_log.hpp"
 #include "run/provenance.hpp"
+#include "scene/sensor_fields.hpp"
 #include "scene/world_config.hpp"
 #include "sensors/scan_io.hpp"
 
@@ -147,7 +148,8 @@ nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const E
           {"type", to_string(def.type)},
           {"start_position_m", vector_json(def.pose.translation())},
           {"start_rpy_deg", vector_json(rpy_deg_from_rotation(def.pose.linear()))},
-          {"parameters", result.vehicle_parameters}}},
+          {"parameters", result.vehicle_parameters},
+          {"state_noise", state_noise_fields().write(def.state_noise)}}},
         {"planner", {{"name", def.planner.name}, {"parameters", result.planner_parameters}}},
         {"sensors", sensors},
         {"mission", mission},

@@ -10,6 +10,7 @@
 
 #include <openssl/evp.h>
 
+#include "scene/generator_fields.hpp"
 #include "scene/generators.hpp"
 #include "scene/geodesy.hpp"
 #include "scene/heightfield_sources.hpp"
@@ -42,17 +43,6 @@ bool valid_alias(const std::string& alias) {
 Color read_color(const JsonNode& node) {
   const Eigen::Vector3d c = node.as_vector3(Range::closed(0.0, 1.0));
   return {c.x(), c.y(), c.z()};
-}
-
-// Reads "[min, max]" with min <= max, each in `range`.
-Eigen::Vector2d read_interval(const JsonNode& node, const Range& range) {
-  const Eigen::Vector2d v = node.as_vector2(range);
-  if (v.x() > v.y()) node.fail("[min, max] with min <= max");
-  return v;
-}
-
-void read_interval(ObjectReader& r, std::string_view key, Eigen::Vector2d& out, const Range& range) {
-  if (auto v = r.optional(key)) out = read_interval(*v, range);
 }
 
 // A rate or step as a reader would write it: up to 12 significant digits (80, 26.6666666667).
@@ -381,12 +371,7 @@ class Loader {
   void read_rolling_terrain(ObjectReader& r, const std::string& alias,
                             const Eigen::Isometry3d& parent) {
     RollingTerrainConfig c;
-    r.read("size_m", c.size_m, kLength);
-    r.read("spacing_m", c.spacing_m, kLength);
-    r.read("amplitude_m", c.amplitude_m, Range::closed(0.0, 1e4));
-    r.read("wavelength_m", c.wavelength_m, kLength);
-    r.read("waves", c.waves, 1, 32);
-    r.read_seed("seed", c.seed);
+    rolling_terrain_fields().read_fields(r, c);
     check_vertex_count(r.node(), c.size_m, c.spacing_m);
     Shape shape;
     shape.alias = alias;
@@ -406,51 +391,16 @@ class Loader {
 
   void read_trees(ObjectReader& r, const std::string& alias) {
     TreesConfig c;
-    r.read("area_min_m", c.area_min_m, Range::closed(-1e6, 1e6));
-    r.read("area_max_m", c.area_max_m, Range::closed(-1e6, 1e6));
+    trees_fields(limits_).read_fields(r, c);
     if ((c.area_max_m.array() <= c.area_min_m.array()).any()) {
       r.fail("\"area_max_m\" greater than \"area_min_m\" in x and y");
     }
-    r.read("count", c.count, 0, limits_.max_trees);
-    r.read("min_spacing_m", c.min_spacing_m, Range::non_negative());
-    read_interval(r, "trunk_radius_m", c.trunk_radius_m, kLength);
-    read_interval(r, "trunk_height_m", c.trunk_height_m, kLength);
-    if (auto crown = r.optional("crown")) {
-      c.crown = crown->as_choice({"sphere", "cone"}) == 0 ? CrownShape::sphere : CrownShape::cone;
-    }
-    read_interval(r, "crown_radius_m", c.crown_radius_m, kLength);
-    r.read("crown_height_ratio", c.crown_height_ratio, Range{0.0, 1e3, true, false});
-    if (auto keep_out = r.optional("keep_out")) {
-      for (const JsonNode& zone : keep_out->as_array(0, 1000)) {
-        ObjectReader z(zone);
-        const Eigen::Vector2d center = z.required("center_m").as_vector2(Range::closed(-1e6, 1e6));
-        const double radius = z.required("radius_m").as_number(kLength);
-        z.finish();
-        c.keep_out.emplace_back(center.x(), center.y(), radius);
-      }
-    }
-    r.read_seed("seed", c.seed);
     add_generated(generated(r.node(), [&] { return make_trees(c, alias, ground_function()); }), r.node());
   }
 
   void read_vineyard(ObjectReader& r, const std::string& alias, const Eigen::Isometry3d& parent) {
     VineyardConfig c;
-    r.read("field_size_m", c.field_size_m, kLength);
-    r.read("row_count", c.row_count, 1, 500);
-    r.read("row_spacing_m", c.row_spacing_m, kLength);
-    r.read("headland_m", c.headland_m, Range::non_negative());
-    r.read("post_spacing_m", c.post_spacing_m, kLength);
-    r.read("post_radius_m", c.post_radius_m, kLength);
-    r.read("post_height_m", c.post_height_m, kLength);
-    r.read("canopy_width_m", c.canopy_width_m, kLength);
-    r.read("canopy_bottom_m", c.canopy_bottom_m, Range::non_negative());
-    r.read("canopy_top_m", c.canopy_top_m, kLength);
-    r.read("fence_height_m", c.fence_height_m, kLength);
-    r.read("fence_thickness_m", c.fence_thickness_m, kLength);
-    r.read("obstacle_count", c.obstacle_count, 0, limits_.max_generated_obstacles);
-    read_interval(r, "obstacle_size_m", c.obstacle_size_m, kLength);
-    r.read("obstacle_passage_m", c.obstacle_passage_m, Range::non_negative());
-    r.read_seed("seed", c.seed);
+    vineyard_fields(limits_).read_fields(r, c);
     const double posts_per_row = std::floor(c.field_size_m.y() / c.post_spacing_m) + 2;
     if (posts_per_row * c.row_count > static_cast<double>(limits_.max_vineyard_posts)) {
       r.fail("at most " + std::to_string(limits_.max_vineyard_posts) +
@@ -460,36 +410,9 @@ class Loader {
     add_generated(generated(r.node(), [&] { return make_vineyard(c, alias); }), r.node(), placement);
   }
 
-  // Reads "[first, last]" or a single index, 1-based, within [1, max].
-  std::pair<int, int> read_index_range(const JsonNode& node, int max) {
-    if (node.value().is_array()) {
-      const auto items = node.as_array(2, 2);
-      const int first = static_cast<int>(items[0].as_int(1, max));
-      const int last = static_cast<int>(items[1].as_int(first, max));
-      return {first, last};
-    }
-    const int index = static_cast<int>(node.as_int(1, max));
-    return {index, index};
-  }
-
   void read_grid_obstacles(ObjectReader& r, const std::string& alias) {
     GridObstaclesConfig c;
-    r.read("origin_m", c.origin_m, Range::closed(-1e6, 1e6));
-    r.read("cell_size_m", c.cell_size_m, kLength);
-    r.read("rows", c.rows, 1, limits_.max_grid_cells_per_axis);
-    r.read("cols", c.cols, 1, limits_.max_grid_cells_per_axis);
-    if (auto boxes = r.optional("boxes")) {
-      for (const JsonNode& box_node :
-           boxes->as_array(0, static_cast<std::size_t>(limits_.max_generated_obstacles))) {
-        ObjectReader b(box_node);
-        GridBox box;
-        std::tie(box.row_first, box.row_last) = read_index_range(b.required("rows"), c.rows);
-        std::tie(box.col_first, box.col_last) = read_index_range(b.required("cols"), c.cols);
-        box.height_m = b.required("height_m").as_number(kLength);
-        b.finish();
-        c.boxes.push_back(box);
-      }
-    }
+    grid_obstacles_fields(limits_).read_fields(r, c);
     add_generated(generated(r.node(), [&] { return make_grid_obstacles(c, alias, ground_function()); }),
                   r.node());
     grids_.emplace(alias, c);
@@ -557,24 +480,11 @@ class Loader {
     }
     vehicle.params = {nlohmann::json::object(), r.node().file(), child_pointer(r.node().pointer(), "params")};
     if (auto params = r.optional("params")) vehicle.params = read_params_block(*params);
-    if (auto noise = r.optional("state_noise")) vehicle.state_noise = read_state_noise(*noise);
+    if (auto noise = r.optional("state_noise")) state_noise_fields().read(*noise, vehicle.state_noise);
     if (auto mission = r.optional("mission")) {
       pending_missions_.emplace_back(scene_.vehicles.size(), *mission);
     }
     scene_.vehicles.push_back(std::move(vehicle));
-  }
-
-  static StateNoiseConfig read_state_noise(const JsonNode& node) {
-    ObjectReader r(node);
-    StateNoiseConfig c;
-    r.read("position_stddev_m", c.position_stddev_m, Range::closed(0.0, 1e3));
-    r.read("altitude_stddev_m", c.altitude_stddev_m, Range::closed(0.0, 1e3));
-    r.read("velocity_stddev_mps", c.velocity_stddev_mps, Range::closed(0.0, 1e3));
-    r.read("heading_stddev_deg", c.heading_stddev_deg, Range::closed(0.0, 180.0));
-    r.read("bias_walk_m_per_sqrt_s", c.bias_walk_m_per_sqrt_s, Range::closed(0.0, 1e3));
-    r.read("rate_hz", c.rate_hz, Range::closed(0.0, 10000.0));
-    r.finish();
-    return c;
   }
 
   static ParamsBlock read_params_block(const JsonNode& node) {

@@ -94,4 +94,22 @@ ConfigFields<LidarConfig> lidar_config_fields(const SceneLimits& limits) {
       .nested("mount", &C::mount, mount_fields(), "pose on the vehicle body");
 }
 
+const ConfigFields<StateNoiseConfig>& state_noise_fields() {
+  using C = StateNoiseConfig;
+  static const ConfigFields<C> fields =
+      ConfigFields<C>()
+          .number("position_stddev_m", &C::position_stddev_m, Range::closed(0.0, 1e3), "m",
+                  "horizontal (x, y) white noise, per axis")
+          .number("altitude_stddev_m", &C::altitude_stddev_m, Range::closed(0.0, 1e3), "m", "vertical (z) white noise")
+          .number("velocity_stddev_mps", &C::velocity_stddev_mps, Range::closed(0.0, 1e3), "m/s",
+                  "velocity white noise, per axis")
+          .number("heading_stddev_deg", &C::heading_stddev_deg, Range::closed(0.0, 180.0), "deg",
+                  "yaw white noise (the estimated attitude turned about the vertical)")
+          .number("bias_walk_m_per_sqrt_s", &C::bias_walk_m_per_sqrt_s, Range::closed(0.0, 1e3), "m/√s",
+                  "position bias, a random walk per axis: each draw adds a step of standard deviation b √dt")
+          .number("rate_hz", &C::rate_hz, Range::closed(0.0, 10000.0), "Hz",
+                  "how often a new error is drawn; 0: at every planner call");
+  return fields;
+}
+
 }  // namespace campo

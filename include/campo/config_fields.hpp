@@ -194,8 +194,21 @@ class ConfigFields {
     return add(std::move(f));
   }
 
-  /// The field declared last is written only when it differs from a
-  /// default-constructed Config's (and read back as that default when absent).
+  /// An interval "[min, max]" with min <= max, both ends in `range`.
+  ConfigFields& interval(std::string key, Eigen::Vector2d Config::*member, Range range, std::string unit,
+                         std::string doc) {
+    const std::string bounds = range_text(range);
+    return custom(
+        key, std::move(unit), "[min, max], min <= max" + (bounds == "any" ? std::string() : ", each " + bounds),
+        std::move(doc),
+        [member, range](const JsonNode& n, Config& c) {
+          const Eigen::Vector2d v = n.as_vector2(range);
+          if (v.x() > v.y()) n.fail("[min, max] with min <= max");
+          c.*member = v;
+        },
+        [key, member](const Config& c, nlohmann::json& j) { j[key] = {(c.*member).x(), (c.*member).y()}; });
+  }
+
   /// A field whose JSON value is not one member (e.g. "range_m": [min, max]
   /// sets two): `read` takes its node when present, `write` adds it to the
   /// object (or leaves it out); `accepted` says what the reader takes.
@@ -223,6 +236,8 @@ class ConfigFields {
     return add(std::move(f));
   }
 
+  /// The field declared last is written only when it differs from a
+  /// default-constructed Config's (and read back as that default when absent).
   ConfigFields& omitted_when_default() {
     Field& f = last();
     f.write = [write = std::move(f.write), same = f.same](const Config& c, nlohmann::json& j) {

@@ -212,6 +212,9 @@ TEST_F(EpisodeTest, RecordsTrajectoryAndRunFile) {
   EXPECT_EQ(run["parameters"]["vehicle"]["parameters"]["kind"], "point");
   EXPECT_EQ(run["parameters"]["mission"].size(), 2u);
   EXPECT_EQ(run["parameters"]["sensors"][0]["resolution"], nlohmann::json({4, 4}));
+  // No state noise given: every key there, all zero.
+  EXPECT_EQ(run["parameters"]["vehicle"]["state_noise"]["position_stddev_m"], 0.0);
+  EXPECT_EQ(run["parameters"]["vehicle"]["state_noise"].size(), 6u);
   EXPECT_TRUE(run["provenance"].contains("campo_version"));
 }
 

@@ -1,8 +1,10 @@
-// docs/scene-format.md's tables of the "world" block and of a sensor's settings are the ones
+// docs/scene-format.md's tables of the "world" block, the generators, a vehicle's state noise and a
+// sensor's settings are the ones
 // their field declarations generate (tests/docs_tables_support.hpp; regenerate with
 // CAMPO_UPDATE_DOCS=1 build/tests/test_scene --gtest_filter='ConfigDocs.*').
 #include <gtest/gtest.h>
 
+#include "scene/generator_fields.hpp"
 #include "scene/sensor_fields.hpp"
 #include "scene/world_config.hpp"
 #include "tests/docs_tables_support.hpp"
@@ -10,9 +12,15 @@
 namespace campo {
 namespace {
 
-TEST(ConfigDocs, WorldAndSensorTablesAreTheDeclaredFields) {
-  test_support::expect_docs_tables("docs/scene-format.md", {{"world", world_config_fields().markdown()},
-                                                           {"sensor", lidar_config_fields().markdown()}});
+TEST(ConfigDocs, SceneTablesAreTheDeclaredFields) {
+  test_support::expect_docs_tables("docs/scene-format.md",
+                                   {{"world", world_config_fields().markdown()},
+                                    {"rolling_terrain", rolling_terrain_fields().markdown()},
+                                    {"trees", trees_fields().markdown()},
+                                    {"vineyard", vineyard_fields().markdown()},
+                                    {"grid_obstacles", grid_obstacles_fields().markdown()},
+                                    {"state_noise", state_noise_fields().markdown()},
+                                    {"sensor", lidar_config_fields().markdown()}});
 }
 
 }  // namespace
