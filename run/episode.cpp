@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 
+#include "campo/json_reader.hpp"
 #include "run/event_log.hpp"
 #include "run/route_metrics.hpp"
 
@@ -233,7 +234,7 @@ double avoiding_time(std::span<const PlannerEvent> events, double end_time_s) {
 }
 
 std::string_view to_string(Outcome outcome) {
-  static constexpr std::string_view kNames[] = {"reached", "collision", "timeout", "aborted"};
+  static constexpr std::string_view kNames[] = {"reached", "collision", "timeout", "aborted", "failed"};
   return kNames[static_cast<int>(outcome)];
 }
 
@@ -312,52 +313,37 @@ std::string body_name(const Scene& scene, int id) {
 
 }  // namespace
 
-EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, PlannerMaker make_planner,
-                          const EpisodeOptions& options) {
-  if (options.vehicle_index >= scene.vehicles.size()) {
-    throw std::invalid_argument("scene " + scene.name + " has no vehicle " + std::to_string(options.vehicle_index));
+// Everything one run holds between control ticks; stepped only by Episode::step.
+struct Episode::Loop {
+  Loop(const Scene& scene_in, VehicleFactory make_vehicle, const EpisodeOptions& options_in)
+      : scene(scene_in),
+        options(options_in),
+        def(scene.vehicles.at(options.vehicle_index)),
+        dt(scene.world.physics_step_s),
+        wall_start(Clock::now()),
+        world(scene),
+        vehicle(make_vehicle(world, def)),
+        estimator(def.state_noise, Rng::derive_seed(scene.world.seed, 0x5e57'0000ULL + options.vehicle_index)),
+        control_period(period_steps(scene.world.control_rate_hz, dt)),
+        start(vehicle->state().position_m),
+        previous(start),
+        reached_at(def.mission.size()),
+        reached_sample(def.mission.size()) {
+    sensors.reserve(def.sensors.size());
+    for (const SensorDef& s : def.sensors) {
+      const double rate = s.lidar.rate_hz > 0.0 ? s.lidar.rate_hz : scene.world.sensor_rate_hz;
+      sensors.push_back({options.make_sensor(scene, s, scene.world.seed), LidarScan{}, period_steps(rate, dt)});
+    }
+    readings.resize(sensors.size());
+    for (std::size_t i = 0; i < sensors.size(); ++i) {
+      readings[i] = {def.sensors[i].alias, &def.sensors[i].lidar, nullptr, false};
+    }
+    result.vehicle_parameters = vehicle->parameters();
   }
-  const VehicleDef& def = scene.vehicles[options.vehicle_index];
-  const double dt = scene.world.physics_step_s;
-  const auto wall_start = Clock::now();
 
-  World world(scene);
-  const std::unique_ptr<Vehicle> vehicle = make_vehicle(world, def);
-  const std::unique_ptr<Planner> planner = make_planner(def.planner, {def.type, &scene, &def});
-  StateEstimator estimator(def.state_noise,
-                           Rng::derive_seed(scene.world.seed, 0x5e57'0000ULL + options.vehicle_index));
-
-  std::vector<MountedSensor> sensors;
-  sensors.reserve(def.sensors.size());
-  for (const SensorDef& s : def.sensors) {
-    const double rate = s.lidar.rate_hz > 0.0 ? s.lidar.rate_hz : scene.world.sensor_rate_hz;
-    sensors.push_back({options.make_sensor(scene, s, scene.world.seed), LidarScan{}, period_steps(rate, dt)});
-  }
-  std::vector<SensorReading> readings(sensors.size());
-  for (std::size_t i = 0; i < sensors.size(); ++i) {
-    readings[i] = {def.sensors[i].alias, &def.sensors[i].lidar, nullptr, false};
-  }
-  std::vector<Eigen::Isometry3d> body_poses;  // of the moving bodies, refreshed before each scan
-
-  EpisodeResult result;
-  result.vehicle_parameters = vehicle->parameters();
-  result.planner_parameters = planner->parameters();
-  EpisodeMetrics& m = result.metrics;
-  const std::int64_t control_period = period_steps(scene.world.control_rate_hz, dt);
-  const Eigen::Vector3d start = vehicle->state().position_m;
-  // Where the vehicle was when the planner reported each mission waypoint reached.
-  std::vector<std::optional<Eigen::Vector3d>> reached_at(def.mission.size());
-  // And the index of the trajectory sample of that planner call.
-  std::vector<std::optional<std::size_t>> reached_sample(def.mission.size());
-  ClearanceMinima minima;
-  double planner_ms_total = 0.0;
-  bool was_colliding = false;
-  std::optional<Outcome> outcome;
-  Eigen::Vector3d previous = start;
-
-  for (std::int64_t k = 0; !outcome; ++k) {
+  // Sense: every sensor due at physics step k scans with every body where the physics has it now.
+  void sense() {
     const double t = static_cast<double>(k) * dt;
-    // Sense: every body where the physics has it now.
     bool poses_read = false;
     for (std::size_t i = 0; i < sensors.size(); ++i) {
       MountedSensor& s = sensors[i];
@@ -369,51 +355,54 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
       readings[i].fresh = true;
       if (options.on_scan) options.on_scan(i, s.scan);
     }
-    // Plan and command, on the estimated state.
-    if (k % control_period == 0) {
-      const VehicleState truth = vehicle->state();
-      const StateError& error = estimator.error_at(t);
-      vehicle->set_estimation_error(error);
-      const VehicleState state = estimated(truth, error);
-      const Observation observation{t, def.type, state, vehicle->stable(), readings, def.mission};
-      const auto plan_start = Clock::now();
-      PlanResult plan = planner->plan(observation);
-      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - plan_start).count();
-      if (options.on_plan) options.on_plan(observation, plan);
-      for (auto& r : readings) r.fresh = false;
-      ++m.planner_calls;
-      planner_ms_total += ms;
-      m.planner_time_ms_max = std::max(m.planner_time_ms_max, ms);
-      for (const int i : plan.decisions.reached_waypoints) {
-        if (i >= 0 && static_cast<std::size_t>(i) < reached_at.size()) {
-          reached_at[static_cast<std::size_t>(i)] = truth.position_m;
-          reached_sample[static_cast<std::size_t>(i)] = result.trajectory.size();
-        }
-      }
-      // Bounded as recorded (run/event_log.hpp): a scan's thousands of hits would otherwise make the record
-      // grow with every scan; the metrics below read the same bounded decisions the files keep.
-      if (!plan.decisions.empty()) result.events.push_back({t, bounded_decisions(std::move(plan.decisions))});
-      // Exact obstacle clearance for the record; the ground only as far as
-      // it could lower its minimum (far terrain costs many triangles).
-      const Clearance clearance = world.vehicle_clearance(kExact, minima.ground_cutoff());
-      minima.update(clearance, t);
-      vehicle->command(plan.command);
-      const std::optional<double> ground = scene.ground_height(truth.position_m.x(), truth.position_m.y());
-      const double above_ground = ground ? truth.position_m.z() - *ground : std::numeric_limits<double>::quiet_NaN();
-      result.trajectory.push_back(
-          {t, truth, state.position_m, plan.command, clearance.obstacle_m, above_ground, vehicle->actuators()});
-      if (plan.status == PlanStatus::reached) {
-        outcome = Outcome::reached;
-        m.reason = plan.reason;
-        break;
-      }
-      if (plan.status != PlanStatus::running) {
-        outcome = Outcome::aborted;
-        m.reason = std::string(to_string(plan.status)) + (plan.reason.empty() ? "" : ": " + plan.reason);
-        break;
+  }
+
+  // The observation of a control tick, on the estimated state.
+  void observe() {
+    const double t = static_cast<double>(k) * dt;
+    truth = vehicle->state();
+    const StateError& error = estimator.error_at(t);
+    vehicle->set_estimation_error(error);
+    observation = Observation{t, def.type, estimated(truth, error), vehicle->stable(), readings, def.mission};
+  }
+
+  // The rest of a control tick, after the decision: records it and commands the vehicle.
+  void act(PlanResult plan, double planner_ms) {
+    const double t = observation.time_s;
+    if (options.on_plan) options.on_plan(observation, plan);
+    for (auto& r : readings) r.fresh = false;
+    EpisodeMetrics& m = result.metrics;
+    ++m.planner_calls;
+    planner_ms_total += planner_ms;
+    m.planner_time_ms_max = std::max(m.planner_time_ms_max, planner_ms);
+    for (const int i : plan.decisions.reached_waypoints) {
+      if (i >= 0 && static_cast<std::size_t>(i) < reached_at.size()) {
+        reached_at[static_cast<std::size_t>(i)] = truth.position_m;
+        reached_sample[static_cast<std::size_t>(i)] = result.trajectory.size();
       }
     }
-    // Actuate and step.
+    // Bounded as recorded (run/event_log.hpp): a scan's thousands of hits would otherwise make the record
+    // grow with every scan; the metrics below read the same bounded decisions the files keep.
+    if (!plan.decisions.empty()) result.events.push_back({t, bounded_decisions(std::move(plan.decisions))});
+    // Exact obstacle clearance for the record; the ground only as far as
+    // it could lower its minimum (far terrain costs many triangles).
+    const Clearance clearance = world.vehicle_clearance(kExact, minima.ground_cutoff());
+    minima.update(clearance, t);
+    vehicle->command(plan.command);
+    const std::optional<double> ground = scene.ground_height(truth.position_m.x(), truth.position_m.y());
+    const double above_ground = ground ? truth.position_m.z() - *ground : std::numeric_limits<double>::quiet_NaN();
+    result.trajectory.push_back({t, truth, observation.state.position_m, plan.command, clearance.obstacle_m,
+                                 above_ground, vehicle->actuators()});
+    if (plan.status == PlanStatus::reached) {
+      end(Outcome::reached, plan.reason);
+    } else if (plan.status != PlanStatus::running) {
+      end(Outcome::aborted, std::string(to_string(plan.status)) + (plan.reason.empty() ? "" : ": " + plan.reason));
+    }
+  }
+
+  // Actuate and step the physics once; then sense at the new step.
+  void physics_step() {
+    EpisodeMetrics& m = result.metrics;
     vehicle->pre_step(dt);
     world.step();
     const Eigen::Vector3d position = vehicle->state().position_m;
@@ -427,52 +416,174 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, Plann
     if (colliding && !was_colliding) {
       ++m.collisions;
       if (options.stop_on_collision) {
-        outcome = Outcome::collision;
         const std::string with = clearance.obstacle_m <= 0.0 ? body_name(scene, clearance.obstacle) : "the ground";
-        m.reason = "collision with " + with + " at t = " + std::to_string(world.time_s()) + " s";
+        end(Outcome::collision, "collision with " + with + " at t = " + std::to_string(world.time_s()) + " s");
       }
     }
     was_colliding = colliding;
     if (!outcome && world.time_s() >= scene.world.time_limit_s) {
-      outcome = Outcome::timeout;
-      m.reason = "time limit of " + std::to_string(scene.world.time_limit_s) + " s reached";
+      end(Outcome::timeout, "time limit of " + std::to_string(scene.world.time_limit_s) + " s reached");
+    }
+    ++k;
+  }
+
+  void end(Outcome o, std::string reason) {
+    outcome = o;
+    result.metrics.reason = std::move(reason);
+  }
+
+  // From physics step k (sensed): steps until the next control tick (observed) or the end.
+  void advance_to_control_tick() {
+    while (!outcome) {
+      if (k % control_period == 0) {
+        observe();
+        return;
+      }
+      physics_step();
+      if (!outcome) sense();
     }
   }
 
-  m.outcome = *outcome;
-  m.sim_time_s = world.time_s();
-  m.min_clearance_m = minima.obstacle_m;
-  m.min_ground_clearance_m = minima.ground_m;
-  if (std::isfinite(minima.obstacle_m)) {
-    m.nearest_obstacle = body_name(scene, minima.obstacle);
-    m.min_clearance_time_s = minima.obstacle_time_s;
+  EpisodeResult finish() {
+    EpisodeMetrics& m = result.metrics;
+    m.outcome = *outcome;
+    m.sim_time_s = world.time_s();
+    m.min_clearance_m = minima.obstacle_m;
+    m.min_ground_clearance_m = minima.ground_m;
+    if (std::isfinite(minima.obstacle_m)) {
+      m.nearest_obstacle = body_name(scene, minima.obstacle);
+      m.min_clearance_time_s = minima.obstacle_time_s;
+    }
+    // The nominal route: straight legs from the start through every waypoint
+    // (for a single goal, the straight start-goal line), each waypoint taken
+    // where the vehicle was when it was reached (within the arrival
+    // tolerance), so the path flown, which passes through those points, is
+    // never shorter than the route: the ratio of a reached run is at least 1.
+    if (m.outcome == Outcome::reached && !def.mission.empty()) reached_at.back() = vehicle->state().position_m;
+    double nominal = 0.0;
+    Eigen::Vector3d from = start;
+    for (std::size_t i = 0; i < def.mission.size(); ++i) {
+      const Eigen::Vector3d to = reached_at[i].value_or(def.mission[i].position_m);
+      const Eigen::Vector3d leg = to - from;
+      nominal += def.type == VehicleType::rover ? leg.head<2>().norm() : leg.norm();
+      from = to;
+    }
+    m.path_ratio = nominal > 1e-9 ? m.path_length_m / nominal : 0.0;
+    count_decisions(result.events, m);
+    const CrossTrack cross_track = cross_track_error(result.trajectory, result.events);
+    m.cross_track_rms_m = cross_track.rms_m;
+    m.cross_track_mean_m = cross_track.mean_m;
+    m.cross_track_max_m = cross_track.max_m;
+    m.avoiding_time_s = avoiding_time(result.events, m.sim_time_s);
+    route_metrics(def, start, result.trajectory, reached_sample, m);
+    m.planner_time_ms_mean = m.planner_calls > 0 ? planner_ms_total / m.planner_calls : 0.0;
+    m.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
+    result.final_state_hash = world.state_hash();
+    world.moving_body_poses(result.final_body_poses);
+    return std::move(result);
   }
-  // The nominal route: straight legs from the start through every waypoint
-  // (for a single goal, the straight start-goal line), each waypoint taken
-  // where the vehicle was when it was reached (within the arrival
-  // tolerance), so the path flown, which passes through those points, is
-  // never shorter than the route: the ratio of a reached run is at least 1.
-  if (m.outcome == Outcome::reached && !def.mission.empty()) reached_at.back() = vehicle->state().position_m;
-  double nominal = 0.0;
-  Eigen::Vector3d from = start;
-  for (std::size_t i = 0; i < def.mission.size(); ++i) {
-    const Eigen::Vector3d to = reached_at[i].value_or(def.mission[i].position_m);
-    const Eigen::Vector3d leg = to - from;
-    nominal += def.type == VehicleType::rover ? leg.head<2>().norm() : leg.norm();
-    from = to;
+
+  const Scene& scene;
+  const EpisodeOptions options;
+  const VehicleDef& def;
+  const double dt;
+  const Clock::time_point wall_start;
+  World world;
+  const std::unique_ptr<Vehicle> vehicle;
+  StateEstimator estimator;
+  std::vector<MountedSensor> sensors;
+  std::vector<SensorReading> readings;
+  std::vector<Eigen::Isometry3d> body_poses;  // of the moving bodies, refreshed before each scan
+  const std::int64_t control_period;
+  const Eigen::Vector3d start;
+  Eigen::Vector3d previous;
+  // Where the vehicle was when the planner reported each mission waypoint reached,
+  // and the index of the trajectory sample of that planner call.
+  std::vector<std::optional<Eigen::Vector3d>> reached_at;
+  std::vector<std::optional<std::size_t>> reached_sample;
+  ClearanceMinima minima;
+  double planner_ms_total = 0.0;
+  bool was_colliding = false;
+  std::optional<Outcome> outcome;
+  std::int64_t k = 0;  // physics steps taken
+  VehicleState truth;  // at the current control tick
+  Observation observation;
+  EpisodeResult result;
+  bool finished = false;
+};
+
+Episode::Episode(const Scene& scene, VehicleFactory make_vehicle, const EpisodeOptions& options) {
+  if (options.vehicle_index >= scene.vehicles.size()) {
+    throw std::invalid_argument("scene " + scene.name + " has no vehicle " + std::to_string(options.vehicle_index));
   }
-  m.path_ratio = nominal > 1e-9 ? m.path_length_m / nominal : 0.0;
-  count_decisions(result.events, m);
-  const CrossTrack cross_track = cross_track_error(result.trajectory, result.events);
-  m.cross_track_rms_m = cross_track.rms_m;
-  m.cross_track_mean_m = cross_track.mean_m;
-  m.cross_track_max_m = cross_track.max_m;
-  m.avoiding_time_s = avoiding_time(result.events, m.sim_time_s);
-  route_metrics(def, start, result.trajectory, reached_sample, m);
-  m.planner_time_ms_mean = m.planner_calls > 0 ? planner_ms_total / m.planner_calls : 0.0;
-  m.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
-  result.final_state_hash = world.state_hash();
-  world.moving_body_poses(result.final_body_poses);
+  loop_ = std::make_unique<Loop>(scene, make_vehicle, options);
+  loop_->sense();
+  loop_->advance_to_control_tick();
+}
+
+Episode::~Episode() = default;
+Episode::Episode(Episode&&) noexcept = default;
+Episode& Episode::operator=(Episode&&) noexcept = default;
+
+bool Episode::done() const { return loop_->outcome.has_value(); }
+
+const Observation& Episode::observation() const {
+  if (done()) throw std::logic_error("Episode::observation: the episode has ended");
+  return loop_->observation;
+}
+
+void Episode::step(PlanResult plan, double planner_time_ms) {
+  if (done()) throw std::logic_error("Episode::step: the episode has ended");
+  loop_->act(std::move(plan), planner_time_ms);
+  if (done()) return;
+  loop_->physics_step();
+  if (!done()) loop_->sense();
+  loop_->advance_to_control_tick();
+}
+
+void Episode::fail(std::string reason) {
+  if (!done()) loop_->end(Outcome::failed, std::move(reason));
+}
+
+const Vehicle& Episode::vehicle() const { return *loop_->vehicle; }
+
+const World& Episode::world() const { return loop_->world; }
+
+const EpisodeMetrics& Episode::metrics_so_far() const { return loop_->result.metrics; }
+
+EpisodeResult Episode::finish() {
+  if (!done()) throw std::logic_error("Episode::finish: the episode has not ended");
+  if (loop_->finished) throw std::logic_error("Episode::finish: called twice");
+  loop_->finished = true;
+  return loop_->finish();
+}
+
+EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, const PlannerMaker& make_planner,
+                          const EpisodeOptions& options) {
+  if (options.vehicle_index >= scene.vehicles.size()) {
+    throw std::invalid_argument("scene " + scene.name + " has no vehicle " + std::to_string(options.vehicle_index));
+  }
+  const VehicleDef& def = scene.vehicles[options.vehicle_index];
+  Episode episode(scene, make_vehicle, options);
+  const std::unique_ptr<Planner> planner = make_planner(def.planner, {def.type, &scene, &def});
+  const nlohmann::json planner_parameters = planner->parameters();
+  while (!episode.done()) {
+    const auto plan_start = Clock::now();
+    PlanResult plan;
+    try {
+      plan = planner->plan(episode.observation());
+    } catch (const InputError&) {
+      throw;  // bad input stays bad input (exit 2), whoever finds it
+    } catch (const std::exception& e) {
+      // A planner that fails ends its run, recorded as failed with what it said; nothing is lost.
+      episode.fail(std::string("the planner raised an error: ") + e.what());
+      break;
+    }
+    const double ms = std::chrono::duration<double, std::milli>(Clock::now() - plan_start).count();
+    episode.step(std::move(plan), ms);
+  }
+  EpisodeResult result = episode.finish();
+  result.planner_parameters = planner_parameters;
   return result;
 }
 

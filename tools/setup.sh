@@ -16,6 +16,9 @@ packages=(
   libbullet-dev libeigen3-dev libopencv-dev libosmesa6-dev libcli11-dev
   nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
   libmuparser-dev libssl-dev liboctomap-dev libnanoflann-dev
+  # The Python module (python/): pybind11 against Debian's /usr/bin/python3 and its
+  # numpy and pandas; matplotlib for the example analysis script.
+  pybind11-dev python3-dev python3-numpy python3-pandas python3-matplotlib
   slurm-wlm munge jq # tests/slurm: a local single-node Slurm cluster (tools/slurm/)
   # tools/fuzz.sh: clang, libFuzzer's runtime (libclang-rt-dev, only a Recommends of clang's
   # packages) and llvm-symbolizer (llvm) for sanitizer reports with file and line.

@@ -23,10 +23,13 @@ namespace campo {
 
 /// Builds the vehicle of a definition inside a world (vehicles/ provides make_vehicle).
 using VehicleFactory = std::unique_ptr<Vehicle> (*)(World& world, const VehicleDef& def);
-/// Builds a planner (planners/ provides create_planner).
-using PlannerMaker = std::unique_ptr<Planner> (*)(const PlannerSpec& spec, const PlannerContext& context);
+/// Builds a planner (planners/ provides create_planner; the Python module wraps Python objects).
+using PlannerMaker = std::function<std::unique_ptr<Planner>(const PlannerSpec& spec, const PlannerContext& context)>;
 
-enum class Outcome { reached, collision, timeout, aborted };
+/// How a run ended: the planner reported the mission complete (reached) or
+/// gave up (aborted), the vehicle collided, the time limit passed, or the
+/// planner failed (threw: a bug, or a Python planner's exception).
+enum class Outcome { reached, collision, timeout, aborted, failed };
 std::string_view to_string(Outcome outcome);
 
 /// One leg of the mission: from the start (leg 0) or mission waypoint k - 1
@@ -159,8 +162,48 @@ struct EpisodeOptions {
   std::function<void(const Observation& observation, const PlanResult& plan)> on_plan;
 };
 
-/// Runs one episode of `scene` to its end.
-EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, PlannerMaker make_planner,
+/// One run of the closed loop, stepped from outside: at every control tick
+/// the caller decides what a planner would (step), the episode senses,
+/// controls, actuates and steps the physics up to the next tick. run_episode
+/// drives one with a planner, the Python module from Python; both give the
+/// same result for the same decisions, bit for bit. `scene` must outlive it.
+class Episode {
+ public:
+  /// Builds the world, the vehicle and its sensors, and advances to the first control tick.
+  Episode(const Scene& scene, VehicleFactory make_vehicle, const EpisodeOptions& options = {});
+  ~Episode();
+  Episode(Episode&&) noexcept;
+  Episode& operator=(Episode&&) noexcept;
+
+  /// Whether the run has ended (reached, aborted, collision, timeout, failed).
+  bool done() const;
+  /// What a planner sees at the current control tick (the estimated state,
+  /// the latest readings); valid until the next step. Not when done().
+  const Observation& observation() const;
+  /// Acts on the decision for the current tick (its status may end the run)
+  /// and advances to the next tick or the end; `planner_time_ms` is what
+  /// deciding took, for the planner-time metrics. Not when done().
+  void step(PlanResult plan, double planner_time_ms = 0.0);
+  /// Ends the run as failed with `reason` (a planner that threw), if it has not ended.
+  void fail(std::string reason);
+
+  const Vehicle& vehicle() const;
+  const World& world() const;
+  /// The counters so far (collisions, planner calls, path length); the rest
+  /// of the metrics are computed by finish().
+  const EpisodeMetrics& metrics_so_far() const;
+  /// The result of an ended run; once. Its planner_parameters are left empty.
+  EpisodeResult finish();
+
+ private:
+  struct Loop;
+  std::unique_ptr<Loop> loop_;
+};
+
+/// Runs one episode of `scene` to its end with the planner `make_planner`
+/// builds. An exception from the planner (but an InputError, rethrown) ends
+/// the run as Outcome::failed with its message as the reason.
+EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, const PlannerMaker& make_planner,
                           const EpisodeOptions& options = {});
 
 }  // namespace campo

@@ -187,6 +187,60 @@ TEST_F(EpisodeTest, MetricsJsonUsesTheDocumentedNames) {
   EXPECT_EQ(j["outcome"], "reached");
 }
 
+// Stepping an Episode from outside with a planner's decisions is the same run as run_episode, bit for bit.
+TEST_F(EpisodeTest, SteppedFromOutsideIsTheSameRun) {
+  const Scene scene = scene_with();
+  const EpisodeResult looped = run_episode(scene, &make_point, &make_follower);
+  Episode episode(scene, &make_point);
+  Follower follower;
+  int calls = 0;
+  while (!episode.done()) {
+    EXPECT_NEAR(episode.observation().time_s, calls * 0.05, 1e-12);  // 20 Hz control
+    episode.step(follower.plan(episode.observation()));
+    ++calls;
+    EXPECT_EQ(episode.metrics_so_far().planner_calls, calls);
+  }
+  EXPECT_THROW(episode.observation(), std::logic_error);
+  EXPECT_THROW(episode.step({}), std::logic_error);
+  const EpisodeResult stepped = episode.finish();
+  EXPECT_EQ(stepped.final_state_hash, looped.final_state_hash);
+  EXPECT_EQ(stepped.metrics.outcome, Outcome::reached);
+  EXPECT_EQ(stepped.metrics.planner_calls, looped.metrics.planner_calls);
+  EXPECT_EQ(stepped.metrics.path_length_m, looped.metrics.path_length_m);
+  EXPECT_EQ(stepped.trajectory.size(), looped.trajectory.size());
+  EXPECT_THROW(episode.finish(), std::logic_error);
+}
+
+// A planner that throws ends its run as failed, with what it said; bad input stays bad input.
+TEST_F(EpisodeTest, APlannerThatThrowsEndsTheRunAsFailed) {
+  struct Thrower final : Planner {
+    explicit Thrower(bool input) : input_error(input) {}
+    PlanResult plan(const Observation& o) override {
+      if (o.time_s < 1.0) return {PlanStatus::running, command::GoTo{{3, 0, 1}, 1.0, false}, "", {}};
+      if (input_error) throw InputError("params.json", "/gain", "a gain the planner can use");
+      throw std::runtime_error("division by zero in the gain schedule");
+    }
+    nlohmann::json parameters() const override { return {{"thrower", true}}; }
+    bool input_error;
+  };
+  const Scene scene = scene_with();
+  const EpisodeResult r = run_episode(scene, &make_point, [](const PlannerSpec&, const PlannerContext&) {
+    return std::unique_ptr<Planner>(std::make_unique<Thrower>(false));
+  });
+  EXPECT_EQ(r.metrics.outcome, Outcome::failed);
+  EXPECT_EQ(to_string(r.metrics.outcome), "failed");
+  EXPECT_EQ(r.metrics.reason, "the planner raised an error: division by zero in the gain schedule");
+  // Everything up to the failure is kept: 20 calls in the first second, then the one that threw (not counted).
+  EXPECT_EQ(r.metrics.planner_calls, 20);
+  EXPECT_NEAR(r.metrics.path_length_m, 1.0, 0.02);
+  EXPECT_EQ(r.planner_parameters["thrower"], true);
+  EXPECT_THROW(run_episode(scene, &make_point,
+                           [](const PlannerSpec&, const PlannerContext&) {
+                             return std::unique_ptr<Planner>(std::make_unique<Thrower>(true));
+                           }),
+               InputError);
+}
+
 TEST_F(EpisodeTest, RecordsTrajectoryAndRunFile) {
   const Scene scene = scene_with();
   const EpisodeResult r = run_episode(scene, &make_point, &make_follower);
