@@ -4,6 +4,7 @@
 #include <array>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <sstream>
 
 #include <dlfcn.h>
@@ -56,6 +57,7 @@ struct LoadedHandle {
 struct Registry {
   std::vector<PlannerEntry> added;
   std::vector<LoadedHandle> plugins;
+  std::map<std::string, PlannerScheme, std::less<>> schemes;
 };
 
 Registry& registry() {
@@ -220,8 +222,67 @@ std::vector<LoadedPlugin> loaded_plugins() {
   return plugins;
 }
 
+void register_planner_scheme(const std::string& scheme, PlannerScheme handler) {
+  registry().schemes[scheme] = std::move(handler);
+}
+
+namespace {
+
+// The scheme of a name "scheme:rest", or empty.
+std::string_view scheme_of(std::string_view name) {
+  const std::size_t colon = name.find(':');
+  return colon == std::string_view::npos ? std::string_view() : name.substr(0, colon);
+}
+
+// Python planners need an interpreter: a program that is not Python itself
+// (campo run, a sweep's runs) loads libcampo_python, installed beside
+// libcampo, which starts one and imports the campo module; the module
+// registers the "python" scheme.
+void load_python_support(const std::string& file, const std::string& pointer) {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<const void*>(&load_python_support), &info) == 0 || !info.dli_fname) {
+    throw InputError(file, pointer, "a Python planner, but campo cannot find its own library to look for libcampo_python beside it");
+  }
+  const fs::path support = fs::path(info.dli_fname).parent_path() / "libcampo_python.so";
+  std::error_code ec;
+  if (!fs::exists(support, ec)) {
+    throw InputError(file, pointer,
+                     "a Python planner, but this campo was built without Python support (" + support.string() +
+                         " is missing; build with pybind11-dev, python3-dev and python3-numpy installed)");
+  }
+  void* handle = dlopen(support.c_str(), RTLD_NOW | RTLD_GLOBAL);
+  if (!handle) throw InputError(file, pointer, std::string("cannot load campo's Python support: ") + dlerror());
+  using Start = int (*)(char* error, std::size_t size);
+  const auto start = reinterpret_cast<Start>(dlsym(handle, "campo_python_start"));
+  char error[4096] = "";
+  if (!start) throw InputError(file, pointer, support.string() + " has no campo_python_start");
+  if (start(error, sizeof error) != 0) throw InputError(file, pointer, std::string("cannot start Python: ") + error);
+}
+
+const PlannerScheme& scheme_handler(std::string_view scheme, const std::string& file, const std::string& pointer) {
+  Registry& reg = registry();
+  auto it = reg.schemes.find(scheme);
+  if (it == reg.schemes.end() && scheme == "python") {
+    load_python_support(file, pointer);
+    it = reg.schemes.find(scheme);
+  }
+  if (it == reg.schemes.end()) {
+    throw InputError(file, pointer,
+                     "a planner name, or \"python:package.module:ClassName\"; no planners come from \"" +
+                         std::string(scheme) + ":\"");
+  }
+  return it->second;
+}
+
+}  // namespace
+
 nlohmann::json planner_provenance(std::string_view name) {
   if (name.empty()) name = kDefaultPlanner;
+  if (const std::string_view scheme = scheme_of(name); !scheme.empty()) {
+    const auto it = registry().schemes.find(scheme);
+    if (it != registry().schemes.end() && it->second.provenance) return it->second.provenance(name);
+    return {{"name", name}, {"source", nullptr}};
+  }
   for (const PlannerEntry& entry : planner_registry()) {
     if (entry.name != name) continue;
     nlohmann::json provenance = {{"name", entry.name}, {"source", entry.source}};
@@ -240,6 +301,9 @@ void choose_planner(PlannerSpec& spec, std::string_view name, const std::string&
 
 std::unique_ptr<Planner> create_planner(const PlannerSpec& spec, const PlannerContext& context) {
   const std::string_view name = spec.name.empty() ? kDefaultPlanner : std::string_view(spec.name);
+  if (const std::string_view scheme = scheme_of(name); !scheme.empty()) {
+    return scheme_handler(scheme, spec.params.file, spec.name_pointer).create(spec, context);
+  }
   const std::vector<PlannerEntry> entries = planner_registry();
   for (const PlannerEntry& entry : entries) {
     if (entry.name != name) continue;

@@ -3,6 +3,7 @@
 /// file each plus one line in registry.cpp; planner plugins add theirs through
 /// their one entry point when loaded (load_planner_plugin, campo/plugin.hpp).
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -53,6 +54,19 @@ std::vector<LoadedPlugin> loaded_plugins();
 /// registry.cpp's), checked as a plugin's are; `source` names them in
 /// --list-planners and provenance. Throws InputError at `source` on a problem.
 void add_linked_planners(const std::vector<PlannerRegistration>& planners, const std::string& source);
+
+/// Planners named "<scheme>:<rest>" are made by the scheme's handler rather
+/// than looked up: "python:package.module:ClassName" is a Python class,
+/// whose handler the Python module registers when imported (python/).
+struct PlannerScheme {
+  /// Makes the planner `spec.name` names; InputError at spec's pointers on a problem.
+  PlannerMaker create;
+  /// {"name", "source", "sha256"} of the planner `name` (planner_provenance).
+  std::function<nlohmann::json(std::string_view name)> provenance;
+};
+
+/// Registers (or replaces) the handler of `scheme` ("python").
+void register_planner_scheme(const std::string& scheme, PlannerScheme handler);
 
 /// Name of the planner used when a vehicle names none.
 inline constexpr std::string_view kDefaultPlanner = "straight";

@@ -368,6 +368,8 @@ struct Episode::Loop {
 
   // The rest of a control tick, after the decision: records it and commands the vehicle.
   void act(PlanResult plan, double planner_ms) {
+    // First, so a command the vehicle cannot follow (std::invalid_argument) leaves the run untouched.
+    vehicle->command(plan.command);
     const double t = observation.time_s;
     if (options.on_plan) options.on_plan(observation, plan);
     for (auto& r : readings) r.fresh = false;
@@ -388,7 +390,6 @@ struct Episode::Loop {
     // it could lower its minimum (far terrain costs many triangles).
     const Clearance clearance = world.vehicle_clearance(kExact, minima.ground_cutoff());
     minima.update(clearance, t);
-    vehicle->command(plan.command);
     const std::optional<double> ground = scene.ground_height(truth.position_m.x(), truth.position_m.y());
     const double above_ground = ground ? truth.position_m.z() - *ground : std::numeric_limits<double>::quiet_NaN();
     result.trajectory.push_back({t, truth, observation.state.position_m, plan.command, clearance.obstacle_m,
@@ -580,7 +581,11 @@ EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, const
       break;
     }
     const double ms = std::chrono::duration<double, std::milli>(Clock::now() - plan_start).count();
-    episode.step(std::move(plan), ms);
+    try {
+      episode.step(std::move(plan), ms);
+    } catch (const std::invalid_argument& e) {
+      episode.fail(std::string("the planner gave a command the vehicle cannot follow: ") + e.what());
+    }
   }
   EpisodeResult result = episode.finish();
   result.planner_parameters = planner_parameters;

@@ -23,9 +23,6 @@ namespace campo {
 
 /// Builds the vehicle of a definition inside a world (vehicles/ provides make_vehicle).
 using VehicleFactory = std::unique_ptr<Vehicle> (*)(World& world, const VehicleDef& def);
-/// Builds a planner (planners/ provides create_planner; the Python module wraps Python objects).
-using PlannerMaker = std::function<std::unique_ptr<Planner>(const PlannerSpec& spec, const PlannerContext& context)>;
-
 /// How a run ended: the planner reported the mission complete (reached) or
 /// gave up (aborted), the vehicle collided, the time limit passed, or the
 /// planner failed (threw: a bug, or a Python planner's exception).
@@ -182,7 +179,8 @@ class Episode {
   const Observation& observation() const;
   /// Acts on the decision for the current tick (its status may end the run)
   /// and advances to the next tick or the end; `planner_time_ms` is what
-  /// deciding took, for the planner-time metrics. Not when done().
+  /// deciding took, for the planner-time metrics. Not when done(). A command
+  /// the vehicle cannot follow throws std::invalid_argument and changes nothing.
   void step(PlanResult plan, double planner_time_ms = 0.0);
   /// Ends the run as failed with `reason` (a planner that threw), if it has not ended.
   void fail(std::string reason);
@@ -201,8 +199,9 @@ class Episode {
 };
 
 /// Runs one episode of `scene` to its end with the planner `make_planner`
-/// builds. An exception from the planner (but an InputError, rethrown) ends
-/// the run as Outcome::failed with its message as the reason.
+/// builds. An exception from the planner (but an InputError, rethrown), or a
+/// command the vehicle cannot follow, ends the run as Outcome::failed with
+/// its message as the reason.
 EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, const PlannerMaker& make_planner,
                           const EpisodeOptions& options = {});
 

@@ -4,6 +4,7 @@
 /// it took for the record. Planners see plain data only, never Bullet.
 /// Implementations and the registry live in planners/; planners built outside
 /// campo register with campo/plugin.hpp (docs/extending.md).
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -178,5 +179,9 @@ class Planner {
 /// Registered with its name in planners/registry.cpp, or by a plugin with
 /// CAMPO_REGISTER_PLANNERS (campo/plugin.hpp).
 using PlannerFactory = std::unique_ptr<Planner> (*)(const ParamsBlock& params, const PlannerContext& context);
+
+/// Builds the planner a vehicle's spec names (planners/ provides
+/// create_planner; the Python module wraps Python objects).
+using PlannerMaker = std::function<std::unique_ptr<Planner>(const PlannerSpec& spec, const PlannerContext& context)>;
 
 }  // namespace campo
