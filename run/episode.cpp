@@ -35,7 +35,7 @@ std::int64_t period_steps(double rate_hz, double dt) {
 
 struct MountedSensor {
   std::unique_ptr<RangeSensor> sensor;
-  LidarScan scan;
+  std::shared_ptr<LidarScan> scan;  // shared with the readings (SensorReading::scan)
   std::int64_t period;
 };
 
@@ -332,7 +332,8 @@ struct Episode::Loop {
     sensors.reserve(def.sensors.size());
     for (const SensorDef& s : def.sensors) {
       const double rate = s.lidar.rate_hz > 0.0 ? s.lidar.rate_hz : scene.world.sensor_rate_hz;
-      sensors.push_back({options.make_sensor(scene, s, scene.world.seed), LidarScan{}, period_steps(rate, dt)});
+      sensors.push_back(
+          {options.make_sensor(scene, s, scene.world.seed), std::make_shared<LidarScan>(), period_steps(rate, dt)});
     }
     readings.resize(sensors.size());
     for (std::size_t i = 0; i < sensors.size(); ++i) {
@@ -350,10 +351,10 @@ struct Episode::Loop {
       if (k % s.period != 0) continue;
       if (!poses_read) world.moving_body_poses(body_poses);
       poses_read = true;
-      s.sensor->scan(vehicle->state().pose() * to_isometry(def.sensors[i].lidar.mount), t, body_poses, s.scan);
-      readings[i].scan = &s.scan;
+      s.sensor->scan(vehicle->state().pose() * to_isometry(def.sensors[i].lidar.mount), t, body_poses, *s.scan);
+      readings[i].scan = s.scan;
       readings[i].fresh = true;
-      if (options.on_scan) options.on_scan(i, s.scan);
+      if (options.on_scan) options.on_scan(i, *s.scan);
     }
   }
 
@@ -528,18 +529,18 @@ Episode& Episode::operator=(Episode&&) noexcept = default;
 
 bool Episode::done() const { return loop_->outcome.has_value(); }
 
-const Observation& Episode::observation() const {
-  if (done()) throw std::logic_error("Episode::observation: the episode has ended");
-  return loop_->observation;
-}
+const Observation& Episode::observation() const { return loop_->observation; }
 
 void Episode::step(PlanResult plan, double planner_time_ms) {
   if (done()) throw std::logic_error("Episode::step: the episode has ended");
   loop_->act(std::move(plan), planner_time_ms);
-  if (done()) return;
-  loop_->physics_step();
-  if (!done()) loop_->sense();
-  loop_->advance_to_control_tick();
+  if (!done()) {
+    loop_->physics_step();
+    if (!done()) loop_->sense();
+    loop_->advance_to_control_tick();
+  }
+  // The end as a caller stepping from outside sees it.
+  if (done()) loop_->observe();
 }
 
 void Episode::fail(std::string reason) {

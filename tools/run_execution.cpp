@@ -26,17 +26,17 @@
 
 namespace campo::cli {
 
-SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& output) {
+PreparedRun prepare_run(const RunRequest& request, bool validate_planner) {
   const std::string scene_file = request.scene.string();
   // Overrides are applied to the document, then validated like the file itself.
   const std::string bytes = read_text_file(scene_file);
-  SimulatedRun run;
+  PreparedRun run;
   run.document = parse_json_text(bytes, scene_file);
   for (const auto& assignment : request.overrides) apply_override(run.document, assignment);
   run.scene = parse_scene(run.document, scene_file, request.scene.parent_path(), sha256_hex(bytes));
   Scene& scene = run.scene;
 
-  EpisodeOptions options;
+  EpisodeOptions& options = run.options;
   options.stop_on_collision = !request.continue_after_collision;
   options.make_sensor = range_sensor_factory();
   if (scene.vehicles.empty()) throw InputError(scene_file, "/objects", "expected a scene with a vehicle to run");
@@ -55,7 +55,22 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   }
   // Validate every parameter before anything runs.
   validate_vehicle_params(def);
-  create_planner(def.planner, {def.type, &scene, &def});
+  if (validate_planner) {
+    const PlannerMaker make_planner = request.make_planner ? request.make_planner : PlannerMaker(&create_planner);
+    make_planner(def.planner, {def.type, &scene, &def});
+  }
+  return run;
+}
+
+SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& output) {
+  PreparedRun prepared = prepare_run(request);
+  SimulatedRun run;
+  run.scene = std::move(prepared.scene);
+  run.document = std::move(prepared.document);
+  run.vehicle_index = prepared.vehicle_index;
+  const Scene& scene = run.scene;
+  EpisodeOptions& options = prepared.options;
+  const VehicleDef& def = scene.vehicles[run.vehicle_index];
 
   if ((request.record_depth_every > 0 || request.record_replans) && !output) {
     throw std::logic_error("simulate_run: depth maps asked for without an output directory");
@@ -86,7 +101,8 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
       }
     };
   }
-  run.result = run_episode(scene, &make_vehicle, &create_planner, options);
+  const PlannerMaker make_planner = request.make_planner ? request.make_planner : PlannerMaker(&create_planner);
+  run.result = run_episode(scene, &make_vehicle, make_planner, options);
   run.record = run_json(scene, run.result, options, request.overrides);
   if (!run.document.contains("name")) run.document["name"] = scene.name;
   return run;

@@ -26,7 +26,25 @@ struct RunRequest {
   bool figures = true;                  ///< map.png and side.png
   int record_depth_every = 0;           ///< depth map of every N-th scan under out/depth/ (0 = none)
   bool record_replans = true;           ///< the depth map of every replanning under out/replans/
+  /// Makes the planner; empty: create_planner (the registry). The Python
+  /// module passes one that wraps a Python object.
+  PlannerMaker make_planner;
 };
+
+/// A run's inputs, read and validated: the scene with the overrides, its
+/// effective document, which vehicle runs, and the episode's options.
+struct PreparedRun {
+  Scene scene;
+  nlohmann::json document;
+  std::size_t vehicle_index = 0;
+  EpisodeOptions options;
+};
+
+/// Reads the scene, applies the overrides, picks the vehicle and planner and
+/// validates every input (InputError naming the file and JSON path), the
+/// planner's parameters too unless `validate_planner` is false (an episode
+/// driven from outside has no planner).
+PreparedRun prepare_run(const RunRequest& request, bool validate_planner = true);
 
 /// A run simulated, its files not yet written.
 struct SimulatedRun {

@@ -175,7 +175,8 @@ class Episode {
   /// Whether the run has ended (reached, aborted, collision, timeout, failed).
   bool done() const;
   /// What a planner sees at the current control tick (the estimated state,
-  /// the latest readings); valid until the next step. Not when done().
+  /// the latest readings); valid until the next step. Once done(), the state
+  /// the run ended in.
   const Observation& observation() const;
   /// Acts on the decision for the current tick (its status may end the run)
   /// and advances to the next tick or the end; `planner_time_ms` is what

@@ -25,7 +25,10 @@ namespace campo {
 struct SensorReading {
   std::string_view alias;
   const LidarConfig* config = nullptr;
-  const LidarScan* scan = nullptr;  ///< null before the first scan
+  /// Null before the first scan. Shared, so a reader may keep the buffer
+  /// alive (the Python module's zero-copy arrays); the sensor's next scan
+  /// overwrites it in place.
+  std::shared_ptr<const LidarScan> scan;
   bool fresh = false;               ///< taken since the previous observation
 };
 

@@ -12,6 +12,7 @@
 #include "sensors/lidar.hpp"
 #include "sensors/sensor_factory.hpp"
 #include "vehicles/factory.hpp"
+#include "tests/scan_support.hpp"
 
 namespace campo {
 namespace {
@@ -34,7 +35,7 @@ struct Hover {
     begin_scan(scan, 32, 32, 32 * 32, 0.0, Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, 1.5)));
     std::fill(scan.ranges_m.begin(), scan.ranges_m.end(), range_m);
     std::fill(scan.hits.begin(), scan.hits.end(), range_m < config.max_range_m ? 1 : 0);
-    readings = {SensorReading{"scanner", &config, &scan, true}};
+    readings = {SensorReading{"scanner", &config, test_support::borrowed(scan), true}};
     mission = {Waypoint{target, std::nullopt}};
     observation.vehicle = VehicleType::quadrotor;
     observation.state.position_m = {0.0, 0.0, 1.5};

@@ -15,6 +15,7 @@
 #include "campo/scene_loader.hpp"
 #include "closed_loop_support.hpp"
 #include "planners/dstar_lite_3d.hpp"
+#include "tests/scan_support.hpp"
 
 namespace campo {
 namespace {
@@ -43,7 +44,7 @@ double highest_planned_z(const std::string& mapping) {
   for (int x = 2; x <= 4; ++x) {
     for (int y = 0; y <= 11; ++y) scan.points.emplace_back(0.75f + 1.5f * x, 0.75f + 1.5f * y, 19.0f);
   }
-  std::vector<SensorReading> sensors{{"leddar", nullptr, &scan, true}};
+  std::vector<SensorReading> sensors{{"leddar", nullptr, test_support::borrowed(scan), true}};
   Observation o;
   o.state.position_m = center(0, 0, 4);
   o.sensors = sensors;

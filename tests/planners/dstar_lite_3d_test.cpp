@@ -11,6 +11,7 @@
 #include "campo/json_reader.hpp"
 #include "closed_loop_support.hpp"
 #include "grid/astar.hpp"
+#include "tests/scan_support.hpp"
 
 namespace campo {
 namespace {
@@ -30,7 +31,7 @@ struct Feed {
 
   Observation at(const Eigen::Vector3d& p, std::vector<Eigen::Vector3f> hits = {}) {
     scan.points = std::move(hits);
-    sensors[0].scan = &scan;
+    sensors[0].scan = test_support::borrowed(scan);
     sensors[0].fresh = !scan.points.empty();
     Observation o;
     o.state.position_m = p;

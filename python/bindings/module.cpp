@@ -1,0 +1,226 @@
+// campo._campo: the native part of the Python package `campo` (docs/python.md).
+// Episodes stepped from Python, Python planners in the C++ closed loop, and
+// runs written exactly as `campo run` writes them.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "campo/episode.hpp"
+#include "campo/json_reader.hpp"
+#include "campo/run_record.hpp"
+#include "campo/version.hpp"
+#include "core/output_dir.hpp"
+#include "planners/registry.hpp"
+#include "python/bindings/observation.hpp"
+#include "python/bindings/python_planner.hpp"
+#include "sweep/bundled.hpp"
+#include "tools/run_execution.hpp"
+#include "vehicles/factory.hpp"
+
+namespace campo::python {
+
+namespace py = pybind11;
+
+namespace {
+
+// What an episode driven from Python records as its planner.
+constexpr std::string_view kExternalPlanner = "external";
+
+// The run a Python call asks for: a scene file or a bundled scene's name,
+// overrides as {JSON pointer: value}, and a seed.
+cli::RunRequest run_request(const std::string& scene, std::optional<std::uint64_t> seed, const py::object& overrides,
+                            const std::string& vehicle, bool continue_after_collision) {
+  cli::RunRequest request;
+  request.scene = file_or_bundled(scene, &bundled_scene);
+  request.vehicle = vehicle;
+  request.continue_after_collision = continue_after_collision;
+  if (!overrides.is_none()) {
+    if (!py::isinstance<py::dict>(overrides)) {
+      throw InputError("overrides", "", "a dict {JSON pointer: value}, e.g. {\"/world/time_limit_s\": 60}");
+    }
+    for (const auto& [pointer, value] : overrides.cast<py::dict>()) {
+      request.overrides.push_back(py::str(pointer).cast<std::string>() + "=" + to_json(value).dump());
+    }
+  }
+  if (seed) request.overrides.push_back("/world/seed=" + std::to_string(*seed));
+  return request;
+}
+
+// One run of an Episode (a reset): its scene, the loop, and its result once it ended.
+struct EpisodeRun {
+  cli::PreparedRun prepared;
+  std::optional<Episode> episode;
+  std::shared_ptr<const std::vector<Eigen::Vector3d>> mission_m;
+  std::optional<EpisodeResult> result;
+};
+
+// campo.Episode.
+class PythonEpisode {
+ public:
+  PythonEpisode(const std::string& scene, std::optional<std::uint64_t> seed, const py::object& overrides,
+                const std::string& vehicle, bool continue_after_collision)
+      : request_(run_request(scene, seed, overrides, vehicle, continue_after_collision)) {
+    // Read and check everything now, so bad input fails at construction.
+    cli::prepare_run(request_, false);
+  }
+
+  ObservationView reset() {
+    run_ = std::make_shared<EpisodeRun>();
+    run_->prepared = cli::prepare_run(request_, false);
+    VehicleDef& def = run_->prepared.scene.vehicles[run_->prepared.vehicle_index];
+    def.planner.name = std::string(kExternalPlanner);
+    def.planner.params.values = nlohmann::json::object();
+    run_->episode.emplace(run_->prepared.scene, &make_vehicle, run_->prepared.options);
+    run_->mission_m = mission_positions(def.mission);
+    return observation();
+  }
+
+  py::tuple step(const CommandBox& command) {
+    Episode& e = episode();
+    if (e.done()) throw std::logic_error("the episode has ended: call reset() for a new one");
+    PlanResult plan;
+    plan.command = command.value;
+    e.step(std::move(plan));  // std::invalid_argument (ValueError) for a command the vehicle cannot follow
+    return py::make_tuple(observation(), e.done(), info());
+  }
+
+  ObservationView observation() const { return view_of(episode().observation(), run_->mission_m); }
+  bool done() const { return run_ && run_->episode && run_->episode->done(); }
+
+  py::dict info() const {
+    const Episode& e = episode();
+    // Once done, the finished metrics (the loop's counters move into them).
+    const EpisodeMetrics& m = e.done() ? finished().metrics : e.metrics_so_far();
+    py::dict info;
+    info["time_s"] = e.done() ? m.sim_time_s : e.world().time_s();
+    info["collisions"] = m.collisions;
+    info["path_length_m"] = m.path_length_m;
+    info["outcome"] = e.done() ? py::object(py::str(std::string(to_string(m.outcome)))) : py::none();
+    info["reason"] = m.reason;
+    return info;
+  }
+
+  py::object metrics() const { return from_json(campo::to_json(finished().metrics)); }
+
+  py::object write(const std::filesystem::path& out, bool figures) const {
+    const EpisodeResult& result = finished();
+    cli::RunRequest request = request_;
+    request.out = out;
+    request.figures = figures;
+    cli::SimulatedRun run;
+    run.scene = run_->prepared.scene;
+    run.document = run_->prepared.document;
+    run.vehicle_index = run_->prepared.vehicle_index;
+    run.result = result;
+    run.record = run_json(run.scene, run.result, run_->prepared.options, request.overrides);
+    run.record["provenance"]["planner"] = {{"name", kExternalPlanner},
+                                           {"source", "commands given to campo.Episode.step from Python"}};
+    if (!run.document.contains("name")) run.document["name"] = run.scene.name;
+    StagedOutput staged(out);
+    const std::vector<cli::FigureFailure> failures = cli::write_run_files(run, request, staged);
+    staged.commit();
+    warn_figure_failures(failures);
+    return from_json(run.record);
+  }
+
+  static void warn_figure_failures(const std::vector<cli::FigureFailure>& failures) {
+    for (const cli::FigureFailure& f : failures) {
+      PyErr_WarnEx(PyExc_RuntimeWarning, ("figure " + f.figure + " not drawn: " + f.message).c_str(), 1);
+    }
+  }
+
+ private:
+  Episode& episode() const {
+    if (!run_) throw std::logic_error("call reset() first");
+    return *run_->episode;
+  }
+  const EpisodeResult& finished() const {
+    Episode& e = episode();
+    if (!e.done()) throw std::logic_error("the episode is still running: its metrics are measured over a whole run");
+    if (!run_->result) run_->result = e.finish();
+    return *run_->result;
+  }
+
+  cli::RunRequest request_;
+  std::shared_ptr<EpisodeRun> run_;
+};
+
+// campo.run: one run in the closed loop, with a planner named (built in, a
+// plugin's, "python:...") or given as a Python object.
+py::object run(const std::string& scene, const py::object& planner, const std::optional<std::filesystem::path>& out,
+               std::optional<std::uint64_t> seed, const py::object& overrides, const std::string& vehicle,
+               bool figures, bool continue_after_collision) {
+  cli::RunRequest request = run_request(scene, seed, overrides, vehicle, continue_after_collision);
+  request.figures = figures;
+  if (py::isinstance<py::str>(planner)) {
+    request.planner = planner.cast<std::string>();
+  } else if (!planner.is_none()) {
+    if (!py::hasattr(planner, "plan")) {
+      throw InputError("planner", "", "a planner name or an object with a plan(self, obs) method");
+    }
+    request.planner = python_planner_name(planner);
+    request.make_planner = [planner](const PlannerSpec&, const PlannerContext&) {
+      return wrap_python_planner(planner, nlohmann::json::object());
+    };
+  }
+  nlohmann::json record;
+  if (out) {
+    request.out = *out;
+    const cli::ExecutedRun executed = cli::execute_run(request);
+    PythonEpisode::warn_figure_failures(executed.figure_failures);
+    record = executed.record;
+  } else {
+    request.record_replans = false;  // nowhere to write them
+    record = cli::simulate_run(request, {}).record;
+  }
+  return from_json(record);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_campo, m) {
+  m.doc() = "campo's native module: episodes, planners, runs (see the package campo)";
+  m.attr("__version__") = library_version();
+
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  py::register_exception<OutputError>(m, "OutputError", m.attr("InputError"));
+
+  bind_observation(m);
+  bind_plan_types(m);
+  register_python_scheme();
+
+  py::class_<PythonEpisode>(m, "Episode",
+                            "One run of the closed loop stepped from Python, Gymnasium-style: reset(), then "
+                            "step(command) at every control tick until done.")
+      .def(py::init<const std::string&, std::optional<std::uint64_t>, const py::object&, const std::string&, bool>(),
+           py::arg("scene"), py::arg("seed") = py::none(), py::arg("overrides") = py::none(), py::arg("vehicle") = "",
+           py::arg("continue_after_collision") = false)
+      .def("reset", &PythonEpisode::reset, "start (again) from the scene's start; returns the first Observation")
+      .def("step", &PythonEpisode::step, py::arg("command"),
+           "apply command until the next control tick; returns (observation, done, info)")
+      .def_property_readonly("observation", &PythonEpisode::observation)
+      .def_property_readonly("done", &PythonEpisode::done)
+      .def("metrics", &PythonEpisode::metrics, "the run's metrics, as run.json's (once done)")
+      .def("write", &PythonEpisode::write, py::arg("out"), py::arg("figures") = true,
+           "write the run directory as campo run does (once done); returns run.json's content");
+
+  m.def("run", &run, py::arg("scene"), py::arg("planner") = py::none(), py::arg("out") = py::none(),
+        py::arg("seed") = py::none(), py::arg("overrides") = py::none(), py::arg("vehicle") = "",
+        py::arg("figures") = true, py::arg("continue_after_collision") = false,
+        "run scene to its end with planner (a name, \"python:module:Class\", or an object with plan(obs)); "
+        "writes the run directory to out when given; returns run.json's content");
+  m.def("planners", [] {
+    std::vector<std::string> names;
+    for (const PlannerEntry& entry : planner_registry()) names.push_back(entry.name);
+    return names;
+  }, "the registered planners' names");
+}
+
+}  // namespace campo::python

@@ -1,0 +1,58 @@
+#pragma once
+/// Planners written in Python, in campo's C++ closed loop: the adapter that
+/// makes a Python object with plan(obs) a campo::Planner, the conversions of
+/// commands and plan results, and the "python:package.module:ClassName"
+/// planner scheme (planners/registry.hpp).
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <pybind11/pybind11.h>
+
+#include "campo/planner.hpp"
+
+namespace campo::python {
+
+/// campo.Command: one command a planner may give (campo/vehicle.hpp).
+struct CommandBox {
+  Command value;
+};
+
+/// campo.PlanResult, as Python builds it.
+struct PlanResultBox {
+  CommandBox command;
+  PlanStatus status = PlanStatus::running;
+  std::string reason;
+  pybind11::object decisions = pybind11::none();
+};
+
+/// A Python object as JSON (through Python's json module), and back.
+nlohmann::json to_json(const pybind11::handle& value);
+pybind11::object from_json(const nlohmann::json& value);
+
+/// The PlanResult of a PlanResultBox; its decisions dict read as events.jsonl's
+/// (run/event_log.hpp). Throws std::runtime_error naming what is wrong.
+PlanResult plan_result(const PlanResultBox& box);
+
+/// The planner the Python object `planner` is: plan() called with a
+/// campo.Observation at every control tick. A Python exception ends the run
+/// as failed with its traceback (std::runtime_error to the closed loop).
+/// `parameters` is what it was made with, recorded unless the object has a
+/// parameters() method of its own.
+std::unique_ptr<Planner> wrap_python_planner(pybind11::object planner, nlohmann::json parameters);
+
+/// "python:" + the module and qualified name of `planner`'s class, the name a run records.
+std::string python_planner_name(const pybind11::handle& planner);
+
+/// The Python traceback of the exception being handled, as Python prints it.
+std::string traceback_text(pybind11::error_already_set& error);
+
+/// Registers the "python" planner scheme: "python:package.module:ClassName"
+/// imports the module, checks the class, and constructs it with the
+/// planner's params as keyword arguments.
+void register_python_scheme();
+
+/// Binds campo.Command and campo.PlanResult.
+void bind_plan_types(pybind11::module_& m);
+
+}  // namespace campo::python

@@ -1,0 +1,50 @@
+"""campo from Python: drive the closed loop, write planners, read results.
+
+The simulation stays C++ (the native module campo._campo); Python gets
+episodes stepped Gymnasium-style, planners called from the C++ loop, and
+results as pandas data frames. See docs/python.md.
+
+    import campo
+    ep = campo.Episode("two_barriers", seed=3)
+    obs = ep.reset()
+    while not ep.done:
+        obs, done, info = ep.step(campo.Command.go_to([16, 0, 3], speed_mps=0.6))
+    print(ep.metrics()["outcome"])
+"""
+
+from ._campo import (  # noqa: F401 (re-exported)
+    Command,
+    Episode,
+    InputError,
+    Observation,
+    OutputError,
+    PlanResult,
+    SensorReading,
+    State,
+    __version__,
+    planners,
+    run,
+)
+from .results import ResultsError, ResultsWarning, Run, read_results, read_run  # noqa: F401
+
+
+class Planner:
+    """Base class of planners written in Python.
+
+    Subclass it and define plan(self, obs) returning a campo.PlanResult; it
+    runs in campo's C++ closed loop through campo.run(scene, planner=...), or
+    by name: `campo run --planner python:package.module:ClassName`, or a sweep
+    spec's planner of that form, whose params become the constructor's keyword
+    arguments. An exception in plan() ends the run as failed, its traceback
+    the run's reason.
+    """
+
+    #: The vehicle types the planner drives.
+    vehicles = ("quadrotor", "rover")
+
+    def plan(self, obs):
+        raise NotImplementedError("a campo.Planner defines plan(self, obs)")
+
+    def parameters(self):
+        """The planner's effective parameters, recorded in run.json."""
+        return {}
