@@ -144,7 +144,10 @@ class PythonEpisode {
   const EpisodeResult& finished() const {
     Episode& e = episode();
     if (!e.done()) throw std::logic_error("the episode is still running: its metrics are measured over a whole run");
-    if (!run_->result) run_->result = e.finish();
+    if (!run_->result) {
+      run_->result = e.finish();
+      run_->result->planner_parameters = nlohmann::json::object();  // no planner: the caller's commands
+    }
     return *run_->result;
   }
 

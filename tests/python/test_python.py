@@ -1,0 +1,307 @@
+"""The campo Python module: episodes stepped from Python, Python planners in the C++ closed loop
+(campo.run, campo run/sweep --planner python:...), errors across the boundary.
+
+    PYTHONPATH=build/python /usr/bin/python3 -m unittest tests/python/test_python.py
+
+CAMPO_BIN names the program (default: build/campo of this source tree).
+"""
+
+import json
+import os
+import pathlib
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+import campo
+
+SOURCE_DIR = pathlib.Path(__file__).resolve().parents[2]
+FIXTURES = pathlib.Path(__file__).resolve().parent / "fixtures"
+sys.path.insert(0, str(FIXTURES))
+import python_planners  # noqa: E402 (the fixtures folder is on the path just above)
+
+CAMPO = pathlib.Path(os.environ.get("CAMPO_BIN", SOURCE_DIR / "build" / "campo"))
+OPEN_FIELD = str(FIXTURES / "open_field.json")
+GOAL = np.array([6.0, 0.0, 1.5])
+
+
+def go_to_goal(episode, speed_mps=0.8, arrival_m=0.3):
+    """Steps `episode` as GoStraight would plan it; returns the number of steps."""
+    planner = python_planners.GoStraight(speed_mps, arrival_m)
+    obs = episode.observation
+    steps = 0
+    while not episode.done:
+        # The planner's own status is not the episode's business here: only its commands.
+        result = planner.plan(obs)
+        obs, done, info = episode.step(result.command)
+        steps += 1
+        if result.status == "reached":
+            break
+    return steps
+
+
+class EpisodeTest(unittest.TestCase):
+    def test_observation_and_steps(self):
+        episode = campo.Episode(OPEN_FIELD, seed=2)
+        obs = episode.reset()
+        self.assertEqual(obs.time_s, 0.0)
+        np.testing.assert_allclose(obs.state.position_m, [0.0, 0.0, 1.5], atol=1e-9)
+        np.testing.assert_allclose(obs.mission_m, [GOAL])
+        self.assertEqual(obs.vehicle, "quadrotor")
+        self.assertEqual(list(obs.sensors), ["scanner"])
+        scan = obs.sensors["scanner"]
+        # resolution [cols, rows] = [16, 8]: an image of 8 rows by 16 columns.
+        self.assertEqual(scan.ranges_m.shape, (8, 16))
+        self.assertEqual(scan.ranges_m.dtype, np.float32)
+        self.assertEqual(scan.hits.shape, (8, 16))
+        self.assertEqual(scan.points_m.shape, (int(scan.hits.sum()), 3))
+        # The depth map is the ranges over the maximum range (10 m for scanner3d), 1 where nothing was hit.
+        expected = np.where(scan.hits == 1, scan.ranges_m / 10.0, 1.0)
+        np.testing.assert_allclose(scan.depth, expected, rtol=1e-6)
+        obs, done, info = episode.step(campo.Command.go_to(GOAL, speed_mps=0.8))
+        self.assertFalse(done)
+        self.assertAlmostEqual(obs.time_s, 1 / 60, places=12)  # one control tick at 60 Hz
+        self.assertIsNone(info["outcome"])
+
+    def test_ranges_are_views_of_the_sensor_buffer(self):
+        episode = campo.Episode(OPEN_FIELD, seed=2)
+        first = episode.reset().sensors["scanner"].ranges_m
+        self.assertFalse(first.flags.owndata)
+        self.assertFalse(first.flags.writeable)
+        again = episode.observation.sensors["scanner"].ranges_m
+        self.assertTrue(np.shares_memory(first, again))
+        kept = first.copy()
+        # Climb 3 m: the next scans (10 Hz, every 6th tick) see the ground from higher up.
+        for _ in range(60):
+            obs, done, info = episode.step(campo.Command.altitude(4.5))
+        self.assertTrue(np.shares_memory(first, obs.sensors["scanner"].ranges_m))
+        self.assertFalse(np.array_equal(first, kept))  # the view follows the sensor
+        # A view outlives its episode: the buffer stays alive with the array.
+        episode.reset()
+        del episode
+        self.assertEqual(float(first.sum()), float(first.sum()))
+
+    def test_overrides_reach_the_scene(self):
+        episode = campo.Episode(OPEN_FIELD, overrides={"/objects/drone/sensors/scanner/resolution": [64, 32]})
+        self.assertEqual(episode.reset().sensors["scanner"].ranges_m.shape, (32, 64))
+
+    def test_same_seed_and_commands_same_run_as_a_planner_in_the_loop(self):
+        episode = campo.Episode(OPEN_FIELD, seed=5, overrides={"/objects/drone/state_noise/position_stddev_m": 0.05})
+        episode.reset()
+        go_to_goal(episode)
+        self.assertFalse(episode.done)  # the caller decided it was there; the episode goes on until told
+        # The in-loop planner ends the run with "reached" at the same tick: give the episode that decision.
+        with tempfile.TemporaryDirectory() as out:
+            record = campo.run(OPEN_FIELD, planner=python_planners.GoStraight(), seed=5,
+                               overrides={"/objects/drone/state_noise/position_stddev_m": 0.05},
+                               out=os.path.join(out, "run"))
+        self.assertEqual(record["metrics"]["outcome"], "reached")
+        stepped = campo.Episode(OPEN_FIELD, seed=5, overrides={"/objects/drone/state_noise/position_stddev_m": 0.05})
+        stepped.reset()
+        steps = go_to_goal(stepped)
+        # The same decisions at the same ticks: the loop's last call said "reached", the caller stepped its command.
+        self.assertEqual(steps, record["metrics"]["planner_calls"])
+
+    def test_metrics_and_write_match_campo_run(self):
+        with tempfile.TemporaryDirectory() as out:
+            episode = campo.Episode(OPEN_FIELD, seed=1, overrides={"/world/time_limit_s": 3})
+            episode.reset()
+            steps = 0
+            while not episode.done:
+                obs, done, info = episode.step(campo.Command.go_to(GOAL, speed_mps=0.8))
+                steps += 1
+            self.assertEqual(info["outcome"], "timeout")
+            metrics = episode.metrics()
+            self.assertEqual(metrics["outcome"], "timeout")
+            self.assertEqual(metrics["planner_calls"], steps)
+            self.assertAlmostEqual(metrics["sim_time_s"], 3.0, places=9)
+            record = episode.write(os.path.join(out, "ep"))
+            on_disk = json.loads(pathlib.Path(out, "ep", "run.json").read_text())
+            self.assertEqual(on_disk, record)
+            for key, value in metrics.items():
+                self.assertEqual(on_disk["metrics"][key], value, key)
+            self.assertEqual(on_disk["parameters"]["planner"]["name"], "external")
+            self.assertEqual(on_disk["parameters"]["world"]["seed"], 1)
+            for name in ("trajectory.csv", "events.jsonl", "scene.json", "map.png", "side.png"):
+                self.assertTrue(pathlib.Path(out, "ep", name).is_file(), name)
+            run = campo.read_run(os.path.join(out, "ep"))
+            self.assertEqual(len(run.trajectory), steps)
+            # The same commands from campo's program, through a Python planner: the same final state, bit for bit.
+            cli = subprocess.run([str(CAMPO), "run", OPEN_FIELD, "--planner", "python:python_planners:GoStraight",
+                                  "--seed", "1", "--set", "/world/time_limit_s=3",
+                                  "--set", "/objects/drone/planner/params/arrival_m=0.0",
+                                  "--set", "/objects/drone/planner/name=\"python:python_planners:GoStraight\"",
+                                  "--out", os.path.join(out, "cli"), "--no-figures"],
+                                 capture_output=True, text=True, timeout=300, env=python_env(), cwd=FIXTURES)
+            self.assertEqual(cli.returncode, 0, cli.stderr)
+            by_cli = json.loads(pathlib.Path(out, "cli", "run.json").read_text())
+            self.assertEqual(by_cli["final_state_hash"], on_disk["final_state_hash"])
+
+    def test_episode_ends_and_refuses_more_steps(self):
+        episode = campo.Episode(OPEN_FIELD, overrides={"/world/time_limit_s": 0.1})
+        episode.reset()
+        with self.assertRaisesRegex(RuntimeError, "still running"):
+            episode.metrics()
+        while not episode.done:
+            episode.step(campo.Command.hold([0, 0, 1.5]))
+        with self.assertRaisesRegex(RuntimeError, "ended"):
+            episode.step(campo.Command.hold([0, 0, 1.5]))
+        # reset starts the same episode again
+        obs = episode.reset()
+        self.assertEqual(obs.time_s, 0.0)
+        self.assertFalse(episode.done)
+
+
+def python_env():
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([str(FIXTURES), env.get("PYTHONPATH", "")])
+    return env
+
+
+class PythonPlannerTest(unittest.TestCase):
+    def test_runs_to_the_goal_in_the_closed_loop(self):
+        planner = python_planners.GoStraight(speed_mps=1.0)
+        record = campo.run(OPEN_FIELD, planner=planner)
+        m = record["metrics"]
+        self.assertEqual(m["outcome"], "reached")
+        self.assertEqual(m["planner_calls"], planner.calls)
+        self.assertGreaterEqual(m["path_ratio"], 1.0)
+        self.assertLess(m["path_ratio"], 1.2)
+        self.assertEqual(record["parameters"]["planner"]["name"], "python:python_planners:GoStraight")
+        self.assertEqual(record["parameters"]["planner"]["parameters"], {"speed_mps": 1.0, "arrival_m": 0.3})
+        provenance = record["provenance"]["planner"]
+        self.assertEqual(provenance["source"], python_planners.__file__)
+        self.assertEqual(len(provenance["sha256"]), 64)
+
+    def test_an_exception_in_plan_fails_the_run_with_its_traceback(self):
+        with tempfile.TemporaryDirectory() as out:
+            record = campo.run(OPEN_FIELD, planner=python_planners.FailsAfter(0.5), out=os.path.join(out, "r"))
+            m = record["metrics"]
+            self.assertEqual(m["outcome"], "failed")
+            self.assertIn("Traceback (most recent call last)", m["reason"])
+            self.assertIn("python_planners.py", m["reason"])
+            self.assertIn("ZeroDivisionError: the gain schedule divided by zero", m["reason"])
+            self.assertEqual(m["planner_calls"], 31)  # t = 0 .. 0.5 s at 60 Hz; the call that raised is not counted
+            self.assertTrue(pathlib.Path(out, "r", "trajectory.csv").is_file())
+
+    def test_plan_result_is_checked(self):
+        with self.assertRaisesRegex(ValueError, "status: expected one of running, reached"):
+            campo.PlanResult(campo.Command.hold([0, 0, 1]), status="done")
+        with self.assertRaisesRegex(ValueError, "target_m: expected 3 numbers, got 2"):
+            campo.Command.go_to([1, 2])
+        self.assertEqual(campo.Command.twist(0.5, 0.1).kind, "twist")
+
+        class ReturnsNone(campo.Planner):
+            def plan(self, obs):
+                return None
+        m = campo.run(OPEN_FIELD, planner=ReturnsNone())["metrics"]
+        self.assertEqual(m["outcome"], "failed")
+        self.assertIn("expected a campo.PlanResult", m["reason"])
+
+        class Twists(campo.Planner):
+            def plan(self, obs):
+                return campo.PlanResult(campo.Command.twist(0.5, 0.0))
+        m = campo.run(OPEN_FIELD, planner=Twists())["metrics"]
+        self.assertEqual(m["outcome"], "failed")
+        self.assertIn("command the vehicle cannot follow", m["reason"])
+
+    def test_vehicle_types_are_declared(self):
+        with self.assertRaisesRegex(campo.InputError, "drives a rover only, not a quadrotor"):
+            campo.run(OPEN_FIELD, planner="python:python_planners:RoverOnly")
+
+
+class ErrorsTest(unittest.TestCase):
+    def test_input_errors_name_file_pointer_and_expectation(self):
+        with self.assertRaisesRegex(campo.InputError, "no_such_scene.json"):
+            campo.Episode(str(FIXTURES / "no_such_scene.json"))
+        with self.assertRaisesRegex(campo.InputError, "/objects/2/sensors/0/resolution/0: expected an integer"):
+            campo.Episode(OPEN_FIELD, overrides={"/objects/drone/sensors/scanner/resolution": [0, 8]})
+        with self.assertRaisesRegex(campo.InputError, "unknown planner \"nope\""):
+            campo.run(OPEN_FIELD, planner="nope")
+        with self.assertRaisesRegex(campo.InputError, "No module named 'no_such_module'"):
+            campo.run(OPEN_FIELD, planner="python:no_such_module:Planner")
+        with self.assertRaisesRegex(campo.InputError, "(?s)/objects/2/planner/params: .*constructing it failed:.*unexpected keyword argument 'gain'"):
+            campo.run(OPEN_FIELD, planner="python:python_planners:GoStraight",
+                      overrides={"/objects/drone/planner": {"name": "python:python_planners:GoStraight",
+                                                            "params": {"gain": 2}}})
+        self.assertTrue(issubclass(campo.InputError, ValueError))
+
+
+class CommandLineTest(unittest.TestCase):
+    def test_campo_run_and_sweep_take_python_planners(self):
+        with tempfile.TemporaryDirectory() as out:
+            run = subprocess.run([str(CAMPO), "run", OPEN_FIELD, "--planner", "python:python_planners:GoStraight",
+                                  "--out", os.path.join(out, "run")], capture_output=True, text=True, timeout=300,
+                                 env=python_env(), cwd=out)
+            self.assertEqual(run.returncode, 0, run.stderr)
+            record = json.loads(pathlib.Path(out, "run", "run.json").read_text())
+            self.assertEqual(record["metrics"]["outcome"], "reached")
+            self.assertEqual(record["provenance"]["planner"]["source"], str(FIXTURES / "python_planners.py"))
+            spec = {"campo_sweep": 1, "name": "py", "scenes": [OPEN_FIELD],
+                    "planners": [{"name": "python:python_planners:GoStraight", "label": "straight_py"}],
+                    "axes": [{"name": "speed_mps", "values": [0.5, 1.0],
+                              "set": ["/objects/drone/planner/params/speed_mps"]}],
+                    "seeds": {"first": 0, "count": 2}}
+            pathlib.Path(out, "spec.json").write_text(json.dumps(spec))
+            sweep = subprocess.run([str(CAMPO), "sweep", "spec.json", "--out", "sweep", "--jobs", "2"],
+                                   capture_output=True, text=True, timeout=600, env=python_env(), cwd=out)
+            self.assertEqual(sweep.returncode, 0, sweep.stderr)
+            frame = campo.read_results(os.path.join(out, "sweep"))
+            self.assertEqual(len(frame), 4)
+            self.assertTrue((frame["outcome"] == "reached").all())
+            # Slower runs take longer: the parameter reached the Python planner's constructor.
+            by_speed = frame.groupby("speed_mps")["sim_time_s"].mean()
+            self.assertGreater(by_speed[0.5], by_speed[1.0] * 1.5)
+            failing = subprocess.run([str(CAMPO), "run", OPEN_FIELD, "--planner", "python:python_planners:FailsAfter",
+                                      "--out", os.path.join(out, "failing")], capture_output=True, text=True,
+                                     timeout=300, env=python_env(), cwd=out)
+            self.assertEqual(failing.returncode, 0, failing.stderr)  # a failed run is a run: recorded, exit 0
+            failed = json.loads(pathlib.Path(out, "failing", "run.json").read_text())
+            self.assertEqual(failed["metrics"]["outcome"], "failed")
+            self.assertIn("ZeroDivisionError", failed["metrics"]["reason"])
+
+
+class ExamplesTest(unittest.TestCase):
+    def run_example(self, *args, cwd=None):
+        env = dict(os.environ)
+        env["PYTHONPATH"] = os.pathsep.join([str(SOURCE_DIR / "examples" / "python"), env.get("PYTHONPATH", "")])
+        return subprocess.run([sys.executable, *args], capture_output=True, text=True, timeout=600, env=env,
+                              cwd=cwd or SOURCE_DIR)
+
+    def test_random_walk_is_reproducible(self):
+        with tempfile.TemporaryDirectory() as out:
+            first = self.run_example("examples/python/random_walk.py", "--seed", "4", "--time-limit-s", "5",
+                                     "--out", os.path.join(out, "a"))
+            self.assertEqual(first.returncode, 0, first.stderr)
+            second = self.run_example("examples/python/random_walk.py", "--seed", "4", "--time-limit-s", "5",
+                                      "--out", os.path.join(out, "b"))
+            a = json.loads(pathlib.Path(out, "a", "run.json").read_text())
+            b = json.loads(pathlib.Path(out, "b", "run.json").read_text())
+            self.assertEqual(a["final_state_hash"], b["final_state_hash"])
+            self.assertEqual(a["metrics"]["planner_calls"], 300)  # 5 s at 60 Hz
+            self.assertGreater(a["metrics"]["path_length_m"], 0.1)
+
+    def test_potential_field_runs_and_sweeps(self):
+        run = self.run_example("examples/python/potential_field.py", "--repulsion-gain", "1")
+        self.assertEqual(run.returncode, 0, run.stderr)
+        self.assertIn("two_barriers:", run.stdout)
+        with tempfile.TemporaryDirectory() as out:
+            env = dict(os.environ)
+            env["PYTHONPATH"] = os.pathsep.join([str(SOURCE_DIR / "examples" / "python"), env.get("PYTHONPATH", "")])
+            sweep = subprocess.run([str(CAMPO), "sweep", str(SOURCE_DIR / "examples/python/potential_field_sweep.json"),
+                                    "--out", out, "--jobs", "2"], capture_output=True, text=True, timeout=600,
+                                   env=env, cwd=SOURCE_DIR)
+            self.assertEqual(sweep.returncode, 0, sweep.stderr)
+            frame = campo.read_results(out)
+            self.assertEqual(len(frame), 6)
+            self.assertEqual(sorted(frame["repulsion_gain"].unique()), [0.5, 1.0, 2.0])
+            # A stronger field keeps the drone farther from the barrier.
+            clearance = frame.groupby("repulsion_gain")["min_clearance_m"].mean()
+            self.assertLess(clearance[0.5], clearance[2.0])
+
+
+if __name__ == "__main__":
+    unittest.main()
