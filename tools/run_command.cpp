@@ -80,8 +80,9 @@ Command add_run(CLI::App& app) {
   std::string planners;
   for (const auto& entry : planner_registry()) planners += (planners.empty() ? "" : ", ") + entry.name;
   app.add_option("--planner", o->planner,
-                 "Planner (" + planners + ", or a plugin's); default: the scene's, else straight. Another planner than "
-                 "the scene's runs with its default parameters");
+                 "Planner (" + planners + ", a plugin's, or a Python class as python:package.module:ClassName, "
+                 "found from the working directory and PYTHONPATH); default: the scene's, else straight. Another "
+                 "planner than the scene's runs with its default parameters");
   add_plugin_option(app, o->plugins);
   app.add_flag("--list-planners", o->list_planners,
                "Print every planner (with --plugin, the plugins' too): name, source (built-in or the plugin file) and "
