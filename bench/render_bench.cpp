@@ -81,9 +81,9 @@ void main() {}
 )");
   const GpuMesh gpu = upload_mesh(mesh, false);
   const Framebuffer target = make_framebuffer(kSize, kSize, 0, GL_DEPTH_COMPONENT32F);
-  glViewport(0, 0, kSize, kSize);
-  glEnable(GL_DEPTH_TEST);
-  glUseProgram(program.id());
+  gl().Viewport(0, 0, kSize, kSize);
+  gl().Enable(GL_DEPTH_TEST);
+  gl().UseProgram(program.id());
   const LidarConfig config = scanner(kSize).lidar;
   // 90 deg square frustum, near 0.05 m, far 10 m; eye looking along the sensor's x.
   constexpr double kNear = 0.05, kFar = 10.0;
@@ -100,10 +100,10 @@ void main() {}
   for (auto _ : state) {
     const Eigen::Matrix4f mvp =
         (projection * (eye_from_sensor * sensor_pose(scene, config, scans++).inverse()).matrix()).cast<float>();
-    glUniformMatrix4fv(0, 1, GL_FALSE, mvp.data());
-    glClear(GL_DEPTH_BUFFER_BIT);
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.indices.size()), GL_UNSIGNED_INT, nullptr);
-    glReadPixels(0, 0, kSize, kSize, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+    gl().UniformMatrix4fv(0, 1, GL_FALSE, mvp.data());
+    gl().Clear(GL_DEPTH_BUFFER_BIT);
+    gl().DrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh.indices.size()), GL_UNSIGNED_INT, nullptr);
+    gl().ReadPixels(0, 0, kSize, kSize, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
     benchmark::DoNotOptimize(depth.data());
   }
   state.SetItemsProcessed(scans);

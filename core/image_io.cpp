@@ -1,12 +1,11 @@
 #include "core/image_io.hpp"
 
+#include <csetjmp>
 #include <cstdio>
+#include <cstring>
+#include <string>
 
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <opencv2/core/utils/logger.hpp>
-#include <opencv2/imgcodecs.hpp>
+#include <png.h>
 
 #include "core/output_dir.hpp"
 
@@ -14,56 +13,135 @@ namespace campo {
 
 namespace {
 
-// libpng prints its warnings straight to stderr ("libpng warning: iCCP: ..."),
-// and OpenCV logs its own; while an image is coded, both are silenced. Only
-// this thread codes images while it lasts (image I/O is not done concurrently).
-class QuietImageLibraries {
- public:
-  QuietImageLibraries() : level_(cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT)) {
-    std::fflush(stderr);
-    saved_ = ::dup(STDERR_FILENO);
-    const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
-    if (saved_ >= 0 && null >= 0) ::dup2(null, STDERR_FILENO);
-    if (null >= 0) ::close(null);
-  }
-  ~QuietImageLibraries() {
-    std::fflush(stderr);
-    if (saved_ >= 0) {
-      ::dup2(saved_, STDERR_FILENO);
-      ::close(saved_);
-    }
-    cv::utils::logging::setLogLevel(level_);
-  }
-  QuietImageLibraries(const QuietImageLibraries&) = delete;
-  QuietImageLibraries& operator=(const QuietImageLibraries&) = delete;
+constexpr png_uint_32 kMaxSide = 32768;  // pixels; bounds what a small damaged or hostile file may make us allocate
 
- private:
-  cv::utils::logging::LogLevel level_;
-  int saved_ = -1;
+// The functions below run libpng, which reports errors by longjmp to their
+// setjmp: no object with a destructor may live in their frames, so they use
+// only plain data and report by return value.
+
+struct ErrorText {
+  char text[256] = "";
 };
+
+void on_error(png_structp png, png_const_charp message) {
+  auto* error = static_cast<ErrorText*>(png_get_error_ptr(png));
+  std::snprintf(error->text, sizeof error->text, "%s", message);
+  png_longjmp(png, 1);
+}
+
+void on_warning(png_structp, png_const_charp) {}  // the error that may follow says what matters
+
+struct ReadCursor {
+  const char* data;
+  std::size_t size;
+  std::size_t at;
+};
+
+void read_from_memory(png_structp png, png_bytep out, png_size_t count) {
+  auto* cursor = static_cast<ReadCursor*>(png_get_io_ptr(png));
+  if (cursor->size - cursor->at < count) png_error(png, "the file ends early");
+  std::memcpy(out, cursor->data + cursor->at, count);
+  cursor->at += count;
+}
+
+void write_to_string(png_structp png, png_bytep data, png_size_t count) {
+  static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), count);
+}
+
+void flush_nothing(png_structp) {}
+
+bool encode(const cv::Mat& image, int compression, std::string* out, ErrorText* error) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, error, &on_error, &on_warning);
+  if (png == nullptr) return false;
+  png_infop info = png_create_info_struct(png);
+  if (info == nullptr || setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return false;
+  }
+  png_set_write_fn(png, out, &write_to_string, &flush_nothing);
+  png_set_compression_level(png, compression);
+  const int channels = image.channels();
+  const int colour_type = channels == 1 ? PNG_COLOR_TYPE_GRAY : channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGBA;
+  const int bit_depth = image.depth() == CV_16U ? 16 : 8;
+  png_set_IHDR(png, info, static_cast<png_uint_32>(image.cols), static_cast<png_uint_32>(image.rows), bit_depth,
+               colour_type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  if (bit_depth == 16) png_set_swap(png);  // memory is little-endian, PNG big-endian
+  if (channels > 1) png_set_bgr(png);      // OpenCV's channel order
+  for (int r = 0; r < image.rows; ++r) png_write_row(png, image.ptr<png_byte>(r));
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return true;
+}
+
+bool decode(const char* data, std::size_t size, cv::Mat* out, ErrorText* error) {
+  if (size < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(data), 0, 8) != 0) {
+    std::snprintf(error->text, sizeof error->text, "not a PNG file (no PNG signature)");
+    return false;
+  }
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, error, &on_error, &on_warning);
+  if (png == nullptr) return false;
+  png_infop info = png_create_info_struct(png);
+  ReadCursor cursor{data, size, 0};
+  if (info == nullptr || setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    return false;
+  }
+  png_set_read_fn(png, &cursor, &read_from_memory);
+  png_set_user_limits(png, kMaxSide, kMaxSide);
+  png_read_info(png, info);
+  const int colour_type = png_get_color_type(png, info);
+  const int bit_depth = png_get_bit_depth(png, info);
+  if (colour_type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(png);
+  if (colour_type == PNG_COLOR_TYPE_GRAY && bit_depth < 8) png_set_expand_gray_1_2_4_to_8(png);
+  const bool grey = (colour_type & PNG_COLOR_MASK_COLOR) == 0;
+  if (grey) {
+    if (colour_type & PNG_COLOR_MASK_ALPHA) png_set_strip_alpha(png);
+  } else {
+    if (png_get_valid(png, info, PNG_INFO_tRNS)) png_set_tRNS_to_alpha(png);
+    if (bit_depth == 16) png_set_strip_16(png);
+    png_set_bgr(png);
+  }
+  if (grey && bit_depth == 16) png_set_swap(png);
+  const int passes = png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  const int channels = png_get_channels(png, info);
+  const int depth = png_get_bit_depth(png, info) == 16 ? CV_16U : CV_8U;
+  out->create(static_cast<int>(png_get_image_height(png, info)), static_cast<int>(png_get_image_width(png, info)),
+              CV_MAKETYPE(depth, channels));
+  for (int pass = 0; pass < passes; ++pass) {
+    for (int r = 0; r < out->rows; ++r) png_read_row(png, out->ptr<png_byte>(r), nullptr);
+  }
+  png_read_end(png, nullptr);
+  png_destroy_read_struct(&png, &info, nullptr);
+  return true;
+}
 
 }  // namespace
 
-void write_png_file(const cv::Mat& image, const std::filesystem::path& path, const std::vector<int>& params) {
-  std::vector<unsigned char> bytes;
-  bool encoded = false;
-  {
-    QuietImageLibraries quiet;
-    encoded = cv::imencode(".png", image, bytes, params);
+void write_png_file(const cv::Mat& image, const std::filesystem::path& path, int compression) {
+  const int type = image.type();
+  if (image.empty() || (type != CV_8UC1 && type != CV_16UC1 && type != CV_8UC3 && type != CV_8UC4)) {
+    throw OutputError(path, "cannot encode the image as PNG: expected a non-empty 8-bit grey, BGR or BGRA, or "
+                            "16-bit grey image");
   }
-  if (!encoded) throw OutputError(path, "cannot encode the image as PNG");
-  write_file_atomically(path, std::string(bytes.begin(), bytes.end()));
+  const cv::Mat continuous = image.isContinuous() ? image : image.clone();
+  std::string bytes;
+  ErrorText error;
+  if (!encode(continuous, compression, &bytes, &error)) {
+    throw OutputError(path, std::string("cannot encode the image as PNG: ") + error.text);
+  }
+  write_file_atomically(path, bytes);
 }
 
-cv::Mat read_image_file(const std::filesystem::path& path, int flags, std::uintmax_t max_bytes) {
+cv::Mat read_png_file(const std::filesystem::path& path, std::uintmax_t max_bytes) {
   const std::string bytes = read_text_file(path, {.max_file_bytes = max_bytes});
-  if (bytes.empty()) throw InputError(path.string(), "", "expected an image file (PNG), got an empty file");
+  if (bytes.empty()) throw InputError(path.string(), "", "expected a PNG file, got an empty file");
   cv::Mat image;
-  {
-    QuietImageLibraries quiet;
-    image = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data())), flags);
+  ErrorText error;
+  if (!decode(bytes.data(), bytes.size(), &image, &error)) {
+    throw InputError(path.string(), "", std::string("expected a PNG file it can decode: ") + error.text);
   }
-  if (image.empty()) throw InputError(path.string(), "", "expected an image file (PNG), got data it cannot decode");
   return image;
 }
 

@@ -1,12 +1,13 @@
 #pragma once
-/// PNG files in and out without the image library's own chatter: encoded in
-/// memory and written with write_file_atomically (a full disk is one
-/// OutputError with the system's reason, not a libpng message), decoded from
-/// bytes read with a size limit, with libpng's and OpenCV's warnings about a
-/// damaged file kept off the terminal: the error line that follows says what
-/// is wrong.
+/// PNG files in and out with libpng, without the image library's chatter: the
+/// image encoded in memory and written with write_file_atomically (a full
+/// disk is one OutputError with the system's reason, not a libpng message),
+/// decoded from bytes read with a size limit; libpng's warnings about a
+/// damaged file stay off the terminal, the error that follows says what is
+/// wrong. (libpng rather than OpenCV's codecs: those load over a hundred
+/// libraries, GDAL among them, into every process that writes a figure.)
+#include <cstdint>
 #include <filesystem>
-#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -14,11 +15,16 @@
 
 namespace campo {
 
-/// Encodes `image` as PNG with `params` (cv::IMWRITE_*) and writes it atomically; OutputError naming the file.
-void write_png_file(const cv::Mat& image, const std::filesystem::path& path, const std::vector<int>& params = {});
+/// Encodes `image` as PNG at zlib level `compression` (0-9) and writes it
+/// atomically; OutputError naming the file. Types: CV_8UC1 and CV_16UC1
+/// (grey), CV_8UC3 (BGR) and CV_8UC4 (BGRA).
+void write_png_file(const cv::Mat& image, const std::filesystem::path& path, int compression = 1);
 
-/// Reads an image file (cv::IMREAD_* `flags`); InputError naming the file when
-/// it is missing, larger than `max_bytes` or not an image.
-cv::Mat read_image_file(const std::filesystem::path& path, int flags, std::uintmax_t max_bytes = 256u << 20);
+/// Reads a PNG file as it is stored: grey as CV_8UC1 or CV_16UC1, colour as
+/// CV_8UC3 (BGR) or CV_8UC4 (BGRA) (palettes expanded, 16-bit colour reduced
+/// to 8 bits, a grey image's alpha dropped). InputError naming the file when
+/// it is missing, larger than `max_bytes`, not a PNG, damaged, or wider or
+/// taller than 32768 pixels.
+cv::Mat read_png_file(const std::filesystem::path& path, std::uintmax_t max_bytes = 256u << 20);
 
 }  // namespace campo

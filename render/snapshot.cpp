@@ -167,7 +167,7 @@ cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const Snapsho
   // Declared first, destroyed last: the GL names below die in it.
   OsmesaContext context;
   GLint max_size = 0;
-  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+  gl().GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
   if (camera.width_px > max_size || camera.height_px > max_size) {
     throw std::invalid_argument("snapshot camera: at most " + std::to_string(max_size) + " px a side");
   }
@@ -179,13 +179,13 @@ cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const Snapsho
       make_framebuffer(camera.width_px, camera.height_px, GL_RGBA8, GL_DEPTH_COMPONENT32F, kSamples);
   const Framebuffer resolved = make_framebuffer(camera.width_px, camera.height_px, GL_RGBA8, 0);
 
-  glBindFramebuffer(GL_FRAMEBUFFER, multisampled.fbo.id());
-  glViewport(0, 0, camera.width_px, camera.height_px);
-  glEnable(GL_DEPTH_TEST);
-  glEnable(GL_MULTISAMPLE);
-  glDisable(GL_CULL_FACE);
-  glClearColor(static_cast<float>(kSky.r), static_cast<float>(kSky.g), static_cast<float>(kSky.b), 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  gl().BindFramebuffer(GL_FRAMEBUFFER, multisampled.fbo.id());
+  gl().Viewport(0, 0, camera.width_px, camera.height_px);
+  gl().Enable(GL_DEPTH_TEST);
+  gl().Enable(GL_MULTISAMPLE);
+  gl().Disable(GL_CULL_FACE);
+  gl().ClearColor(static_cast<float>(kSky.r), static_cast<float>(kSky.g), static_cast<float>(kSky.b), 1.0f);
+  gl().Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
   // Fog from a few view distances out; nothing beyond it needs drawing.
   const double fog_start = 2.0 * distance;
@@ -194,12 +194,12 @@ cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const Snapsho
       perspective(camera.fov_deg, static_cast<double>(camera.width_px) / camera.height_px,
                   std::max(0.01, 0.002 * distance), fog_end) *
       look_at(camera.eye_m, camera.target_m, camera.up);
-  glUseProgram(program.id());
-  glUniformMatrix4fv(1, 1, GL_FALSE, view_projection.data());
-  glUniform3f(5, static_cast<float>(camera.eye_m.x()), static_cast<float>(camera.eye_m.y()),
+  gl().UseProgram(program.id());
+  gl().UniformMatrix4fv(1, 1, GL_FALSE, view_projection.data());
+  gl().Uniform3f(5, static_cast<float>(camera.eye_m.x()), static_cast<float>(camera.eye_m.y()),
               static_cast<float>(camera.eye_m.z()));
-  glUniform3f(6, static_cast<float>(kSky.r), static_cast<float>(kSky.g), static_cast<float>(kSky.b));
-  glUniform2f(7, static_cast<float>(fog_start), static_cast<float>(fog_end));
+  gl().Uniform3f(6, static_cast<float>(kSky.r), static_cast<float>(kSky.g), static_cast<float>(kSky.b));
+  gl().Uniform2f(7, static_cast<float>(fog_start), static_cast<float>(fog_end));
   // High, behind and a little to the right of the viewer, so that what faces
   // the camera is lit and the sides are shaded apart.
   Eigen::Vector3d back = camera.eye_m - camera.target_m;
@@ -207,23 +207,23 @@ cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const Snapsho
   back = back.norm() > 1e-9 ? back.normalized() : Eigen::Vector3d::UnitX();
   const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
   const Eigen::Vector3f sun = (0.55 * back + 0.3 * up.cross(back) + 0.8 * up).normalized().cast<float>();
-  glUniform3f(8, sun.x(), sun.y(), sun.z());
+  gl().Uniform3f(8, sun.x(), sun.y(), sun.z());
 
   const auto draw = [](const MeshPart& part, const Eigen::Isometry3d& model, float ambient,
                        const Eigen::Vector2f& tint_heights) {
     const Eigen::Matrix4f m = model.matrix().cast<float>();
-    glUniformMatrix4fv(0, 1, GL_FALSE, m.data());
+    gl().UniformMatrix4fv(0, 1, GL_FALSE, m.data());
     const Eigen::Vector3f colour = Eigen::Vector3d(part.color.r, part.color.g, part.color.b).cast<float>();
-    glUniform3f(2, colour.x(), colour.y(), colour.z());
-    glUniform1f(3, ambient);
-    glUniform2f(4, tint_heights.x(), tint_heights.y());
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(part.index_count), GL_UNSIGNED_INT,
+    gl().Uniform3f(2, colour.x(), colour.y(), colour.z());
+    gl().Uniform1f(3, ambient);
+    gl().Uniform2f(4, tint_heights.x(), tint_heights.y());
+    gl().DrawElements(GL_TRIANGLES, static_cast<GLsizei>(part.index_count), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(std::size_t{part.first_index} * sizeof(std::uint32_t)));
   };
   const Eigen::Vector2f no_tint(1.0f, 0.0f);
   constexpr float kAmbient = 0.35f;
 
-  glBindVertexArray(scene_gpu.vao.id());
+  gl().BindVertexArray(scene_gpu.vao.id());
   for (const MeshPart& part : mesh.parts) {
     Eigen::Vector2f tint = no_tint;
     const Shape& shape = scene.shapes[static_cast<std::size_t>(part.shape)];
@@ -238,22 +238,22 @@ cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const Snapsho
     draw(mesh.moving_parts[i], body_poses[i], kAmbient, no_tint);
   }
   if (!tube.indices.empty()) {
-    glBindVertexArray(tube_gpu.vao.id());
+    gl().BindVertexArray(tube_gpu.vao.id());
     const MeshPart part{0, static_cast<std::uint32_t>(tube.indices.size()), kTrajectory, 0};
     draw(part, Eigen::Isometry3d::Identity(), 0.6f, no_tint);
   }
-  glBindVertexArray(marker_gpu.vao.id());
+  gl().BindVertexArray(marker_gpu.vao.id());
   for (const MeshPart& part : marker.parts) draw(part, Eigen::Isometry3d::Identity(), kAmbient, no_tint);
 
   // Resolve the samples, then read BGR rows (bottom-up in GL) into OpenCV's order.
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, multisampled.fbo.id());
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, resolved.fbo.id());
-  glBlitFramebuffer(0, 0, camera.width_px, camera.height_px, 0, 0, camera.width_px, camera.height_px,
+  gl().BindFramebuffer(GL_READ_FRAMEBUFFER, multisampled.fbo.id());
+  gl().BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolved.fbo.id());
+  gl().BlitFramebuffer(0, 0, camera.width_px, camera.height_px, 0, 0, camera.width_px, camera.height_px,
                     GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolved.fbo.id());
+  gl().BindFramebuffer(GL_READ_FRAMEBUFFER, resolved.fbo.id());
   cv::Mat image(camera.height_px, camera.width_px, CV_8UC3);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, camera.width_px, camera.height_px, GL_BGR, GL_UNSIGNED_BYTE, image.data);
+  gl().PixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl().ReadPixels(0, 0, camera.width_px, camera.height_px, GL_BGR, GL_UNSIGNED_BYTE, image.data);
   check_gl("rendering a snapshot");
   cv::flip(image, image, 0);
   return image;

@@ -13,8 +13,9 @@
 
 #include <muParser.h>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
+#include "campo/json_reader.hpp"
+#include "core/image_io.hpp"
 #include "scene/generators_grid.hpp"
 
 namespace campo {
@@ -247,8 +248,12 @@ HeightGrid heightgrid_from_png(const std::filesystem::path& path, const Eigen::V
                              std::to_string(kMaxHeightfieldVertices) + " pixels");
   }
 
-  const cv::Mat image = cv::imread(path.string(), cv::IMREAD_ANYDEPTH | cv::IMREAD_GRAYSCALE);
-  if (image.empty()) throw std::runtime_error("cannot decode PNG file '" + path.string() + "'");
+  cv::Mat image;
+  try {
+    image = read_png_file(path);
+  } catch (const InputError& e) {
+    throw std::runtime_error(e.what());  // the loader names the scene's pointer with it
+  }
   if (image.cols != static_cast<int>(header.width) || image.rows != static_cast<int>(header.height) ||
       (image.type() != CV_8UC1 && image.type() != CV_16UC1)) {
     throw std::runtime_error("PNG file '" + path.string() + "' decoded to an unexpected image");

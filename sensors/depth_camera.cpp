@@ -333,35 +333,33 @@ DepthCamera::DepthCamera(const Scene& scene, const SceneMesh& mesh, const Sensor
   side_planes_[3] = plane(0.0, -1.0, frustum_.half_height);
 
   GLint max_size = 0;
-  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+  gl().GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
   if (frustum_.width_px > max_size || frustum_.height_px > max_size) {
     throw std::invalid_argument("depth camera '" + def_.alias + "': its grid needs a render of " +
                                 std::to_string(frustum_.width_px) + " x " + std::to_string(frustum_.height_px) +
                                 " px, more than the " + std::to_string(max_size) +
                                 " px a side OpenGL allows; use fewer pixels or a narrower field of view");
   }
-  const auto clip_control = reinterpret_cast<PFNGLCLIPCONTROLPROC>(OSMesaGetProcAddress("glClipControl"));
-  if (!clip_control) throw std::runtime_error("OSMesa: no glClipControl");
 
   // The context is this camera's alone, so its state is set once here.
   program_ = make_program(kVertexShader, kFragmentShader);
   mesh_ = upload_mesh(mesh, false);
   target_ = make_framebuffer(frustum_.width_px, frustum_.height_px, 0, GL_DEPTH_COMPONENT32F);
-  clip_control(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-  glViewport(0, 0, frustum_.width_px, frustum_.height_px);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_GREATER);
-  glClearDepth(0.0);
-  glDisable(GL_DITHER);
-  glDisable(GL_MULTISAMPLE);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  gl().ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  gl().Viewport(0, 0, frustum_.width_px, frustum_.height_px);
+  gl().Enable(GL_DEPTH_TEST);
+  gl().DepthFunc(GL_GREATER);
+  gl().ClearDepth(0.0);
+  gl().Disable(GL_DITHER);
+  gl().Disable(GL_MULTISAMPLE);
+  gl().PixelStorei(GL_PACK_ALIGNMENT, 1);
   const Eigen::Matrix4f projection = projection_matrix(frustum_);
   near_program_ = make_program(kVertexShader, kNearFragmentShader);
-  glUseProgram(near_program_.id());
-  glUniformMatrix4fv(1, 1, GL_FALSE, projection.data());
-  glUniform1f(2, static_cast<float>(c.min_range_m * c.min_range_m));
-  glUseProgram(program_.id());
-  glUniformMatrix4fv(1, 1, GL_FALSE, projection.data());
+  gl().UseProgram(near_program_.id());
+  gl().UniformMatrix4fv(1, 1, GL_FALSE, projection.data());
+  gl().Uniform1f(2, static_cast<float>(c.min_range_m * c.min_range_m));
+  gl().UseProgram(program_.id());
+  gl().UniformMatrix4fv(1, 1, GL_FALSE, projection.data());
   check_gl("setting up the depth camera");
 }
 
@@ -439,25 +437,25 @@ void DepthCamera::render(const Eigen::Isometry3d& sensor_pose, std::span<const E
   }
 
   context_.make_current();
-  glUseProgram(close_by ? near_program_.id() : program_.id());
+  gl().UseProgram(close_by ? near_program_.id() : program_.id());
   if (!close_by && back_faces_hidden(sensor_pose.translation())) {
-    glEnable(GL_CULL_FACE);
+    gl().Enable(GL_CULL_FACE);
   } else {
-    glDisable(GL_CULL_FACE);
+    gl().Disable(GL_CULL_FACE);
   }
-  glClear(GL_DEPTH_BUFFER_BIT);
+  gl().Clear(GL_DEPTH_BUFFER_BIT);
   if (!draw_counts_.empty()) {
-    glUniformMatrix4fv(0, 1, GL_FALSE, view.matrix().data());
-    glMultiDrawElements(GL_TRIANGLES, draw_counts_.data(), GL_UNSIGNED_INT, draw_offsets_.data(),
+    gl().UniformMatrix4fv(0, 1, GL_FALSE, view.matrix().data());
+    gl().MultiDrawElements(GL_TRIANGLES, draw_counts_.data(), GL_UNSIGNED_INT, draw_offsets_.data(),
                         static_cast<GLsizei>(draw_counts_.size()));
   }
   for (const std::size_t i : visible_movers_) {
     const Chunk& chunk = mover_chunks_[i];
-    glUniformMatrix4fv(0, 1, GL_FALSE, mover_model_views_[i].data());
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(chunk.index_count), GL_UNSIGNED_INT,
+    gl().UniformMatrix4fv(0, 1, GL_FALSE, mover_model_views_[i].data());
+    gl().DrawElements(GL_TRIANGLES, static_cast<GLsizei>(chunk.index_count), GL_UNSIGNED_INT,
                    reinterpret_cast<const void*>(std::size_t{chunk.first_index} * sizeof(std::uint32_t)));
   }
-  glReadPixels(0, 0, frustum_.width_px, frustum_.height_px, GL_DEPTH_COMPONENT, GL_FLOAT, inverse_depth_.data());
+  gl().ReadPixels(0, 0, frustum_.width_px, frustum_.height_px, GL_DEPTH_COMPONENT, GL_FLOAT, inverse_depth_.data());
   check_gl("rendering a depth image");
   // Window depth d = near (far - z) / ((far - near) z) becomes w = d (far -
   // near) + near = near * far / z, or 0 where nothing was drawn (d = 0).

@@ -16,21 +16,21 @@ OsmesaContext::OsmesaContext() {
       OSMESA_CONTEXT_MAJOR_VERSION, 4,
       OSMESA_CONTEXT_MINOR_VERSION, 5,
       0};
-  context_ = OSMesaCreateContextAttribs(attributes, nullptr);
+  context_ = gl().CreateContextAttribs(attributes, nullptr);
   if (!context_) throw std::runtime_error("OSMesa: cannot create an OpenGL 4.5 core context");
   if (!bind()) {
-    OSMesaDestroyContext(context_);
+    gl().DestroyContext(context_);
     throw std::runtime_error("OSMesa: cannot make the context current");
   }
 }
 
 OsmesaContext::~OsmesaContext() {
-  if (OSMesaGetCurrentContext() == context_) OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
-  OSMesaDestroyContext(context_);
+  if (gl().GetCurrentContext() == context_) gl().MakeCurrent(nullptr, nullptr, 0, 0, 0);
+  gl().DestroyContext(context_);
 }
 
 bool OsmesaContext::bind() noexcept {
-  return OSMesaMakeCurrent(context_, &window_pixel_, GL_UNSIGNED_BYTE, 1, 1) == GL_TRUE;
+  return gl().MakeCurrent(context_, &window_pixel_, GL_UNSIGNED_BYTE, 1, 1) == GL_TRUE;
 }
 
 void OsmesaContext::make_current() {
@@ -38,7 +38,7 @@ void OsmesaContext::make_current() {
 }
 
 void check_gl(const char* what) {
-  const GLenum error = glGetError();
+  const GLenum error = gl().GetError();
   if (error != GL_NO_ERROR) {
     char code[16];
     std::snprintf(code, sizeof code, "0x%04x", error);
@@ -49,19 +49,19 @@ void check_gl(const char* what) {
 namespace {
 
 // A shader object; once attached, the program keeps it alive.
-using GlShader = GlName<&glDeleteShader>;
+using GlShader = GlName<&gl_delete_shader>;
 
 GlShader compile(GLenum stage, const char* source) {
-  GlShader shader(glCreateShader(stage));
-  glShaderSource(shader.id(), 1, &source, nullptr);
-  glCompileShader(shader.id());
+  GlShader shader(gl().CreateShader(stage));
+  gl().ShaderSource(shader.id(), 1, &source, nullptr);
+  gl().CompileShader(shader.id());
   GLint ok = GL_FALSE;
-  glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
+  gl().GetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
   if (!ok) {
     GLint length = 0;
-    glGetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &length);
+    gl().GetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-    glGetShaderInfoLog(shader.id(), length, nullptr, log.data());
+    gl().GetShaderInfoLog(shader.id(), length, nullptr, log.data());
     throw std::runtime_error("OpenGL: shader does not compile: " + log);
   }
   return shader;
@@ -72,17 +72,17 @@ GlShader compile(GLenum stage, const char* source) {
 GlProgram make_program(const char* vertex_source, const char* fragment_source) {
   const GlShader vertex = compile(GL_VERTEX_SHADER, vertex_source);
   const GlShader fragment = compile(GL_FRAGMENT_SHADER, fragment_source);
-  GlProgram program(glCreateProgram());
-  glAttachShader(program.id(), vertex.id());
-  glAttachShader(program.id(), fragment.id());
-  glLinkProgram(program.id());
+  GlProgram program(gl().CreateProgram());
+  gl().AttachShader(program.id(), vertex.id());
+  gl().AttachShader(program.id(), fragment.id());
+  gl().LinkProgram(program.id());
   GLint ok = GL_FALSE;
-  glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+  gl().GetProgramiv(program.id(), GL_LINK_STATUS, &ok);
   if (!ok) {
     GLint length = 0;
-    glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
+    gl().GetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
     std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-    glGetProgramInfoLog(program.id(), length, nullptr, log.data());
+    gl().GetProgramInfoLog(program.id(), length, nullptr, log.data());
     throw std::runtime_error("OpenGL: program does not link: " + log);
   }
   return program;
@@ -92,29 +92,29 @@ Framebuffer make_framebuffer(int width_px, int height_px, GLenum colour_format, 
                              int samples) {
   Framebuffer fb;
   GLuint id = 0;
-  glGenFramebuffers(1, &id);
+  gl().GenFramebuffers(1, &id);
   fb.fbo = GlFramebuffer(id);
-  glBindFramebuffer(GL_FRAMEBUFFER, id);
+  gl().BindFramebuffer(GL_FRAMEBUFFER, id);
   const auto attach = [&](GLenum format, GLenum attachment) {
     GLuint rb = 0;
-    glGenRenderbuffers(1, &rb);
-    glBindRenderbuffer(GL_RENDERBUFFER, rb);
+    gl().GenRenderbuffers(1, &rb);
+    gl().BindRenderbuffer(GL_RENDERBUFFER, rb);
     if (samples > 1) {
-      glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, width_px, height_px);
+      gl().RenderbufferStorageMultisample(GL_RENDERBUFFER, samples, format, width_px, height_px);
     } else {
-      glRenderbufferStorage(GL_RENDERBUFFER, format, width_px, height_px);
+      gl().RenderbufferStorage(GL_RENDERBUFFER, format, width_px, height_px);
     }
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, rb);
+    gl().FramebufferRenderbuffer(GL_FRAMEBUFFER, attachment, GL_RENDERBUFFER, rb);
     return GlRenderbuffer(rb);
   };
   if (colour_format != 0) {
     fb.colour = attach(colour_format, GL_COLOR_ATTACHMENT0);
   } else {
-    glDrawBuffer(GL_NONE);
-    glReadBuffer(GL_NONE);
+    gl().DrawBuffer(GL_NONE);
+    gl().ReadBuffer(GL_NONE);
   }
   if (depth_format != 0) fb.depth = attach(depth_format, GL_DEPTH_ATTACHMENT);
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+  if (gl().CheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     throw std::runtime_error("OpenGL: frame buffer of " + std::to_string(width_px) + " x " +
                              std::to_string(height_px) + " px is incomplete");
   }
@@ -125,24 +125,24 @@ Framebuffer make_framebuffer(int width_px, int height_px, GLenum colour_format, 
 GpuMesh upload_mesh(const SceneMesh& mesh, bool with_normals) {
   GpuMesh gpu;
   GLuint id = 0;
-  glGenVertexArrays(1, &id);
+  gl().GenVertexArrays(1, &id);
   gpu.vao = GlVertexArray(id);
-  glBindVertexArray(id);
+  gl().BindVertexArray(id);
   const auto buffer = [](GLenum target, std::size_t bytes, const void* data) {
     GLuint name = 0;
-    glGenBuffers(1, &name);
-    glBindBuffer(target, name);
-    glBufferData(target, static_cast<GLsizeiptr>(bytes), data, GL_STATIC_DRAW);
+    gl().GenBuffers(1, &name);
+    gl().BindBuffer(target, name);
+    gl().BufferData(target, static_cast<GLsizeiptr>(bytes), data, GL_STATIC_DRAW);
     return GlBuffer(name);
   };
   static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float));
   gpu.positions = buffer(GL_ARRAY_BUFFER, mesh.positions.size() * sizeof(Eigen::Vector3f), mesh.positions.data());
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glEnableVertexAttribArray(0);
+  gl().VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  gl().EnableVertexAttribArray(0);
   if (with_normals) {
     gpu.normals = buffer(GL_ARRAY_BUFFER, mesh.normals.size() * sizeof(Eigen::Vector3f), mesh.normals.data());
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-    glEnableVertexAttribArray(1);
+    gl().VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    gl().EnableVertexAttribArray(1);
   }
   gpu.indices =
       buffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indices.size() * sizeof(std::uint32_t), mesh.indices.data());

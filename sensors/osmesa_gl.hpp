@@ -4,12 +4,7 @@
 /// buffers and a SceneMesh on the GPU. Every GL call needs the owning
 /// context current on the calling thread; an owner of GL names makes its
 /// context current in its destructor so the names are deleted there.
-#ifndef GL_GLEXT_PROTOTYPES
-#define GL_GLEXT_PROTOTYPES 1  // libOSMesa exports the GL 4.5 entry points
-#endif
-#include <GL/osmesa.h>
-#include <GL/gl.h>
-#include <GL/glext.h>
+#include "sensors/gl_api.hpp"
 
 #include <cstdint>
 #include <utility>
@@ -65,16 +60,19 @@ class GlName {
   GLuint id_ = 0;
 };
 
-inline void gl_delete_buffer(GLuint id) { glDeleteBuffers(1, &id); }
-inline void gl_delete_vertex_array(GLuint id) { glDeleteVertexArrays(1, &id); }
-inline void gl_delete_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
-inline void gl_delete_renderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
+inline void gl_delete_buffer(GLuint id) { gl().DeleteBuffers(1, &id); }
+inline void gl_delete_vertex_array(GLuint id) { gl().DeleteVertexArrays(1, &id); }
+inline void gl_delete_framebuffer(GLuint id) { gl().DeleteFramebuffers(1, &id); }
+inline void gl_delete_renderbuffer(GLuint id) { gl().DeleteRenderbuffers(1, &id); }
+
+inline void gl_delete_program(GLuint id) { gl().DeleteProgram(id); }
+inline void gl_delete_shader(GLuint id) { gl().DeleteShader(id); }
 
 using GlBuffer = GlName<&gl_delete_buffer>;
 using GlVertexArray = GlName<&gl_delete_vertex_array>;
 using GlFramebuffer = GlName<&gl_delete_framebuffer>;
 using GlRenderbuffer = GlName<&gl_delete_renderbuffer>;
-using GlProgram = GlName<&glDeleteProgram>;
+using GlProgram = GlName<&gl_delete_program>;
 
 /// Throws std::runtime_error naming `what` if GL has recorded an error.
 void check_gl(const char* what);

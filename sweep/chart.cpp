@@ -5,7 +5,6 @@
 #include <optional>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
 
 #include "core/image_io.hpp"
 #include "render/figure_canvas.hpp"

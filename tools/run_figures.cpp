@@ -5,7 +5,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
 
 #include "campo/json_reader.hpp"
 #include "core/image_io.hpp"
@@ -19,7 +18,7 @@ namespace {
 
 std::filesystem::path write_png(const cv::Mat& image, const std::filesystem::path& path) {
   // Fixed compression settings: the same figure gives the same bytes.
-  write_png_file(image, path, {cv::IMWRITE_PNG_COMPRESSION, 6});
+  write_png_file(image, path, 6);
   return path;
 }
 
@@ -33,7 +32,7 @@ std::string record_file(const RecordedRun& run) { return (run.dir / "run.json").
 
 // A recorded depth map (16-bit PNG, sensors/depth_image.hpp) back as CV_32F in [0, 1].
 cv::Mat read_depth_png(const std::filesystem::path& file) {
-  const cv::Mat gray16 = read_image_file(file, cv::IMREAD_UNCHANGED);
+  const cv::Mat gray16 = read_png_file(file);
   if (gray16.type() != CV_16U) throw InputError(file.string(), "", "expected a 16-bit grey depth map");
   cv::Mat depth;
   gray16.convertTo(depth, CV_32F, 1.0 / 65535.0);

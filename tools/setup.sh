@@ -15,7 +15,7 @@ packages=(
   build-essential cmake pkg-config
   libbullet-dev libeigen3-dev libopencv-dev libosmesa6-dev libcli11-dev
   nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
-  libmuparser-dev libssl-dev liboctomap-dev libnanoflann-dev
+  libmuparser-dev libssl-dev liboctomap-dev libnanoflann-dev libpng-dev
   # The Python module (python/): pybind11 against Debian's /usr/bin/python3 and its
   # numpy and pandas; matplotlib for the example analysis script.
   pybind11-dev python3-dev python3-numpy python3-pandas python3-matplotlib
