@@ -64,6 +64,12 @@ void write_all(int fd, const char* data, std::size_t size) {
     message = std::string(1, kThrew) + "an exception that is not a std::exception";
   }
   write_all(result_fd, message.data(), message.size());
+  // Closed before exiting, so the parent has the result at once: the kernel's
+  // teardown of this process (milliseconds for one that rendered with OSMesa)
+  // then overlaps the next run instead of delaying it.
+  ::close(result_fd);
+  ::close(STDOUT_FILENO);
+  ::close(STDERR_FILENO);
   // No destructors, no atexit handlers, no flushing of the parent's buffered output.
   ::_exit(0);
 }
@@ -134,6 +140,21 @@ JobOutcome outcome_of(const Child& child, int status, const ProcessPoolConfig& c
   return outcome;
 }
 
+// Whether the child sent a complete result of a job that returned (it then exits with 0).
+bool returned_result(const Child& child) {
+  return !child.killed && child.result.size() >= 1 + sizeof(double) && child.result.front() == kReturned;
+}
+
+// Reaps the children in `exiting` that have exited (all of them, waiting, when `wait`).
+void reap_exited(std::vector<pid_t>& exiting, bool wait) {
+  std::erase_if(exiting, [wait](pid_t pid) {
+    pid_t reaped;
+    while ((reaped = ::waitpid(pid, nullptr, wait ? 0 : WNOHANG)) < 0 && errno == EINTR) {
+    }
+    return reaped != 0;
+  });
+}
+
 // Kills and reaps every child: the caller is leaving (an exception in on_done).
 void kill_all(std::vector<Child>& running) {
   for (Child& c : running) {
@@ -188,6 +209,7 @@ void run_isolated(std::size_t count, const std::function<std::string(std::size_t
                   const ProcessPoolConfig& config, const std::function<void()>& on_tick) {
   if (config.jobs < 1) throw std::invalid_argument("run_isolated: jobs must be >= 1");
   std::vector<Child> running;
+  std::vector<pid_t> exiting;  // returned their result, not yet reaped
   std::size_t next = 0;
   Clock::time_point last_tick = Clock::now();
   try {
@@ -216,9 +238,16 @@ void run_isolated(std::size_t count, const std::function<std::string(std::size_t
           if (p.fd == c.log_fd) drain(c.log_fd, c.log, kTailBytes);
         }
         if (c.result_fd < 0 && c.log_fd < 0) {
-          // Both pipes closed: the child has exited (or is exiting).
+          // Both pipes closed: the child is exiting. One that returned its
+          // result closed them just before _exit(0): reaped later, while the
+          // next run starts. Any other is waited for, for its exit status.
           int status = 0;
-          while (::waitpid(c.pid, &status, 0) < 0 && errno == EINTR) {
+          pid_t reaped = ::waitpid(c.pid, &status, WNOHANG);
+          if (reaped == 0 && returned_result(c)) {
+            exiting.push_back(c.pid);
+          } else {
+            while (reaped <= 0 && (reaped = ::waitpid(c.pid, &status, 0)) < 0 && errno == EINTR) {
+            }
           }
           const JobOutcome outcome = outcome_of(c, status, config);
           const std::size_t index = c.index;
@@ -232,13 +261,16 @@ void run_isolated(std::size_t count, const std::function<std::string(std::size_t
         }
         ++it;
       }
+      reap_exited(exiting, false);
       if (on_tick && seconds_since(last_tick) >= config.tick_s) {
         last_tick = Clock::now();
         on_tick();
       }
     }
+    reap_exited(exiting, true);
   } catch (...) {
     kill_all(running);
+    reap_exited(exiting, true);
     throw;
   }
 }

@@ -2,6 +2,7 @@
 // never shared; results come back whatever the completion order.
 #include "sweep/process_pool.hpp"
 
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -9,6 +10,8 @@
 #include <map>
 #include <stdexcept>
 #include <thread>
+
+#include <sys/wait.h>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -37,6 +40,17 @@ TEST(ProcessPool, ReturnsEveryJobsOutputOnce) {
       EXPECT_GE(o.wall_time_s, o.work_time_s);
     }
   }
+}
+
+// A child that returned is reaped without holding up the next job, and none is left behind.
+TEST(ProcessPool, ReturnedChildrenAreReapedAndNoneIsLeft) {
+  const auto outcomes = run_all(20, [](std::size_t i) { return std::to_string(i); }, {.jobs = 2});
+  ASSERT_EQ(outcomes.size(), 20u);
+  for (const auto& [i, o] : outcomes) EXPECT_TRUE(o.ok) << o.reason;
+  // Every child has been waited for: there is no child left to wait for.
+  errno = 0;
+  EXPECT_EQ(::waitpid(-1, nullptr, WNOHANG), -1);
+  EXPECT_EQ(errno, ECHILD);
 }
 
 TEST(ProcessPool, AJobCannotChangeTheCallersMemory) {
