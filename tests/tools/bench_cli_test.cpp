@@ -1,0 +1,65 @@
+// campo bench's records and regression check: the figures with their
+// provenance, and --compare flagging exactly the figures slower than a baseline.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/cli_support.hpp"
+
+namespace campo {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+class BenchCli : public testing::CliTest {};
+
+TEST_F(BenchCli, WritesFiguresWithProvenanceAndComparesThem) {
+  const std::string record = (dir_ / "base.json").string();
+  const auto measured = campo("bench episodes --episode-time 1 --json " + record);
+  ASSERT_EQ(measured.exit_code, 0) << measured.err;
+  const nlohmann::json base = nlohmann::json::parse(testing::slurp(record));
+  EXPECT_EQ(base["campo_bench"], 1);
+  for (const char* key : {"campo_version", "git_revision", "date", "command", "machine"}) {
+    EXPECT_TRUE(base["provenance"].contains(key)) << key;
+  }
+  EXPECT_THAT(base["provenance"]["command"].get<std::string>(), HasSubstr("campo bench episodes"));
+  ASSERT_EQ(base["figures"].size(), 6u);  // two scenes x no sensor, 64 and 256 beams a side
+  EXPECT_EQ(base["figures"][0]["id"], "episode/trees_rolling_terrain/0");
+  EXPECT_EQ(base["figures"][0]["unit"], "physics steps/s");
+
+  // A baseline half as fast: nothing regressed.
+  nlohmann::json slow = base;
+  for (auto& f : slow["figures"]) f["value"] = f["value"].get<double>() / 2;
+  const auto better = campo("bench episodes --episode-time 1 --compare " + write("slow.json", slow.dump()));
+  EXPECT_EQ(better.exit_code, 0) << better.err;
+  EXPECT_THAT(better.out, Not(HasSubstr("SLOWER")));
+
+  // One figure three times as fast in the baseline: that one, and only that one, regressed (exit 3).
+  nlohmann::json fast = slow;
+  fast["figures"][3]["value"] = base["figures"][3]["value"].get<double>() * 3;
+  const auto worse = campo("bench episodes --episode-time 1 --compare " + write("fast.json", fast.dump()));
+  EXPECT_EQ(worse.exit_code, 3) << worse.err;
+  const auto slower = testing::lines_of(worse.out);
+  int flagged = 0;
+  for (const std::string& line : slower) {
+    if (line.find("SLOWER") == std::string::npos) continue;
+    ++flagged;
+    EXPECT_THAT(line, HasSubstr(fast["figures"][3]["id"].get<std::string>()));
+  }
+  EXPECT_EQ(flagged, 1);
+}
+
+TEST_F(BenchCli, ABadBaselineIsBadInputBeforeMeasuring) {
+  const auto missing = campo("bench --compare " + write("b.json", R"({"campo_bench": 1, "figures": []})"));
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_THAT(missing.err, HasSubstr("b.json: missing required key \"provenance\""));
+  const auto bad_value = campo("bench --compare " + write("v.json", R"({"campo_bench": 1, "provenance": {},
+    "figures": [{"id": "episode/vineyard/0", "value": -3}]})"));
+  EXPECT_EQ(bad_value.exit_code, 2);
+  EXPECT_THAT(bad_value.err, HasSubstr("v.json: /figures/0/value: expected a number > 0"));
+  EXPECT_EQ(bad_value.out, "");  // nothing measured
+}
+
+}  // namespace
+}  // namespace campo
