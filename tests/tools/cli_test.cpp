@@ -358,17 +358,18 @@ TEST_F(Cli, SeedsAreIntegersFromZeroTo2To64Minus1) {
 
 TEST_F(Cli, BenchEpisodesRunsBothVehicles) {
   // A short episode per case: the rover in the vineyard runs `straight` without the scene's rover_route parameters.
-  const Result r = campo("bench episodes --episode-time 1 --json");
+  const Result r = campo("bench episodes --episode-time 1 --json " + (dir_ / "bench.json").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto lines = campo::testing::lines_of(r.out);
-  ASSERT_EQ(lines.size(), 6u) << r.out;
+  EXPECT_EQ(campo::testing::lines_of(r.out).size(), 6u) << r.out;
+  const auto figures = nlohmann::json::parse(campo::testing::slurp(dir_ / "bench.json"))["figures"];
+  ASSERT_EQ(figures.size(), 6u);
   const int resolutions[] = {0, 64, 256};
-  for (std::size_t i = 0; i < lines.size(); ++i) {
-    const auto j = nlohmann::json::parse(lines[i]);
+  for (std::size_t i = 0; i < figures.size(); ++i) {
+    const auto& j = figures[i];
     EXPECT_EQ(j["vehicle"], i < 3 ? "quadrotor" : "rover");
     EXPECT_EQ(j["scene"], i < 3 ? "trees_rolling_terrain" : "vineyard");
     EXPECT_EQ(j["sensor_resolution"], resolutions[i % 3]);
-    EXPECT_NEAR(j["sim_time_s"].get<double>(), 1.0, 1e-9) << lines[i];
+    EXPECT_NEAR(j["sim_time_s"].get<double>(), 1.0, 1e-9) << j;
     EXPECT_GT(j["real_time_factor"].get<double>(), 0.0);
   }
 }
