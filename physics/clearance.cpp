@@ -38,12 +38,6 @@ bool covers(const btVector3& lo, const btVector3& hi, const btVector3& inner_lo,
   return true;
 }
 
-// The heightfield cell holding local coordinate v along an axis of
-// `vertices` vertices `spacing` apart (vertex k at (k - (vertices - 1) / 2)
-// spacing), clamped to the grid.
-int cell_of(double v, double spacing, int vertices) {
-  return static_cast<int>(std::clamp(std::floor(v / spacing + 0.5 * (vertices - 1)), 0.0, double(vertices - 2)));
-}
 
 // Heightfield triangles near a vehicle body: gathered with the distance of
 // their box from the body's box, then measured nearest box first, so that
@@ -123,66 +117,8 @@ void ClearanceQuery::add_static_obstacle(const btConvexShape& shape, const btTra
 void ClearanceQuery::add_moving_obstacle(const btCollisionObject& body, int id) { moving_.push_back({&body, id}); }
 
 void ClearanceQuery::add_ground(const btCollisionObject& body, const HeightGrid* grid) {
-  Ground ground{&body, {}};
-  if (grid) {
-    HeightBlocks& b = ground.blocks;
-    b.cols = grid->cols;
-    b.rows = grid->rows;
-    b.dx = grid->spacing_x_m;
-    b.dy = grid->spacing_y_m;
-    b.blocks_x = (grid->cols - 2) / HeightBlocks::kBlock + 1;
-    b.blocks_y = (grid->rows - 2) / HeightBlocks::kBlock + 1;
-    b.top_m.assign(static_cast<std::size_t>(b.blocks_x) * b.blocks_y, -kInfinity);
-    const double mid = 0.5 * (grid->min_height_m() + grid->max_height_m());
-    b.grid = grid;
-    b.mid_m = mid;
-    // A block's cells span vertices [k kBlock, (k+1) kBlock]: shared edges count in both.
-    for (int r = 0; r < grid->rows; ++r) {
-      for (int c = 0; c < grid->cols; ++c) {
-        const double h = grid->at(c, r) - mid;
-        for (int by = std::max(0, (r - 1) / HeightBlocks::kBlock); by <= std::min(b.blocks_y - 1, r / HeightBlocks::kBlock); ++by) {
-          for (int bx = std::max(0, (c - 1) / HeightBlocks::kBlock); bx <= std::min(b.blocks_x - 1, c / HeightBlocks::kBlock); ++bx) {
-            double& top = b.top_m[static_cast<std::size_t>(by) * b.blocks_x + bx];
-            top = std::max(top, h);
-          }
-        }
-      }
-    }
-  }
+  Ground ground{&body, grid ? HeightBlocks(*grid) : HeightBlocks()};
   ground_.push_back(std::move(ground));
-}
-
-void ClearanceQuery::HeightBlocks::triangles_under(const btVector3& lo, const btVector3& hi,
-                                                  btTriangleCallback& callback) const {
-  const int c0 = cell_of(lo.x(), dx, cols), c1 = cell_of(hi.x(), dx, cols);
-  const int r0 = cell_of(lo.y(), dy, rows), r1 = cell_of(hi.y(), dy, rows);
-  const auto vertex = [this](int c, int r) {
-    return btVector3((c - 0.5 * (cols - 1)) * dx, (r - 0.5 * (rows - 1)) * dy, grid->at(c, r) - mid_m);
-  };
-  btVector3 v[3];
-  for (int r = r0; r <= r1; ++r) {
-    for (int c = c0; c <= c1; ++c) {
-      // Bullet's split of a cell (no flipped, diamond or zigzag edges).
-      v[0] = vertex(c, r);
-      v[1] = vertex(c, r + 1);
-      v[2] = vertex(c + 1, r);
-      callback.processTriangle(v, 0, 0);
-      v[0] = vertex(c + 1, r);
-      v[1] = vertex(c, r + 1);
-      v[2] = vertex(c + 1, r + 1);
-      callback.processTriangle(v, 0, 0);
-    }
-  }
-}
-
-double ClearanceQuery::HeightBlocks::highest(double x0, double x1, double y0, double y1) const {
-  const int bx0 = cell_of(x0, dx, cols) / kBlock, bx1 = cell_of(x1, dx, cols) / kBlock;
-  const int by0 = cell_of(y0, dy, rows) / kBlock, by1 = cell_of(y1, dy, rows) / kBlock;
-  double top = -kInfinity;
-  for (int by = by0; by <= by1; ++by) {
-    for (int bx = bx0; bx <= bx1; ++bx) top = std::max(top, top_m[static_cast<std::size_t>(by) * blocks_x + bx]);
-  }
-  return top;
 }
 
 void ClearanceQuery::find_vehicle(const btCollisionWorld& world) {
@@ -387,7 +323,7 @@ void ClearanceQuery::nearest_ground(double cutoff_m, Clearance& out) {
       mine->getAabb(triangles.body_pose, triangles.body_min, triangles.body_max);
       // Terrain under the reach of the cutoff that lies lower than the
       // cutoff below the body cannot be nearer than it.
-      if (!g.blocks.top_m.empty() && std::isfinite(cutoff_m)) {
+      if (!g.blocks.empty() && std::isfinite(cutoff_m)) {
         const btVector3& lo = triangles.body_min;
         const btVector3& hi = triangles.body_max;
         const double top = g.blocks.highest(lo.x() - cutoff_m, hi.x() + cutoff_m, lo.y() - cutoff_m, hi.y() + cutoff_m);
@@ -399,7 +335,7 @@ void ClearanceQuery::nearest_ground(double cutoff_m, Clearance& out) {
         const btVector3 pad(radius, radius, radius);
         // Bullet's own triangles, read from the heights it was given
         // without its per-vertex virtual calls.
-        if (g.blocks.grid) {
+        if (!g.blocks.empty()) {
           g.blocks.triangles_under(triangles.body_min - pad, triangles.body_max + pad, triangles);
         } else {
           terrain->processAllTriangles(&triangles, triangles.body_min - pad, triangles.body_max + pad);

@@ -10,6 +10,7 @@
 #include <LinearMath/btTransform.h>
 
 #include "campo/world.hpp"
+#include "physics/height_blocks.hpp"
 
 class btCollisionObject;
 class btCollisionWorld;
@@ -63,21 +64,6 @@ class ClearanceQuery {
   struct MovingObstacle {
     const btCollisionObject* body;
     int id;
-  };
-  // Highest vertex of each block of kBlock x kBlock cells of a heightfield,
-  // in Bullet's frame of the heightfield (centred, heights less `mid_m`).
-  struct HeightBlocks {
-    static constexpr int kBlock = 8;
-    int cols = 0, rows = 0;  // vertices
-    double dx = 1.0, dy = 1.0;
-    int blocks_x = 0, blocks_y = 0;
-    std::vector<double> top_m;
-    const HeightGrid* grid = nullptr;
-    double mid_m = 0.0;  // Bullet centres the heights on the middle of their range
-    // The highest terrain over local x in [x0, x1], y in [y0, y1].
-    double highest(double x0, double x1, double y0, double y1) const;
-    // Hands every triangle of the cells under [lo, hi] (x, y) to `callback`.
-    void triangles_under(const btVector3& lo, const btVector3& hi, btTriangleCallback& callback) const;
   };
   struct Ground {
     const btCollisionObject* body;

@@ -1,6 +1,7 @@
 #include "campo/world.hpp"
 #include "physics/bullet_convert.hpp"
 #include "physics/clearance.hpp"
+#include "physics/terrain_shape.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -100,13 +101,7 @@ struct World::Impl {
       case ShapeType::plane:
         return std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0.0);
       case ShapeType::heightfield: {
-        const HeightGrid& grid = *shape.terrain;
-        auto terrain = std::make_unique<btHeightfieldTerrainShape>(
-            grid.cols, grid.rows, grid.heights_m.data(), grid.min_height_m(), grid.max_height_m(),
-            2, false);
-        terrain->setLocalScaling(btVector3(grid.spacing_x_m, grid.spacing_y_m, 1.0));
-        terrain->buildAccelerator();
-        return terrain;
+        return std::make_unique<TerrainShape>(*shape.terrain);
       }
     }
     throw std::logic_error("unhandled shape type");
