@@ -1,0 +1,177 @@
+// campo's LIDAR against Embree's own triangles cast as a stream (docs/PERFORMANCE.md,
+// "Peers"): scanner3d scans (256 x 256 beams, 90 x 90 deg, 10 m) from each scene's
+// vehicle, turned 0.05 rad per scan, one thread. campo casts them with its
+// RayCaster (analytic primitives and its watertight heightfield walk, in double);
+// the peer casts the same rays with rtcIntersect1M (coherent) against the same
+// scene as Embree triangles (build_scene_mesh: the heightfield exactly as Bullet
+// triangulates it, round shapes tessellated with 64 segments), robust and
+// high-quality BVH. Repetitions interleave in one process; the figure is rays per
+// second, median of the repetitions. Scenes: trees_rolling_terrain, vineyard, and
+// trees_rolling_terrain's terrain alone.
+//
+//   build/campo_peer_lidar [--scans N] [--repetitions K]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <embree3/rtcore.h>
+
+#include "campo/scene_loader.hpp"
+#include "scene/scene_mesh.hpp"
+#include "sensors/lidar.hpp"
+#include "sensors/raycaster.hpp"
+
+namespace campo {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr float kMinRange_m = 0.1f, kMaxRange_m = 10.0f;
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// The scans' rays: one origin and the world directions of every scan.
+struct Scans {
+  std::vector<Eigen::Vector3d> origins;
+  std::vector<std::vector<Eigen::Vector3f>> directions;
+};
+
+Scans scanner3d_scans(const Scene& scene, int count) {
+  LidarConfig config = *lidar_preset("scanner3d");
+  config.cols = config.rows = 256;
+  const std::vector<Beam> beams = lidar_beams(config);
+  const Eigen::Isometry3d mount = scene.vehicles.front().pose * to_isometry(config.mount);
+  Scans scans;
+  for (int i = 0; i < count; ++i) {
+    Eigen::Isometry3d pose = mount;
+    pose.linear() = Eigen::AngleAxisd(0.05 * i, Eigen::Vector3d::UnitZ()) * mount.linear();
+    scans.origins.push_back(pose.translation());
+    std::vector<Eigen::Vector3f> world;
+    const Eigen::Matrix3f rotation = pose.linear().cast<float>();
+    for (const Beam& b : beams) world.push_back(rotation * beam_direction(b));
+    scans.directions.push_back(std::move(world));
+  }
+  return scans;
+}
+
+double campo_rate(const Scene& scene, const Scans& scans, std::size_t& hits) {
+  const RayCaster caster(scene);
+  std::vector<RayHit> out(scans.directions.front().size());
+  hits = 0;
+  const auto start = Clock::now();
+  for (std::size_t s = 0; s < scans.origins.size(); ++s) {
+    caster.cast(scans.origins[s], scans.directions[s], kMinRange_m, kMaxRange_m, out);
+    for (const RayHit& h : out) hits += h.shape != RayHit::kNoShape;
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return static_cast<double>(scans.origins.size() * out.size()) / seconds;
+}
+
+// Embree's triangles of `scene`, cast as a coherent stream.
+class EmbreeTriangles {
+ public:
+  explicit EmbreeTriangles(const Scene& scene) : device_(rtcNewDevice("threads=1")) {
+    const SceneMesh mesh = build_scene_mesh(scene);
+    scene_ = rtcNewScene(device_);
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                                 RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                                 mesh.positions.size()));
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) std::memcpy(vertices + 3 * i, mesh.positions[i].data(), 12);
+    // The static shapes only (the scenes here have no moving bodies).
+    std::size_t triangles = 0;
+    for (const MeshPart& part : mesh.parts) triangles += part.index_count / 3;
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
+                                                                   RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles));
+    std::size_t k = 0;
+    for (const MeshPart& part : mesh.parts) {
+      for (std::uint32_t i = 0; i < part.index_count; ++i) indices[k++] = mesh.indices[part.first_index + i];
+    }
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(scene_, geometry);
+    rtcReleaseGeometry(geometry);
+    rtcCommitScene(scene_);
+    triangles_ = triangles;
+  }
+  ~EmbreeTriangles() {
+    rtcReleaseScene(scene_);
+    rtcReleaseDevice(device_);
+  }
+  std::size_t triangles() const { return triangles_; }
+
+  double rate(const Scans& scans, std::size_t& hits) const {
+    std::vector<RTCRayHit> rays(scans.directions.front().size());
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    hits = 0;
+    const auto start = Clock::now();
+    for (std::size_t s = 0; s < scans.origins.size(); ++s) {
+      const Eigen::Vector3f o = scans.origins[s].cast<float>();
+      for (std::size_t i = 0; i < rays.size(); ++i) {
+        RTCRayHit& r = rays[i];
+        const Eigen::Vector3f& d = scans.directions[s][i];
+        r.ray = {o.x(), o.y(), o.z(), kMinRange_m, d.x(), d.y(), d.z(), 0.0f, kMaxRange_m, 0xffffffffu, 0, 0};
+        r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      }
+      rtcIntersect1M(scene_, &context, rays.data(), static_cast<unsigned>(rays.size()), sizeof(RTCRayHit));
+      for (const RTCRayHit& r : rays) hits += r.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    }
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return static_cast<double>(scans.origins.size() * rays.size()) / seconds;
+  }
+
+ private:
+  RTCDevice device_;
+  RTCScene scene_ = nullptr;
+  std::size_t triangles_ = 0;
+};
+
+void compare(const std::string& label, const Scene& scene, int scans_per_repetition, int repetitions) {
+  const Scans scans = scanner3d_scans(scene, scans_per_repetition);
+  const EmbreeTriangles peer(scene);
+  std::vector<double> ours, theirs;
+  std::size_t our_hits = 0, their_hits = 0;
+  for (int r = 0; r < repetitions; ++r) {
+    ours.push_back(campo_rate(scene, scans, our_hits));
+    theirs.push_back(peer.rate(scans, their_hits));
+  }
+  const double a = median(ours), b = median(theirs);
+  std::printf("| %s | campo %.2f M rays/s | Embree %d.%d.%d triangles (%zu), rtcIntersect1M coherent: %.2f M rays/s | "
+              "%.2fx | hits %zu vs %zu |\n",
+              label.c_str(), a / 1e6, RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, peer.triangles(),
+              b / 1e6, a / b, our_hits, their_hits);
+}
+
+}  // namespace
+}  // namespace campo
+
+int main(int argc, char** argv) {
+  int scans = 20, repetitions = 5;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (std::strcmp(argv[i], "--scans") == 0) scans = std::stoi(argv[i + 1]);
+    if (std::strcmp(argv[i], "--repetitions") == 0) repetitions = std::stoi(argv[i + 1]);
+  }
+  try {
+    const std::string scenes = std::string(CAMPO_SOURCE_DIR) + "/scenes/";
+    const campo::Scene trees = campo::load_scene(scenes + "trees_rolling_terrain.json");
+    campo::compare("trees_rolling_terrain", trees, scans, repetitions);
+    campo::compare("vineyard", campo::load_scene(scenes + "vineyard.json"), scans, repetitions);
+    campo::Scene terrain = trees;
+    std::erase_if(terrain.shapes, [](const campo::Shape& s) { return s.type != campo::ShapeType::heightfield; });
+    campo::compare("terrain alone (trees_rolling_terrain's)", terrain, scans, repetitions);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "campo_peer_lidar: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
