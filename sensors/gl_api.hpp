@@ -9,64 +9,71 @@
 
 namespace campo {
 
+/// The GL functions campo calls: X(name without "gl", type of its pointer).
+/// GL 1.0/1.1 functions have no PFNGL type: their declarations give it.
+#define CAMPO_GL_FUNCTIONS(X) \
+  X(AttachShader, PFNGLATTACHSHADERPROC) \
+  X(BindBuffer, PFNGLBINDBUFFERPROC) \
+  X(BindFramebuffer, PFNGLBINDFRAMEBUFFERPROC) \
+  X(BindRenderbuffer, PFNGLBINDRENDERBUFFERPROC) \
+  X(BindVertexArray, PFNGLBINDVERTEXARRAYPROC) \
+  X(BlitFramebuffer, PFNGLBLITFRAMEBUFFERPROC) \
+  X(BufferData, PFNGLBUFFERDATAPROC) \
+  X(CheckFramebufferStatus, PFNGLCHECKFRAMEBUFFERSTATUSPROC) \
+  X(Clear, decltype(&glClear)) \
+  X(ClearColor, decltype(&glClearColor)) \
+  X(ClearDepth, decltype(&glClearDepth)) \
+  X(ClipControl, PFNGLCLIPCONTROLPROC) \
+  X(CompileShader, PFNGLCOMPILESHADERPROC) \
+  X(CreateProgram, PFNGLCREATEPROGRAMPROC) \
+  X(CreateShader, PFNGLCREATESHADERPROC) \
+  X(DeleteBuffers, PFNGLDELETEBUFFERSPROC) \
+  X(DeleteFramebuffers, PFNGLDELETEFRAMEBUFFERSPROC) \
+  X(DeleteProgram, PFNGLDELETEPROGRAMPROC) \
+  X(DeleteRenderbuffers, PFNGLDELETERENDERBUFFERSPROC) \
+  X(DeleteShader, PFNGLDELETESHADERPROC) \
+  X(DeleteVertexArrays, PFNGLDELETEVERTEXARRAYSPROC) \
+  X(DepthFunc, decltype(&glDepthFunc)) \
+  X(Disable, decltype(&glDisable)) \
+  X(DrawBuffer, decltype(&glDrawBuffer)) \
+  X(DrawElements, decltype(&glDrawElements)) \
+  X(Enable, decltype(&glEnable)) \
+  X(EnableVertexAttribArray, PFNGLENABLEVERTEXATTRIBARRAYPROC) \
+  X(FramebufferRenderbuffer, PFNGLFRAMEBUFFERRENDERBUFFERPROC) \
+  X(GenBuffers, PFNGLGENBUFFERSPROC) \
+  X(GenFramebuffers, PFNGLGENFRAMEBUFFERSPROC) \
+  X(GenRenderbuffers, PFNGLGENRENDERBUFFERSPROC) \
+  X(GenVertexArrays, PFNGLGENVERTEXARRAYSPROC) \
+  X(GetError, decltype(&glGetError)) \
+  X(GetIntegerv, decltype(&glGetIntegerv)) \
+  X(GetProgramInfoLog, PFNGLGETPROGRAMINFOLOGPROC) \
+  X(GetProgramiv, PFNGLGETPROGRAMIVPROC) \
+  X(GetShaderInfoLog, PFNGLGETSHADERINFOLOGPROC) \
+  X(GetShaderiv, PFNGLGETSHADERIVPROC) \
+  X(LinkProgram, PFNGLLINKPROGRAMPROC) \
+  X(MultiDrawElements, PFNGLMULTIDRAWELEMENTSPROC) \
+  X(PixelStorei, decltype(&glPixelStorei)) \
+  X(ReadBuffer, decltype(&glReadBuffer)) \
+  X(ReadPixels, decltype(&glReadPixels)) \
+  X(RenderbufferStorage, PFNGLRENDERBUFFERSTORAGEPROC) \
+  X(RenderbufferStorageMultisample, PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC) \
+  X(ShaderSource, PFNGLSHADERSOURCEPROC) \
+  X(Uniform1f, PFNGLUNIFORM1FPROC) \
+  X(Uniform2f, PFNGLUNIFORM2FPROC) \
+  X(Uniform3f, PFNGLUNIFORM3FPROC) \
+  X(UniformMatrix4fv, PFNGLUNIFORMMATRIX4FVPROC) \
+  X(UseProgram, PFNGLUSEPROGRAMPROC) \
+  X(VertexAttribPointer, PFNGLVERTEXATTRIBPOINTERPROC) \
+  X(Viewport, decltype(&glViewport))
+
 struct GlApi {
   decltype(&OSMesaCreateContextAttribs) CreateContextAttribs = nullptr;
   decltype(&OSMesaMakeCurrent) MakeCurrent = nullptr;
   decltype(&OSMesaGetCurrentContext) GetCurrentContext = nullptr;
   decltype(&OSMesaDestroyContext) DestroyContext = nullptr;
-  PFNGLATTACHSHADERPROC AttachShader = nullptr;
-  PFNGLBINDBUFFERPROC BindBuffer = nullptr;
-  PFNGLBINDFRAMEBUFFERPROC BindFramebuffer = nullptr;
-  PFNGLBINDRENDERBUFFERPROC BindRenderbuffer = nullptr;
-  PFNGLBINDVERTEXARRAYPROC BindVertexArray = nullptr;
-  PFNGLBLITFRAMEBUFFERPROC BlitFramebuffer = nullptr;
-  PFNGLBUFFERDATAPROC BufferData = nullptr;
-  PFNGLCHECKFRAMEBUFFERSTATUSPROC CheckFramebufferStatus = nullptr;
-  decltype(&glClear) Clear = nullptr;
-  decltype(&glClearColor) ClearColor = nullptr;
-  decltype(&glClearDepth) ClearDepth = nullptr;
-  PFNGLCLIPCONTROLPROC ClipControl = nullptr;
-  PFNGLCOMPILESHADERPROC CompileShader = nullptr;
-  PFNGLCREATEPROGRAMPROC CreateProgram = nullptr;
-  PFNGLCREATESHADERPROC CreateShader = nullptr;
-  PFNGLDELETEBUFFERSPROC DeleteBuffers = nullptr;
-  PFNGLDELETEFRAMEBUFFERSPROC DeleteFramebuffers = nullptr;
-  PFNGLDELETEPROGRAMPROC DeleteProgram = nullptr;
-  PFNGLDELETERENDERBUFFERSPROC DeleteRenderbuffers = nullptr;
-  PFNGLDELETESHADERPROC DeleteShader = nullptr;
-  PFNGLDELETEVERTEXARRAYSPROC DeleteVertexArrays = nullptr;
-  decltype(&glDepthFunc) DepthFunc = nullptr;
-  decltype(&glDisable) Disable = nullptr;
-  decltype(&glDrawBuffer) DrawBuffer = nullptr;
-  decltype(&glDrawElements) DrawElements = nullptr;
-  decltype(&glEnable) Enable = nullptr;
-  PFNGLENABLEVERTEXATTRIBARRAYPROC EnableVertexAttribArray = nullptr;
-  PFNGLFRAMEBUFFERRENDERBUFFERPROC FramebufferRenderbuffer = nullptr;
-  PFNGLGENBUFFERSPROC GenBuffers = nullptr;
-  PFNGLGENFRAMEBUFFERSPROC GenFramebuffers = nullptr;
-  PFNGLGENRENDERBUFFERSPROC GenRenderbuffers = nullptr;
-  PFNGLGENVERTEXARRAYSPROC GenVertexArrays = nullptr;
-  decltype(&glGetError) GetError = nullptr;
-  decltype(&glGetIntegerv) GetIntegerv = nullptr;
-  PFNGLGETPROGRAMINFOLOGPROC GetProgramInfoLog = nullptr;
-  PFNGLGETPROGRAMIVPROC GetProgramiv = nullptr;
-  PFNGLGETSHADERINFOLOGPROC GetShaderInfoLog = nullptr;
-  PFNGLGETSHADERIVPROC GetShaderiv = nullptr;
-  PFNGLLINKPROGRAMPROC LinkProgram = nullptr;
-  PFNGLMULTIDRAWELEMENTSPROC MultiDrawElements = nullptr;
-  decltype(&glPixelStorei) PixelStorei = nullptr;
-  decltype(&glReadBuffer) ReadBuffer = nullptr;
-  decltype(&glReadPixels) ReadPixels = nullptr;
-  PFNGLRENDERBUFFERSTORAGEPROC RenderbufferStorage = nullptr;
-  PFNGLRENDERBUFFERSTORAGEMULTISAMPLEPROC RenderbufferStorageMultisample = nullptr;
-  PFNGLSHADERSOURCEPROC ShaderSource = nullptr;
-  PFNGLUNIFORM1FPROC Uniform1f = nullptr;
-  PFNGLUNIFORM2FPROC Uniform2f = nullptr;
-  PFNGLUNIFORM3FPROC Uniform3f = nullptr;
-  PFNGLUNIFORMMATRIX4FVPROC UniformMatrix4fv = nullptr;
-  PFNGLUSEPROGRAMPROC UseProgram = nullptr;
-  PFNGLVERTEXATTRIBPOINTERPROC VertexAttribPointer = nullptr;
-  decltype(&glViewport) Viewport = nullptr;
+#define CAMPO_GL_MEMBER(name, type) type name = nullptr;
+  CAMPO_GL_FUNCTIONS(CAMPO_GL_MEMBER)
+#undef CAMPO_GL_MEMBER
 };
 
 /// The entry points; loads libOSMesa the first time (thread-safe). Throws
