@@ -10,15 +10,8 @@
 #include <string>
 #include <utility>
 
-// nanoflann 1.4.3 copies a never-built tree's uninitialized bounding box when
-// it sets up its sub-trees (harmless: a tree's box is computed when it is
-// built, before any query reads it); GCC warns about that copy at -O2.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <nanoflann.hpp>
-#pragma GCC diagnostic pop
-
 #include "campo/random.hpp"
+#include "planners/point_index.hpp"
 
 namespace campo {
 namespace {
@@ -27,12 +20,16 @@ void require(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument("RRT*: " + message);
 }
 
-/// A tree node; its point is in a separate array (see NodeCloud).
+/// A tree node; its point is in a separate array (see PointIndex). Its
+/// children form a list through first_child and next_sibling, so that a node
+/// costs no allocation and 24 bytes: rewiring reads the costs of nodes all
+/// over the array, and shifts whole subtrees.
 struct Node {
-  int parent = -1;
   double cost = 0.0;  ///< length of the tree path from the start
-  std::vector<int> children;
-  bool in_goal = false;  ///< within goal_radius_m of the goal
+  int parent = -1;
+  int first_child = -1;
+  int next_sibling = -1;  ///< the parent's next child
+  bool in_goal = false;   ///< within goal_radius_m of the goal
 };
 
 /// The cheapest node in the goal region (lowest id on ties), kept up to date
@@ -51,164 +48,51 @@ struct BestGoal {
   }
 };
 
-/// The nodes' points as nanoflann's dataset: a view of the array, no copy.
-/// The points live apart from the rest of the nodes (16 bytes a node, not
-/// 64) because nanoflann reads them in its leaf scans in an order unrelated
-/// to the ids, where cache misses dominate the query time. Counts the coordinates nanoflann reads, which is its work:
-/// two per distance it computes in a query, and the bounding boxes and splits
-/// of the trees it rebuilds as nodes arrive.
-struct NodeCloud {
-  const std::vector<Eigen::Vector2d>& points;
-  mutable std::uint64_t reads = 0;
+/// The tree: nodes by id, the cheapest goal node, and a stack reused by reparent.
+struct Tree {
+  std::vector<Node> nodes;
+  BestGoal best_goal;
+  std::vector<int> stack;
 
-  std::size_t kdtree_get_point_count() const { return points.size(); }
-  double kdtree_get_pt(std::size_t id, std::size_t axis) const {
-    ++reads;
-    return points[id][static_cast<Eigen::Index>(axis)];
-  }
-  /// No precomputed box: nanoflann computes it from the points.
-  template <class Box>
-  bool kdtree_get_bbox(Box& /*box*/) const {
-    return false;
-  }
-};
+  Node& operator[](int id) { return nodes[static_cast<std::size_t>(id)]; }
 
-/// A nanoflann result set: the at most k nearest points within sqrt(limit)
-/// of the query, ties to the lower id, in a max-heap of (squared distance,
-/// id) whose buffer is reused across queries. nanoflann's own KNNResultSet
-/// keeps, among equal distances, the one found first, and once full it never
-/// offers a point tied with the k-th (it offers only dist < worstDist()), so
-/// which of two tied nodes is kept would depend on how the trees happen to be
-/// built; RRT* breaks ties by the lower id, as its lattice and hand-written
-/// k-d tree did.
-class NearestWithin {
- public:
-  using DistanceType = double;
-  using IndexType = std::uint32_t;
-
-  void reset(std::size_t k, double limit) {
-    k_ = k;
-    limit_ = limit;
-    items_.clear();
-    items_.reserve(k);
+  /// Appends a node under `parent`; returns its id.
+  int add(int parent, double cost, bool in_goal) {
+    const int id = static_cast<int>(nodes.size());
+    nodes.push_back({cost, parent, -1, -1, in_goal});
+    if (parent >= 0) link(id, parent);
+    if (in_goal) best_goal.consider(nodes, id);
+    return id;
   }
 
-  /// Called by nanoflann for a point nearer than worstDist().
-  bool addPoint(double d2, IndexType id) {
-    if (k_ == 0 || d2 > limit_) return true;
-    const std::pair<double, int> item{d2, static_cast<int>(id)};
-    if (items_.size() < k_) {
-      items_.push_back(item);
-      std::push_heap(items_.begin(), items_.end());
-    } else if (item < items_.front()) {
-      std::pop_heap(items_.begin(), items_.end());
-      items_.back() = item;
-      std::push_heap(items_.begin(), items_.end());
+  /// Moves node `id` under `parent` at `cost`, shifting its subtree's costs alike.
+  void reparent(int id, int parent, double cost) {
+    unlink(id);
+    link(id, parent);
+    const double delta = cost - (*this)[id].cost;
+    stack.assign(1, id);
+    while (!stack.empty()) {
+      const int k = stack.back();
+      stack.pop_back();
+      Node& node = (*this)[k];
+      node.cost += delta;
+      if (node.in_goal) best_goal.consider(nodes, k);
+      for (int child = node.first_child; child >= 0; child = (*this)[child].next_sibling) stack.push_back(child);
     }
-    return true;  // search on
   }
-
-  /// nanoflann offers a point only below this and searches a cell only when
-  /// it may hold a point within it: a hair above the true bound (1e-9
-  /// relative, at least one ulp), so that a point tied with the k-th still
-  /// reaches addPoint, which decides by id, and that rounding in nanoflann's
-  /// incremental cell distances cannot skip one. It costs a few more offers.
-  double worstDist() const {
-    if (k_ == 0) return -1.0;
-    const double bound = items_.size() < k_ ? limit_ : std::min(limit_, items_.front().first);
-    return bound * (1.0 + 1e-9) + std::numeric_limits<double>::denorm_min();
-  }
-  bool full() const { return items_.size() == k_; }
-  std::size_t size() const { return items_.size(); }
-  const std::vector<std::pair<double, int>>& items() const { return items_; }
 
  private:
-  std::size_t k_ = 0;
-  double limit_ = 0.0;
-  std::vector<std::pair<double, int>> items_;
+  void link(int id, int parent) {
+    (*this)[id].parent = parent;
+    (*this)[id].next_sibling = (*this)[parent].first_child;
+    (*this)[parent].first_child = id;
+  }
+  void unlink(int id) {
+    int* slot = &(*this)[(*this)[id].parent].first_child;  // the link that leads to id
+    while (*slot != id) slot = &(*this)[*slot].next_sibling;
+    *slot = (*this)[id].next_sibling;
+  }
 };
-
-/// The tree's points in nanoflann's dynamic k-d tree
-/// (KDTreeSingleIndexDynamicAdaptor, libnanoflann-dev): the logarithmic
-/// method of Bentley & Saxe, static balanced trees of 1, 2, 4, ... points
-/// merged and rebuilt like the digits of a binary counter as points arrive,
-/// so an insertion costs O(log^2 n) amortized and a nearest or k-nearest
-/// query visits O(log n) trees of O(log n) depth, whatever the map's extent
-/// or the step; memory O(n). (The old lattice of step-sized buckets cost
-/// (extent / step)^2 memory and, for a sample far from the tree, a scan of
-/// every bucket between them; issue 16.)
-class PointIndex {
- public:
-  /// Indexes the points already in `points`; `max_points` bounds their
-  /// number (nanoflann keeps log2(max_points) + 1 sub-trees).
-  PointIndex(const std::vector<Eigen::Vector2d>& points, std::size_t max_points)
-      : cloud_{points},
-        index_(2, cloud_, nanoflann::KDTreeSingleIndexAdaptorParams(kLeafSize), std::max<std::size_t>(max_points, 1)) {
-    build_reads_ = cloud_.reads;
-  }
-  PointIndex(const PointIndex&) = delete;  // nanoflann keeps a reference to cloud_
-  PointIndex& operator=(const PointIndex&) = delete;
-
-  /// Adds points[id]; ids must arrive in order 1, 2, ... (nanoflann numbers
-  /// its points by arrival).
-  void add(int id) {
-    const std::uint64_t before = cloud_.reads;
-    index_.addPoints(static_cast<std::uint32_t>(id), static_cast<std::uint32_t>(id));
-    build_reads_ += cloud_.reads - before;
-  }
-
-  /// Nearest point to q, lowest id on ties; -1 when empty.
-  int nearest(const Eigen::Vector2d& q) {
-    search(q, 1, std::numeric_limits<double>::infinity());
-    return result_.size() == 0 ? -1 : result_.items().front().second;
-  }
-
-  /// The at most `k` nearest points within `radius` of q (by distance, then
-  /// lower id), into `out` in increasing id order.
-  void nearest_within(const Eigen::Vector2d& q, double radius, std::size_t k, std::vector<int>& out) {
-    search(q, k, radius * radius);
-    out.clear();
-    for (const auto& item : result_.items()) out.push_back(item.second);
-    std::sort(out.begin(), out.end());
-  }
-
-  /// Coordinates nanoflann read in queries (two per distance) and in building.
-  std::uint64_t query_reads() const { return cloud_.reads - build_reads_; }
-  std::uint64_t build_reads() const { return build_reads_; }
-
- private:
-  using Index = nanoflann::KDTreeSingleIndexDynamicAdaptor<nanoflann::L2_Simple_Adaptor<double, NodeCloud>, NodeCloud, 2>;
-  /// nanoflann's default: leaves of up to 10 points are scanned, not split.
-  static constexpr std::size_t kLeafSize = 10;
-
-  void search(const Eigen::Vector2d& q, std::size_t k, double limit) {
-    result_.reset(k, limit);
-    index_.findNeighbors(result_, q.data(), nanoflann::SearchParams());
-  }
-
-  NodeCloud cloud_;
-  Index index_;
-  NearestWithin result_;
-  std::uint64_t build_reads_ = 0;
-};
-
-/// Moves node `id` under `parent` at `cost`, shifting its subtree's costs alike.
-void reparent(std::vector<Node>& nodes, int id, int parent, double cost, BestGoal& best_goal) {
-  Node& node = nodes[static_cast<std::size_t>(id)];
-  auto& siblings = nodes[static_cast<std::size_t>(node.parent)].children;
-  siblings.erase(std::find(siblings.begin(), siblings.end(), id));
-  node.parent = parent;
-  nodes[static_cast<std::size_t>(parent)].children.push_back(id);
-  const double delta = cost - node.cost;
-  std::vector<int> stack{id};
-  while (!stack.empty()) {
-    const int k = stack.back();
-    stack.pop_back();
-    nodes[static_cast<std::size_t>(k)].cost += delta;
-    if (nodes[static_cast<std::size_t>(k)].in_goal) best_goal.consider(nodes, k);
-    for (const int child : nodes[static_cast<std::size_t>(k)].children) stack.push_back(child);
-  }
-}
 
 double free_area_m2(const OccupancyGrid& grid) {
   const auto free = std::count(grid.occupied.begin(), grid.occupied.end(), 0);
@@ -257,8 +141,9 @@ RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m
     result.status = RrtStarStatus::invalid_goal;
     return result;
   }
-  std::vector<Node> nodes{{-1, 0.0, {}, false}};
-  std::vector<Eigen::Vector2d> points{start_m};  ///< points[i] of nodes[i]
+  Tree tree;
+  tree.add(-1, 0.0, false);
+  std::vector<Eigen::Vector2d> points{start_m};  ///< points[i] of tree[i]
   if ((start_m - goal_m).norm() <= config.goal_radius_m) {
     result.status = RrtStarStatus::solved;
     result.path_m = {start_m};
@@ -280,9 +165,8 @@ RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m
   const Eigen::Vector2d extent = grid.resolution_m * Eigen::Vector2d(grid.cols, grid.rows);
   const double step_m = std::min(config.step_m, extent.norm());
   PointIndex index(points, static_cast<std::size_t>(config.max_iterations) + 1);
-  std::vector<int> near;  // reused: no allocation per iteration once grown
+  std::vector<PointIndex::Neighbour> near;  // reused: no allocation per iteration once grown
   Rng rng(config.seed);
-  BestGoal best_goal;
   RrtStarWork& work = result.work;
   std::int64_t cells = 0;
   const auto segment_free = [&](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -304,50 +188,46 @@ RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m
     if (distance > 1e-12 && segment_free(from, point)) {
       // Connect through the cheapest free neighbour (the nearest node at worst):
       // the k(n) nearest within the rewiring radius.
-      index.nearest_within(point, rewire_radius(nodes.size() + 1), max_neighbours(nodes.size() + 1), near);
+      const std::size_t n = tree.nodes.size() + 1;
+      index.nearest_within(point, rewire_radius(n), max_neighbours(n), near);
       work.max_neighbours = std::max(work.max_neighbours, near.size());
       int parent = nearest;
-      double cost = nodes[static_cast<std::size_t>(nearest)].cost + (point - from).norm();
-      for (const int j : near) {
-        const Eigen::Vector2d& at = points[static_cast<std::size_t>(j)];
-        const double via = nodes[static_cast<std::size_t>(j)].cost + (point - at).norm();
-        if (via < cost && segment_free(at, point)) {
-          parent = j;
+      double cost = tree[nearest].cost + (point - from).norm();
+      for (const PointIndex::Neighbour& j : near) {
+        const double via = tree[j.id].cost + j.distance_m;
+        if (via < cost && segment_free(points[static_cast<std::size_t>(j.id)], point)) {
+          parent = j.id;
           cost = via;
         }
       }
-      const int id = static_cast<int>(nodes.size());
       const bool in_goal = (point - goal_m).norm() <= config.goal_radius_m;
-      nodes.push_back({parent, cost, {}, in_goal});
+      const int id = tree.add(parent, cost, in_goal);
       points.push_back(point);
-      nodes[static_cast<std::size_t>(parent)].children.push_back(id);
       index.add(id);
       // Rewire: neighbours that are cheaper to reach through the new node.
-      for (const int j : near) {
-        if (j == parent) continue;
-        const Eigen::Vector2d& at = points[static_cast<std::size_t>(j)];
-        const double via = cost + (at - point).norm();
-        if (via < nodes[static_cast<std::size_t>(j)].cost && segment_free(point, at)) reparent(nodes, j, id, via, best_goal);
+      for (const PointIndex::Neighbour& j : near) {
+        if (j.id == parent) continue;
+        const double via = cost + j.distance_m;
+        if (via < tree[j.id].cost && segment_free(point, points[static_cast<std::size_t>(j.id)])) {
+          tree.reparent(j.id, id, via);
+        }
       }
-      if (in_goal) {
-        best_goal.consider(nodes, id);
-        if (result.first_solution_iteration < 0) result.first_solution_iteration = iteration;
-      }
+      if (in_goal && result.first_solution_iteration < 0) result.first_solution_iteration = iteration;
     }
     work.cells_checked += static_cast<std::uint64_t>(cells - cells_before);
     work.max_cells_per_iteration = std::max(work.max_cells_per_iteration, static_cast<std::uint64_t>(cells - cells_before));
-    result.best_cost_by_iteration.push_back(best_goal.id < 0 ? std::numeric_limits<double>::infinity()
-                                                             : nodes[static_cast<std::size_t>(best_goal.id)].cost);
+    const int best = tree.best_goal.id;
+    result.best_cost_by_iteration.push_back(best < 0 ? std::numeric_limits<double>::infinity() : tree[best].cost);
   }
 
   work.index_query_reads = index.query_reads();
   work.index_build_reads = index.build_reads();
   result.iterations = config.max_iterations;
-  result.nodes = nodes.size();
-  if (best_goal.id < 0) return result;
+  result.nodes = tree.nodes.size();
+  if (tree.best_goal.id < 0) return result;
   result.status = RrtStarStatus::solved;
-  result.cost_m = nodes[static_cast<std::size_t>(best_goal.id)].cost;
-  for (int k = best_goal.id; k >= 0; k = nodes[static_cast<std::size_t>(k)].parent) {
+  result.cost_m = tree[tree.best_goal.id].cost;
+  for (int k = tree.best_goal.id; k >= 0; k = tree[k].parent) {
     result.path_m.push_back(points[static_cast<std::size_t>(k)]);
   }
   std::reverse(result.path_m.begin(), result.path_m.end());

@@ -62,12 +62,13 @@ std::string_view to_string(RrtStarStatus status);
 
 /// Work done, for bounds tests: none of it grows with the grid's extent.
 struct RrtStarWork {
-  /// Node coordinates nanoflann's k-d tree read in the nearest / near
-  /// queries: two per distance computed (tree cells it steps through read
-  /// none, but each leads to a leaf of at most 10 points whose distances count).
+  /// Node coordinates read in the nearest / near queries (PointIndex:
+  /// nanoflann's k-d trees and the buffer of the newest nodes): two per
+  /// distance computed (tree cells nanoflann steps through read none, but
+  /// each leads to a leaf of at most 16 points whose distances count).
   std::uint64_t index_query_reads = 0;
-  /// Node coordinates it read building its trees (bounding boxes, splits) as
-  /// nodes arrived: O(log^2 n) amortized per node.
+  /// Node coordinates nanoflann read building its trees (bounding boxes,
+  /// splits) as nodes arrived: O(log^2 n) amortized per node.
   std::uint64_t index_build_reads = 0;
   std::size_t max_neighbours = 0;             ///< most rewiring candidates of one iteration (<= k(n))
   std::uint64_t segment_checks = 0;           ///< OccupancyGrid::segment_free calls
@@ -94,7 +95,8 @@ struct RrtStarResult {
 /// segment is free (OccupancyGrid::segment_free), connect it through the
 /// cheapest free neighbour among the k(n) nearest within the rewiring radius,
 /// then rewire those neighbours through it when that is cheaper. Nearest
-/// nodes come from nanoflann's dynamic k-d tree, so an iteration costs
+/// nodes come from a PointIndex (planners/point_index.hpp: nanoflann's
+/// dynamic k-d tree and a buffer of the newest nodes), so an iteration costs
 /// O(log^2 n) index work (amortized) plus at most 2 k(n) + 1 segment checks of about 3 lambda / resolution
 /// cells each, independent of the grid's extent. The path is the cheapest
 /// tree path to a node inside the goal region. Throws std::invalid_argument

@@ -25,6 +25,7 @@ packages=(
   # tools/fuzz.sh: clang, libFuzzer's runtime (libclang-rt-dev, only a Recommends of clang's
   # packages) and llvm-symbolizer (llvm) for sanitizer reports with file and line.
   clang libclang-rt-dev llvm
+  libompl-dev # only for bench/peers: campo's RRT* timed side by side with OMPL's (campo_peer_rrt_star)
 )
 
 missing=()

@@ -3,10 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
+
+#include "campo/random.hpp"
+#include "planners/point_index.hpp"
 
 namespace campo {
 namespace {
@@ -210,9 +216,9 @@ TEST(RrtStar, WorkPerIterationDoesNotGrowWithTheMapsExtent) {
     EXPECT_LE(work.max_cells_per_iteration, (2 * max_neighbours(result->nodes) + 1) * 19);
     EXPECT_LE(work.segment_checks, static_cast<std::uint64_t>(config.max_iterations) * (2 * max_neighbours(result->nodes) + 1));
     // Nearest and near queries over nanoflann's k-d trees of at most
-    // log2(n) + 1 sizes: far fewer distances than nodes (n about 3,900 here,
-    // 75 to 110 distances an iteration). Generous: 10 (log2 n)^2 distances
-    // (two coordinates each) per iteration.
+    // log2(n) + 1 sizes and a buffer of fewer than PointIndex::kBufferSize
+    // (64) points: far fewer distances than nodes (n about 3,900 here).
+    // Generous: 10 (log2 n)^2 distances (two coordinates each) per iteration.
     const double log_n = std::log2(static_cast<double>(result->nodes));
     EXPECT_LE(static_cast<double>(work.index_query_reads), 2 * 10.0 * log_n * log_n * config.max_iterations);
     // Rebuilding as nodes arrive: each node lands in about log2 n trees in
@@ -289,6 +295,130 @@ TEST(RrtStar, HugeStepActsAsTheGridsDiagonal) {
   ASSERT_EQ(result.status, RrtStarStatus::solved);
   // 80 x 80 cells: at most 2 (160 + 2) cells per check.
   EXPECT_LE(result.work.max_cells_per_iteration, (2 * max_neighbours(result.nodes) + 1) * 324);
+}
+
+// PointIndex (RRT*'s nearest and near queries) against a brute-force scan of
+// every point: the buffer alone (fewer than kBufferSize points), the buffer
+// and nanoflann's trees together, right at and past each flush, with the
+// k(n) cap binding or not, and many exact ties (points on a lattice, queries
+// on lattice points and cell centres), which must go to the lower id.
+struct BruteForce {
+  const std::vector<Eigen::Vector2d>& points;
+
+  /// (squared distance, id) of every point, nearest first, then lower id.
+  std::vector<std::pair<double, int>> ranked(const Eigen::Vector2d& q) const {
+    std::vector<std::pair<double, int>> out;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      out.emplace_back((q - points[i]).squaredNorm(), static_cast<int>(i));
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+  int nearest(const Eigen::Vector2d& q) const { return points.empty() ? -1 : ranked(q).front().second; }
+  std::vector<int> nearest_within(const Eigen::Vector2d& q, double radius, std::size_t k) const {
+    std::vector<int> ids;
+    for (const auto& [d2, id] : ranked(q)) {
+      if (ids.size() == k || std::sqrt(d2) > radius) break;
+      ids.push_back(id);
+    }
+    std::sort(ids.begin(), ids.end());
+    return ids;
+  }
+};
+
+void expect_index_matches_brute_force(const std::vector<Eigen::Vector2d>& points, PointIndex& index,
+                                      const std::vector<Eigen::Vector2d>& queries) {
+  const BruteForce brute{points};
+  std::vector<PointIndex::Neighbour> near;
+  for (const Eigen::Vector2d& q : queries) {
+    SCOPED_TRACE(::testing::Message() << points.size() << " points, query (" << q.x() << ", " << q.y() << ")");
+    ASSERT_EQ(index.nearest(q), brute.nearest(q));
+    for (const double radius : {0.0, 0.5, 1.0, 2.5, std::numeric_limits<double>::infinity()}) {
+      for (const std::size_t k : {std::size_t{0}, std::size_t{1}, std::size_t{3}, std::size_t{40}, points.size() + 1}) {
+        index.nearest_within(q, radius, k, near);
+        std::vector<int> ids;
+        for (const PointIndex::Neighbour& n : near) {
+          ids.push_back(n.id);
+          ASSERT_DOUBLE_EQ(n.distance_m, (q - points[static_cast<std::size_t>(n.id)]).norm()) << n.id;
+        }
+        ASSERT_EQ(ids, brute.nearest_within(q, radius, k)) << "radius " << radius << ", k " << k;
+      }
+    }
+  }
+}
+
+TEST(RrtStarPointIndex, MatchesABruteForceScanAsRandomPointsArrive) {
+  Rng rng(7);
+  std::vector<Eigen::Vector2d> points{{5.0, 5.0}};
+  PointIndex index(points, 1000);
+  std::vector<Eigen::Vector2d> queries;
+  for (int i = 0; i < 12; ++i) queries.emplace_back(rng.uniform(-2.0, 12.0), rng.uniform(-2.0, 12.0));
+  queries.push_back(points.front());
+  // Sizes on both sides of every flush into nanoflann, up to 12 of them.
+  const std::size_t buffer = PointIndex::kBufferSize;
+  const std::vector<std::size_t> checked{1, 2, buffer - 1, buffer, buffer + 1, 2 * buffer - 1, 2 * buffer,
+                                         3 * buffer + 5, 8 * buffer, 12 * buffer + buffer / 2};
+  for (std::size_t size = 1; size <= checked.back(); ++size) {
+    if (size > 1) {
+      points.emplace_back(rng.uniform(0.0, 10.0), rng.uniform(0.0, 10.0));
+      index.add(static_cast<int>(points.size()) - 1);
+    }
+    if (std::find(checked.begin(), checked.end(), size) != checked.end()) {
+      expect_index_matches_brute_force(points, index, queries);
+    }
+  }
+  EXPECT_GT(index.build_reads(), 0u);
+  EXPECT_GT(index.query_reads(), 0u);
+}
+
+TEST(RrtStarPointIndex, TiesGoToTheLowerIdInTheBufferAndTheTrees) {
+  // Every point of a 6 x 6 lattice of 1 m, three times over in shuffled
+  // orders: each query at a lattice point or a cell centre ties 3 to 12 points.
+  Rng rng(11);
+  std::vector<Eigen::Vector2d> lattice;
+  for (int x = 0; x < 6; ++x) {
+    for (int y = 0; y < 6; ++y) lattice.emplace_back(x, y);
+  }
+  std::vector<Eigen::Vector2d> points;
+  for (int copy = 0; copy < 3; ++copy) {
+    for (std::size_t i = lattice.size() - 1; i > 0; --i) {
+      std::swap(lattice[i], lattice[static_cast<std::size_t>(rng.uniform_int(0, static_cast<std::int64_t>(i)))]);
+    }
+    points.insert(points.end(), lattice.begin(), lattice.end());
+  }
+  std::vector<Eigen::Vector2d> queries{{2.0, 3.0}, {2.5, 2.5}, {0.0, 0.0}, {5.5, 0.5}, {-1.0, 2.5}, {2.5, 7.0}};
+  std::vector<Eigen::Vector2d> growing;
+  growing.reserve(points.size());
+  growing.push_back(points.front());
+  PointIndex index(growing, points.size());
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    growing.push_back(points[i]);
+    index.add(static_cast<int>(i));
+    if (i + 1 == 30 || i + 1 == PointIndex::kBufferSize + 10 || i + 1 == points.size()) {
+      expect_index_matches_brute_force(growing, index, queries);
+    }
+  }
+  // Indexing points given up front: the same answers.
+  PointIndex at_once(points, points.size());
+  expect_index_matches_brute_force(points, at_once, queries);
+}
+
+TEST(RrtStarPointIndex, TakesOnlyTheArraysNewestPointUpToItsMaximum) {
+  std::vector<Eigen::Vector2d> points{{0.0, 0.0}, {1.0, 0.0}};
+  PointIndex index(points, 10);
+  points.emplace_back(2.0, 0.0);
+  EXPECT_THROW(index.add(1), std::logic_error);
+  EXPECT_THROW(index.add(3), std::logic_error);
+  index.add(2);
+  EXPECT_EQ(index.nearest({1.9, 0.0}), 2);
+  // No more points than it was made for.
+  PointIndex three(points, 3);
+  points.emplace_back(3.0, 0.0);
+  EXPECT_THROW(three.add(3), std::logic_error);
+  EXPECT_THROW(PointIndex(points, 3), std::logic_error);
+  std::vector<Eigen::Vector2d> none;
+  PointIndex empty(none, 1);
+  EXPECT_EQ(empty.nearest({0.0, 0.0}), -1);
 }
 
 }  // namespace
