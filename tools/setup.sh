@@ -20,7 +20,7 @@ packages=(
   # numpy and pandas; matplotlib for the example analysis script.
   pybind11-dev python3-dev python3-numpy python3-pandas python3-matplotlib
   # bench/peers: the peers campo is measured against side by side (only these benchmarks use them).
-  libmujoco-dev
+  libmujoco-dev libboost-dev
   slurm-wlm munge jq # tests/slurm: a local single-node Slurm cluster (tools/slurm/)
   # tools/fuzz.sh: clang, libFuzzer's runtime (libclang-rt-dev, only a Recommends of clang's
   # packages) and llvm-symbolizer (llvm) for sanitizer reports with file and line.
