@@ -71,7 +71,8 @@ std::string mjcf(const Scene& scene, const HeightGrid*& terrain, Eigen::Vector3d
     if (s.type != ShapeType::heightfield) continue;
     terrain = s.terrain.get();
     terrain_at = s.pose.translation();
-    const double rx = 0.5 * (terrain->cols - 1) * terrain->spacing_x_m, ry = 0.5 * (terrain->rows - 1) * terrain->spacing_y_m;
+    const double rx = 0.5 * (terrain->cols - 1) * terrain->spacing_x_m;
+    const double ry = 0.5 * (terrain->rows - 1) * terrain->spacing_y_m;
     x << "<hfield name=\"terrain\" nrow=\"" << terrain->rows << "\" ncol=\"" << terrain->cols << "\" size=\"" << rx
       << " " << ry << " " << std::max(1e-6, terrain->max_height_m() - terrain->min_height_m()) << " 0.1\"/>";
   }
@@ -175,7 +176,8 @@ int main(int argc, char** argv) {
       theirs.push_back(campo::mujoco_rate(scene, steps));
     }
     const double a = campo::median(ours), b = campo::median(theirs);
-    std::printf("| quadrotor hovering over trees_rolling_terrain | campo %.0f steps/s | MuJoCo %s %.0f steps/s | %.2fx |\n",
+    std::printf("| quadrotor hovering over trees_rolling_terrain | campo %.0f steps/s | MuJoCo %s %.0f steps/s | "
+                "%.2fx | |\n",
                 a, mj_versionString(), b, a / b);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "campo_peer_quadrotor: %s\n", e.what());
