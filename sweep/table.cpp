@@ -275,8 +275,15 @@ std::string metric_csv(const MetricTable& table) {
         out += "," + csv_field(name.base) + (name.reached_only ? ",reached" : ",all");
         out += table.kinds[m] == MetricKind::rate ? ",rate," : ",mean,";
         out += std::to_string(cell.runs) + "," + std::to_string(cell.failed) + "," + std::to_string(s ? s->n : 0);
-        out += "," + (s ? exact(s->mean) : "") + "," + (s && !cell.identical ? exact(s->sd) : "");
-        out += "," + (s && s->ci95 ? exact(s->ci95->low) : "") + "," + (s && s->ci95 ? exact(s->ci95->high) : "");
+        // Appended piece by piece: GCC 12 warns (-Wrestrict, wrongly) on "," + a temporary string here.
+        const auto field = [&out](const std::string& text) {
+          out += ',';
+          out += text;
+        };
+        field(s ? exact(s->mean) : "");
+        field(s && !cell.identical ? exact(s->sd) : "");
+        field(s && s->ci95 ? exact(s->ci95->low) : "");
+        field(s && s->ci95 ? exact(s->ci95->high) : "");
         out += cell.identical ? ",true\n" : ",false\n";
       }
     }
