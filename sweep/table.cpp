@@ -270,16 +270,20 @@ std::string metric_csv(const MetricTable& table) {
       if (cell.runs == 0) continue;
       for (std::size_t m = 0; m < table.request.metrics.size(); ++m) {
         const std::optional<Summary>& s = cell.metrics[m];
-        out += csv_field(value_text(table.rows[r], "")) + (has_cols ? "," + csv_field(value_text(table.cols[c], "")) : "");
-        const MetricName name = split_metric(table.request.metrics[m]);
-        out += "," + csv_field(name.base) + (name.reached_only ? ",reached" : ",all");
-        out += table.kinds[m] == MetricKind::rate ? ",rate," : ",mean,";
-        out += std::to_string(cell.runs) + "," + std::to_string(cell.failed) + "," + std::to_string(s ? s->n : 0);
-        // Appended piece by piece: GCC 12 warns (-Wrestrict, wrongly) on "," + a temporary string here.
+        // Appended piece by piece: GCC 12 warns (-Wrestrict, wrongly) on "," + a temporary string.
         const auto field = [&out](const std::string& text) {
           out += ',';
           out += text;
         };
+        out += csv_field(value_text(table.rows[r], ""));
+        if (has_cols) field(csv_field(value_text(table.cols[c], "")));
+        const MetricName name = split_metric(table.request.metrics[m]);
+        field(csv_field(name.base));
+        out += name.reached_only ? ",reached" : ",all";
+        out += table.kinds[m] == MetricKind::rate ? ",rate," : ",mean,";
+        out += std::to_string(cell.runs);
+        field(std::to_string(cell.failed));
+        field(std::to_string(s ? s->n : 0));
         field(s ? exact(s->mean) : "");
         field(s && !cell.identical ? exact(s->sd) : "");
         field(s && s->ci95 ? exact(s->ci95->low) : "");
