@@ -5,6 +5,8 @@
 #   tools/setup.sh                 install missing packages + build
 #   CAMPO_BUILD_DIR=dir tools/setup.sh   build elsewhere
 #   CAMPO_BUILD_TYPE=Debug tools/setup.sh
+#   CAMPO_PEERS=1 tools/setup.sh   also the peers of bench/peers (MuJoCo, OMPL, Boost
+#                                  Graph), whose benchmarks are built when they are present
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -19,14 +21,16 @@ packages=(
   # The Python module (python/): pybind11 against Debian's /usr/bin/python3 and its
   # numpy and pandas; matplotlib for the example analysis script.
   pybind11-dev python3-dev python3-numpy python3-pandas python3-matplotlib
-  # bench/peers: the peers campo is measured against side by side (only these benchmarks use them).
-  libmujoco-dev libboost-dev
   slurm-wlm munge jq # tests/slurm: a local single-node Slurm cluster (tools/slurm/)
   # tools/fuzz.sh: clang, libFuzzer's runtime (libclang-rt-dev, only a Recommends of clang's
   # packages) and llvm-symbolizer (llvm) for sanitizer reports with file and line.
   clang libclang-rt-dev llvm
-  libompl-dev # only for bench/peers: campo's RRT* timed side by side with OMPL's (campo_peer_rrt_star)
 )
+# bench/peers: the tools campo is measured against side by side; only those benchmarks use
+# them, so they are installed on request (docs/PERFORMANCE.md, "Peers").
+if [ "${CAMPO_PEERS:-0}" = 1 ]; then
+  packages+=(libmujoco-dev libompl-dev libboost-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
