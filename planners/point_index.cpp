@@ -12,10 +12,14 @@
 // nanoflann 1.4.3 copies a never-built tree's uninitialized bounding box when
 // it sets up its sub-trees (harmless: a tree's box is computed when it is
 // built, before any query reads it); GCC warns about that copy at -O2.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <nanoflann.hpp>
 #pragma GCC diagnostic pop
+#else
+#include <nanoflann.hpp>
+#endif
 
 namespace campo {
 namespace {

@@ -410,8 +410,8 @@ cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& l
     if (line || rate) {
       legend.push_back(line_row(color, text, style));
     } else {
-      legend.push_back({[color, &style](cv::Mat& m, cv::Point2d c) {
-                          const cv::Point2d half(0.5 * style.legend_row_px, 0.3 * style.legend_row_px);
+      legend.push_back({[color, row_px = style.legend_row_px](cv::Mat& m, cv::Point2d c) {
+                          const cv::Point2d half(0.5 * row_px, 0.3 * row_px);
                           cv::rectangle(m, figure::fixed(c - half), figure::fixed(c + half), figure::lighten(color, 0.55),
                                         cv::FILLED, cv::LINE_AA, figure::kShift);
                           cv::rectangle(m, figure::fixed(c - half), figure::fixed(c + half), color, 2, cv::LINE_AA,

@@ -175,8 +175,7 @@ bool is_left(int wheel) { return wheel == Rover::front_left || wheel == Rover::r
 }  // namespace
 
 Rover::Rover(World& world, const RoverConfig& config, const Eigen::Isometry3d& start_pose)
-    : world_(world),
-      config_(config),
+    : config_(config),
       geometry_{config.wheel_radius_m, config.half_track_m},
       bodies_(std::make_unique<Bodies>(world.bullet())),
       command_(command::Hold{start_pose.translation(), std::nullopt}) {

@@ -140,7 +140,6 @@ class Rover final : public Vehicle {
   /// Rotation of a wheel relative to the chassis, (-pi, pi], positive rolling forward.
   double wheel_angle(int wheel) const;
 
-  World& world_;
   RoverConfig config_;
   SkidSteerGeometry geometry_;
   std::unique_ptr<Bodies> bodies_;
