@@ -44,8 +44,13 @@ std::string format_duration(double seconds) {
 std::string progress_bar(const SweepProgress& p, int bar_width) {
   const double fraction = p.total == 0 ? 1.0 : static_cast<double>(p.done) / static_cast<double>(p.total);
   const int filled = static_cast<int>(std::floor(fraction * bar_width));
-  return "[" + std::string(static_cast<std::size_t>(filled), '#') +
-         std::string(static_cast<std::size_t>(bar_width - filled), '.') + "] " + counts_and_pace(p);
+  // Appended piece by piece: GCC 12 warns (-Wrestrict, wrongly) on "[" + a temporary string.
+  std::string bar = "[";
+  bar.append(static_cast<std::size_t>(filled), '#');
+  bar.append(static_cast<std::size_t>(bar_width - filled), '.');
+  bar += "] ";
+  bar += counts_and_pace(p);
+  return bar;
 }
 
 std::string progress_line(const SweepProgress& p) { return "progress: " + counts_and_pace(p); }

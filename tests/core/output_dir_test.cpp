@@ -20,7 +20,9 @@ using ::testing::HasSubstr;
 class OutputDir : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / "campo_output_dir_test";
+    // One folder per test: ctest runs the tests of this suite in parallel.
+    dir_ = fs::temp_directory_path() /
+           ("campo_output_dir_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
