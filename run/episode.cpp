@@ -562,11 +562,8 @@ EpisodeResult Episode::finish() {
 
 EpisodeResult run_episode(const Scene& scene, VehicleFactory make_vehicle, const PlannerMaker& make_planner,
                           const EpisodeOptions& options) {
-  if (options.vehicle_index >= scene.vehicles.size()) {
-    throw std::invalid_argument("scene " + scene.name + " has no vehicle " + std::to_string(options.vehicle_index));
-  }
+  Episode episode(scene, make_vehicle, options);  // checks the vehicle index
   const VehicleDef& def = scene.vehicles[options.vehicle_index];
-  Episode episode(scene, make_vehicle, options);
   const std::unique_ptr<Planner> planner = make_planner(def.planner, {def.type, &scene, &def});
   const nlohmann::json planner_parameters = planner->parameters();
   while (!episode.done()) {

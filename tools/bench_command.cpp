@@ -35,9 +35,6 @@ struct BenchOptions {
   double tolerance = 0.10;    ///< a figure this much slower than its baseline is a regression
 };
 
-/// What the regression check exits with when a figure is slower than its baseline.
-constexpr int kRegressed = 3;
-
 /// One measured figure; `id` names it across runs of campo bench (what --compare matches).
 struct Figure {
   std::string id;
@@ -246,7 +243,7 @@ Command add_bench(CLI::App& app) {
       "A quick check that every case runs: campo bench episodes --episode-time 1\n"
       "Regression check: campo bench --json base.json on one revision, then campo bench\n"
       "--compare base.json on another (same machine): exit 3 when a figure is slower.");
-  return [o]() -> int {
+  return [o]() {
     // Read first: a bad baseline is bad input before minutes of measuring.
     if (!o->baseline_file.empty()) read_baseline(o->baseline_file);
     std::vector<Figure> figures;

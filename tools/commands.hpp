@@ -12,6 +12,7 @@ enum ExitCode : int {
   kOk = 0,            ///< the work completed (whatever a run's outcome)
   kInternalError = 1, ///< a bug or an I/O failure
   kBadInput = 2,      ///< invalid input; nothing was written
+  kRegressed = 3,     ///< campo bench --compare: a figure is slower than its baseline
 };
 
 using Command = std::function<int()>;
