@@ -281,13 +281,64 @@ FigureLayout layout_map(const MapPlan& plan, const FigureStyle& style) {
   return l;
 }
 
-namespace {
-
 void draw_footprint(cv::Mat& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& fill) {
   const std::vector<cv::Point> outline = figure::fixed(to.all(f.outline_m));
   cv::fillConvexPoly(plot, outline, fill, cv::LINE_AA, figure::kShift);
   cv::polylines(plot, outline, true, figure::shade(fill, 0.6), 1, cv::LINE_AA, figure::kShift);
 }
+
+void draw_run_marks(cv::Mat& plot, const PlotMapper& to, const MapPlan& plan) {
+  for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+    const RunView& run = *plan.runs[i];
+    const cv::Scalar own = run_color(i);
+    if (!plan.overlay && !plan.height_map) {
+      // Under everything else of the run, so the planned path and the track stay visible.
+      for (const auto& [from, until] : run.avoiding_s) {
+        const std::vector<cv::Point2d> band = to.all(track_between(run.track, from, until));
+        std::vector<cv::Point2d> thinned;
+        for (std::size_t k : thin_out(band)) thinned.push_back(band[k]);
+        if (thinned.size() == 1) thinned.push_back(thinned.front());  // a single spot: a round blob
+        figure::polyline(plot, thinned, kAvoiding, kAvoidingBandPx);
+      }
+    }
+    if (!plan.height_map) {
+      figure::dashed_polyline(plot, to.all(run.planned_path), plan.overlay ? own : kPlannedPath, 1, 7.0, 5.0);
+    }
+    std::vector<cv::Point2d> track;
+    for (const auto& p : run.track) track.push_back(to(p.position_m));
+    const std::vector<std::size_t> kept = thin_out(track);
+    std::vector<cv::Point2d> line;
+    for (std::size_t k : kept) line.push_back(track[k]);
+    if (plan.overlay || plan.height_map) {
+      figure::polyline(plot, line, figure::kWhite, 5);
+      figure::polyline(plot, line, plan.height_map ? kTrackHalo : own, plan.height_map ? 2 : 3);
+      continue;
+    }
+    figure::polyline(plot, line, kTrackHalo, 5);
+    for (std::size_t k = 1; k < kept.size(); ++k) {
+      const TrackPoint& p = run.track[kept[k]];
+      const double value = plan.coloring == TrackColoring::time ? p.time_s : p.speed_mps;
+      const double f = (value - plan.value_lo) / (plan.value_hi - plan.value_lo);
+      cv::line(plot, figure::fixed(line[k - 1]), figure::fixed(line[k]), to_scalar(sequential_color(f)), 3,
+               cv::LINE_AA, figure::kShift);
+    }
+  }
+  if (!plan.overlay && !plan.height_map) {
+    for (const auto& p : plan.runs.front()->sensor_hits) sensor_hit_marker(plot, to(p));
+  }
+  for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+    const RunView& run = *plan.runs[i];
+    if (plan.height_map) break;  // the height map shows what was mapped, not the planner's steps
+    for (const auto& p : run.planned) {
+      figure::diamond_marker(plot, to(p), plan.overlay ? run_color(i) : kPlannedWaypoint);
+    }
+    for (const auto& p : run.discarded) {
+      figure::cross_marker(plot, to(p), plan.overlay ? run_color(i) : kDiscardedWaypoint);
+    }
+  }
+}
+
+namespace {
 
 // Scale bar with its length above, and a north arrow on the right, in `box`.
 void draw_scale_bar(cv::Mat& image, const cv::Rect& box, double px_per_m) {
@@ -382,58 +433,11 @@ cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLay
   for (std::size_t k = 0; k < plan.movers.size(); ++k) {
     const Mover& m = scene.movers[plan.movers[k]];
     const cv::Scalar c = to_bgr(m.shape.color);
-    draw_footprint(plot, to, plan.mover_footprints[k], figure::lighten(c, 0.3));
+    if (plan.movers_at_start) draw_footprint(plot, to, plan.mover_footprints[k], figure::lighten(c, 0.3));
     figure::dashed_polyline(plot, to.all(m.path_m), figure::shade(c, 0.7), 2, 10.0, 6.0);
   }
 
-  for (std::size_t i = 0; i < plan.runs.size(); ++i) {
-    const RunView& run = *plan.runs[i];
-    const cv::Scalar own = run_color(i);
-    if (!plan.overlay && !plan.height_map) {
-      // Under everything else of the run, so the planned path and the track stay visible.
-      for (const auto& [from, until] : run.avoiding_s) {
-        const std::vector<cv::Point2d> band = to.all(track_between(run.track, from, until));
-        std::vector<cv::Point2d> thinned;
-        for (std::size_t k : thin_out(band)) thinned.push_back(band[k]);
-        if (thinned.size() == 1) thinned.push_back(thinned.front());  // a single spot: a round blob
-        figure::polyline(plot, thinned, kAvoiding, kAvoidingBandPx);
-      }
-    }
-    if (!plan.height_map) {
-      figure::dashed_polyline(plot, to.all(run.planned_path), plan.overlay ? own : kPlannedPath, 1, 7.0, 5.0);
-    }
-    std::vector<cv::Point2d> track;
-    for (const auto& p : run.track) track.push_back(to(p.position_m));
-    const std::vector<std::size_t> kept = thin_out(track);
-    std::vector<cv::Point2d> line;
-    for (std::size_t k : kept) line.push_back(track[k]);
-    if (plan.overlay || plan.height_map) {
-      figure::polyline(plot, line, figure::kWhite, 5);
-      figure::polyline(plot, line, plan.height_map ? kTrackHalo : own, plan.height_map ? 2 : 3);
-      continue;
-    }
-    figure::polyline(plot, line, kTrackHalo, 5);
-    for (std::size_t k = 1; k < kept.size(); ++k) {
-      const TrackPoint& p = run.track[kept[k]];
-      const double value = plan.coloring == TrackColoring::time ? p.time_s : p.speed_mps;
-      const double f = (value - plan.value_lo) / (plan.value_hi - plan.value_lo);
-      cv::line(plot, figure::fixed(line[k - 1]), figure::fixed(line[k]), to_scalar(sequential_color(f)), 3,
-               cv::LINE_AA, figure::kShift);
-    }
-  }
-  if (!plan.overlay && !plan.height_map) {
-    for (const auto& p : plan.runs.front()->sensor_hits) sensor_hit_marker(plot, to(p));
-  }
-  for (std::size_t i = 0; i < plan.runs.size(); ++i) {
-    const RunView& run = *plan.runs[i];
-    if (plan.height_map) break;  // the height map shows what was mapped, not the planner's steps
-    for (const auto& p : run.planned) {
-      figure::diamond_marker(plot, to(p), plan.overlay ? run_color(i) : kPlannedWaypoint);
-    }
-    for (const auto& p : run.discarded) {
-      figure::cross_marker(plot, to(p), plan.overlay ? run_color(i) : kDiscardedWaypoint);
-    }
-  }
+  draw_run_marks(plot, to, plan);
   // Over the track, the hits and the planned waypoints, thin and dashed, so that where the track leaves it both show.
   if (!plan.overlay && !plan.height_map && has_nominal_route(*plan.runs.front())) {
     figure::dashed_polyline(plot, to.all(nominal_route(*plan.runs.front())), kNominalRoute, 2, 9.0, 6.0);

@@ -32,6 +32,7 @@ struct MapPlan {
   std::vector<Footprint> footprints;        // visible solids, lowest top first
   std::vector<std::size_t> movers;          // indices of visible movers
   std::vector<Footprint> mover_footprints;  // at their first point, aligned with `movers`
+  bool movers_at_start = true;              // false: their paths alone (a video draws them where they are)
   std::vector<Eigen::Vector3d> starts;      // distinct
   std::vector<Waypoint> mission;            // distinct operator waypoints; the last is the goal
   std::vector<bool> mission_reached;        // single-run maps only
@@ -54,6 +55,14 @@ FigureLayout layout_map(const MapPlan& plan, const FigureStyle& style);
 /// Draws the planned map with `layout` under `title`.
 cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLayout& layout,
                         const std::string& title);
+
+struct PlotMapper;
+/// A solid's footprint filled with `fill` and outlined a shade darker.
+void draw_footprint(cv::Mat& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& fill);
+/// What the planned map shows of its runs (plan.runs): avoidance bands, planned paths, tracks,
+/// recorded sensor hits, planned and discarded waypoints; draw_map_figure draws them over the
+/// scene and under the mission's markers (a video draws them frame by frame).
+void draw_run_marks(cv::Mat& plot, const PlotMapper& to, const MapPlan& plan);
 
 // Drawing coordinates relative to the plot area, whose image view clips what lies outside.
 struct PlotMapper {

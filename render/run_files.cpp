@@ -6,8 +6,10 @@
 #include <cstdio>
 #include <limits>
 #include <sstream>
+#include <tuple>
 
 #include "campo/json_reader.hpp"
+#include "core/image_io.hpp"
 #include "campo/scene_loader.hpp"
 #include "run/event_log.hpp"
 
@@ -34,6 +36,53 @@ std::vector<TrackPoint> read_track(const std::filesystem::path& path) {
     if (yaw) track[i].yaw_deg = (*yaw)[i];
   }
   return track;
+}
+
+// The view's planner decisions (docs/running.md) from the events up to `until_s`: reached mission
+// waypoints, intermediate waypoints set or dropped, a planned path, obstacle avoidance switched
+// on and off, the mapping planners' hits and height map. An avoidance still on at the end lasts
+// to the view's last track sample.
+void add_decisions(RunView& v, const std::vector<PlannerEvent>& events, double until_s, const std::string& record_file) {
+  bool avoiding = false;
+  double avoiding_since = 0.0;
+  for (const PlannerEvent& event : events) {
+    if (event.time_s > until_s) break;  // events are in time order
+    const Decisions& typed = event.decisions;
+    if (typed.avoiding) {
+      if (*typed.avoiding && !avoiding) avoiding_since = event.time_s;
+      if (!*typed.avoiding && avoiding) v.avoiding_s.emplace_back(avoiding_since, event.time_s);
+      avoiding = *typed.avoiding;
+    }
+    v.reached.insert(v.reached.end(), typed.reached_waypoints.begin(), typed.reached_waypoints.end());
+    if (typed.planned_waypoint) v.planned.push_back(*typed.planned_waypoint);
+    if (typed.discarded_waypoint) v.discarded.push_back(*typed.discarded_waypoint);
+    if (typed.planned_path) v.planned_path = *typed.planned_path;
+    // The mapping planners' own decisions (docs/planners.md, dstar_lite_3d).
+    v.sensor_hits.insert(v.sensor_hits.end(), typed.lidar_hits.begin(), typed.lidar_hits.end());
+    if (typed.height_map_grid) {
+      const HeightMapGrid& g = *typed.height_map_grid;
+      HeightMapView& h = v.height_map;
+      h.origin_m = g.origin_m;
+      h.cell_size_m = g.cell_size_m;
+      h.columns = g.columns;
+      h.rows = g.rows;
+      if (static_cast<std::int64_t>(h.columns) * h.rows > (1 << 26)) {
+        throw InputError(record_file, "", "height_map_grid: bad size");
+      }
+      h.top_m.assign(static_cast<std::size_t>(h.columns) * h.rows, std::numeric_limits<double>::quiet_NaN());
+    }
+    for (const HeightMapColumn& c : typed.height_map_columns) {
+      HeightMapView& h = v.height_map;
+      if (c.column >= h.columns || c.row >= h.rows) {
+        throw InputError(record_file, "", "height_map_columns: column outside the height_map_grid");
+      }
+      h.top_m[static_cast<std::size_t>(c.row) * h.columns + c.column] = c.top_m;
+    }
+  }
+  if (avoiding) {  // still on at the end: up to the last sample
+    v.avoiding_s.emplace_back(avoiding_since, v.track.empty() ? avoiding_since
+                                                              : std::max(avoiding_since, v.track.back().time_s));
+  }
 }
 
 }  // namespace
@@ -111,51 +160,75 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
       if (wp.contains("heading_deg")) w.heading_deg = wp["heading_deg"].get<double>();
       v.mission.push_back(w);
     }
-    // Planner decisions (docs/running.md): reached mission waypoints, intermediate
-    // waypoints set or dropped, a planned path, obstacle avoidance switched on and off.
-    bool avoiding = false;
-    double avoiding_since = 0.0;
-    for (const PlannerEvent& event : run.events) {
-      const Decisions& typed = event.decisions;
-      if (typed.avoiding) {
-        if (*typed.avoiding && !avoiding) avoiding_since = event.time_s;
-        if (!*typed.avoiding && avoiding) v.avoiding_s.emplace_back(avoiding_since, event.time_s);
-        avoiding = *typed.avoiding;
-      }
-      v.reached.insert(v.reached.end(), typed.reached_waypoints.begin(), typed.reached_waypoints.end());
-      if (typed.planned_waypoint) v.planned.push_back(*typed.planned_waypoint);
-      if (typed.discarded_waypoint) v.discarded.push_back(*typed.discarded_waypoint);
-      if (typed.planned_path) v.planned_path = *typed.planned_path;
-      // The mapping planners' own decisions (docs/planners.md, dstar_lite_3d).
-      v.sensor_hits.insert(v.sensor_hits.end(), typed.lidar_hits.begin(), typed.lidar_hits.end());
-      if (typed.height_map_grid) {
-        const HeightMapGrid& g = *typed.height_map_grid;
-        HeightMapView& h = v.height_map;
-        h.origin_m = g.origin_m;
-        h.cell_size_m = g.cell_size_m;
-        h.columns = g.columns;
-        h.rows = g.rows;
-        if (static_cast<std::int64_t>(h.columns) * h.rows > (1 << 26)) {
-          throw InputError((dir / "run.json").string(), "", "height_map_grid: bad size");
-        }
-        h.top_m.assign(static_cast<std::size_t>(h.columns) * h.rows, std::numeric_limits<double>::quiet_NaN());
-      }
-      for (const HeightMapColumn& c : typed.height_map_columns) {
-        HeightMapView& h = v.height_map;
-        if (c.column >= h.columns || c.row >= h.rows) {
-          throw InputError((dir / "run.json").string(), "", "height_map_columns: column outside the height_map_grid");
-        }
-        h.top_m[static_cast<std::size_t>(c.row) * h.columns + c.column] = c.top_m;
-      }
-    }
-    if (avoiding) {  // still on at the end: up to the last sample
-      v.avoiding_s.emplace_back(avoiding_since, v.track.empty() ? avoiding_since
-                                                                : std::max(avoiding_since, v.track.back().time_s));
-    }
+    add_decisions(v, run.events, std::numeric_limits<double>::infinity(), (dir / "run.json").string());
   } catch (const nlohmann::json::exception& e) {
     throw InputError((dir / "run.json").string(), "", std::string("malformed run record: ") + e.what());
   }
   return run;
+}
+
+RunView run_view_at(const RecordedRun& run, double time_s) {
+  RunView v;
+  v.label = run.view.label;
+  v.outcome = run.view.outcome;
+  v.mission = run.view.mission;
+  for (const TrackPoint& p : run.view.track) {
+    if (p.time_s > time_s) break;
+    v.track.push_back(p);
+  }
+  if (v.track.empty() && !run.view.track.empty()) v.track.push_back(run.view.track.front());
+  add_decisions(v, run.events, time_s, (run.dir / "run.json").string());
+  return v;
+}
+
+Eigen::Vector3d vehicle_size_m(const RecordedRun& run) {
+  const nlohmann::json& vehicle = run.record.value("/parameters/vehicle"_json_pointer, nlohmann::json::object());
+  const nlohmann::json params = vehicle.value("parameters", nlohmann::json::object());
+  const auto triple = [](const nlohmann::json& j) {
+    return j.is_array() && j.size() == 3 && std::all_of(j.begin(), j.end(), [](const auto& v) { return v.is_number(); });
+  };
+  if (triple(params.value("chassis_size_m", nlohmann::json()))) return vector3(params["chassis_size_m"]);
+  if (triple(params.value("collision_half_extents_m", nlohmann::json()))) {
+    return 2.0 * vector3(params["collision_half_extents_m"]);
+  }
+  return vehicle.value("type", "") == "rover" ? Eigen::Vector3d(1.5, 1.0, 0.35) : Eigen::Vector3d(0.6, 0.6, 0.12);
+}
+
+std::vector<RecordedDepthMap> recorded_depth_maps(const RecordedRun& run) {
+  std::vector<RecordedDepthMap> maps;
+  std::error_code error;  // no depth/ directory: nothing recorded
+  for (const auto& entry : std::filesystem::directory_iterator(run.dir / "depth", error)) {
+    const std::string stem = entry.path().stem().string();
+    const std::size_t cut = stem.rfind('_');
+    if (entry.path().extension() != ".png" || cut == std::string::npos) continue;
+    double t = 0.0;
+    const char* end = stem.data() + stem.size();
+    const auto [ptr, ec] = std::from_chars(stem.data() + cut + 1, end, t);
+    if (ec != std::errc() || ptr != end) continue;
+    maps.push_back({stem.substr(0, cut), t, entry.path()});
+  }
+  // Directory order is the file system's: sort, by time and then name, for the same result everywhere.
+  std::sort(maps.begin(), maps.end(), [](const auto& a, const auto& b) {
+    return std::tie(a.time_s, a.sensor) < std::tie(b.time_s, b.sensor);
+  });
+  return maps;
+}
+
+cv::Mat read_depth_map(const std::filesystem::path& file) {
+  const cv::Mat gray16 = read_png_file(file);
+  if (gray16.type() != CV_16U) throw InputError(file.string(), "", "expected a 16-bit grey depth map");
+  cv::Mat depth;
+  gray16.convertTo(depth, CV_32F, 1.0 / 65535.0);
+  return depth;
+}
+
+const VehicleDef& recorded_vehicle(const RecordedRun& run) {
+  const std::string alias = run.record.value("/parameters/vehicle/alias"_json_pointer, std::string());
+  for (const VehicleDef& v : run.scene.vehicles) {
+    if (v.alias == alias) return v;
+  }
+  throw InputError((run.dir / "run.json").string(), "/parameters/vehicle/alias",
+                   "expected a vehicle of scene.json, got \"" + alias + "\"");
 }
 
 std::string replan_depth_file(int index) {

@@ -40,6 +40,31 @@ TrajectoryTable read_trajectory_table(const std::filesystem::path& path);
 /// when something is missing or malformed.
 RecordedRun load_run_dir(const std::filesystem::path& dir);
 
+/// The run as it was at `time_s`: its track samples up to then (at least the
+/// first) and the planner decisions made by then (RunView's fields); label,
+/// outcome and mission as recorded. What a video's frame shows.
+RunView run_view_at(const RecordedRun& run, double time_s);
+
+/// The vehicle's size (length, width, height), m, from the recorded vehicle
+/// parameters: a rover's chassis_size_m, a quadrotor's collision box; the
+/// presets' sizes (rover 1.5 x 1.0 x 0.35, quadrotor 0.6 x 0.6 x 0.12) when absent.
+Eigen::Vector3d vehicle_size_m(const RecordedRun& run);
+
+/// A depth map `campo run --record-depth N` saved: depth/<sensor>_<time>.png.
+struct RecordedDepthMap {
+  std::string sensor;  ///< the sensor's alias
+  double time_s = 0.0; ///< when it scanned, simulated seconds
+  std::filesystem::path file;
+};
+/// The run's recorded depth maps in time order (none when it recorded none).
+std::vector<RecordedDepthMap> recorded_depth_maps(const RecordedRun& run);
+/// A recorded depth map (16-bit PNG, sensors/depth_image.hpp) back as CV_32F
+/// in [0, 1]; InputError naming the file when it is not one.
+cv::Mat read_depth_map(const std::filesystem::path& file);
+/// The run's vehicle in its scene.json (run.json's /parameters/vehicle/alias);
+/// InputError when the scene has no such vehicle.
+const VehicleDef& recorded_vehicle(const RecordedRun& run);
+
 /// File name, under the run's replans/ directory, of the depth map that
 /// replanning `index` used (16-bit PNG, depth_image.hpp).
 std::string replan_depth_file(int index);

@@ -5,9 +5,19 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+
 #include "campo/json_reader.hpp"
+#include "core/output_dir.hpp"
+#include "render/replay.hpp"
+#include "render/video_encoder.hpp"
+#include "sweep/progress.hpp"
 #include "tools/commands.hpp"
 #include "tools/run_figures.hpp"
+#include "tools/run_video.hpp"
 
 namespace campo::cli {
 
@@ -19,6 +29,56 @@ struct RenderOptions {
   std::vector<std::string> steps;  // --step: replanning step numbers or "all"
   std::vector<double> at_s;        // --at: instants of --kind sequence
   std::string out;
+  VideoOptions video;
+  std::string size = "1600x900";   // --size of video frames
+};
+
+bool wants(const RenderOptions& o, const char* kind) {
+  return std::find(o.kinds.begin(), o.kinds.end(), kind) != o.kinds.end();
+}
+
+// --size: "WIDTHxHEIGHT", even sides of at least 480 x 270.
+cv::Size parse_size(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0, rest = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &rest) != 3 || x != 'x' || w < 480 || h < 270 || w > 3840 ||
+      h > 2160 || w % 2 || h % 2) {
+    throw InputError("command line", "--size",
+                     "expected WIDTHxHEIGHT with even sides from 480x270 to 3840x2160, got \"" + text + "\"");
+  }
+  return {w, h};
+}
+
+// Where the video of `run` goes: --out itself when it names a video file, else video.mp4 in
+// --out (or the run's directory).
+std::filesystem::path video_path(const RenderOptions& o, const RecordedRun& run) {
+  if (!o.out.empty() && video_format_of(o.out)) return o.out;
+  const std::filesystem::path dir = o.out.empty() ? run.dir : std::filesystem::path(o.out) / run.dir.filename();
+  std::filesystem::create_directories(dir);
+  return dir / "video.mp4";
+}
+
+// A bar on a terminal, a line every tenth otherwise: "[#####.....] 120/600 frames | ETA 12s".
+class FrameProgress {
+ public:
+  FrameProgress() : tty_(::isatty(STDERR_FILENO) == 1), start_(std::chrono::steady_clock::now()) {}
+  void operator()(std::size_t done, std::size_t total) {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double eta = done > 0 ? elapsed * static_cast<double>(total - done) / static_cast<double>(done) : 0.0;
+    const std::string counts = std::to_string(done) + "/" + std::to_string(total) + " frames";
+    if (tty_) {
+      const int width = 30, filled = static_cast<int>(width * done / std::max<std::size_t>(total, 1));
+      std::cerr << "\r[" << std::string(filled, '#') << std::string(width - filled, '.') << "] " << counts
+                << " | ETA " << format_duration(eta) << "\033[K" << std::flush;
+      if (done == total) std::cerr << "\r\033[K" << std::flush;
+    } else if (done == total || done * 10 / total != (done - 1) * 10 / total) {
+      std::cerr << "video: " << counts << ", " << format_duration(elapsed) << " elapsed\n";
+    }
+  }
+
+ private:
+  bool tty_;
+  std::chrono::steady_clock::time_point start_;
 };
 
 // --step values: whole numbers, or "all" for every replanning step (nullopt).
@@ -44,6 +104,17 @@ int run_render(const RenderOptions& o) {
   if (replan_steps && std::find(o.kinds.begin(), o.kinds.end(), "depth") == o.kinds.end()) {
     throw InputError("command line", "--step", "draws replanning steps of --kind depth; add --kind depth");
   }
+  const bool video_file = !o.out.empty() && video_format_of(o.out).has_value();
+  if (video_file && (o.runs.size() != 1 || o.kinds.size() != 1 || !wants(o, "video"))) {
+    throw InputError("command line", "--out",
+                     "names a video file, which holds one run's --kind video alone; give a directory for several");
+  }
+  const bool html_file = std::filesystem::path(o.out).extension() == ".html";
+  if (html_file && (o.kinds.size() != 1 || !wants(o, "replay"))) {
+    throw InputError("command line", "--out", "names an HTML file, which holds --kind replay alone; give a directory");
+  }
+  VideoOptions video = o.video;
+  if (wants(o, "video")) video.frame_px = parse_size(o.size);
   const std::optional<std::vector<int>> step_indices = replan_steps ? parse_steps(o.steps) : std::nullopt;
   // Load every run first, and find the steps asked for: bad input stops before anything is drawn.
   std::vector<RecordedRun> runs;
@@ -53,6 +124,17 @@ int run_render(const RenderOptions& o) {
     for (const RecordedRun& run : runs) steps.push_back(find_replan_steps(run, step_indices));
   }
   for (const std::string& kind : o.kinds) {
+    if (kind == "replay") {
+      // Every run in one page; beside the run when there is one, else in the current directory.
+      std::filesystem::path file = html_file ? std::filesystem::path(o.out)
+                                   : !o.out.empty() ? std::filesystem::path(o.out) / "replay.html"
+                                   : runs.size() == 1 ? runs.front().dir / "replay.html"
+                                                      : std::filesystem::path("replay.html");
+      if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+      write_file_atomically(file, replay_html(replay_data(runs)));
+      std::cout << "wrote " << file.string() << "\n";
+      continue;
+    }
     if (kind == "overlay") {
       const std::filesystem::path out = o.out.empty() ? std::filesystem::path(".") : std::filesystem::path(o.out);
       std::filesystem::create_directories(out);
@@ -61,6 +143,13 @@ int run_render(const RenderOptions& o) {
     }
     for (std::size_t i = 0; i < runs.size(); ++i) {
       const RecordedRun& run = runs[i];
+      if (kind == "video") {
+        const std::filesystem::path file = video_path(o, run);
+        FrameProgress progress;
+        write_video(run, video, file, std::ref(progress));
+        std::cout << "wrote " << file.string() << "\n";
+        continue;
+      }
       const std::filesystem::path out = o.out.empty() ? run.dir : std::filesystem::path(o.out) / run.dir.filename();
       std::filesystem::create_directories(out);
       if (kind == "sequence") {
@@ -81,9 +170,9 @@ Command add_render(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   app.add_option("runs", o->runs, "Run directories written by campo run")->required()->check(CLI::ExistingDirectory);
   app.add_option("--kind", o->kinds,
-                 "Figures to draw: map, side, heightmap (mapping planners), depth, snapshot, overlay, sequence "
-                 "(repeatable)")
-      ->check(CLI::IsMember({"map", "side", "heightmap", "depth", "snapshot", "overlay", "sequence"}))
+                 "Figures to draw: map, side, heightmap (mapping planners), depth, snapshot, overlay, sequence, "
+                 "video, replay (repeatable)")
+      ->check(CLI::IsMember({"map", "side", "heightmap", "depth", "snapshot", "overlay", "sequence", "video", "replay"}))
       ->capture_default_str();
   app.add_option("--step", o->steps,
                  "With --kind depth: draw replanning step K of a depth_reactive run instead of the recorded depth "
@@ -93,7 +182,18 @@ Command add_render(CLI::App& app) {
                  "around the first side switch of follow-the-gap's chosen gap)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--out", o->out,
-                 "Output directory (default: each run's own directory; for overlay, the current directory)");
+                 "Output directory (default: each run's own directory; for overlay, the current directory); with "
+                 "--kind video alone and one run, the video file itself (.mp4 or .gif); with --kind replay alone, the "
+                 "page itself (.html)");
+  app.add_option("--fps", o->video.fps, "With --kind video: frames per second of the video")
+      ->check(CLI::Range(1.0, 60.0))
+      ->capture_default_str();
+  app.add_option("--speed", o->video.speed,
+                 "With --kind video: playback speed, simulated seconds per second of video (2 = twice as fast)")
+      ->check(CLI::Range(0.05, 100.0))
+      ->capture_default_str();
+  app.add_option("--size", o->size, "With --kind video: frame size in pixels, WIDTHxHEIGHT (even sides)")
+      ->capture_default_str();
   app.footer(
       "Draws figures from recorded run files alone (run.json, trajectory.csv, scene.json), without\n"
       "simulating again. map: top-down map with terrain contours, obstacles, the path coloured by time,\n"
@@ -104,9 +204,19 @@ Command add_render(CLI::App& app) {
       "new waypoint. snapshot: a perspective colour view rendered off-screen with OSMesa. overlay: every\n"
       "run given on one map, one colour each. sequence: the map at several instants, 2 x 2 (seed 003\n"
       "Fig. 46): track so far, movers where they were, the rover and follow-the-gap's chosen direction.\n"
+      "video: an animation (H.264 .mp4, or .gif) encoded by the ffmpeg program: the map with the track\n"
+      "growing, the sensor panel of that moment (the depth map of the latest replanning with the planner's\n"
+      "overlays; else the depth maps or planar scans recorded with campo run --record-depth N, a planar scan\n"
+      "drawn around the vehicle with follow-the-gap's gap; else the gap decisions alone) and a strip with\n"
+      "the clock, speed, altitude, clearance, distance and the planner's state; the end held a second.\n"
+      "replay: one self-contained HTML page (three.js inside; opens offline) with every run given in 3D:\n"
+      "terrain, obstacles, movers, vehicles, tracks and the returns recorded with --record-depth N, a time\n"
+      "slider, play/pause, speed, camera orbit and a legend (default: replay.html beside the one run).\n"
       "Examples: campo render out/run1 out/run2 out/run3 --kind overlay --out figures\n"
       "          campo render out/run1 --kind depth --step 0 --step 3\n"
-      "          campo render out/gap --kind sequence --at 6 --at 9 --at 12 --at 16");
+      "          campo render out/gap --kind sequence --at 6 --at 9 --at 12 --at 16\n"
+      "          campo render out/run1 --kind video --out run1.mp4 --speed 2\n"
+      "          campo render out/run1 out/run2 --kind replay --out replay.html");
   return [o] { return run_render(*o); };
 }
 

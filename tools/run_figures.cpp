@@ -30,15 +30,6 @@ std::string title_of(const RecordedRun& run, const std::string& what) {
 
 std::string record_file(const RecordedRun& run) { return (run.dir / "run.json").string(); }
 
-// A recorded depth map (16-bit PNG, sensors/depth_image.hpp) back as CV_32F in [0, 1].
-cv::Mat read_depth_png(const std::filesystem::path& file) {
-  const cv::Mat gray16 = read_png_file(file);
-  if (gray16.type() != CV_16U) throw InputError(file.string(), "", "expected a 16-bit grey depth map");
-  cv::Mat depth;
-  gray16.convertTo(depth, CV_32F, 1.0 / 65535.0);
-  return depth;
-}
-
 // A depth figure grey and colour-mapped: out_dir/depth_figures/<stem>_grey.png and _colour.png.
 std::vector<std::filesystem::path> write_depth_pair(const cv::Mat& depth, const DepthOverlays& overlays,
                                                     const std::string& title, const std::filesystem::path& out_dir,
@@ -154,7 +145,7 @@ std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const st
     }
     for (const auto& frame : frames) {
       const std::string stem = frame.stem().string();
-      for (auto& file : write_depth_pair(read_depth_png(frame), {}, stem, out_dir, stem)) written.push_back(std::move(file));
+      for (auto& file : write_depth_pair(read_depth_map(frame), {}, stem, out_dir, stem)) written.push_back(std::move(file));
     }
     return written;
   }
@@ -199,37 +190,57 @@ std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::opt
   return steps;
 }
 
-std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, const std::vector<ReplanStep>& steps,
-                                                        const std::filesystem::path& out_dir) {
+namespace {
+
+// The planner parameters of a depth_reactive run, as recorded.
+DepthReactiveConfig recorded_depth_reactive_config(const RecordedRun& run) {
   const std::string file = record_file(run);
   const auto params = "/parameters/planner/parameters"_json_pointer;
   if (!run.record.contains(params)) throw InputError(file, params.to_string(), "missing; expected the planner's parameters");
-  const DepthReactiveConfig config = parse_depth_reactive_config({run.record.at(params), file, params.to_string()});
+  return parse_depth_reactive_config({run.record.at(params), file, params.to_string()});
+}
+
+// The depth map replanning `step` read and the planner's overlays on it.
+std::pair<cv::Mat, DepthOverlays> replan_depth(const RecordedRun& run, const DepthReactiveConfig& config,
+                                               const ReplanStep& step) {
+  const std::string file = record_file(run);
+  try {
+    if (!step.decision.sensor) {
+      throw InputError(file, "/events", "replanning step " + std::to_string(step.decision.index) +
+                                            " names no sensor; expected the one whose depth map it read");
+    }
+    const std::string& sensor = *step.decision.sensor;
+    const DepthGrid grid = recorded_grid(run, sensor);
+    cv::Mat depth = read_depth_map(step.depth_file);
+    if (depth.cols != grid.cols || depth.rows != grid.rows) {
+      throw InputError(step.depth_file.string(), "",
+                       "expected a " + std::to_string(grid.cols) + " x " + std::to_string(grid.rows) +
+                           " depth map, the resolution of sensor \"" + sensor + "\"");
+    }
+    DepthOverlays overlays = replan_overlays(depth, step.decision.details, config, grid);
+    return {std::move(depth), std::move(overlays)};
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file, "/events", "malformed replanning step " + std::to_string(step.decision.index) + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, const std::vector<ReplanStep>& steps,
+                                                        const std::filesystem::path& out_dir) {
+  const DepthReactiveConfig config = recorded_depth_reactive_config(run);
   std::vector<std::filesystem::path> written;
   for (const ReplanStep& step : steps) {
-    DepthOverlays overlays;
-    cv::Mat depth;
-    try {
-      if (!step.decision.sensor) {
-        throw InputError(file, "/events", "replanning step " + std::to_string(step.decision.index) +
-                                              " names no sensor; expected the one whose depth map it read");
-      }
-      const std::string& sensor = *step.decision.sensor;
-      const DepthGrid grid = recorded_grid(run, sensor);
-      depth = read_depth_png(step.depth_file);
-      if (depth.cols != grid.cols || depth.rows != grid.rows) {
-        throw InputError(step.depth_file.string(), "",
-                         "expected a " + std::to_string(grid.cols) + " x " + std::to_string(grid.rows) +
-                             " depth map, the resolution of sensor \"" + sensor + "\"");
-      }
-      overlays = replan_overlays(depth, step.decision.details, config, grid);
-    } catch (const nlohmann::json::exception& e) {
-      throw InputError(file, "/events", "malformed replanning step " + std::to_string(step.decision.index) + ": " + e.what());
-    }
+    const auto [depth, overlays] = replan_depth(run, config, step);
     const std::string stem = std::filesystem::path(replan_depth_file(step.decision.index)).stem().string();
     for (auto& f : write_depth_pair(depth, overlays, replan_title(run, step), out_dir, stem)) written.push_back(std::move(f));
   }
   return written;
+}
+
+cv::Mat draw_replan_figure(const RecordedRun& run, const ReplanStep& step, bool colour) {
+  const auto [depth, overlays] = replan_depth(run, recorded_depth_reactive_config(run), step);
+  return draw_depth(depth, overlays, colour, replan_title(run, step));
 }
 
 namespace {
@@ -304,12 +315,7 @@ std::filesystem::path write_sequence(const RecordedRun& run, std::vector<double>
     panel.caption = caption.str();
     panels.push_back(std::move(panel));
   }
-  // The chassis as the run's vehicle parameters give it (rover), else 1.5 m x 1.0 m (003 §3.1).
-  Eigen::Vector2d footprint(1.5, 1.0);
-  const auto size = "/parameters/vehicle/params/chassis_size_m"_json_pointer;
-  if (run.record.contains(size) && run.record.at(size).is_array() && run.record.at(size).size() >= 2) {
-    footprint = {run.record.at(size).at(0).get<double>(), run.record.at(size).at(1).get<double>()};
-  }
+  const Eigen::Vector2d footprint = vehicle_size_m(run).head<2>();
   FigureStyle style;
   style.max_size_px = 700;
   style.margin_m = 1.5;

@@ -39,6 +39,10 @@ std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::opt
 std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, const std::vector<ReplanStep>& steps,
                                                         const std::filesystem::path& out_dir);
 
+/// The figure of one replanning step as write_replan_figures draws it (grey
+/// or colour-mapped), for a video's sensor panel.
+cv::Mat draw_replan_figure(const RecordedRun& run, const ReplanStep& step, bool colour);
+
 /// The instants of a sequence figure picked from a rover_route run's
 /// follow-the-gap decisions ("gap" events): (a) the first chosen gap, (c) the
 /// first one whose centre lies on the other side of the route, (b) half way

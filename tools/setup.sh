@@ -22,6 +22,9 @@ packages=(
   # numpy and pandas; matplotlib for the example analysis script.
   pybind11-dev python3-dev python3-numpy python3-pandas python3-matplotlib
   slurm-wlm munge jq # tests/slurm: a local single-node Slurm cluster (tools/slurm/)
+  # campo render --kind video encodes with the ffmpeg program; the replay's tests open
+  # the page in headless Chromium.
+  ffmpeg chromium
   # tools/fuzz.sh: clang, libFuzzer's runtime (libclang-rt-dev, only a Recommends of clang's
   # packages) and llvm-symbolizer (llvm) for sanitizer reports with file and line.
   clang libclang-rt-dev llvm
@@ -31,6 +34,9 @@ packages=(
 if [ "${CAMPO_PEERS:-0}" = 1 ]; then
   packages+=(libmujoco-dev libompl-dev libboost-dev)
 fi
+
+# The replay viewer's three.js comes from the npm registry (web/replay/package-lock.json).
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -43,6 +49,15 @@ if ((${#missing[@]})); then
   export DEBIAN_FRONTEND=noninteractive
   "${sudo_cmd[@]}" apt-get update -qq >/dev/null
   "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# three.js for the replay viewer, as pinned by web/replay/package-lock.json; embedded in campo
+# when it is built (CMakeLists.txt), so a fresh install reconfigures.
+replay="$root/web/replay"
+if [ ! -f "$replay/node_modules/.package-lock.json" ] ||
+   [ "$replay/package-lock.json" -nt "$replay/node_modules/.package-lock.json" ]; then
+  (cd "$replay" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+  [ -f "$build_dir/CMakeCache.txt" ] && cmake -S "$root" -B "$build_dir" >/dev/null
 fi
 
 if [ ! -f "$build_dir/CMakeCache.txt" ]; then

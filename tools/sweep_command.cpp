@@ -26,6 +26,7 @@
 #include "tools/commands.hpp"
 #include "tools/plugin_options.hpp"
 #include "tools/run_execution.hpp"
+#include "tools/run_video.hpp"
 #include "tools/scene_checks.hpp"
 
 namespace campo::cli {
@@ -45,6 +46,7 @@ struct SweepOptions {
   bool keep_runs = false;
   bool figures = false;
   bool triage = false;
+  bool videos = false;  // --videos: a video of each run that did not reach its goal
   bool retry_failed = false;
   double progress_every_s = 10.0;
   std::vector<std::string> plugins;
@@ -116,6 +118,16 @@ std::string repro_command(const SweepRun& run, const std::string& triage_dir) {
 
 std::string triage_dir(const SweepRun& run) { return "triage/" + run.name; }
 
+// A video of a run that did not reach its goal, beside its files, for triage: at most about 30 s
+// long, 1280 x 720 (encoding a sweep's worth of videos at full size would cost more than the runs).
+void write_failure_video(const fs::path& run_dir) {
+  const RecordedRun run = load_run_dir(run_dir);
+  VideoOptions video;
+  video.frame_px = {1280, 720};
+  if (!run.view.track.empty()) video.speed = std::max(1.0, run.view.track.back().time_s / 30.0);
+  write_video(run, video, run_dir / "video.mp4");
+}
+
 // In the run's process: simulate, write what was asked for, return the results line.
 std::string run_one(const SweepRun& run, const fs::path& dir, const SweepOptions& o) {
   RunRequest request;
@@ -153,8 +165,16 @@ std::string run_one(const SweepRun& run, const fs::path& dir, const SweepOptions
   for (const FigureFailure& f : figure_failures) {
     files_error += (files_error.empty() ? "" : "; ") + f.figure + ": " + f.message;
   }
+  const bool reached = simulated->record.at("metrics").at("outcome") == "reached";
+  if (o.videos && !reached && o.figures) {
+    try {
+      write_failure_video(request.out);
+    } catch (const std::exception& e) {
+      files_error += (files_error.empty() ? "video: " : "; video: ") + std::string(e.what());
+    }
+  }
   try {
-    if (o.triage && simulated->record.at("metrics").at("outcome") != "reached") {
+    if (o.triage && !reached) {
       // What a person needs to see why: the map, the depth map at the last step, the run's files.
       RunRequest figures = request;
       figures.out = dir / triage_dir(run);
@@ -165,6 +185,7 @@ std::string run_one(const SweepRun& run, const fs::path& dir, const SweepOptions
       }
       write_final_depth(*simulated, out.path("depth.png"));
       out.commit();
+      if (o.videos) write_failure_video(figures.out);
     }
   } catch (const std::exception& e) {
     files_error += (files_error.empty() ? "triage: " : "; triage: ") + std::string(e.what());
@@ -244,6 +265,9 @@ int run_sweep(const SweepOptions& o) {
     return kOk;
   }
   if (o.out.empty()) throw InputError("command line", "--out", "expected an output directory (or --list)");
+  if (o.videos && !o.figures && !o.triage) {
+    throw InputError("command line", "--videos", "draws videos of the runs --figures or --triage keep; add one of them");
+  }
   nlohmann::json manifest = sweep_manifest(spec, all_runs);
   if (!o.shard.empty()) manifest["shard"] = {{"index", shard.index}, {"count", shard.count}};
   // Which plugin files the planners came from: resuming with a rebuilt plugin is another sweep.
@@ -363,6 +387,9 @@ Command add_sweep(CLI::App& app) {
                "For every run that failed or did not reach its goal: DIR/triage/NAME/ with map.png, side.png, "
                "depth.png (what the vehicle saw at the last step), the run's files and repro.sh, the command "
                "that reruns it alone");
+  app.add_flag("--videos", o->videos,
+               "With --figures or --triage: also video.mp4 (campo render --kind video, sped up to at most about "
+               "30 s) of each run that did not reach its goal, in its run and triage directories");
   app.add_flag("--retry-failed", o->retry_failed, "Rerun the runs recorded as failed (completed runs are kept)");
   app.add_option("--progress-every", o->progress_every_s,
                  "Seconds between progress lines when stderr is not a terminal (default: 10)")

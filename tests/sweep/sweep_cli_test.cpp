@@ -278,6 +278,28 @@ TEST_F(SweepCli, ARunPastItsTimeLimitIsKilledAndRecorded) {
   EXPECT_TRUE(fs::exists(dir_ / "o" / killed["triage"]["dir"].get<std::string>() / "repro.sh"));
 }
 
+// With --videos, a run that did not reach its goal (out of simulated time here) gets video.mp4
+// beside its figures; one that reached gets none.
+TEST_F(SweepCli, VideosOfTheRunsThatDidNotReachTheirGoal) {
+  write("short.json", R"({"campo_sweep": 1, "name": "short", "scenes": ["two_barriers"],
+    "set": {"/objects/drone/sensors/scanner/resolution": [16, 16]},
+    "axes": [{"name": "limit", "values": [3, 300], "set": ["/world/time_limit_s"]}]})");
+  EXPECT_EQ(campo("sweep " + spec("short.json") + " --out " + out("none") + " --videos").exit_code, 2);
+  const Result sweep = campo("sweep " + spec("short.json") + " --out " + out("o") + " --figures --videos");
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  int videos = 0;
+  for (const std::string& text : lines_of(slurp(dir_ / "o" / "results.jsonl"))) {
+    const nlohmann::json line = nlohmann::json::parse(text);
+    const bool reached = line["metrics"]["outcome"] == "reached";
+    EXPECT_EQ(reached, line["params"]["limit"] == 300) << text;
+    EXPECT_FALSE(line.contains("files_error")) << text;
+    const fs::path video = dir_ / "o" / line["run_dir"].get<std::string>() / "video.mp4";
+    EXPECT_EQ(fs::exists(video), !reached) << video;
+    videos += fs::exists(video);
+  }
+  EXPECT_EQ(videos, 1);
+}
+
 // Kill the sweep (SIGKILL, no chance to clean up) while it runs, run the
 // same command again: every run is recorded exactly once and the results are
 // those of a sweep that was never interrupted.

@@ -1,0 +1,271 @@
+#include "render/replay.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+
+#include "campo/json_reader.hpp"
+#include "render/figure_style.hpp"
+#include "campo/version.hpp"
+#include "render/replay_assets.hpp"
+#include "sensors/lidar.hpp"
+
+namespace campo {
+
+namespace {
+
+using nlohmann::json;
+
+// Millimetres and thousandths of a degree are plenty for a viewer, and keep the file short.
+double rounded(double v, double unit = 1e-3) { return std::round(v / unit) * unit; }
+json xyz(const Eigen::Vector3d& v) { return {rounded(v.x()), rounded(v.y()), rounded(v.z())}; }
+json rgb(const Color& c) { return {rounded(c.r), rounded(c.g), rounded(c.b)}; }
+
+json rotation(const Eigen::Matrix3d& m) {
+  json out = json::array();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) out.push_back(rounded(m(r, c), 1e-6));
+  }
+  return out;
+}
+
+// Every `stride`-th index of n, the last always included.
+std::vector<std::size_t> thinned(std::size_t n, std::size_t max) {
+  std::vector<std::size_t> keep;
+  if (n == 0) return keep;
+  const std::size_t stride = max == 0 ? n : (n + max - 1) / max;
+  for (std::size_t i = 0; i < n; i += std::max<std::size_t>(stride, 1)) keep.push_back(i);
+  if (keep.back() != n - 1) keep.push_back(n - 1);
+  return keep;
+}
+
+json solid_json(const Shape& s, int mover) {
+  json j{{"type", std::string(to_string(s.type))}, {"alias", s.alias}, {"position_m", xyz(s.pose.translation())},
+         {"rotation", rotation(s.pose.linear())}, {"color", rgb(s.color)}, {"mover", mover}};
+  switch (s.type) {
+    case ShapeType::cuboid:
+      j["size_m"] = xyz(s.size_m);
+      break;
+    case ShapeType::cylinder:
+    case ShapeType::cone:
+      j["radius_m"] = rounded(s.radius_m);
+      j["height_m"] = rounded(s.height_m);
+      break;
+    case ShapeType::sphere:
+      j["radius_m"] = rounded(s.radius_m);
+      break;
+    case ShapeType::plane:
+    case ShapeType::heightfield:
+      throw std::logic_error("solid_json: not a solid");
+  }
+  return j;
+}
+
+json scene_json(const Scene& scene, double duration_s, const ReplayLimits& limits, Eigen::AlignedBox3d& bounds) {
+  json shapes = json::array(), planes = json::array(), terrains = json::array(), movers = json::array();
+  for (const Shape& s : scene.shapes) {
+    if (s.type == ShapeType::plane) {
+      planes.push_back({{"position_m", xyz(s.pose.translation())}, {"normal", xyz(s.pose.linear().col(2))},
+                        {"color", rgb(s.color)}});
+    } else if (s.type == ShapeType::heightfield) {
+      const HeightGrid& g = *s.terrain;
+      json heights = json::array();
+      for (double h : g.heights_m) heights.push_back(rounded(h));
+      terrains.push_back({{"position_m", xyz(s.pose.translation())}, {"rotation", rotation(s.pose.linear())},
+                          {"cols", g.cols}, {"rows", g.rows}, {"spacing_m", {g.spacing_x_m, g.spacing_y_m}},
+                          {"heights_m", std::move(heights)}, {"color", rgb(s.color)}});
+      for (double x : {-0.5, 0.5}) {
+        for (double y : {-0.5, 0.5}) {
+          for (double z : {g.min_height_m(), g.max_height_m()}) {
+            bounds.extend(s.pose * Eigen::Vector3d(x * g.size_x_m(), y * g.size_y_m(), z));
+          }
+        }
+      }
+    } else {
+      shapes.push_back(solid_json(s, -1));
+      bounds.extend(s.pose.translation());
+    }
+  }
+  for (std::size_t i = 0; i < scene.movers.size(); ++i) {
+    const Mover& m = scene.movers[i];
+    json times = json::array(), positions = json::array();
+    const auto samples = static_cast<std::size_t>(std::ceil(duration_s / limits.mover_sample_s)) + 1;
+    for (std::size_t k = 0; k < samples; ++k) {
+      const double t = std::min(static_cast<double>(k) * limits.mover_sample_s, duration_s);
+      times.push_back(rounded(t));
+      positions.push_back(xyz(m.position_at(t)));
+    }
+    movers.push_back({{"shape", shapes.size()}, {"times_s", std::move(times)}, {"positions_m", std::move(positions)}});
+    shapes.push_back(solid_json(m.shape, static_cast<int>(i)));
+  }
+  return {{"name", scene.name}, {"shapes", std::move(shapes)}, {"planes", std::move(planes)},
+          {"terrains", std::move(terrains)}, {"movers", std::move(movers)}};
+}
+
+// The returns of the run's first sensor with recorded depth maps, in the world frame: each
+// map's ranges along its beams, from the sensor's pose then (the vehicle's recorded pose at
+// the scan, times the mount).
+json scans_json(const RecordedRun& run, const TrajectoryTable& table, const ReplayLimits& limits) {
+  json scans = json::array();
+  const std::vector<RecordedDepthMap> maps = recorded_depth_maps(run);
+  if (maps.empty()) return scans;
+  const VehicleDef& vehicle = recorded_vehicle(run);
+  const SensorDef* sensor = nullptr;
+  for (const SensorDef& s : vehicle.sensors) {
+    if (std::any_of(maps.begin(), maps.end(), [&](const auto& m) { return m.sensor == s.alias; })) {
+      sensor = &s;
+      break;
+    }
+  }
+  if (!sensor) return scans;
+  std::vector<RecordedDepthMap> own;
+  for (const auto& m : maps) {
+    if (m.sensor == sensor->alias) own.push_back(m);
+  }
+  const std::vector<Beam> beams = lidar_beams(sensor->lidar);
+  const Eigen::Isometry3d mount = to_isometry(sensor->lidar.mount);
+  const auto& time = table.column("time_s");
+  const auto& x = table.column("x_m");
+  const auto& y = table.column("y_m");
+  const auto& z = table.column("z_m");
+  const auto& roll = table.column("roll_deg");
+  const auto& pitch = table.column("pitch_deg");
+  const auto& yaw = table.column("yaw_deg");
+  for (std::size_t k : thinned(own.size(), limits.max_scans)) {
+    const RecordedDepthMap& m = own[k];
+    const cv::Mat depth = read_depth_map(m.file);
+    if (depth.total() != beams.size()) {
+      throw InputError(m.file.string(), "", "expected " + std::to_string(beams.size()) + " ranges, one per beam of sensor \"" +
+                                                sensor->alias + "\"");
+    }
+    // The recorded sample at the scan (samples are at least as frequent as scans).
+    const auto it = std::upper_bound(time.begin(), time.end(), m.time_s + 1e-9);
+    const std::size_t i = it == time.begin() ? 0 : static_cast<std::size_t>(it - time.begin() - 1);
+    const Eigen::Isometry3d sensor_pose =
+        to_isometry(Pose{{x[i], y[i], z[i]}, {roll[i], pitch[i], yaw[i]}}) * mount;
+    std::vector<Eigen::Vector3d> points;
+    const float* v = depth.ptr<float>(0);
+    for (std::size_t b = 0; b < beams.size(); ++b) {
+      if (v[b] <= 0.0f || v[b] >= 1.0f) continue;  // below min range, or no return
+      points.push_back(sensor_pose * (beam_direction(beams[b]).cast<double>() * (v[b] * sensor->lidar.max_range_m)));
+    }
+    json pts = json::array();
+    for (std::size_t p : thinned(points.size(), limits.max_scan_points)) pts.push_back(xyz(points[p]));
+    scans.push_back({{"time_s", rounded(m.time_s)}, {"points_m", std::move(pts)}});
+  }
+  return scans;
+}
+
+json run_json(const RecordedRun& run, std::size_t index, const ReplayLimits& limits, Eigen::AlignedBox3d& bounds) {
+  const TrajectoryTable table = read_trajectory_table(run.dir / "trajectory.csv");
+  const auto& time = table.column("time_s");
+  if (time.empty()) throw InputError(table.file, "", "no samples; expected a track");
+  const auto& x = table.column("x_m");
+  const auto& y = table.column("y_m");
+  const auto& z = table.column("z_m");
+  const auto& roll = table.column("roll_deg");
+  const auto& pitch = table.column("pitch_deg");
+  const auto& yaw = table.column("yaw_deg");
+  json times = json::array(), positions = json::array(), attitudes = json::array();
+  for (std::size_t i : thinned(time.size(), limits.max_track_samples)) {
+    times.push_back(rounded(time[i], 1e-4));
+    positions.push_back(xyz({x[i], y[i], z[i]}));
+    attitudes.push_back({rounded(roll[i]), rounded(pitch[i]), rounded(yaw[i])});
+    bounds.extend(Eigen::Vector3d(x[i], y[i], z[i]));
+  }
+  const cv::Scalar bgr = run_color(index);
+  const std::string vehicle = run.record.value("/parameters/vehicle/type"_json_pointer, std::string("quadrotor"));
+  return {{"label", run.view.label},
+          {"color", {rounded(bgr[2] / 255.0), rounded(bgr[1] / 255.0), rounded(bgr[0] / 255.0)}},
+          {"vehicle", vehicle},
+          {"size_m", xyz(vehicle_size_m(run))},
+          {"outcome", run.view.outcome},
+          {"times_s", std::move(times)},
+          {"positions_m", std::move(positions)},
+          {"rpy_deg", std::move(attitudes)},
+          {"scans", scans_json(run, table, limits)}};
+}
+
+// The page: each line of the template that is one marker alone becomes that content; the
+// inserted text is never searched for markers again.
+std::string assemble(const ReplayAssets& assets, const std::string& data) {
+  const std::pair<std::string_view, std::string_view> contents[] = {{"/*@CAMPO_THREE@*/", assets.three},
+                                                                    {"/*@CAMPO_ORBIT@*/", assets.orbit},
+                                                                    {"/*@CAMPO_REPLAY_JS@*/", assets.script},
+                                                                    {"/*@CAMPO_DATA@*/", data}};
+  std::string page;
+  page.reserve(assets.page.size() + assets.three.size() + assets.orbit.size() + assets.script.size() + data.size());
+  int found = 0;
+  std::string_view rest = assets.page;
+  while (!rest.empty()) {
+    const std::size_t end = rest.find('\n');
+    const std::string_view line = rest.substr(0, end == std::string_view::npos ? rest.size() : end + 1);
+    rest.remove_prefix(line.size());
+    std::string_view trimmed = line;
+    while (!trimmed.empty() && std::isspace(static_cast<unsigned char>(trimmed.back()))) trimmed.remove_suffix(1);
+    while (!trimmed.empty() && std::isspace(static_cast<unsigned char>(trimmed.front()))) trimmed.remove_prefix(1);
+    const auto match = std::find_if(std::begin(contents), std::end(contents), [&](const auto& c) { return c.first == trimmed; });
+    if (match == std::end(contents)) {
+      page += line;
+      continue;
+    }
+    page += match->second;
+    page += '\n';
+    ++found;
+  }
+  if (found != 4) throw std::logic_error("replay_html: the embedded template lacks a marker");
+  return page;
+}
+
+}  // namespace
+
+nlohmann::json replay_data(const std::vector<RecordedRun>& runs, const ReplayLimits& limits) {
+  if (runs.empty()) throw std::invalid_argument("replay_data: no runs");
+  for (const RecordedRun& run : runs) {
+    if (run.scene.name != runs.front().scene.name) {
+      throw InputError((run.dir / "scene.json").string(), "/name",
+                       "expected the scene of the other runs (\"" + runs.front().scene.name + "\"): one replay shows one scene, got \"" +
+                           run.scene.name + "\"");
+    }
+  }
+  Eigen::AlignedBox3d bounds;
+  json run_list = json::array();
+  double duration_s = 0.0;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    run_list.push_back(run_json(runs[i], i, limits, bounds));
+    duration_s = std::max(duration_s, run_list.back()["times_s"].back().get<double>());
+  }
+  json scene = scene_json(runs.front().scene, duration_s, limits, bounds);
+  scene["bounds_m"] = {{"min", xyz(bounds.min())}, {"max", xyz(bounds.max())}};
+  std::string title = runs.front().scene.name;
+  if (runs.size() == 1) {
+    title += ": " + runs.front().view.label + (runs.front().view.outcome.empty() ? "" : " (" + runs.front().view.outcome + ")");
+  } else {
+    title += ": " + std::to_string(runs.size()) + " runs";
+  }
+  return {{"campo_replay", 1},       {"title", title},
+          {"generator", "campo " + std::string(library_version())},
+          {"duration_s", duration_s}, {"scene", std::move(scene)},
+          {"runs", std::move(run_list)}};
+}
+
+std::string replay_html(const nlohmann::json& data) {
+  const std::optional<ReplayAssets> assets = replay_assets();
+  if (!assets) {
+    throw std::runtime_error(
+        "this campo was built without the replay viewer: web/replay/node_modules was missing (tools/setup.sh installs "
+        "it from the npm registry); rebuild after running it");
+  }
+  // Every "<" as \u003c: the same JSON, and nothing in it can end or confuse its <script> element.
+  std::string text;
+  for (char c : data.dump()) {
+    if (c == '<') text += "\\u003c";
+    else text += c;
+  }
+  return assemble(*assets, text);
+}
+
+}  // namespace campo

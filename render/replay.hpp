@@ -1,0 +1,36 @@
+#pragma once
+/// A shareable 3D replay of recorded runs (`campo render --kind replay`): one
+/// self-contained HTML file holding the viewer (web/replay, with three.js from
+/// the npm registry, embedded in campo when it is built) and the runs' data, so
+/// it opens offline in any browser.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "render/run_files.hpp"
+
+namespace campo {
+
+/// Limits that keep a replay file small enough to share.
+struct ReplayLimits {
+  std::size_t max_track_samples = 20000;  ///< per run; longer tracks are thinned evenly
+  std::size_t max_scans = 400;            ///< per run; more recorded scans are thinned evenly
+  std::size_t max_scan_points = 3000;     ///< per scan; more returns are thinned evenly
+  double mover_sample_s = 0.1;            ///< movers' positions every this many simulated seconds
+};
+
+/// The replay's data (web/replay/README.md's format, "campo_replay": 1): the
+/// first run's scene (its static solids, planes, terrains and movers), and per
+/// run its track with attitude, vehicle type, size and colour, and the LIDAR
+/// or depth-camera returns recorded with `campo run --record-depth N` in the
+/// world frame. InputError when a run has no track.
+nlohmann::json replay_data(const std::vector<RecordedRun>& runs, const ReplayLimits& limits = {});
+
+/// The HTML page: the viewer's template with three.js, its orbit controls, the
+/// viewer's script and `data` inlined. std::runtime_error when this campo
+/// was built without the viewer (web/replay/node_modules missing at build time).
+std::string replay_html(const nlohmann::json& data);
+
+}  // namespace campo

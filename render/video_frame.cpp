@@ -1,0 +1,170 @@
+#include "render/video_frame.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include <opencv2/imgproc.hpp>
+
+#include "render/figure_canvas.hpp"
+#include "render/figure_parts.hpp"
+#include "render/figure_scene.hpp"
+
+namespace campo {
+
+using figure::PlotMapper;
+using figure::xy;
+
+namespace {
+
+const cv::Scalar kStripFill = figure::rgb(244, 244, 244);
+const cv::Scalar kClockBar = figure::rgb(31, 119, 180);
+
+// The map is drawn at this plot size and scaled into its panel: large enough that the
+// scene's details survive, small enough to draw quickly.
+constexpr int kMapPlotPx = 720;
+
+FigureStyle map_style(const RunView& run) {
+  FigureStyle style;
+  style.max_size_px = kMapPlotPx;
+  style.margin_m = 2.0;
+  style.title = run.label + (run.outcome.empty() ? "" : " - " + run.outcome);
+  return style;
+}
+
+// Where an image of `size` lands when fitted into `box` with its aspect kept, centred.
+cv::Rect fitted(const cv::Rect& box, cv::Size size) {
+  const double k = std::min(static_cast<double>(box.width) / size.width, static_cast<double>(box.height) / size.height);
+  const cv::Size scaled(std::max(1, static_cast<int>(std::floor(size.width * k))),
+                        std::max(1, static_cast<int>(std::floor(size.height * k))));
+  return {box.x + (box.width - scaled.width) / 2, box.y + (box.height - scaled.height) / 2, scaled.width,
+          scaled.height};
+}
+
+// `image` scaled into `at` of `frame`.
+void paste(cv::Mat& frame, const cv::Rect& at, const cv::Mat& image) {
+  if (image.empty() || at.width <= 0 || at.height <= 0) return;
+  const bool shrink = at.width < image.cols;
+  cv::resize(image, frame(at), at.size(), 0.0, 0.0, shrink ? cv::INTER_AREA : cv::INTER_LINEAR);
+}
+
+// The vehicle's footprint at its heading, with a line to its front and a ring that finds it at any scale.
+void draw_vehicle(cv::Mat& plot, const PlotMapper& to, const TrackPoint& at, const Eigen::Vector2d& footprint_m) {
+  const double yaw = at.yaw_deg * M_PI / 180.0;
+  const Eigen::Vector2d ahead(std::cos(yaw), std::sin(yaw)), left(-ahead.y(), ahead.x());
+  const Eigen::Vector2d centre = xy(at.position_m);
+  const Eigen::Vector2d half = 0.5 * footprint_m;
+  const std::vector<Eigen::Vector2d> corners{centre + half.x() * ahead + half.y() * left,
+                                             centre - half.x() * ahead + half.y() * left,
+                                             centre - half.x() * ahead - half.y() * left,
+                                             centre + half.x() * ahead - half.y() * left};
+  const std::vector<cv::Point> outline = figure::fixed(to.all(corners));
+  cv::circle(plot, figure::fixed(to(centre)), 14 << figure::kShift, figure::kInk, 2, cv::LINE_AA, figure::kShift);
+  cv::fillConvexPoly(plot, outline, figure::rgb(250, 250, 250), cv::LINE_AA, figure::kShift);
+  cv::polylines(plot, outline, true, figure::kInk, 2, cv::LINE_AA, figure::kShift);
+  const Eigen::Vector2d nose = centre + std::max(half.x(), 0.6) * ahead;
+  cv::line(plot, figure::fixed(to(centre)), figure::fixed(to(nose)), figure::kInk, 2, cv::LINE_AA, figure::kShift);
+}
+
+void draw_strip(cv::Mat& frame, const cv::Rect& box, const VideoStrip& strip) {
+  frame(box).setTo(kStripFill);
+  cv::line(frame, box.tl(), cv::Point(box.br().x, box.y), figure::kGridInk, 1);
+  char clock[64];
+  std::snprintf(clock, sizeof clock, "%.1f s / %.1f s", strip.time_s, strip.duration_s);
+  const int row1 = box.y + 24, row2 = box.y + 52;
+  figure::put_text(frame, clock, cv::Point2d(box.x + 16, row1), figure::kTitleFont, figure::kInk);
+  // How far through the run: a bar under the clock.
+  const cv::Rect bar(box.x + 16, row2 - 5, 220, 10);
+  cv::rectangle(frame, bar, figure::kGridInk, cv::FILLED);
+  const double f = strip.duration_s > 0.0 ? std::clamp(strip.time_s / strip.duration_s, 0.0, 1.0) : 1.0;
+  cv::rectangle(frame, cv::Rect(bar.x, bar.y, static_cast<int>(std::lround(f * bar.width)), bar.height), kClockBar,
+                cv::FILLED);
+  // The values in equal columns right of the clock; the state under them.
+  const int x0 = box.x + 270;
+  const int column = strip.values.empty() ? 0 : std::max(1, (box.br().x - 16 - x0) / static_cast<int>(strip.values.size()));
+  for (std::size_t i = 0; i < strip.values.size(); ++i) {
+    const auto& [label, value] = strip.values[i];
+    const double x = x0 + static_cast<double>(i) * column;
+    figure::put_text(frame, label, cv::Point2d(x, row1 - 6), figure::kSmallFont, figure::kMutedInk);
+    figure::put_text(frame, value, cv::Point2d(x, row1 + 10), figure::kLabelFont, figure::kInk);
+  }
+  figure::put_text(frame, strip.state, cv::Point2d(x0, row2 + 2), figure::kLabelFont, figure::kInk);
+}
+
+}  // namespace
+
+VideoLayout video_layout(cv::Size frame_px) {
+  if (frame_px.width < 480 || frame_px.height < 270 || frame_px.width % 2 || frame_px.height % 2) {
+    throw std::invalid_argument("video_layout: frame sides must be even and at least 480 x 270");
+  }
+  VideoLayout l;
+  l.frame_px = frame_px;
+  const int top = frame_px.height - kVideoStripPx;
+  const int map_w = static_cast<int>(std::lround(0.56 * frame_px.width));
+  l.map_px = {0, 0, map_w, top};
+  l.sensor_px = {map_w, 0, frame_px.width - map_w, top};
+  l.strip_px = {0, top, frame_px.width, kVideoStripPx};
+  return l;
+}
+
+VideoFrames::VideoFrames(const Scene& scene, const RunView& run, const Eigen::Vector3d& vehicle_size_m,
+                         cv::Size frame_px)
+    : scene_(scene),
+      plan_(figure::plan_map(scene, {&run}, map_style(run), false)),
+      vehicle_size_m_(vehicle_size_m),
+      layout_(video_layout(frame_px)) {
+  if (run.track.empty()) throw std::invalid_argument("VideoFrames: the run has no track");
+  const FigureStyle style = map_style(run);
+  // The whole run fixes the frame, the legend and the time scale; the background shows none of
+  // its progress: movers only by their paths, mission waypoints not yet reached.
+  plan_.movers_at_start = false;
+  plan_.mission_reached.assign(plan_.mission_reached.size(), false);
+  map_layout_ = figure::layout_map(plan_, style);
+  RunView bare;
+  bare.label = run.label;
+  bare.mission = run.mission;
+  plan_.runs = {&bare};
+  map_background_ = figure::draw_map_figure(scene, plan_, map_layout_, style.title);
+  plan_.runs.clear();
+  map_paste_px_ = fitted(layout_.map_px, map_background_.size());
+}
+
+cv::Point2d VideoFrames::to_frame_px(const Eigen::Vector2d& world_m) const {
+  // Pixel centres map to pixel centres under the resize: scale about the corners (-0.5, -0.5).
+  const cv::Point2d p = map_layout_.to_px(world_m);
+  const double kx = static_cast<double>(map_paste_px_.width) / map_background_.cols;
+  const double ky = static_cast<double>(map_paste_px_.height) / map_background_.rows;
+  return {map_paste_px_.x + (p.x + 0.5) * kx - 0.5, map_paste_px_.y + (p.y + 0.5) * ky - 0.5};
+}
+
+cv::Mat VideoFrames::draw(const RunView& so_far, double time_s, const cv::Mat& sensor_panel,
+                          const std::string& sensor_caption, const VideoStrip& strip) {
+  if (so_far.track.empty()) throw std::invalid_argument("VideoFrames::draw: the run has no track");
+  cv::Mat map = map_background_.clone();
+  cv::Mat plot = map(map_layout_.plot_px);
+  const PlotMapper to{map_layout_};
+  plan_.runs = {&so_far};
+  figure::draw_run_marks(plot, to, plan_);
+  plan_.runs.clear();
+  for (const Mover& m : scene_.movers) {
+    Shape then = m.shape;
+    then.pose.translation() = m.position_at(time_s);
+    figure::draw_footprint(plot, to, figure::footprint(then), figure::lighten(figure::to_bgr(m.shape.color), 0.3));
+  }
+  draw_vehicle(plot, to, so_far.track.back(), vehicle_size_m_.head<2>());
+
+  cv::Mat frame(layout_.frame_px, CV_8UC3, figure::kWhite);
+  paste(frame, map_paste_px_, map);
+  const cv::Rect& s = layout_.sensor_px;
+  figure::put_text(frame, sensor_caption, cv::Point2d(s.x + 12, s.y + kVideoCaptionPx / 2 + 4), figure::kLabelFont,
+                   figure::kInk);
+  if (!sensor_panel.empty()) {
+    const cv::Rect box(s.x + 8, s.y + kVideoCaptionPx, s.width - 16, s.height - kVideoCaptionPx - 8);
+    paste(frame, fitted(box, sensor_panel.size()), sensor_panel);
+  }
+  draw_strip(frame, layout_.strip_px, strip);
+  return frame;
+}
+
+}  // namespace campo

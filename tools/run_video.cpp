@@ -1,0 +1,269 @@
+#include "tools/run_video.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <iterator>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "campo/json_reader.hpp"
+#include "render/scan_view.hpp"
+#include "render/video_encoder.hpp"
+#include "render/video_frame.hpp"
+#include "render/depth_figure.hpp"
+#include "sensors/lidar.hpp"
+#include "tools/run_figures.hpp"
+
+namespace campo::cli {
+
+namespace {
+
+std::string fixed(double value, int decimals, const char* unit) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f %s", decimals, value, unit);
+  return text;
+}
+
+// Index of the last of `times` at or before t (0 when none is).
+template <class Times>
+std::size_t last_at_or_before(const Times& times, double t, double (*time_of)(const typename Times::value_type&)) {
+  const auto it = std::upper_bound(times.begin(), times.end(), t,
+                                   [&](double v, const typename Times::value_type& x) { return v < time_of(x); });
+  return it == times.begin() ? 0 : static_cast<std::size_t>(it - times.begin() - 1);
+}
+
+// The recorded depth maps of the vehicle's first sensor that has any, in time order.
+std::pair<const SensorDef*, std::vector<RecordedDepthMap>> recorded_depths(const RecordedRun& run,
+                                                                           const VehicleDef& vehicle) {
+  const std::vector<RecordedDepthMap> all = recorded_depth_maps(run);
+  for (const SensorDef& sensor : vehicle.sensors) {
+    std::vector<RecordedDepthMap> own;
+    std::copy_if(all.begin(), all.end(), std::back_inserter(own), [&](const auto& m) { return m.sensor == sensor.alias; });
+    if (!own.empty()) return {&sensor, std::move(own)};
+  }
+  return {nullptr, {}};
+}
+
+// What the sensor panel shows at each instant, drawn once per recorded map or scan.
+class SensorPanel {
+ public:
+  SensorPanel(const RecordedRun& run, const VehicleDef& vehicle, const Eigen::Vector3d& size_m)
+      : run_(run), footprint_m_(size_m.head<2>()) {
+    const std::string planner = run.record.value("/parameters/planner/name"_json_pointer, std::string());
+    if (planner == "depth_reactive" && std::filesystem::is_directory(run.dir / "replans")) {
+      replans_ = find_replan_steps(run, std::nullopt);
+      std::sort(replans_.begin(), replans_.end(), [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
+    }
+    std::tie(sensor_, depths_) = recorded_depths(run, vehicle);
+    for (const PlannerEvent& e : run.events) {
+      if (e.decisions.gap) gaps_.emplace_back(e.time_s, *e.decisions.gap);
+    }
+  }
+
+  // The panel at `time_s` and its caption; `at` is the vehicle's sample then.
+  std::pair<cv::Mat, std::string> at(double time_s, const TrackPoint& at, bool avoiding) {
+    if (!replans_.empty() && replans_.front().time_s <= time_s) {
+      const std::size_t k =
+          last_at_or_before(replans_, time_s, +[](const ReplanStep& s) { return s.time_s; });
+      if (k != shown_) {
+        image_ = draw_replan_figure(run_, replans_[k], true);
+        shown_ = k;
+      }
+      return {image_, "What the planner saw: replanning " + std::to_string(replans_[k].decision.index) + " at " +
+                          fixed(replans_[k].time_s, 1, "s")};
+    }
+    const GapDecision* gap = nullptr;
+    if (!gaps_.empty() && gaps_.front().first <= time_s) {
+      gap = &gaps_[last_at_or_before(gaps_, time_s, +[](const std::pair<double, GapDecision>& g) { return g.first; })]
+                 .second;
+    }
+    const bool planar = sensor_ && sensor_->lidar.rows <= 1;
+    if (sensor_ && !depths_.empty() && depths_.front().time_s <= time_s && !planar) {
+      const std::size_t k = last_at_or_before(depths_, time_s, +[](const RecordedDepthMap& d) { return d.time_s; });
+      if (k != shown_) {
+        image_ = draw_depth(read_depth_map(depths_[k].file), {}, true, sensor_->alias + " depth map");
+        shown_ = k;
+      }
+      return {image_, "Depth map of " + sensor_->alias + " at " + fixed(depths_[k].time_s, 1, "s")};
+    }
+    if (!planar && gaps_.empty()) {
+      return {cv::Mat(), "No sensor data recorded: campo run --record-depth 1 saves every scan"};
+    }
+    ScanView view;
+    view.footprint_m = footprint_m_;
+    view.range_m = sensor_ ? std::min(sensor_->lidar.max_range_m, 8.0) : 5.0;
+    std::string caption = "Planar scan, vehicle frame, forward up";
+    if (planar && !depths_.empty() && depths_.front().time_s <= time_s) {
+      const RecordedDepthMap& d = depths_[last_at_or_before(depths_, time_s, +[](const RecordedDepthMap& r) { return r.time_s; })];
+      view.points_m = planar_points(read_depth_map(d.file), d.file);
+      caption = sensor_->alias + " scan at " + fixed(d.time_s, 1, "s") + ", vehicle frame, forward up";
+    }
+    if (gap) {
+      view.route_deg = gap->route_heading_deg - at.yaw_deg;
+      view.nearest_m = gap->nearest_range_m;
+      if (gap->chosen && avoiding) view.gap_heading_deg = gap->route_heading_deg + gap->chosen->heading_deg - at.yaw_deg;
+    }
+    view.status = avoiding ? (gap && gap->chosen ? std::string("avoiding: gap on the ") +
+                                                       (gap->chosen->center_deg > 0.0 ? "left" : "right")
+                                                 : std::string("avoiding"))
+                           : "following the route";
+    return {draw_scan_view(view), caption};
+  }
+
+ private:
+  // The returns of a planar depth map in the vehicle frame (x forward, y left).
+  std::vector<Eigen::Vector2d> planar_points(const cv::Mat& depth, const std::filesystem::path& file) {
+    const LidarConfig& config = sensor_->lidar;
+    if (beams_.empty()) beams_ = lidar_beams(config);
+    if (static_cast<std::size_t>(depth.total()) != beams_.size()) {
+      throw InputError(file.string(), "", "expected " + std::to_string(beams_.size()) + " ranges, one per beam of sensor \"" +
+                                              sensor_->alias + "\"");
+    }
+    const Eigen::Isometry3d mount = to_isometry(config.mount);
+    std::vector<Eigen::Vector2d> points;
+    for (std::size_t i = 0; i < beams_.size(); ++i) {
+      const float v = depth.ptr<float>(0)[i];
+      if (v <= 0.0f || v >= 1.0f) continue;  // below min range, or no return
+      const Eigen::Vector3d p = mount * (beam_direction(beams_[i]).cast<double>() * (v * config.max_range_m));
+      points.push_back(p.head<2>());
+    }
+    return points;
+  }
+
+  const RecordedRun& run_;
+  Eigen::Vector2d footprint_m_;
+  std::vector<ReplanStep> replans_;
+  const SensorDef* sensor_ = nullptr;
+  std::vector<RecordedDepthMap> depths_;
+  std::vector<Beam> beams_;
+  std::vector<std::pair<double, GapDecision>> gaps_;
+  std::size_t shown_ = static_cast<std::size_t>(-1);
+  cv::Mat image_;
+};
+
+// The measured values of the strip, from trajectory.csv's row at a time.
+class StripValues {
+ public:
+  explicit StripValues(const RecordedRun& run) : table_(read_trajectory_table(run.dir / "trajectory.csv")) {
+    time_ = &table_.column("time_s");
+    const auto optional = [&](const char* name) -> const std::vector<double>* {
+      const auto& h = table_.header;
+      return std::find(h.begin(), h.end(), name) != h.end() ? &table_.column(name) : nullptr;
+    };
+    vx_ = &table_.column("vx_mps");
+    vy_ = &table_.column("vy_mps");
+    vz_ = &table_.column("vz_mps");
+    z_ = &table_.column("z_m");
+    agl_ = optional("height_above_ground_m");
+    clearance_ = optional("clearance_m");
+    const auto& x = table_.column("x_m");
+    const auto& y = table_.column("y_m");
+    distance_.assign(time_->size(), 0.0);
+    for (std::size_t i = 1; i < time_->size(); ++i) {
+      distance_[i] = distance_[i - 1] + std::hypot(x[i] - x[i - 1], y[i] - y[i - 1], (*z_)[i] - (*z_)[i - 1]);
+    }
+  }
+
+  std::vector<std::pair<std::string, std::string>> at(double time_s) const {
+    const auto it = std::upper_bound(time_->begin(), time_->end(), time_s);
+    const std::size_t i = it == time_->begin() ? 0 : static_cast<std::size_t>(it - time_->begin() - 1);
+    std::vector<std::pair<std::string, std::string>> values{
+        {"speed", fixed(std::hypot((*vx_)[i], (*vy_)[i], (*vz_)[i]), 2, "m/s")},
+        {"altitude", fixed((*z_)[i], 2, "m")}};
+    if (agl_) values.emplace_back("above ground", fixed((*agl_)[i], 2, "m"));
+    if (clearance_ && std::isfinite((*clearance_)[i])) values.emplace_back("clearance", fixed((*clearance_)[i], 2, "m"));
+    values.emplace_back("distance", fixed(distance_[i], 1, "m"));
+    return values;
+  }
+
+ private:
+  TrajectoryTable table_;
+  const std::vector<double>* time_ = nullptr;
+  const std::vector<double>* vx_ = nullptr;
+  const std::vector<double>* vy_ = nullptr;
+  const std::vector<double>* vz_ = nullptr;
+  const std::vector<double>* z_ = nullptr;
+  const std::vector<double>* agl_ = nullptr;
+  const std::vector<double>* clearance_ = nullptr;
+  std::vector<double> distance_;
+};
+
+// The planner's state at the end of `so_far`, one line.
+std::string planner_state(const RecordedRun& run, const RunView& so_far, double time_s, double duration_s,
+                          bool avoiding) {
+  if (time_s >= duration_s) {
+    const std::string reason = run.record.value("/metrics/reason"_json_pointer, std::string());
+    return "end: " + run.view.outcome + (reason.empty() ? "" : " (" + reason + ")");
+  }
+  std::string state = avoiding ? "avoiding an obstacle" : "";
+  for (const PlannerEvent& e : run.events) {
+    if (e.time_s > time_s) break;
+    if (e.decisions.replan) {
+      std::string action = e.decisions.replan->details.value("action", "");
+      std::replace(action.begin(), action.end(), '_', ' ');
+      if (!avoiding) state = "replanning " + std::to_string(e.decisions.replan->index) + (action.empty() ? "" : ": " + action);
+    }
+  }
+  const std::size_t reached = so_far.reached.size();
+  if (!so_far.mission.empty()) {
+    state += (state.empty() ? "" : "  |  ") + std::string("waypoints reached ") + std::to_string(reached) + "/" +
+             std::to_string(so_far.mission.size());
+  }
+  return state;
+}
+
+}  // namespace
+
+void write_video(const RecordedRun& run, const VideoOptions& options, const std::filesystem::path& out,
+                 const std::function<void(std::size_t, std::size_t)>& progress) {
+  const std::optional<VideoFormat> format = video_format_of(out);
+  if (!format) throw InputError("command line", "--out", "expected a video file ending in .mp4 or .gif, got " + out.string());
+  if (run.view.track.empty()) throw InputError((run.dir / "trajectory.csv").string(), "", "no samples; expected a track");
+  const VehicleDef& vehicle = recorded_vehicle(run);
+  const double duration_s = run.view.track.back().time_s;
+  const double step_s = options.speed / options.fps;
+  // Frames up to the end, the last one at the end itself.
+  std::size_t moving = static_cast<std::size_t>(std::floor(duration_s / step_s + 1e-9)) + 1;
+  if (static_cast<double>(moving - 1) * step_s < duration_s) ++moving;
+  const std::size_t held = static_cast<std::size_t>(std::lround(options.fps));  // the end, held a second
+  const std::size_t total = moving + held;
+  if (total > options.max_frames) {
+    throw InputError("command line", "--speed",
+                     "a " + fixed(duration_s, 1, "s") + " run at this speed and frame rate takes " + std::to_string(total) +
+                         " frames, more than " + std::to_string(options.max_frames) + "; raise --speed or lower --fps");
+  }
+  const Eigen::Vector3d size_m = vehicle_size_m(run);
+  VideoFrames frames(run.scene, run.view, size_m, options.frame_px);
+  SensorPanel sensor(run, vehicle, size_m);
+  const StripValues values(run);
+  VideoEncoder encoder(out, *format, options.frame_px, options.fps);
+  cv::Mat frame;
+  for (std::size_t k = 0; k < total; ++k) {
+    if (k >= moving) {  // the end, held: the same frame again
+      encoder.add(frame);
+      if (progress) progress(k + 1, total);
+      continue;
+    }
+    const double t = std::min(static_cast<double>(k) * step_s, duration_s);
+    const RunView so_far = run_view_at(run, t);
+    const double last_s = so_far.track.back().time_s;
+    const bool avoiding = !so_far.avoiding_s.empty() && so_far.avoiding_s.back().second >= last_s &&
+                          so_far.avoiding_s.back().first <= last_s;
+    const auto [panel, caption] = sensor.at(t, so_far.track.back(), avoiding);
+    VideoStrip strip;
+    strip.time_s = t;
+    strip.duration_s = duration_s;
+    strip.values = values.at(t);
+    strip.state = planner_state(run, so_far, t, duration_s, avoiding);
+    frame = frames.draw(so_far, t, panel, caption, strip);
+    encoder.add(frame);
+    if (progress) progress(k + 1, total);
+  }
+  encoder.finish();
+}
+
+}  // namespace campo::cli
