@@ -17,7 +17,7 @@ namespace campo {
 struct ReplayLimits {
   std::size_t max_track_samples = 20000;  ///< per run; longer tracks are thinned evenly
   std::size_t max_scans = 400;            ///< per run; more recorded scans are thinned evenly
-  std::size_t max_scan_points = 3000;     ///< per scan; more returns are thinned evenly
+  std::size_t max_scan_points = 1500;     ///< per scan; more returns are thinned evenly
   double mover_sample_s = 0.1;            ///< movers' positions every this many simulated seconds
 };
 
