@@ -69,9 +69,9 @@ class SensorPanel {
     if (!replans_.empty() && replans_.front().time_s <= time_s) {
       const std::size_t k =
           last_at_or_before(replans_, time_s, +[](const ReplanStep& s) { return s.time_s; });
-      if (k != shown_) {
+      if (shown_ != std::pair(Source::replan, k)) {
         image_ = draw_replan_figure(run_, replans_[k], true);
-        shown_ = k;
+        shown_ = {Source::replan, k};
       }
       return {image_, "What the planner saw: replanning " + std::to_string(replans_[k].decision.index) + " at " +
                           fixed(replans_[k].time_s, 1, "s")};
@@ -84,9 +84,9 @@ class SensorPanel {
     const bool planar = sensor_ && sensor_->lidar.rows <= 1;
     if (sensor_ && !depths_.empty() && depths_.front().time_s <= time_s && !planar) {
       const std::size_t k = last_at_or_before(depths_, time_s, +[](const RecordedDepthMap& d) { return d.time_s; });
-      if (k != shown_) {
+      if (shown_ != std::pair(Source::depth_map, k)) {
         image_ = draw_depth(read_depth_map(depths_[k].file), {}, true, sensor_->alias + " depth map");
-        shown_ = k;
+        shown_ = {Source::depth_map, k};
       }
       return {image_, "Depth map of " + sensor_->alias + " at " + fixed(depths_[k].time_s, 1, "s")};
     }
@@ -141,7 +141,9 @@ class SensorPanel {
   std::vector<RecordedDepthMap> depths_;
   std::vector<Beam> beams_;
   std::vector<std::pair<double, GapDecision>> gaps_;
-  std::size_t shown_ = static_cast<std::size_t>(-1);
+  // What image_ holds: a replanning's figure or a recorded depth map, by index.
+  enum class Source { none, replan, depth_map };
+  std::pair<Source, std::size_t> shown_{Source::none, 0};
   cv::Mat image_;
 };
 
