@@ -1,5 +1,13 @@
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <valgrind/callgrind.h>
+
+#include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -33,15 +41,33 @@ struct BenchOptions {
   std::string json_file;      ///< write the figures with their provenance here
   std::string baseline_file;  ///< compare with the figures of this earlier --json file
   double tolerance = 0.10;    ///< a figure this much slower than its baseline is a regression
+  bool instructions = false;  ///< count instructions per ray and per physics step under callgrind instead of timing
+  std::string work_file;      ///< (inside callgrind) where the counted cases' amounts of work go
 };
+
+// Under --instructions each case does a fixed amount of work, counted by callgrind between a
+// reset and a dump of its counters named after the figure.
+constexpr int kCountedScans = 2;
+constexpr double kCountedEpisodeS = 2.0;
+bool under_callgrind() { return RUNNING_ON_VALGRIND != 0; }
+
+// Runs `work` counted by callgrind as the dump `id` when under it; otherwise just runs it.
+template <class Work>
+void counted(const std::string& id, Work work) {
+  CALLGRIND_ZERO_STATS;
+  work();
+  CALLGRIND_DUMP_STATS_AT(id.c_str());
+}
 
 /// One measured figure; `id` names it across runs of campo bench (what --compare matches).
 struct Figure {
   std::string id;
   double value = 0.0;
-  std::string unit;  ///< higher is better for every figure
+  std::string unit;  ///< higher is better, except for instruction counts ("instructions/...")
   nlohmann::json details;
 };
+
+bool lower_is_better(const std::string& unit) { return unit.rfind("instructions/", 0) == 0; }
 
 // The machine as /proc describes it: figures compare only on the same one.
 nlohmann::json machine() {
@@ -73,8 +99,12 @@ std::string utc_now() {
 
 std::string command_line(const BenchOptions& o) {
   std::ostringstream c;
-  c << "campo bench " << o.what << " --min-time " << o.min_time_s << " --res " << o.resolution << " --episode-time "
-    << o.episode_time_s;
+  c << "campo bench " << o.what;
+  if (o.instructions) {
+    c << " --instructions --res " << o.resolution;
+  } else {
+    c << " --min-time " << o.min_time_s << " --res " << o.resolution << " --episode-time " << o.episode_time_s;
+  }
   return c.str();
 }
 
@@ -98,22 +128,26 @@ nlohmann::json figures_json(const BenchOptions& o, const std::vector<Figure>& fi
 }
 
 // The baseline's figures by id; InputError naming the file and the pointer for anything else.
-std::map<std::string, double> read_baseline(const std::string& file) {
+std::map<std::string, Figure> read_baseline(const std::string& file) {
   const nlohmann::json document = parse_json_text(read_text_file(file), file);
   ObjectReader r(JsonNode(document, file, ""));
   r.required("campo_bench").as_int(1, 1);
   r.required("provenance");
-  std::map<std::string, double> values;
+  std::map<std::string, Figure> figures;
   for (const JsonNode& figure : r.required("figures").as_array(0, 100000)) {
     ObjectReader f(figure);  // its other keys describe the figure
-    values[f.required("id").as_string()] = f.required("value").as_number(Range::positive());
+    Figure read;
+    read.id = f.required("id").as_string();
+    read.value = f.required("value").as_number(Range::positive());
+    f.read("unit", read.unit);
+    figures[read.id] = read;
   }
-  return values;
+  return figures;
 }
 
 // Prints each figure against its baseline; returns how many are more than the tolerance slower.
 int compare(const BenchOptions& o, const std::vector<Figure>& figures) {
-  const std::map<std::string, double> baseline = read_baseline(o.baseline_file);
+  const std::map<std::string, Figure> baseline = read_baseline(o.baseline_file);
   int regressed = 0;
   std::cout << "\ncompared with " << o.baseline_file << " (more than " << o.tolerance * 100
             << "% slower is a regression):\n";
@@ -123,11 +157,17 @@ int compare(const BenchOptions& o, const std::vector<Figure>& figures) {
       std::cout << "  " << std::left << std::setw(40) << f.id << " new: not in the baseline\n";
       continue;
     }
-    const double ratio = f.value / it->second;
+    if (it->second.unit != f.unit) {
+      std::cout << "  " << std::left << std::setw(40) << f.id << " not comparable: " << f.unit << " against the baseline's "
+                << it->second.unit << "\n";
+      continue;
+    }
+    // Speed relative to the baseline: fewer instructions, or more of a rate, is faster.
+    const double ratio = lower_is_better(f.unit) ? it->second.value / f.value : f.value / it->second.value;
     const bool slower = ratio < 1.0 - o.tolerance;
     regressed += slower;
     std::cout << "  " << std::left << std::setw(40) << f.id << std::right << std::fixed << std::setprecision(3)
-              << std::setw(8) << ratio << "x the baseline" << (slower ? "  SLOWER" : "") << "\n";
+              << std::setw(8) << ratio << "x the baseline's speed" << (slower ? "  SLOWER" : "") << "\n";
   }
   return regressed;
 }
@@ -155,16 +195,43 @@ double lidar_rays_per_second(const Scene& scene, int resolution, double min_time
   return static_cast<double>(rays) / elapsed;
 }
 
+// Rays of kCountedScans scanner3d scans (after one uncounted), counted by callgrind as `id`.
+double lidar_counted_rays(const Scene& scene, int resolution, const std::string& id) {
+  LidarConfig config = *lidar_preset("scanner3d");
+  config.cols = config.rows = resolution;
+  const Eigen::Isometry3d pose = scene.vehicles.front().pose * to_isometry(config.mount);
+  RayCaster caster(scene);
+  Lidar lidar(config, scene.world.seed);
+  LidarScan scan;
+  lidar.scan(caster, pose, 0.0, scan);
+  long rays = 0;
+  counted(id, [&] {
+    for (int i = 1; i <= kCountedScans; ++i) {
+      Eigen::Isometry3d turned = pose;
+      turned.linear() = Eigen::AngleAxisd(0.05 * i, Eigen::Vector3d::UnitZ()) * pose.linear();
+      lidar.scan(caster, turned, 0.0, scan);
+      rays += static_cast<long>(scan.ranges_m.size());
+    }
+  });
+  return static_cast<double>(rays);
+}
+
 void bench_lidar(const BenchOptions& o, std::vector<Figure>& figures) {
   for (const char* name : {"trees_rolling_terrain", "vineyard"}) {
     const Scene scene = load_scene(bundled_scene(name));
+    const std::string id = "lidar_scanner3d/" + std::string(name) + "/" + std::to_string(o.resolution);
+    if (o.instructions) {
+      // The amount of work now; the parent divides callgrind's count by it.
+      figures.push_back({id, lidar_counted_rays(scene, o.resolution, id), "instructions/ray",
+                         {{"scene", name}, {"resolution", o.resolution}, {"scans", kCountedScans}}});
+      continue;
+    }
     const double rate = lidar_rays_per_second(scene, o.resolution, o.min_time_s);
     std::ostringstream line;
     line << "lidar scanner3d " << o.resolution << "x" << o.resolution << " in " << std::left << std::setw(22)
          << name << std::right << std::fixed << std::setprecision(2) << rate / 1e6 << " M rays/s (1 thread)";
     std::cout << line.str() << "\n";
-    figures.push_back({"lidar_scanner3d/" + std::string(name) + "/" + std::to_string(o.resolution), rate, "rays/s",
-                       {{"scene", name}, {"resolution", o.resolution}, {"threads", 1}}});
+    figures.push_back({id, rate, "rays/s", {{"scene", name}, {"resolution", o.resolution}, {"threads", 1}}});
   }
 }
 
@@ -188,6 +255,22 @@ void bench_episodes(const BenchOptions& o, std::vector<Figure>& figures) {
       EpisodeOptions options;
       options.stop_on_collision = false;
       options.make_sensor = range_sensor_factory();
+      const std::string id = "episode/" + std::string(name) + "/" + std::to_string(resolution);
+      if (o.instructions) {
+        // Built uncounted; then kCountedEpisodeS simulated seconds of the loop, planner included.
+        Episode episode(scene, &make_vehicle, options);
+        const std::unique_ptr<Planner> planner = create_planner(def.planner, {def.type, &scene, &def});
+        counted(id, [&] {
+          while (!episode.done() && episode.observation().time_s < kCountedEpisodeS) {
+            episode.step(planner->plan(episode.observation()));
+          }
+        });
+        const double steps = episode.observation().time_s / scene.world.physics_step_s;
+        figures.push_back({id, steps, "instructions/physics step",
+                           {{"scene", name}, {"vehicle", vehicle}, {"sensor_resolution", resolution},
+                            {"sim_time_s", episode.observation().time_s}}});
+        continue;
+      }
       const EpisodeResult r = run_episode(scene, &make_vehicle, &create_planner, options);
       const double steps = r.metrics.sim_time_s / scene.world.physics_step_s;
       const double rtf = r.metrics.sim_time_s / r.metrics.wall_time_s;
@@ -199,13 +282,75 @@ void bench_episodes(const BenchOptions& o, std::vector<Figure>& figures) {
            << sensors << std::right << std::fixed << std::setprecision(0) << std::setw(9) << steps / r.metrics.wall_time_s
            << " steps/s  " << std::setprecision(1) << std::setw(7) << rtf << "x real time";
       std::cout << line.str() << "\n";
-      figures.push_back({"episode/" + std::string(name) + "/" + std::to_string(resolution),
-                         steps / r.metrics.wall_time_s, "physics steps/s",
+      figures.push_back({id, steps / r.metrics.wall_time_s, "physics steps/s",
                          {{"scene", name}, {"vehicle", vehicle}, {"sensor_resolution", resolution},
                           {"sim_time_s", r.metrics.sim_time_s}, {"wall_time_s", r.metrics.wall_time_s},
                           {"real_time_factor", rtf}}});
     }
   }
+}
+
+// The totals of the counter dumps callgrind wrote in `dir`, by the name campo gave each dump.
+std::map<std::string, double> callgrind_totals(const std::filesystem::path& dir) {
+  std::map<std::string, double> totals;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    std::ifstream in(entry.path());
+    std::string id;
+    for (std::string line; std::getline(in, line);) {
+      const std::string trigger = "desc: Trigger: Client Request: ";
+      if (line.rfind(trigger, 0) == 0) id = line.substr(trigger.size());
+      if (line.rfind("totals: ", 0) == 0 && !id.empty()) totals[id] = std::stod(line.substr(8));
+    }
+  }
+  return totals;
+}
+
+// --instructions: campo bench runs itself under callgrind, each case a fixed amount of work
+// counted on its own; a figure is the instructions it took per ray or per physics step. The
+// same binary and input give the same count to within 0.1% (Embree's and the allocator's
+// bookkeeping vary a little), so a change is the code's, not the machine's load.
+std::vector<Figure> count_instructions(const BenchOptions& o) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("campo_bench_callgrind_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string work = (dir / "work.json").string();
+  std::vector<std::string> args{"valgrind", "--tool=callgrind", "--quiet",
+                                "--callgrind-out-file=" + (dir / "callgrind.%p").string(),
+                                fs::read_symlink("/proc/self/exe").string(), "bench", o.what, "--instructions",
+                                "--res", std::to_string(o.resolution), "--work-file", work};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  std::cout << "counting instructions under callgrind (about a minute)...\n" << std::flush;
+  if (::posix_spawnp(&pid, "valgrind", nullptr, nullptr, argv.data(), environ) != 0) {
+    fs::remove_all(dir);
+    throw std::runtime_error("campo bench --instructions runs campo under valgrind: install the Debian package valgrind");
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::exists(work)) {
+    fs::remove_all(dir);
+    throw std::runtime_error("campo bench under callgrind failed");
+  }
+  const nlohmann::json counted_work = nlohmann::json::parse(read_text_file(work));
+  const std::map<std::string, double> totals = callgrind_totals(dir);
+  fs::remove_all(dir);
+  std::vector<Figure> figures;
+  for (const auto& f : counted_work) {
+    const std::string id = f.at("id");
+    const auto total = totals.find(id);
+    if (total == totals.end()) throw std::runtime_error("callgrind wrote no count for " + id);
+    Figure figure{id, total->second / f.at("value").get<double>(), f.at("unit"), f.at("details")};
+    figure.details["instructions"] = total->second;
+    figure.details["work"] = f.at("value");
+    std::cout << std::left << std::setw(40) << id << std::right << std::fixed << std::setprecision(1) << std::setw(12)
+              << figure.value << " " << figure.unit << "\n";
+    figures.push_back(std::move(figure));
+  }
+  return figures;
 }
 
 }  // namespace
@@ -234,6 +379,11 @@ Command add_bench(CLI::App& app) {
   app.add_option("--tolerance", o->tolerance, "Fraction slower than the baseline that counts as a regression")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  app.add_flag("--instructions", o->instructions,
+               "Count instructions (per ray, per physics step) under callgrind instead of timing: "
+               "exact and independent of the machine's load, for regression checks on a noisy machine");
+  app.add_option("--work-file", o->work_file, "(internal: campo bench --instructions under callgrind)")
+      ->group("");
   app.footer(
       "lidar: rays per second on one core, scanner3d scans from the vehicle of\n"
       "trees_rolling_terrain and vineyard. episodes: physics steps per second and real-time\n"
@@ -242,13 +392,28 @@ Command add_bench(CLI::App& app) {
       "64x64 and 256x256 at 10 Hz. Single-threaded. Figures go in docs/PERFORMANCE.md.\n"
       "A quick check that every case runs: campo bench episodes --episode-time 1\n"
       "Regression check: campo bench --json base.json on one revision, then campo bench\n"
-      "--compare base.json on another (same machine): exit 3 when a figure is slower.");
+      "--compare base.json on another (same machine): exit 3 when a figure is slower. With\n"
+      "--instructions both count instructions under callgrind (valgrind): 2 scans per LIDAR case and\n"
+      "2 simulated seconds per episode case; counts of the same build agree to 0.1%.");
   return [o]() {
     // Read first: a bad baseline is bad input before minutes of measuring.
     if (!o->baseline_file.empty()) read_baseline(o->baseline_file);
     std::vector<Figure> figures;
-    if (o->what != "episodes") bench_lidar(*o, figures);
-    if (o->what != "lidar") bench_episodes(*o, figures);
+    if (o->instructions && !under_callgrind()) {
+      figures = count_instructions(*o);
+    } else {
+      if (o->instructions && o->work_file.empty()) {
+        throw InputError("command line", "--instructions", "under valgrind, campo bench runs itself: drop valgrind");
+      }
+      if (o->what != "episodes") bench_lidar(*o, figures);
+      if (o->what != "lidar") bench_episodes(*o, figures);
+      if (o->instructions) {  // inside callgrind: the amounts of work, for the parent
+        nlohmann::json work = nlohmann::json::array();
+        for (const Figure& f : figures) work.push_back({{"id", f.id}, {"value", f.value}, {"unit", f.unit}, {"details", f.details}});
+        write_file_atomically(o->work_file, work.dump());
+        return kOk;
+      }
+    }
     if (!o->json_file.empty()) write_file_atomically(o->json_file, figures_json(*o, figures).dump(2) + "\n");
     if (!o->baseline_file.empty() && compare(*o, figures) > 0) return kRegressed;
     return kOk;

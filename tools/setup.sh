@@ -25,6 +25,7 @@ packages=(
   # campo render --kind video encodes with the ffmpeg program; the replay's tests open
   # the page in headless Chromium.
   ffmpeg chromium
+  valgrind # campo bench --instructions counts instructions under callgrind
   # tools/fuzz.sh: clang, libFuzzer's runtime (libclang-rt-dev, only a Recommends of clang's
   # packages) and llvm-symbolizer (llvm) for sanitizer reports with file and line.
   clang libclang-rt-dev llvm

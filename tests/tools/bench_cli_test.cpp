@@ -50,6 +50,45 @@ TEST_F(BenchCli, WritesFiguresWithProvenanceAndComparesThem) {
   EXPECT_EQ(flagged, 1);
 }
 
+// Under callgrind: instructions per ray, nearly the same on every run; fewer is faster.
+TEST_F(BenchCli, CountsInstructionsAndComparesThemLowerIsFaster) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "valgrind cannot run an AddressSanitizer build; the plain build runs this test";
+#endif
+  const std::string record = (dir_ / "counted.json").string();
+  const auto counted = campo("bench lidar --instructions --res 16 --json " + record);
+  ASSERT_EQ(counted.exit_code, 0) << counted.err;
+  const nlohmann::json base = nlohmann::json::parse(testing::slurp(record));
+  EXPECT_EQ(base["provenance"]["command"], "campo bench lidar --instructions --res 16");
+  ASSERT_EQ(base["figures"].size(), 2u);
+  for (const auto& f : base["figures"]) {
+    EXPECT_EQ(f["unit"], "instructions/ray");
+    EXPECT_EQ(f["work"], 2 * 16 * 16);  // two scans of 16 x 16 beams
+    EXPECT_DOUBLE_EQ(f["value"].get<double>(), f["instructions"].get<double>() / f["work"].get<double>());
+    EXPECT_GT(f["value"].get<double>(), 50.0);  // a ray is not free...
+    EXPECT_LT(f["value"].get<double>(), 1e5);   // ...nor a scan's worth
+  }
+  // Counted again: within 1% (no regression at the default 10%); a baseline that needed half the
+  // instructions for the first figure flags that one alone; one rated in rays/s is not comparable.
+  nlohmann::json leaner = base;
+  leaner["figures"][0]["value"] = base["figures"][0]["value"].get<double>() / 2;
+  leaner["figures"][1]["unit"] = "rays/s";
+  const auto again = campo("bench lidar --instructions --res 16 --compare " + write("leaner.json", leaner.dump()));
+  EXPECT_EQ(again.exit_code, 3) << again.err;
+  int flagged = 0;
+  for (const std::string& line : testing::lines_of(again.out)) {
+    if (line.find("SLOWER") != std::string::npos) {
+      ++flagged;
+      EXPECT_THAT(line, HasSubstr(base["figures"][0]["id"].get<std::string>()));
+      EXPECT_THAT(line, HasSubstr("0.50"));  // half the baseline's speed
+    }
+  }
+  EXPECT_EQ(flagged, 1);
+  EXPECT_THAT(again.out, ::testing::ContainsRegex(base["figures"][1]["id"].get<std::string>() + " +not comparable"));
+  const auto same = campo("bench lidar --instructions --res 16 --tolerance 0.01 --compare " + record);
+  EXPECT_EQ(same.exit_code, 0) << same.out;
+}
+
 TEST_F(BenchCli, ABadBaselineIsBadInputBeforeMeasuring) {
   const auto missing = campo("bench --compare " + write("b.json", R"({"campo_bench": 1, "figures": []})"));
   EXPECT_EQ(missing.exit_code, 2);
