@@ -1,10 +1,8 @@
 #include "campo/version.hpp"
 
-// CAMPO_GIT_REV is defined for this file alone (CMakeLists.txt), so a new commit
-// recompiles one file rather than every file that sees the version.
-#ifndef CAMPO_GIT_REV
-#error "CAMPO_GIT_REV must be defined by the build"
-#endif
+// Generated on every build (cmake/git_revision.cmake) and included here alone, so a new
+// commit recompiles one file rather than every file that sees the version.
+#include "campo_git_revision.hpp"
 
 namespace campo {
 

@@ -1,3 +1,4 @@
+#include <sched.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -43,6 +44,8 @@ struct BenchOptions {
   double tolerance = 0.10;    ///< a figure this much slower than its baseline is a regression
   bool instructions = false;  ///< count instructions per ray and per physics step under callgrind instead of timing
   std::string work_file;      ///< (inside callgrind) where the counted cases' amounts of work go
+  std::string table_file;     ///< print the peers table of this earlier --json record, measure nothing
+  int pinned_core = -1;       ///< `peers`: the core the programs ran on
 };
 
 // Under --instructions each case does a fixed amount of work, counted by callgrind between a
@@ -100,7 +103,9 @@ std::string utc_now() {
 std::string command_line(const BenchOptions& o) {
   std::ostringstream c;
   c << "campo bench " << o.what;
-  if (o.instructions) {
+  if (o.what == "peers") {
+    // the programs' own defaults
+  } else if (o.instructions) {
     c << " --instructions --res " << o.resolution;
   } else {
     c << " --min-time " << o.min_time_s << " --res " << o.resolution << " --episode-time " << o.episode_time_s;
@@ -117,14 +122,13 @@ nlohmann::json figures_json(const BenchOptions& o, const std::vector<Figure>& fi
     j["unit"] = f.unit;
     list.push_back(j);
   }
-  return {{"campo_bench", 1},
-          {"provenance",
-           {{"campo_version", std::string(library_version())},
-            {"git_revision", std::string(library_git_revision())},
-            {"date", utc_now()},
-            {"command", command_line(o)},
-            {"machine", machine()}}},
-          {"figures", list}};
+  nlohmann::json provenance{{"campo_version", std::string(library_version())},
+                             {"git_revision", std::string(library_git_revision())},
+                             {"date", utc_now()},
+                             {"command", command_line(o)},
+                             {"machine", machine()}};
+  if (o.pinned_core >= 0) provenance["pinning"] = "each program pinned to core " + std::to_string(o.pinned_core) + ".";
+  return {{"campo_bench", 1}, {"provenance", provenance}, {"figures", list}};
 }
 
 // The baseline's figures by id; InputError naming the file and the pointer for anything else.
@@ -290,6 +294,85 @@ void bench_episodes(const BenchOptions& o, std::vector<Figure>& figures) {
   }
 }
 
+// A rate for the peers table: "20.64 M rays/s", "1076976 steps/s", "92.7 problems/s".
+std::string rate_text(double value, const std::string& unit) {
+  char text[64];
+  if (value >= 1e7) {
+    std::snprintf(text, sizeof text, "%.2f M %s", value / 1e6, unit.c_str());
+  } else if (value >= 1000.0) {
+    std::snprintf(text, sizeof text, "%.0f %s", value, unit.c_str());
+  } else {
+    std::snprintf(text, sizeof text, "%.1f %s", value, unit.c_str());
+  }
+  return text;
+}
+
+// docs/PERFORMANCE.md's peers table from a record's peer figures (those with a "peer" rate).
+std::string peers_table(const nlohmann::json& record) {
+  const nlohmann::json& p = record.at("provenance");
+  const nlohmann::json& m = p.at("machine");
+  std::ostringstream out;
+  out << "Machine: " << m.value("cpu", "unknown") << ", " << m.value("cores", 0) << " cores, " << std::fixed
+      << std::setprecision(0) << m.value("memory_gib", 0.0) << " GiB; " << p.value("date", "").substr(0, 10) << "; git "
+      << p.value("git_revision", "unknown").substr(0, 12) << "; " << p.value("pinning", "") << "\n\n"
+      << "| comparison | campo | peer | campo / peer | checked |\n| --- | ---: | ---: | ---: | --- |\n";
+  for (const auto& f : record.at("figures")) {
+    if (!f.contains("peer")) continue;
+    const std::string unit = f.at("unit");
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%.2fx", f.at("value").get<double>() / f.at("peer").get<double>());
+    out << "| " << f.value("comparison", f.at("id").get<std::string>()) << " | "
+        << rate_text(f.at("value").get<double>(), unit) << " | " << f.value("peer_name", "") << ": "
+        << rate_text(f.at("peer").get<double>(), unit) << " | " << ratio << " | " << f.value("note", "") << " |\n";
+  }
+  return out.str();
+}
+
+// `campo bench peers`: every peer program built beside this campo (bench/peers), pinned to the
+// last core, its comparisons (JSON lines) as figures: campo's rate, with the peer's beside it.
+std::vector<Figure> run_peers(int& pinned_core) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::read_symlink("/proc/self/exe").parent_path();
+  cpu_set_t previous;
+  CPU_ZERO(&previous);
+  sched_getaffinity(0, sizeof previous, &previous);
+  pinned_core = static_cast<int>(std::thread::hardware_concurrency()) - 1;
+  cpu_set_t one;
+  CPU_ZERO(&one);
+  CPU_SET(pinned_core, &one);
+  sched_setaffinity(0, sizeof one, &one);  // the programs inherit it
+  std::vector<Figure> figures;
+  for (const char* program : {"campo_peer_quadrotor", "campo_peer_lidar", "campo_peer_astar", "campo_peer_dubins",
+                              "campo_peer_rrt_star"}) {
+    const fs::path path = dir / program;
+    if (!fs::exists(path)) {
+      std::cout << program << ": not built (its peer is not installed: CAMPO_PEERS=1 tools/setup.sh)\n";
+      continue;
+    }
+    std::cout << program << "...\n" << std::flush;
+    FILE* pipe = ::popen(("'" + path.string() + "' --json").c_str(), "r");
+    if (!pipe) throw std::runtime_error("cannot run " + path.string());
+    std::string output;
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) output.append(buffer, n);
+    if (::pclose(pipe) != 0) {
+      sched_setaffinity(0, sizeof previous, &previous);
+      throw std::runtime_error(path.string() + " failed");
+    }
+    std::istringstream lines(output);
+    for (std::string line; std::getline(lines, line);) {
+      if (line.empty()) continue;
+      const nlohmann::json c = nlohmann::json::parse(line);
+      Figure f{"peers/" + c.at("id").get<std::string>(), c.at("campo"), c.at("unit"), nlohmann::json::object()};
+      for (const char* key : {"comparison", "peer", "peer_name", "note"}) f.details[key] = c.at(key);
+      f.details["program"] = program;
+      figures.push_back(std::move(f));
+    }
+  }
+  sched_setaffinity(0, sizeof previous, &previous);
+  return figures;
+}
+
 // The totals of the counter dumps callgrind wrote in `dir`, by the name campo gave each dump.
 std::map<std::string, double> callgrind_totals(const std::filesystem::path& dir) {
   std::map<std::string, double> totals;
@@ -357,8 +440,9 @@ std::vector<Figure> count_instructions(const BenchOptions& o) {
 
 Command add_bench(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
-  app.add_option("what", o->what, "What to measure: lidar, episodes or all")
-      ->check(CLI::IsMember({"lidar", "episodes", "all"}))
+  app.add_option("what", o->what,
+                 "What to measure: lidar, episodes, all (both), or peers (the bench/peers programs side by side)")
+      ->check(CLI::IsMember({"lidar", "episodes", "all", "peers"}))
       ->capture_default_str();
   app.add_option("--min-time", o->min_time_s, "Seconds to measure each LIDAR case")
       ->check(CLI::Range(0.1, 600.0))
@@ -382,6 +466,10 @@ Command add_bench(CLI::App& app) {
   app.add_flag("--instructions", o->instructions,
                "Count instructions (per ray, per physics step) under callgrind instead of timing: "
                "exact and independent of the machine's load, for regression checks on a noisy machine");
+  app.add_option("--table", o->table_file,
+                 "Print docs/PERFORMANCE.md's peers table from an earlier `campo bench peers --json` record "
+                 "(measures nothing)")
+      ->check(CLI::ExistingFile);
   app.add_option("--work-file", o->work_file, "(internal: campo bench --instructions under callgrind)")
       ->group("");
   app.footer(
@@ -394,12 +482,25 @@ Command add_bench(CLI::App& app) {
       "Regression check: campo bench --json base.json on one revision, then campo bench\n"
       "--compare base.json on another (same machine): exit 3 when a figure is slower. With\n"
       "--instructions both count instructions under callgrind (valgrind): 2 scans per LIDAR case and\n"
-      "2 simulated seconds per episode case; counts of the same build agree to 0.1%.");
+      "2 simulated seconds per episode case; counts of the same build agree to 0.1%.\n"
+      "peers: runs every campo_peer_* program built beside campo (bench/peers; their peers with\n"
+      "CAMPO_PEERS=1 tools/setup.sh) pinned to the last core, records campo's rate of each comparison\n"
+      "with the peer's beside it, and prints docs/PERFORMANCE.md's peers table (--table FILE prints\n"
+      "it again from the --json record).");
   return [o]() {
     // Read first: a bad baseline is bad input before minutes of measuring.
     if (!o->baseline_file.empty()) read_baseline(o->baseline_file);
+    if (!o->table_file.empty()) {
+      std::cout << peers_table(parse_json_text(read_text_file(o->table_file), o->table_file));
+      return kOk;
+    }
     std::vector<Figure> figures;
-    if (o->instructions && !under_callgrind()) {
+    if (o->what == "peers") {
+      if (o->instructions) throw InputError("command line", "--instructions", "counts campo's own cases, not peers");
+      figures = run_peers(o->pinned_core);
+      const nlohmann::json record = figures_json(*o, figures);
+      std::cout << "\n" << peers_table(record);
+    } else if (o->instructions && !under_callgrind()) {
       figures = count_instructions(*o);
     } else {
       if (o->instructions && o->work_file.empty()) {

@@ -19,6 +19,7 @@
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/astar_search.hpp>
 
+#include "bench/peers/peer_record.hpp"
 #include "grid/astar.hpp"
 #include "grid/movingai.hpp"
 
@@ -139,6 +140,15 @@ int main(int argc, char** argv) {
       theirs.push_back(problems.size() / std::chrono::duration<double>(Clock::now() - start).count());
     }
     const double a = median(ours), b = median(theirs);
+    if (campo::peers::json_requested(argc, argv)) {
+      campo::peers::print_json({"astar/maze512-32-9",
+                                "A* on maze512-32-9, " + std::to_string(problems.size()) + " problems (every 40th)", a, b,
+                                "problems/s",
+                                "Boost Graph " + std::to_string(BOOST_VERSION / 100000) + "." +
+                                    std::to_string(BOOST_VERSION / 100 % 1000) + " astar_search",
+                                "optimal costs checked"});
+      return 0;
+    }
     std::printf("| A* on maze512-32-9, %zu problems (every 40th) | campo %.1f problems/s | Boost Graph %d.%d "
                 "astar_search %.1f problems/s | %.2fx | optimal costs checked |\n",
                 problems.size(), a, BOOST_VERSION / 100000, BOOST_VERSION / 100 % 1000, b, a / b);

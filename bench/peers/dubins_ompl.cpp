@@ -16,7 +16,9 @@
 #include <vector>
 
 #include <ompl/base/spaces/DubinsStateSpace.h>
+#include <ompl/config.h>
 
+#include "bench/peers/peer_record.hpp"
 #include "campo/random.hpp"
 #include "planners/dubins.hpp"
 
@@ -79,6 +81,16 @@ int main(int argc, char** argv) {
     }
     for (ompl::base::State* s : states) space.freeState(s);
     const double a_rate = median(ours), b_rate = median(theirs);
+    if (campo::peers::json_requested(argc, argv)) {
+      char note[96];
+      std::snprintf(note, sizeof note, "lengths agree to 1e-9 (checksum %.3f)", sink);
+      campo::peers::print_json({"dubins/4096_pairs", "Dubins shortest path, 4,096 pose pairs, r = 1.5 m", a_rate, b_rate,
+                                "queries/s",
+                                "OMPL " + std::to_string(OMPL_MAJOR_VERSION) + "." + std::to_string(OMPL_MINOR_VERSION) +
+                                    "." + std::to_string(OMPL_PATCH_VERSION) + " DubinsStateSpace",
+                                note});
+      return 0;
+    }
     std::printf("| Dubins shortest path, 4,096 pose pairs, r = 1.5 m | campo %.2f M queries/s | OMPL DubinsStateSpace "
                 "%.2f M queries/s | %.2fx | lengths agree to 1e-9 (checksum %.3f) |\n",
                 a_rate / 1e6, b_rate / 1e6, a_rate / b_rate, sink);

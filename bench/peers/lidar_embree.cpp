@@ -9,7 +9,7 @@
 // second, median of the repetitions. Scenes: trees_rolling_terrain, vineyard, and
 // trees_rolling_terrain's terrain alone.
 //
-//   build/campo_peer_lidar [--scans N] [--repetitions K]
+//   build/campo_peer_lidar [--scans N] [--repetitions K] [--json]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -21,6 +21,7 @@
 
 #include <embree3/rtcore.h>
 
+#include "bench/peers/peer_record.hpp"
 #include "campo/scene_loader.hpp"
 #include "scene/scene_mesh.hpp"
 #include "sensors/lidar.hpp"
@@ -136,7 +137,8 @@ class EmbreeTriangles {
   std::size_t triangles_ = 0;
 };
 
-void compare(const std::string& label, const Scene& scene, int scans_per_repetition, int repetitions) {
+void compare(const std::string& id, const std::string& label, const Scene& scene, int scans_per_repetition,
+             int repetitions, bool json) {
   const Scans scans = scanner3d_scans(scene, scans_per_repetition);
   const EmbreeTriangles peer(scene);
   std::vector<double> ours, theirs;
@@ -146,6 +148,14 @@ void compare(const std::string& label, const Scene& scene, int scans_per_repetit
     theirs.push_back(peer.rate(scans, their_hits));
   }
   const double a = median(ours), b = median(theirs);
+  if (json) {
+    peers::print_json({"lidar/" + id, label, a, b, "rays/s",
+                       "Embree " + std::to_string(RTC_VERSION_MAJOR) + "." + std::to_string(RTC_VERSION_MINOR) + "." +
+                           std::to_string(RTC_VERSION_PATCH) + " triangles (" + std::to_string(peer.triangles()) +
+                           "), rtcIntersect1M coherent",
+                       "hits " + std::to_string(our_hits) + " vs " + std::to_string(their_hits)});
+    return;
+  }
   std::printf("| %s | campo %.2f M rays/s | Embree %d.%d.%d triangles (%zu), rtcIntersect1M coherent: %.2f M rays/s | "
               "%.2fx | hits %zu vs %zu |\n",
               label.c_str(), a / 1e6, RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, peer.triangles(),
@@ -157,6 +167,7 @@ void compare(const std::string& label, const Scene& scene, int scans_per_repetit
 
 int main(int argc, char** argv) {
   int scans = 20, repetitions = 5;
+  const bool json = campo::peers::json_requested(argc, argv);
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::strcmp(argv[i], "--scans") == 0) scans = std::stoi(argv[i + 1]);
     if (std::strcmp(argv[i], "--repetitions") == 0) repetitions = std::stoi(argv[i + 1]);
@@ -164,11 +175,11 @@ int main(int argc, char** argv) {
   try {
     const std::string scenes = std::string(CAMPO_SOURCE_DIR) + "/scenes/";
     const campo::Scene trees = campo::load_scene(scenes + "trees_rolling_terrain.json");
-    campo::compare("trees_rolling_terrain", trees, scans, repetitions);
-    campo::compare("vineyard", campo::load_scene(scenes + "vineyard.json"), scans, repetitions);
+    campo::compare("trees_rolling_terrain", "trees_rolling_terrain", trees, scans, repetitions, json);
+    campo::compare("vineyard", "vineyard", campo::load_scene(scenes + "vineyard.json"), scans, repetitions, json);
     campo::Scene terrain = trees;
     std::erase_if(terrain.shapes, [](const campo::Shape& s) { return s.type != campo::ShapeType::heightfield; });
-    campo::compare("terrain alone (trees_rolling_terrain's)", terrain, scans, repetitions);
+    campo::compare("terrain", "terrain alone (trees_rolling_terrain's)", terrain, scans, repetitions, json);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "campo_peer_lidar: %s\n", e.what());
     return 1;

@@ -22,6 +22,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include "bench/peers/peer_record.hpp"
 #include "campo/scene_loader.hpp"
 #include "campo/world.hpp"
 #include "vehicles/factory.hpp"
@@ -176,6 +177,11 @@ int main(int argc, char** argv) {
       theirs.push_back(campo::mujoco_rate(scene, steps));
     }
     const double a = campo::median(ours), b = campo::median(theirs);
+    if (campo::peers::json_requested(argc, argv)) {
+      campo::peers::print_json({"quadrotor/trees_rolling_terrain", "quadrotor hovering over trees_rolling_terrain", a, b,
+                                "steps/s", std::string("MuJoCo ") + mj_versionString(), ""});
+      return 0;
+    }
     std::printf("| quadrotor hovering over trees_rolling_terrain | campo %.0f steps/s | MuJoCo %s %.0f steps/s | "
                 "%.2fx | |\n",
                 a, mj_versionString(), b, a / b);

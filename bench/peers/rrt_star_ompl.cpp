@@ -45,6 +45,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "bench/peers/peer_record.hpp"
 #include "grid/movingai.hpp"
 #include "planners/rrt_star.hpp"
 #include "scene/occupancy_grid.hpp"
@@ -296,6 +297,8 @@ int run_main(int argc, char** argv) {
   std::vector<std::string> maps{"arena", "box"};
   std::vector<std::string> planners{"campo", "ompl"};
   bool k_nearest = false;
+  bool json = false;
+  app.add_flag("--json", json, "one line of JSON per map and budget (campo bench peers reads them), not the table");
   app.add_option("--reps", reps, "interleaved repetitions per map and budget (medians of these)")
       ->check(CLI::Range(1, 1000));
   app.add_option("--budgets", budgets, "iteration budgets")->delimiter(',')->check(CLI::Range(1, 10'000'000));
@@ -309,20 +312,23 @@ int run_main(int argc, char** argv) {
   const bool with_campo = std::find(planners.begin(), planners.end(), "campo") != planners.end();
   const bool with_ompl = std::find(planners.begin(), planners.end(), "ompl") != planners.end();
   ompl::msg::setLogLevel(ompl::msg::LOG_NONE);  // setSeed's "generation already started" on every run
+  if (json && !(with_campo && with_ompl)) throw CLI::ValidationError("--json", "compares both planners");
+  // Human output goes to stderr when JSON lines are asked for.
+  FILE* const text_out = json ? stderr : stdout;
 
-  std::printf("campo RRT* vs OMPL %d.%d.%d RRTstar: step 2 m, goal region 1 m, goal bias 0.05, %s;\n",
+  std::fprintf(text_out, "campo RRT* vs OMPL %d.%d.%d RRTstar: step 2 m, goal region 1 m, goal bias 0.05, %s;\n",
               OMPL_MAJOR_VERSION, OMPL_MINOR_VERSION, OMPL_PATCH_VERSION,
               k_nearest ? "OMPL with its default k-nearest neighbours" : "neighbours within the same shrinking radius");
-  std::printf("median of %d interleaved repetitions (seeds 1..%d); costs: median [min, max] in m;\n", reps, reps);
-  std::printf("checks: edges checked an iteration (OccupancyGrid::segment_free), median.\n");
+  std::fprintf(text_out, "median of %d interleaved repetitions (seeds 1..%d); costs: median [min, max] in m;\n", reps, reps);
+  std::fprintf(text_out, "checks: edges checked an iteration (OccupancyGrid::segment_free), median.\n");
   for (const std::string& name : maps) {
     const GridProblem problem = name == "arena" ? arena_problem() : box_problem();
-    std::printf("%s: %s, (%.1f, %.1f) -> (%.1f, %.1f)\n", problem.name.c_str(), problem.description.c_str(),
+    std::fprintf(text_out, "%s: %s, (%.1f, %.1f) -> (%.1f, %.1f)\n", problem.name.c_str(), problem.description.c_str(),
                 problem.start_m.x(), problem.start_m.y(), problem.goal_m.x(), problem.goal_m.y());
   }
-  std::printf("\n| map | budget | campo | OMPL | OMPL / campo | campo cost | OMPL cost | campo checks | OMPL checks |"
+  std::fprintf(text_out, "\n| map | budget | campo | OMPL | OMPL / campo | campo cost | OMPL cost | campo checks | OMPL checks |"
               "\n");
-  std::printf("| --- | ---: | ---: | ---: | ---: | --- | --- | ---: | ---: |\n");
+  std::fprintf(text_out, "| --- | ---: | ---: | ---: | ---: | --- | --- | ---: | ---: |\n");
   for (const std::string& name : maps) {
     const GridProblem problem = name == "arena" ? arena_problem() : box_problem();
     const OmplProblem ompl_problem = make_ompl_problem(problem);
@@ -351,12 +357,23 @@ int run_main(int argc, char** argv) {
         std::snprintf(text, sizeof text, "%.2fx", median(ompl_s) / median(campo_s));
         ratio = text;
       }
-      std::printf("| %s | %d | %s | %s | %s | %s | %s | %s | %s |\n", problem.name.c_str(), budget,
+      if (json) {
+        std::vector<double> campo_s, ompl_s;
+        for (const Run& run : campo_runs) campo_s.push_back(run.seconds);
+        for (const Run& run : ompl_runs) ompl_s.push_back(run.seconds);
+        peers::print_json({"rrt_star/" + problem.name + "/" + std::to_string(budget),
+                           "RRT* on " + problem.name + ", " + std::to_string(budget) + " iterations", 1.0 / median(campo_s),
+                           1.0 / median(ompl_s), "plans/s",
+                           "OMPL " + std::to_string(OMPL_MAJOR_VERSION) + "." + std::to_string(OMPL_MINOR_VERSION) + "." +
+                               std::to_string(OMPL_PATCH_VERSION) + " RRTstar",
+                           "path cost campo " + cost_summary(campo_runs) + " m, OMPL " + cost_summary(ompl_runs) + " m"});
+      }
+      std::fprintf(text_out, "| %s | %d | %s | %s | %s | %s | %s | %s | %s |\n", problem.name.c_str(), budget,
                   median_ms(campo_runs).c_str(), median_ms(ompl_runs).c_str(), ratio.c_str(),
                   with_campo ? cost_summary(campo_runs).c_str() : "-",
                   with_ompl ? cost_summary(ompl_runs).c_str() : "-",
                   median_checks(campo_runs).c_str(), median_checks(ompl_runs).c_str());
-      std::fflush(stdout);
+      std::fflush(text_out);
     }
   }
   return 0;
