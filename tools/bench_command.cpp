@@ -46,6 +46,7 @@ struct BenchOptions {
   std::string work_file;      ///< (inside callgrind) where the counted cases' amounts of work go
   std::string table_file;     ///< print the peers table of this earlier --json record, measure nothing
   int pinned_core = -1;       ///< `peers`: the core the programs ran on
+  std::vector<std::string> peers{"quadrotor", "lidar", "astar", "dubins", "rrt_star"};  ///< `peers`: which programs
 };
 
 // Under --instructions each case does a fixed amount of work, counted by callgrind between a
@@ -104,7 +105,8 @@ std::string command_line(const BenchOptions& o) {
   std::ostringstream c;
   c << "campo bench " << o.what;
   if (o.what == "peers") {
-    // the programs' own defaults
+    c << " --peers ";
+    for (std::size_t i = 0; i < o.peers.size(); ++i) c << (i ? "," : "") << o.peers[i];
   } else if (o.instructions) {
     c << " --instructions --res " << o.resolution;
   } else {
@@ -330,7 +332,7 @@ std::string peers_table(const nlohmann::json& record) {
 
 // `campo bench peers`: every peer program built beside this campo (bench/peers), pinned to the
 // last core, its comparisons (JSON lines) as figures: campo's rate, with the peer's beside it.
-std::vector<Figure> run_peers(int& pinned_core) {
+std::vector<Figure> run_peers(const std::vector<std::string>& which, int& pinned_core) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::read_symlink("/proc/self/exe").parent_path();
   cpu_set_t previous;
@@ -342,8 +344,8 @@ std::vector<Figure> run_peers(int& pinned_core) {
   CPU_SET(pinned_core, &one);
   sched_setaffinity(0, sizeof one, &one);  // the programs inherit it
   std::vector<Figure> figures;
-  for (const char* program : {"campo_peer_quadrotor", "campo_peer_lidar", "campo_peer_astar", "campo_peer_dubins",
-                              "campo_peer_rrt_star"}) {
+  for (const std::string& name : which) {
+    const std::string program = "campo_peer_" + name;
     const fs::path path = dir / program;
     if (!fs::exists(path)) {
       std::cout << program << ": not built (its peer is not installed: CAMPO_PEERS=1 tools/setup.sh)\n";
@@ -466,6 +468,9 @@ Command add_bench(CLI::App& app) {
   app.add_flag("--instructions", o->instructions,
                "Count instructions (per ray, per physics step) under callgrind instead of timing: "
                "exact and independent of the machine's load, for regression checks on a noisy machine");
+  app.add_option("--peers", o->peers, "With peers: the programs to run (default: all)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"quadrotor", "lidar", "astar", "dubins", "rrt_star"}));
   app.add_option("--table", o->table_file,
                  "Print docs/PERFORMANCE.md's peers table from an earlier `campo bench peers --json` record "
                  "(measures nothing)")
@@ -497,7 +502,7 @@ Command add_bench(CLI::App& app) {
     std::vector<Figure> figures;
     if (o->what == "peers") {
       if (o->instructions) throw InputError("command line", "--instructions", "counts campo's own cases, not peers");
-      figures = run_peers(o->pinned_core);
+      figures = run_peers(o->peers, o->pinned_core);
       const nlohmann::json record = figures_json(*o, figures);
       std::cout << "\n" << peers_table(record);
     } else if (o->instructions && !under_callgrind()) {

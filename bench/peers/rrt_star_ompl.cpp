@@ -366,7 +366,7 @@ int run_main(int argc, char** argv) {
                            1.0 / median(ompl_s), "plans/s",
                            "OMPL " + std::to_string(OMPL_MAJOR_VERSION) + "." + std::to_string(OMPL_MINOR_VERSION) + "." +
                                std::to_string(OMPL_PATCH_VERSION) + " RRTstar",
-                           "path cost campo " + cost_summary(campo_runs) + " m, OMPL " + cost_summary(ompl_runs) + " m"});
+                           "path costs (m) campo " + cost_summary(campo_runs) + ", OMPL " + cost_summary(ompl_runs)});
       }
       std::fprintf(text_out, "| %s | %d | %s | %s | %s | %s | %s | %s | %s |\n", problem.name.c_str(), budget,
                   median_ms(campo_runs).c_str(), median_ms(ompl_runs).c_str(), ratio.c_str(),

@@ -89,6 +89,36 @@ TEST_F(BenchCli, CountsInstructionsAndComparesThemLowerIsFaster) {
   EXPECT_EQ(same.exit_code, 0) << same.out;
 }
 
+// The peers side by side (the Embree LIDAR peer is always built): figures of campo's rate with
+// the peer's beside it, and the table printed from the record equals the one printed live.
+TEST_F(BenchCli, PeersAreRecordedAndTheirTableComesFromTheRecord) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "sanitized builds build no peer programs; the plain build runs this test";
+#endif
+  const std::string record = (dir_ / "peers.json").string();
+  const auto live = campo("bench peers --peers lidar --json " + record);
+  ASSERT_EQ(live.exit_code, 0) << live.err;
+  const nlohmann::json peers = nlohmann::json::parse(testing::slurp(record));
+  EXPECT_EQ(peers["provenance"]["command"], "campo bench peers --peers lidar");
+  ASSERT_EQ(peers["figures"].size(), 3u);  // trees, vineyard, terrain alone
+  for (const auto& f : peers["figures"]) {
+    EXPECT_THAT(f["id"].get<std::string>(), ::testing::StartsWith("peers/lidar/"));
+    EXPECT_EQ(f["unit"], "rays/s");
+    EXPECT_GT(f["value"].get<double>(), 1e5);
+    EXPECT_GT(f["peer"].get<double>(), 1e5);
+    EXPECT_THAT(f["peer_name"].get<std::string>(), HasSubstr("Embree"));
+  }
+  const auto table = campo("bench --table " + record);
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_THAT(live.out, HasSubstr(table.out));
+  // Hand-made record: the ratio column is campo over the peer.
+  nlohmann::json hand = peers;
+  hand["figures"] = nlohmann::json::array({{{"id", "peers/x"}, {"value", 3.0e6}, {"unit", "rays/s"}, {"peer", 1.5e6},
+                                            {"peer_name", "P"}, {"comparison", "x"}, {"note", "n"}}});
+  const auto hand_table = campo("bench --table " + write("hand.json", hand.dump()));
+  EXPECT_THAT(hand_table.out, HasSubstr("| x | 3000000 rays/s | P: 1500000 rays/s | 2.00x | n |"));
+}
+
 TEST_F(BenchCli, ABadBaselineIsBadInputBeforeMeasuring) {
   const auto missing = campo("bench --compare " + write("b.json", R"({"campo_bench": 1, "figures": []})"));
   EXPECT_EQ(missing.exit_code, 2);
