@@ -11,7 +11,6 @@
 #include "render/figure_style.hpp"
 #include "campo/version.hpp"
 #include "render/replay_assets.hpp"
-#include "sensors/lidar.hpp"
 
 namespace campo {
 
@@ -105,10 +104,23 @@ json scene_json(const Scene& scene, double duration_s, const ReplayLimits& limit
           {"terrains", std::move(terrains)}, {"movers", std::move(movers)}};
 }
 
-// The returns of the run's first sensor with recorded depth maps, in the world frame: each
-// map's ranges along its beams, from the sensor's pose then (the vehicle's recorded pose at
-// the scan, times the mount).
-json scans_json(const RecordedRun& run, const TrajectoryTable& table, const ReplayLimits& limits) {
+// trajectory.csv's poses, sample by sample.
+struct RecordedPoses {
+  explicit RecordedPoses(const TrajectoryTable& table)
+      : time(table.column("time_s")),
+        x(table.column("x_m")),
+        y(table.column("y_m")),
+        z(table.column("z_m")),
+        roll(table.column("roll_deg")),
+        pitch(table.column("pitch_deg")),
+        yaw(table.column("yaw_deg")) {}
+  Pose at(std::size_t i) const { return {{x[i], y[i], z[i]}, {roll[i], pitch[i], yaw[i]}}; }
+  const std::vector<double>&time, &x, &y, &z, &roll, &pitch, &yaw;
+};
+
+// The returns of the run's first sensor with recorded depth maps, in the world frame, from
+// the vehicle's recorded pose at each scan.
+json scans_json(const RecordedRun& run, const RecordedPoses& poses, const ReplayLimits& limits) {
   json scans = json::array();
   const std::vector<RecordedDepthMap> maps = recorded_depth_maps(run);
   if (maps.empty()) return scans;
@@ -125,33 +137,13 @@ json scans_json(const RecordedRun& run, const TrajectoryTable& table, const Repl
   for (const auto& m : maps) {
     if (m.sensor == sensor->alias) own.push_back(m);
   }
-  const std::vector<Beam> beams = lidar_beams(sensor->lidar);
-  const Eigen::Isometry3d mount = to_isometry(sensor->lidar.mount);
-  const auto& time = table.column("time_s");
-  const auto& x = table.column("x_m");
-  const auto& y = table.column("y_m");
-  const auto& z = table.column("z_m");
-  const auto& roll = table.column("roll_deg");
-  const auto& pitch = table.column("pitch_deg");
-  const auto& yaw = table.column("yaw_deg");
   for (std::size_t k : thinned(own.size(), limits.max_scans)) {
     const RecordedDepthMap& m = own[k];
-    const cv::Mat depth = read_depth_map(m.file);
-    if (depth.total() != beams.size()) {
-      throw InputError(m.file.string(), "", "expected " + std::to_string(beams.size()) + " ranges, one per beam of sensor \"" +
-                                                sensor->alias + "\"");
-    }
     // The recorded sample at the scan (samples are at least as frequent as scans).
-    const auto it = std::upper_bound(time.begin(), time.end(), m.time_s + 1e-9);
-    const std::size_t i = it == time.begin() ? 0 : static_cast<std::size_t>(it - time.begin() - 1);
-    const Eigen::Isometry3d sensor_pose =
-        to_isometry(Pose{{x[i], y[i], z[i]}, {roll[i], pitch[i], yaw[i]}}) * mount;
-    std::vector<Eigen::Vector3d> points;
-    const float* v = depth.ptr<float>(0);
-    for (std::size_t b = 0; b < beams.size(); ++b) {
-      if (v[b] <= 0.0f || v[b] >= 1.0f) continue;  // below min range, or no return
-      points.push_back(sensor_pose * (beam_direction(beams[b]).cast<double>() * (v[b] * sensor->lidar.max_range_m)));
-    }
+    const auto it = std::upper_bound(poses.time.begin(), poses.time.end(), m.time_s + 1e-9);
+    const std::size_t i = it == poses.time.begin() ? 0 : static_cast<std::size_t>(it - poses.time.begin() - 1);
+    const std::vector<Eigen::Vector3d> points =
+        depth_map_returns(read_depth_map(m.file), *sensor, to_isometry(poses.at(i)), m.file);
     json pts = json::array();
     for (std::size_t p : thinned(points.size(), limits.max_scan_points)) pts.push_back(xyz(points[p]));
     scans.push_back({{"time_s", rounded(m.time_s)}, {"points_m", std::move(pts)}});
@@ -161,20 +153,15 @@ json scans_json(const RecordedRun& run, const TrajectoryTable& table, const Repl
 
 json run_json(const RecordedRun& run, std::size_t index, const ReplayLimits& limits, Eigen::AlignedBox3d& bounds) {
   const TrajectoryTable table = read_trajectory_table(run.dir / "trajectory.csv");
-  const auto& time = table.column("time_s");
-  if (time.empty()) throw InputError(table.file, "", "no samples; expected a track");
-  const auto& x = table.column("x_m");
-  const auto& y = table.column("y_m");
-  const auto& z = table.column("z_m");
-  const auto& roll = table.column("roll_deg");
-  const auto& pitch = table.column("pitch_deg");
-  const auto& yaw = table.column("yaw_deg");
+  const RecordedPoses poses(table);
+  if (poses.time.empty()) throw InputError(table.file, "", "no samples; expected a track");
   json times = json::array(), positions = json::array(), attitudes = json::array();
-  for (std::size_t i : thinned(time.size(), limits.max_track_samples)) {
-    times.push_back(rounded(time[i], 1e-4));
-    positions.push_back(xyz({x[i], y[i], z[i]}));
-    attitudes.push_back({rounded(roll[i]), rounded(pitch[i]), rounded(yaw[i])});
-    bounds.extend(Eigen::Vector3d(x[i], y[i], z[i]));
+  for (std::size_t i : thinned(poses.time.size(), limits.max_track_samples)) {
+    const Pose pose = poses.at(i);
+    times.push_back(rounded(poses.time[i], 1e-4));
+    positions.push_back(xyz(pose.position_m));
+    attitudes.push_back(xyz(pose.rpy_deg));
+    bounds.extend(pose.position_m);
   }
   const cv::Scalar bgr = run_color(index);
   const std::string vehicle = run.record.value("/parameters/vehicle/type"_json_pointer, std::string("quadrotor"));
@@ -186,7 +173,7 @@ json run_json(const RecordedRun& run, std::size_t index, const ReplayLimits& lim
           {"times_s", std::move(times)},
           {"positions_m", std::move(positions)},
           {"rpy_deg", std::move(attitudes)},
-          {"scans", scans_json(run, table, limits)}};
+          {"scans", scans_json(run, poses, limits)}};
 }
 
 // The page: each line of the template that is one marker alone becomes that content; the

@@ -61,6 +61,14 @@ std::vector<RecordedDepthMap> recorded_depth_maps(const RecordedRun& run);
 /// A recorded depth map (16-bit PNG, sensors/depth_image.hpp) back as CV_32F
 /// in [0, 1]; InputError naming the file when it is not one.
 cv::Mat read_depth_map(const std::filesystem::path& file);
+/// The returns of a recorded depth map of `sensor` (one value per beam, SPEC §6:
+/// neither 0, below min range, nor 1, no return) as points in the frame of which
+/// `vehicle_pose` is the vehicle's pose (identity: the vehicle's own frame), through
+/// the sensor's mount and beam directions; InputError naming `file` when the map
+/// has not one value per beam.
+std::vector<Eigen::Vector3d> depth_map_returns(const cv::Mat& depth, const SensorDef& sensor,
+                                               const Eigen::Isometry3d& vehicle_pose, const std::filesystem::path& file);
+
 /// The run's vehicle in its scene.json (run.json's /parameters/vehicle/alias);
 /// InputError when the scene has no such vehicle.
 const VehicleDef& recorded_vehicle(const RecordedRun& run);

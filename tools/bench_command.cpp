@@ -178,46 +178,54 @@ int compare(const BenchOptions& o, const std::vector<Figure>& figures) {
   return regressed;
 }
 
-// Rays per second of one thread casting scanner3d scans from the scene's first
-// vehicle, turned a little each scan, until min_time_s has passed.
+// scanner3d scans from the scene's first vehicle, turned 0.05 rad more each scan.
+class LidarCase {
+ public:
+  LidarCase(const Scene& scene, int resolution) : config_(scanner3d(resolution)), caster_(scene), lidar_(config_, scene.world.seed) {
+    pose_ = scene.vehicles.front().pose * to_isometry(config_.mount);
+  }
+  // Scan number i; the rays cast.
+  long scan(int i) {
+    Eigen::Isometry3d turned = pose_;
+    turned.linear() = Eigen::AngleAxisd(0.05 * i, Eigen::Vector3d::UnitZ()) * pose_.linear();
+    lidar_.scan(caster_, turned, 0.0, scan_);
+    return static_cast<long>(scan_.ranges_m.size());
+  }
+
+ private:
+  static LidarConfig scanner3d(int resolution) {
+    LidarConfig config = *lidar_preset("scanner3d");
+    config.cols = config.rows = resolution;
+    return config;
+  }
+  LidarConfig config_;
+  RayCaster caster_;
+  Lidar lidar_;
+  Eigen::Isometry3d pose_;
+  LidarScan scan_;
+};
+
+// Rays per second of one thread until min_time_s has passed.
 double lidar_rays_per_second(const Scene& scene, int resolution, double min_time_s) {
-  LidarConfig config = *lidar_preset("scanner3d");
-  config.cols = config.rows = resolution;
-  const Eigen::Isometry3d pose = scene.vehicles.front().pose * to_isometry(config.mount);
-  RayCaster caster(scene);
-  Lidar lidar(config, scene.world.seed);
-  LidarScan scan;
+  LidarCase lidar(scene, resolution);
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   long rays = 0;
   double elapsed = 0.0;
   for (int i = 0; elapsed < min_time_s; ++i) {
-    Eigen::Isometry3d turned = pose;
-    turned.linear() = Eigen::AngleAxisd(0.05 * i, Eigen::Vector3d::UnitZ()) * pose.linear();
-    lidar.scan(caster, turned, 0.0, scan);
-    rays += static_cast<long>(scan.ranges_m.size());
+    rays += lidar.scan(i);
     elapsed = std::chrono::duration<double>(Clock::now() - start).count();
   }
   return static_cast<double>(rays) / elapsed;
 }
 
-// Rays of kCountedScans scanner3d scans (after one uncounted), counted by callgrind as `id`.
+// Rays of kCountedScans scans (after one uncounted), counted by callgrind as `id`.
 double lidar_counted_rays(const Scene& scene, int resolution, const std::string& id) {
-  LidarConfig config = *lidar_preset("scanner3d");
-  config.cols = config.rows = resolution;
-  const Eigen::Isometry3d pose = scene.vehicles.front().pose * to_isometry(config.mount);
-  RayCaster caster(scene);
-  Lidar lidar(config, scene.world.seed);
-  LidarScan scan;
-  lidar.scan(caster, pose, 0.0, scan);
+  LidarCase lidar(scene, resolution);
+  lidar.scan(0);
   long rays = 0;
   counted(id, [&] {
-    for (int i = 1; i <= kCountedScans; ++i) {
-      Eigen::Isometry3d turned = pose;
-      turned.linear() = Eigen::AngleAxisd(0.05 * i, Eigen::Vector3d::UnitZ()) * pose.linear();
-      lidar.scan(caster, turned, 0.0, scan);
-      rays += static_cast<long>(scan.ranges_m.size());
-    }
+    for (int i = 1; i <= kCountedScans; ++i) rays += lidar.scan(i);
   });
   return static_cast<double>(rays);
 }

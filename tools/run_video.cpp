@@ -15,7 +15,6 @@
 #include "render/video_encoder.hpp"
 #include "render/video_frame.hpp"
 #include "render/depth_figure.hpp"
-#include "sensors/lidar.hpp"
 #include "tools/run_figures.hpp"
 
 namespace campo::cli {
@@ -116,19 +115,9 @@ class SensorPanel {
 
  private:
   // The returns of a planar depth map in the vehicle frame (x forward, y left).
-  std::vector<Eigen::Vector2d> planar_points(const cv::Mat& depth, const std::filesystem::path& file) {
-    const LidarConfig& config = sensor_->lidar;
-    if (beams_.empty()) beams_ = lidar_beams(config);
-    if (static_cast<std::size_t>(depth.total()) != beams_.size()) {
-      throw InputError(file.string(), "", "expected " + std::to_string(beams_.size()) + " ranges, one per beam of sensor \"" +
-                                              sensor_->alias + "\"");
-    }
-    const Eigen::Isometry3d mount = to_isometry(config.mount);
+  std::vector<Eigen::Vector2d> planar_points(const cv::Mat& depth, const std::filesystem::path& file) const {
     std::vector<Eigen::Vector2d> points;
-    for (std::size_t i = 0; i < beams_.size(); ++i) {
-      const float v = depth.ptr<float>(0)[i];
-      if (v <= 0.0f || v >= 1.0f) continue;  // below min range, or no return
-      const Eigen::Vector3d p = mount * (beam_direction(beams_[i]).cast<double>() * (v * config.max_range_m));
+    for (const Eigen::Vector3d& p : depth_map_returns(depth, *sensor_, Eigen::Isometry3d::Identity(), file)) {
       points.push_back(p.head<2>());
     }
     return points;
@@ -139,7 +128,6 @@ class SensorPanel {
   std::vector<ReplanStep> replans_;
   const SensorDef* sensor_ = nullptr;
   std::vector<RecordedDepthMap> depths_;
-  std::vector<Beam> beams_;
   std::vector<std::pair<double, GapDecision>> gaps_;
   // What image_ holds: a replanning's figure or a recorded depth map, by index.
   enum class Source { none, replan, depth_map };

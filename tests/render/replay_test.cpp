@@ -34,7 +34,7 @@ using testing::slurp;
 
 class Replay : public testing::CliTest {
  protected:
-  // A recorded run of `scene` (every scan's depth map kept) in the test directory.
+  // A recorded run of `scene` (every fifth scan's depth map kept) in the test directory.
   fs::path record(const std::string& scene, const std::string& name, const std::string& extra = "") {
     const fs::path out = dir_ / name;
     const Result r = campo("run " + scene + " --out " + out.string() + " --no-figures --record-depth 5 " + extra);
