@@ -2,7 +2,7 @@
 
 // Generated on every build (cmake/git_revision.cmake) and included here alone, so a new
 // commit recompiles one file rather than every file that sees the version.
-#include "campo_git_revision.hpp"
+#include "core/git_revision.hpp"
 
 namespace campo {
 
