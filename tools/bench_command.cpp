@@ -504,7 +504,11 @@ Command add_bench(CLI::App& app) {
     // Read first: a bad baseline is bad input before minutes of measuring.
     if (!o->baseline_file.empty()) read_baseline(o->baseline_file);
     if (!o->table_file.empty()) {
-      std::cout << peers_table(parse_json_text(read_text_file(o->table_file), o->table_file));
+      try {
+        std::cout << peers_table(parse_json_text(read_text_file(o->table_file), o->table_file));
+      } catch (const nlohmann::json::exception& e) {
+        throw InputError(o->table_file, "", std::string("expected a campo bench peers record: ") + e.what());
+      }
       return kOk;
     }
     std::vector<Figure> figures;

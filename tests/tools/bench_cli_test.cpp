@@ -117,6 +117,9 @@ TEST_F(BenchCli, PeersAreRecordedAndTheirTableComesFromTheRecord) {
                                             {"peer_name", "P"}, {"comparison", "x"}, {"note", "n"}}});
   const auto hand_table = campo("bench --table " + write("hand.json", hand.dump()));
   EXPECT_THAT(hand_table.out, HasSubstr("| x | 3000000 rays/s | P: 1500000 rays/s | 2.00x | n |"));
+  const auto bad = campo("bench --table " + write("bad.json", R"({"campo_bench": 1, "figures": []})"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_THAT(bad.err, HasSubstr("bad.json"));
 }
 
 TEST_F(BenchCli, ABadBaselineIsBadInputBeforeMeasuring) {
