@@ -115,7 +115,13 @@ struct RecordedPoses {
         pitch(table.column("pitch_deg")),
         yaw(table.column("yaw_deg")) {}
   Pose at(std::size_t i) const { return {{x[i], y[i], z[i]}, {roll[i], pitch[i], yaw[i]}}; }
-  const std::vector<double>&time, &x, &y, &z, &roll, &pitch, &yaw;
+  const std::vector<double>& time;  // s
+  const std::vector<double>& x;     // m
+  const std::vector<double>& y;
+  const std::vector<double>& z;
+  const std::vector<double>& roll;  // deg
+  const std::vector<double>& pitch;
+  const std::vector<double>& yaw;
 };
 
 // The returns of the run's first sensor with recorded depth maps, in the world frame, from
