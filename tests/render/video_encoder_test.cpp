@@ -12,8 +12,10 @@
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "render/run_files.hpp"
+#include "render/video_frame.hpp"
 #include "tests/cli_support.hpp"
 
 namespace campo {
@@ -129,6 +131,12 @@ TEST_F(Video, RenderWritesOneFramePerStepOfPlaybackAndHoldsTheEnd) {
   const cv::Mat last = frame(out, moving + 9), held = frame(out, moving + 1), first = frame(out, 0);
   EXPECT_LT(cv::norm(last, held, cv::NORM_L1) / last.total(), 1.0);
   EXPECT_GT(cv::norm(first, last, cv::NORM_L1) / last.total(), 1.0);
+  // The sensor panel (right of the map, above the strip) holds the replanning's depth figure of
+  // this depth_reactive run, not a blank: a good part of it is coloured.
+  const cv::Rect panel = video_layout({640, 360}).sensor_px;
+  cv::Mat grey;
+  cv::cvtColor(first(panel), grey, cv::COLOR_BGR2GRAY);
+  EXPECT_GT(cv::countNonZero(grey < 200), panel.area() / 10);
   // Reproducible: the same run renders to the same bytes.
   const fs::path again = dir_ / "again.mp4";
   ASSERT_EQ(campo("render " + run.string() + " --kind video --out " + again.string() + " --fps 10 --speed 4 --size 640x360")
