@@ -91,9 +91,11 @@ json scene_json(const Scene& scene, double duration_s, const ReplayLimits& limit
   for (std::size_t i = 0; i < scene.movers.size(); ++i) {
     const Mover& m = scene.movers[i];
     json times = json::array(), positions = json::array();
-    const auto samples = static_cast<std::size_t>(std::ceil(duration_s / limits.mover_sample_s)) + 1;
+    // Bounded whatever the recorded duration claims.
+    const double step_s = std::max(limits.mover_sample_s, duration_s / static_cast<double>(limits.max_mover_samples));
+    const auto samples = static_cast<std::size_t>(std::ceil(duration_s / step_s)) + 1;
     for (std::size_t k = 0; k < samples; ++k) {
-      const double t = std::min(static_cast<double>(k) * limits.mover_sample_s, duration_s);
+      const double t = std::min(static_cast<double>(k) * step_s, duration_s);
       times.push_back(rounded(t));
       positions.push_back(xyz(m.position_at(t)));
     }

@@ -18,7 +18,8 @@ struct ReplayLimits {
   std::size_t max_track_samples = 20000;  ///< per run; longer tracks are thinned evenly
   std::size_t max_scans = 400;            ///< per run; more recorded scans are thinned evenly
   std::size_t max_scan_points = 1500;     ///< per scan; more returns are thinned evenly
-  double mover_sample_s = 0.1;            ///< movers' positions every this many simulated seconds
+  double mover_sample_s = 0.1;            ///< movers' positions every this many simulated seconds...
+  std::size_t max_mover_samples = 20000;  ///< ...or fewer, farther apart, over a long run
 };
 
 /// The replay's data (web/replay/README.md's format, "campo_replay": 1): the

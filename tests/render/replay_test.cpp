@@ -146,6 +146,20 @@ TEST_F(Replay, PageIsSelfContainedAndRefusesMixedScenes) {
   EXPECT_FALSE(fs::exists(dir_ / "x.html"));
   const Result wrong = campo("render " + a.string() + " --kind map --kind replay --out " + (dir_ / "y.html").string());
   EXPECT_EQ(wrong.exit_code, 2);
+  // Movers are sampled where the scene puts them, and never more often than the limit allows.
+  const RecordedRun walker_run = load_run_dir(b);
+  ASSERT_EQ(walker_run.scene.movers.size(), 1u);
+  ReplayLimits few;
+  few.max_mover_samples = 50;
+  const nlohmann::json movers = replay_data({walker_run}, few)["scene"]["movers"];
+  ASSERT_EQ(movers.size(), 1u);
+  const nlohmann::json& times = movers[0]["times_s"];
+  EXPECT_LE(times.size(), 51u);
+  EXPECT_GE(times.size(), 50u);
+  for (std::size_t k = 0; k < times.size(); k += 7) {
+    const Eigen::Vector3d want = walker_run.scene.movers[0].position_at(times[k].get<double>());
+    EXPECT_NEAR(movers[0]["positions_m"][k][1].get<double>(), want.y(), 3e-3) << k;  // both rounded to 1 ms, 1 mm
+  }
 }
 
 TEST_F(Replay, LoadsCleanlyAndTheSliderMovesTheVehicle) {
