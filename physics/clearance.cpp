@@ -38,7 +38,6 @@ bool covers(const btVector3& lo, const btVector3& hi, const btVector3& inner_lo,
   return true;
 }
 
-
 // Heightfield triangles near a vehicle body: gathered with the distance of
 // their box from the body's box, then measured nearest box first, so that
 // the first few exact distances prune the rest.

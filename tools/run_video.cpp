@@ -27,13 +27,18 @@ std::string fixed(double value, int decimals, const char* unit) {
   return text;
 }
 
-// Index of the last of `times` at or before t (0 when none is).
-template <class Times>
-std::size_t last_at_or_before(const Times& times, double t, double (*time_of)(const typename Times::value_type&)) {
-  const auto it = std::upper_bound(times.begin(), times.end(), t,
-                                   [&](double v, const typename Times::value_type& x) { return v < time_of(x); });
-  return it == times.begin() ? 0 : static_cast<std::size_t>(it - times.begin() - 1);
+// The last of `items` (in time order) at or before t; nullptr when none is.
+template <class T>
+const T* latest(const std::vector<T>& items, double t) {
+  const auto it = std::upper_bound(items.begin(), items.end(), t, [](double v, const T& x) { return v < x.time_s; });
+  return it == items.begin() ? nullptr : &*std::prev(it);
 }
+
+// A gap decision and when it was made.
+struct TimedGap {
+  double time_s;
+  GapDecision gap;
+};
 
 // The recorded depth maps of the vehicle's first sensor that has any, in time order.
 std::pair<const SensorDef*, std::vector<RecordedDepthMap>> recorded_depths(const RecordedRun& run,
@@ -59,48 +64,51 @@ class SensorPanel {
     }
     std::tie(sensor_, depths_) = recorded_depths(run, vehicle);
     for (const PlannerEvent& e : run.events) {
-      if (e.decisions.gap) gaps_.emplace_back(e.time_s, *e.decisions.gap);
+      if (e.decisions.gap) gaps_.push_back({e.time_s, *e.decisions.gap});
     }
   }
 
   // The panel at `time_s` and its caption; `at` is the vehicle's sample then.
   std::pair<cv::Mat, std::string> at(double time_s, const TrackPoint& at, bool avoiding) {
-    if (!replans_.empty() && replans_.front().time_s <= time_s) {
-      const std::size_t k =
-          last_at_or_before(replans_, time_s, +[](const ReplanStep& s) { return s.time_s; });
-      if (shown_ != std::pair(Source::replan, k)) {
-        image_ = draw_replan_figure(run_, replans_[k], true);
-        shown_ = {Source::replan, k};
+    if (const ReplanStep* step = latest(replans_, time_s)) {
+      if (shown_ != step) {
+        image_ = draw_replan_figure(run_, *step, true);
+        shown_ = step;
       }
-      return {image_, "What the planner saw: replanning " + std::to_string(replans_[k].decision.index) + " at " +
-                          fixed(replans_[k].time_s, 1, "s")};
-    }
-    const GapDecision* gap = nullptr;
-    if (!gaps_.empty() && gaps_.front().first <= time_s) {
-      gap = &gaps_[last_at_or_before(gaps_, time_s, +[](const std::pair<double, GapDecision>& g) { return g.first; })]
-                 .second;
+      return {image_, "What the planner saw: replanning " + std::to_string(step->decision.index) + " at " +
+                          fixed(step->time_s, 1, "s")};
     }
     const bool planar = sensor_ && sensor_->lidar.rows <= 1;
-    if (sensor_ && !depths_.empty() && depths_.front().time_s <= time_s && !planar) {
-      const std::size_t k = last_at_or_before(depths_, time_s, +[](const RecordedDepthMap& d) { return d.time_s; });
-      if (shown_ != std::pair(Source::depth_map, k)) {
-        image_ = draw_depth(read_depth_map(depths_[k].file), {}, true, sensor_->alias + " depth map");
-        shown_ = {Source::depth_map, k};
+    const RecordedDepthMap* scan = latest(depths_, time_s);
+    if (scan && !planar) {
+      if (shown_ != scan) {
+        image_ = draw_depth(read_depth_map(scan->file), {}, true, sensor_->alias + " depth map");
+        shown_ = scan;
       }
-      return {image_, "Depth map of " + sensor_->alias + " at " + fixed(depths_[k].time_s, 1, "s")};
+      return {image_, "Depth map of " + sensor_->alias + " at " + fixed(scan->time_s, 1, "s")};
     }
     if (!planar && gaps_.empty()) {
       return {cv::Mat(), "No sensor data recorded: campo run --record-depth 1 saves every scan"};
     }
+    // A planar scan around the vehicle, redrawn each frame (the vehicle turns under it), read once.
     ScanView view;
     view.footprint_m = footprint_m_;
     view.range_m = sensor_ ? std::min(sensor_->lidar.max_range_m, 8.0) : 5.0;
     std::string caption = "Planar scan, vehicle frame, forward up";
-    if (planar && !depths_.empty() && depths_.front().time_s <= time_s) {
-      const RecordedDepthMap& d = depths_[last_at_or_before(depths_, time_s, +[](const RecordedDepthMap& r) { return r.time_s; })];
-      view.points_m = planar_points(read_depth_map(d.file), d.file);
-      caption = sensor_->alias + " scan at " + fixed(d.time_s, 1, "s") + ", vehicle frame, forward up";
+    if (scan) {
+      if (shown_ != scan) {
+        points_.clear();
+        for (const Eigen::Vector3d& p : depth_map_returns(read_depth_map(scan->file), *sensor_,
+                                                          Eigen::Isometry3d::Identity(), scan->file)) {
+          points_.push_back(p.head<2>());
+        }
+        shown_ = scan;
+      }
+      view.points_m = points_;
+      caption = sensor_->alias + " scan at " + fixed(scan->time_s, 1, "s") + ", vehicle frame, forward up";
     }
+    const TimedGap* timed = latest(gaps_, time_s);
+    const GapDecision* gap = timed ? &timed->gap : nullptr;
     if (gap) {
       view.route_deg = gap->route_heading_deg - at.yaw_deg;
       view.nearest_m = gap->nearest_range_m;
@@ -114,25 +122,15 @@ class SensorPanel {
   }
 
  private:
-  // The returns of a planar depth map in the vehicle frame (x forward, y left).
-  std::vector<Eigen::Vector2d> planar_points(const cv::Mat& depth, const std::filesystem::path& file) const {
-    std::vector<Eigen::Vector2d> points;
-    for (const Eigen::Vector3d& p : depth_map_returns(depth, *sensor_, Eigen::Isometry3d::Identity(), file)) {
-      points.push_back(p.head<2>());
-    }
-    return points;
-  }
-
   const RecordedRun& run_;
   Eigen::Vector2d footprint_m_;
   std::vector<ReplanStep> replans_;
   const SensorDef* sensor_ = nullptr;
   std::vector<RecordedDepthMap> depths_;
-  std::vector<std::pair<double, GapDecision>> gaps_;
-  // What image_ holds: a replanning's figure or a recorded depth map, by index.
-  enum class Source { none, replan, depth_map };
-  std::pair<Source, std::size_t> shown_{Source::none, 0};
+  std::vector<TimedGap> gaps_;
+  const void* shown_ = nullptr;          // the replanning or recorded map image_ or points_ hold
   cv::Mat image_;
+  std::vector<Eigen::Vector2d> points_;  // a planar scan's returns, vehicle frame
 };
 
 // The measured values of the strip, from trajectory.csv's row at a time.

@@ -154,14 +154,36 @@ TEST_F(Video, RenderWritesOneFramePerStepOfPlaybackAndHoldsTheEnd) {
 }
 
 TEST_F(Video, RoverRunShowsItsRecordedScans) {
-  const fs::path run = dir_ / "rover";
-  ASSERT_EQ(campo("run " + std::string(CAMPO_SOURCE_DIR) + "/scenes/vineyard_gap.json --out " + run.string() +
-                  " --no-figures --record-depth 1")
-                .exit_code,
-            0);
-  const Result r = campo("render " + run.string() + " --kind video --out " + (dir_ / "rover.gif").string() +
-                         " --fps 5 --speed 4 --size 640x360");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The same rover run recorded with every scan and without: only the first shows returns (red
+  // dots) around the rover in its sensor panel; both show follow-the-gap's view.
+  const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/vineyard_gap.json";
+  const fs::path scanned = dir_ / "scanned", bare = dir_ / "bare";
+  ASSERT_EQ(campo("run " + scene + " --out " + scanned.string() + " --no-figures --record-depth 1").exit_code, 0);
+  ASSERT_EQ(campo("run " + scene + " --out " + bare.string() + " --no-figures").exit_code, 0);
+  const auto red_in_panel = [&](const fs::path& run, const std::string& name) {
+    const fs::path video = dir_ / name;
+    const Result r = campo("render " + run.string() + " --kind video --out " + video.string() +
+                           " --fps 5 --speed 4 --size 640x360");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    int red = 0;
+    for (const int k : {5, 10, 15, 20, 25}) {  // 4 s to 20 s: the rows' posts, then the walker, pass by
+      const cv::Mat panel = frame(video, k)(video_layout({640, 360}).sensor_px);
+      for (int y = 0; y < panel.rows; ++y) {
+        for (int x = 0; x < panel.cols; ++x) {
+          const cv::Vec3b p = panel.at<cv::Vec3b>(y, x);
+          red += p[2] > 150 && p[1] < 110 && p[0] < 110;
+        }
+      }
+    }
+    return red;
+  };
+  const int with_scans = red_in_panel(scanned, "scanned.mp4");
+  const int without = red_in_panel(bare, "bare.mp4");
+  EXPECT_GT(with_scans, without + 40)  // 99 vs 30 (the legend's dot) when written << with_scans << " vs " << without;
+  RecordProperty("red_pixels", std::to_string(with_scans) + " vs " + std::to_string(without));
+  const Result gif = campo("render " + scanned.string() + " --kind video --out " + (dir_ / "rover.gif").string() +
+                           " --fps 5 --speed 4 --size 640x360");
+  ASSERT_EQ(gif.exit_code, 0) << gif.err;
   EXPECT_THAT(probe(dir_ / "rover.gif"), ::testing::StartsWith("640,360,"));
 }
 
