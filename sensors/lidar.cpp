@@ -48,22 +48,28 @@ std::vector<Beam> lidar_beams(const LidarConfig& config) {
   return beams;
 }
 
-Lidar::Lidar(const LidarConfig& config, std::uint64_t world_seed)
-    : config_(config), rng_(Rng::derive_seed(world_seed, config.seed)) {
-  validate(config_);
-  for (const Beam& beam : lidar_beams(config_)) directions_sensor_.push_back(beam_direction(beam));
-  directions_world_.resize(directions_sensor_.size());
-  hits_.resize(directions_sensor_.size());
+namespace {
+std::vector<Eigen::Vector3f> beam_directions(const LidarConfig& config) {
+  validate(config);
+  std::vector<Eigen::Vector3f> directions;
+  for (const Beam& beam : lidar_beams(config)) directions.push_back(beam_direction(beam));
+  return directions;
 }
+}  // namespace
+
+Lidar::Lidar(const LidarConfig& config, std::uint64_t world_seed)
+    : config_(config),
+      rng_(Rng::derive_seed(world_seed, config.seed)),
+      directions_sensor_(beam_directions(config)),
+      fan_(directions_sensor_),
+      hits_(directions_sensor_.size()) {}
 
 void Lidar::scan(const RayCaster& caster, const Eigen::Isometry3d& sensor_pose, double time_s,
                  LidarScan& out) {
   const std::size_t n = directions_sensor_.size();
   const Eigen::Matrix3f rotation = sensor_pose.linear().cast<float>();
-  for (std::size_t i = 0; i < n; ++i) directions_world_[i] = rotation * directions_sensor_[i];
   const auto max_range = static_cast<float>(config_.max_range_m);
-  caster.cast(sensor_pose.translation(), directions_world_, static_cast<float>(config_.min_range_m),
-              max_range, hits_);
+  caster.cast(sensor_pose, fan_, static_cast<float>(config_.min_range_m), max_range, hits_);
 
   begin_scan(out, config_.beams.empty() ? config_.rows : 1,
              config_.beams.empty() ? config_.cols : static_cast<int>(n), n, time_s, sensor_pose);
@@ -83,8 +89,8 @@ void Lidar::scan(const RayCaster& caster, const Eigen::Isometry3d& sensor_pose, 
     const float r = reported_range(hits_[i].distance_m + error, config_);
     out.ranges_m[i] = r;
     out.hits[i] = 1;
-    out.points.push_back(
-        (sensor_pose.translation() + r * directions_world_[i].cast<double>()).cast<float>());
+    const Eigen::Vector3f world_direction = rotation * directions_sensor_[i];
+    out.points.push_back((sensor_pose.translation() + r * world_direction.cast<double>()).cast<float>());
   }
 }
 

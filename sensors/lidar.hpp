@@ -11,6 +11,7 @@
 #include "campo/lidar_config.hpp"
 #include "campo/lidar_scan.hpp"
 #include "campo/random.hpp"
+#include "sensors/ray_fan.hpp"
 #include "sensors/raycaster.hpp"
 
 namespace campo {
@@ -32,8 +33,8 @@ class Lidar {
   LidarConfig config_;
   Rng rng_;
   std::vector<Eigen::Vector3f> directions_sensor_;
-  std::vector<Eigen::Vector3f> directions_world_;  // scratch, reused
-  std::vector<RayHit> hits_;                       // scratch, reused
+  RayFan fan_;                // the beams binned once, cast from each scan's pose
+  std::vector<RayHit> hits_;  // scratch, reused
 };
 
 /// Sets a scan's header and sizes its buffers for `beams` beams (points

@@ -12,6 +12,9 @@
 #include <type_traits>
 #include <vector>
 
+#include "sensors/fan_kernels.hpp"
+#include "sensors/ray_fan.hpp"
+
 namespace campo {
 
 namespace {
@@ -477,11 +480,88 @@ struct Layer {
   }
 };
 
+namespace {
+
+// Buffers of a fan cast, kept per thread between casts: no allocation per scan
+// once they have grown.
+struct FanScratch {
+  std::vector<float> best_t;
+  std::vector<std::int32_t> best_shape;
+  std::vector<float> x, y, z;  // a heightfield patch's vertices
+  std::vector<fan::Plane> planes;
+  std::vector<fan::Primitive> primitives;
+  std::vector<Eigen::Vector3f> directions;  // world directions, for a fan cast through Embree
+};
+
+FanScratch& fan_scratch() {
+  thread_local FanScratch scratch;
+  return scratch;
+}
+
+// Cells [c0, c1] x [r0, r1] of a heightfield within `range` of `origin_local`
+// horizontally; false when none.
+bool cells_in_range(const Terrain& terrain, const Eigen::Vector3d& origin_local, double range, int& c0, int& c1,
+                    int& r0, int& r1) {
+  const HeightGrid& g = *terrain.grid;
+  const double u = origin_local.x() / g.spacing_x_m + 0.5 * (g.cols - 1);
+  const double v = origin_local.y() / g.spacing_y_m + 0.5 * (g.rows - 1);
+  const double du = range / g.spacing_x_m, dv = range / g.spacing_y_m;
+  const double lo_c = std::max(0.0, std::floor(u - du)), hi_c = std::min(g.cols - 2.0, std::floor(u + du));
+  const double lo_r = std::max(0.0, std::floor(v - dv)), hi_r = std::min(g.rows - 2.0, std::floor(v + dv));
+  if (!(lo_c <= hi_c && lo_r <= hi_r)) return false;
+  c0 = static_cast<int>(lo_c);
+  c1 = static_cast<int>(hi_c);
+  r0 = static_cast<int>(lo_r);
+  r1 = static_cast<int>(hi_r);
+  return true;
+}
+
+fan::Primitive fan_primitive(const Primitive& p, const Eigen::Matrix3d& sensor_to_world,
+                             const Eigen::Vector3d& origin) {
+  fan::Primitive f;
+  const Eigen::Vector3f o = (p.rotation.transpose() * (origin - p.center)).cast<float>();
+  const Eigen::Matrix3f to_local = (p.rotation.transpose() * sensor_to_world).cast<float>();
+  const Eigen::Vector3f center = (sensor_to_world.transpose() * (p.center - origin)).cast<float>();
+  for (int i = 0; i < 3; ++i) {
+    f.origin[i] = o[i];
+    f.center[i] = center[i];
+    f.half[i] = static_cast<float>(p.half_extents[i]);
+    for (int j = 0; j < 3; ++j) f.to_local[3 * i + j] = to_local(i, j);
+  }
+  f.radius = static_cast<float>(p.half_extents.norm() * (1.0 + 1e-6) + 1e-6);
+  switch (p.type) {
+    case ShapeType::cuboid:
+      f.kind = fan::Kind::cuboid;
+      break;
+    case ShapeType::cylinder:
+      f.kind = fan::Kind::cylinder;
+      break;
+    case ShapeType::cone:
+      f.kind = fan::Kind::cone;
+      break;
+    default:
+      f.kind = fan::Kind::sphere;
+      break;
+  }
+  f.shape = p.shape;
+  return f;
+}
+
+}  // namespace
+
+// A fan is cast by projection from this many rays on, and when the surfaces
+// in range (primitives and heightfield cells) number at most this many per
+// ray.
+constexpr std::size_t kMinFanRays = 256;
+constexpr double kFanRaysPerSurface = 2.0;
+
 struct RayCaster::Impl {
   RTCDevice device = nullptr;
   Layer fixed;   // static shapes, built once with high quality
   Layer moving;  // dynamic shapes and movers, moved by set_poses()
   std::vector<Plane> planes;
+  CastMethod method = CastMethod::automatic;
+  bool fan_kernels = false;
 
   ~Impl() {
     if (fixed.scene) rtcReleaseScene(fixed.scene);
@@ -528,10 +608,162 @@ struct RayCaster::Impl {
                                     &terrain_bounds, &terrain_intersect);
     layer.geometry_shape[geom_id] = id;
   }
+
+  void cast_embree(const Eigen::Vector3d& origin, std::span<const Eigen::Vector3f> directions,
+                   float min_range_m, float max_range_m, std::span<RayHit> hits) const {
+    assert(directions.size() == hits.size());
+    const Impl& m = *this;
+    CastContext context;
+    rtcInitIntersectContext(&context.base);
+    context.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    context.origin = origin;
+    const Eigen::Vector3f origin_f = origin.cast<float>();
+  
+    // Rays go to Embree in fixed-size batches on the stack: no allocation.
+    constexpr std::size_t kBatch = 64;
+    RTCRayHit batch[kBatch];
+    std::int32_t shape[kBatch];
+    for (std::size_t start = 0; start < directions.size(); start += kBatch) {
+      const std::size_t count = std::min(kBatch, directions.size() - start);
+      for (std::size_t i = 0; i < count; ++i) {
+        const Eigen::Vector3f& d = directions[start + i];
+        RTCRay& ray = batch[i].ray;
+        ray.org_x = origin_f.x();
+        ray.org_y = origin_f.y();
+        ray.org_z = origin_f.z();
+        ray.dir_x = d.x();
+        ray.dir_y = d.y();
+        ray.dir_z = d.z();
+        ray.tnear = min_range_m;
+        ray.tfar = max_range_m;
+        ray.time = 0.0f;
+        ray.mask = ~0u;
+        ray.id = 0;
+        ray.flags = 0;
+        batch[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        batch[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        shape[i] = RayHit::kNoShape;
+        // Planes first: a plane hit only shortens the ray for Embree.
+        const Eigen::Vector3d dir = d.cast<double>();
+        for (const Plane& plane : m.planes) {
+          const double t = plane.normal.dot(plane.point - origin) / plane.normal.dot(dir);
+          if (t >= min_range_m && t <= ray.tfar) {
+            ray.tfar = static_cast<float>(t);
+            shape[i] = plane.shape;
+          }
+        }
+      }
+      rtcIntersect1M(m.fixed.scene, &context.base, batch, static_cast<unsigned>(count),
+                     sizeof(RTCRayHit));
+      for (std::size_t i = 0; i < count; ++i) {
+        RTCHit& hit = batch[i].hit;
+        if (hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+          shape[i] = m.fixed.shape_of(hit.geomID, hit.primID);
+          hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        }
+      }
+      if (m.moving.scene) {
+        rtcIntersect1M(m.moving.scene, &context.base, batch, static_cast<unsigned>(count),
+                       sizeof(RTCRayHit));
+        for (std::size_t i = 0; i < count; ++i) {
+          const RTCHit& hit = batch[i].hit;
+          if (hit.geomID != RTC_INVALID_GEOMETRY_ID)
+            shape[i] = m.moving.shape_of(hit.geomID, hit.primID);
+        }
+      }
+      for (std::size_t i = 0; i < count; ++i) {
+        RayHit& out = hits[start + i];
+        out.shape = shape[i];
+        out.distance_m =
+            shape[i] == RayHit::kNoShape ? std::numeric_limits<float>::infinity() : batch[i].ray.tfar;
+      }
+    }
+  }
+
+  // True when casting `fan` by projection does less work than ray by ray: a
+  // scan of many rays over the geometry within range (a handful of beams
+  // reaching far over a large heightfield is faster through the BVH).
+  bool fan_pays(const RayFan& fan, const Eigen::Vector3d& origin, float max_range_m) const {
+    if (method != CastMethod::automatic) return method == CastMethod::fan;
+    if (!fan_kernels || fan.size() < kMinFanRays) return false;
+    double surfaces = static_cast<double>(fixed.primitives.size() + moving.primitives.size());
+    for (const Terrain& terrain : fixed.terrains) {
+      int c0, c1, r0, r1;
+      const Eigen::Vector3d local = terrain.rotation.transpose() * (origin - terrain.translation);
+      if (cells_in_range(terrain, local, max_range_m, c0, c1, r0, r1)) {
+        surfaces += (c1 - c0 + 1.0) * (r1 - r0 + 1.0);
+      }
+    }
+    return surfaces <= kFanRaysPerSurface * static_cast<double>(fan.size());
+  }
+
+  void cast_fan(const Eigen::Isometry3d& pose, const RayFan& fan, float min_range_m, float max_range_m,
+                std::span<RayHit> hits) const {
+    FanScratch& scratch = fan_scratch();
+    const fan::Rays rays = fan.rays();
+    scratch.best_t.assign(rays.size + 8, max_range_m);
+    scratch.best_shape.assign(rays.size + 8, RayHit::kNoShape);
+    const fan::Best best{scratch.best_t.data(), scratch.best_shape.data()};
+    const Eigen::Matrix3d& rotation = pose.linear();
+    const Eigen::Vector3d& origin = pose.translation();
+
+    scratch.planes.clear();
+    for (const Plane& plane : planes) {
+      const Eigen::Vector3f n = (rotation.transpose() * plane.normal).cast<float>();
+      scratch.planes.push_back(
+          {{n.x(), n.y(), n.z()}, static_cast<float>(plane.normal.dot(plane.point - origin)), plane.shape});
+    }
+    fan::cast_planes(rays, scratch.planes.data(), static_cast<int>(scratch.planes.size()), min_range_m, best);
+
+    for (const Terrain& terrain : fixed.terrains) {
+      const Eigen::Vector3d local = terrain.rotation.transpose() * (origin - terrain.translation);
+      int c0, c1, r0, r1;
+      if (!cells_in_range(terrain, local, max_range_m, c0, c1, r0, r1)) continue;
+      // Vertices in the sensor frame: m v + b for a local vertex v.
+      const Eigen::Matrix3d m = rotation.transpose() * terrain.rotation;
+      const Eigen::Vector3d b = rotation.transpose() * (terrain.translation - origin);
+      const int cols = c1 - c0 + 2, rows = r1 - r0 + 2;
+      const auto count = static_cast<std::size_t>(cols) * static_cast<std::size_t>(rows);
+      scratch.x.resize(count);
+      scratch.y.resize(count);
+      scratch.z.resize(count);
+      std::size_t k = 0;
+      for (int r = r0; r <= r1 + 1; ++r) {
+        const Eigen::Vector3d row = b + m.col(1) * terrain.vertex_y(r);
+        for (int c = c0; c <= c1 + 1; ++c, ++k) {
+          const Eigen::Vector3d p = row + m.col(0) * terrain.vertex_x(c) + m.col(2) * terrain.grid->at(c, r);
+          scratch.x[k] = static_cast<float>(p.x());
+          scratch.y[k] = static_cast<float>(p.y());
+          scratch.z[k] = static_cast<float>(p.z());
+        }
+      }
+      const fan::TerrainPatch patch{scratch.x.data(), scratch.y.data(), scratch.z.data(), cols, rows,
+                                    terrain.shape};
+      fan::cast_terrain(rays, patch, min_range_m, max_range_m, best);
+    }
+
+    scratch.primitives.clear();
+    for (const Layer* layer : {&fixed, &moving}) {
+      for (const Primitive& p : layer->primitives) scratch.primitives.push_back(fan_primitive(p, rotation, origin));
+    }
+    fan::cast_primitives(rays, scratch.primitives.data(), static_cast<int>(scratch.primitives.size()), min_range_m,
+                         max_range_m, best);
+
+    const std::span<const std::uint32_t> order = fan.order();
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const std::int32_t shape = scratch.best_shape[k];
+      hits[order[k]] = {shape == RayHit::kNoShape ? std::numeric_limits<float>::infinity() : scratch.best_t[k], shape};
+    }
+  }
 };
 
-RayCaster::RayCaster(const Scene& scene) : impl_(std::make_unique<Impl>()) {
+RayCaster::RayCaster(const Scene& scene, CastMethod method) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
+  m.method = method;
+  m.fan_kernels = fan::kernels_available();
+  if (method == CastMethod::fan && !m.fan_kernels) {
+    throw std::runtime_error("RayCaster: casting by fan needs a CPU with AVX2 and FMA");
+  }
   m.device = rtcNewDevice(nullptr);
   if (!m.device) throw std::runtime_error("RayCaster: cannot create an Embree device");
 
@@ -599,72 +831,32 @@ void RayCaster::set_poses(std::span<const Eigen::Isometry3d> poses) {
 void RayCaster::cast(const Eigen::Vector3d& origin, std::span<const Eigen::Vector3f> directions,
                      float min_range_m, float max_range_m, std::span<RayHit> hits) const {
   assert(directions.size() == hits.size());
-  const Impl& m = *impl_;
-  CastContext context;
-  rtcInitIntersectContext(&context.base);
-  context.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  context.origin = origin;
-  const Eigen::Vector3f origin_f = origin.cast<float>();
-
-  // Rays go to Embree in fixed-size batches on the stack: no allocation.
-  constexpr std::size_t kBatch = 64;
-  RTCRayHit batch[kBatch];
-  std::int32_t shape[kBatch];
-  for (std::size_t start = 0; start < directions.size(); start += kBatch) {
-    const std::size_t count = std::min(kBatch, directions.size() - start);
-    for (std::size_t i = 0; i < count; ++i) {
-      const Eigen::Vector3f& d = directions[start + i];
-      RTCRay& ray = batch[i].ray;
-      ray.org_x = origin_f.x();
-      ray.org_y = origin_f.y();
-      ray.org_z = origin_f.z();
-      ray.dir_x = d.x();
-      ray.dir_y = d.y();
-      ray.dir_z = d.z();
-      ray.tnear = min_range_m;
-      ray.tfar = max_range_m;
-      ray.time = 0.0f;
-      ray.mask = ~0u;
-      ray.id = 0;
-      ray.flags = 0;
-      batch[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      batch[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      shape[i] = RayHit::kNoShape;
-      // Planes first: a plane hit only shortens the ray for Embree.
-      const Eigen::Vector3d dir = d.cast<double>();
-      for (const Plane& plane : m.planes) {
-        const double t = plane.normal.dot(plane.point - origin) / plane.normal.dot(dir);
-        if (t >= min_range_m && t <= ray.tfar) {
-          ray.tfar = static_cast<float>(t);
-          shape[i] = plane.shape;
-        }
-      }
-    }
-    rtcIntersect1M(m.fixed.scene, &context.base, batch, static_cast<unsigned>(count),
-                   sizeof(RTCRayHit));
-    for (std::size_t i = 0; i < count; ++i) {
-      RTCHit& hit = batch[i].hit;
-      if (hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-        shape[i] = m.fixed.shape_of(hit.geomID, hit.primID);
-        hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      }
-    }
-    if (m.moving.scene) {
-      rtcIntersect1M(m.moving.scene, &context.base, batch, static_cast<unsigned>(count),
-                     sizeof(RTCRayHit));
-      for (std::size_t i = 0; i < count; ++i) {
-        const RTCHit& hit = batch[i].hit;
-        if (hit.geomID != RTC_INVALID_GEOMETRY_ID)
-          shape[i] = m.moving.shape_of(hit.geomID, hit.primID);
-      }
-    }
-    for (std::size_t i = 0; i < count; ++i) {
-      RayHit& out = hits[start + i];
-      out.shape = shape[i];
-      out.distance_m =
-          shape[i] == RayHit::kNoShape ? std::numeric_limits<float>::infinity() : batch[i].ray.tfar;
-    }
+  if (impl_->method == CastMethod::fan) {
+    const RayFan fan(directions);
+    cast(Eigen::Isometry3d(Eigen::Translation3d(origin)), fan, min_range_m, max_range_m, hits);
+    return;
   }
+  impl_->cast_embree(origin, directions, min_range_m, max_range_m, hits);
+}
+
+void RayCaster::cast(const Eigen::Isometry3d& sensor_pose, const RayFan& fan, float min_range_m,
+                     float max_range_m, std::span<RayHit> hits) const {
+  assert(fan.size() == hits.size());
+  const Impl& m = *impl_;
+  if (m.fan_pays(fan, sensor_pose.translation(), max_range_m)) {
+    m.cast_fan(sensor_pose, fan, min_range_m, max_range_m, hits);
+    return;
+  }
+  // Ray by ray: the fan's directions turned into the world, in beam order.
+  std::vector<Eigen::Vector3f>& world = fan_scratch().directions;
+  world.resize(fan.size());
+  const fan::Rays rays = fan.rays();
+  const Eigen::Matrix3f rotation = sensor_pose.linear().cast<float>();
+  const std::span<const std::uint32_t> order = fan.order();
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    world[order[k]] = rotation * Eigen::Vector3f(rays.x[k], rays.y[k], rays.z[k]);
+  }
+  m.cast_embree(sensor_pose.translation(), world, min_range_m, max_range_m, hits);
 }
 
 }  // namespace campo

@@ -1,7 +1,10 @@
 #pragma once
-/// Batched ray casting against the scene geometry (Embree BVH over exactly
-/// the shapes the Bullet world collides with: analytic primitives, and the
-/// heightfield triangulated the way Bullet triangulates it).
+/// Batched ray casting against the scene geometry: exactly the shapes the
+/// Bullet world collides with (analytic primitives, and the heightfield
+/// triangulated the way Bullet triangulates it). Two methods, same answers:
+/// an Embree BVH traversed ray by ray, and for the many rays of a scan from
+/// one origin a RayFan (sensors/ray_fan.hpp), where each surface in range is
+/// projected onto the rays that may hit it.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -19,12 +22,21 @@ struct RayHit {
   static constexpr std::int32_t kNoShape = INT32_MIN;
 };
 
+class RayFan;
+
+/// How RayCaster::cast finds hits. `automatic` casts a RayFan by projection
+/// when the CPU has AVX2 and the fan holds many rays for the geometry in
+/// range, and otherwise ray by ray through Embree; the others force a method
+/// (tests, benchmarks).
+enum class CastMethod { automatic, embree, fan };
+
 class RayCaster {
  public:
   /// Builds the acceleration structure: the static shapes once, and the
   /// moving bodies (moving_bodies(scene)) at their poses at t = 0.
-  /// `scene` must outlive the caster.
-  explicit RayCaster(const Scene& scene);
+  /// `scene` must outlive the caster. CastMethod::fan throws
+  /// std::runtime_error on a CPU without AVX2 and FMA.
+  explicit RayCaster(const Scene& scene, CastMethod method = CastMethod::automatic);
   ~RayCaster();
   RayCaster(const RayCaster&) = delete;
   RayCaster& operator=(const RayCaster&) = delete;
@@ -39,6 +51,10 @@ class RayCaster {
   /// continues); hits beyond max_range_m are misses. No allocation.
   void cast(const Eigen::Vector3d& origin, std::span<const Eigen::Vector3f> directions,
             float min_range_m, float max_range_m, std::span<RayHit> hits) const;
+  /// The same for a fan of directions given in the sensor frame, cast from
+  /// `sensor_pose` (world frame); hits in the fan's direction order.
+  void cast(const Eigen::Isometry3d& sensor_pose, const RayFan& fan, float min_range_m, float max_range_m,
+            std::span<RayHit> hits) const;
 
  private:
   struct Impl;

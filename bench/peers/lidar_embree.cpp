@@ -25,6 +25,7 @@
 #include "campo/scene_loader.hpp"
 #include "scene/scene_mesh.hpp"
 #include "sensors/lidar.hpp"
+#include "sensors/ray_fan.hpp"
 #include "sensors/raycaster.hpp"
 
 namespace campo {
@@ -38,8 +39,11 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// The scans' rays: one origin and the world directions of every scan.
+// The scans' rays: the beams in the sensor frame, and each scan's pose with
+// its origin and world directions.
 struct Scans {
+  std::vector<Eigen::Vector3f> beams;
+  std::vector<Eigen::Isometry3d> poses;
   std::vector<Eigen::Vector3d> origins;
   std::vector<std::vector<Eigen::Vector3f>> directions;
 };
@@ -50,9 +54,11 @@ Scans scanner3d_scans(const Scene& scene, int count) {
   const std::vector<Beam> beams = lidar_beams(config);
   const Eigen::Isometry3d mount = scene.vehicles.front().pose * to_isometry(config.mount);
   Scans scans;
+  for (const Beam& b : beams) scans.beams.push_back(beam_direction(b));
   for (int i = 0; i < count; ++i) {
     Eigen::Isometry3d pose = mount;
     pose.linear() = Eigen::AngleAxisd(0.05 * i, Eigen::Vector3d::UnitZ()) * mount.linear();
+    scans.poses.push_back(pose);
     scans.origins.push_back(pose.translation());
     std::vector<Eigen::Vector3f> world;
     const Eigen::Matrix3f rotation = pose.linear().cast<float>();
@@ -62,13 +68,16 @@ Scans scanner3d_scans(const Scene& scene, int count) {
   return scans;
 }
 
+// campo's LIDAR path: the beams binned once (Lidar keeps a RayFan), each scan
+// cast from its pose.
 double campo_rate(const Scene& scene, const Scans& scans, std::size_t& hits) {
   const RayCaster caster(scene);
-  std::vector<RayHit> out(scans.directions.front().size());
+  const RayFan fan(scans.beams);
+  std::vector<RayHit> out(scans.beams.size());
   hits = 0;
   const auto start = Clock::now();
-  for (std::size_t s = 0; s < scans.origins.size(); ++s) {
-    caster.cast(scans.origins[s], scans.directions[s], kMinRange_m, kMaxRange_m, out);
+  for (std::size_t s = 0; s < scans.poses.size(); ++s) {
+    caster.cast(scans.poses[s], fan, kMinRange_m, kMaxRange_m, out);
     for (const RayHit& h : out) hits += h.shape != RayHit::kNoShape;
   }
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -64,6 +64,13 @@ Shape heightfield(int cols, int rows, double spacing, const Eigen::Vector3d& pos
   return s;
 }
 
+// Every test runs with both methods: Embree ray by ray, and the fan (each
+// cast() of world directions becomes a fan from its origin).
+class RayCasterTest : public ::testing::TestWithParam<CastMethod> {};
+
+INSTANTIATE_TEST_SUITE_P(Methods, RayCasterTest, ::testing::Values(CastMethod::embree, CastMethod::fan),
+                         [](const auto& info) { return info.param == CastMethod::fan ? "fan" : "embree"; });
+
 RayHit cast_one(const RayCaster& caster, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
                 float min_range = 0.0f, float max_range = 100.0f) {
   const Eigen::Vector3f d = dir.normalized().cast<float>();
@@ -133,10 +140,10 @@ std::optional<double> first_crossing(const Eigen::Vector3d& origin, const Eigen:
   return std::nullopt;
 }
 
-TEST(RayCaster, TiltedPlaneRangeIsDistanceOverCosine) {
+TEST_P(RayCasterTest, TiltedPlaneRangeIsDistanceOverCosine) {
   Scene scene;
   scene.shapes.push_back(make_shape(ShapeType::plane, {1.0, -2.0, -3.0}, {12.0, -20.0, 30.0}));
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   const Eigen::Vector3d origin(0.5, 0.25, 1.0);
   const Eigen::Vector3d n = scene.shapes[0].pose.linear().col(2);
   const double distance = n.dot(origin - scene.shapes[0].pose.translation());
@@ -161,12 +168,12 @@ TEST(RayCaster, TiltedPlaneRangeIsDistanceOverCosine) {
   EXPECT_GT(hits, 800);
 }
 
-TEST(RayCaster, SphereMatchesClosedFormRaySphereIntersection) {
+TEST_P(RayCasterTest, SphereMatchesClosedFormRaySphereIntersection) {
   Scene scene;
   const Eigen::Vector3d c(40.0, 10.0, 5.0);
   const double r = 1.3;
   scene.shapes.push_back(round_shape(ShapeType::sphere, c, r, 0.0));
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   const Eigen::Vector3d origin(0.1, -0.2, 0.3);
   Rng rng(11);
   int hits = 0;
@@ -189,13 +196,13 @@ TEST(RayCaster, SphereMatchesClosedFormRaySphereIntersection) {
   EXPECT_GT(hits, 500);
 }
 
-TEST(RayCaster, CuboidFacesAtKnownDistances) {
+TEST_P(RayCasterTest, CuboidFacesAtKnownDistances) {
   Scene scene;
   scene.shapes.push_back(cuboid({5.0, 0.0, 0.0}, {2.0, 4.0, 6.0}));
   // A box turned 30 deg about z, its near face 3 m from the origin along its normal.
   const Eigen::Vector3d normal(std::cos(std::numbers::pi / 6), std::sin(std::numbers::pi / 6), 0.0);
   scene.shapes.push_back(cuboid(-(3.0 + 0.5) * normal, {1.0, 2.0, 2.0}, {0.0, 0.0, 30.0}));
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   for (double y = -1.9; y <= 1.9; y += 0.38) {
     for (double z = -2.9; z <= 2.9; z += 0.58) {
       const RayHit hit = cast_one(caster, {0.0, y, z}, Eigen::Vector3d::UnitX());
@@ -213,11 +220,11 @@ TEST(RayCaster, CuboidFacesAtKnownDistances) {
   }
 }
 
-TEST(RayCaster, CylinderSideAndCapsAtClosedFormDistances) {
+TEST_P(RayCasterTest, CylinderSideAndCapsAtClosedFormDistances) {
   Scene scene;
   const double r = 0.5, h = 2.0;
   scene.shapes.push_back(round_shape(ShapeType::cylinder, {5.0, 0.0, 0.0}, r, h));
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   // Horizontal rays meet the side at x = 5 - sqrt(r^2 - y^2).
   for (double y = -0.49; y <= 0.49; y += 0.07) {
     for (double z = -0.95; z <= 0.95; z += 0.19) {
@@ -237,11 +244,11 @@ TEST(RayCaster, CylinderSideAndCapsAtClosedFormDistances) {
   EXPECT_EQ(cast_one(caster, {0.0, 0.501, 0.0}, Eigen::Vector3d::UnitX()).shape, RayHit::kNoShape);
 }
 
-TEST(RayCaster, ConeSideAndBaseAtClosedFormDistancesWithApexUp) {
+TEST_P(RayCasterTest, ConeSideAndBaseAtClosedFormDistancesWithApexUp) {
   Scene scene;
   const double r = 1.0, h = 2.0;
   scene.shapes.push_back(round_shape(ShapeType::cone, {5.0, 0.0, 0.0}, r, h));
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   // At height z the radius is r (h/2 - z) / h; horizontal rays meet it there.
   for (double z = -0.95; z <= 0.95; z += 0.1) {
     const double rz = r * (0.5 * h - z) / h;
@@ -263,7 +270,7 @@ TEST(RayCaster, ConeSideAndBaseAtClosedFormDistancesWithApexUp) {
   EXPECT_EQ(cast_one(caster, {0.0, 0.0, 1.5}, Eigen::Vector3d::UnitX()).shape, RayHit::kNoShape);
 }
 
-TEST(RayCaster, TurnedPrimitivesMatchAMarchingReference) {
+TEST_P(RayCasterTest, TurnedPrimitivesMatchAMarchingReference) {
   Scene scene;
   scene.shapes.push_back(cuboid({6.0, 1.0, 0.5}, {1.5, 0.8, 2.5}, {20.0, -35.0, 60.0}));
   scene.shapes.push_back(
@@ -271,7 +278,7 @@ TEST(RayCaster, TurnedPrimitivesMatchAMarchingReference) {
   scene.shapes.push_back(
       round_shape(ShapeType::cone, {2.0, -6.0, -1.0}, 1.2, 2.0, {-70.0, 10.0, 45.0}));
   scene.shapes.push_back(round_shape(ShapeType::sphere, {-3.0, -4.0, 2.0}, 0.9, 0.0));
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   std::vector<Eigen::Isometry3d> to_local;
   for (const Shape& s : scene.shapes) to_local.push_back(s.pose.inverse());
   const Eigen::Vector3d origin(0.2, -0.1, 0.3);
@@ -300,14 +307,14 @@ TEST(RayCaster, TurnedPrimitivesMatchAMarchingReference) {
   }
 }
 
-TEST(RayCaster, PlanarRampHeightfieldIsExact) {
+TEST_P(RayCasterTest, PlanarRampHeightfieldIsExact) {
   // z = 0.3 x - 0.2 y + 0.5 (local) is a plane, so the triangulation is exact.
   const double a = 0.3, b = -0.2, c = 0.5;
   Scene scene;
   scene.shapes.push_back(heightfield(41, 31, 0.5, {2.0, -1.0, 0.25}, 25.0,
                                      [&](double x, double y) { return a * x + b * y + c; }));
   const Shape& hf = scene.shapes[0];
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   const Eigen::Vector3d n = hf.pose.linear() * Eigen::Vector3d(-a, -b, 1.0).normalized();
   const Eigen::Vector3d on_plane = hf.pose * Eigen::Vector3d(0.0, 0.0, c);
   const Eigen::Vector3d origin(1.0, 0.5, 15.0);
@@ -323,13 +330,13 @@ TEST(RayCaster, PlanarRampHeightfieldIsExact) {
   }
 }
 
-TEST(RayCaster, CurvedHeightfieldMatchesBisectionOnHeightAt) {
+TEST_P(RayCasterTest, CurvedHeightfieldMatchesBisectionOnHeightAt) {
   Scene scene;
   scene.shapes.push_back(heightfield(81, 61, 0.5, {0.5, -0.5, 0.2}, 20.0, [](double x, double y) {
     return std::sin(x / 5.0) + 0.3 * std::cos(y / 3.0);
   }));
   const Shape& hf = scene.shapes[0];
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   const Eigen::Isometry3d to_local = hf.pose.inverse();
   const auto below_surface = [&](const Eigen::Vector3d& world) {
     const Eigen::Vector3d p = to_local * world;
@@ -354,7 +361,7 @@ TEST(RayCaster, CurvedHeightfieldMatchesBisectionOnHeightAt) {
   EXPECT_GT(hits, 500);
 }
 
-TEST(RayCaster, HeightfieldHasNoCracksAtVerticesAndEdges) {
+TEST_P(RayCasterTest, HeightfieldHasNoCracksAtVerticesAndEdges) {
   // Rays aimed exactly at vertices, edge midpoints and cell diagonals of a
   // bumpy grid, straight down and slanted (steeply enough that no bump is in
   // the way): none may slip through.
@@ -364,7 +371,7 @@ TEST(RayCaster, HeightfieldHasNoCracksAtVerticesAndEdges) {
                                      [&](double, double) { return bumps.uniform(-0.2, 0.2); }));
   const Shape& hf = scene.shapes[0];
   const HeightGrid& g = *hf.terrain;
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   const Eigen::Vector3d kSlanted[] = {{1.3, -0.7, 50.0}, {-2.1, 3.3, 40.0}, {0.05, 0.05, 10.0}};
   int rays = 0;
   // Interior points only: the outer boundary can be grazed legitimately.
@@ -388,11 +395,11 @@ TEST(RayCaster, HeightfieldHasNoCracksAtVerticesAndEdges) {
   EXPECT_EQ(rays, 31 * 31 * 4 * 4);
 }
 
-TEST(RayCaster, MinRangeSkipsNearSurfacesAndTheRayContinues) {
+TEST_P(RayCasterTest, MinRangeSkipsNearSurfacesAndTheRayContinues) {
   Scene scene;
   scene.shapes.push_back(cuboid({0.03, 0.0, 0.0}, {0.02, 1.0, 1.0}));  // x in [0.02, 0.04]
   scene.shapes.push_back(cuboid({2.5, 0.0, 0.0}, {1.0, 1.0, 1.0}));    // x in [2, 3]
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   const Eigen::Vector3d o = Eigen::Vector3d::Zero();
   const Eigen::Vector3d x = Eigen::Vector3d::UnitX();
   EXPECT_NEAR(cast_one(caster, o, x, 0.0f).distance_m, 0.02, 1e-6);
@@ -406,11 +413,11 @@ TEST(RayCaster, MinRangeSkipsNearSurfacesAndTheRayContinues) {
   EXPECT_NEAR(cast_one(caster, o, x, 2.5f).distance_m, 3.0, 1e-6);
 }
 
-TEST(RayCaster, MaxRangeTurnsFartherSurfacesIntoMisses) {
+TEST_P(RayCasterTest, MaxRangeTurnsFartherSurfacesIntoMisses) {
   Scene scene;
   scene.shapes.push_back(cuboid({10.5, 0.0, 0.0}, {1.0, 1.0, 1.0}));
   scene.shapes.push_back(make_shape(ShapeType::plane, {0.0, 0.0, -1.0}));
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   const RayHit miss =
       cast_one(caster, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), 0.0f, 9.99f);
   EXPECT_EQ(miss.shape, RayHit::kNoShape);
@@ -424,7 +431,7 @@ TEST(RayCaster, MaxRangeTurnsFartherSurfacesIntoMisses) {
   EXPECT_EQ(cast_one(caster, Eigen::Vector3d::Zero(), down, 0.0f, 1.16f).shape, 1);
 }
 
-TEST(RayCaster, NearestOfOverlappingShapesWinsAndIsNamed) {
+TEST_P(RayCasterTest, NearestOfOverlappingShapesWinsAndIsNamed) {
   Scene scene;
   scene.shapes.push_back(make_shape(ShapeType::plane, {0.0, 0.0, 0.0}));  // 0
   scene.shapes.push_back(
@@ -432,7 +439,7 @@ TEST(RayCaster, NearestOfOverlappingShapesWinsAndIsNamed) {
   scene.shapes.push_back(cuboid({5.0, 0.0, 1.0}, {1.0, 1.0, 1.0}));                         // 2
   scene.shapes.push_back(round_shape(ShapeType::sphere, {5.2, 0.0, 1.0}, 0.6, 0.0));        // 3
   scene.shapes.push_back(round_shape(ShapeType::cylinder, {-5.0, 0.0, 1.0}, 0.3, 2.0));     // 4
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   const Eigen::Vector3d o(0.0, 0.0, 1.0);
   // The sphere overlaps the box but starts behind its near face (4.6 > 4.5).
   EXPECT_EQ(cast_one(caster, o, Eigen::Vector3d::UnitX()).shape, 2);
@@ -447,7 +454,7 @@ TEST(RayCaster, NearestOfOverlappingShapesWinsAndIsNamed) {
   EXPECT_EQ(cast_one(caster, o, Eigen::Vector3d::UnitZ()).shape, RayHit::kNoShape);
 }
 
-TEST(RayCaster, SetTimeMovesMoversAlongTheirPaths) {
+TEST_P(RayCasterTest, SetTimeMovesMoversAlongTheirPaths) {
   Scene scene;
   scene.shapes.push_back(cuboid({20.5, 0.0, 0.0}, {1.0, 4.0, 4.0}));  // wall behind, x = 20
   Mover along;                                                        // moves away along the ray
@@ -461,7 +468,7 @@ TEST(RayCaster, SetTimeMovesMoversAlongTheirPaths) {
   across.speed_mps = 1.0;
   across.start_time_s = 10.0;
   scene.movers.push_back(across);
-  RayCaster caster(scene);
+  RayCaster caster(scene, GetParam());
   const Eigen::Vector3d o = Eigen::Vector3d::Zero();
   const Eigen::Vector3d x = Eigen::Vector3d::UnitX();
   EXPECT_EQ(cast_one(caster, o, x).shape, -1);
@@ -480,7 +487,7 @@ TEST(RayCaster, SetTimeMovesMoversAlongTheirPaths) {
   EXPECT_NEAR(cast_one(caster, o, x).distance_m, 4.5, 1e-6);
 }
 
-TEST(RayCaster, RejectsMoversThatAreNotPrimitives) {
+TEST_P(RayCasterTest, RejectsMoversThatAreNotPrimitives) {
   Scene scene;
   Mover m;
   m.shape = make_shape(ShapeType::plane, Eigen::Vector3d::Zero());
@@ -488,7 +495,7 @@ TEST(RayCaster, RejectsMoversThatAreNotPrimitives) {
   m.path_m = {Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX()};
   scene.movers.push_back(m);
   try {
-    const RayCaster caster(scene);
+    const RayCaster caster(scene, GetParam());
     FAIL() << "a plane mover was accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("moving body 'floor' is a plane"), std::string::npos)
@@ -496,7 +503,7 @@ TEST(RayCaster, RejectsMoversThatAreNotPrimitives) {
   }
 }
 
-TEST(RayCaster, BatchCastEqualsOneRayAtATime) {
+TEST_P(RayCasterTest, BatchCastEqualsOneRayAtATime) {
   Scene scene;
   scene.shapes.push_back(make_shape(ShapeType::plane, {0.0, 0.0, -1.0}));
   scene.shapes.push_back(cuboid({3.0, 0.0, 0.0}, {1.0, 1.0, 1.0}));
@@ -505,7 +512,7 @@ TEST(RayCaster, BatchCastEqualsOneRayAtATime) {
   m.shape = round_shape(ShapeType::cylinder, {-3.0, 0.0, 0.0}, 0.5, 1.0);
   m.path_m = {{-3.0, 0.0, 0.0}, {-3.0, -3.0, 0.0}};
   scene.movers.push_back(m);
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   Rng rng(1);
   std::vector<Eigen::Vector3f> dirs;
   for (int i = 0; i < 1000; ++i) dirs.push_back(random_unit(rng).cast<float>());
@@ -546,7 +553,7 @@ bool grazes(const Scene& scene, const Eigen::Vector3d& origin, const Eigen::Vect
 // (btSubsimplexConvexCast) stops at a squared distance of 1e-4, so it reports
 // hits on rays that miss a primitive by up to a few centimetres; those rays
 // are told apart with an independent reference and only counted.
-TEST(RayCaster, AgreesWithBulletRayTest) {
+TEST_P(RayCasterTest, AgreesWithBulletRayTest) {
   Scene scene;
   scene.shapes.push_back(make_shape(ShapeType::plane, {0.0, 0.0, -1.5}));
   scene.shapes.push_back(heightfield(61, 61, 0.5, {0.0, 0.0, 0.0}, 15.0, [](double x, double y) {
@@ -562,7 +569,7 @@ TEST(RayCaster, AgreesWithBulletRayTest) {
   scene.shapes.push_back(round_shape(ShapeType::cone, {-5.0, -2.0, 1.5}, 1.0, 3.0));
   scene.shapes.push_back(round_shape(ShapeType::sphere, {-4.0, -6.0, 2.0}, 1.0, 0.0));
   scene.shapes.push_back(round_shape(ShapeType::sphere, {1.0, -3.0, 0.8}, 0.3, 0.0));
-  const RayCaster caster(scene);
+  const RayCaster caster(scene, GetParam());
   const World world(scene);
   Rng rng(2024);
   const double max_range = 25.0;

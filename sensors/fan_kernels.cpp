@@ -1,0 +1,484 @@
+// Compiled with -mavx2 -mfma (CMakeLists.txt); see fan_kernels.hpp. Only
+// <immintrin.h> and <cmath> are used here, and every helper has internal
+// linkage, so no AVX2 copy of a shared inline function can reach the rest of
+// campo through the linker.
+#include "sensors/fan_kernels.hpp"
+
+#include <cmath>
+#include <cstdint>
+
+#if defined(__AVX2__) && defined(__FMA__)
+#include <immintrin.h>
+#define CAMPO_FAN_KERNELS 1
+#endif
+
+namespace campo::fan {
+
+#if CAMPO_FAN_KERNELS
+
+namespace {
+
+constexpr float kInf = INFINITY;
+constexpr float kHalfPi = 1.57079632679489662f;
+// Margin on a surface's bin rectangle in face coordinates (which span [-1, 1]):
+// covers the rounding of the vertices' projections and of the rays' own.
+constexpr float kBinPad = 1e-5f;
+// Slack on the rim tests of capped primitives, so a ray grazing a rim is not
+// lost between the side test and the cap test through rounding.
+constexpr float kRimSlack_m = 1e-5f;
+// Bound on the rounding of an edge function d . (p x q) in float relative to
+// the sum of the absolute products of p and q's components (5 roundings of
+// 2^-24 each, doubled).
+constexpr float kEdgeRounding = 6e-7f;
+
+inline float min_f(float a, float b) { return a < b ? a : b; }
+inline float max_f(float a, float b) { return a > b ? a : b; }
+
+inline int bin_of(float u, int grid) {
+  u = std::fmin(std::fmax(u, -1.0f), 1.0f);  // also turns NaN into -1
+  const int i = static_cast<int>((u + 1.0f) * 0.5f * static_cast<float>(grid));
+  return i < grid ? i : grid - 1;
+}
+
+// Bins [i0, i1] x [j0, j1] of one face.
+struct Rect {
+  int face, i0, i1, j0, j1;
+};
+
+// Range of u = a / w covered by a ball (ca, cw, rho) seen from the origin in
+// the (a, w) plane: the tangents from the origin bound it. False when the ball
+// lies behind the face (w <= 0).
+bool tangent_range(float ca, float cw, float rho, float& lo, float& hi) {
+  const float l2 = ca * ca + cw * cw;
+  if (l2 <= rho * rho) {
+    lo = -kInf;
+    hi = kInf;
+    return true;
+  }
+  const float phi = std::atan2(ca, cw);
+  const float delta = std::asin(min_f(1.0f, rho / std::sqrt(l2)));
+  const float a0 = phi - delta, a1 = phi + delta;
+  if (a0 >= kHalfPi || a1 <= -kHalfPi) return false;
+  lo = a0 <= -kHalfPi ? -kInf : std::tan(a0);
+  hi = a1 >= kHalfPi ? kInf : std::tan(a1);
+  return true;
+}
+
+// The bins of face f whose rays may pass through the convex hull of points
+// (px, py, pz)[0, n), which lies in the ball (c, rho). False when none.
+bool face_rect(const Rays& rays, int f, const float* const p[3], int n, const float c[3], float rho,
+               Rect& rect) {
+  const int grid = rays.grid[f];
+  if (grid == 0) return false;
+  const int m = f >> 1, a = (m + 1) % 3, b = (m + 2) % 3;
+  const float s = (f & 1) ? -1.0f : 1.0f;
+  float u0 = kInf, u1 = -kInf, v0 = kInf, v1 = -kInf;
+  int front = 0;
+  for (int k = 0; k < n; ++k) {
+    const float w = s * p[m][k];
+    if (!(w > 0.0f)) continue;
+    ++front;
+    const float inv = 1.0f / w;
+    const float u = p[a][k] * inv, v = p[b][k] * inv;
+    u0 = min_f(u0, u);
+    u1 = max_f(u1, u);
+    v0 = min_f(v0, v);
+    v1 = max_f(v1, v);
+  }
+  // Every ray of the face has w > 0, so no point in front means no ray hits.
+  if (front == 0) return false;
+  if (front < n) {
+    // The hull crosses the face's plane: its projection is unbounded; bound
+    // it by the ball's tangents instead.
+    const float r = rho * 1.0001f + 1e-6f;
+    if (!tangent_range(c[a], s * c[m], r, u0, u1) || !tangent_range(c[b], s * c[m], r, v0, v1)) return false;
+  }
+  u0 -= kBinPad;
+  u1 += kBinPad;
+  v0 -= kBinPad;
+  v1 += kBinPad;
+  if (u0 > 1.0f || u1 < -1.0f || v0 > 1.0f || v1 < -1.0f) return false;
+  rect = {f, bin_of(u0, grid), bin_of(u1, grid), bin_of(v0, grid), bin_of(v1, grid)};
+  return true;
+}
+
+// The rectangles of every face for a hull; their count.
+int hull_rects(const Rays& rays, const float* const p[3], int n, const float c[3], float rho,
+               Rect (&rects)[kFaces]) {
+  int count = 0;
+  for (int f = 0; f < kFaces; ++f) count += face_rect(rays, f, p, n, c, rho, rects[count]);
+  return count;
+}
+
+// Calls test(first, end) for each run of slots a rectangle covers: one run
+// per row of bins, as a row's bins are contiguous.
+template <class Test>
+void for_each_run(const Rays& rays, const Rect& rect, Test&& test) {
+  const int grid = rays.grid[rect.face];
+  for (int j = rect.j0; j <= rect.j1; ++j) {
+    const std::uint32_t row = rays.first_bin[rect.face] + static_cast<std::uint32_t>(j * grid);
+    const std::uint32_t first = rays.bin_start[row + static_cast<std::uint32_t>(rect.i0)];
+    const std::uint32_t end = rays.bin_start[row + static_cast<std::uint32_t>(rect.i1) + 1];
+    if (first < end) test(first, end);
+  }
+}
+
+// --- eight lanes -----------------------------------------------------------
+
+using V = __m256;
+
+inline V set1(float x) { return _mm256_set1_ps(x); }
+inline V add(V a, V b) { return _mm256_add_ps(a, b); }
+inline V sub(V a, V b) { return _mm256_sub_ps(a, b); }
+inline V mul(V a, V b) { return _mm256_mul_ps(a, b); }
+inline V div(V a, V b) { return _mm256_div_ps(a, b); }
+inline V fmadd(V a, V b, V c) { return _mm256_fmadd_ps(a, b, c); }
+inline V vmin(V a, V b) { return _mm256_min_ps(a, b); }
+inline V vmax(V a, V b) { return _mm256_max_ps(a, b); }
+inline V vand(V a, V b) { return _mm256_and_ps(a, b); }
+inline V vor(V a, V b) { return _mm256_or_ps(a, b); }
+inline V ge(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_GE_OQ); }
+inline V le(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
+inline V lt(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }
+inline V select(V mask, V yes, V no) { return _mm256_blendv_ps(no, yes, mask); }
+inline bool none(V mask) { return _mm256_movemask_ps(mask) == 0; }
+inline V dot3(const float n[3], V x, V y, V z) { return fmadd(set1(n[0]), x, fmadd(set1(n[1]), y, mul(set1(n[2]), z))); }
+
+// Lanes k + i < end.
+inline V valid_lanes(std::uint32_t k, std::uint32_t end) {
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256i left = _mm256_set1_epi32(static_cast<int>(end - k));
+  return _mm256_castsi256_ps(_mm256_cmpgt_epi32(left, lane));
+}
+
+// Keeps `t` in `cand` where `ok`, t >= t0 and t is nearer.
+inline void keep(V t, V ok, V t0, V& cand) {
+  cand = select(vand(ok, vand(ge(t, t0), lt(t, cand))), t, cand);
+}
+
+// Writes the lanes of `cand` nearer than the best so far.
+inline void commit(const Best& best, std::uint32_t k, V valid, V cand, std::int32_t shape) {
+  const V old = _mm256_loadu_ps(best.t + k);
+  const V take = vand(valid, le(cand, old));
+  if (none(take)) return;
+  _mm256_storeu_ps(best.t + k, select(take, cand, old));
+  const __m256i old_shape = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(best.shape + k));
+  const __m256i new_shape = _mm256_blendv_epi8(old_shape, _mm256_set1_epi32(shape), _mm256_castps_si256(take));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(best.shape + k), new_shape);
+}
+
+// --- heightfield cells ------------------------------------------------------
+
+// One cell's two triangles, (p00, p10, p01) and (p10, p11, p01), as seen from
+// the origin. A ray d passes through a triangle when the edge functions
+// d . (p x q) of its three edges have one sign. Each is computed with a
+// rounding bound eps, and a triangle is accepted when its edge functions are
+// all >= -eps or all <= eps: a superset of the rays that truly pass through
+// it, edges and vertices included. Every ray that meets the surface is thus
+// accepted by some triangle, whatever rounding did to the others: there is no
+// crack to slip through, at a shared edge, a shared vertex or anywhere else.
+struct Edge {
+  float n[3];
+  float eps;
+};
+
+Edge make_edge(const float p[3], const float q[3]) {
+  Edge e;
+  e.n[0] = p[1] * q[2] - p[2] * q[1];
+  e.n[1] = p[2] * q[0] - p[0] * q[2];
+  e.n[2] = p[0] * q[1] - p[1] * q[0];
+  const float ax = std::fabs(p[0]), ay = std::fabs(p[1]), az = std::fabs(p[2]);
+  const float bx = std::fabs(q[0]), by = std::fabs(q[1]), bz = std::fabs(q[2]);
+  e.eps = kEdgeRounding * (ay * bz + az * by + az * bx + ax * bz + ax * by + ay * bx);
+  return e;
+}
+
+struct Cell {
+  Edge e0, diagonal, e2, e3, e4;  // p00p10, p10p01, p01p00 | p10p11, p11p01 (and p01p10 = -diagonal)
+  float normal1[3], num1, normal2[3], num2;
+  float near, far;  // distances from the origin bounding the cell
+};
+
+void triangle_plane(const float a[3], const float b[3], const float c[3], float n[3], float& num) {
+  const float u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const float v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  n[0] = u[1] * v[2] - u[2] * v[1];
+  n[1] = u[2] * v[0] - u[0] * v[2];
+  n[2] = u[0] * v[1] - u[1] * v[0];
+  num = n[0] * a[0] + n[1] * a[1] + n[2] * a[2];
+}
+
+inline V all_ge(V a, V ea, V b, V eb, V c, V ec) {
+  return vand(ge(a, -ea), vand(ge(b, -eb), ge(c, -ec)));
+}
+
+void cast_cell(const Rays& rays, const Cell& cell, std::uint32_t first, std::uint32_t end, float t0,
+               std::int32_t shape, const Best& best) {
+  const V e0 = set1(cell.e0.eps), ed = set1(cell.diagonal.eps), e2 = set1(cell.e2.eps);
+  const V e3 = set1(cell.e3.eps), e4 = set1(cell.e4.eps);
+  const V n0 = _mm256_setzero_ps();
+  const V near = set1(cell.near), far = set1(cell.far), tmin = set1(t0);
+  for (std::uint32_t k = first; k < end; k += 8) {
+    const V x = _mm256_loadu_ps(rays.x + k), y = _mm256_loadu_ps(rays.y + k), z = _mm256_loadu_ps(rays.z + k);
+    const V a = dot3(cell.e0.n, x, y, z), d = dot3(cell.diagonal.n, x, y, z), c = dot3(cell.e2.n, x, y, z);
+    const V f = dot3(cell.e3.n, x, y, z), g = dot3(cell.e4.n, x, y, z);
+    const V nd = sub(n0, d);  // the diagonal seen from the second triangle
+    // All >= -eps, or all <= eps (the negated functions >= -eps).
+    const V in1 = vor(all_ge(a, e0, d, ed, c, e2), all_ge(sub(n0, a), e0, nd, ed, sub(n0, c), e2));
+    const V in2 = vor(all_ge(f, e3, g, e4, nd, ed), all_ge(sub(n0, f), e3, sub(n0, g), e4, d, ed));
+    const V valid = valid_lanes(k, end);
+    if (none(vand(vor(in1, in2), valid))) continue;
+    const V t1 = div(set1(cell.num1), dot3(cell.normal1, x, y, z));
+    const V t2 = div(set1(cell.num2), dot3(cell.normal2, x, y, z));
+    // A ray accepted at the margin meets the plane just outside the triangle;
+    // one nearly in the plane could meet it anywhere, so hits are kept to the
+    // cell's distances.
+    const V in_cell1 = vand(in1, vand(ge(t1, near), le(t1, far)));
+    const V in_cell2 = vand(in2, vand(ge(t2, near), le(t2, far)));
+    V cand = set1(kInf);
+    keep(t1, in_cell1, tmin, cand);
+    keep(t2, in_cell2, tmin, cand);
+    commit(best, k, valid, cand, shape);
+  }
+}
+
+// --- analytic primitives -----------------------------------------------------
+
+// A ray of the fan in a primitive's local frame, restarted at its closest
+// approach to the centre so the solvers work with small numbers: local
+// position o + s d at ray parameter t = shift + s.
+struct LocalRays {
+  V ox, oy, oz, dx, dy, dz, shift;
+};
+
+inline LocalRays to_local(const Primitive& p, V x, V y, V z) {
+  const float* m = p.to_local;
+  LocalRays r;
+  r.dx = fmadd(set1(m[0]), x, fmadd(set1(m[1]), y, mul(set1(m[2]), z)));
+  r.dy = fmadd(set1(m[3]), x, fmadd(set1(m[4]), y, mul(set1(m[5]), z)));
+  r.dz = fmadd(set1(m[6]), x, fmadd(set1(m[7]), y, mul(set1(m[8]), z)));
+  const V ox = set1(p.origin[0]), oy = set1(p.origin[1]), oz = set1(p.origin[2]);
+  const V dd = fmadd(r.dx, r.dx, fmadd(r.dy, r.dy, mul(r.dz, r.dz)));
+  r.shift = div(sub(_mm256_setzero_ps(), fmadd(ox, r.dx, fmadd(oy, r.dy, mul(oz, r.dz)))), dd);
+  r.ox = fmadd(r.shift, r.dx, ox);
+  r.oy = fmadd(r.shift, r.dy, oy);
+  r.oz = fmadd(r.shift, r.dz, oz);
+  return r;
+}
+
+inline V sqrt_clamped(V x) { return _mm256_sqrt_ps(vmax(x, _mm256_setzero_ps())); }
+
+V hit_box(const Primitive& p, const LocalRays& r, V t0) {
+  const V o[3] = {r.ox, r.oy, r.oz}, d[3] = {r.dx, r.dy, r.dz};
+  V enter = set1(-kInf), exit = set1(kInf);
+  for (int i = 0; i < 3; ++i) {
+    const V h = set1(p.half[i]);
+    const V inv = div(set1(1.0f), d[i]);
+    const V a = mul(sub(sub(_mm256_setzero_ps(), h), o[i]), inv);
+    const V b = mul(sub(h, o[i]), inv);
+    enter = vmax(enter, vmin(a, b));
+    exit = vmin(exit, vmax(a, b));
+  }
+  const V ok = le(enter, exit);
+  V cand = set1(kInf);
+  keep(add(enter, r.shift), ok, t0, cand);
+  keep(add(exit, r.shift), ok, t0, cand);
+  return cand;
+}
+
+V hit_sphere(const Primitive& p, const LocalRays& r, V t0) {
+  const V rr = set1(p.half[0] * p.half[0]);
+  const V disc = sub(rr, fmadd(r.ox, r.ox, fmadd(r.oy, r.oy, mul(r.oz, r.oz))));
+  const V ok = ge(disc, _mm256_setzero_ps());
+  const V s = sqrt_clamped(disc);
+  V cand = set1(kInf);
+  keep(sub(r.shift, s), ok, t0, cand);
+  keep(add(r.shift, s), ok, t0, cand);
+  return cand;
+}
+
+// Crossing with the disc of radius r in the plane z = zc.
+inline void keep_cap(const LocalRays& r, float radius, float zc, V t0, V& cand) {
+  const V s = div(sub(set1(zc), r.oz), r.dz);
+  const V x = fmadd(s, r.dx, r.ox), y = fmadd(s, r.dy, r.oy);
+  const float rim = radius + kRimSlack_m;
+  keep(add(s, r.shift), le(fmadd(x, x, mul(y, y)), set1(rim * rim)), t0, cand);
+}
+
+V hit_cylinder(const Primitive& p, const LocalRays& r, V t0) {
+  const float radius = p.half[0], hz = p.half[2];
+  const V a = fmadd(r.dx, r.dx, mul(r.dy, r.dy));
+  const V tc = div(sub(_mm256_setzero_ps(), fmadd(r.ox, r.dx, mul(r.oy, r.dy))), a);
+  const V px = fmadd(tc, r.dx, r.ox), py = fmadd(tc, r.dy, r.oy);
+  const V disc = sub(set1(radius * radius), fmadd(px, px, mul(py, py)));
+  const V s = sqrt_clamped(div(disc, a));
+  const V ok = ge(disc, _mm256_setzero_ps());
+  const V rim = set1(hz + kRimSlack_m);
+  V cand = set1(kInf);
+  const V roots[2] = {sub(tc, s), add(tc, s)};
+  for (const V t : roots) {
+    const V z = fmadd(t, r.dz, r.oz);
+    keep(add(t, r.shift), vand(ok, le(_mm256_andnot_ps(set1(-0.0f), z), rim)), t0, cand);
+  }
+  keep_cap(r, radius, -hz, t0, cand);
+  keep_cap(r, radius, hz, t0, cand);
+  return cand;
+}
+
+// Apex at z = +hz, base of radius r at z = -hz (as intersect_cone in
+// sensors/raycaster.cpp).
+V hit_cone(const Primitive& p, const LocalRays& r, V t0) {
+  const float radius = p.half[0], hz = p.half[2];
+  const float k = radius / (2.0f * hz);
+  const V k2 = set1(k * k);
+  const V w0 = sub(set1(hz), r.oz);
+  const V a = sub(fmadd(r.dx, r.dx, mul(r.dy, r.dy)), mul(k2, mul(r.dz, r.dz)));
+  const V b = fmadd(r.ox, r.dx, fmadd(r.oy, r.dy, mul(k2, mul(w0, r.dz))));
+  const V c = sub(fmadd(r.ox, r.ox, mul(r.oy, r.oy)), mul(k2, mul(w0, w0)));
+  const V disc = sub(mul(b, b), mul(a, c));
+  const V ok = ge(disc, _mm256_setzero_ps());
+  const V sign = _mm256_and_ps(b, set1(-0.0f));
+  const V q = sub(_mm256_setzero_ps(), add(b, _mm256_or_ps(sqrt_clamped(disc), sign)));
+  const V lo = set1(-hz - kRimSlack_m), hi = set1(hz + kRimSlack_m);
+  V cand = set1(kInf);
+  const V roots[2] = {div(q, a), div(c, q)};
+  for (const V t : roots) {
+    const V z = fmadd(t, r.dz, r.oz);
+    keep(add(t, r.shift), vand(ok, vand(ge(z, lo), le(z, hi))), t0, cand);
+  }
+  keep_cap(r, radius, -hz, t0, cand);
+  return cand;
+}
+
+template <V (*Hit)(const Primitive&, const LocalRays&, V)>
+void cast_primitive_run(const Rays& rays, const Primitive& p, std::uint32_t first, std::uint32_t end,
+                        float t0, const Best& best) {
+  const V tmin = set1(t0);
+  for (std::uint32_t k = first; k < end; k += 8) {
+    const LocalRays r =
+        to_local(p, _mm256_loadu_ps(rays.x + k), _mm256_loadu_ps(rays.y + k), _mm256_loadu_ps(rays.z + k));
+    commit(best, k, valid_lanes(k, end), Hit(p, r, tmin), p.shape);
+  }
+}
+
+}  // namespace
+
+bool kernels_available() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+}
+
+void cast_planes(const Rays& rays, const Plane* planes, int count, float t0, Best best) {
+  const V tmin = set1(t0);
+  for (int i = 0; i < count; ++i) {
+    const Plane& plane = planes[i];
+    const V offset = set1(plane.offset);
+    for (std::uint32_t k = 0; k < rays.size; k += 8) {
+      const V t = div(offset, dot3(plane.normal, _mm256_loadu_ps(rays.x + k), _mm256_loadu_ps(rays.y + k),
+                                   _mm256_loadu_ps(rays.z + k)));
+      V cand = set1(kInf);
+      keep(t, _mm256_castsi256_ps(_mm256_set1_epi32(-1)), tmin, cand);
+      commit(best, k, valid_lanes(k, rays.size), cand, plane.shape);
+    }
+  }
+}
+
+void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t1, Best best) {
+  const float* const px = patch.x;
+  const float* const py = patch.y;
+  const float* const pz = patch.z;
+  for (int r = 0; r + 1 < patch.rows; ++r) {
+    for (int c = 0; c + 1 < patch.cols; ++c) {
+      const int i00 = r * patch.cols + c, i10 = i00 + 1, i01 = i00 + patch.cols, i11 = i01 + 1;
+      const float hull_x[4] = {px[i00], px[i10], px[i01], px[i11]};
+      const float hull_y[4] = {py[i00], py[i10], py[i01], py[i11]};
+      const float hull_z[4] = {pz[i00], pz[i10], pz[i01], pz[i11]};
+      const float centre[3] = {0.25f * (hull_x[0] + hull_x[1] + hull_x[2] + hull_x[3]),
+                               0.25f * (hull_y[0] + hull_y[1] + hull_y[2] + hull_y[3]),
+                               0.25f * (hull_z[0] + hull_z[1] + hull_z[2] + hull_z[3])};
+      float rho2 = 0.0f;
+      for (int k = 0; k < 4; ++k) {
+        const float ex = hull_x[k] - centre[0], ey = hull_y[k] - centre[1], ez = hull_z[k] - centre[2];
+        rho2 = max_f(rho2, ex * ex + ey * ey + ez * ez);
+      }
+      const float rho = std::sqrt(rho2) * 1.00001f + 1e-6f;
+      const float dist = std::sqrt(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]);
+      if (dist - rho > t1 || dist + rho < t0) continue;
+      const float* const hull[3] = {hull_x, hull_y, hull_z};
+      Rect rects[kFaces];
+      const int n = hull_rects(rays, hull, 4, centre, rho, rects);
+      if (n == 0) continue;
+      const float p00[3] = {hull_x[0], hull_y[0], hull_z[0]}, p10[3] = {hull_x[1], hull_y[1], hull_z[1]};
+      const float p01[3] = {hull_x[2], hull_y[2], hull_z[2]}, p11[3] = {hull_x[3], hull_y[3], hull_z[3]};
+      Cell cell;
+      cell.e0 = make_edge(p00, p10);
+      cell.diagonal = make_edge(p10, p01);
+      cell.e2 = make_edge(p01, p00);
+      cell.e3 = make_edge(p10, p11);
+      cell.e4 = make_edge(p11, p01);
+      triangle_plane(p00, p10, p01, cell.normal1, cell.num1);
+      triangle_plane(p10, p11, p01, cell.normal2, cell.num2);
+      cell.near = (dist - rho) * 0.9999f - 1e-5f;
+      cell.far = (dist + rho) * 1.0001f + 1e-5f;
+      for (int i = 0; i < n; ++i) {
+        for_each_run(rays, rects[i], [&](std::uint32_t first, std::uint32_t end) {
+          cast_cell(rays, cell, first, end, t0, patch.shape, best);
+        });
+      }
+    }
+  }
+}
+
+void cast_primitives(const Rays& rays, const Primitive* primitives, int count, float t0, float t1,
+                     Best best) {
+  for (int i = 0; i < count; ++i) {
+    const Primitive& p = primitives[i];
+    const float dist = std::sqrt(p.center[0] * p.center[0] + p.center[1] * p.center[1] + p.center[2] * p.center[2]);
+    if (dist - p.radius > t1 || dist + p.radius < t0) continue;
+    // The bounding box's corners: the centre plus or minus each half extent
+    // along the local axes (rows of to_local, in the sensor frame).
+    float corner_x[8], corner_y[8], corner_z[8];
+    for (int k = 0; k < 8; ++k) {
+      float q[3] = {p.center[0], p.center[1], p.center[2]};
+      for (int axis = 0; axis < 3; ++axis) {
+        const float h = (k >> axis) & 1 ? p.half[axis] : -p.half[axis];
+        for (int j = 0; j < 3; ++j) q[j] += h * p.to_local[3 * axis + j];
+      }
+      corner_x[k] = q[0];
+      corner_y[k] = q[1];
+      corner_z[k] = q[2];
+    }
+    const float* const hull[3] = {corner_x, corner_y, corner_z};
+    Rect rects[kFaces];
+    const int n = hull_rects(rays, hull, 8, p.center, p.radius, rects);
+    for (int r = 0; r < n; ++r) {
+      for_each_run(rays, rects[r], [&](std::uint32_t first, std::uint32_t end) {
+        switch (p.kind) {
+          case Kind::cuboid:
+            cast_primitive_run<&hit_box>(rays, p, first, end, t0, best);
+            break;
+          case Kind::cylinder:
+            cast_primitive_run<&hit_cylinder>(rays, p, first, end, t0, best);
+            break;
+          case Kind::cone:
+            cast_primitive_run<&hit_cone>(rays, p, first, end, t0, best);
+            break;
+          case Kind::sphere:
+            cast_primitive_run<&hit_sphere>(rays, p, first, end, t0, best);
+            break;
+        }
+      });
+    }
+  }
+}
+
+#else  // no AVX2: the fan is never used (RayCaster casts every ray through Embree)
+
+bool kernels_available() { return false; }
+void cast_planes(const Rays&, const Plane*, int, float, Best) {}
+void cast_terrain(const Rays&, const TerrainPatch&, float, float, Best) {}
+void cast_primitives(const Rays&, const Primitive*, int, float, float, Best) {}
+
+#endif
+
+}  // namespace campo::fan

@@ -1,0 +1,77 @@
+#pragma once
+/// The inner loops of casting a RayFan (sensors/ray_fan.hpp): each surface is
+/// projected onto the bins of the fan it may cover and tested against their
+/// rays eight at a time. Everything here is in the sensor frame, relative to
+/// the fan's origin, in float. The kernels are compiled for AVX2 + FMA and
+/// only called where the CPU has them (fan_kernels_available()); the inputs
+/// are plain structs so that no inline function of another header is compiled
+/// for an instruction set the rest of campo does not assume.
+#include <cstdint>
+
+namespace campo::fan {
+
+/// Cube-map faces: face f looks along axis f / 2, positive when f is even.
+/// A direction belongs to the face of its largest component; on face f its
+/// coordinates are u = p[(f/2 + 1) % 3] / w, v = p[(f/2 + 2) % 3] / w with
+/// w = ±p[f/2], both in [-1, 1].
+constexpr int kFaces = 6;
+
+/// Rays sorted by bin, structure of arrays; readable 8 floats past `size`.
+struct Rays {
+  const float* x = nullptr;
+  const float* y = nullptr;
+  const float* z = nullptr;
+  std::uint32_t size = 0;
+  int grid[kFaces] = {};                // bins per side of each face; 0 when it holds no ray
+  std::uint32_t first_bin[kFaces] = {};  // index of a face's bin (0, 0) in bin_start
+  const std::uint32_t* bin_start = nullptr;  // first slot of bin b; bin_start[b + 1] ends it
+};
+
+/// Nearest hit so far per sorted slot: distance (starts at the max range) and
+/// shape (RayHit::shape).
+struct Best {
+  float* t = nullptr;
+  std::int32_t* shape = nullptr;
+};
+
+/// An infinite plane: n . (o + t d) = offset with the origin at 0.
+struct Plane {
+  float normal[3];
+  float offset;  ///< n . (point on the plane - origin)
+  std::int32_t shape;
+};
+
+/// A grid of heightfield vertices in the sensor frame, row-major; cell (c, r)
+/// is split along (c + 1, r)-(c, r + 1) like the heightfield.
+struct TerrainPatch {
+  const float* x = nullptr;
+  const float* y = nullptr;
+  const float* z = nullptr;
+  int cols = 0;  ///< vertices per row
+  int rows = 0;
+  std::int32_t shape = 0;
+};
+
+/// The analytic shapes of Primitive (sensors/raycaster.cpp), local axis z.
+enum class Kind : std::uint8_t { cuboid, cylinder, cone, sphere };
+
+struct Primitive {
+  float origin[3];     ///< the fan's origin in the shape's local frame
+  float to_local[9];   ///< row-major: sensor-frame direction -> local direction
+  float half[3];       ///< cuboid: size/2; cylinder, cone: (r, r, h/2); sphere: (r, r, r)
+  float center[3];     ///< the shape's centre in the sensor frame
+  float radius;        ///< of a sphere around the shape
+  Kind kind;
+  std::int32_t shape;
+};
+
+/// True when the CPU runs the kernels (AVX2 and FMA).
+bool kernels_available();
+
+/// Each cast keeps, per ray, the nearest hit with t in [t0, best.t].
+void cast_planes(const Rays& rays, const Plane* planes, int count, float t0, Best best);
+void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t1, Best best);
+void cast_primitives(const Rays& rays, const Primitive* primitives, int count, float t0, float t1,
+                     Best best);
+
+}  // namespace campo::fan
