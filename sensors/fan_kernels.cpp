@@ -26,10 +26,6 @@ constexpr float kBinPad = 1e-5f;
 // Slack on the rim tests of capped primitives, so a ray grazing a rim is not
 // lost between the side test and the cap test through rounding.
 constexpr float kRimSlack_m = 1e-5f;
-// Bound on the rounding of an edge function d . (p x q) in float relative to
-// the sum of the absolute products of p and q's components (5 roundings of
-// 2^-24 each, doubled).
-constexpr float kEdgeRounding = 6e-7f;
 
 inline float min_f(float a, float b) { return a < b ? a : b; }
 inline float max_f(float a, float b) { return a > b ? a : b; }
@@ -177,68 +173,93 @@ inline void commit(const Best& best, std::uint32_t k, V valid, V cand, std::int3
 // it, edges and vertices included. Every ray that meets the surface is thus
 // accepted by some triangle, whatever rounding did to the others: there is no
 // crack to slip through, at a shared edge, a shared vertex or anywhere else.
+// In double the margin is some 1e-15 rad wide.
+using D = __m256d;
+
+// Bound on the rounding of an edge function in double relative to the sum of
+// the absolute products of p and q's components (5 roundings of 2^-53 each,
+// doubled).
+constexpr double kEdgeRounding = 1.2e-15;
+
 struct Edge {
-  float n[3];
-  float eps;
+  double n[3];
+  double eps;
 };
 
-Edge make_edge(const float p[3], const float q[3]) {
+Edge make_edge(const double p[3], const double q[3]) {
   Edge e;
   e.n[0] = p[1] * q[2] - p[2] * q[1];
   e.n[1] = p[2] * q[0] - p[0] * q[2];
   e.n[2] = p[0] * q[1] - p[1] * q[0];
-  const float ax = std::fabs(p[0]), ay = std::fabs(p[1]), az = std::fabs(p[2]);
-  const float bx = std::fabs(q[0]), by = std::fabs(q[1]), bz = std::fabs(q[2]);
+  const double ax = std::fabs(p[0]), ay = std::fabs(p[1]), az = std::fabs(p[2]);
+  const double bx = std::fabs(q[0]), by = std::fabs(q[1]), bz = std::fabs(q[2]);
   e.eps = kEdgeRounding * (ay * bz + az * by + az * bx + ax * bz + ax * by + ay * bx);
   return e;
 }
 
 struct Cell {
   Edge e0, diagonal, e2, e3, e4;  // p00p10, p10p01, p01p00 | p10p11, p11p01 (and p01p10 = -diagonal)
-  float normal1[3], num1, normal2[3], num2;
-  float near, far;  // distances from the origin bounding the cell
+  double normal1[3], num1, normal2[3], num2;
+  double near, far;  // distances from the origin bounding the cell
 };
 
-void triangle_plane(const float a[3], const float b[3], const float c[3], float n[3], float& num) {
-  const float u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-  const float v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+void triangle_plane(const double a[3], const double b[3], const double c[3], double n[3], double& num) {
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const double v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
   n[0] = u[1] * v[2] - u[2] * v[1];
   n[1] = u[2] * v[0] - u[0] * v[2];
   n[2] = u[0] * v[1] - u[1] * v[0];
   num = n[0] * a[0] + n[1] * a[1] + n[2] * a[2];
 }
 
-inline V all_ge(V a, V ea, V b, V eb, V c, V ec) {
-  return vand(ge(a, -ea), vand(ge(b, -eb), ge(c, -ec)));
+inline D set1d(double x) { return _mm256_set1_pd(x); }
+inline D dot3d(const double n[3], D x, D y, D z) {
+  return _mm256_fmadd_pd(set1d(n[0]), x, _mm256_fmadd_pd(set1d(n[1]), y, _mm256_mul_pd(set1d(n[2]), z)));
+}
+inline D ged(D a, D b) { return _mm256_cmp_pd(a, b, _CMP_GE_OQ); }
+inline D led(D a, D b) { return _mm256_cmp_pd(a, b, _CMP_LE_OQ); }
+inline D andd(D a, D b) { return _mm256_and_pd(a, b); }
+inline D ord(D a, D b) { return _mm256_or_pd(a, b); }
+
+// All of a, b, c >= -eps (each its own), or all <= eps.
+inline D one_sign(D a, D ea, D b, D eb, D c, D ec) {
+  const D pos = andd(ged(a, -ea), andd(ged(b, -eb), ged(c, -ec)));
+  const D neg = andd(led(a, ea), andd(led(b, eb), led(c, ec)));
+  return ord(pos, neg);
+}
+
+// Nearest hit of four rays with a cell, +inf where none.
+inline D hit_cell(const Cell& cell, D x, D y, D z, D t0) {
+  const D a = dot3d(cell.e0.n, x, y, z), d = dot3d(cell.diagonal.n, x, y, z), c = dot3d(cell.e2.n, x, y, z);
+  const D f = dot3d(cell.e3.n, x, y, z), g = dot3d(cell.e4.n, x, y, z);
+  const D nd = _mm256_sub_pd(_mm256_setzero_pd(), d);  // the diagonal seen from the second triangle
+  const D in1 = one_sign(a, set1d(cell.e0.eps), d, set1d(cell.diagonal.eps), c, set1d(cell.e2.eps));
+  const D in2 = one_sign(f, set1d(cell.e3.eps), g, set1d(cell.e4.eps), nd, set1d(cell.diagonal.eps));
+  const D inf = set1d(INFINITY);
+  if (_mm256_movemask_pd(ord(in1, in2)) == 0) return inf;
+  const D t1 = _mm256_div_pd(set1d(cell.num1), dot3d(cell.normal1, x, y, z));
+  const D t2 = _mm256_div_pd(set1d(cell.num2), dot3d(cell.normal2, x, y, z));
+  // A ray accepted at the margin meets the plane just outside the triangle;
+  // one nearly in the plane could meet it anywhere, so hits are kept to the
+  // cell's distances.
+  const D lo = _mm256_max_pd(t0, set1d(cell.near)), hi = set1d(cell.far);
+  const D ok1 = andd(in1, andd(ged(t1, lo), led(t1, hi)));
+  const D ok2 = andd(in2, andd(ged(t2, lo), led(t2, hi)));
+  const D cand = _mm256_blendv_pd(inf, t1, ok1);
+  return _mm256_blendv_pd(cand, t2, andd(ok2, _mm256_cmp_pd(t2, cand, _CMP_LT_OQ)));
 }
 
 void cast_cell(const Rays& rays, const Cell& cell, std::uint32_t first, std::uint32_t end, float t0,
                std::int32_t shape, const Best& best) {
-  const V e0 = set1(cell.e0.eps), ed = set1(cell.diagonal.eps), e2 = set1(cell.e2.eps);
-  const V e3 = set1(cell.e3.eps), e4 = set1(cell.e4.eps);
-  const V n0 = _mm256_setzero_ps();
-  const V near = set1(cell.near), far = set1(cell.far), tmin = set1(t0);
+  const D tmin = set1d(t0);
   for (std::uint32_t k = first; k < end; k += 8) {
     const V x = _mm256_loadu_ps(rays.x + k), y = _mm256_loadu_ps(rays.y + k), z = _mm256_loadu_ps(rays.z + k);
-    const V a = dot3(cell.e0.n, x, y, z), d = dot3(cell.diagonal.n, x, y, z), c = dot3(cell.e2.n, x, y, z);
-    const V f = dot3(cell.e3.n, x, y, z), g = dot3(cell.e4.n, x, y, z);
-    const V nd = sub(n0, d);  // the diagonal seen from the second triangle
-    // All >= -eps, or all <= eps (the negated functions >= -eps).
-    const V in1 = vor(all_ge(a, e0, d, ed, c, e2), all_ge(sub(n0, a), e0, nd, ed, sub(n0, c), e2));
-    const V in2 = vor(all_ge(f, e3, g, e4, nd, ed), all_ge(sub(n0, f), e3, sub(n0, g), e4, d, ed));
-    const V valid = valid_lanes(k, end);
-    if (none(vand(vor(in1, in2), valid))) continue;
-    const V t1 = div(set1(cell.num1), dot3(cell.normal1, x, y, z));
-    const V t2 = div(set1(cell.num2), dot3(cell.normal2, x, y, z));
-    // A ray accepted at the margin meets the plane just outside the triangle;
-    // one nearly in the plane could meet it anywhere, so hits are kept to the
-    // cell's distances.
-    const V in_cell1 = vand(in1, vand(ge(t1, near), le(t1, far)));
-    const V in_cell2 = vand(in2, vand(ge(t2, near), le(t2, far)));
-    V cand = set1(kInf);
-    keep(t1, in_cell1, tmin, cand);
-    keep(t2, in_cell2, tmin, cand);
-    commit(best, k, valid, cand, shape);
+    const D lo = hit_cell(cell, _mm256_cvtps_pd(_mm256_castps256_ps128(x)), _mm256_cvtps_pd(_mm256_castps256_ps128(y)),
+                          _mm256_cvtps_pd(_mm256_castps256_ps128(z)), tmin);
+    const D hi = hit_cell(cell, _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)), _mm256_cvtps_pd(_mm256_extractf128_ps(y, 1)),
+                          _mm256_cvtps_pd(_mm256_extractf128_ps(z, 1)), tmin);
+    const V cand = _mm256_set_m128(_mm256_cvtpd_ps(hi), _mm256_cvtpd_ps(lo));
+    commit(best, k, valid_lanes(k, end), cand, shape);
   }
 }
 
@@ -384,15 +405,19 @@ void cast_planes(const Rays& rays, const Plane* planes, int count, float t0, Bes
 }
 
 void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t1, Best best) {
-  const float* const px = patch.x;
-  const float* const py = patch.y;
-  const float* const pz = patch.z;
+  const double* const px = patch.x;
+  const double* const py = patch.y;
+  const double* const pz = patch.z;
   for (int r = 0; r + 1 < patch.rows; ++r) {
     for (int c = 0; c + 1 < patch.cols; ++c) {
       const int i00 = r * patch.cols + c, i10 = i00 + 1, i01 = i00 + patch.cols, i11 = i01 + 1;
-      const float hull_x[4] = {px[i00], px[i10], px[i01], px[i11]};
-      const float hull_y[4] = {py[i00], py[i10], py[i01], py[i11]};
-      const float hull_z[4] = {pz[i00], pz[i10], pz[i01], pz[i11]};
+      const int corners[4] = {i00, i10, i01, i11};
+      float hull_x[4], hull_y[4], hull_z[4];
+      for (int k = 0; k < 4; ++k) {
+        hull_x[k] = static_cast<float>(px[corners[k]]);
+        hull_y[k] = static_cast<float>(py[corners[k]]);
+        hull_z[k] = static_cast<float>(pz[corners[k]]);
+      }
       const float centre[3] = {0.25f * (hull_x[0] + hull_x[1] + hull_x[2] + hull_x[3]),
                                0.25f * (hull_y[0] + hull_y[1] + hull_y[2] + hull_y[3]),
                                0.25f * (hull_z[0] + hull_z[1] + hull_z[2] + hull_z[3])};
@@ -408,8 +433,8 @@ void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t
       Rect rects[kFaces];
       const int n = hull_rects(rays, hull, 4, centre, rho, rects);
       if (n == 0) continue;
-      const float p00[3] = {hull_x[0], hull_y[0], hull_z[0]}, p10[3] = {hull_x[1], hull_y[1], hull_z[1]};
-      const float p01[3] = {hull_x[2], hull_y[2], hull_z[2]}, p11[3] = {hull_x[3], hull_y[3], hull_z[3]};
+      const double p00[3] = {px[i00], py[i00], pz[i00]}, p10[3] = {px[i10], py[i10], pz[i10]};
+      const double p01[3] = {px[i01], py[i01], pz[i01]}, p11[3] = {px[i11], py[i11], pz[i11]};
       Cell cell;
       cell.e0 = make_edge(p00, p10);
       cell.diagonal = make_edge(p10, p01);
@@ -418,8 +443,8 @@ void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t
       cell.e4 = make_edge(p11, p01);
       triangle_plane(p00, p10, p01, cell.normal1, cell.num1);
       triangle_plane(p10, p11, p01, cell.normal2, cell.num2);
-      cell.near = (dist - rho) * 0.9999f - 1e-5f;
-      cell.far = (dist + rho) * 1.0001f + 1e-5f;
+      cell.near = (dist - rho) * 0.9999 - 1e-5;
+      cell.far = (dist + rho) * 1.0001 + 1e-5;
       for (int i = 0; i < n; ++i) {
         for_each_run(rays, rects[i], [&](std::uint32_t first, std::uint32_t end) {
           cast_cell(rays, cell, first, end, t0, patch.shape, best);

@@ -42,11 +42,14 @@ struct Plane {
 };
 
 /// A grid of heightfield vertices in the sensor frame, row-major; cell (c, r)
-/// is split along (c + 1, r)-(c, r + 1) like the heightfield.
+/// is split along (c + 1, r)-(c, r + 1) like the heightfield. In double: a
+/// ray grazing the ground meets it at a distance that moves by the vertices'
+/// rounding divided by the grazing angle, and float vertices ten metres away
+/// put such hits millimetres off.
 struct TerrainPatch {
-  const float* x = nullptr;
-  const float* y = nullptr;
-  const float* z = nullptr;
+  const double* x = nullptr;
+  const double* y = nullptr;
+  const double* z = nullptr;
   int cols = 0;  ///< vertices per row
   int rows = 0;
   std::int32_t shape = 0;

@@ -487,7 +487,7 @@ namespace {
 struct FanScratch {
   std::vector<float> best_t;
   std::vector<std::int32_t> best_shape;
-  std::vector<float> x, y, z;  // a heightfield patch's vertices
+  std::vector<double> x, y, z;  // a heightfield patch's vertices
   std::vector<fan::Plane> planes;
   std::vector<fan::Primitive> primitives;
   std::vector<Eigen::Vector3f> directions;  // world directions, for a fan cast through Embree
@@ -732,9 +732,9 @@ struct RayCaster::Impl {
         const Eigen::Vector3d row = b + m.col(1) * terrain.vertex_y(r);
         for (int c = c0; c <= c1 + 1; ++c, ++k) {
           const Eigen::Vector3d p = row + m.col(0) * terrain.vertex_x(c) + m.col(2) * terrain.grid->at(c, r);
-          scratch.x[k] = static_cast<float>(p.x());
-          scratch.y[k] = static_cast<float>(p.y());
-          scratch.z[k] = static_cast<float>(p.z());
+          scratch.x[k] = p.x();
+          scratch.y[k] = p.y();
+          scratch.z[k] = p.z();
         }
       }
       const fan::TerrainPatch patch{scratch.x.data(), scratch.y.data(), scratch.z.data(), cols, rows,
