@@ -390,15 +390,20 @@ bool kernels_available() {
 }
 
 void cast_planes(const Rays& rays, const Plane* planes, int count, float t0, Best best) {
-  const V tmin = set1(t0);
   for (int i = 0; i < count; ++i) {
     const Plane& plane = planes[i];
-    const V offset = set1(plane.offset);
+    const D offset = set1d(plane.offset);
+    // In double, like the cells: the ground is what a ray grazes most.
+    const auto hit = [&](__m128 x, __m128 y, __m128 z) {
+      return _mm256_cvtpd_ps(_mm256_div_pd(offset, dot3d(plane.normal, _mm256_cvtps_pd(x), _mm256_cvtps_pd(y),
+                                                          _mm256_cvtps_pd(z))));
+    };
     for (std::uint32_t k = 0; k < rays.size; k += 8) {
-      const V t = div(offset, dot3(plane.normal, _mm256_loadu_ps(rays.x + k), _mm256_loadu_ps(rays.y + k),
-                                   _mm256_loadu_ps(rays.z + k)));
+      const V x = _mm256_loadu_ps(rays.x + k), y = _mm256_loadu_ps(rays.y + k), z = _mm256_loadu_ps(rays.z + k);
+      const V t = _mm256_set_m128(hit(_mm256_extractf128_ps(x, 1), _mm256_extractf128_ps(y, 1), _mm256_extractf128_ps(z, 1)),
+                                  hit(_mm256_castps256_ps128(x), _mm256_castps256_ps128(y), _mm256_castps256_ps128(z)));
       V cand = set1(kInf);
-      keep(t, _mm256_castsi256_ps(_mm256_set1_epi32(-1)), tmin, cand);
+      keep(t, _mm256_castsi256_ps(_mm256_set1_epi32(-1)), set1(t0), cand);
       commit(best, k, valid_lanes(k, rays.size), cand, plane.shape);
     }
   }

@@ -34,10 +34,10 @@ struct Best {
   std::int32_t* shape = nullptr;
 };
 
-/// An infinite plane: n . (o + t d) = offset with the origin at 0.
+/// An infinite plane: n . (t d) = offset, the origin at 0.
 struct Plane {
-  float normal[3];
-  float offset;  ///< n . (point on the plane - origin)
+  double normal[3];
+  double offset;  ///< n . (point on the plane - origin)
   std::int32_t shape;
 };
 

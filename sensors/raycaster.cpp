@@ -539,7 +539,9 @@ fan::Primitive fan_primitive(const Primitive& p, const Eigen::Matrix3d& sensor_t
     case ShapeType::cone:
       f.kind = fan::Kind::cone;
       break;
-    default:
+    case ShapeType::sphere:
+    case ShapeType::plane:  // never a Primitive (make_primitive)
+    case ShapeType::heightfield:
       f.kind = fan::Kind::sphere;
       break;
   }
@@ -612,13 +614,12 @@ struct RayCaster::Impl {
   void cast_embree(const Eigen::Vector3d& origin, std::span<const Eigen::Vector3f> directions,
                    float min_range_m, float max_range_m, std::span<RayHit> hits) const {
     assert(directions.size() == hits.size());
-    const Impl& m = *this;
     CastContext context;
     rtcInitIntersectContext(&context.base);
     context.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     context.origin = origin;
     const Eigen::Vector3f origin_f = origin.cast<float>();
-  
+
     // Rays go to Embree in fixed-size batches on the stack: no allocation.
     constexpr std::size_t kBatch = 64;
     RTCRayHit batch[kBatch];
@@ -645,7 +646,7 @@ struct RayCaster::Impl {
         shape[i] = RayHit::kNoShape;
         // Planes first: a plane hit only shortens the ray for Embree.
         const Eigen::Vector3d dir = d.cast<double>();
-        for (const Plane& plane : m.planes) {
+        for (const Plane& plane : planes) {
           const double t = plane.normal.dot(plane.point - origin) / plane.normal.dot(dir);
           if (t >= min_range_m && t <= ray.tfar) {
             ray.tfar = static_cast<float>(t);
@@ -653,22 +654,22 @@ struct RayCaster::Impl {
           }
         }
       }
-      rtcIntersect1M(m.fixed.scene, &context.base, batch, static_cast<unsigned>(count),
+      rtcIntersect1M(fixed.scene, &context.base, batch, static_cast<unsigned>(count),
                      sizeof(RTCRayHit));
       for (std::size_t i = 0; i < count; ++i) {
         RTCHit& hit = batch[i].hit;
         if (hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-          shape[i] = m.fixed.shape_of(hit.geomID, hit.primID);
+          shape[i] = fixed.shape_of(hit.geomID, hit.primID);
           hit.geomID = RTC_INVALID_GEOMETRY_ID;
         }
       }
-      if (m.moving.scene) {
-        rtcIntersect1M(m.moving.scene, &context.base, batch, static_cast<unsigned>(count),
+      if (moving.scene) {
+        rtcIntersect1M(moving.scene, &context.base, batch, static_cast<unsigned>(count),
                        sizeof(RTCRayHit));
         for (std::size_t i = 0; i < count; ++i) {
           const RTCHit& hit = batch[i].hit;
           if (hit.geomID != RTC_INVALID_GEOMETRY_ID)
-            shape[i] = m.moving.shape_of(hit.geomID, hit.primID);
+            shape[i] = moving.shape_of(hit.geomID, hit.primID);
         }
       }
       for (std::size_t i = 0; i < count; ++i) {
@@ -709,9 +710,8 @@ struct RayCaster::Impl {
 
     scratch.planes.clear();
     for (const Plane& plane : planes) {
-      const Eigen::Vector3f n = (rotation.transpose() * plane.normal).cast<float>();
-      scratch.planes.push_back(
-          {{n.x(), n.y(), n.z()}, static_cast<float>(plane.normal.dot(plane.point - origin)), plane.shape});
+      const Eigen::Vector3d n = rotation.transpose() * plane.normal;
+      scratch.planes.push_back({{n.x(), n.y(), n.z()}, plane.normal.dot(plane.point - origin), plane.shape});
     }
     fan::cast_planes(rays, scratch.planes.data(), static_cast<int>(scratch.planes.size()), min_range_m, best);
 
@@ -719,9 +719,9 @@ struct RayCaster::Impl {
       const Eigen::Vector3d local = terrain.rotation.transpose() * (origin - terrain.translation);
       int c0, c1, r0, r1;
       if (!cells_in_range(terrain, local, max_range_m, c0, c1, r0, r1)) continue;
-      // Vertices in the sensor frame: m v + b for a local vertex v.
-      const Eigen::Matrix3d m = rotation.transpose() * terrain.rotation;
-      const Eigen::Vector3d b = rotation.transpose() * (terrain.translation - origin);
+      // Vertices in the sensor frame: turn v + shift for a local vertex v.
+      const Eigen::Matrix3d turn = rotation.transpose() * terrain.rotation;
+      const Eigen::Vector3d shift = rotation.transpose() * (terrain.translation - origin);
       const int cols = c1 - c0 + 2, rows = r1 - r0 + 2;
       const auto count = static_cast<std::size_t>(cols) * static_cast<std::size_t>(rows);
       scratch.x.resize(count);
@@ -729,9 +729,9 @@ struct RayCaster::Impl {
       scratch.z.resize(count);
       std::size_t k = 0;
       for (int r = r0; r <= r1 + 1; ++r) {
-        const Eigen::Vector3d row = b + m.col(1) * terrain.vertex_y(r);
+        const Eigen::Vector3d row = shift + turn.col(1) * terrain.vertex_y(r);
         for (int c = c0; c <= c1 + 1; ++c, ++k) {
-          const Eigen::Vector3d p = row + m.col(0) * terrain.vertex_x(c) + m.col(2) * terrain.grid->at(c, r);
+          const Eigen::Vector3d p = row + turn.col(0) * terrain.vertex_x(c) + turn.col(2) * terrain.grid->at(c, r);
           scratch.x[k] = p.x();
           scratch.y[k] = p.y();
           scratch.z[k] = p.z();
