@@ -33,12 +33,15 @@ struct Golden {
   std::uint64_t final_state_hash;
 };
 
-// One scene per family of planner: depth camera + depth_reactive (quadrotor), rover_route
-// (rover, LIDAR), dstar_lite_3d (quadrotor, LIDAR mapping). Seed 0, the scenes' own settings.
+// One scene per family of planner and way of sensing: depth camera + depth_reactive
+// (quadrotor), rover_route (rover, planar LIDAR cast ray by ray), dstar_lite_3d (quadrotor,
+// LIDAR mapping), depth_reactive over terrain and trees (a 256 x 256 LIDAR cast as a fan on
+// an AVX2 CPU). Seed 0, the scenes' own settings.
 constexpr Golden kGolden[] = {
     {"two_barriers", 3363149952966629928ULL},
     {"vineyard", 9546240697463451486ULL},
     {"zigzag", 16317398135073404678ULL},
+    {"trees_rolling_terrain", 13691095636017855678ULL},
 };
 
 std::uint64_t hash_in(const fs::path& run_json) {
@@ -55,7 +58,7 @@ class GoldenDeterminism : public ::testing::Test {
     fs::create_directories(dir_);
     spec_ = dir_ / "golden.json";
     std::ofstream(spec_) << R"({"campo_sweep": 1, "name": "golden",
-                                "scenes": ["two_barriers", "vineyard", "zigzag"],
+                                "scenes": ["two_barriers", "vineyard", "zigzag", "trees_rolling_terrain"],
                                 "seeds": {"first": 0, "count": 1}})";
   }
   void TearDown() override { fs::remove_all(dir_); }
