@@ -14,6 +14,7 @@
 #include "scene/scene_mesh.hpp"
 #include "sensors/lidar.hpp"
 #include "sensors/raycaster.hpp"
+#include "tests/sensors/seam_points.hpp"
 
 namespace campo {
 namespace {
@@ -195,17 +196,10 @@ TEST(FanCast, HeightfieldLetsNoRayThroughItsSharedEdgesAndVertices) {
                                        Eigen::Vector3d(-2.1, 3.3, 25.0), Eigen::Vector3d(0.05, 0.05, 8.0)}) {
     std::vector<Eigen::Vector3f> dirs;
     std::vector<double> expected;
-    for (int r = 1; r + 1 < g.rows; ++r) {
-      for (int c = 1; c + 1 < g.cols; ++c) {
-        const double x0 = (c - 0.5 * (g.cols - 1)) * g.spacing_x_m;
-        const double y0 = (r - 0.5 * (g.rows - 1)) * g.spacing_y_m;
-        for (const auto& [fu, fv] : {std::pair{0.0, 0.0}, {0.5, 0.0}, {0.0, 0.5}, {0.5, 0.5}}) {
-          const double x = x0 + fu * g.spacing_x_m, y = y0 + fv * g.spacing_y_m;
-          const Eigen::Vector3d target = hf.pose * Eigen::Vector3d(x, y, *g.height_at(x, y));
-          dirs.push_back((target - origin).normalized().cast<float>());
-          expected.push_back((target - origin).norm());
-        }
-      }
+    for (const Eigen::Vector3d& seam : test_support::seam_points(g)) {
+      const Eigen::Vector3d target = hf.pose * seam;
+      dirs.push_back((target - origin).normalized().cast<float>());
+      expected.push_back((target - origin).norm());
     }
     const RayFan fan(dirs);
     std::vector<RayHit> hits(fan.size());

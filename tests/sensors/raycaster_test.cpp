@@ -14,6 +14,7 @@
 #include "campo/pose.hpp"
 #include "campo/random.hpp"
 #include "campo/world.hpp"
+#include "tests/sensors/seam_points.hpp"
 
 namespace campo {
 namespace {
@@ -375,21 +376,13 @@ TEST_P(RayCasterTest, HeightfieldHasNoCracksAtVerticesAndEdges) {
   const Eigen::Vector3d kSlanted[] = {{1.3, -0.7, 50.0}, {-2.1, 3.3, 40.0}, {0.05, 0.05, 10.0}};
   int rays = 0;
   // Interior points only: the outer boundary can be grazed legitimately.
-  for (int r = 1; r + 1 < g.rows; ++r) {
-    for (int c = 1; c + 1 < g.cols; ++c) {
-      const double x0 = (c - 0.5 * (g.cols - 1)) * g.spacing_x_m;
-      const double y0 = (r - 0.5 * (g.rows - 1)) * g.spacing_y_m;
-      for (const auto& [fu, fv] : {std::pair{0.0, 0.0}, {0.5, 0.0}, {0.0, 0.5}, {0.5, 0.5}}) {
-        const double x = x0 + fu * g.spacing_x_m, y = y0 + fv * g.spacing_y_m;
-        const Eigen::Vector3d target(x, y, *g.height_at(x, y));
-        const Eigen::Vector3d above(x, y, 5.0);
-        for (const Eigen::Vector3d& origin : {above, kSlanted[0], kSlanted[1], kSlanted[2]}) {
-          const RayHit hit = cast_one(caster, origin, target - origin, 0.0f, 60.0f);
-          ASSERT_EQ(hit.shape, 0) << "at " << x << ", " << y << " from " << origin.transpose();
-          EXPECT_NEAR(hit.distance_m, (target - origin).norm(), kMm) << "at " << x << ", " << y;
-          ++rays;
-        }
-      }
+  for (const Eigen::Vector3d& target : test_support::seam_points(g)) {
+    const Eigen::Vector3d above(target.x(), target.y(), 5.0);
+    for (const Eigen::Vector3d& origin : {above, kSlanted[0], kSlanted[1], kSlanted[2]}) {
+      const RayHit hit = cast_one(caster, origin, target - origin, 0.0f, 60.0f);
+      ASSERT_EQ(hit.shape, 0) << "at " << target.transpose() << " from " << origin.transpose();
+      EXPECT_NEAR(hit.distance_m, (target - origin).norm(), kMm) << "at " << target.transpose();
+      ++rays;
     }
   }
   EXPECT_EQ(rays, 31 * 31 * 4 * 4);
