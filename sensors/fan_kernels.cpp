@@ -132,13 +132,11 @@ inline V fmadd(V a, V b, V c) { return _mm256_fmadd_ps(a, b, c); }
 inline V vmin(V a, V b) { return _mm256_min_ps(a, b); }
 inline V vmax(V a, V b) { return _mm256_max_ps(a, b); }
 inline V vand(V a, V b) { return _mm256_and_ps(a, b); }
-inline V vor(V a, V b) { return _mm256_or_ps(a, b); }
 inline V ge(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_GE_OQ); }
 inline V le(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
 inline V lt(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_LT_OQ); }
 inline V select(V mask, V yes, V no) { return _mm256_blendv_ps(no, yes, mask); }
 inline bool none(V mask) { return _mm256_movemask_ps(mask) == 0; }
-inline V dot3(const float n[3], V x, V y, V z) { return fmadd(set1(n[0]), x, fmadd(set1(n[1]), y, mul(set1(n[2]), z))); }
 
 // Lanes k + i < end.
 inline V valid_lanes(std::uint32_t k, std::uint32_t end) {
