@@ -125,9 +125,16 @@ struct World::Impl {
     const double mass = dynamic ? shape.mass_kg : 0.0;
     btVector3 inertia(0, 0, 0);
     if (dynamic) collision_shape->calculateLocalInertia(mass, inertia);
-    motion_states.push_back(std::make_unique<btDefaultMotionState>(body_transform(shape)));
-    btRigidBody::btRigidBodyConstructionInfo info(mass, motion_states.back().get(),
-                                                  collision_shape, inertia);
+    // A motion state only where Bullet reads one (a kinematic mover, placed through it);
+    // campo reads the other bodies' own transforms, and Bullet would interpolate a
+    // motion state for every dynamic body every step.
+    btMotionState* motion_state = nullptr;
+    if (kinematic) {
+      motion_states.push_back(std::make_unique<btDefaultMotionState>(body_transform(shape)));
+      motion_state = motion_states.back().get();
+    }
+    btRigidBody::btRigidBodyConstructionInfo info(mass, motion_state, collision_shape, inertia);
+    info.m_startWorldTransform = body_transform(shape);
     info.m_friction = shape.friction;
     bodies.push_back(std::make_unique<btRigidBody>(info));
     btRigidBody* body = bodies.back().get();

@@ -149,10 +149,11 @@ Quadrotor::Quadrotor(World& world, const QuadrotorConfig& config, const Eigen::I
                   resting_at(start_pose)) {
   shape_ = std::make_unique<btBoxShape>(to_bt(config.collision_half_extents_m));
   shape_->setMargin(0.0);  // the exact box, without rounded edges (clearance)
-  motion_state_ = std::make_unique<btDefaultMotionState>(to_bt(start_pose));
-  // The construction info sets the configured inertia (setMassProps), not the box's.
-  const btRigidBody::btRigidBodyConstructionInfo info(config.mass_kg, motion_state_.get(), shape_.get(),
-                                                      to_bt(config.inertia_kgm2));
+  // The construction info sets the configured inertia (setMassProps), not the box's. No
+  // motion state: campo reads the body's own transform, and Bullet would interpolate one
+  // for it every step.
+  btRigidBody::btRigidBodyConstructionInfo info(config.mass_kg, nullptr, shape_.get(), to_bt(config.inertia_kgm2));
+  info.m_startWorldTransform = to_bt(start_pose);
   body_ = std::make_unique<btRigidBody>(info);
   body_->setUserIndex(kVehicleBodyTag);
   body_->setActivationState(DISABLE_DEACTIVATION);
@@ -172,8 +173,13 @@ void Quadrotor::command(const Command& c) { controller_.command(c, estimated_sta
 
 void Quadrotor::pre_step(double dt_s) {
   rotor_commands_ = controller_.update(estimated_state(), dt_s);
-  // Exact discretisation of the first-order motor lag over one step.
-  const double blend = 1.0 - std::exp(-dt_s / config_.motor_time_constant_s);
+  // Exact discretisation of the first-order motor lag over one step (the step is always
+  // the world's, so the exponential is worked out once).
+  if (dt_s != lag_step_s_) {
+    lag_step_s_ = dt_s;
+    motor_blend_ = 1.0 - std::exp(-dt_s / config_.motor_time_constant_s);
+  }
+  const double blend = motor_blend_;
   const btMatrix3x3& basis = body_->getWorldTransform().getBasis();
   const btVector3 up = basis.getColumn(2);
   double yaw_torque = 0.0;

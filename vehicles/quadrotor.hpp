@@ -16,7 +16,6 @@
 #include "vehicles/quadrotor_controller.hpp"
 
 class btCollisionShape;
-class btMotionState;
 
 namespace campo {
 
@@ -83,12 +82,13 @@ class Quadrotor final : public Vehicle {
   btDiscreteDynamicsWorld& bullet_;
   QuadrotorConfig config_;
   std::unique_ptr<btCollisionShape> shape_;
-  std::unique_ptr<btMotionState> motion_state_;
   std::unique_ptr<btRigidBody> body_;
   std::array<Eigen::Vector3d, 4> rotors_m_;  ///< body-frame rotor positions
   QuadrotorController controller_;
   RotorSpeeds rotor_commands_{};
   RotorSpeeds rotor_speeds_{};
+  double lag_step_s_ = 0.0;  ///< the step motor_blend_ was computed for
+  double motor_blend_ = 0.0;
 };
 
 }  // namespace campo
