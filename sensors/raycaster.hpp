@@ -48,11 +48,13 @@ class RayCaster {
 
   /// Casts one ray per direction from `origin`; directions are unit vectors in
   /// the world frame. Hits nearer than min_range_m are ignored (the ray
-  /// continues); hits beyond max_range_m are misses. No allocation.
+  /// continues); hits beyond max_range_m are misses. No allocation, except
+  /// with CastMethod::fan, which bins the directions into a RayFan first.
   void cast(const Eigen::Vector3d& origin, std::span<const Eigen::Vector3f> directions,
             float min_range_m, float max_range_m, std::span<RayHit> hits) const;
   /// The same for a fan of directions given in the sensor frame, cast from
-  /// `sensor_pose` (world frame); hits in the fan's direction order.
+  /// `sensor_pose` (world frame); hits in the fan's direction order. Buffers
+  /// are kept per thread: no allocation once they have grown.
   void cast(const Eigen::Isometry3d& sensor_pose, const RayFan& fan, float min_range_m, float max_range_m,
             std::span<RayHit> hits) const;
 
