@@ -1,10 +1,10 @@
-// Compiled with -mavx2 -mfma (CMakeLists.txt); see fan_kernels.hpp. Only
-// <immintrin.h> and <cmath> are used here, and every helper has internal
-// linkage, so no AVX2 copy of a shared inline function can reach the rest of
-// campo through the linker.
+// Compiled with -mavx2 -mfma (CMakeLists.txt); see fan_kernels.hpp. Every
+// helper has internal linkage and the maths are compiler builtins (which call
+// the C library's functions when not expanded), not <cmath>'s inline
+// overloads: an unoptimised build emits those as weak symbols, and the linker
+// could hand an AVX2 copy of std::fmin to code that runs on any CPU.
 #include "sensors/fan_kernels.hpp"
 
-#include <cmath>
 #include <cstdint>
 
 #if defined(__AVX2__) && defined(__FMA__)
@@ -18,20 +18,22 @@ namespace campo::fan {
 
 namespace {
 
-constexpr float kInf = INFINITY;
+constexpr float kInf = __builtin_inff();
 constexpr float kHalfPi = 1.57079632679489662f;
 // Margin on a surface's bin rectangle in face coordinates (which span [-1, 1]):
 // covers the rounding of the vertices' projections and of the rays' own.
 constexpr float kBinPad = 1e-5f;
 // Slack on the rim tests of capped primitives, so a ray grazing a rim is not
-// lost between the side test and the cap test through rounding.
-constexpr float kRimSlack_m = 1e-5f;
+// lost between the side test and the cap test through rounding: a few float
+// roundings of the distances involved (the sensor's from the shape, the
+// shape's size), per metre of them.
+constexpr float kRimRounding = 1e-6f;
 
 inline float min_f(float a, float b) { return a < b ? a : b; }
 inline float max_f(float a, float b) { return a > b ? a : b; }
 
 inline int bin_of(float u, int grid) {
-  u = std::fmin(std::fmax(u, -1.0f), 1.0f);  // also turns NaN into -1
+  u = __builtin_fminf(__builtin_fmaxf(u, -1.0f), 1.0f);  // also turns NaN into -1
   const int i = static_cast<int>((u + 1.0f) * 0.5f * static_cast<float>(grid));
   return i < grid ? i : grid - 1;
 }
@@ -51,12 +53,12 @@ bool tangent_range(float ca, float cw, float rho, float& lo, float& hi) {
     hi = kInf;
     return true;
   }
-  const float phi = std::atan2(ca, cw);
-  const float delta = std::asin(min_f(1.0f, rho / std::sqrt(l2)));
+  const float phi = __builtin_atan2f(ca, cw);
+  const float delta = __builtin_asinf(min_f(1.0f, rho / __builtin_sqrtf(l2)));
   const float a0 = phi - delta, a1 = phi + delta;
   if (a0 >= kHalfPi || a1 <= -kHalfPi) return false;
-  lo = a0 <= -kHalfPi ? -kInf : std::tan(a0);
-  hi = a1 >= kHalfPi ? kInf : std::tan(a1);
+  lo = a0 <= -kHalfPi ? -kInf : __builtin_tanf(a0);
+  hi = a1 >= kHalfPi ? kInf : __builtin_tanf(a1);
   return true;
 }
 
@@ -150,7 +152,8 @@ inline void keep(V t, V ok, V t0, V& cand) {
   cand = select(vand(ok, vand(ge(t, t0), lt(t, cand))), t, cand);
 }
 
-// Writes the lanes of `cand` nearer than the best so far.
+// Writes the lanes of `cand` nearer than the best so far (a lane without a
+// hit holds +inf; the best so far starts finite, see Best).
 inline void commit(const Best& best, std::uint32_t k, V valid, V cand, std::int32_t shape) {
   const V old = _mm256_loadu_ps(best.t + k);
   const V take = vand(valid, le(cand, old));
@@ -189,8 +192,8 @@ Edge make_edge(const double p[3], const double q[3]) {
   e.n[0] = p[1] * q[2] - p[2] * q[1];
   e.n[1] = p[2] * q[0] - p[0] * q[2];
   e.n[2] = p[0] * q[1] - p[1] * q[0];
-  const double ax = std::fabs(p[0]), ay = std::fabs(p[1]), az = std::fabs(p[2]);
-  const double bx = std::fabs(q[0]), by = std::fabs(q[1]), bz = std::fabs(q[2]);
+  const double ax = __builtin_fabs(p[0]), ay = __builtin_fabs(p[1]), az = __builtin_fabs(p[2]);
+  const double bx = __builtin_fabs(q[0]), by = __builtin_fabs(q[1]), bz = __builtin_fabs(q[2]);
   e.eps = kEdgeRounding * (ay * bz + az * by + az * bx + ax * bz + ax * by + ay * bx);
   return e;
 }
@@ -233,7 +236,7 @@ inline D hit_cell(const Cell& cell, D x, D y, D z, D t0) {
   const D nd = _mm256_sub_pd(_mm256_setzero_pd(), d);  // the diagonal seen from the second triangle
   const D in1 = one_sign(a, set1d(cell.e0.eps), d, set1d(cell.diagonal.eps), c, set1d(cell.e2.eps));
   const D in2 = one_sign(f, set1d(cell.e3.eps), g, set1d(cell.e4.eps), nd, set1d(cell.diagonal.eps));
-  const D inf = set1d(INFINITY);
+  const D inf = set1d(__builtin_inf());
   if (_mm256_movemask_pd(ord(in1, in2)) == 0) return inf;
   const D t1 = _mm256_div_pd(set1d(cell.num1), dot3d(cell.normal1, x, y, z));
   const D t2 = _mm256_div_pd(set1d(cell.num2), dot3d(cell.normal2, x, y, z));
@@ -287,16 +290,26 @@ inline LocalRays to_local(const Primitive& p, V x, V y, V z) {
 
 inline V sqrt_clamped(V x) { return _mm256_sqrt_ps(vmax(x, _mm256_setzero_ps())); }
 
-V hit_box(const Primitive& p, const LocalRays& r, V t0) {
+V hit_box(const Primitive& p, const LocalRays& r, V t0, float) {
   const V o[3] = {r.ox, r.oy, r.oz}, d[3] = {r.dx, r.dy, r.dz};
-  V enter = set1(-kInf), exit = set1(kInf);
+  const V zero = _mm256_setzero_ps(), inf = set1(kInf), minus_inf = set1(-kInf);
+  V enter = minus_inf, exit = inf;
   for (int i = 0; i < 3; ++i) {
     const V h = set1(p.half[i]);
     const V inv = div(set1(1.0f), d[i]);
-    const V a = mul(sub(sub(_mm256_setzero_ps(), h), o[i]), inv);
+    const V a = mul(sub(sub(zero, h), o[i]), inv);
     const V b = mul(sub(h, o[i]), inv);
-    enter = vmax(enter, vmin(a, b));
-    exit = vmin(exit, vmax(a, b));
+    V lo = vmin(a, b), hi = vmax(a, b);
+    // A ray parallel to a slab is in it for every t, or never (on one of its
+    // faces 0 * inf would give NaN). Rare: level rays and level boxes.
+    const V parallel = _mm256_cmp_ps(d[i], zero, _CMP_EQ_OQ);
+    if (!none(parallel)) {
+      const V inside = le(_mm256_andnot_ps(set1(-0.0f), o[i]), h);
+      lo = select(parallel, select(inside, minus_inf, inf), lo);
+      hi = select(parallel, inf, hi);
+    }
+    enter = vmax(enter, lo);
+    exit = vmin(exit, hi);
   }
   const V ok = le(enter, exit);
   V cand = set1(kInf);
@@ -305,7 +318,7 @@ V hit_box(const Primitive& p, const LocalRays& r, V t0) {
   return cand;
 }
 
-V hit_sphere(const Primitive& p, const LocalRays& r, V t0) {
+V hit_sphere(const Primitive& p, const LocalRays& r, V t0, float) {
   const V rr = set1(p.half[0] * p.half[0]);
   const V disc = sub(rr, fmadd(r.ox, r.ox, fmadd(r.oy, r.oy, mul(r.oz, r.oz))));
   const V ok = ge(disc, _mm256_setzero_ps());
@@ -317,14 +330,14 @@ V hit_sphere(const Primitive& p, const LocalRays& r, V t0) {
 }
 
 // Crossing with the disc of radius r in the plane z = zc.
-inline void keep_cap(const LocalRays& r, float radius, float zc, V t0, V& cand) {
+inline void keep_cap(const LocalRays& r, float radius, float zc, float slack, V t0, V& cand) {
   const V s = div(sub(set1(zc), r.oz), r.dz);
   const V x = fmadd(s, r.dx, r.ox), y = fmadd(s, r.dy, r.oy);
-  const float rim = radius + kRimSlack_m;
+  const float rim = radius + slack;
   keep(add(s, r.shift), le(fmadd(x, x, mul(y, y)), set1(rim * rim)), t0, cand);
 }
 
-V hit_cylinder(const Primitive& p, const LocalRays& r, V t0) {
+V hit_cylinder(const Primitive& p, const LocalRays& r, V t0, float slack) {
   const float radius = p.half[0], hz = p.half[2];
   const V a = fmadd(r.dx, r.dx, mul(r.dy, r.dy));
   const V tc = div(sub(_mm256_setzero_ps(), fmadd(r.ox, r.dx, mul(r.oy, r.dy))), a);
@@ -332,21 +345,21 @@ V hit_cylinder(const Primitive& p, const LocalRays& r, V t0) {
   const V disc = sub(set1(radius * radius), fmadd(px, px, mul(py, py)));
   const V s = sqrt_clamped(div(disc, a));
   const V ok = ge(disc, _mm256_setzero_ps());
-  const V rim = set1(hz + kRimSlack_m);
+  const V rim = set1(hz + slack);
   V cand = set1(kInf);
   const V roots[2] = {sub(tc, s), add(tc, s)};
   for (const V t : roots) {
     const V z = fmadd(t, r.dz, r.oz);
     keep(add(t, r.shift), vand(ok, le(_mm256_andnot_ps(set1(-0.0f), z), rim)), t0, cand);
   }
-  keep_cap(r, radius, -hz, t0, cand);
-  keep_cap(r, radius, hz, t0, cand);
+  keep_cap(r, radius, -hz, slack, t0, cand);
+  keep_cap(r, radius, hz, slack, t0, cand);
   return cand;
 }
 
 // Apex at z = +hz, base of radius r at z = -hz (as intersect_cone in
 // sensors/raycaster.cpp).
-V hit_cone(const Primitive& p, const LocalRays& r, V t0) {
+V hit_cone(const Primitive& p, const LocalRays& r, V t0, float slack) {
   const float radius = p.half[0], hz = p.half[2];
   const float k = radius / (2.0f * hz);
   const V k2 = set1(k * k);
@@ -358,25 +371,25 @@ V hit_cone(const Primitive& p, const LocalRays& r, V t0) {
   const V ok = ge(disc, _mm256_setzero_ps());
   const V sign = _mm256_and_ps(b, set1(-0.0f));
   const V q = sub(_mm256_setzero_ps(), add(b, _mm256_or_ps(sqrt_clamped(disc), sign)));
-  const V lo = set1(-hz - kRimSlack_m), hi = set1(hz + kRimSlack_m);
+  const V lo = set1(-hz - slack), hi = set1(hz + slack);
   V cand = set1(kInf);
   const V roots[2] = {div(q, a), div(c, q)};
   for (const V t : roots) {
     const V z = fmadd(t, r.dz, r.oz);
     keep(add(t, r.shift), vand(ok, vand(ge(z, lo), le(z, hi))), t0, cand);
   }
-  keep_cap(r, radius, -hz, t0, cand);
+  keep_cap(r, radius, -hz, slack, t0, cand);
   return cand;
 }
 
-template <V (*Hit)(const Primitive&, const LocalRays&, V)>
+template <V (*Hit)(const Primitive&, const LocalRays&, V, float)>
 void cast_primitive_run(const Rays& rays, const Primitive& p, std::uint32_t first, std::uint32_t end,
-                        float t0, const Best& best) {
+                        float t0, float rim_slack, const Best& best) {
   const V tmin = set1(t0);
   for (std::uint32_t k = first; k < end; k += 8) {
     const LocalRays r =
         to_local(p, _mm256_loadu_ps(rays.x + k), _mm256_loadu_ps(rays.y + k), _mm256_loadu_ps(rays.z + k));
-    commit(best, k, valid_lanes(k, end), Hit(p, r, tmin), p.shape);
+    commit(best, k, valid_lanes(k, end), Hit(p, r, tmin, rim_slack), p.shape);
   }
 }
 
@@ -429,8 +442,8 @@ void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t
         const float ex = hull_x[k] - centre[0], ey = hull_y[k] - centre[1], ez = hull_z[k] - centre[2];
         rho2 = max_f(rho2, ex * ex + ey * ey + ez * ez);
       }
-      const float rho = std::sqrt(rho2) * 1.00001f + 1e-6f;
-      const float dist = std::sqrt(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]);
+      const float rho = __builtin_sqrtf(rho2) * 1.00001f + 1e-6f;
+      const float dist = __builtin_sqrtf(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]);
       if (dist - rho > t1 || dist + rho < t0) continue;
       const float* const hull[3] = {hull_x, hull_y, hull_z};
       Rect rects[kFaces];
@@ -461,8 +474,9 @@ void cast_primitives(const Rays& rays, const Primitive* primitives, int count, f
                      Best best) {
   for (int i = 0; i < count; ++i) {
     const Primitive& p = primitives[i];
-    const float dist = std::sqrt(p.center[0] * p.center[0] + p.center[1] * p.center[1] + p.center[2] * p.center[2]);
+    const float dist = __builtin_sqrtf(p.center[0] * p.center[0] + p.center[1] * p.center[1] + p.center[2] * p.center[2]);
     if (dist - p.radius > t1 || dist + p.radius < t0) continue;
+    const float rim_slack = kRimRounding * (dist + p.radius);
     // The bounding box's corners: the centre plus or minus each half extent
     // along the local axes (rows of to_local, in the sensor frame).
     float corner_x[8], corner_y[8], corner_z[8];
@@ -483,16 +497,16 @@ void cast_primitives(const Rays& rays, const Primitive* primitives, int count, f
       for_each_run(rays, rects[r], [&](std::uint32_t first, std::uint32_t end) {
         switch (p.kind) {
           case Kind::cuboid:
-            cast_primitive_run<&hit_box>(rays, p, first, end, t0, best);
+            cast_primitive_run<&hit_box>(rays, p, first, end, t0, rim_slack, best);
             break;
           case Kind::cylinder:
-            cast_primitive_run<&hit_cylinder>(rays, p, first, end, t0, best);
+            cast_primitive_run<&hit_cylinder>(rays, p, first, end, t0, rim_slack, best);
             break;
           case Kind::cone:
-            cast_primitive_run<&hit_cone>(rays, p, first, end, t0, best);
+            cast_primitive_run<&hit_cone>(rays, p, first, end, t0, rim_slack, best);
             break;
           case Kind::sphere:
-            cast_primitive_run<&hit_sphere>(rays, p, first, end, t0, best);
+            cast_primitive_run<&hit_sphere>(rays, p, first, end, t0, rim_slack, best);
             break;
         }
       });

@@ -27,8 +27,9 @@ struct Rays {
   const std::uint32_t* bin_start = nullptr;  // first slot of bin b; bin_start[b + 1] ends it
 };
 
-/// Nearest hit so far per sorted slot: distance (starts at the max range) and
-/// shape (RayHit::shape).
+/// Nearest hit so far per sorted slot: distance (starts at the max range, and
+/// at most the largest float: a lane without a hit carries +inf, which must
+/// never count as one) and shape (RayHit::shape).
 struct Best {
   float* t = nullptr;
   std::int32_t* shape = nullptr;

@@ -45,8 +45,9 @@ RayFan::RayFan(std::span<const Eigen::Vector3f> directions) {
   std::array<std::size_t, fan::kFaces> on_face{};
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3f& d = directions[i];
-    if (!d.allFinite() || d.squaredNorm() == 0.0f) {
-      throw std::invalid_argument("RayFan: direction " + std::to_string(i) + " is zero or not finite");
+    // Unit length: the kernels take the ray parameter for the distance.
+    if (!d.allFinite() || std::abs(d.squaredNorm() - 1.0f) > 1e-4f) {
+      throw std::invalid_argument("RayFan: direction " + std::to_string(i) + " is not a unit vector");
     }
     face[i] = face_of(d);
     uv[i] = face_coordinates(d, face[i]);

@@ -17,7 +17,7 @@ namespace campo {
 class RayFan {
  public:
   /// `directions`: unit vectors in the sensor frame, in beam order. Throws
-  /// std::invalid_argument for a direction that is zero or not finite.
+  /// std::invalid_argument for a direction that is not one (to 1e-4).
   explicit RayFan(std::span<const Eigen::Vector3f> directions);
 
   std::size_t size() const { return order_.size(); }

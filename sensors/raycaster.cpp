@@ -236,7 +236,7 @@ void intersect_rays(const RTCIntersectFunctionNArguments* args, Intersect inters
                               RTCRayN_dir_z(rays, n, i));
     float& tfar = RTCRayN_tfar(rays, n, i);
     const double t = intersect(origin, dir, RTCRayN_tnear(rays, n, i), tfar);
-    if (!(t <= tfar)) continue;
+    if (!(t < kNoHit && t <= tfar)) continue;  // kNoHit is no hit, even with an infinite tfar
     tfar = static_cast<float>(t);  // rounding is monotonic: stays within [tnear, tfar]
     RTCHitN_geomID(hits, n, i) = args->geomID;
     RTCHitN_primID(hits, n, i) = args->primID;
@@ -702,7 +702,7 @@ struct RayCaster::Impl {
                 std::span<RayHit> hits) const {
     FanScratch& scratch = fan_scratch();
     const fan::Rays rays = fan.rays();
-    scratch.best_t.assign(rays.size + 8, max_range_m);
+    scratch.best_t.assign(rays.size + 8, std::min(max_range_m, std::numeric_limits<float>::max()));
     scratch.best_shape.assign(rays.size + 8, RayHit::kNoShape);
     const fan::Best best{scratch.best_t.data(), scratch.best_shape.data()};
     const Eigen::Matrix3d& rotation = pose.linear();

@@ -83,6 +83,7 @@ TEST(RayFan, FitsItsBinsToHowTheRaysSpread) {
   const RayFan planar(line);
   for (int f = 0; f < fan::kFaces; ++f) EXPECT_LE(planar.grid(f), 16) << f;
   EXPECT_THROW(RayFan(std::vector<Eigen::Vector3f>{Eigen::Vector3f::Zero()}), std::invalid_argument);
+  EXPECT_THROW(RayFan(std::vector<Eigen::Vector3f>{Eigen::Vector3f(2.0f, 0.0f, 0.0f)}), std::invalid_argument);
 }
 
 // Casts `beams` from `pose` with a caster of each method; returns how many
@@ -133,6 +134,48 @@ TEST(FanCast, AgreesWithEmbreeRayByRayOnTheBenchmarkScenes) {
     EXPECT_GT(hits, 24 * 160 * 120 / 4) << name;
     EXPECT_EQ(differ, 0) << name << ": " << differ << " of " << hits << " hits";
   }
+}
+
+// Centimetre-sized shapes of every kind, turned every way, close to the
+// sensor, in front of a wall: the float solvers (with their rim slack) agree
+// with the double ones ray for ray to 0.1 mm over 120,000 rays in all
+// directions, rims and silhouettes included.
+TEST(FanCast, AgreesWithEmbreeOnSmallShapesCloseToTheSensor) {
+  Rng rng(29);
+  Scene scene;
+  const ShapeType kinds[] = {ShapeType::cuboid, ShapeType::cylinder, ShapeType::cone, ShapeType::sphere};
+  for (int i = 0; i < 60; ++i) {
+    Shape s;
+    s.type = kinds[i % 4];
+    const Eigen::Vector3d at = random_unit(rng).cast<double>() * rng.uniform(0.15, 1.2);
+    s.pose = Eigen::Translation3d(at) * Eigen::AngleAxisd(rng.uniform(0.0, 3.0), random_unit(rng).cast<double>());
+    s.size_m = Eigen::Vector3d(rng.uniform(0.01, 0.06), rng.uniform(0.01, 0.06), rng.uniform(0.01, 0.06));
+    s.radius_m = rng.uniform(0.005, 0.03);
+    s.height_m = rng.uniform(0.01, 0.06);
+    scene.shapes.push_back(s);
+  }
+  Shape wall;
+  wall.type = ShapeType::cuboid;
+  wall.pose = Eigen::Isometry3d(Eigen::Translation3d(3.0, 0.0, 0.0));
+  wall.size_m = Eigen::Vector3d(0.2, 8.0, 8.0);
+  scene.shapes.push_back(wall);
+  const RayCaster embree(scene, CastMethod::embree);
+  const RayCaster fan_caster(scene, CastMethod::fan);
+  std::vector<Eigen::Vector3f> dirs;
+  for (int i = 0; i < 120000; ++i) dirs.push_back(random_unit(rng));
+  const RayFan fan(dirs);
+  std::vector<RayHit> a(fan.size()), b(fan.size());
+  const Eigen::Isometry3d at_origin = Eigen::Isometry3d::Identity();
+  embree.cast(at_origin, fan, 0.0f, 20.0f, a);
+  fan_caster.cast(at_origin, fan, 0.0f, 20.0f, b);
+  int small_hits = 0, differ = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    small_hits += a[i].shape >= 0 && a[i].shape < 60;
+    differ += a[i].shape != b[i].shape ||
+              (a[i].shape != RayHit::kNoShape && std::abs(a[i].distance_m - b[i].distance_m) > 1e-4f);
+  }
+  EXPECT_GT(small_hits, 1000);
+  EXPECT_EQ(differ, 0);
 }
 
 // Embree's own triangles of a scene, cast one ray at a time.

@@ -424,6 +424,54 @@ TEST_P(RayCasterTest, MaxRangeTurnsFartherSurfacesIntoMisses) {
   EXPECT_EQ(cast_one(caster, Eigen::Vector3d::Zero(), down, 0.0f, 1.16f).shape, 1);
 }
 
+// An unbounded range: what is hit keeps its distance, what is missed stays a
+// miss (no shape, infinite distance).
+TEST_P(RayCasterTest, AnInfiniteMaxRangeStillReportsMissesAsMisses) {
+  Scene scene;
+  scene.shapes.push_back(round_shape(ShapeType::sphere, {5.0, 0.0, 0.0}, 1.0, 0.0));
+  scene.shapes.push_back(cuboid({0.0, 30.0, 0.0}, {1.0, 1.0, 1.0}));
+  const RayCaster caster(scene, GetParam());
+  Rng rng(8);
+  std::vector<Eigen::Vector3f> dirs;
+  for (int i = 0; i < 600; ++i) dirs.push_back(random_unit(rng).cast<float>());
+  dirs.push_back(Eigen::Vector3f::UnitX());
+  dirs.push_back(Eigen::Vector3f::UnitY());
+  std::vector<RayHit> hits(dirs.size());
+  caster.cast(Eigen::Vector3d::Zero(), dirs, 0.0f, std::numeric_limits<float>::infinity(), hits);
+  int missed = 0;
+  for (const RayHit& h : hits) {
+    if (h.shape == RayHit::kNoShape) {
+      EXPECT_TRUE(std::isinf(h.distance_m));
+      ++missed;
+    } else {
+      EXPECT_TRUE(std::isfinite(h.distance_m)) << "shape " << h.shape;
+    }
+  }
+  EXPECT_GT(missed, 400);
+  EXPECT_NEAR(hits[600].distance_m, 4.0, 1e-6);
+  EXPECT_NEAR(hits[601].distance_m, 29.5, 1e-5);
+}
+
+// A ray in the plane of a box's face (a level scan from exactly the height of
+// a box's top) hits the box's side: it is within the box's height range.
+TEST_P(RayCasterTest, ARayInTheBoxsFacePlaneHitsTheBox) {
+  Scene scene;
+  scene.shapes.push_back(cuboid({5.0, 0.0, 0.15}, {1.0, 2.0, 0.3}));  // top face at z = 0.3
+  const RayCaster caster(scene, GetParam());
+  const RayHit hit = cast_one(caster, {0.0, 0.0, 0.3}, Eigen::Vector3d::UnitX(), 0.0f, 20.0f);
+  EXPECT_EQ(hit.shape, 0);
+  EXPECT_NEAR(hit.distance_m, 4.5, 1e-6);
+  // Level rays fanned across it, as a planar LIDAR's: every one that points at the box hits it.
+  std::vector<Eigen::Vector3f> dirs;
+  for (int i = -20; i <= 20; ++i) {
+    const double a = i * 0.01;
+    dirs.emplace_back(static_cast<float>(std::cos(a)), static_cast<float>(std::sin(a)), 0.0f);
+  }
+  std::vector<RayHit> hits(dirs.size());
+  caster.cast(Eigen::Vector3d(0.0, 0.0, 0.3), dirs, 0.0f, 20.0f, hits);
+  for (const RayHit& h : hits) EXPECT_EQ(h.shape, 0);
+}
+
 TEST_P(RayCasterTest, NearestOfOverlappingShapesWinsAndIsNamed) {
   Scene scene;
   scene.shapes.push_back(make_shape(ShapeType::plane, {0.0, 0.0, 0.0}));  // 0
