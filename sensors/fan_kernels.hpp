@@ -1,11 +1,12 @@
 #pragma once
 /// The inner loops of casting a RayFan (sensors/ray_fan.hpp): each surface is
 /// projected onto the bins of the fan it may cover and tested against their
-/// rays eight at a time. Everything here is in the sensor frame, relative to
-/// the fan's origin, in float. The kernels are compiled for AVX2 + FMA and
-/// only called where the CPU has them (fan_kernels_available()); the inputs
-/// are plain structs so that no inline function of another header is compiled
-/// for an instruction set the rest of campo does not assume.
+/// rays, eight at a time in float (primitives) or four in double (heightfield
+/// cells, planes). Everything here is in the sensor frame, relative to the
+/// fan's origin. The kernels are compiled for AVX2 + FMA and only called where
+/// the CPU has them (kernels_available()); the inputs are plain structs so
+/// that no inline function of another header is compiled for an instruction
+/// set the rest of campo does not assume.
 #include <cstdint>
 
 namespace campo::fan {
