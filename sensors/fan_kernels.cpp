@@ -32,12 +32,6 @@ constexpr float kRimRounding = 1e-6f;
 inline float min_f(float a, float b) { return a < b ? a : b; }
 inline float max_f(float a, float b) { return a > b ? a : b; }
 
-inline int bin_of(float u, int grid) {
-  u = __builtin_fminf(__builtin_fmaxf(u, -1.0f), 1.0f);  // also turns NaN into -1
-  const int i = static_cast<int>((u + 1.0f) * 0.5f * static_cast<float>(grid));
-  return i < grid ? i : grid - 1;
-}
-
 // Bins [i0, i1] x [j0, j1] of one face.
 struct Rect {
   int face, i0, i1, j0, j1;

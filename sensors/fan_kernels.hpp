@@ -17,6 +17,16 @@ namespace campo::fan {
 /// w = ±p[f/2], both in [-1, 1].
 constexpr int kFaces = 6;
 
+/// Bin of face coordinate u on a face of `grid` bins a side. RayFan bins rays
+/// with it and the kernels bin surfaces (padded, so a ray on a boundary is
+/// found from either side). `static`: each file gets its own copy, compiled
+/// for its own instruction set.
+static inline int bin_of(float u, int grid) {
+  u = __builtin_fminf(__builtin_fmaxf(u, -1.0f), 1.0f);  // also turns NaN into -1
+  const int i = static_cast<int>((u + 1.0f) * 0.5f * static_cast<float>(grid));
+  return i < grid ? i : grid - 1;
+}
+
 /// Rays sorted by bin, structure of arrays; readable 8 floats past `size`.
 struct Rays {
   const float* x = nullptr;

@@ -16,14 +16,6 @@ namespace {
 constexpr int kMaxGrid = 64;
 constexpr double kRaysPerBin = 6.0;
 
-// Same arithmetic as bin_of in fan_kernels.cpp (surfaces' bins are padded,
-// so a ray on a boundary is found from either side).
-int bin_of(float u, int grid) {
-  u = std::fmin(std::fmax(u, -1.0f), 1.0f);
-  const int i = static_cast<int>((u + 1.0f) * 0.5f * static_cast<float>(grid));
-  return std::min(i, grid - 1);
-}
-
 }  // namespace
 
 int RayFan::face_of(const Eigen::Vector3f& d) {
@@ -66,7 +58,7 @@ RayFan::RayFan(std::span<const Eigen::Vector3f> directions) {
       std::size_t used = 0;
       for (std::size_t i = 0; i < n; ++i) {
         if (face[i] != f) continue;
-        auto& cell = occupied[static_cast<std::size_t>(bin_of(uv[i].y(), grid) * grid + bin_of(uv[i].x(), grid))];
+        auto& cell = occupied[static_cast<std::size_t>(fan::bin_of(uv[i].y(), grid) * grid + fan::bin_of(uv[i].x(), grid))];
         used += cell == 0;
         cell = 1;
       }
@@ -81,7 +73,7 @@ RayFan::RayFan(std::span<const Eigen::Vector3f> directions) {
   bin_start_.assign(bins + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const int f = face[i], grid = grid_[f];
-    bin[i] = first_bin_[f] + static_cast<std::uint32_t>(bin_of(uv[i].y(), grid) * grid + bin_of(uv[i].x(), grid));
+    bin[i] = first_bin_[f] + static_cast<std::uint32_t>(fan::bin_of(uv[i].y(), grid) * grid + fan::bin_of(uv[i].x(), grid));
     ++bin_start_[bin[i] + 1];
   }
   for (std::uint32_t b = 0; b < bins; ++b) bin_start_[b + 1] += bin_start_[b];

@@ -1,8 +1,8 @@
 // campo's LIDAR against Embree's own triangles cast as a stream (docs/PERFORMANCE.md,
 // "Peers"): scanner3d scans (256 x 256 beams, 90 x 90 deg, 10 m) from each scene's
-// vehicle, turned 0.05 rad per scan, one thread. campo casts them with its
-// RayCaster (analytic primitives and its watertight heightfield walk, in double);
-// the peer casts the same rays with rtcIntersect1M (coherent) against the same
+// vehicle, turned 0.05 rad per scan, one thread. campo casts them as a Lidar does:
+// the beams' RayFan cast from each scan's pose (analytic primitives, the heightfield's
+// triangles with watertight edge tests); the peer casts the same rays with rtcIntersect1M (coherent) against the same
 // scene as Embree triangles (build_scene_mesh: the heightfield exactly as Bullet
 // triangulates it, round shapes tessellated with 64 segments), robust and
 // high-quality BVH. Repetitions interleave in one process; the figure is rays per
