@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -10,11 +11,12 @@
 #include <cctype>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
+
+#include "core/output_dir.hpp"
 
 extern char** environ;
 
@@ -22,9 +24,15 @@ namespace campo {
 
 namespace {
 
-// The last lines of ffmpeg's stderr, for an error message.
-std::string tail_of(const std::filesystem::path& log) {
-  std::ifstream in(log);
+// The last lines of ffmpeg's stderr (the last 16 KiB of the in-memory log), for an error message.
+std::string tail_of(int log_fd) {
+  if (log_fd < 0) return "";
+  const off_t size = ::lseek(log_fd, 0, SEEK_END);
+  const off_t from = std::max<off_t>(0, size - (16 << 10));
+  std::string text(static_cast<std::size_t>(std::max<off_t>(0, size - from)), '\0');
+  const ssize_t n = ::pread(log_fd, text.data(), text.size(), from);
+  text.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+  std::istringstream in(text);
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) {
     if (!line.empty()) lines.push_back(line);
@@ -73,27 +81,33 @@ std::optional<VideoFormat> video_format_of(const std::filesystem::path& file) {
 }
 
 VideoEncoder::VideoEncoder(const std::filesystem::path& out, VideoFormat format, cv::Size frame_px, double fps)
-    : out_(out), frame_px_(frame_px) {
+    : out_(output_file_target(out)), frame_px_(frame_px) {
   if (frame_px.width <= 0 || frame_px.height <= 0 || frame_px.width % 2 || frame_px.height % 2) {
     throw std::invalid_argument("VideoEncoder: frame size must be even and positive");
   }
   if (!(fps > 0.0)) throw std::invalid_argument("VideoEncoder: fps must be positive");
   // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) about "." + string.
   std::string stem(".");
-  stem += out.filename().string();
+  stem += out_.filename().string();
   stem += '.';
   stem += std::to_string(::getpid());
-  const std::filesystem::path dir = out.has_parent_path() ? out.parent_path() : std::filesystem::path(".");
+  const std::filesystem::path dir = out_.has_parent_path() ? out_.parent_path() : std::filesystem::path(".");
   partial_ = dir / (stem + ".partial");
-  log_ = dir / (stem + ".log");
+  // ffmpeg's stderr goes to memory, not beside the video: on a full disk its message is the one thing to keep.
+  log_fd_ = ::memfd_create("campo-ffmpeg-log", MFD_CLOEXEC);
+  if (log_fd_ < 0) throw std::runtime_error(std::string("cannot create ffmpeg's log: ") + std::strerror(errno));
 
   int fds[2];
-  if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errno));
+  if (::pipe2(fds, O_CLOEXEC) != 0) {
+    const int errnum = errno;
+    ::close(log_fd_);
+    throw std::runtime_error(std::string("cannot create a pipe: ") + std::strerror(errnum));
+  }
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, fds[0], STDIN_FILENO);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, log_fd_, STDERR_FILENO);
   const std::vector<std::string> args = ffmpeg_arguments(format, frame_px, fps, partial_);
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
@@ -104,7 +118,7 @@ VideoEncoder::VideoEncoder(const std::filesystem::path& out, VideoFormat format,
   ::close(fds[0]);
   if (spawned != 0) {
     ::close(fds[1]);
-    std::filesystem::remove(log_);
+    ::close(log_fd_);
     throw std::runtime_error("cannot start ffmpeg (" + std::string(std::strerror(spawned)) +
                              "); videos are encoded by the ffmpeg program: install the Debian package ffmpeg");
   }
@@ -113,11 +127,11 @@ VideoEncoder::VideoEncoder(const std::filesystem::path& out, VideoFormat format,
 }
 
 VideoEncoder::~VideoEncoder() {
+  if (log_fd_ >= 0) ::close(log_fd_);
   if (done_) return;
   stop();
   std::error_code ignored;
   std::filesystem::remove(partial_, ignored);
-  std::filesystem::remove(log_, ignored);
 }
 
 void VideoEncoder::stop() {
@@ -131,9 +145,10 @@ void VideoEncoder::stop() {
 }
 
 void VideoEncoder::fail(const std::string& what) {
-  const std::string tail = tail_of(log_);
+  const std::string tail = tail_of(log_fd_);
   stop();
-  throw std::runtime_error("ffmpeg failed while writing " + out_.string() + ": " + what + tail);
+  // What stops ffmpeg is almost always the place to write (a full disk, a folder gone): exit 2.
+  throw OutputError(out_, "cannot write: ffmpeg " + what + tail);
 }
 
 void VideoEncoder::add(const cv::Mat& frame) {
@@ -153,7 +168,7 @@ void VideoEncoder::add(const cv::Mat& frame) {
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) {
       ::sigaction(SIGPIPE, &previous, nullptr);
-      fail("it stopped reading frames");
+      fail("stopped reading frames");
     }
     data += n;
     left -= static_cast<std::size_t>(n);
@@ -169,10 +184,11 @@ void VideoEncoder::finish() {
   while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
   }
   pid_ = -1;
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) fail("it exited with an error");
-  std::filesystem::rename(partial_, out_);
-  std::error_code ignored;
-  std::filesystem::remove(log_, ignored);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) fail("exited with an error");
+  // ffmpeg exits 0 after "Error writing trailer ...: No space left on device", leaving a cut
+  // file; at -loglevel error it prints nothing else, so anything it printed is a failure.
+  if (!tail_of(log_fd_).empty()) fail("reported an error");
+  if (::rename(partial_.c_str(), out_.c_str()) != 0) throw OutputError(out_, system_reason("cannot move into place", errno));
   done_ = true;
 }
 

@@ -16,8 +16,9 @@ enum class VideoFormat { mp4, gif };
 /// The format a file name asks for (".mp4", ".gif", any case); nullopt otherwise.
 std::optional<VideoFormat> video_format_of(const std::filesystem::path& file);
 
-/// Streams frames to ffmpeg, which writes a temporary file beside `out`;
-/// finish() moves it into place, so `out` is never half-written. The same
+/// Streams frames to ffmpeg, which writes a temporary file beside `out` (the
+/// target of `out` when it is a symbolic link; anything but a regular file is
+/// refused); finish() moves it into place, so `out` is never half-written. The same
 /// frames give the same bytes (bit-exact flags, no metadata, no timestamps).
 class VideoEncoder {
  public:
@@ -30,11 +31,11 @@ class VideoEncoder {
   /// Stops ffmpeg and removes the temporary file unless finish() succeeded.
   ~VideoEncoder();
 
-  /// Appends one frame (CV_8UC3 BGR of frame_px); std::runtime_error with
-  /// ffmpeg's message when it stopped.
+  /// Appends one frame (CV_8UC3 BGR of frame_px); OutputError naming the
+  /// file with ffmpeg's last lines when it stopped (a full disk).
   void add(const cv::Mat& frame);
   /// Ends the stream, waits for ffmpeg and moves the file into place;
-  /// std::runtime_error with ffmpeg's message when it failed.
+  /// OutputError naming the file with ffmpeg's last lines when it failed.
   void finish();
 
  private:
@@ -43,7 +44,7 @@ class VideoEncoder {
 
   std::filesystem::path out_;
   std::filesystem::path partial_;  // ffmpeg's output until finish()
-  std::filesystem::path log_;      // ffmpeg's stderr
+  int log_fd_ = -1;                 // ffmpeg's stderr, a file in memory (memfd)
   cv::Size frame_px_;
   int pipe_ = -1;                  // ffmpeg's stdin
   int pid_ = -1;

@@ -55,9 +55,9 @@ Workbench::Workbench(WorkbenchConfig config) : config_(std::move(config)) {
     }
     fs::remove_all(work);
   }
-  fs::create_directories(work);
-  std::ofstream(work / kMarker) << "campo reproduce work directory: emptied by every campo reproduce\n";
-  fs::create_directories(config_.figure_dir);
+  create_output_directories(work);
+  write_file_atomically(work / kMarker, "campo reproduce work directory: emptied by every campo reproduce\n");
+  create_output_directories(config_.figure_dir);
 }
 
 std::string Workbench::campo(const std::vector<std::string>& args) const { return run(args, nullptr); }

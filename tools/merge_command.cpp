@@ -27,13 +27,13 @@ void copy_folders(const nlohmann::json& line, const fs::path& from, const Staged
   if (line.contains("triage") && line["triage"].is_object()) folders.push_back(line["triage"].value("dir", ""));
   for (const std::string& folder : folders) {
     if (folder.empty() || !fs::exists(from / folder)) continue;
-    fs::create_directories(out.path(folder).parent_path());
-    fs::copy(from / folder, out.path(folder), fs::copy_options::recursive);
+    copy_output_tree(from / folder, out.path(folder));
   }
 }
 
 int run_merge(const MergeOptions& o) {
   const fs::path out_dir = o.out;
+  check_output_directory(out_dir, "--out");
   if (fs::exists(out_dir) && !(fs::is_directory(out_dir) && fs::is_empty(out_dir))) {
     throw InputError("command line", "--out", "expected a new or empty directory, got " + out_dir.string());
   }
@@ -65,7 +65,7 @@ Command add_merge(CLI::App& app) {
   auto o = std::make_shared<MergeOptions>();
   app.add_option("dirs", o->dirs, "Sweep directories (each with sweep.json and results.jsonl)")
       ->required()
-      ->check(CLI::ExistingDirectory);
+      ->check(existing_directory());
   app.add_option("--out", o->out, "Output directory: new or empty")->required();
   app.add_flag("--allow-mismatch", o->allow_mismatch,
                "Merge directories of different specs or campo versions (refused by default)");

@@ -40,8 +40,11 @@ int reproduce(const ReproduceOptions& o) {
     throw InputError("command line", "", "campo reproduce runs from campo's source directory (where scenes/ is); "
                      "scenes/sweeps/resolution_000.json is not here");
   }
-  const auto start = std::chrono::steady_clock::now();
   const fs::path report = o.report;
+  check_output_file(report, "--report");
+  check_output_directory(o.work, "--work");
+  check_output_directory(report.parent_path() / report.stem(), "--report (its figures' folder)");
+  const auto start = std::chrono::steady_clock::now();
   WorkbenchConfig config;
   config.campo_binary = this_executable();
   config.work_dir = o.work;

@@ -8,6 +8,7 @@
 
 #include "campo/json_reader.hpp"
 #include "core/image_io.hpp"
+#include "core/output_dir.hpp"
 #include "planners/depth_reactive.hpp"
 #include "render/snapshot.hpp"
 #include "scene/scene_mesh.hpp"
@@ -35,7 +36,7 @@ std::vector<std::filesystem::path> write_depth_pair(const cv::Mat& depth, const 
                                                     const std::string& title, const std::filesystem::path& out_dir,
                                                     const std::string& stem) {
   const auto dir = out_dir / "depth_figures";
-  std::filesystem::create_directories(dir);
+  const OutputDirectory made(dir);  // removed again if no figure could be written into it
   return {write_png(draw_depth(depth, overlays, false, title + " (grey)"), dir / (stem + "_grey.png")),
           write_png(draw_depth(depth, overlays, true, title + " (colour)"), dir / (stem + "_colour.png"))};
 }

@@ -55,6 +55,7 @@ std::vector<double> parse_numbers(const std::string& text, char sep, std::size_t
 }
 
 int run_scan(const ScanOptions& o) {
+  check_output_directory(o.out, "--out");
   const Scene scene = load_scene(o.scene);
 
   // Sensor and pose: from the options, else from the scene's vehicle.
@@ -141,7 +142,7 @@ int run_scan(const ScanOptions& o) {
 
 Command add_scan(CLI::App& app) {
   auto o = std::make_shared<ScanOptions>();
-  app.add_option("scene", o->scene, "Scene file (JSON)")->required();
+  app.add_option("scene", o->scene, "Scene file (JSON)")->required()->check(input_path());
   std::string presets;
   for (auto name : lidar_preset_names()) presets += (presets.empty() ? "" : ", ") + std::string(name);
   app.add_option("--sensor", o->sensor,
