@@ -27,10 +27,61 @@ std::string format_number(double v) {
 
 }  // namespace
 
+std::string printable(std::string_view text) {
+  static constexpr char kHex[] = "0123456789abcdef";
+  const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  const auto continuation = [&](std::size_t i, unsigned char lo, unsigned char hi) {
+    return i < text.size() && byte(i) >= lo && byte(i) <= hi;
+  };
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size();) {
+    const unsigned char c = byte(i);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+      ++i;
+      continue;
+    }
+    // The length of a well-formed UTF-8 sequence starting here (0: none), per
+    // the Unicode table of well-formed byte sequences (no overlongs, no surrogates).
+    std::size_t length = 0;
+    if (c >= 0xc2 && c <= 0xdf) {
+      length = continuation(i + 1, 0x80, 0xbf) ? 2 : 0;
+    } else if (c >= 0xe0 && c <= 0xef) {
+      const unsigned char lo = c == 0xe0 ? 0xa0 : 0x80, hi = c == 0xed ? 0x9f : 0xbf;
+      length = continuation(i + 1, lo, hi) && continuation(i + 2, 0x80, 0xbf) ? 3 : 0;
+    } else if (c >= 0xf0 && c <= 0xf4) {
+      const unsigned char lo = c == 0xf0 ? 0x90 : 0x80, hi = c == 0xf4 ? 0x8f : 0xbf;
+      length = continuation(i + 1, lo, hi) && continuation(i + 2, 0x80, 0xbf) && continuation(i + 3, 0x80, 0xbf) ? 4 : 0;
+    }
+    if (length == 2 && c == 0xc2 && byte(i + 1) <= 0x9f) {  // a C1 control character, U+0080..U+009F
+      out += "\\u00";
+      out += kHex[byte(i + 1) >> 4];
+      out += kHex[byte(i + 1) & 0xf];
+    } else if (length > 0) {
+      out.append(text.substr(i, length));
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else {  // another control character, DEL, or a byte that is not UTF-8
+      out += "\\x";
+      out += kHex[c >> 4];
+      out += kHex[c & 0xf];
+    }
+    i += std::max<std::size_t>(length, 1);
+  }
+  return out;
+}
+
 InputError::InputError(std::string file, std::string pointer, const std::string& message)
-    : std::runtime_error(file + ": " + (pointer.empty() ? std::string() : pointer + ": ") + message),
+    : std::runtime_error(printable((file.empty() ? std::string("\"\" (empty path)") : file) + ": " +
+                                   (pointer.empty() ? std::string() : pointer + ": ") + message)),
       file_(std::move(file)),
-      pointer_(std::move(pointer)) {}
+      pointer_(std::move(pointer)),
+      message_(message) {}
 
 namespace {
 
@@ -227,9 +278,15 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
 
 std::string read_text_file(const std::filesystem::path& path, const InputLimits& limits) {
   const std::string name = path.string();
+  if (name.empty()) throw InputError(name, "", "expected the path of a file, got an empty string");
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    throw InputError(name, "", "cannot read: not an existing regular file");
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec && status.type() != std::filesystem::file_type::not_found) {
+    throw InputError(name, "", "cannot read: " + ec.message());  // e.g. a loop of symbolic links
+  }
+  if (!std::filesystem::is_regular_file(status)) {
+    throw InputError(name, "", std::string("cannot read: ") +
+                                   (std::filesystem::exists(status) ? "not a regular file" : "not an existing regular file"));
   }
   const auto size = std::filesystem::file_size(path, ec);
   if (!ec && size > limits.max_file_bytes) {

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <string_view>
 
+#include "campo/json_reader.hpp"
+
 namespace campo::grid {
 
 namespace {
@@ -13,6 +15,7 @@ namespace {
 // The file's lines without line terminators ("\n" or "\r\n").
 std::vector<std::string> read_lines(const std::filesystem::path& file, const MovingAiLimits& limits) {
   const std::string name = file.string();
+  if (name.empty()) throw FormatError(name, 0, "expected the path of a file, got an empty string");
   std::error_code ec;
   const std::uintmax_t bytes = std::filesystem::file_size(file, ec);
   if (ec) throw FormatError(name, 0, "cannot read the file: " + ec.message());
@@ -29,6 +32,24 @@ std::vector<std::string> read_lines(const std::filesystem::path& file, const Mov
     lines.push_back(line);
   }
   return lines;
+}
+
+// A line quoted in a message: "TEXT", cut after 60 bytes (at a character's start) with "...".
+std::string quote_text(std::string_view text) {
+  constexpr std::size_t kMax = 60;
+  if (text.size() <= kMax) return "\"" + std::string(text) + "\"";
+  std::size_t cut = kMax;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xc0) == 0x80) --cut;
+  return "\"" + std::string(text.substr(0, cut)) + "...\"";
+}
+
+// The character starting at byte `at`: one byte, or a UTF-8 lead byte with its continuation bytes.
+std::string character_at(std::string_view text, std::size_t at) {
+  std::size_t end = at + 1;
+  if ((static_cast<unsigned char>(text[at]) & 0xc0) == 0xc0) {
+    while (end < text.size() && end < at + 4 && (static_cast<unsigned char>(text[end]) & 0xc0) == 0x80) ++end;
+  }
+  return std::string(text.substr(at, end - at));
 }
 
 bool blank(std::string_view line) { return line.find_first_not_of(" \t") == std::string_view::npos; }
@@ -52,7 +73,7 @@ int parse_int(std::string_view text, int min, int max, const std::string& file, 
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || value < min || value > max) {
     throw FormatError(file, line, "expected " + what + " (an integer in [" + std::to_string(min) + ", " +
-                                      std::to_string(max) + "]), got \"" + std::string(text) + "\"");
+                                      std::to_string(max) + "]), got " + quote_text(text));
   }
   return value;
 }
@@ -61,7 +82,7 @@ double parse_length(std::string_view text, const std::string& file, int line) {
   double value = 0.0;
   const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (text.empty() || ec != std::errc() || ptr != text.data() + text.size() || !std::isfinite(value) || value < 0.0) {
-    throw FormatError(file, line, "expected the optimal length (a number >= 0), got \"" + std::string(text) + "\"");
+    throw FormatError(file, line, "expected the optimal length (a number >= 0), got " + quote_text(text));
   }
   return value;
 }
@@ -73,7 +94,7 @@ int header_value(const std::vector<std::string>& lines, std::size_t index, std::
   const std::string expected = "expected \"" + std::string(keyword) + " N\"";
   if (index >= lines.size()) throw FormatError(file, line, expected + ", got the end of the file");
   const auto fields = split_fields(lines[index]);
-  if (fields.size() != 2 || fields[0] != keyword) throw FormatError(file, line, expected + ", got \"" + lines[index] + "\"");
+  if (fields.size() != 2 || fields[0] != keyword) throw FormatError(file, line, expected + ", got " + quote_text(lines[index]));
   return parse_int(fields[1], 1, limits.max_dimension, file, line, std::string(keyword));
 }
 
@@ -84,14 +105,15 @@ void expect_line(const std::vector<std::string>& lines, std::size_t index, std::
     throw FormatError(file, line, "expected \"" + std::string(expected) + "\", got the end of the file");
   }
   if (split_fields(lines[index]) != split_fields(expected)) {
-    throw FormatError(file, line, "expected \"" + std::string(expected) + "\", got \"" + lines[index] + "\"");
+    throw FormatError(file, line, "expected \"" + std::string(expected) + "\", got " + quote_text(lines[index]));
   }
 }
 
 }  // namespace
 
 FormatError::FormatError(std::string file, int line, const std::string& message)
-    : std::runtime_error(file + ": " + (line > 0 ? "line " + std::to_string(line) + ": " : std::string()) + message),
+    : std::runtime_error(printable((file.empty() ? std::string("\"\" (empty path)") : file) + ": " +
+                                   (line > 0 ? "line " + std::to_string(line) + ": " : std::string()) + message)),
       file_(std::move(file)),
       line_(line),
       message_(message) {}
@@ -126,7 +148,7 @@ MovingAiMap read_movingai_map(const std::filesystem::path& path, const MovingAiL
         case '@': case 'O': case 'T': case 'W': passable = false; break;
         default:
           throw FormatError(file, line, "column " + std::to_string(x) + ": expected one of . G S @ O T W, got '" +
-                                            std::string(1, c) + "'");
+                                            character_at(row, static_cast<std::size_t>(x)) + "'");
       }
       map.passable[static_cast<std::size_t>(y) * map.width + x] = passable ? 1 : 0;
     }

@@ -16,7 +16,8 @@
 namespace campo::grid {
 
 /// Bad benchmark input: the file, the 1-based line (0: the whole file) and
-/// what was expected. what() is "FILE: line N: MESSAGE".
+/// what was expected. what() is "FILE: line N: MESSAGE" with control
+/// characters escaped (campo::printable); message() is as given.
 class FormatError : public std::runtime_error {
  public:
   FormatError(std::string file, int line, const std::string& message);

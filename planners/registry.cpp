@@ -151,6 +151,7 @@ void add_linked_planners(const std::vector<PlannerRegistration>& planners, const
 
 LoadedPlugin load_planner_plugin(const fs::path& path, const std::string& origin, const std::string& pointer) {
   Registry& reg = registry();
+  if (path.empty()) throw InputError(origin, pointer, "expected the path of a plugin (a shared library), got an empty string");
   const fs::path file = fs::absolute(path).lexically_normal();
   const auto fail = [&](const std::string& problem) {
     throw InputError(origin, pointer, "plugin " + file.string() + ": " + problem);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <limits>
@@ -104,12 +105,28 @@ TrajectoryTable read_trajectory_table(const std::filesystem::path& path) {
   table.file = path.string();
   for (std::stringstream s(line); std::getline(s, line, ',');) table.header.push_back(line);
   table.columns.resize(table.header.size());
+  // The recorded times: finite, from 0, in order (what readers of the track search by).
+  const auto time_at = std::find(table.header.begin(), table.header.end(), "time_s");
+  const std::size_t time_field = static_cast<std::size_t>(time_at - table.header.begin());
+  double previous_s = 0.0;
   for (int row = 2; std::getline(in, line); ++row) {
     std::size_t start = 0, field = 0;
     while (start <= line.size() && field < table.header.size()) {
       const std::size_t end = std::min(line.find(',', start), line.size());
       double v = 0.0;
       const auto [ptr, ec] = std::from_chars(line.data() + start, line.data() + end, v);
+      if (field == time_field) {
+        const bool number = ec == std::errc() && ptr == line.data() + end && std::isfinite(v);
+        if (!number || v < previous_s) {
+          const std::string text = line.substr(start, std::min<std::size_t>(end - start, 40));
+          throw InputError(path.string(), "", "line " + std::to_string(row) + ": expected a time_s in seconds, " +
+                                                  (row == 2 ? std::string("a finite number >= 0")
+                                                            : "a finite number >= the previous line's " +
+                                                                  std::to_string(previous_s)) +
+                                                  ", got \"" + text + (end - start > 40 ? "...\"" : "\""));
+        }
+        previous_s = v;
+      }
       table.columns[field++].push_back(ec == std::errc() ? v : 0.0);
       start = end + 1;
     }
@@ -122,6 +139,8 @@ TrajectoryTable read_trajectory_table(const std::filesystem::path& path) {
 }
 
 RecordedRun load_run_dir(const std::filesystem::path& dir) {
+  // An empty path would read run.json from the working directory.
+  if (dir.empty()) throw InputError("", "", "expected the path of a run directory, got an empty string");
   RecordedRun run;
   run.dir = dir;
   run.record = read_json_file(dir / "run.json", {64u << 20, 64});

@@ -33,7 +33,8 @@ struct TrajectoryTable {
   const std::vector<double>& column(const std::string& name) const;
 };
 
-/// Reads a trajectory.csv; InputError naming the file and line when a line is short.
+/// Reads a trajectory.csv; InputError naming the file and line when a line is
+/// short or its time_s is not a finite number >= 0 and >= the previous line's.
 TrajectoryTable read_trajectory_table(const std::filesystem::path& path);
 
 /// Loads a run directory written by `campo run`; InputError naming the file

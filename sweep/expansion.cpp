@@ -53,13 +53,6 @@ void find_generators(const nlohmann::json& objects, const std::string& alias_pat
   }
 }
 
-// An InputError's message without its "file: pointer: " prefix.
-std::string message_of(const InputError& e) {
-  const std::size_t prefix = e.file().size() + 2 + (e.pointer().empty() ? 0 : e.pointer().size() + 2);
-  const std::string what = e.what();
-  return prefix < what.size() ? what.substr(prefix) : what;
-}
-
 // The element of the scene's top-level "objects" with this alias, and its index.
 std::pair<const nlohmann::json*, std::size_t> top_level_object(const nlohmann::json& document,
                                                                const std::string& alias) {
@@ -195,7 +188,7 @@ class SceneExpander {
     try {
       apply_override(document, assignment);
     } catch (const InputError& e) {
-      throw InputError(spec_file_, origin, "in scene " + scene_.label + ": " + message_of(e));
+      throw InputError(spec_file_, origin, "in scene " + scene_.label + ": " + e.message());
     }
     run.overrides.push_back(assignment);
   }

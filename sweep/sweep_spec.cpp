@@ -120,8 +120,12 @@ void read_range(const JsonNode& node, SweepAxis& axis, std::size_t max_values) {
   double delta = 0.0;
   if (step) {
     delta = step->as_number(Range::positive());
-    n = static_cast<std::size_t>(std::floor((to - from) / delta * (1.0 + 1e-12))) + 1;
-    if (n > max_values) step->fail("a step giving at most " + std::to_string(max_values) + " values");
+    // Counted as a double (to - from may overflow to infinity), checked before it becomes a count.
+    const double steps = std::floor((to - from) / delta * (1.0 + 1e-12));
+    if (!(steps < static_cast<double>(max_values))) {
+      step->fail("a step giving at most " + std::to_string(max_values) + " values");
+    }
+    n = static_cast<std::size_t>(steps) + 1;
   } else {
     n = static_cast<std::size_t>(count->as_int(2, static_cast<std::int64_t>(max_values)));
     delta = (to - from) / static_cast<double>(n - 1);

@@ -469,7 +469,7 @@ Command add_bench(CLI::App& app) {
   app.add_option("--compare", o->baseline_file,
                  "Compare every figure with the same figure of an earlier --json file; exit 3 when one is more "
                  "than --tolerance slower")
-      ->check(CLI::ExistingFile);
+      ->check(existing_file());
   app.add_option("--tolerance", o->tolerance, "Fraction slower than the baseline that counts as a regression")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
@@ -482,7 +482,7 @@ Command add_bench(CLI::App& app) {
   app.add_option("--table", o->table_file,
                  "Print docs/PERFORMANCE.md's peers table from an earlier `campo bench peers --json` record "
                  "(measures nothing)")
-      ->check(CLI::ExistingFile);
+      ->check(existing_file());
   app.add_option("--work-file", o->work_file, "(internal: campo bench --instructions under callgrind)")
       ->group("");
   app.footer(

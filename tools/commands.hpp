@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "tools/path_options.hpp"
+
 namespace campo::cli {
 
 /// Exit codes shared by every subcommand.

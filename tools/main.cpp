@@ -5,6 +5,7 @@
 #include "campo/json_reader.hpp"
 #include "run/provenance.hpp"
 #include "tools/commands.hpp"
+#include "tools/path_options.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -13,6 +14,8 @@ int main(int argc, char** argv) {
       "Run 'campo SUBCOMMAND --help' for the options of each subcommand.",
       "campo"};
   app.set_version_flag("--version", campo::campo_version_string());
+  // A refused command line reads like every other refused input (--help and --version print as CLI11 prints them).
+  app.failure_message(campo::cli::parse_error_message);
   app.require_subcommand(1);
   app.fallthrough(false);
 
@@ -49,7 +52,7 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << e.what() << "\n";
     return campo::cli::kBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "internal error: " << e.what() << "\n";
+    std::cerr << "internal error: " << campo::printable(e.what()) << "\n";
     return campo::cli::kInternalError;
   }
   return campo::cli::kInternalError;

@@ -432,6 +432,7 @@ Command add_plan(CLI::App& app) {
   add("--start", o->start, "Start cell X,Y (column, row; 0,0 is the top-left cell)");
   add("--goal", o->goal, "Goal cell X,Y");
   add("--scen", o->scen, "MovingAI scenario file: solve every problem in it, print CSV");
+  for (const char* file : {"--map", "--scen"}) app.get_option(file)->check(input_path());
   add("--seed", o->seed, "rrt_star: seed of the sampler (default 0)");
   add("--iterations", o->iterations, "rrt_star: iterations, 1 to 10000000 (default 20000)");
   add("--step", o->step, "rrt_star: farthest a new node lies from the tree, cells, 0.001 to 1000000 (default 5)");

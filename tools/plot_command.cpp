@@ -33,7 +33,9 @@ int run_plot(const PlotOptions& o) {
 
 Command add_plot(CLI::App& app) {
   auto o = std::make_shared<PlotOptions>();
-  app.add_option("dir", o->dir, "Sweep output directory (holding results.jsonl, from campo sweep)")->required();
+  app.add_option("dir", o->dir, "Sweep output directory (holding results.jsonl, from campo sweep)")
+      ->required()
+      ->check(input_path());
   app.add_option("--x", o->request.x, "Field on the x axis: scene, planner, seed or an axis name")->required();
   app.add_option("--y", o->request.y,
                  "Metric on the y axis: success (rate of outcome reached) or a key of run.json's metrics")

@@ -1,6 +1,7 @@
 #include "tools/plugin_options.hpp"
 
 #include "planners/registry.hpp"
+#include "tools/path_options.hpp"
 
 namespace campo::cli {
 
@@ -8,7 +9,8 @@ void add_plugin_option(CLI::App& app, std::vector<std::string>& paths) {
   app.add_option("--plugin", paths,
                  "Load a planner plugin (a shared library built against campo, docs/extending.md) and its "
                  "planners; repeatable")
-      ->type_name("PATH");
+      ->type_name("PATH")
+      ->check(input_path());
 }
 
 void load_plugins(const std::vector<std::string>& paths) {

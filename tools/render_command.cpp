@@ -168,7 +168,7 @@ int run_render(const RenderOptions& o) {
 
 Command add_render(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
-  app.add_option("runs", o->runs, "Run directories written by campo run")->required()->check(CLI::ExistingDirectory);
+  app.add_option("runs", o->runs, "Run directories written by campo run")->required()->check(existing_directory());
   app.add_option("--kind", o->kinds,
                  "Figures to draw: map, side, heightmap (mapping planners), depth, snapshot, overlay, sequence, "
                  "video, replay (repeatable)")

@@ -76,7 +76,8 @@ Command add_run(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
   app.add_option("scene", o->scene,
                  "Scene file (JSON), or the name of a bundled scene (e.g. vineyard); default: the bundled "
-                 "two_barriers");
+                 "two_barriers")
+      ->check(input_path());
   std::string planners;
   for (const auto& entry : planner_registry()) planners += (planners.empty() ? "" : ", ") + entry.name;
   app.add_option("--planner", o->planner,

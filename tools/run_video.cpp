@@ -213,17 +213,26 @@ void write_video(const RecordedRun& run, const VideoOptions& options, const std:
   if (run.view.track.empty()) throw InputError((run.dir / "trajectory.csv").string(), "", "no samples; expected a track");
   const VehicleDef& vehicle = recorded_vehicle(run);
   const double duration_s = run.view.track.back().time_s;
+  if (!std::isfinite(duration_s) || duration_s < 0.0) {
+    throw InputError((run.dir / "trajectory.csv").string(), "",
+                     "expected a last time_s >= 0, got " + std::to_string(duration_s));
+  }
   const double step_s = options.speed / options.fps;
-  // Frames up to the end, the last one at the end itself.
-  std::size_t moving = static_cast<std::size_t>(std::floor(duration_s / step_s + 1e-9)) + 1;
-  if (static_cast<double>(moving - 1) * step_s < duration_s) ++moving;
-  const std::size_t held = static_cast<std::size_t>(std::lround(options.fps));  // the end, held a second
-  const std::size_t total = moving + held;
-  if (total > options.max_frames) {
+  // Frames up to the end, the last one at the end itself; counted as doubles,
+  // which neither wrap nor overflow, and checked before they become counts.
+  double moving_frames = std::floor(duration_s / step_s + 1e-9) + 1.0;
+  if ((moving_frames - 1.0) * step_s < duration_s) moving_frames += 1.0;
+  const double held_frames = std::round(options.fps);  // the end, held a second
+  if (moving_frames + held_frames > static_cast<double>(options.max_frames)) {
+    char duration[32], frames[32];
+    std::snprintf(duration, sizeof duration, "%.6g s", duration_s);
+    std::snprintf(frames, sizeof frames, "%.15g", moving_frames + held_frames);
     throw InputError("command line", "--speed",
-                     "a " + fixed(duration_s, 1, "s") + " run at this speed and frame rate takes " + std::to_string(total) +
+                     std::string("a ") + duration + " run at this speed and frame rate takes " + frames +
                          " frames, more than " + std::to_string(options.max_frames) + "; raise --speed or lower --fps");
   }
+  const std::size_t moving = static_cast<std::size_t>(moving_frames);
+  const std::size_t total = moving + static_cast<std::size_t>(held_frames);
   const Eigen::Vector3d size_m = vehicle_size_m(run);
   VideoFrames frames(run.scene, run.view, size_m, options.frame_px);
   SensorPanel sensor(run, vehicle, size_m);

@@ -367,7 +367,8 @@ Command add_sweep(CLI::App& app) {
   auto o = std::make_shared<SweepOptions>();
   app.add_option("spec", o->spec,
                  "Sweep spec file (JSON, see docs/sweeps.md), or the name of a bundled spec (e.g. resolution_000)")
-      ->required();
+      ->required()
+      ->check(input_path());
   add_plugin_option(app, o->plugins);
   app.add_option("--out", o->out, "Output directory (created if missing; an interrupted sweep resumes there)");
   app.add_flag("--list", o->list,

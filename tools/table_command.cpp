@@ -60,7 +60,9 @@ int run_table(const TableOptions& o) {
 
 Command add_table(CLI::App& app) {
   auto o = std::make_shared<TableOptions>();
-  app.add_option("dir", o->dir, "Sweep output directory (holding results.jsonl, from campo sweep)")->required();
+  app.add_option("dir", o->dir, "Sweep output directory (holding results.jsonl, from campo sweep)")
+      ->required()
+      ->check(input_path());
   app.add_option("--format", o->format, "Table format: markdown (or md), csv or latex (default: markdown)")
       ->transform(CLI::CheckedTransformer(std::map<std::string, TableFormat>{{"markdown", TableFormat::markdown},
                                                                              {"md", TableFormat::markdown},

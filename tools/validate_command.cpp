@@ -12,7 +12,7 @@ namespace campo::cli {
 Command add_validate(CLI::App& app) {
   auto files = std::make_shared<std::vector<std::string>>();
   auto plugins = std::make_shared<std::vector<std::string>>();
-  app.add_option("files", *files, "Scene files (JSON) to check")->required();
+  app.add_option("files", *files, "Scene files (JSON) to check")->required()->check(input_path());
   add_plugin_option(app, *plugins);
   app.footer(
       "Every file is checked in full: unknown keys, wrong types, out-of-range values,\n"

@@ -16,17 +16,26 @@
 
 namespace campo {
 
+/// `text` fit to quote in a one-line message: control characters (C0, DEL and
+/// the C1 range) and bytes that are not UTF-8 become escapes (\n, \r,
+/// \t, \x1b, \u0085); every other character, UTF-8 included, stays as it is.
+std::string printable(std::string_view text);
+
 /// Bad user input: which file, where in it (JSON pointer, "" for the whole
-/// file) and what was expected. what() is the full one-line message.
+/// file) and what was expected. what() is the full one-line message, passed
+/// through printable(); an empty `file` reads as `"" (empty path)`.
 class InputError : public std::runtime_error {
  public:
   InputError(std::string file, std::string pointer, const std::string& message);
   const std::string& file() const { return file_; }
   const std::string& pointer() const { return pointer_; }
+  /// What was expected, as given: what() without the file and the pointer.
+  const std::string& message() const { return message_; }
 
  private:
   std::string file_;
   std::string pointer_;
+  std::string message_;
 };
 
 /// Limits that stop hostile input from exhausting memory or time.

@@ -1,5 +1,6 @@
 #include "campo/json_reader.hpp"
 
+#include <filesystem>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -57,6 +58,55 @@ TEST(JsonReader, DepthAndSyntaxErrors) {
   EXPECT_THAT(error_of(std::string(33, '[') + std::string(33, ']')), HasSubstr("nesting deeper than 32 levels"));
   EXPECT_EQ(error_of(std::string(32, '[') + std::string(32, ']')), "no error");
   EXPECT_THAT(error_of("{\n \"a\": [1,]\n}"), HasSubstr("in.json: invalid JSON at line 2, column 10"));
+}
+
+TEST(JsonReader, PrintableEscapesControlCharactersAndKeepsUtf8) {
+  using namespace std::string_literals;
+  EXPECT_EQ(printable("a\0b"s), "a\\x00b");
+  EXPECT_EQ(printable("\x1b[31mred"), "\\x1b[31mred");
+  EXPECT_EQ(printable("line\r\nnext\tcell\x7f"), "line\\r\\nnext\\tcell\\x7f");
+  // UTF-8 stays readable: 2, 3 and 4 byte characters.
+  EXPECT_EQ(printable("caf\xc3\xa9 \xe2\x86\x92 \xf0\x9f\x9a\x81"), "caf\xc3\xa9 \xe2\x86\x92 \xf0\x9f\x9a\x81");
+  // C1 controls (U+0085, U+009B: a one-character CSI) are controls too.
+  EXPECT_EQ(printable("a\xc2\x85" "b\xc2\x9b" "c"), "a\\u0085b\\u009bc");
+  // Bytes that are not UTF-8: a lone continuation byte, a cut sequence, an overlong '/', a surrogate.
+  EXPECT_EQ(printable("\x9b" "x"), "\\x9bx");
+  EXPECT_EQ(printable("\xe2\x86"), "\\xe2\\x86");
+  EXPECT_EQ(printable("\xc0\xaf"), "\\xc0\\xaf");
+  EXPECT_EQ(printable("\xed\xa0\x80"), "\\xed\\xa0\\x80");
+  EXPECT_EQ(printable("plain text, [1, 2]: ~/x"), "plain text, [1, 2]: ~/x");
+}
+
+TEST(JsonReader, InputErrorsAreOneLineWithoutRawControlCharacters) {
+  using namespace std::string_literals;
+  const InputError e("maps/a\nb.map"s, "/objects/x\x1b"s, "got \"\0\r\"; caf\xc3\xa9"s);
+  EXPECT_STREQ(e.what(), "maps/a\\nb.map: /objects/x\\x1b: got \"\\x00\\r\"; caf\xc3\xa9");
+  EXPECT_EQ(e.file(), "maps/a\nb.map");  // the accessors keep the text as given
+}
+
+TEST(JsonReader, AnEmptyPathIsNamedAsOne) {
+  EXPECT_STREQ(InputError("", "", "cannot read").what(), "\"\" (empty path): cannot read");
+  try {
+    read_text_file("");
+    FAIL() << "an empty path was read";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "\"\" (empty path): expected the path of a file, got an empty string");
+  }
+}
+
+TEST(JsonReader, ALoopOfSymbolicLinksGivesTheSystemsReason) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "campo_json_reader_loop";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::filesystem::create_symlink("b.json", dir / "a.json");
+  std::filesystem::create_symlink("a.json", dir / "b.json");
+  try {
+    read_json_file(dir / "a.json");
+    FAIL() << "a loop of links was read";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("a.json: cannot read: Too many levels of symbolic links"));
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

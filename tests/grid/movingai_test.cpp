@@ -176,5 +176,36 @@ TEST_F(MovingAiErrors, ScenarioErrorsNameTheFileTheLineAndWhatWasExpected) {
   }
 }
 
+TEST_F(MovingAiErrors, ControlCharactersInAMapAreEscapedAndUtf8StaysReadable) {
+  using namespace std::string_literals;
+  const std::string header = "type octile\nheight 1\nwidth 3\nmap\n";
+  // NUL, ESC and CR inside a row, and in a header line quoted whole.
+  EXPECT_THAT(map_error(header + ".\0.\n"s), HasSubstr("line 5: column 1: expected one of . G S @ O T W, got '\\x00'"));
+  EXPECT_THAT(map_error(header + "\x1b[2\n"), HasSubstr("line 5: column 0: expected one of . G S @ O T W, got '\\x1b'"));
+  EXPECT_THAT(map_error(header + ".\r.\n"), HasSubstr("line 5: column 1: expected one of . G S @ O T W, got '\\r'"));
+  EXPECT_THAT(map_error("type octile\nheight 1\x1b]0;pwned\a\nwidth 3\nmap\n...\n"),
+              HasSubstr("line 2: expected height (an integer in [1, 4096]), got \"1\\x1b]0;pwned\\x07\""));
+  EXPECT_THAT(map_error("type octile\x1b[2J\nheight 1\nwidth 3\nmap\n...\n"),
+              HasSubstr("line 1: expected \"type octile\", got \"type octile\\x1b[2J\""));
+  // A two-byte character in a row of 3 bytes: quoted whole, as it reads.
+  EXPECT_THAT(map_error(header + "\xc3\xa9.\n"), HasSubstr("column 0: expected one of . G S @ O T W, got '\xc3\xa9'"));
+  for (const std::string& text : {header + ".\0.\n"s, header + "\x1b[2\n", header + ".\r.\n"}) {
+    const std::string error = map_error(text);
+    EXPECT_EQ(error.find_first_of("\0\x1b\r\n\a"s), std::string::npos) << error;
+  }
+  // A long line is quoted in part.
+  const std::string long_line = "type " + std::string(100000, 'x');
+  EXPECT_LT(map_error(long_line + "\n").size(), 300u);
+}
+
+TEST_F(MovingAiErrors, AnEmptyPathIsNamedAsOne) {
+  try {
+    read_movingai_map("");
+    ADD_FAILURE();
+  } catch (const FormatError& e) {
+    EXPECT_STREQ(e.what(), "\"\" (empty path): expected the path of a file, got an empty string");
+  }
+}
+
 }  // namespace
 }  // namespace campo::grid

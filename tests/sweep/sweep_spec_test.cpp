@@ -125,6 +125,33 @@ TEST_F(SweepSpecTest, BadPointersFailBeforeAnythingRuns) {
               HasSubstr(spec + ": /start_jitter/vehicle: expected a vehicle of scene two_barriers, got \"goal\""));
 }
 
+TEST_F(SweepSpecTest, SetPointersTakeArrayIndicesAsRfc6901Writes) {
+  const std::string spec = (dir_ / "spec.json").string();
+  // two_barriers has 5 objects; "04" is not index 4, in an axis's "set" as in "set".
+  EXPECT_EQ(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
+                         "axes": [{"name": "v", "values": [1], "set": ["/objects/04/planner/params/speed_mps"]}]})"),
+            spec + ": /axes/0/values/0: in scene two_barriers: expected an array index in [0, 5) without leading zeros "
+                   "(RFC 6901) or the alias of an element of /objects, got \"04\" (a leading zero) at /objects/04");
+  EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "set": {"/objects/+4/planner/name": "straight"}})"),
+              HasSubstr(spec + ": /set/~1objects~1+4~1planner~1name: in scene two_barriers: no element with alias \"+4\" "
+                               "at /objects/+4; expected an array index in [0, 5) without leading zeros (RFC 6901)"));
+  // Index 4 as RFC 6901 writes it is the drone.
+  EXPECT_EQ(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
+                         "axes": [{"name": "v", "values": [1], "set": ["/objects/4/planner/params/speed_mps"]}]})"),
+            "");
+}
+
+TEST_F(SweepSpecTest, RangeCountsAreCheckedBeforeTheyBecomeIntegers) {
+  // to - from overflows to infinity: refused, not cast to a count (which would be undefined).
+  const std::string spec = (dir_ / "spec.json").string();
+  EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "axes": [{"name": "a",
+                           "range": {"from": -1e308, "to": 1e308, "step": 1}, "set": ["/world/time_limit_s"]}]})"),
+              HasSubstr(spec + ": /axes/0/range/step: expected a step giving at most "));
+  EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "axes": [{"name": "a",
+                           "range": {"from": 0, "to": 1, "step": 1e-300}, "set": ["/world/time_limit_s"]}]})"),
+              HasSubstr(spec + ": /axes/0/range/step: expected a step giving at most "));
+}
+
 TEST_F(SweepSpecTest, ExpandsScenesAxesAndSeedsInOrder) {
   // A scene beside the spec, by relative path, and a bundled one.
   fs::copy_file(fs::path(CAMPO_SOURCE_DIR) / "scenes/two_barriers.json", dir_ / "local.json");

@@ -1,0 +1,59 @@
+#include "tools/path_options.hpp"
+
+#include <filesystem>
+#include <system_error>
+
+#include "campo/json_reader.hpp"
+
+namespace campo::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string kind_of(fs::file_type type) {
+  switch (type) {
+    case fs::file_type::regular: return "a file";
+    case fs::file_type::directory: return "a directory";
+    case fs::file_type::block:
+    case fs::file_type::character: return "a device";
+    case fs::file_type::fifo: return "a FIFO";
+    case fs::file_type::socket: return "a socket";
+    default: return "neither a file nor a directory";
+  }
+}
+
+// "" when `path` is a `type` (symbolic links followed); else what is wrong with it.
+std::string check_existing(const std::string& path, fs::file_type type) {
+  const std::string what = type == fs::file_type::directory ? "directory" : "regular file";
+  if (path.empty()) return "expected the path of a " + what + ", got an empty string";
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  const std::string got = ", got \"" + path + "\"";
+  if (status.type() == fs::file_type::not_found) return "expected an existing " + what + got + ", which does not exist";
+  if (ec) return "expected an existing " + what + got + ": " + ec.message();  // e.g. a loop of symbolic links
+  if (status.type() != type) return "expected a " + what + got + ", which is " + kind_of(status.type());
+  return "";
+}
+
+}  // namespace
+
+CLI::Validator input_path() {
+  return CLI::Validator(
+      [](std::string& path) { return path.empty() ? std::string("expected a path, got an empty string") : std::string(); },
+      "");
+}
+
+CLI::Validator existing_directory() {
+  return CLI::Validator([](std::string& path) { return check_existing(path, fs::file_type::directory); }, "DIR");
+}
+
+CLI::Validator existing_file() {
+  return CLI::Validator([](std::string& path) { return check_existing(path, fs::file_type::regular); }, "FILE");
+}
+
+std::string parse_error_message(const CLI::App* /*app*/, const CLI::Error& error) {
+  return "error: command line: " + printable(error.what()) + "\nRun with --help for more information.\n";
+}
+
+}  // namespace campo::cli
