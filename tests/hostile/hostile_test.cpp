@@ -59,8 +59,22 @@ Outcome run_campo(const std::string& args, const fs::path& dir) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), testing::slurp(err)};
 }
 
+/// Messages that a terminal shows as written: no raw control character (but the
+/// line ends), and no error about a path that reads empty ("error: : ...").
+void expect_printable(const Outcome& o, const std::string& what) {
+  for (const char c : o.err) {
+    const auto byte = static_cast<unsigned char>(c);
+    if ((byte < 0x20 && c != '\n') || byte == 0x7f) {
+      ADD_FAILURE() << what << ": a raw control character (" << int{byte} << ") on stderr\n" << o.err.substr(0, 2000);
+      break;
+    }
+  }
+  EXPECT_EQ(o.err.find("error: : "), std::string::npos) << what << ": an error names an empty path\n" << o.err;
+}
+
 /// Exit 0, or exit 2 with an error line that names `file`.
 void expect_clean(const Outcome& o, const std::string& what, const std::string& file) {
+  expect_printable(o, what);
   EXPECT_TRUE(o.exit_code == 0 || o.exit_code == 2)
       << what << ": exit " << o.exit_code << " (124/137: over " << kSecondsPerCommand
       << " s; else a crash or an internal error)\n" << o.err.substr(0, 2000);
@@ -149,6 +163,7 @@ TEST_P(HostileCommand, EndsCleanly) {
   EXPECT_TRUE(o.exit_code == 0 || o.exit_code == 2) << "campo " << args << ": exit " << o.exit_code << "\n"
                                                     << o.err.substr(0, 2000);
   if (o.exit_code == 2) EXPECT_THAT(o.err, HasSubstr("error: "));
+  expect_printable(o, "campo " + args);
 }
 INSTANTIATE_TEST_SUITE_P(Corpus, HostileCommand, ::testing::ValuesIn(corpus("commands", ".args")), test_name);
 
@@ -191,6 +206,42 @@ TEST_F(HostileGenerated, SweepSpecWithAHugeValueList) {
       "axes": [{"name": "speed", "values": [)" + values + R"(1], "set": ["/objects/drone/planner/params/speed_mps"]}],
       "seeds": {"first": 0, "count": 1}})");
   expect_clean(run_campo("sweep " + quoted(spec.string()) + " --list", dir_), "campo sweep --list", spec.string());
+}
+
+// A loop of symbolic links given where a run directory, a scene, a spec or a map is read.
+TEST_F(HostileGenerated, ALoopOfSymbolicLinksAsEveryInput) {
+  fs::create_symlink("loop_b", dir_ / "loop_a");
+  fs::create_symlink("loop_a", dir_ / "loop_b");
+  const std::string loop = (dir_ / "loop_a").string();
+  for (const std::string args : {"render " + loop, "merge " + loop + " --out merged", "validate " + loop,
+                                 "run " + loop + " --out run", "sweep " + loop + " --list", "table " + loop,
+                                 "plan --map " + loop + " --start 0,0 --goal 1,1"}) {
+    const Outcome o = run_campo(args, dir_);
+    EXPECT_EQ(o.exit_code, 2) << args << "\n" << o.err;
+    expect_clean(o, "campo " + args, loop);
+    EXPECT_THAT(o.err, HasSubstr("error: ")) << args;
+  }
+}
+
+// A recorded run whose trajectory.csv ends at -5 s, or whose times go back: refused by
+// every reader of the run, naming the file and line; no frame count wraps.
+TEST_F(HostileGenerated, ARunWhoseRecordedTimesGoBackwards) {
+  const fs::path scene = write("flat.json", R"({"campo_scene": 1, "name": "flat", "world": {"time_limit_s": 1},
+      "objects": [{"alias": "ground", "type": "plane"}, )" + kDrone + "]}");
+  ASSERT_EQ(run_campo("run " + quoted(scene.string()) + " --no-figures --out run", dir_).exit_code, 0);
+  const fs::path csv = dir_ / "run" / "trajectory.csv";
+  std::string text = testing::slurp(csv);
+  const std::size_t last = text.rfind('\n', text.size() - 2) + 1;
+  text += "-5.000000" + text.substr(text.find(',', last));  // the last line again, at -5 s
+  std::ofstream(csv, std::ios::binary) << text;
+  for (const std::string kind : {"video", "map", "replay", "sequence"}) {
+    const std::string out = kind == "video" ? "video.gif" : kind;
+    const Outcome o = run_campo("render run --kind " + kind + " --out " + out, dir_);
+    EXPECT_EQ(o.exit_code, 2) << kind << "\n" << o.err;
+    expect_clean(o, "campo render --kind " + kind, "trajectory.csv");
+    EXPECT_THAT(o.err, HasSubstr("got \"-5.000000\"")) << kind;
+    EXPECT_EQ(o.err.find("18446744"), std::string::npos) << kind;
+  }
 }
 
 }  // namespace
