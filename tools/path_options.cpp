@@ -1,5 +1,7 @@
 #include "tools/path_options.hpp"
 
+#include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <system_error>
 
@@ -36,7 +38,24 @@ std::string check_existing(const std::string& path, fs::file_type type) {
   return "";
 }
 
+// "" when `text` is a whole finite number above (or at) 0; else what was expected.
+std::string check_number(const std::string& text, bool zero_allowed) {
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  const bool number = !text.empty() && ec == std::errc() && end == text.data() + text.size() && std::isfinite(v);
+  if (number && (zero_allowed ? v >= 0.0 : v > 0.0)) return "";
+  return std::string("expected a number ") + (zero_allowed ? ">= 0" : "> 0") + ", got \"" + text + "\"";
+}
+
 }  // namespace
+
+CLI::Validator non_negative_number() {
+  return CLI::Validator([](std::string& text) { return check_number(text, true); }, "NONNEGATIVE");
+}
+
+CLI::Validator positive_number() {
+  return CLI::Validator([](std::string& text) { return check_number(text, false); }, "POSITIVE");
+}
 
 CLI::Validator input_path() {
   return CLI::Validator(

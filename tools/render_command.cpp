@@ -180,7 +180,7 @@ Command add_render(CLI::App& app) {
   app.add_option("--at", o->at_s,
                  "With --kind sequence: an instant to draw, simulated seconds (repeatable; default: four instants "
                  "around the first side switch of follow-the-gap's chosen gap)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   app.add_option("--out", o->out,
                  "Output directory (default: each run's own directory; for overlay, the current directory); with "
                  "--kind video alone and one run, the video file itself (.mp4 or .gif); with --kind replay alone, the "

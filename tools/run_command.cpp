@@ -100,7 +100,7 @@ Command add_run(CLI::App& app) {
   app.add_flag("!--no-figures", o->figures, "Do not draw map.png and side.png (for sweeps)");
   app.add_option("--record-depth", o->record_depth_every,
                  "Save the depth map of every N-th scan of each sensor under DIR/depth/ (0 = none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   app.add_flag("!--no-replan-depth", o->record_replans,
                "Do not save the depth map of every replanning under DIR/replans/ (for sweeps)");
   app.add_option("--out", o->out, "Output directory (created if missing)")->capture_default_str();

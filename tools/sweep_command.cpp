@@ -380,7 +380,7 @@ Command add_sweep(CLI::App& app) {
   app.add_option("--time-limit", o->time_limit_s,
                  "Wall-clock seconds a run may take before it is killed and recorded as failed (default: the "
                  "spec's time_limit_s, else 3600)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app.add_flag("--keep-runs", o->keep_runs,
                "Keep each run's files (run.json, trajectory.csv, scene.json) in DIR/runs/NAME/");
   app.add_flag("--figures", o->figures, "Also draw map.png and side.png for every run (implies --keep-runs; slower)");
@@ -394,7 +394,7 @@ Command add_sweep(CLI::App& app) {
   app.add_flag("--retry-failed", o->retry_failed, "Rerun the runs recorded as failed (completed runs are kept)");
   app.add_option("--progress-every", o->progress_every_s,
                  "Seconds between progress lines when stderr is not a terminal (default: 10)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app.footer(
       "Expands the spec into runs (scenes x planners x axis values or samples x seeds), validates every\n"
       "run's scene with its overrides, then runs them in parallel, each in its own process: a run that\n"

@@ -51,6 +51,16 @@ TEST_F(Messages, ParseErrorsOfEveryCommandStartWithErrorCommandLine) {
   expect_refused(campo("render"), "render without a run");
   EXPECT_THAT(campo("render").err, StartsWith("error: command line: runs is required"));
   EXPECT_THAT(campo("sweep --jobs 0 x").err, StartsWith("error: command line: --jobs: "));
+  // Numbers are said as given, not against a range up to 1.8e308 written out in 300 digits.
+  Result r = campo("render " + dir_.string() + " --kind sequence --at -5");
+  expect_refused(r, "--at -5");
+  EXPECT_THAT(r.err, StartsWith("error: command line: --at: expected a number >= 0, got \"-5\"\n"));
+  r = campo("sweep x --time-limit 0");
+  expect_refused(r, "--time-limit 0");
+  EXPECT_THAT(r.err, StartsWith("error: command line: --time-limit: expected a number > 0, got \"0\"\n"));
+  r = campo("run --record-depth nan");
+  expect_refused(r, "--record-depth nan");
+  EXPECT_THAT(r.err, StartsWith("error: command line: --record-depth: expected a number >= 0, got \"nan\"\n"));
 }
 
 TEST_F(Messages, HelpAndVersionStillPrintToStandardOutputWithExitZero) {
