@@ -1,3 +1,4 @@
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -27,6 +28,7 @@ struct RunOptions {
   bool figures = true;
   int record_depth_every = 0;
   bool record_replans = true;
+  double time_limit_s = 0.0;  ///< 0: none
   std::vector<std::string> plugins;
   bool list_planners = false;
 };
@@ -48,6 +50,7 @@ int run_run(const RunOptions& o) {
   request.figures = o.figures;
   request.record_depth_every = o.record_depth_every;
   request.record_replans = o.record_replans;
+  request.time_limit_s = o.time_limit_s;
   const ExecutedRun run = execute_run(request);
   const std::filesystem::path out = o.out;
   std::string figures;
@@ -103,6 +106,17 @@ Command add_run(CLI::App& app) {
       ->check(non_negative_number());
   app.add_flag("!--no-replan-depth", o->record_replans,
                "Do not save the depth map of every replanning under DIR/replans/ (for sweeps)");
+  app.add_option("--time-limit", o->time_limit_s,
+                 "Wall-clock seconds the run may take (host time, not simulated): past them it ends as failed "
+                 "with its files written, a Python planner's call in progress interrupted (default: no limit)")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double s = std::strtod(text.c_str(), &end);
+            if (end != text.c_str() && *end == '\0' && s > 0.0 && s <= 1e9) return "";
+            return "expected a number of seconds in (0, 1e9], got \"" + text + "\"";
+          },
+          "SECONDS"));
   app.add_option("--out", o->out, "Output directory (created if missing)")->capture_default_str();
   app.footer(
       "Runs one closed-loop episode: sense -> plan -> control -> actuate -> step, until the mission\n"

@@ -1,7 +1,12 @@
 #include "tools/run_execution.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <csignal>
 #include <cstdlib>
+#include <mutex>
+#include <thread>
 #include <functional>
 #include <optional>
 #include <cstdio>
@@ -24,7 +29,111 @@
 #include "tools/run_figures.hpp"
 #include "vehicles/factory.hpp"
 
+#include <pthread.h>
+#include <signal.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 namespace campo::cli {
+
+int planner_interrupt_signal() { return SIGRTMIN + 5; }
+
+namespace {
+
+constexpr double kMaxTimeLimitS = 1e9;  // about 32 years: longer is no limit, and would overflow the clock
+
+// A run's wall-clock limit (RunRequest::time_limit_s): a planner wrapped by
+// it refuses calls past the deadline, and a thread sends the run's thread
+// planner_interrupt_signal() then (every half second until the run ends),
+// which interrupts a Python planner's call blocked or spinning there.
+class WallLimit {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  WallLimit(double limit_s, const std::string& name)
+      : deadline_(Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit_s))) {
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%g", limit_s);
+    reason_ = std::string("exceeded the wall-clock limit of ") + seconds + " s for the whole run (" + name +
+              ") and was stopped";
+    // Only the main thread: there a signal reaches the Python planner's call (Python handles signals there only).
+    if (::syscall(SYS_gettid) != ::getpid()) return;
+    const int signal = planner_interrupt_signal();
+    struct sigaction current {};
+    if (::sigaction(signal, nullptr, &current) == 0 && current.sa_handler == SIG_DFL) {
+      // Its default would end the process: ignored unless Python handles it.
+      struct sigaction ignore {};
+      ignore.sa_handler = [](int) {};
+      ignore.sa_flags = SA_RESTART;
+      ::sigemptyset(&ignore.sa_mask);
+      ::sigaction(signal, &ignore, nullptr);
+    }
+    const pthread_t target = ::pthread_self();
+    watcher_ = std::thread([this, target, signal] {
+      std::unique_lock lock(mutex_);
+      if (wake_.wait_until(lock, deadline_, [this] { return done_; })) return;
+      while (!done_) {
+        ::pthread_kill(target, signal);
+        wake_.wait_for(lock, std::chrono::milliseconds(500), [this] { return done_; });
+      }
+    });
+  }
+
+  ~WallLimit() {
+    {
+      std::lock_guard lock(mutex_);
+      done_ = true;
+    }
+    wake_.notify_all();
+    if (watcher_.joinable()) watcher_.join();
+  }
+
+  bool passed() const { return Clock::now() >= deadline_; }
+  const std::string& reason() const { return reason_; }
+  bool tripped = false;  ///< the run ended because of it
+
+ private:
+  Clock::time_point deadline_;
+  std::string reason_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false;
+  std::thread watcher_;
+};
+
+// A planner held to the run's wall-clock limit.
+class WallLimitedPlanner final : public Planner {
+ public:
+  WallLimitedPlanner(std::unique_ptr<Planner> planner, WallLimit& limit)
+      : planner_(std::move(planner)), limit_(limit) {}
+
+  PlanResult plan(const Observation& observation) override {
+    if (!planner_ || limit_.passed()) stop();
+    try {
+      return planner_->plan(observation);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception&) {
+      if (limit_.passed()) stop();  // interrupted by the limit's signal
+      throw;
+    }
+  }
+
+  nlohmann::json parameters() const override {
+    return planner_ ? planner_->parameters() : nlohmann::json::object();
+  }
+
+ private:
+  [[noreturn]] void stop() {
+    limit_.tripped = true;
+    throw std::runtime_error(limit_.reason());
+  }
+
+  std::unique_ptr<Planner> planner_;
+  WallLimit& limit_;
+};
+
+}  // namespace
 
 PreparedRun prepare_run(const RunRequest& request, bool validate_planner) {
   const std::string scene_file = request.scene.string();
@@ -63,6 +172,10 @@ PreparedRun prepare_run(const RunRequest& request, bool validate_planner) {
 }
 
 SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& output) {
+  if (request.time_limit_s != 0.0 && !(request.time_limit_s > 0.0 && request.time_limit_s <= kMaxTimeLimitS)) {
+    throw InputError("command line", request.time_limit_name,
+                     "expected a wall-clock limit in seconds in (0, 1e9], got " + nlohmann::json(request.time_limit_s).dump());
+  }
   PreparedRun prepared = prepare_run(request);
   SimulatedRun run;
   run.scene = std::move(prepared.scene);
@@ -101,8 +214,24 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
       }
     };
   }
-  const PlannerMaker make_planner = request.make_planner ? request.make_planner : PlannerMaker(&create_planner);
+  PlannerMaker make_planner = request.make_planner ? request.make_planner : PlannerMaker(&create_planner);
+  std::optional<WallLimit> limit;
+  if (request.time_limit_s > 0) {
+    limit.emplace(request.time_limit_s, request.time_limit_name);
+    make_planner = [inner = std::move(make_planner), &limit](const PlannerSpec& spec, const PlannerContext& context) {
+      std::unique_ptr<Planner> planner;
+      try {
+        planner = inner(spec, context);
+      } catch (const std::exception&) {
+        if (!limit->passed()) throw;  // a constructor interrupted by the limit: the run fails at its first call
+      }
+      return std::unique_ptr<Planner>(std::make_unique<WallLimitedPlanner>(std::move(planner), *limit));
+    };
+  }
   run.result = run_episode(scene, &make_vehicle, make_planner, options);
+  // Ended by the limit, not by the planner: the reason says so.
+  if (limit && limit->tripped && run.result.metrics.outcome == Outcome::failed) run.result.metrics.reason = limit->reason();
+  limit.reset();
   run.record = run_json(scene, run.result, options, request.overrides);
   if (!run.document.contains("name")) run.document["name"] = scene.name;
   return run;

@@ -26,6 +26,12 @@ struct RunRequest {
   bool figures = true;                  ///< map.png and side.png
   int record_depth_every = 0;           ///< depth map of every N-th scan under out/depth/ (0 = none)
   bool record_replans = true;           ///< the depth map of every replanning under out/replans/
+  /// Wall clock the whole run may take, s (0: no limit). Checked at every
+  /// planner call, and a Python planner's call in progress is interrupted:
+  /// past it the run ends as failed (its files written) with a reason naming
+  /// the limit. Host time, not simulated time: a run within it is unchanged.
+  double time_limit_s = 0.0;
+  std::string time_limit_name = "--time-limit";  ///< how the caller set it, for the reason
   /// Makes the planner; empty: create_planner (the registry). The Python
   /// module passes one that wraps a Python object.
   PlannerMaker make_planner;
@@ -95,6 +101,11 @@ ExecutedRun execute_run(const RunRequest& request);
 /// camera on its first sensor's mount, cast from the last recorded pose with
 /// the movers where they were then. Written as a 16-bit PNG.
 void write_final_depth(const SimulatedRun& run, const std::filesystem::path& png);
+
+/// The signal a run past its wall-clock limit sends its thread (the main
+/// thread only) to interrupt a Python planner's call in progress there
+/// (python/bindings/planner_limits.hpp); ignored by other code.
+int planner_interrupt_signal();
 
 /// One line for the terminal: outcome, reason, times and path.
 std::string run_summary_line(const nlohmann::json& record);

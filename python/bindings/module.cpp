@@ -1,6 +1,7 @@
 // campo._campo: the native part of the Python package `campo` (docs/python.md).
 // Episodes stepped from Python, Python planners in the C++ closed loop, and
 // runs written exactly as `campo run` writes them.
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -19,6 +20,7 @@
 #include "core/output_dir.hpp"
 #include "planners/registry.hpp"
 #include "python/bindings/observation.hpp"
+#include "python/bindings/planner_limits.hpp"
 #include "python/bindings/python_planner.hpp"
 #include "sweep/bundled.hpp"
 #include "tools/run_execution.hpp"
@@ -159,9 +161,26 @@ class PythonEpisode {
 // plugin's, "python:...") or given as a Python object.
 py::object run(const std::string& scene, const py::object& planner, const std::optional<std::filesystem::path>& out,
                std::optional<std::uint64_t> seed, const py::object& overrides, const std::string& vehicle,
-               bool figures, bool continue_after_collision) {
+               bool figures, bool continue_after_collision, std::optional<double> time_limit_s,
+               std::optional<double> call_limit_s) {
   cli::RunRequest request = run_request(scene, seed, overrides, vehicle, continue_after_collision);
   request.figures = figures;
+  // The limits its Python planners are held to (planner_limits.hpp), the run's own limit among them.
+  PlannerLimits limits = limits_from_environment();
+  if (call_limit_s) {
+    if (!std::isfinite(*call_limit_s) || *call_limit_s < 0) {
+      throw InputError("call_limit_s", "", "expected a number of seconds >= 0 (0: no limit)");
+    }
+    limits.call_limit_s = *call_limit_s;
+  }
+  if (time_limit_s) {
+    if (!std::isfinite(*time_limit_s) || *time_limit_s <= 0) {
+      throw InputError("time_limit_s", "", "expected a number of seconds > 0");
+    }
+    request.time_limit_s = *time_limit_s;
+    request.time_limit_name = "time_limit_s";
+  }
+  const ScopedLimits scoped(limits);
   if (py::isinstance<py::str>(planner)) {
     request.planner = planner.cast<std::string>();
   } else if (!planner.is_none()) {
@@ -197,6 +216,7 @@ PYBIND11_MODULE(_campo, m) {
 
   bind_observation(m);
   bind_plan_types(m);
+  bind_limits(m);
   register_python_scheme();
 
   py::class_<PythonEpisode>(m, "Episode",
@@ -216,9 +236,14 @@ PYBIND11_MODULE(_campo, m) {
 
   m.def("run", &run, py::arg("scene"), py::arg("planner") = py::none(), py::arg("out") = py::none(),
         py::arg("seed") = py::none(), py::arg("overrides") = py::none(), py::arg("vehicle") = "",
-        py::arg("figures") = true, py::arg("continue_after_collision") = false,
+        py::arg("figures") = true, py::arg("continue_after_collision") = false, py::arg("time_limit_s") = py::none(),
+        py::arg("call_limit_s") = py::none(),
         "run scene to its end with planner (a name, \"python:module:Class\", or an object with plan(obs)); "
-        "writes the run directory to out when given; returns run.json's content");
+        "writes the run directory to out when given; returns run.json's content. time_limit_s: wall clock the "
+        "whole run may take; call_limit_s: wall clock of one call into a Python planner (default "
+        "$CAMPO_PYTHON_CALL_LIMIT_S, else 60); past either the run ends as failed");
+  m.def("_guard_process_exit", &guard_process_exit,
+        "in an interpreter campo embeds: os._exit from a planner ends its run as failed, not the process");
   m.def("planners", [] {
     std::vector<std::string> names;
     for (const PlannerEntry& entry : planner_registry()) names.push_back(entry.name);

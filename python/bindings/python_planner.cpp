@@ -1,6 +1,8 @@
 #include "python/bindings/python_planner.hpp"
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <iterator>
 #include <optional>
 #include <stdexcept>
@@ -13,6 +15,7 @@
 #include "campo/scene_loader.hpp"
 #include "planners/registry.hpp"
 #include "python/bindings/observation.hpp"
+#include "python/bindings/planner_limits.hpp"
 #include "run/event_log.hpp"
 
 namespace campo::python {
@@ -36,6 +39,155 @@ std::string traceback_text(py::error_already_set& error) {
   }
 }
 
+namespace {
+
+// Lower bounds of the JSON text of a decision, by which a Python planner's
+// decisions are bounded before they are copied into C++ (docs/python.md, "Limits").
+constexpr std::size_t kKeyMaxBytes = kEventLineMaxBytes;          // one decision: more is never kept
+constexpr std::size_t kDecisionsMaxBytes = 16 * kEventLineMaxBytes;  // all of them, after dropping those
+constexpr int kDecisionsMaxDepth = 100;                           // nesting of lists and dicts
+
+// A decision larger than its budget (a lower bound of its JSON text's size).
+struct OverBudget {
+  std::size_t bytes;
+};
+
+// numpy's array and scalar types (campo imports numpy: observations are numpy arrays).
+const py::object& numpy_type(const char* name) {
+  static const py::object ndarray = py::module_::import("numpy").attr("ndarray");
+  static const py::object generic = py::module_::import("numpy").attr("generic");
+  return std::string_view(name) == "ndarray" ? ndarray : generic;
+}
+
+// A dict key as json.dumps writes it: a str as it is, other scalars as their JSON text.
+py::object key_text(const py::handle& key) {
+  if (py::isinstance<py::str>(key)) return py::reinterpret_borrow<py::object>(key);
+  if (key.is_none()) return py::str("null");
+  if (py::isinstance<py::bool_>(key)) return py::str(key.cast<bool>() ? "true" : "false");
+  if (py::isinstance<py::int_>(key) || py::isinstance<py::float_>(key)) {
+    return py::module_::import("json").attr("dumps")(key, py::arg("allow_nan") = false);  // ValueError for nan
+  }
+  return py::reinterpret_borrow<py::object>(key);  // json.dumps refuses it with its TypeError
+}
+
+std::string key_string(const py::handle& key) { return py::isinstance<py::str>(key) ? key.cast<std::string>() : ""; }
+
+// A copy of one decision as the record keeps it, made without converting
+// what the record would not keep: every list, tuple or numpy array over
+// kEventArrayMaxEntries entries thinned exactly as bound_decisions thins
+// the record (the same entries kept, the same `thinned` note), so a
+// million-point path costs what 2048 points do. OverBudget as soon as its
+// JSON text certainly exceeds `budget` bytes.
+class BoundedCopy {
+ public:
+  explicit BoundedCopy(std::size_t budget) : budget_(budget) {}
+
+  py::dict thinned;       // JSON pointer -> original length
+  std::size_t bytes = 0;  // a lower bound of the JSON text so far
+
+  py::object copy(const py::handle& value, const std::string& at, int depth = 0) {
+    if (depth > kDecisionsMaxDepth) {
+      throw std::runtime_error("the planner's decisions nest lists and dicts deeper than " +
+                               std::to_string(kDecisionsMaxDepth) + " levels, at " + at);
+    }
+    if (PyDict_Check(value.ptr())) {
+      py::dict out;
+      add(2);
+      for (const auto& [key, item] : py::reinterpret_borrow<py::dict>(value)) {
+        const py::object name = key_text(key);
+        const std::string text = key_string(name);
+        add(text.size() + 4);  // "key": and a comma
+        out[name] = copy(item, child_pointer(at, text), depth + 1);
+      }
+      return out;
+    }
+    if (PyList_Check(value.ptr()) || PyTuple_Check(value.ptr())) {
+      const py::sequence items = py::reinterpret_borrow<py::sequence>(value);
+      return sequence(items.size(), [&](std::size_t i) { return py::object(items[i]); }, at, depth);
+    }
+    if (py::isinstance(value, numpy_type("ndarray"))) {
+      const py::object array = py::module_::import("numpy").attr("asarray")(value);  // a subclass as a plain array
+      if (array.attr("ndim").cast<int>() == 0) return array.attr("item")();
+      const std::size_t n = array.attr("shape").cast<py::tuple>()[0].cast<std::size_t>();
+      return sequence(n, [&](std::size_t i) { return py::object(array[py::int_(i)]); }, at, depth);
+    }
+    if (py::isinstance<py::str>(value)) {
+      add(py::len(value) + 2);
+      return py::reinterpret_borrow<py::object>(value);
+    }
+    add(1);  // a number, true, false, null: at least a character
+    if (py::isinstance(value, numpy_type("generic"))) return value.attr("item")();
+    return py::reinterpret_borrow<py::object>(value);
+  }
+
+ private:
+  void add(std::size_t more) {
+    bytes += more;
+    if (bytes > budget_) throw OverBudget{bytes};
+  }
+
+  template <typename Item>
+  py::list sequence(std::size_t n, const Item& item, const std::string& at, int depth) {
+    py::list out;
+    add(n > 0 ? std::min(n, kEventArrayMaxEntries) + 1 : 2);  // brackets and commas of what is kept
+    if (n > kEventArrayMaxEntries) {
+      // As thin_arrays (run/event_log.cpp): entry i of the k kept is round(i (n - 1) / (k - 1)).
+      const std::size_t k = kEventArrayMaxEntries;
+      thinned[py::str(at)] = n;
+      for (std::size_t i = 0; i < k; ++i) {
+        out.append(copy(item((i * (n - 1) + (k - 1) / 2) / (k - 1)), child_pointer(at, i), depth + 1));
+      }
+    } else {
+      for (std::size_t i = 0; i < n; ++i) out.append(copy(item(i), child_pointer(at, i), depth + 1));
+    }
+    return out;
+  }
+
+  std::size_t budget_;
+};
+
+// The decisions record of `decisions` (a dict), bounded before it is
+// converted: arrays thinned as the record thins them; a decision whose text
+// certainly exceeds an events.jsonl line dropped, as the record would drop
+// it, and noted in `omitted` with that lower bound of its size; refused
+// (std::runtime_error) past kDecisionsMaxBytes in all.
+nlohmann::json bounded_decisions_json(const py::dict& decisions) {
+  py::dict kept;
+  py::dict thinned;
+  nlohmann::json omitted = nlohmann::json::object();
+  std::size_t total = 2;
+  for (const auto& [key, value] : decisions) {
+    const py::object name = key_text(key);
+    const std::string text = key_string(name);
+    BoundedCopy one(kKeyMaxBytes);
+    try {
+      py::object copied = one.copy(value, child_pointer("", text), 1);
+      total += one.bytes + text.size() + 4;
+      if (total > kDecisionsMaxBytes) {
+        throw std::runtime_error("the planner's decisions hold more than " + std::to_string(kDecisionsMaxBytes >> 20) +
+                                 " MiB of JSON even with every array thinned to " +
+                                 std::to_string(kEventArrayMaxEntries) + " entries (an events.jsonl line holds " +
+                                 std::to_string(kEventLineMaxBytes >> 10) + " KiB; docs/python.md, Limits)");
+      }
+      kept[name] = std::move(copied);
+      for (const auto& [pointer, count] : one.thinned) thinned[pointer] = count;
+    } catch (const OverBudget& over) {
+      omitted[text] = over.bytes;
+    }
+  }
+  if (py::len(thinned) > 0) kept["thinned"] = thinned;
+  nlohmann::json record = to_json(kept);
+  if (!omitted.empty()) {
+    bound_decisions(record);  // what remains, bounded as the record is
+    nlohmann::json& note = record["omitted"];
+    if (!note.is_object()) note = nlohmann::json::object();
+    for (const auto& [key, bytes] : omitted.items()) note[key] = bytes;
+  }
+  return record;
+}
+
+}  // namespace
+
 PlanResult plan_result(const PlanResultBox& box) {
   PlanResult result;
   result.command = box.command.value;
@@ -44,7 +196,7 @@ PlanResult plan_result(const PlanResultBox& box) {
   if (!box.decisions.is_none()) {
     if (!py::isinstance<py::dict>(box.decisions)) throw std::runtime_error("PlanResult.decisions: expected a dict or None");
     try {
-      result.decisions = decisions_from_json(to_json(box.decisions), "PlanResult", "/decisions");
+      result.decisions = decisions_from_json(bounded_decisions_json(box.decisions), "PlanResult", "/decisions");
     } catch (const InputError& e) {
       throw std::runtime_error(std::string("the planner's decisions: ") + e.what());
     }
@@ -56,8 +208,11 @@ namespace {
 
 class PythonPlanner final : public Planner {
  public:
-  PythonPlanner(py::object planner, nlohmann::json parameters)
-      : planner_(std::move(planner)), plan_(planner_.attr("plan")), parameters_(std::move(parameters)) {}
+  PythonPlanner(py::object planner, nlohmann::json parameters, std::unique_ptr<PlannerGuard> guard)
+      : planner_(std::move(planner)),
+        plan_(planner_.attr("plan")),
+        parameters_(std::move(parameters)),
+        guard_(std::move(guard)) {}
 
   ~PythonPlanner() override {
     // Python objects die with the interpreter's lock held.
@@ -68,33 +223,61 @@ class PythonPlanner final : public Planner {
 
   PlanResult plan(const Observation& observation) override {
     py::gil_scoped_acquire gil;
+    if (parameters_error_) throw std::runtime_error(*parameters_error_);
     if (!mission_) mission_ = mission_positions(observation.mission);
+    py::object returned;
+    {
+      // Held to the limits while in Python; what it returned is converted after.
+      GuardedCall call(*guard_, "plan()");
+      try {
+        returned = plan_(view_of(observation, mission_));
+      } catch (py::error_already_set& e) {
+        call.check();
+        throw std::runtime_error("Python exception in plan():\n" + traceback_text(e));
+      }
+      call.check();
+    }
     try {
-      const py::object returned = plan_(view_of(observation, mission_));
       if (!py::isinstance<PlanResultBox>(returned)) {
         throw std::runtime_error("plan() returned " + py::repr(returned).cast<std::string>() +
                                  "; expected a campo.PlanResult");
       }
       return plan_result(returned.cast<const PlanResultBox&>());
     } catch (py::error_already_set& e) {
-      throw std::runtime_error("Python exception in plan():\n" + traceback_text(e));
+      throw std::runtime_error("Python exception converting what plan() returned:\n" + traceback_text(e));
     }
   }
 
+  // Asked once, before the first plan(); a failure here (an exception, a
+  // limit) is recorded and ends the run as failed at the first plan().
   nlohmann::json parameters() const override {
     py::gil_scoped_acquire gil;
     if (!py::hasattr(planner_, "parameters")) return parameters_;
     try {
-      return to_json(planner_.attr("parameters")());
+      GuardedCall call(*guard_, "parameters()");
+      py::object returned;
+      try {
+        returned = planner_.attr("parameters")();
+      } catch (py::error_already_set& e) {
+        call.check();
+        throw std::runtime_error("Python exception in parameters():\n" + traceback_text(e));
+      }
+      call.check();
+      return to_json(returned);
     } catch (py::error_already_set& e) {
-      throw std::runtime_error("Python exception in parameters():\n" + traceback_text(e));
+      parameters_error_ = "Python exception converting what parameters() returned:\n" + traceback_text(e);
+    } catch (const std::runtime_error& e) {
+      parameters_error_ = e.what();
     }
+    return nlohmann::json{{"error", *parameters_error_}};
   }
 
  private:
   py::object planner_;
   py::object plan_;
   nlohmann::json parameters_;
+  std::unique_ptr<PlannerGuard> guard_;
+  mutable std::optional<std::string> parameters_error_;
   std::shared_ptr<const std::vector<Eigen::Vector3d>> mission_;
 };
 
@@ -158,9 +341,28 @@ std::unique_ptr<Planner> create_python_planner(const PlannerSpec& spec, const Pl
     throw InputError(spec.params.file, spec.params.pointer,
                      "planner " + spec.name + " drives a " + drives + " only, not a " + vehicle);
   }
+  // The constructor is a call into the planner's code, held to the limits like plan().
+  auto guard = std::make_unique<PlannerGuard>(spec.name, current_limits());
   try {
     const py::dict kwargs = from_json(spec.params.values);
-    return wrap_python_planner(cls(**kwargs), spec.params.values);
+    py::object planner;
+    {
+      GuardedCall call(*guard, "the constructor");
+      try {
+        planner = cls(**kwargs);
+      } catch (py::error_already_set&) {
+        call.check();
+        throw;
+      }
+      call.check();
+    }
+    return wrap_python_planner(std::move(planner), spec.params.values, std::move(guard));
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    // A constructor past a limit: the planner cannot be made with these params.
+    throw InputError(spec.params.file, spec.params.pointer,
+                     "parameters with which " + module_name + ":" + class_name + " can be made in time; " + e.what());
   } catch (py::error_already_set& e) {
     throw InputError(spec.params.file, spec.params.pointer,
                      "parameters " + module_name + ":" + class_name + " accepts (its constructor's keyword "
@@ -188,9 +390,11 @@ nlohmann::json python_planner_provenance(std::string_view name) {
 
 }  // namespace
 
-std::unique_ptr<Planner> wrap_python_planner(py::object planner, nlohmann::json parameters) {
+std::unique_ptr<Planner> wrap_python_planner(py::object planner, nlohmann::json parameters,
+                                             std::unique_ptr<PlannerGuard> guard) {
   if (!py::hasattr(planner, "plan")) throw std::invalid_argument("a planner needs a plan(self, obs) method");
-  return std::make_unique<PythonPlanner>(std::move(planner), std::move(parameters));
+  if (!guard) guard = std::make_unique<PlannerGuard>(python_planner_name(planner), current_limits());
+  return std::make_unique<PythonPlanner>(std::move(planner), std::move(parameters), std::move(guard));
 }
 
 std::string python_planner_name(const py::handle& planner) {
@@ -204,6 +408,19 @@ void register_python_scheme() {
 
 namespace {
 
+// As Python prints them: nan, inf, -inf.
+std::string number_text(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  return py::repr(py::float_(x)).cast<std::string>();
+}
+
+std::string number_list(const std::vector<double>& v) {
+  std::string text = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) text += (i ? ", " : "") + number_text(v[i]);
+  return text + "]";
+}
+
 Eigen::Vector3d point(const py::handle& value, const char* name) {
   std::vector<double> v;
   try {
@@ -212,7 +429,16 @@ Eigen::Vector3d point(const py::handle& value, const char* name) {
     throw py::value_error(std::string(name) + ": expected 3 numbers (a list or a numpy array)");
   }
   if (v.size() != 3) throw py::value_error(std::string(name) + ": expected 3 numbers, got " + std::to_string(v.size()));
+  for (const double x : v) {
+    if (!std::isfinite(x)) throw py::value_error(std::string(name) + ": expected 3 finite numbers, got " + number_list(v));
+  }
   return {v[0], v[1], v[2]};
+}
+
+// A number a command takes: finite (NaN or an infinity would turn the vehicle's state into NaN).
+double finite(double value, const char* name) {
+  if (!std::isfinite(value)) throw py::value_error(std::string(name) + ": expected a finite number, got " + number_text(value));
+  return value;
 }
 
 std::string command_repr(const Command& c) {
@@ -234,21 +460,24 @@ void bind_plan_types(py::module_& m) {
   py::class_<CommandBox>(m, "Command", "A command for the vehicle (docs/extending.md, campo/vehicle.hpp).")
       .def_static("go_to",
                   [](const py::handle& target_m, double speed_mps, bool face_target) {
-                    return CommandBox{command::GoTo{point(target_m, "target_m"), speed_mps, face_target}};
+                    return CommandBox{command::GoTo{point(target_m, "target_m"), finite(speed_mps, "speed_mps"), face_target}};
                   },
                   py::arg("target_m"), py::arg("speed_mps") = 0.6, py::arg("face_target") = true,
                   "go to target_m in a straight line at no more than speed_mps (quadrotor: turning toward it)")
       .def_static("hold",
                   [](const py::handle& point_m, std::optional<double> yaw_rad) {
+                    if (yaw_rad) finite(*yaw_rad, "yaw_rad");
                     return CommandBox{command::Hold{point(point_m, "point_m"), yaw_rad}};
                   },
                   py::arg("point_m"), py::arg("yaw_rad") = py::none(),
                   "stay at point_m (quadrotor: hover; rover: brake to a stop there)")
       .def_static("face", [](const py::handle& point_m) { return CommandBox{command::Face{point(point_m, "point_m")}}; },
                   py::arg("point_m"), "turn in place to face point_m")
-      .def_static("altitude", [](double z_m) { return CommandBox{command::Altitude{z_m}}; }, py::arg("z_m"),
+      .def_static("altitude", [](double z_m) { return CommandBox{command::Altitude{finite(z_m, "z_m")}}; }, py::arg("z_m"),
                   "hold the horizontal position and climb or descend to z_m (quadrotor)")
-      .def_static("twist", [](double v_mps, double w_radps) { return CommandBox{command::Twist{v_mps, w_radps}}; },
+      .def_static("twist", [](double v_mps, double w_radps) {
+                    return CommandBox{command::Twist{finite(v_mps, "v_mps"), finite(w_radps, "w_radps")}};
+                  },
                   py::arg("v_mps"), py::arg("w_radps"), "forward speed and yaw rate (rover)")
       .def_property_readonly("kind", [](const CommandBox& c) { return std::string(command_name(c.value)); })
       .def("__repr__", [](const CommandBox& c) { return command_repr(c.value); });

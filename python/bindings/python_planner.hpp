@@ -10,6 +10,7 @@
 #include <pybind11/pybind11.h>
 
 #include "campo/planner.hpp"
+#include "python/bindings/planner_limits.hpp"
 
 namespace campo::python {
 
@@ -38,8 +39,10 @@ PlanResult plan_result(const PlanResultBox& box);
 /// campo.Observation at every control tick. A Python exception ends the run
 /// as failed with its traceback (std::runtime_error to the closed loop).
 /// `parameters` is what it was made with, recorded unless the object has a
-/// parameters() method of its own.
-std::unique_ptr<Planner> wrap_python_planner(pybind11::object planner, nlohmann::json parameters);
+/// parameters() method of its own. Its calls are held to the limits of
+/// `guard` (planner_limits.hpp); without one, to current_limits().
+std::unique_ptr<Planner> wrap_python_planner(pybind11::object planner, nlohmann::json parameters,
+                                             std::unique_ptr<PlannerGuard> guard = nullptr);
 
 /// "python:" + the module and qualified name of `planner`'s class, the name a run records.
 std::string python_planner_name(const pybind11::handle& planner);

@@ -18,6 +18,8 @@ from ._campo import (  # noqa: F401 (re-exported)
     InputError,
     Observation,
     OutputError,
+    PlannerExit,
+    PlannerInterrupted,
     PlanResult,
     SensorReading,
     State,

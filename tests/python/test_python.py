@@ -9,9 +9,11 @@ CAMPO_BIN names the program (default: build/campo of this source tree).
 import json
 import os
 import pathlib
+import stat
 import subprocess
 import sys
 import tempfile
+import time
 import unittest
 
 import numpy as np
@@ -229,6 +231,42 @@ class ErrorsTest(unittest.TestCase):
                                                             "params": {"gain": 2}}})
         self.assertTrue(issubclass(campo.InputError, ValueError))
 
+    def test_outputs_that_cannot_be_written_are_output_errors_and_leave_nothing(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            fifo = os.path.join(tmp, "fifo")
+            os.mkfifo(fifo)
+            episode = campo.Episode(OPEN_FIELD, seed=1, overrides={"/world/time_limit_s": 1})
+            episode.reset()
+            while not episode.done:
+                episode.step(campo.Command.go_to(GOAL, speed_mps=0.8))
+            with self.assertRaisesRegex(campo.OutputError, "fifo: out: is a FIFO, expected a directory"):
+                episode.write(fifo)
+            with self.assertRaisesRegex(campo.OutputError, "fifo: out: is a FIFO"):
+                campo.run(OPEN_FIELD, planner="straight", out=fifo)
+            self.assertTrue(stat.S_ISFIFO(os.lstat(fifo).st_mode))
+            self.assertTrue(issubclass(campo.OutputError, campo.InputError))
+            # A full file system (a tmpfs of 8 KiB in a private mount namespace, where mounting is allowed):
+            # the error names the file and the reason, and the folder the write made is gone again.
+            mount = os.path.join(tmp, "mnt")
+            os.mkdir(mount)
+            script = ("import campo, os, sys\n"
+                      "e = campo.Episode(sys.argv[1], seed=1, overrides={'/world/time_limit_s': 1})\n"
+                      "e.reset()\n"
+                      "while not e.done: e.step(campo.Command.hold([0, 0, 1.5]))\n"
+                      "try:\n"
+                      "    e.write(os.path.join(sys.argv[2], 'deep', 'run'))\n"
+                      "except campo.OutputError as error:\n"
+                      "    print('OutputError', error)\n"
+                      "print(sorted(os.listdir(sys.argv[2])))\n")
+            shell = 'mount -t tmpfs -o size=8k tmpfs "$2" || exit 99; exec "$1" -c "$3" "$4" "$2"'
+            done = subprocess.run(["unshare", "-m", "sh", "-c", shell, "sh", sys.executable, mount, script, OPEN_FIELD],
+                                  capture_output=True, text=True, env=os.environ)
+            if done.returncode == 99 or "Operation not permitted" in done.stderr:
+                self.skipTest("cannot mount a tmpfs in a private namespace here (needs root)")
+            self.assertEqual(done.returncode, 0, done.stderr)
+            self.assertRegex(done.stdout, "OutputError .*/mnt/deep/run/.*: cannot write: No space left on device")
+            self.assertTrue(done.stdout.rstrip().endswith("[]"), done.stdout)
+
 
 class CommandLineTest(unittest.TestCase):
     def test_campo_run_and_sweep_take_python_planners(self):
@@ -262,6 +300,241 @@ class CommandLineTest(unittest.TestCase):
             failed = json.loads(pathlib.Path(out, "failing", "run.json").read_text())
             self.assertEqual(failed["metrics"]["outcome"], "failed")
             self.assertIn("ZeroDivisionError", failed["metrics"]["reason"])
+
+
+def run_campo(*args, cwd, env=None, timeout=120):
+    """campo with the fixtures on PYTHONPATH; returns (CompletedProcess, seconds it took)."""
+    started = time.monotonic()
+    done = subprocess.run([str(CAMPO), *args], capture_output=True, text=True, timeout=timeout,
+                          env=env or python_env(), cwd=cwd)
+    return done, time.monotonic() - started
+
+
+def read_events(run_dir):
+    lines = pathlib.Path(run_dir, "events.jsonl").read_bytes().splitlines()
+    return lines, [json.loads(line) for line in lines]
+
+
+class CommandValuesTest(unittest.TestCase):
+    def test_non_finite_targets_are_refused_naming_the_argument(self):
+        nan, inf = float("nan"), float("inf")
+        with self.assertRaisesRegex(ValueError, r"^target_m: expected 3 finite numbers, got \[nan, 0.0, 1.5\]$"):
+            campo.Command.go_to([nan, 0.0, 1.5])
+        with self.assertRaisesRegex(ValueError, r"^target_m: expected 3 finite numbers, got \[1.0, -inf, 1.5\]$"):
+            campo.Command.go_to(np.array([1.0, -inf, 1.5]))
+        with self.assertRaisesRegex(ValueError, r"^speed_mps: expected a finite number, got inf$"):
+            campo.Command.go_to([1, 0, 1.5], speed_mps=inf)
+        with self.assertRaisesRegex(ValueError, r"^point_m: expected 3 finite numbers"):
+            campo.Command.hold([0, 0, inf])
+        with self.assertRaisesRegex(ValueError, r"^yaw_rad: expected a finite number, got nan$"):
+            campo.Command.hold([0, 0, 1], yaw_rad=nan)
+        with self.assertRaisesRegex(ValueError, r"^point_m: expected 3 finite numbers"):
+            campo.Command.face([nan, nan, nan])
+        with self.assertRaisesRegex(ValueError, r"^z_m: expected a finite number, got -inf$"):
+            campo.Command.altitude(-inf)
+        with self.assertRaisesRegex(ValueError, r"^w_radps: expected a finite number, got nan$"):
+            campo.Command.twist(0.5, nan)
+        # Finite values still make commands; huge ones too (the vehicle's limits bound what it does).
+        self.assertEqual(campo.Command.go_to([1e300, 0, 1.5]).kind, "go_to")
+        self.assertEqual(campo.Command.hold([0, 0, 1], yaw_rad=0.5).kind, "hold")
+
+
+class PlannerLimitsTest(unittest.TestCase):
+    """Python planners held to wall-clock, memory and size limits (docs/python.md, Limits)."""
+
+    def assert_failed_by(self, record, *fragments):
+        m = record["metrics"]
+        self.assertEqual(m["outcome"], "failed", m["reason"])
+        for fragment in fragments:
+            self.assertIn(fragment, m["reason"])
+
+    def test_a_call_past_its_limit_ends_the_run_as_failed(self):
+        cases = [(python_planners.Sleeper(), "Sleeper"), (python_planners.Spinner(), "Spinner"),
+                 (python_planners.Stubborn(), "Stubborn")]
+        for planner, name in cases:
+            with self.subTest(planner=name), tempfile.TemporaryDirectory() as out:
+                started = time.monotonic()
+                record = campo.run(OPEN_FIELD, planner=planner, out=os.path.join(out, "r"), call_limit_s=0.5,
+                                   figures=False)
+                self.assertLess(time.monotonic() - started, 10)
+                self.assert_failed_by(record, "plan() of python:python_planners:%s did not return within the "
+                                              "per-call limit of 0.5 s wall clock" % name, "CAMPO_PYTHON_CALL_LIMIT_S")
+                written = json.loads(pathlib.Path(out, "r", "run.json").read_text())
+                self.assertEqual(written["metrics"]["outcome"], "failed")
+                self.assertTrue(pathlib.Path(out, "r", "trajectory.csv").is_file())
+        # The process goes on: the next run is unaffected.
+        self.assertEqual(campo.run(OPEN_FIELD, planner=python_planners.GoStraight(1.0))["metrics"]["outcome"],
+                         "reached")
+
+    def test_limits_from_the_environment_and_their_errors(self):
+        with tempfile.TemporaryDirectory() as out:
+            env = python_env()
+            env["CAMPO_PYTHON_CALL_LIMIT_S"] = "0.5"
+            done, seconds = run_campo("run", OPEN_FIELD, "--planner", "python:python_planners:Spinner",
+                                      "--no-figures", "--out", "spin", cwd=out, env=env)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            self.assertLess(seconds, 30)
+            record = json.loads(pathlib.Path(out, "spin", "run.json").read_text())
+            self.assert_failed_by(record, "per-call limit of 0.5 s")
+            # The constructor is a call too: a planner that cannot be made in time is bad input.
+            sleeper = {"name": "python:python_planners:Sleeper", "params": {"in_constructor": True}}
+            done, _ = run_campo("run", OPEN_FIELD, "--set", "/objects/drone/planner=" + json.dumps(sleeper),
+                                "--out", "ctor", cwd=out, env=env)
+            self.assertEqual(done.returncode, 2, done.stderr)
+            self.assertRegex(done.stderr, r"^error: .*the constructor of python:python_planners:Sleeper did not "
+                                          r"return within the per-call limit of 0.5 s")
+            self.assertFalse(pathlib.Path(out, "ctor").exists())
+            env["CAMPO_PYTHON_CALL_LIMIT_S"] = "soon"
+            done, _ = run_campo("run", OPEN_FIELD, "--planner", "python:python_planners:GoStraight", "--out", "bad",
+                                cwd=out, env=env)
+            self.assertEqual(done.returncode, 2, done.stderr)
+            self.assertIn('error: environment: CAMPO_PYTHON_CALL_LIMIT_S: expected a number of seconds >= 0 '
+                          '(0: no limit), got "soon"', done.stderr)
+
+    def test_whole_run_time_limit(self):
+        with tempfile.TemporaryDirectory() as out:
+            # campo run --time-limit: a planner sleeping forever (no per-call limit) is stopped at 1 s.
+            env = python_env()
+            env["CAMPO_PYTHON_CALL_LIMIT_S"] = "0"
+            done, seconds = run_campo("run", OPEN_FIELD, "--planner", "python:python_planners:Sleeper",
+                                      "--time-limit", "1", "--no-figures", "--out", "slept", cwd=out, env=env)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            self.assertLess(seconds, 30)
+            record = json.loads(pathlib.Path(out, "slept", "run.json").read_text())
+            self.assertEqual(record["metrics"]["outcome"], "failed")
+            self.assertEqual(record["metrics"]["reason"],
+                             "exceeded the wall-clock limit of 1 s for the whole run (--time-limit) and was stopped")
+            self.assertIn("failed (exceeded the wall-clock limit of 1 s", done.stdout)
+            # campo.run(time_limit_s=): the same, for a planner spinning in Python.
+            record = campo.run(OPEN_FIELD, planner=python_planners.Spinner(), time_limit_s=0.5, call_limit_s=0)
+            self.assertEqual(record["metrics"]["reason"],
+                             "exceeded the wall-clock limit of 0.5 s for the whole run (time_limit_s) and was stopped")
+            # A run within its limit is the same run, bit for bit.
+            done, _ = run_campo("run", OPEN_FIELD, "--planner", "python:python_planners:GoStraight", "--no-figures",
+                                "--out", "free", cwd=out)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            done, _ = run_campo("run", OPEN_FIELD, "--planner", "python:python_planners:GoStraight", "--no-figures",
+                                "--time-limit", "600", "--out", "limited", cwd=out)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            free = json.loads(pathlib.Path(out, "free", "run.json").read_text())
+            limited = json.loads(pathlib.Path(out, "limited", "run.json").read_text())
+            self.assertEqual(free["metrics"]["outcome"], "reached")
+            self.assertEqual(free["final_state_hash"], limited["final_state_hash"])
+            self.assertEqual(pathlib.Path(out, "free", "trajectory.csv").read_bytes(),
+                             pathlib.Path(out, "limited", "trajectory.csv").read_bytes())
+            for bad in ["0", "-1", "nan", "inf"]:
+                done, _ = run_campo("run", OPEN_FIELD, "--time-limit", bad, "--out", "bad", cwd=out)
+                self.assertEqual(done.returncode, 2, done.stderr)
+                self.assertIn("error: ", done.stderr)
+                self.assertFalse(pathlib.Path(out, "bad").exists())
+
+    def test_memory_growth_is_bounded(self):
+        with tempfile.TemporaryDirectory() as out:
+            env = python_env()
+            env["CAMPO_PYTHON_MEMORY_LIMIT_MIB"] = "256"
+            done, _ = run_campo("run", OPEN_FIELD, "--planner", "python:python_planners:Leaks", "--no-figures",
+                                "--out", "leak", cwd=out, env=env)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            record = json.loads(pathlib.Path(out, "leak", "run.json").read_text())
+            self.assert_failed_by(record, "the process's resident memory grew by", "since "
+                                  "python:python_planners:Leaks was made, past the limit of 256 MiB "
+                                  "(CAMPO_PYTHON_MEMORY_LIMIT_MIB)")
+            # 16 MiB a call: stopped after about 256 / 16 calls (the watchdog looks every 0.05 s).
+            self.assertLess(record["metrics"]["planner_calls"], 60)
+
+    def test_huge_decisions_are_thinned_before_they_are_copied(self):
+        n, k = 1_000_000, 2048
+        expected = [[float((i * (n - 1) + (k - 1) // 2) // (k - 1)), 0.0, 1.5] for i in range(k)]
+        for as_numpy in (False, True):
+            with self.subTest(numpy=as_numpy), tempfile.TemporaryDirectory() as out:
+                planner = python_planners.HugeDecisions(n, as_numpy=as_numpy, calls=3)
+                record = campo.run(OPEN_FIELD, planner=planner, out=os.path.join(out, "r"), figures=False)
+                m = record["metrics"]
+                self.assertEqual(m["outcome"], "aborted", m["reason"])
+                # A million points converted cost 1.5 s a call; thinned first, a few milliseconds.
+                self.assertLess(m["planner_time_ms_max"], 150)
+                lines, events = read_events(os.path.join(out, "r"))
+                self.assertEqual(len(events), 3)
+                for line, event in zip(lines, events):
+                    self.assertLessEqual(len(line), 256 << 10)
+                    self.assertEqual(event["decisions"]["thinned"], {"/planned_path": n})
+                    self.assertEqual(event["decisions"]["planned_path"], expected)
+
+    def test_decisions_over_a_line_are_dropped_or_refused(self):
+        class Blob(campo.Planner):
+            def __init__(self, decisions):
+                self.decisions = decisions
+                self.calls = 0
+
+            def plan(self, obs):
+                self.calls += 1
+                status = "aborted" if self.calls > 2 else "running"
+                return campo.PlanResult(campo.Command.hold([0, 0, 1.5]), status=status, decisions=self.decisions)
+
+        with tempfile.TemporaryDirectory() as out:
+            # A decision that cannot fit a line is dropped unconverted, noted with a lower bound of its size.
+            big = {"avoiding": True, "blob": "x" * 5_000_000}
+            record = campo.run(OPEN_FIELD, planner=Blob(big), out=os.path.join(out, "drop"), figures=False)
+            self.assertEqual(record["metrics"]["outcome"], "aborted", record["metrics"]["reason"])
+            _, events = read_events(os.path.join(out, "drop"))
+            self.assertEqual(events[0]["decisions"]["avoiding"], True)
+            self.assertNotIn("blob", events[0]["decisions"])
+            self.assertGreaterEqual(events[0]["decisions"]["omitted"]["blob"], 5_000_002)
+            # Decisions too large in all, each small enough for a line: refused, the run failed.
+            many = {"k%03d" % i: "y" * 200_000 for i in range(40)}
+            record = campo.run(OPEN_FIELD, planner=Blob(many))
+            self.assert_failed_by(record, "the planner's decisions hold more than 4 MiB of JSON")
+            # Nesting has a bound too.
+            deep = []
+            for _ in range(150):
+                deep = [deep]
+            record = campo.run(OPEN_FIELD, planner=Blob({"deep": deep}))
+            self.assert_failed_by(record, "nest lists and dicts deeper than 100 levels")
+
+    def test_a_planner_that_exits_ends_its_run_not_campo(self):
+        with tempfile.TemporaryDirectory() as out:
+            for params, expected in [({"status": 3}, "called os._exit(3): campo ended the run as failed instead "
+                                                     "of the process"),
+                                     ({"status": 4, "use_sys": True}, "SystemExit: 4")]:
+                with self.subTest(params=params):
+                    name = "exit_%d" % params["status"]
+                    planner = {"name": "python:python_planners:Exits", "params": params}
+                    done, _ = run_campo("run", OPEN_FIELD, "--set", "/objects/drone/planner=" + json.dumps(planner),
+                                        "--no-figures", "--out", name, cwd=out)
+                    self.assertEqual(done.returncode, 0, done.stderr)  # a failed run is a run
+                    record = json.loads(pathlib.Path(out, name, "run.json").read_text())
+                    self.assert_failed_by(record, expected)
+                    for file in ("events.jsonl", "trajectory.csv", "scene.json"):
+                        self.assertTrue(pathlib.Path(out, name, file).is_file())
+        # sys.exit inside campo.run: the run fails, the caller's process goes on.
+        record = campo.run(OPEN_FIELD, planner=python_planners.Exits(status=5, use_sys=True))
+        self.assert_failed_by(record, "SystemExit: 5")
+
+    def test_the_embedded_interpreter_is_the_one_campo_was_built_against(self):
+        with tempfile.TemporaryDirectory() as out:
+            # Another Python first on the PATH, with its own prefix (as pyenv's or a virtual environment's),
+            # and PYTHONHOME naming it: neither numpy nor even a standard library there.
+            fake = pathlib.Path(out, "fake")
+            (fake / "bin").mkdir(parents=True)
+            lib = fake / "lib" / ("python%d.%d" % sys.version_info[:2])
+            (lib / "lib-dynload").mkdir(parents=True)
+            (lib / "os.py").write_text("raise SystemExit('the wrong Python')\n")
+            python3 = fake / "bin" / "python3"
+            python3.write_text("#!/bin/sh\necho the wrong Python >&2\nexit 1\n")
+            python3.chmod(0o755)
+            (fake / "bin" / "python").symlink_to("python3")
+            for home in (False, True):
+                with self.subTest(pythonhome=home):
+                    env = python_env()
+                    env["PATH"] = os.pathsep.join([str(fake / "bin"), env.get("PATH", "")])
+                    if home:
+                        env["PYTHONHOME"] = str(fake)
+                    name = "home" if home else "path"
+                    done, _ = run_campo("run", OPEN_FIELD, "--planner", "python:python_planners:GoStraight",
+                                        "--no-figures", "--out", name, cwd=out, env=env)
+                    self.assertEqual(done.returncode, 0, done.stderr)
+                    record = json.loads(pathlib.Path(out, name, "run.json").read_text())
+                    self.assertEqual(record["metrics"]["outcome"], "reached")
 
 
 class ExamplesTest(unittest.TestCase):
