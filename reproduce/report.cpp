@@ -12,10 +12,19 @@ namespace campo {
 const char* verdict_name(Verdict verdict) {
   switch (verdict) {
     case Verdict::reproduced: return "reproduced";
+    case Verdict::reproduced_with_departures: return "reproduced with departures";
     case Verdict::deviates: return "deviates";
     case Verdict::not_reproduced: return "not reproduced";
+    case Verdict::extension: return "extension";
   }
   return "?";
+}
+
+Verdict judge(ClaimKind kind, std::optional<bool> criterion_holds, bool has_departures, bool cause_known) {
+  if (kind == ClaimKind::extension) return Verdict::extension;
+  if (!criterion_holds) return Verdict::not_reproduced;
+  if (*criterion_holds) return has_departures ? Verdict::reproduced_with_departures : Verdict::reproduced;
+  return cause_known ? Verdict::deviates : Verdict::not_reproduced;
 }
 
 void TargetCheck::expect(bool holds, const std::string& description) {
@@ -109,6 +118,45 @@ std::string markdown_table(const std::vector<std::string>& header, const std::ve
   return out.str();
 }
 
+std::string report_headline(const std::vector<Claim>& claims) {
+  std::map<Verdict, int> counts;
+  std::size_t departures = 0, with_departures = 0;
+  for (const Claim& c : claims) {
+    ++counts[c.verdict];
+    departures += c.departures.size();
+    with_departures += !c.departures.empty();
+  }
+  return "**" + std::to_string(claims.size()) + " claims: " + std::to_string(counts[Verdict::reproduced]) +
+         " reproduced, " + std::to_string(counts[Verdict::reproduced_with_departures]) +
+         " reproduced with departures, " + std::to_string(counts[Verdict::deviates]) + " deviate, " +
+         std::to_string(counts[Verdict::not_reproduced]) + " not reproduced, " +
+         std::to_string(counts[Verdict::extension]) + " extensions; " + std::to_string(departures) +
+         " departures from the theses disclosed in " + std::to_string(with_departures) + " claims.**";
+}
+
+nlohmann::json claims_json(const std::vector<Claim>& claims, const ReportInfo& info) {
+  nlohmann::json out = {{"campo_version", info.campo_version}, {"command", info.command}, {"quick", info.quick},
+                        {"claims", nlohmann::json::array()}};
+  for (const Claim& c : claims) {
+    nlohmann::json departures = nlohmann::json::array();
+    for (const Departure& d : c.departures) {
+      departures.push_back({{"setting", d.setting}, {"thesis", d.thesis}, {"campo", d.campo}, {"why", d.why},
+                            {"with_thesis_setting", d.with_thesis_setting}});
+    }
+    out["claims"].push_back({{"id", c.id},
+                             {"seed", c.seed},
+                             {"title", c.title},
+                             {"source", c.source},
+                             {"thesis_value", c.thesis_value},
+                             {"seeds", c.seeds},
+                             {"measured", c.measured_values},
+                             {"verdict", verdict_name(c.verdict)},
+                             {"verdict_reason", c.verdict_reason},
+                             {"departures", departures}});
+  }
+  return out;
+}
+
 std::string format_report(const std::vector<Claim>& claims, const ReportInfo& info) {
   std::ostringstream out;
   out << "# Reproductions of the seed theses\n\n"
@@ -120,16 +168,18 @@ std::string format_report(const std::vector<Claim>& claims, const ReportInfo& in
     out << "**Quick version**: reduced experiments (fewer seeds, resolutions and runs) for the test suite; "
         << "its numbers are not the reproduction.\n\n";
   }
-  std::map<Verdict, int> counts;
-  for (const Claim& c : claims) ++counts[c.verdict];
-  out << "**" << claims.size() << " claims: " << counts[Verdict::reproduced] << " reproduced, "
-      << counts[Verdict::deviates] << " with a stated deviation, " << counts[Verdict::not_reproduced]
-      << " not reproduced.**\n\n";
+  out << report_headline(claims) << "\n\n"
+      << "Verdicts are judged on each thesis's own criterion, quoted with its source: *reproduced* (it holds with "
+      << "the thesis's setup), *reproduced with departures* (it holds only with the departures listed under the "
+      << "claim, each run with the thesis's own setting beside it), *deviates* (it does not hold; the cause is "
+      << "given with evidence), *not reproduced* (it does not hold, cause unknown), *extension* (campo's own "
+      << "experiment where the thesis reports no result).\n\n";
   std::vector<std::vector<std::string>> summary;
   for (const Claim& c : claims) {
-    summary.push_back({c.seed, "[" + c.title + "](#" + anchor(claim_heading(c)) + ")", verdict_name(c.verdict)});
+    summary.push_back({c.seed, "[" + c.title + "](#" + anchor(claim_heading(c)) + ")", c.source,
+                       verdict_name(c.verdict), std::to_string(c.departures.size())});
   }
-  out << markdown_table({"Seed", "Claim", "Verdict"}, summary) << "\n";
+  out << markdown_table({"Seed", "Claim", "Judged on", "Verdict", "Departures"}, summary) << "\n";
 
   std::string seed;
   for (const Claim& c : claims) {
@@ -138,13 +188,22 @@ std::string format_report(const std::vector<Claim>& claims, const ReportInfo& in
       out << "## " << seed_title(seed) << "\n\n";
     }
     out << "### " << claim_heading(c) << "\n\n";
+    if (!c.source.empty()) {
+      out << "**Judged on.** " << c.source << (c.thesis_value.empty() ? "" : ": " + c.thesis_value) << "\n\n";
+    }
     out << "**The thesis.** " << c.thesis << "\n\n";
+    if (!c.departures.empty()) {
+      std::vector<std::vector<std::string>> rows;
+      for (const Departure& d : c.departures) rows.push_back({d.setting, d.thesis, d.campo, d.why, d.with_thesis_setting});
+      out << "**Departures from the thesis.**\n\n"
+          << markdown_table({"Setting", "Thesis", "campo", "Why", "With the thesis's setting"}, rows) << "\n";
+    }
     if (!c.commands.empty()) {
       out << "**Commands.**\n\n```\n";
       for (const std::string& command : c.commands) out << command << "\n";
       out << "```\n\n";
     }
-    out << "**Measured.** " << c.measured << "\n\n";
+    out << "**Measured.** " << (c.seeds.empty() ? "" : "Seeds " + c.seeds + ". ") << c.measured << "\n\n";
     for (const Figure& figure : c.figures) {
       out << "![" << figure.caption << "](" << figure.file << ")\n*" << figure.caption << "*\n\n";
     }

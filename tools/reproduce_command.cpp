@@ -42,6 +42,8 @@ int reproduce(const ReproduceOptions& o) {
   }
   const fs::path report = o.report;
   check_output_file(report, "--report");
+  const fs::path claims_file = report.parent_path() / "claims.json";
+  check_output_file(claims_file, "--report (claims.json beside it)");
   check_output_directory(o.work, "--work");
   check_output_directory(report.parent_path() / report.stem(), "--report (its figures' folder)");
   const auto start = std::chrono::steady_clock::now();
@@ -69,11 +71,10 @@ int reproduce(const ReproduceOptions& o) {
   info.quick = o.quick;
   info.jobs = config.jobs;
   info.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_file_atomically(claims_file, claims_json(claims, info).dump(2) + "\n");
   write_file_atomically(report, format_report(claims, info));
-  int reproduced = 0;
-  for (const Claim& c : claims) reproduced += c.verdict == Verdict::reproduced;
-  std::cout << "campo reproduce: " << reproduced << " of " << claims.size() << " claims reproduced; report in "
-            << report.string() << ", figures in " << config.figure_dir.string() << "\n";
+  std::cout << "campo reproduce: " << report_headline(claims) << "\nreport in " << report.string() << ", "
+            << claims_file.string() << ", figures in " << config.figure_dir.string() << "\n";
   return kOk;
 }
 
@@ -92,9 +93,12 @@ Command add_reproduce(CLI::App& app) {
   app.footer(
       "Runs every experiment of the seed theses that campo reproduces (the bundled scenes and sweep specs), from "
       "campo's source directory, each as the campo command the report lists, and writes the report: for every "
-      "claim the thesis's words or numbers, campo's measurement, its commands, figures and a verdict "
-      "(reproduced, deviates, not reproduced). A claim whose experiment fails is reported as not reproduced with "
-      "the reason; the other claims still are.\n"
+      "claim the thesis's words or numbers with their source, the settings in which campo departs from the "
+      "thesis (each run with the thesis's own setting beside it), campo's measurement, its commands, figures and "
+      "a verdict judged on the thesis's own criterion (reproduced, reproduced with departures, deviates, not "
+      "reproduced, extension); and claims.json beside the report (per claim its id, seeds, thesis source and "
+      "value, measured values, verdict and departures). A claim whose experiment fails is reported as not "
+      "reproduced with the reason; the other claims still are.\n"
       "Examples: campo reproduce\n"
       "          campo reproduce --quick --report out/quick/reproductions.md --work out/quick/work");
   return [o] { return reproduce(*o); };

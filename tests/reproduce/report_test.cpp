@@ -36,6 +36,45 @@ TEST(MeasureClaim, AFailedExperimentIsReportedNotThrown) {
   EXPECT_THAT(claim.measured, HasSubstr("exit code 2"));
 }
 
+TEST(Judge, EveryVerdictFromTheCriterionTheDeparturesAndTheCause) {
+  EXPECT_EQ(judge(ClaimKind::thesis_result, true, false, false), Verdict::reproduced);
+  EXPECT_EQ(judge(ClaimKind::thesis_result, true, true, false), Verdict::reproduced_with_departures);
+  EXPECT_EQ(judge(ClaimKind::thesis_result, false, true, true), Verdict::deviates);
+  EXPECT_EQ(judge(ClaimKind::thesis_result, false, false, false), Verdict::not_reproduced);
+  EXPECT_EQ(judge(ClaimKind::thesis_result, std::nullopt, false, true), Verdict::not_reproduced);
+  // An extension is one whatever it measured: nothing in the thesis to hold it to.
+  EXPECT_EQ(judge(ClaimKind::extension, true, false, false), Verdict::extension);
+  EXPECT_EQ(judge(ClaimKind::extension, false, true, true), Verdict::extension);
+}
+
+TEST(FormatReport, DisclosesDeparturesAndWritesClaimsJson) {
+  Claim c;
+  c.id = "003-fig-45";
+  c.seed = "003";
+  c.title = "Fig. 45";
+  c.source = "003 §5.2, Fig. 45";
+  c.thesis_value = "the rover avoids every obstacle";
+  c.seeds = "1-20";
+  c.measured_values = {{"avoided_fraction", 0.95}};
+  c.departures = {{"row spacing", "4 m (003 §5.2)", "5 m", "follow-the-gap stalls at 4 m", "stalled in 7 of 20"}};
+  c.verdict = judge(ClaimKind::thesis_result, true, !c.departures.empty(), false);
+  ReportInfo info;
+  info.campo_version = "campo 0.2.0 (git abc)";
+  const std::string text = format_report({c}, info);
+  EXPECT_THAT(text, HasSubstr("1 reproduced with departures"));
+  EXPECT_THAT(text, HasSubstr("1 departures from the theses disclosed in 1 claims"));
+  EXPECT_THAT(text, HasSubstr("**Judged on.** 003 §5.2, Fig. 45: the rover avoids every obstacle"));
+  EXPECT_THAT(text, HasSubstr("| row spacing | 4 m (003 §5.2) | 5 m | follow-the-gap stalls at 4 m | stalled in 7 of 20 |"));
+  EXPECT_THAT(text, HasSubstr("**Measured.** Seeds 1-20."));
+  const nlohmann::json json = claims_json({c}, info);
+  EXPECT_EQ(json["campo_version"], "campo 0.2.0 (git abc)");
+  ASSERT_EQ(json["claims"].size(), 1u);
+  EXPECT_EQ(json["claims"][0]["id"], "003-fig-45");
+  EXPECT_EQ(json["claims"][0]["verdict"], "reproduced with departures");
+  EXPECT_EQ(json["claims"][0]["measured"]["avoided_fraction"], 0.95);
+  EXPECT_EQ(json["claims"][0]["departures"][0]["with_thesis_setting"], "stalled in 7 of 20");
+}
+
 TEST(MarkdownTable, EscapesPipesAndPadsShortRows) {
   EXPECT_EQ(markdown_table({"a", "b"}, {{"1|2"}, {"3", "4"}}),
             "| a | b |\n| --- | --- |\n| 1\\|2 |  |\n| 3 | 4 |\n");
@@ -60,8 +99,9 @@ TEST(FormatReport, CountsVerdictsAndLinksEveryClaim) {
   info.campo_version = "campo 0.1.0 (git abc)";
   info.command = "campo reproduce";
   const std::string text = format_report({a, b}, info);
-  EXPECT_THAT(text, HasSubstr("**2 claims: 1 reproduced, 1 with a stated deviation, 0 not reproduced.**"));
-  EXPECT_THAT(text, HasSubstr("| 000 | [Table 5.1 side by side](#000-table-51-side-by-side) | reproduced |"));
+  EXPECT_THAT(text, HasSubstr("**2 claims: 1 reproduced, 0 reproduced with departures, 1 deviate, 0 not reproduced, "
+                              "0 extensions; 0 departures from the theses disclosed in 0 claims.**"));
+  EXPECT_THAT(text, HasSubstr("| 000 | [Table 5.1 side by side](#000-table-51-side-by-side) |  | reproduced | 0 |"));
   EXPECT_THAT(text, HasSubstr("### 003: Fig. 46, follow-the-gap"));
   EXPECT_THAT(text, HasSubstr("## Seed 003"));
   EXPECT_THAT(text, HasSubstr("![The runs.](reproductions/a.png)\n*The runs.*"));
