@@ -325,26 +325,88 @@ void write_sweep_chart(const SweepTable& table, const std::filesystem::path& png
   write_png(draw_sweep_chart(table), png);
 }
 
-cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& layout, const PlotRequest& request,
-                        const PlotConfig& config) {
+namespace {
+
+// The request's fields: checked against the axes when they are known.
+std::vector<std::string> plot_fields(const PlotRequest& request, const TableLayout& layout, bool check_axes) {
   const std::string cli = "command line";
-  check_field(request.x, layout.axes, cli, "--x");
-  const MetricKind kind = check_metric(request.y, runs, cli, "--y");
+  if (check_axes) check_field(request.x, layout.axes, cli, "--x");
   std::vector<std::string> fields{request.x};
   if (!request.group.empty()) {
-    check_field(request.group, layout.axes, cli, "--group");
+    if (check_axes) check_field(request.group, layout.axes, cli, "--group");
     if (request.group == request.x) throw InputError(cli, "--group", "a field other than --x (\"" + request.x + "\")");
     fields.push_back(request.group);
   }
+  return fields;
+}
+
+// The runs of one point or box, a run at a time.
+struct MarkFold {
+  int runs = 0, failed = 0;
+  RunningStats stats;     // line plots and rates
+  QuantileSketch values;  // box plots of numbers
+};
+
+}  // namespace
+
+struct PlotBuilder::Impl {
+  const TableLayout& layout;
+  PlotRequest request;
+  RunGroups groups;
+  MetricCatalog catalog;
+  std::vector<MarkFold> marks;  // per group
+};
+
+PlotBuilder::PlotBuilder(const TableLayout& layout, PlotRequest request)
+    : impl_(new Impl{layout, request, RunGroups(layout, plot_fields(request, layout, !layout.axes_from_runs)), {}, {}}) {
+  MetricCatalog{}.check(request.y, "command line", "--y");  // the metric's name alone, before any run
+}
+PlotBuilder::~PlotBuilder() = default;
+PlotBuilder::PlotBuilder(PlotBuilder&&) noexcept = default;
+PlotBuilder& PlotBuilder::operator=(PlotBuilder&&) noexcept = default;
+
+void PlotBuilder::add(const RunResult& run, std::size_t index) {
+  Impl& d = *impl_;
+  d.catalog.add(run);
+  const std::size_t g = d.groups.add(run, index);
+  if (g == d.marks.size()) d.marks.emplace_back();
+  MarkFold& mark = d.marks[g];
+  ++mark.runs;
+  if (!run.completed) ++mark.failed;
+  if (const auto v = metric_value(run, d.request.y)) {
+    mark.stats.add(*v);
+    mark.values.add(*v);
+  }
+}
+
+cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& layout, const PlotRequest& request,
+                        const PlotConfig& config) {
+  PlotBuilder builder(layout, request);
+  for (std::size_t i = 0; i < runs.size(); ++i) builder.add(runs[i], i);
+  return builder.draw(config);
+}
+
+cv::Mat PlotBuilder::draw(const PlotConfig& config) const {
+  const Impl& d = *impl_;
+  const PlotRequest& request = d.request;
+  const TableLayout& layout = d.layout;
+  const std::string cli = "command line";
+  plot_fields(request, layout, true);
+  const MetricKind kind = d.catalog.check(request.y, cli, "--y");
   if (config.width_px < 800 || config.height_px < 500) {
     throw std::invalid_argument("draw_sweep_plot: expected at least 800 x 500 pixels");
   }
-  const std::vector<RunGroup> groups = group_runs(runs, layout, fields);
-  if (groups.empty()) throw InputError(cli, "DIR", "results with at least one run to plot");
+  if (d.groups.size() == 0) throw InputError(cli, "DIR", "results with at least one run to plot");
+  struct Group {
+    const std::vector<nlohmann::json>& key;
+    const MarkFold& fold;
+  };
+  std::vector<Group> groups;
+  for (std::size_t g : d.groups.order()) groups.push_back({d.groups.key(g), d.marks[g]});
 
   // X values and series (group values) in the sweep's expansion order.
   std::vector<nlohmann::json> xs, series;
-  for (const RunGroup& g : groups) {
+  for (const Group& g : groups) {
     index_in_order(xs, g.key[0]);
     index_in_order(series, g.key.size() > 1 ? g.key[1] : nlohmann::json());
   }
@@ -374,25 +436,20 @@ cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& l
   std::vector<Mark> marks;
   double y_lo = HUGE_VAL, y_hi = -HUGE_VAL;
   int run_count = 0, failed = 0;
-  for (const RunGroup& g : groups) {
-    run_count += static_cast<int>(g.runs.size());
-    failed += static_cast<int>(
-        std::count_if(g.runs.begin(), g.runs.end(), [](const RunResult* r) { return !r->completed; }));
+  for (const Group& g : groups) {
+    run_count += g.fold.runs;
+    failed += g.fold.failed;
     const std::size_t series_index = index_in_order(series, g.key.size() > 1 ? g.key[1] : nlohmann::json());
     Mark mark{series_index, x_of(g.key[0]), std::nullopt, std::nullopt};
     if (line || rate) {
-      mark.summary = summarize_metric(g.runs, request.y, kind);
-      if (!mark.summary) continue;
+      if (g.fold.stats.count() == 0) continue;
+      mark.summary = kind == MetricKind::number ? g.fold.stats.values() : g.fold.stats.rate();
       const Summary& s = *mark.summary;
       y_lo = std::min({y_lo, scale * s.mean, s.ci95 ? scale * s.ci95->low : HUGE_VAL});
       y_hi = std::max({y_hi, scale * s.mean, s.ci95 ? scale * s.ci95->high : -HUGE_VAL});
     } else {
-      std::vector<double> values;
-      for (const RunResult* r : g.runs) {
-        if (const auto v = metric_value(*r, request.y)) values.push_back(*v);
-      }
-      if (values.empty()) continue;
-      mark.box = box_stats(values);
+      if (g.fold.values.count() == 0) continue;
+      mark.box = g.fold.values.box();
       y_lo = std::min({y_lo, mark.box->whisker_low, mark.box->outliers.empty() ? HUGE_VAL : mark.box->outliers.front()});
       y_hi = std::max({y_hi, mark.box->whisker_high, mark.box->outliers.empty() ? -HUGE_VAL : mark.box->outliers.back()});
     }

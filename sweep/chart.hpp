@@ -6,6 +6,7 @@
 /// over the runs that reached their goal only). The plots of
 /// `campo plot`: any metric against any field, as lines or box plots.
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include <opencv2/core.hpp>
@@ -46,8 +47,28 @@ struct PlotConfig {
   int height_px = 1000;  ///< >= 500
 };
 
-/// The plot of `runs` (BGR). Checks the request first: InputError naming the
-/// option (--x, --y, --group, --kind) and what was expected.
+/// A plot built a run at a time: memory per point or box, not per run
+/// (RunningStats; a QuantileSketch per box, exact up to its kExactValues values).
+class PlotBuilder {
+ public:
+  /// `layout` must outlive this (with axes_from_runs its axes may grow until
+  /// draw()). Checks the request's fields when the axes are known (InputError).
+  PlotBuilder(const TableLayout& layout, PlotRequest request);
+  ~PlotBuilder();
+  PlotBuilder(PlotBuilder&&) noexcept;
+  PlotBuilder& operator=(PlotBuilder&&) noexcept;
+  /// `index`: the run's place in order of first appearance (for_each_result).
+  void add(const RunResult& run, std::size_t index);
+  /// The plot of the runs added (BGR). Checks the request first: InputError
+  /// naming the option (--x, --y, --group, --kind) and what was expected.
+  cv::Mat draw(const PlotConfig& config = {}) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The plot of `runs` (PlotBuilder).
 cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& layout, const PlotRequest& request,
                         const PlotConfig& config = {});
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <numeric>
@@ -85,53 +86,97 @@ RunResult read_result(const JsonNode& node) {
 }
 
 // Mean and sd of one metric over some completed runs; empty when there are none.
-template <class Metric>
-std::optional<MeanSd> spread(const std::vector<const RunResult*>& completed, Metric metric) {
-  if (completed.empty()) return std::nullopt;
-  std::vector<double> values;
-  for (const RunResult* r : completed) values.push_back(metric(r->metrics));
-  const Summary s = summarize_values(values);
+std::optional<MeanSd> spread(const RunningStats& stats) {
+  if (stats.count() == 0) return std::nullopt;
+  const Summary s = stats.values();
   return MeanSd{s.mean, s.sd};
 }
 
-TableRow summarize(const std::vector<const RunResult*>& group, const std::vector<std::string>& axes) {
-  TableRow row;
-  row.scene = group.front()->scene;
-  for (const std::string& axis : axes) row.params.push_back(group.front()->params.value(axis, nlohmann::json()));
-  row.runs = static_cast<int>(group.size());
-  std::vector<const RunResult*> completed, reached;
-  std::vector<double> replan_medians, replan_maxima;
-  for (const RunResult* r : group) {
-    if (!r->completed) {
-      ++row.failed;
-      continue;
+// One row of the summary table, a run at a time.
+struct RowFold {
+  std::string scene;
+  nlohmann::json params;  // the first run's
+  int runs = 0, failed = 0, reached = 0, collisions = 0;
+  std::optional<double> min_clearance_m;
+  // Over the completed runs, then over the reached ones.
+  RunningStats waypoints_reached, waypoints_discarded, path_length_m, path_ratio, time_s;
+  RunningStats path_length_m_reached, path_ratio_reached, time_s_reached;
+  QuantileSketch replan_medians;
+  std::optional<double> replan_max;
+  IdenticalRuns identical;
+
+  void add(const RunResult& r) {
+    if (runs++ == 0) {
+      scene = r.scene;
+      params = r.params;
     }
-    completed.push_back(r);
-    if (r->metrics.outcome == "reached") reached.push_back(r);
-    row.collisions += r->metrics.collisions;
-    if (const auto& c = r->metrics.min_clearance_m) row.min_clearance_m = std::min(row.min_clearance_m.value_or(*c), *c);
-    if (r->metrics.replans > 0) {
-      replan_medians.push_back(r->metrics.replan_ms_median);
-      replan_maxima.push_back(r->metrics.replan_ms_max);
+    identical.add(r);
+    if (!r.completed) {
+      ++failed;
+      return;
+    }
+    const RunMetrics& m = r.metrics;
+    waypoints_reached.add(m.waypoints_reached);
+    waypoints_discarded.add(m.waypoints_discarded);
+    path_length_m.add(m.path_length_m);
+    path_ratio.add(m.path_ratio);
+    time_s.add(m.time_s);
+    if (m.outcome == "reached") {
+      ++reached;
+      path_length_m_reached.add(m.path_length_m);
+      path_ratio_reached.add(m.path_ratio);
+      time_s_reached.add(m.time_s);
+    }
+    collisions += m.collisions;
+    if (const auto& c = m.min_clearance_m) min_clearance_m = std::min(min_clearance_m.value_or(*c), *c);
+    if (m.replans > 0) {
+      replan_medians.add(m.replan_ms_median);
+      replan_max = std::max(replan_max.value_or(m.replan_ms_max), m.replan_ms_max);
     }
   }
-  row.reached = static_cast<int>(reached.size());
-  row.success_rate = static_cast<double>(row.reached) / row.runs;
-  row.identical = identical_runs(group);
-  row.waypoints_reached = spread(completed, [](const RunMetrics& m) { return m.waypoints_reached; });
-  row.waypoints_discarded = spread(completed, [](const RunMetrics& m) { return m.waypoints_discarded; });
-  row.path_length_m = spread(completed, [](const RunMetrics& m) { return m.path_length_m; });
-  row.path_ratio = spread(completed, [](const RunMetrics& m) { return m.path_ratio; });
-  row.time_s = spread(completed, [](const RunMetrics& m) { return m.time_s; });
-  // An aborted run's short path would pull the all-run means down: the same over the successes alone.
-  row.path_length_m_reached = spread(reached, [](const RunMetrics& m) { return m.path_length_m; });
-  row.path_ratio_reached = spread(reached, [](const RunMetrics& m) { return m.path_ratio; });
-  row.time_s_reached = spread(reached, [](const RunMetrics& m) { return m.time_s; });
-  if (!replan_medians.empty()) {
-    row.replan_ms_median = box_stats(replan_medians).median;
-    row.replan_ms_max = *std::max_element(replan_maxima.begin(), replan_maxima.end());
+
+  TableRow row(const std::vector<std::string>& axes) const {
+    TableRow row;
+    row.scene = scene;
+    for (const std::string& axis : axes) row.params.push_back(params.value(axis, nlohmann::json()));
+    row.runs = runs;
+    row.failed = failed;
+    row.reached = reached;
+    row.success_rate = static_cast<double>(reached) / runs;
+    row.identical = identical.identical();
+    row.collisions = collisions;
+    row.min_clearance_m = min_clearance_m;
+    row.waypoints_reached = spread(waypoints_reached);
+    row.waypoints_discarded = spread(waypoints_discarded);
+    row.path_length_m = spread(path_length_m);
+    row.path_ratio = spread(path_ratio);
+    row.time_s = spread(time_s);
+    // An aborted run's short path would pull the all-run means down: the same over the successes alone.
+    row.path_length_m_reached = spread(path_length_m_reached);
+    row.path_ratio_reached = spread(path_ratio_reached);
+    row.time_s_reached = spread(time_s_reached);
+    if (replan_medians.count() > 0) {
+      row.replan_ms_median = replan_medians.median();
+      row.replan_ms_max = replan_max;
+    }
+    return row;
   }
-  return row;
+};
+
+// 128 bits of a run ID: two independent 64-bit hashes (FNV-1a and the standard library's).
+struct IdDigest {
+  std::uint64_t a = 0, b = 0;
+  bool operator<(const IdDigest& o) const { return a != o.a ? a < o.a : b < o.b; }
+  bool operator==(const IdDigest& o) const { return a == o.a && b == o.b; }
+};
+
+IdDigest id_digest(const std::string& id) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : id) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return {h, static_cast<std::uint64_t>(std::hash<std::string>{}(id))};
 }
 
 }  // namespace
@@ -202,41 +247,119 @@ void ResultsLog::append(const nlohmann::json& line) {
   }
 }
 
-std::vector<ResultLine> read_result_lines(const std::filesystem::path& path, std::vector<std::string>& warnings) {
+void for_each_result_line(const std::filesystem::path& path, std::vector<std::string>& warnings,
+                          const std::function<void(nlohmann::json&&, const std::string&)>& line,
+                          const ResultsLimits& limits) {
   const std::string file = path.string();
-  const std::string text = read_text_file(path, {.max_file_bytes = std::uintmax_t{1} << 32});
-  std::vector<ResultLine> lines;
-  std::size_t start = 0;
-  for (int number = 1; start < text.size(); ++number) {
-    const std::size_t newline = text.find('\n', start);
-    const bool last = newline == std::string::npos;
-    const std::string line = text.substr(start, last ? std::string::npos : newline - start);
-    start = last ? text.size() : newline + 1;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    const std::string source = file + " line " + std::to_string(number);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(file, "", "cannot read: not an existing regular file");
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > limits.max_file_bytes) {
+    throw InputError(file, "", "file too large: " + std::to_string(size) + " bytes, expected at most " +
+                                   std::to_string(limits.max_file_bytes));
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(file, "", "cannot open for reading");
+  // Read in blocks; a line is parsed as soon as its newline is in, so memory is one line and one block.
+  std::vector<char> block(std::size_t{1} << 20);
+  std::string text;  // the current line so far
+  int number = 1;
+  const auto finish_line = [&](bool last) {
+    const std::string source = file + " line " + std::to_string(number++);
+    if (text.find_first_not_of(" \t\r") == std::string::npos) return;
+    nlohmann::json value;
     try {
-      lines.push_back({parse_json_text(line, source), source});
+      value = parse_json_text(text, source, {.max_file_bytes = limits.max_line_bytes});
     } catch (const InputError&) {
       // A sweep killed mid-write leaves a partial last line without its newline.
       if (!last) throw;
       warnings.push_back(source + " is incomplete (an interrupted sweep?) and was ignored");
+      return;
+    }
+    line(std::move(value), source);
+  };
+  while (in) {
+    in.read(block.data(), static_cast<std::streamsize>(block.size()));
+    const std::size_t got = static_cast<std::size_t>(in.gcount());
+    if (got == 0) break;
+    std::size_t start = 0;
+    while (start < got) {
+      const char* begin = block.data() + start;
+      const char* newline = static_cast<const char*>(std::memchr(begin, '\n', got - start));
+      const std::size_t count = newline ? static_cast<std::size_t>(newline - begin) : got - start;
+      if (text.size() + count > limits.max_line_bytes) {
+        throw InputError(file + " line " + std::to_string(number), "",
+                         "line too long: expected at most " + std::to_string(limits.max_line_bytes) + " bytes");
+      }
+      text.append(begin, count);
+      start += count;
+      if (newline) {
+        finish_line(false);
+        text.clear();
+        ++start;
+      }
     }
   }
+  if (in.bad()) throw InputError(file, "", "cannot read: " + std::string(std::strerror(errno)));
+  if (!text.empty()) finish_line(true);
+}
+
+std::vector<ResultLine> read_result_lines(const std::filesystem::path& path, std::vector<std::string>& warnings) {
+  std::vector<ResultLine> lines;
+  for_each_result_line(path, warnings, [&](nlohmann::json&& value, const std::string& source) {
+    lines.push_back({std::move(value), source});
+  }, {});
   return lines;
+}
+
+void for_each_result(const std::filesystem::path& path, std::vector<std::string>& warnings,
+                     const std::function<void()>& restart,
+                     const std::function<void(const RunResult&, std::size_t)>& visit, const ResultsLimits& limits) {
+  // First reading: every line visited as it comes, each ID's digest kept (16 bytes a line).
+  std::vector<IdDigest> digests;
+  restart();
+  for_each_result_line(path, warnings, [&](nlohmann::json&& value, const std::string& source) {
+    const RunResult run = read_result(JsonNode(value, source, ""));
+    digests.push_back(id_digest(run.id));
+    visit(run, digests.size() - 1);
+  }, limits);
+  std::sort(digests.begin(), digests.end());
+  // How many lines each repeated ID has; none in a sweep that was never resumed.
+  std::map<IdDigest, std::size_t> lines_of;
+  for (std::size_t i = 0; i < digests.size();) {
+    std::size_t j = i + 1;
+    while (j < digests.size() && digests[j] == digests[i]) ++j;
+    if (j - i > 1) lines_of.emplace(digests[i], j - i);
+    i = j;
+  }
+  digests = {};
+  if (lines_of.empty()) return;
+  // Second reading: each repeated ID at its last line, in the place of its first.
+  std::map<IdDigest, std::pair<std::size_t, std::size_t>> seen;  // repeated ID -> lines read, index
+  std::size_t next_index = 0;
+  std::vector<std::string> ignored;  // the first reading reported them
+  restart();
+  for_each_result_line(path, ignored, [&](nlohmann::json&& value, const std::string& source) {
+    const RunResult run = read_result(JsonNode(value, source, ""));
+    const IdDigest digest = id_digest(run.id);
+    const auto repeated = lines_of.find(digest);
+    if (repeated == lines_of.end()) {
+      visit(run, next_index++);
+      return;
+    }
+    auto [it, first] = seen.try_emplace(digest, 0, next_index);
+    if (first) ++next_index;
+    if (++it->second.first == repeated->second) visit(run, it->second.second);  // a rerun: the last line counts
+  }, limits);
 }
 
 ResultsFile read_results(const std::filesystem::path& path) {
   ResultsFile results;
-  std::map<std::string, std::size_t> index_of;  // id -> position in results.runs
-  for (const ResultLine& line : read_result_lines(path, results.warnings)) {
-    RunResult result = read_result(JsonNode(line.value, line.source, ""));
-    const auto [it, inserted] = index_of.emplace(result.id, results.runs.size());
-    if (inserted) {
-      results.runs.push_back(std::move(result));
-    } else {
-      results.runs[it->second] = std::move(result);  // a rerun (resumed sweep): the last line counts
-    }
-  }
+  std::vector<std::pair<std::size_t, RunResult>> runs;
+  for_each_result(path, results.warnings, [&] { runs.clear(); },
+                  [&](const RunResult& run, std::size_t index) { runs.emplace_back(index, run); });
+  std::stable_sort(runs.begin(), runs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& [index, run] : runs) results.runs.push_back(std::move(run));
   return results;
 }
 
@@ -254,7 +377,7 @@ TableRequest read_table_request(const JsonNode& node) {
   return request;
 }
 
-TableLayout table_layout(const std::filesystem::path& dir, const std::vector<RunResult>& runs) {
+TableLayout table_layout(const std::filesystem::path& dir) {
   TableLayout layout;
   const std::filesystem::path manifest = dir / "sweep.json";
   if (std::filesystem::exists(manifest)) {
@@ -278,11 +401,20 @@ TableLayout table_layout(const std::filesystem::path& dir, const std::vector<Run
     return layout;
   }
   layout.name = dir.filename().string();
-  for (const RunResult& run : runs) {
-    for (const auto& [axis, value] : run.params.items()) {
-      if (std::find(layout.axes.begin(), layout.axes.end(), axis) == layout.axes.end()) layout.axes.push_back(axis);
-    }
+  layout.axes_from_runs = true;
+  return layout;
+}
+
+void add_axes(TableLayout& layout, const RunResult& run) {
+  if (!layout.axes_from_runs) return;
+  for (const auto& [axis, value] : run.params.items()) {
+    if (std::find(layout.axes.begin(), layout.axes.end(), axis) == layout.axes.end()) layout.axes.push_back(axis);
   }
+}
+
+TableLayout table_layout(const std::filesystem::path& dir, const std::vector<RunResult>& runs) {
+  TableLayout layout = table_layout(dir);
+  for (const RunResult& run : runs) add_axes(layout, run);
   return layout;
 }
 
@@ -303,19 +435,6 @@ void check_field(const std::string& field, const std::vector<std::string>& axes,
   if (!found) throw InputError(file, where, "expected a field of the runs (" + known + "), got \"" + field + "\"");
 }
 
-std::vector<std::string> available_metrics(const std::vector<RunResult>& runs) {
-  std::set<std::string> names;
-  for (const RunResult& run : runs) {
-    if (!run.completed) continue;
-    for (const auto& [key, value] : run.metrics_json.items()) {
-      if (value.is_number() || value.is_boolean()) names.insert(key);
-    }
-  }
-  std::vector<std::string> metrics{"success"};
-  metrics.insert(metrics.end(), names.begin(), names.end());
-  return metrics;
-}
-
 MetricName split_metric(const std::string& metric) {
   const std::size_t at = metric.find('@');
   if (at == std::string::npos) return {metric, false};
@@ -326,26 +445,54 @@ bool measured_metric(std::string_view key) {
   return key == "wall_time_s" || key.starts_with("planner_time_ms_") || key.starts_with("replan_time_ms_");
 }
 
-bool identical_runs(const std::vector<const RunResult*>& runs) {
-  if (runs.size() < 2) return false;
-  // Everything a run's seed could change but the wall-clock measurements.
-  const auto deterministic = [](const RunResult& run) {
-    nlohmann::json metrics = nlohmann::json::object();
-    for (const auto& [key, value] : run.metrics_json.items()) {
-      if (!measured_metric(key)) metrics[key] = value;
-    }
-    return metrics;
-  };
-  const RunResult& first = *runs.front();
-  if (!first.completed) return false;
-  const nlohmann::json reference = deterministic(first);
-  return std::all_of(runs.begin() + 1, runs.end(), [&](const RunResult* run) {
-    return run->completed && run->trajectory_sha256 == first.trajectory_sha256 && deterministic(*run) == reference;
-  });
+namespace {
+
+// Everything a run's seed could change but the wall-clock measurements.
+nlohmann::json deterministic_metrics(const RunResult& run) {
+  nlohmann::json metrics = nlohmann::json::object();
+  for (const auto& [key, value] : run.metrics_json.items()) {
+    if (!measured_metric(key)) metrics[key] = value;
+  }
+  return metrics;
 }
 
-MetricKind check_metric(const std::string& metric, const std::vector<RunResult>& runs, const std::string& file,
-                        const std::string& where) {
+}  // namespace
+
+void IdenticalRuns::add(const RunResult& run) {
+  if (same_ && !run.completed) {
+    same_ = false;
+  } else if (same_ && runs_ == 0) {
+    metrics_ = deterministic_metrics(run);
+    trajectory_sha256_ = run.trajectory_sha256;
+  } else if (same_ && (run.trajectory_sha256 != trajectory_sha256_ || deterministic_metrics(run) != metrics_)) {
+    same_ = false;
+  }
+  if (!same_) metrics_ = nullptr;  // nothing left to compare
+  ++runs_;
+}
+
+bool identical_runs(const std::vector<const RunResult*>& runs) {
+  IdenticalRuns identical;
+  for (const RunResult* run : runs) identical.add(*run);
+  return identical.identical();
+}
+
+void MetricCatalog::add(const RunResult& run) {
+  if (!run.completed) return;
+  completed_ = true;
+  for (const auto& [key, value] : run.metrics_json.items()) {
+    if (value.is_number()) kinds_[key] |= 1;
+    if (value.is_boolean()) kinds_[key] |= 2;
+  }
+}
+
+std::vector<std::string> MetricCatalog::available() const {
+  std::vector<std::string> metrics{"success"};
+  for (const auto& [name, kinds] : kinds_) metrics.push_back(name);
+  return metrics;
+}
+
+MetricKind MetricCatalog::check(const std::string& metric, const std::string& file, const std::string& where) const {
   const MetricName name = split_metric(metric);
   if (name.base.size() != metric.size() && !name.reached_only) {
     throw InputError(file, where, "expected a metric, or a metric over the runs that reached their goal as \"" +
@@ -357,20 +504,28 @@ MetricKind check_metric(const std::string& metric, const std::vector<RunResult>&
                                   "goal it is 100 % by definition), got \"" + metric + "\"");
   }
   if (success) return MetricKind::rate;
-  bool completed = false, number = false, boolean = false;
-  for (const RunResult& run : runs) {
-    if (!run.completed) continue;
-    completed = true;
-    const nlohmann::json value = run.metrics_json.value(name.base, nlohmann::json());
-    number = number || value.is_number();
-    boolean = boolean || value.is_boolean();
-  }
-  if (completed && !number && !boolean) {
+  const auto it = kinds_.find(name.base);
+  const bool number = it != kinds_.end() && (it->second & 1) != 0;
+  const bool boolean = it != kinds_.end() && (it->second & 2) != 0;
+  if (completed_ && !number && !boolean) {
     std::string known;
-    for (const std::string& m : available_metrics(runs)) (known += known.empty() ? "" : ", ") += m;
+    for (const std::string& m : available()) (known += known.empty() ? "" : ", ") += m;
     throw InputError(file, where, "expected a metric of the runs (" + known + "), got \"" + metric + "\"");
   }
   return boolean && !number ? MetricKind::rate : MetricKind::number;
+}
+
+std::vector<std::string> available_metrics(const std::vector<RunResult>& runs) {
+  MetricCatalog catalog;
+  for (const RunResult& run : runs) catalog.add(run);
+  return catalog.available();
+}
+
+MetricKind check_metric(const std::string& metric, const std::vector<RunResult>& runs, const std::string& file,
+                        const std::string& where) {
+  MetricCatalog catalog;
+  for (const RunResult& run : runs) catalog.add(run);
+  return catalog.check(metric, file, where);
 }
 
 std::optional<double> metric_value(const RunResult& run, const std::string& metric) {
@@ -403,42 +558,94 @@ std::size_t index_in_order(std::vector<nlohmann::json>& values, const nlohmann::
   return values.size() - 1;
 }
 
+RunGroups::RunGroups(const TableLayout& layout, std::vector<std::string> fields, bool all_params)
+    : fields_(std::move(fields)), all_params_(all_params), order_size_(layout.run_order.size()) {
+  for (std::size_t i = 0; i < layout.run_order.size(); ++i) rank_of_.emplace(layout.run_order[i], i);
+}
+
+std::size_t RunGroups::add(const RunResult& run, std::size_t index) {
+  std::vector<nlohmann::json> key;
+  for (const std::string& field : fields_) key.push_back(field_value(run, field));
+  if (all_params_) {
+    nlohmann::json params = nlohmann::json::object();
+    for (const auto& [axis, value] : run.params.items()) {
+      if (!value.is_null()) params[axis] = value;
+    }
+    key.push_back(std::move(params));
+  }
+  // A run's rank: its place in the expansion, else after all of them in order of appearance.
+  const auto it = rank_of_.find(run.id);
+  const std::size_t rank = it != rank_of_.end() ? it->second : order_size_ + index;
+  const auto [group, inserted] = index_of_.try_emplace(nlohmann::json(key).dump(), keys_.size());
+  if (inserted) {
+    keys_.push_back(std::move(key));
+    ranks_.push_back(rank);
+  }
+  ranks_[group->second] = std::min(ranks_[group->second], rank);
+  return group->second;
+}
+
+std::vector<std::size_t> RunGroups::order() const {
+  std::vector<std::size_t> order(keys_.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return ranks_[a] < ranks_[b]; });
+  return order;
+}
+
 std::vector<RunGroup> group_runs(const std::vector<RunResult>& runs, const TableLayout& layout,
                                  const std::vector<std::string>& fields) {
-  // A run's rank: its place in the expansion, else after all of them in order of appearance.
-  std::map<std::string, std::size_t> rank_of;
-  for (std::size_t i = 0; i < layout.run_order.size(); ++i) rank_of.emplace(layout.run_order[i], i);
+  RunGroups index(layout, fields);
   std::vector<RunGroup> groups;
-  std::vector<std::size_t> ranks;                 // per group: its first run's rank
-  std::map<std::string, std::size_t> index_of;    // key as JSON text -> group
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    const RunResult& run = runs[i];
-    std::vector<nlohmann::json> key;
-    for (const std::string& field : fields) key.push_back(field_value(run, field));
-    const auto it = rank_of.find(run.id);
-    const std::size_t rank = it != rank_of.end() ? it->second : layout.run_order.size() + i;
-    const auto [group, inserted] = index_of.try_emplace(nlohmann::json(key).dump(), groups.size());
-    if (inserted) {
-      groups.push_back({std::move(key), {}});
-      ranks.push_back(rank);
-    }
-    groups[group->second].runs.push_back(&run);
-    ranks[group->second] = std::min(ranks[group->second], rank);
+    const std::size_t g = index.add(runs[i], i);
+    if (g == groups.size()) groups.push_back({index.key(g), {}});
+    groups[g].runs.push_back(&runs[i]);
   }
-  std::vector<std::size_t> order(groups.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return ranks[a] < ranks[b]; });
   std::vector<RunGroup> ordered;
-  for (std::size_t i : order) ordered.push_back(std::move(groups[i]));
+  for (std::size_t g : index.order()) ordered.push_back(std::move(groups[g]));
   return ordered;
 }
 
-SweepTable aggregate(const std::vector<RunResult>& runs, const TableLayout& layout) {
+struct SummaryBuilder::Impl {
+  const TableLayout& layout;
+  RunGroups groups;
+  std::vector<RowFold> rows;  // per group
+};
+
+namespace {
+
+// The summary's rows: scene and axes. Without sweep.json the axes are known only at the end: the rows
+// are then the scene and the whole params (RunGroups' all_params).
+RunGroups summary_groups(const TableLayout& layout) {
   std::vector<std::string> fields{"scene"};
+  if (layout.axes_from_runs) return RunGroups(layout, fields, true);
   fields.insert(fields.end(), layout.axes.begin(), layout.axes.end());
-  SweepTable table{layout.name, layout.axes, {}};
-  for (const RunGroup& group : group_runs(runs, layout, fields)) table.rows.push_back(summarize(group.runs, layout.axes));
+  return RunGroups(layout, fields);
+}
+
+}  // namespace
+
+SummaryBuilder::SummaryBuilder(const TableLayout& layout) : impl_(new Impl{layout, summary_groups(layout), {}}) {}
+SummaryBuilder::~SummaryBuilder() = default;
+SummaryBuilder::SummaryBuilder(SummaryBuilder&&) noexcept = default;
+SummaryBuilder& SummaryBuilder::operator=(SummaryBuilder&&) noexcept = default;
+
+void SummaryBuilder::add(const RunResult& run, std::size_t index) {
+  const std::size_t g = impl_->groups.add(run, index);
+  if (g == impl_->rows.size()) impl_->rows.emplace_back();
+  impl_->rows[g].add(run);
+}
+
+SweepTable SummaryBuilder::finish() const {
+  SweepTable table{impl_->layout.name, impl_->layout.axes, {}};
+  for (std::size_t g : impl_->groups.order()) table.rows.push_back(impl_->rows[g].row(impl_->layout.axes));
   return table;
+}
+
+SweepTable aggregate(const std::vector<RunResult>& runs, const TableLayout& layout) {
+  SummaryBuilder builder(layout);
+  for (std::size_t i = 0; i < runs.size(); ++i) builder.add(runs[i], i);
+  return builder.finish();
 }
 
 }  // namespace campo

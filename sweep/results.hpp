@@ -7,6 +7,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -101,13 +104,40 @@ struct ResultLine {
   std::string source;
 };
 
-/// The lines of a results.jsonl, in file order, parsed but not checked. A
-/// truncated last line (a sweep killed mid-write) is skipped with a warning;
-/// any other line that is not JSON is an InputError naming the file and line.
+/// Limits of reading results.jsonl.
+struct ResultsLimits {
+  std::uintmax_t max_file_bytes = std::uintmax_t{1} << 32;  ///< the whole file: 4 GiB
+  std::size_t max_line_bytes = 16u << 20;                   ///< one line, as every JSON file: 16 MiB
+};
+
+/// Calls `line(value, source)` for each line of a results.jsonl in file order,
+/// parsed but not checked, reading one line at a time. A truncated last line
+/// (a sweep killed mid-write) is skipped with a warning; any other line that
+/// is not JSON, or longer than the limit, is an InputError naming the file
+/// and line.
+void for_each_result_line(const std::filesystem::path& path, std::vector<std::string>& warnings,
+                          const std::function<void(nlohmann::json&& value, const std::string& source)>& line,
+                          const ResultsLimits& limits = {});
+
+/// The lines of a results.jsonl, in file order, parsed but not checked (for_each_result_line).
 std::vector<ResultLine> read_result_lines(const std::filesystem::path& path, std::vector<std::string>& warnings);
 
-/// Reads results.jsonl strictly (InputError naming the file, line and JSON
-/// pointer), except a truncated last line, which is ignored with a warning.
+/// Reads results.jsonl a line at a time, strictly (InputError naming the file,
+/// line and JSON pointer; a truncated last line is ignored with a warning),
+/// and calls `visit(run, index)` for the run of each ID, its last line (a
+/// resumed sweep appends its reruns); `index` is the run's place among the
+/// IDs in order of first appearance (read_results' order). A file in which
+/// no ID has several lines is read once; otherwise `restart()` is called and
+/// the file read again, visiting each ID's last line only (`restart()` is
+/// also called before the first reading: it starts the caller's fold afresh).
+/// Memory: one line, and 16 bytes per line to find repeated IDs.
+void for_each_result(const std::filesystem::path& path, std::vector<std::string>& warnings,
+                     const std::function<void()>& restart,
+                     const std::function<void(const RunResult& run, std::size_t index)>& visit,
+                     const ResultsLimits& limits = {});
+
+/// Reads results.jsonl strictly into memory (for_each_result), every run in
+/// order of first appearance.
 ResultsFile read_results(const std::filesystem::path& path);
 
 /// A table of chosen metrics (`campo table --rows`): one row per value of
@@ -133,11 +163,19 @@ struct TableLayout {
   std::vector<std::string> axes;       ///< in spec order
   std::vector<std::string> run_order;  ///< run IDs in expansion order
   std::optional<TableRequest> table;   ///< the spec's default table, if it has one
+  /// No sweep.json: the axes are the keys of the runs' params, in order of
+  /// first appearance, gathered with add_axes as the runs are read.
+  bool axes_from_runs = false;
 };
 
 /// From DIR/sweep.json when it exists; otherwise the axes are the params'
 /// keys and the order is that of results.jsonl.
 TableLayout table_layout(const std::filesystem::path& dir, const std::vector<RunResult>& runs);
+/// The same before any run is read: without sweep.json, no axes yet
+/// (axes_from_runs; add_axes adds them run by run).
+TableLayout table_layout(const std::filesystem::path& dir);
+/// Adds the keys of `run`'s params that are not axes yet, when layout.axes_from_runs.
+void add_axes(TableLayout& layout, const RunResult& run);
 
 /// Fields of every run that tables and plots group by, besides the axes.
 inline constexpr std::array<std::string_view, 3> kRunFields{"scene", "planner", "seed"};
@@ -178,6 +216,36 @@ bool measured_metric(std::string_view key);
 /// spurious.
 bool identical_runs(const std::vector<const RunResult*>& runs);
 
+/// Whether runs added one at a time are the same run repeated
+/// (identical_runs), keeping one run's metrics.
+class IdenticalRuns {
+ public:
+  void add(const RunResult& run);
+  /// identical_runs() of the runs added.
+  bool identical() const { return runs_ >= 2 && same_; }
+
+ private:
+  int runs_ = 0;
+  bool same_ = true;
+  nlohmann::json metrics_;  ///< the first run's metrics but the measured ones
+  std::string trajectory_sha256_;
+};
+
+/// The metrics of the completed runs, gathered a run at a time: what
+/// check_metric and available_metrics need (memory: one entry per metric name).
+class MetricCatalog {
+ public:
+  void add(const RunResult& run);
+  /// available_metrics() of the runs added.
+  std::vector<std::string> available() const;
+  /// check_metric() against the runs added.
+  MetricKind check(const std::string& metric, const std::string& file, const std::string& where) const;
+
+ private:
+  bool completed_ = false;
+  std::map<std::string, unsigned char> kinds_;  ///< metric -> 1: some number, 2: some boolean (bits)
+};
+
 /// "success", then every metric with a number or boolean value in some completed run, sorted.
 std::vector<std::string> available_metrics(const std::vector<RunResult>& runs);
 
@@ -208,6 +276,34 @@ struct RunGroup {
 /// The position of `value` in `values`, appended at the end when new: the
 /// distinct values of a field in order of first appearance.
 std::size_t index_in_order(std::vector<nlohmann::json>& values, const nlohmann::json& value);
+
+/// Runs grouped by the values of some fields as they are read, keeping per
+/// group its key and its rank only.
+class RunGroups {
+ public:
+  /// `layout` must outlive this: its run_order ranks the groups.
+  /// `all_params`: group by the whole params object after `fields` too (null
+  /// values left out), the axes of a layout that gathers them from the runs.
+  RunGroups(const TableLayout& layout, std::vector<std::string> fields, bool all_params = false);
+  /// The group of `run` (a new group takes the next number); `index` is the
+  /// run's place among the runs in order of first appearance.
+  std::size_t add(const RunResult& run, std::size_t index);
+  std::size_t size() const { return keys_.size(); }
+  /// The values of the fields of a group, in their order (then the params with all_params).
+  const std::vector<nlohmann::json>& key(std::size_t group) const { return keys_[group]; }
+  /// The groups in the sweep's expansion order (their first run's place in
+  /// layout.run_order), then in order of appearance.
+  std::vector<std::size_t> order() const;
+
+ private:
+  std::vector<std::string> fields_;
+  bool all_params_;
+  std::map<std::string_view, std::size_t> rank_of_;  ///< run ID (in layout.run_order) -> place
+  std::size_t order_size_;
+  std::map<std::string, std::size_t> index_of_;      ///< key as JSON text -> group
+  std::vector<std::vector<nlohmann::json>> keys_;
+  std::vector<std::size_t> ranks_;                   ///< per group: its first run's rank
+};
 
 /// Groups `runs` (which must outlive the result) by the values of `fields`;
 /// groups in the sweep's expansion order (their first run's place in
@@ -249,7 +345,25 @@ struct SweepTable {
   std::vector<TableRow> rows;  ///< in expansion order (then in order of appearance)
 };
 
-/// Groups the runs by scene and axis values and computes each group's row.
+/// The summary table built a run at a time: memory per row, not per run
+/// (RunningStats, QuantileSketch for the median of the replanning times).
+class SummaryBuilder {
+ public:
+  /// `layout` must outlive this; with axes_from_runs its axes may grow until finish().
+  explicit SummaryBuilder(const TableLayout& layout);
+  ~SummaryBuilder();
+  SummaryBuilder(SummaryBuilder&&) noexcept;
+  SummaryBuilder& operator=(SummaryBuilder&&) noexcept;
+  /// `index`: the run's place in order of first appearance (for_each_result).
+  void add(const RunResult& run, std::size_t index);
+  SweepTable finish() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Groups the runs by scene and axis values and computes each group's row (SummaryBuilder).
 SweepTable aggregate(const std::vector<RunResult>& runs, const TableLayout& layout);
 
 }  // namespace campo

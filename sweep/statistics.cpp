@@ -124,4 +124,125 @@ BoxStats box_stats(std::vector<double> values) {
   return b;
 }
 
+void RunningStats::add(double value) {
+  ++n_;
+  if (value == 1.0) ++ones_;
+  sum_ += value;
+  const double delta = value - mean_;
+  mean_ += delta / n_;
+  m2_ += delta * (value - mean_);
+}
+
+Summary RunningStats::values() const {
+  assert(n_ > 0);
+  Summary s;
+  s.n = n_;
+  s.mean = sum_ / n_;
+  if (n_ < 2) return s;
+  s.sd = std::sqrt(std::max(m2_, 0.0) / (n_ - 1));
+  const double half = student_t_quantile(0.975, n_ - 1) * s.sd / std::sqrt(static_cast<double>(n_));
+  s.ci95 = Interval{s.mean - half, s.mean + half};
+  return s;
+}
+
+Summary RunningStats::rate() const { return summarize_rate(ones_, n_); }
+
+void QuantileSketch::add(double value) {
+  min_ = n_ == 0 ? value : std::min(min_, value);
+  max_ = n_ == 0 ? value : std::max(max_, value);
+  ++n_;
+  if (levels_.empty()) {
+    levels_.emplace_back();
+    odd_.push_back(false);
+  }
+  levels_[0].push_back(value);
+  // Level 0 holds the values exactly up to kExactValues; one more and it is compacted.
+  if (levels_[0].size() > kExactValues) compact(0);
+}
+
+// Sorts a full level and moves every other value (the even or the odd positions, in turn) one
+// level up, where each stands for twice as many; an odd value out stays. The weights still sum to n.
+void QuantileSketch::compact(std::size_t level) {
+  if (level + 1 == levels_.size()) {  // before any reference into levels_
+    levels_.emplace_back();
+    odd_.push_back(false);
+  }
+  std::vector<double>& values = levels_[level];
+  std::sort(values.begin(), values.end());
+  const std::size_t pairs = values.size() / 2;
+  const std::size_t offset = odd_[level] ? 1 : 0;
+  odd_[level] = !odd_[level];
+  std::vector<double>& up = levels_[level + 1];
+  for (std::size_t i = 0; i < pairs; ++i) up.push_back(values[2 * i + offset]);
+  const bool held = values.size() % 2 == 1;
+  const double last = values.back();
+  values.clear();
+  if (held) values.push_back(last);
+  if (up.size() >= kExactValues) compact(level + 1);
+}
+
+std::vector<QuantileSketch::Weighted> QuantileSketch::items() const {
+  std::vector<Weighted> out;
+  for (std::size_t level = 0; level < levels_.size(); ++level) {
+    for (double v : levels_[level]) out.push_back({v, std::ldexp(1.0, static_cast<int>(level))});
+  }
+  std::sort(out.begin(), out.end(), [](const Weighted& a, const Weighted& b) { return a.value < b.value; });
+  return out;
+}
+
+namespace {
+
+// R type 7 quantile of weighted values (ascending, weights summing to n): the values as if each
+// were repeated `weight` times.
+double weighted_quantile(const std::vector<QuantileSketch::Weighted>& items, double n, double p) {
+  const double h = p * (n - 1.0);
+  const auto at_rank = [&](double rank) {
+    double below = 0.0;
+    for (const auto& item : items) {
+      below += item.weight;
+      if (rank < below) return item.value;
+    }
+    return items.back().value;
+  };
+  const double low = std::floor(h);
+  const double a = at_rank(low), b = at_rank(std::min(low + 1.0, n - 1.0));
+  return a + (h - low) * (b - a);
+}
+
+}  // namespace
+
+BoxStats QuantileSketch::box() const {
+  assert(n_ > 0);
+  if (n_ <= kExactValues) return box_stats(levels_[0]);
+  const std::vector<Weighted> sorted = items();
+  const double n = static_cast<double>(n_);
+  BoxStats b;
+  b.q1 = weighted_quantile(sorted, n, 0.25);
+  b.median = weighted_quantile(sorted, n, 0.5);
+  b.q3 = weighted_quantile(sorted, n, 0.75);
+  const double reach = 1.5 * (b.q3 - b.q1);
+  b.whisker_low = b.q1;
+  b.whisker_high = b.q3;
+  // The exact extremes, then the values the sketch keeps.
+  std::vector<double> values{min_};
+  for (const Weighted& item : sorted) values.push_back(item.value);
+  values.push_back(max_);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double v = values[i];
+    if (v < b.q1 - reach || v > b.q3 + reach) {
+      if (b.outliers.empty() || b.outliers.back() != v) b.outliers.push_back(v);
+    } else {
+      b.whisker_low = std::min(b.whisker_low, v);
+      b.whisker_high = std::max(b.whisker_high, v);
+    }
+  }
+  return b;
+}
+
+double QuantileSketch::median() const {
+  assert(n_ > 0);
+  if (n_ <= kExactValues) return box_stats(levels_[0]).median;
+  return weighted_quantile(items(), static_cast<double>(n_), 0.5);
+}
+
 }  // namespace campo

@@ -2,6 +2,7 @@
 /// Statistics of a sweep's runs (docs/sweeps.md): mean, sample standard
 /// deviation and a Student t confidence interval of a metric's values; a rate
 /// with its Wilson score interval; quartiles and whiskers for box plots.
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -48,5 +49,60 @@ struct BoxStats {
 };
 /// Box statistics of `values` (not empty).
 BoxStats box_stats(std::vector<double> values);
+
+/// Mean and spread of values added one at a time, in constant memory: the
+/// mean is their sum in order over n (as summarize_values sums), the sd
+/// Welford's (equal to the two-pass sd up to rounding, exactly 0 for equal
+/// values). What tables and plots keep per cell instead of the values.
+class RunningStats {
+ public:
+  void add(double value);
+  int count() const { return n_; }
+  /// summarize_values() of the values added (count() > 0).
+  Summary values() const;
+  /// summarize_rate() with the values equal to 1 as successes (count() > 0).
+  Summary rate() const;
+
+ private:
+  int n_ = 0;
+  int ones_ = 0;
+  double sum_ = 0.0;   ///< in order of addition
+  double mean_ = 0.0;  ///< Welford's running mean
+  double m2_ = 0.0;    ///< sum of squared deviations from it
+};
+
+/// Box statistics of values added one at a time, in bounded memory: exact
+/// (box_stats) up to kExactValues values; beyond, quantiles from a
+/// deterministic compacting sketch (levels of kExactValues sorted values,
+/// each level's values standing for twice as many as the level below; the
+/// same values in the same order give the same result) whose rank error is
+/// at most (1 + log2(n / kExactValues)) * n / kExactValues: 0.22 % of the
+/// values for a million. The minimum and maximum stay exact; whiskers and
+/// outliers beyond kExactValues come from the values the sketch keeps, the
+/// extremes always among them. Memory: at most kExactValues values per level,
+/// about log2(n / kExactValues) + 1 levels (96 KiB for a million values).
+class QuantileSketch {
+ public:
+  static constexpr std::size_t kExactValues = 4096;
+  /// A value the sketch keeps, standing for `weight` of the values added.
+  struct Weighted {
+    double value;
+    double weight;
+  };
+  void add(double value);
+  std::size_t count() const { return n_; }
+  /// Box statistics of the values added (count() > 0).
+  BoxStats box() const;
+  /// Their median (count() > 0).
+  double median() const;
+
+ private:
+  std::vector<Weighted> items() const;  ///< ascending
+  void compact(std::size_t level);
+  std::size_t n_ = 0;
+  double min_ = 0.0, max_ = 0.0;
+  std::vector<std::vector<double>> levels_;  ///< level i: each value stands for 2^i; level 0 the exact values up to kExactValues
+  std::vector<bool> odd_;                    ///< per level: keep the odd positions at its next compaction
+};
 
 }  // namespace campo

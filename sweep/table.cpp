@@ -321,48 +321,110 @@ std::string format_table(const SweepTable& table, TableFormat format) {
   return {};
 }
 
-MetricTable tabulate(const std::vector<RunResult>& runs, const TableLayout& layout, const TableRequest& request) {
-  check_field(request.rows, layout.axes, request.file, request.rows_at);
+namespace {
+
+// The request's form, and its fields against the axes when they are known.
+std::vector<std::string> request_fields(const TableRequest& request, const TableLayout& layout, bool check_axes) {
+  if (check_axes) check_field(request.rows, layout.axes, request.file, request.rows_at);
   std::vector<std::string> fields{request.rows};
   if (!request.cols.empty()) {
-    check_field(request.cols, layout.axes, request.file, request.cols_at);
+    if (check_axes) check_field(request.cols, layout.axes, request.file, request.cols_at);
     if (request.cols == request.rows) {
       throw InputError(request.file, request.cols_at, "a field other than the rows' (\"" + request.rows + "\")");
     }
     fields.push_back(request.cols);
   }
   if (request.metrics.empty()) throw InputError(request.file, request.metrics_at, "at least one metric");
-  MetricTable table{layout.name, request, {}, {}, {}, {}};
   for (std::size_t m = 0; m < request.metrics.size(); ++m) {
     const std::string& metric = request.metrics[m];
     if (std::find(request.metrics.begin(), request.metrics.begin() + m, metric) != request.metrics.begin() + m) {
       throw InputError(request.file, request.metrics_at, "each metric once (\"" + metric + "\" appears twice)");
     }
-    table.kinds.push_back(check_metric(metric, runs, request.file, request.metrics_at));
   }
+  return fields;
+}
 
-  const std::vector<RunGroup> groups = group_runs(runs, layout, fields);
+// The runs of one cell, a run at a time.
+struct CellFold {
+  int runs = 0, failed = 0;
+  IdenticalRuns identical;
+  std::vector<RunningStats> metrics;  // per requested metric: its values (rates: 1 and 0)
+};
+
+}  // namespace
+
+struct MetricTableBuilder::Impl {
+  const TableLayout& layout;
+  TableRequest request;
+  RunGroups groups;
+  MetricCatalog catalog;
+  std::vector<CellFold> cells;  // per group
+};
+
+MetricTableBuilder::MetricTableBuilder(const TableLayout& layout, TableRequest request)
+    : impl_(new Impl{layout, request, RunGroups(layout, request_fields(request, layout, !layout.axes_from_runs)), {},
+                     {}}) {
+  MetricCatalog none;  // the metrics' names alone: whether they are metrics is known once runs are read
+  for (const std::string& metric : impl_->request.metrics) none.check(metric, request.file, request.metrics_at);
+}
+MetricTableBuilder::~MetricTableBuilder() = default;
+MetricTableBuilder::MetricTableBuilder(MetricTableBuilder&&) noexcept = default;
+MetricTableBuilder& MetricTableBuilder::operator=(MetricTableBuilder&&) noexcept = default;
+
+void MetricTableBuilder::add(const RunResult& run, std::size_t index) {
+  Impl& d = *impl_;
+  d.catalog.add(run);
+  const std::size_t g = d.groups.add(run, index);
+  if (g == d.cells.size()) d.cells.push_back({0, 0, {}, std::vector<RunningStats>(d.request.metrics.size())});
+  CellFold& cell = d.cells[g];
+  ++cell.runs;
+  if (!run.completed) ++cell.failed;
+  cell.identical.add(run);
+  for (std::size_t m = 0; m < d.request.metrics.size(); ++m) {
+    if (const auto v = metric_value(run, d.request.metrics[m])) cell.metrics[m].add(*v);
+  }
+}
+
+MetricTable MetricTableBuilder::finish() const {
+  const Impl& d = *impl_;
+  const TableRequest& request = d.request;
+  request_fields(request, d.layout, true);
+  MetricTable table{d.layout.name, request, {}, {}, {}, {}};
+  for (const std::string& metric : request.metrics) {
+    table.kinds.push_back(d.catalog.check(metric, request.file, request.metrics_at));
+  }
+  const std::vector<std::size_t> order = d.groups.order();
   // Row and column values in the order of the groups: the sweep's expansion order.
-  for (const RunGroup& group : groups) {
-    index_in_order(table.rows, group.key[0]);
-    index_in_order(table.cols, group.key.size() > 1 ? group.key[1] : nlohmann::json());
+  const auto col_of = [&](std::size_t g) {
+    return d.groups.key(g).size() > 1 ? d.groups.key(g)[1] : nlohmann::json();
+  };
+  for (std::size_t g : order) {
+    index_in_order(table.rows, d.groups.key(g)[0]);
+    index_in_order(table.cols, col_of(g));
   }
   table.cells.assign(table.rows.size(), std::vector<MetricCell>(table.cols.size()));
-  for (const RunGroup& group : groups) {
-    MetricCell& cell = table.cells[index_in_order(table.rows, group.key[0])]
-                                  [index_in_order(table.cols, group.key.size() > 1 ? group.key[1] : nlohmann::json())];
-    cell.runs = static_cast<int>(group.runs.size());
-    cell.failed = static_cast<int>(
-        std::count_if(group.runs.begin(), group.runs.end(), [](const RunResult* r) { return !r->completed; }));
-    cell.identical = identical_runs(group.runs);
+  for (std::size_t g : order) {
+    const CellFold& fold = d.cells[g];
+    MetricCell& cell = table.cells[index_in_order(table.rows, d.groups.key(g)[0])][index_in_order(table.cols, col_of(g))];
+    cell.runs = fold.runs;
+    cell.failed = fold.failed;
+    cell.identical = fold.identical.identical();
     for (std::size_t m = 0; m < request.metrics.size(); ++m) {
-      std::optional<Summary> s = summarize_metric(group.runs, request.metrics[m], table.kinds[m]);
+      const RunningStats& values = fold.metrics[m];
+      std::optional<Summary> s;
+      if (values.count() > 0) s = table.kinds[m] == MetricKind::number ? values.values() : values.rate();
       // Identical runs are one value, not a sample: no interval (a Wilson interval would still be wide).
       if (s && cell.identical) s->ci95.reset();
       cell.metrics.push_back(s);
     }
   }
   return table;
+}
+
+MetricTable tabulate(const std::vector<RunResult>& runs, const TableLayout& layout, const TableRequest& request) {
+  MetricTableBuilder builder(layout, request);
+  for (std::size_t i = 0; i < runs.size(); ++i) builder.add(runs[i], i);
+  return builder.finish();
 }
 
 std::string format_metric_table(const MetricTable& table, TableFormat format) {

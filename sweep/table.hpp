@@ -2,6 +2,7 @@
 /// Sweep tables as text: Markdown, CSV or LaTeX. The summary table (one row
 /// per scene and axis values, fixed statistics) and tables of chosen metrics
 /// (rows and column groups by any fields, mean, spread and 95 % intervals).
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -47,8 +48,30 @@ struct MetricTable {
   std::vector<std::vector<MetricCell>> cells;  ///< [row][col]
 };
 
+/// A table of chosen metrics built a run at a time: memory per cell and
+/// metric (RunningStats, IdenticalRuns), not per run.
+class MetricTableBuilder {
+ public:
+  /// `layout` must outlive this (with axes_from_runs its axes may grow until
+  /// finish()). Checks what it can before any run: the request's form, and
+  /// its fields when the layout's axes are known (InputError).
+  MetricTableBuilder(const TableLayout& layout, TableRequest request);
+  ~MetricTableBuilder();
+  MetricTableBuilder(MetricTableBuilder&&) noexcept;
+  MetricTableBuilder& operator=(MetricTableBuilder&&) noexcept;
+  /// `index`: the run's place in order of first appearance (for_each_result).
+  void add(const RunResult& run, std::size_t index);
+  /// Checks the request's fields and metrics against the runs added
+  /// (InputError naming where they were given) and summarizes each metric per cell.
+  MetricTable finish() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 /// Groups the runs by the request's fields and summarizes each metric per
-/// cell (summarize_metric). Checks the request's fields and metrics first
+/// cell (MetricTableBuilder). Checks the request's fields and metrics
 /// (InputError naming where they were given).
 MetricTable tabulate(const std::vector<RunResult>& runs, const TableLayout& layout, const TableRequest& request);
 

@@ -1,7 +1,9 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "sweep/chart.hpp"
 #include "sweep/results.hpp"
@@ -21,9 +23,23 @@ struct PlotOptions {
 
 int run_plot(const PlotOptions& o) {
   const fs::path dir = o.dir;
-  const ResultsFile results = read_results(dir / "results.jsonl");
-  for (const std::string& warning : results.warnings) std::cerr << "warning: " << warning << "\n";
-  const cv::Mat image = draw_sweep_plot(results.runs, table_layout(dir, results.runs), o.request);
+  TableLayout layout = table_layout(dir);
+  // The results a line at a time, each run folded into its point or box: memory grows with the plot.
+  const bool axes_from_runs = layout.axes_from_runs;
+  std::optional<PlotBuilder> plot;
+  std::vector<std::string> warnings;
+  for_each_result(
+      dir / "results.jsonl", warnings,
+      [&] {
+        if (axes_from_runs) layout.axes.clear();
+        plot.emplace(layout, o.request);
+      },
+      [&](const RunResult& run, std::size_t index) {
+        add_axes(layout, run);
+        plot->add(run, index);
+      });
+  for (const std::string& warning : warnings) std::cerr << "warning: " << warning << "\n";
+  const cv::Mat image = plot->draw();
   write_png(image, o.out);
   std::cerr << "wrote " << o.out << "\n";
   return kOk;

@@ -28,9 +28,7 @@ struct TableOptions {
 
 int run_table(const TableOptions& o) {
   const fs::path dir = o.dir;
-  const ResultsFile results = read_results(dir / "results.jsonl");
-  for (const std::string& warning : results.warnings) std::cerr << "warning: " << warning << "\n";
-  const TableLayout layout = table_layout(dir, results.runs);
+  TableLayout layout = table_layout(dir);
   // Which table: the options', else the spec's, else the summary. Checked before anything is written.
   std::optional<TableRequest> request;
   if (!o.rows.empty()) {
@@ -38,8 +36,26 @@ int run_table(const TableOptions& o) {
   } else if (!o.summary) {
     request = layout.table;
   }
-  const SweepTable summary = aggregate(results.runs, layout);
-  const std::string table = request ? format_metric_table(tabulate(results.runs, layout, *request), o.format)
+  // The results a line at a time, each run folded into its row and cell: memory grows with the table.
+  const bool axes_from_runs = layout.axes_from_runs;
+  std::optional<SummaryBuilder> summary_rows;
+  std::optional<MetricTableBuilder> metric_cells;
+  std::vector<std::string> warnings;
+  for_each_result(
+      dir / "results.jsonl", warnings,
+      [&] {
+        if (axes_from_runs) layout.axes.clear();
+        summary_rows.emplace(layout);
+        if (request) metric_cells.emplace(layout, *request);
+      },
+      [&](const RunResult& run, std::size_t index) {
+        add_axes(layout, run);
+        summary_rows->add(run, index);
+        if (metric_cells) metric_cells->add(run, index);
+      });
+  for (const std::string& warning : warnings) std::cerr << "warning: " << warning << "\n";
+  const SweepTable summary = summary_rows->finish();
+  const std::string table = request ? format_metric_table(metric_cells->finish(), o.format)
                                     : format_table(summary, o.format);
   // The chart first: a chart that cannot be written is an error (exit 2) with nothing printed before it.
   std::optional<fs::path> chart;
