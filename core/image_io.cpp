@@ -1,6 +1,8 @@
 #include "core/image_io.hpp"
 
+#include <cctype>
 #include <csetjmp>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -74,11 +76,73 @@ bool encode(const cv::Mat& image, int compression, std::string* out, ErrorText* 
   return true;
 }
 
+std::uint32_t big_endian(const char* p) {
+  const auto* b = reinterpret_cast<const unsigned char*>(p);
+  return std::uint32_t{b[0]} << 24 | std::uint32_t{b[1]} << 16 | std::uint32_t{b[2]} << 8 | std::uint32_t{b[3]};
+}
+
+// Walks the chunks before libpng sees them, so that nothing is allocated for what the file cannot
+// hold: every chunk must fit in the bytes left, and the image IHDR declares must fit in what its
+// IDAT chunks can inflate to (deflate expands at most 1032 times: kMaxInflation).
+bool check_chunks(const char* data, std::size_t size, ErrorText* error) {
+  constexpr std::uint64_t kMaxInflation = 1032;
+  constexpr std::uint64_t kSlackBytes = 1u << 16;  // zlib and filter bytes of a small image
+  std::uint64_t image_bytes = 0, compressed_bytes = 0;
+  bool header = false;
+  for (std::size_t at = 8; at < size;) {
+    if (size - at < 12) {
+      std::snprintf(error->text, sizeof error->text, "the file ends inside a chunk header at byte %zu", at);
+      return false;
+    }
+    const std::uint32_t length = big_endian(data + at);
+    char type[5] = {};
+    for (int i = 0; i < 4; ++i) {
+      const unsigned char c = static_cast<unsigned char>(data[at + 4 + i]);
+      type[i] = std::isalpha(c) ? static_cast<char>(c) : '?';
+    }
+    const std::size_t left = size - at - 12;
+    if (length > 0x7fffffffu || length > left) {
+      std::snprintf(error->text, sizeof error->text,
+                    "chunk %s at byte %zu declares %u bytes, more than the %zu bytes left in the file", type, at,
+                    length, left);
+      return false;
+    }
+    const char* body = data + at + 8;
+    if (!header) {
+      if (std::memcmp(type, "IHDR", 4) != 0 || length != 13) {
+        std::snprintf(error->text, sizeof error->text, "the first chunk is %s, expected IHDR of 13 bytes", type);
+        return false;
+      }
+      header = true;
+      const std::uint64_t width = big_endian(body), height = big_endian(body + 4);
+      const unsigned depth = static_cast<unsigned char>(body[8]), colour = static_cast<unsigned char>(body[9]);
+      const unsigned channels = colour == 2 ? 3 : colour == 4 ? 2 : colour == 6 ? 4 : 1;
+      // Bytes of pixels, without the rows' filter bytes: what inflating the IDAT chunks must produce.
+      image_bytes = (width * channels * depth + 7) / 8 * height;
+    } else if (std::memcmp(type, "IDAT", 4) == 0) {
+      compressed_bytes += length;
+    } else if (std::memcmp(type, "IEND", 4) == 0) {
+      break;
+    }
+    at += 12 + static_cast<std::size_t>(length);
+  }
+  if (image_bytes > kMaxInflation * compressed_bytes + kSlackBytes) {
+    std::snprintf(error->text, sizeof error->text,
+                  "its header declares %llu bytes of pixels, more than its %llu bytes of image data (IDAT) can hold "
+                  "(deflate inflates at most %llu times)",
+                  static_cast<unsigned long long>(image_bytes), static_cast<unsigned long long>(compressed_bytes),
+                  static_cast<unsigned long long>(kMaxInflation));
+    return false;
+  }
+  return true;
+}
+
 bool decode(const char* data, std::size_t size, cv::Mat* out, ErrorText* error) {
   if (size < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(data), 0, 8) != 0) {
     std::snprintf(error->text, sizeof error->text, "not a PNG file (no PNG signature)");
     return false;
   }
+  if (!check_chunks(data, size, error)) return false;
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, error, &on_error, &on_warning);
   if (png == nullptr) return false;
   png_infop info = png_create_info_struct(png);

@@ -24,7 +24,10 @@ void write_png_file(const cv::Mat& image, const std::filesystem::path& path, int
 /// CV_8UC3 (BGR) or CV_8UC4 (BGRA) (palettes expanded, 16-bit colour reduced
 /// to 8 bits, a grey image's alpha dropped). InputError naming the file when
 /// it is missing, larger than `max_bytes`, not a PNG, damaged, or wider or
-/// taller than 32768 pixels.
+/// taller than 32768 pixels. The chunks are checked against the file's size
+/// before libpng reads them: a chunk longer than the bytes left, or a header
+/// declaring more pixels than the file's image data can inflate to (1032
+/// times its IDAT bytes, plus 64 KiB), is refused before anything is allocated.
 cv::Mat read_png_file(const std::filesystem::path& path, std::uintmax_t max_bytes = 256u << 20);
 
 }  // namespace campo
