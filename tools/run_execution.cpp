@@ -1,6 +1,7 @@
 #include "tools/run_execution.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <csignal>
@@ -43,9 +44,11 @@ namespace {
 constexpr double kMaxTimeLimitS = 1e9;  // about 32 years: longer is no limit, and would overflow the clock
 
 // A run's wall-clock limit (RunRequest::time_limit_s): a planner wrapped by
-// it refuses calls past the deadline, and a thread sends the run's thread
-// planner_interrupt_signal() then (every half second until the run ends),
-// which interrupts a Python planner's call blocked or spinning there.
+// it refuses calls past the deadline, and a thread then sends the run's
+// thread planner_interrupt_signal() while a planner call is in progress
+// (every 0.1 s until the run ends), which interrupts a Python planner's call
+// blocked or spinning there. Never between calls: a signal could interrupt
+// a system call of campo's own.
 class WallLimit {
  public:
   using Clock = std::chrono::steady_clock;
@@ -73,8 +76,8 @@ class WallLimit {
       std::unique_lock lock(mutex_);
       if (wake_.wait_until(lock, deadline_, [this] { return done_; })) return;
       while (!done_) {
-        ::pthread_kill(target, signal);
-        wake_.wait_for(lock, std::chrono::milliseconds(500), [this] { return done_; });
+        if (in_call) ::pthread_kill(target, signal);
+        wake_.wait_for(lock, std::chrono::milliseconds(100), [this] { return done_; });
       }
     });
   }
@@ -91,6 +94,7 @@ class WallLimit {
   bool passed() const { return Clock::now() >= deadline_; }
   const std::string& reason() const { return reason_; }
   bool tripped = false;  ///< the run ended because of it
+  std::atomic<bool> in_call{false};  ///< a planner call is in progress
 
  private:
   Clock::time_point deadline_;
@@ -109,7 +113,13 @@ class WallLimitedPlanner final : public Planner {
 
   PlanResult plan(const Observation& observation) override {
     if (!planner_ || limit_.passed()) stop();
+    struct InCall {
+      std::atomic<bool>& flag;
+      explicit InCall(std::atomic<bool>& f) : flag(f) { flag = true; }
+      ~InCall() { flag = false; }
+    };
     try {
+      const InCall in_call(limit_.in_call);
       return planner_->plan(observation);
     } catch (const InputError&) {
       throw;
