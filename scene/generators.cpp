@@ -29,8 +29,6 @@ constexpr int kAttemptsPerTree = 1000;
 constexpr double kObstacleRowClearance_m = 0.3;
 /// Grid obstacles: boxes reach this far below the lowest ground under them.
 constexpr double kGridBoxFooting_m = 1.0;
-/// Grid obstacles: ground samples per side of a block (cell corners and centres up to this).
-constexpr int kGridBoxGroundSamples = 256;
 
 std::string str(double value) {
   std::ostringstream out;
@@ -423,8 +421,32 @@ Eigen::Vector2d grid_cell_center(const GridObstaclesConfig& config, int row, int
   return config.origin_m + config.cell_size_m * Eigen::Vector2d(col - 0.5, row - 0.5);
 }
 
+int grid_box_samples_per_side(const GridObstaclesConfig& config, std::size_t shapes_per_sample) {
+  if (shapes_per_sample == 0) return 1;
+  // Shape visits at n samples per side, in doubles (no overflow, whatever the blocks say).
+  const auto visits = [&](int n) {
+    double points = 0.0;
+    for (const GridBox& box : config.boxes) {
+      const double cols = std::max(1.0, static_cast<double>(box.col_last) - box.col_first + 1.0);
+      const double rows = std::max(1.0, static_cast<double>(box.row_last) - box.row_first + 1.0);
+      points += (std::min(2.0 * cols, static_cast<double>(n)) + 1.0) * (std::min(2.0 * rows, static_cast<double>(n)) + 1.0);
+    }
+    return points * static_cast<double>(shapes_per_sample);
+  };
+  // Visits grow with n: the largest n within the budget, by bisection.
+  if (visits(kGridBoxGroundSamples) <= kGridBoxGroundVisits) return kGridBoxGroundSamples;
+  int lo = 1, hi = kGridBoxGroundSamples;  // visits(hi) > budget; lo is the answer if nothing larger fits
+  while (hi - lo > 1) {
+    const int mid = lo + (hi - lo) / 2;
+    (visits(mid) <= kGridBoxGroundVisits ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 std::vector<Shape> make_grid_obstacles(const GridObstaclesConfig& config, const std::string& alias,
-                                       const GroundFunction& ground) {
+                                       const GroundFunction& ground, int samples_per_side) {
+  require(samples_per_side >= 1 && samples_per_side <= kGridBoxGroundSamples,
+          "grid obstacles: samples per side must be in [1, " + std::to_string(kGridBoxGroundSamples) + "]");
   require(config.origin_m.allFinite(), "grid obstacles: origin must be finite");
   require(finite_positive(config.cell_size_m), "grid obstacles: cell_size must be finite and > 0");
   require(config.rows >= 1 && config.cols >= 1, "grid obstacles: rows and cols must be >= 1");
@@ -447,10 +469,10 @@ std::vector<Shape> make_grid_obstacles(const GridObstaclesConfig& config, const 
     const int cols = box.col_last - box.col_first + 1;
     const int rows = box.row_last - box.row_first + 1;
     // Ground extremes sampled at every cell corner and centre under the block,
-    // but at most kGridBoxGroundSamples per side: a block over a whole
-    // 10000 x 10000 grid would otherwise cost 4e8 ground queries.
-    const int samples_x = std::min(2 * cols, kGridBoxGroundSamples);
-    const int samples_y = std::min(2 * rows, kGridBoxGroundSamples);
+    // but at most samples_per_side per side: a block over a whole 10000 x 10000
+    // grid would otherwise cost 4e8 ground queries, and 10000 such blocks 256^2 each.
+    const int samples_x = std::min(2 * cols, samples_per_side);
+    const int samples_y = std::min(2 * rows, samples_per_side);
     double lowest = std::numeric_limits<double>::infinity();
     double highest = -std::numeric_limits<double>::infinity();
     for (int j = 0; j <= samples_y; ++j) {

@@ -2,6 +2,7 @@
 /// Scene generators (SPEC §3): pure functions from a config and a seed to
 /// shapes. Same config => same output, bit for bit. Every generator works in
 /// its own local frame; the loader places the result with the generator's pose.
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -104,9 +105,28 @@ struct GridObstaclesConfig {
 };
 /// World position of the centre of cell (row, col) at height 0.
 Eigen::Vector2d grid_cell_center(const GridObstaclesConfig& config, int row, int col);
+
+/// Most ground samples per side of one block (cell corners and centres, evenly
+/// spaced when a block has more of them than this).
+inline constexpr int kGridBoxGroundSamples = 256;
+/// Most ground-shape visits of one grid_obstacles generator: the points
+/// sampled under all its blocks x the ground shapes each point visits (about
+/// 0.25 s on a heightfield).
+inline constexpr double kGridBoxGroundVisits = 4194304.0;  // 2^22
+/// The samples per side of make_grid_obstacles for `config`'s blocks over a
+/// ground whose query visits `shapes_per_sample` ground shapes: the largest
+/// n <= kGridBoxGroundSamples whose points, (min(2 cols, n) + 1) x (min(2
+/// rows, n) + 1) a block, visit at most kGridBoxGroundVisits shapes in all,
+/// but at least 1 (a block's corners). Blocks of few cells keep every corner
+/// and centre; only many large blocks are sampled more coarsely. A flat
+/// ground (0 shapes per sample) needs no more than the corners.
+int grid_box_samples_per_side(const GridObstaclesConfig& config, std::size_t shapes_per_sample);
+
 /// One cuboid per block, from 1 m below the lowest ground under it up to
-/// height_m above the highest ground under it; aliased "<alias>/box<k>".
+/// height_m above the highest ground under it; aliased "<alias>/box<k>". The
+/// ground is sampled at the cell corners and centres under a block, at most
+/// `samples_per_side` + 1 points per side (in [1, kGridBoxGroundSamples]).
 std::vector<Shape> make_grid_obstacles(const GridObstaclesConfig& config, const std::string& alias,
-                                       const GroundFunction& ground);
+                                       const GroundFunction& ground, int samples_per_side = kGridBoxGroundSamples);
 
 }  // namespace campo

@@ -115,17 +115,21 @@ std::int64_t steps_per_period(double rate_hz, double physics_step_s) {
 std::vector<double> dividing_rates_near(double rate_hz, double physics_step_s, int each_side) {
   // The rates are (1/physics_step_s) / n for whole n; rate_hz sits at n = steps.
   const double physics_rate_hz = 1.0 / physics_step_s;
-  const double steps = physics_rate_hz / rate_hz;
+  // Past 2^52 a double no longer counts n one by one: a slower rate (or none, NaN) is listed from there.
+  constexpr double kMaxSteps = 4503599627370496.0;  // 2^52
+  double steps = physics_rate_hz / rate_hz;
+  if (!(steps <= kMaxSteps)) steps = kMaxSteps;
   const auto exact = steps_per_period(rate_hz, physics_step_s);
   // Largest n whose rate is at or above rate_hz, smallest n whose rate is below it.
   const double above = exact > 0 ? static_cast<double>(exact) : std::floor(steps);
-  const double below = exact > 0 ? static_cast<double>(exact) + 1.0 : std::ceil(steps);
+  const double below = std::max(exact > 0 ? static_cast<double>(exact) + 1.0 : std::ceil(steps), 1.0);
+  // Counted loops: each_side rates on each side at most, whatever the numbers.
   std::vector<double> rates;
-  for (double n = above - each_side + 1; n <= above; ++n) {
-    if (n >= 1.0) rates.push_back(physics_rate_hz / n);
+  for (int i = each_side - 1; i >= 0; --i) {
+    if (const double n = above - i; n >= 1.0) rates.push_back(physics_rate_hz / n);
   }
-  for (double n = std::max(below, 1.0); n < std::max(below, 1.0) + each_side; ++n) {
-    if (n > above) rates.push_back(physics_rate_hz / n);
+  for (int i = 0; i < each_side; ++i) {
+    if (const double n = below + i; n > above) rates.push_back(physics_rate_hz / n);
   }
   return rates;
 }

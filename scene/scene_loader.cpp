@@ -227,22 +227,39 @@ class Loader {
     }
   }
 
-  // The ground so far, for generators that stand things on it. Only the ground
-  // shapes are visited per query (a scene may hold 200000 shapes); the
-  // function is used before the generated shapes are added.
-  GroundFunction ground_function() const {
-    std::vector<const Shape*> ground;
-    for (const Shape& shape : scene_.shapes) {
-      if (shape.type == ShapeType::heightfield || shape.type == ShapeType::plane) ground.push_back(&shape);
-    }
-    return [ground = std::move(ground)](double x, double y) {
-      std::optional<double> best;
-      for (const Shape* shape : ground) {
-        const auto h = ground_height_of(*shape, x, y);
-        if (h && (!best || *h > *best)) best = h;
+  // The ground so far, for generators that stand things on it: the highest
+  // ground shape (heightfield, plane) at each (x, y). Only the ground shapes
+  // are visited per query (a scene may hold 200000 shapes), and level planes
+  // fold into one height, so a flat ground visits none. The function is used
+  // before the generated shapes are added.
+  struct Ground {
+    GroundFunction height;
+    std::size_t shapes_per_query = 0;  // the ground shapes each query visits
+  };
+  Ground ground() {
+    // Only the shapes added since the last call are looked at: linear in the shapes however many generators ask.
+    for (; ground_scanned_ < scene_.shapes.size(); ++ground_scanned_) {
+      const Shape& shape = scene_.shapes[ground_scanned_];
+      const Eigen::Vector3d n = shape.pose.linear().col(2);
+      if (shape.type == ShapeType::plane && n.x() == 0.0 && n.y() == 0.0) {
+        const double z = shape.pose.translation().z();  // ground_height_of() of a level plane, everywhere
+        level_ground_m_ = level_ground_m_ ? std::max(*level_ground_m_, z) : z;
+      } else if (shape.type == ShapeType::heightfield || shape.type == ShapeType::plane) {
+        ground_shapes_.push_back(ground_scanned_);
       }
-      return best.value_or(0.0);
-    };
+    }
+    std::vector<const Shape*> shapes;
+    for (const std::size_t i : ground_shapes_) shapes.push_back(&scene_.shapes[i]);
+    const std::size_t count = shapes.size();
+    return {[shapes = std::move(shapes), level = level_ground_m_](double x, double y) {
+              std::optional<double> best = level;
+              for (const Shape* shape : shapes) {
+                const auto h = ground_height_of(*shape, x, y);
+                if (h && (!best || *h > *best)) best = h;
+              }
+              return best.value_or(0.0);
+            },
+            count};
   }
 
   void read_object(const JsonNode& node, const Eigen::Isometry3d& parent, int depth) {
@@ -395,7 +412,7 @@ class Loader {
     if ((c.area_max_m.array() <= c.area_min_m.array()).any()) {
       r.fail("\"area_max_m\" greater than \"area_min_m\" in x and y");
     }
-    add_generated(generated(r.node(), [&] { return make_trees(c, alias, ground_function()); }), r.node());
+    add_generated(generated(r.node(), [&] { return make_trees(c, alias, ground().height); }), r.node());
   }
 
   void read_vineyard(ObjectReader& r, const std::string& alias, const Eigen::Isometry3d& parent) {
@@ -413,7 +430,13 @@ class Loader {
   void read_grid_obstacles(ObjectReader& r, const std::string& alias) {
     GridObstaclesConfig c;
     grid_obstacles_fields(limits_).read_fields(r, c);
-    add_generated(generated(r.node(), [&] { return make_grid_obstacles(c, alias, ground_function()); }),
+    // Ground samples per block within one budget for the generator (generators.hpp).
+    add_generated(generated(r.node(),
+                            [&] {
+                              const Ground g = ground();
+                              return make_grid_obstacles(c, alias, g.height,
+                                                         grid_box_samples_per_side(c, g.shapes_per_query));
+                            }),
                   r.node());
     grids_.emplace(alias, c);
   }
@@ -611,6 +634,10 @@ class Loader {
   Scene scene_;
   std::map<std::string, std::string> alias_pointers_;
   std::map<std::string, GridObstaclesConfig> grids_;
+  // ground(): shapes looked at so far, the non-level ground shapes among them, the highest level plane.
+  std::size_t ground_scanned_ = 0;
+  std::vector<std::size_t> ground_shapes_;
+  std::optional<double> level_ground_m_;
   std::vector<std::pair<std::size_t, JsonNode>> pending_missions_;
   int object_count_ = 0;
 };

@@ -9,6 +9,10 @@ namespace campo {
 
 namespace {
 
+// A sensor's own rate_hz: 0 (world.sensor_rate_hz), or within world.sensor_rate_hz's range.
+constexpr double kMinSensorRateHz = 0.01;
+constexpr double kMaxSensorRateHz = 10000.0;
+
 const ConfigFields<Pose>& mount_fields() {
   static const ConfigFields<Pose> fields =
       ConfigFields<Pose>()
@@ -88,8 +92,18 @@ ConfigFields<LidarConfig> lidar_config_fields(const SceneLimits& limits) {
               "chance that a beam returns nothing")
       .number("quantization_m", &C::quantization_m, Range::closed(0.0, 100.0), "m",
               "ranges rounded to this step; 0 = off")
-      .number("rate_hz", &C::rate_hz, Range::closed(0.0, 10000.0), "Hz",
-              "scans per second, dividing the physics rate ([rates](#world)); 0 = `world.sensor_rate_hz`")
+      // The range of world.sensor_rate_hz, or 0 for that rate: a slower rate would be a period of
+      // more than 10^7 physics steps (dividing_rates_near() past 2^53 once made that a 4 GB error).
+      .custom("rate_hz", "Hz", "0, or [0.01, 10000]",
+              "scans per second, dividing the physics rate ([rates](#world)); 0 = `world.sensor_rate_hz`",
+              [](const JsonNode& n, C& c) {
+                const double rate = n.as_number();
+                if (!(rate == 0.0 || (rate >= kMinSensorRateHz && rate <= kMaxSensorRateHz))) {
+                  n.fail("0 (world.sensor_rate_hz) or a number in [0.01, 10000]");
+                }
+                c.rate_hz = rate;
+              },
+              [](const C& c, nlohmann::json& j) { j["rate_hz"] = c.rate_hz; })
       .seed("seed", &C::seed, "noise stream, combined with `world.seed`")
       .nested("mount", &C::mount, mount_fields(), "pose on the vehicle body");
 }

@@ -28,6 +28,7 @@
 #include "sensors/lidar.hpp"
 #include "sensors/sensor_factory.hpp"
 #include "tools/run_figures.hpp"
+#include "tools/scene_checks.hpp"
 #include "vehicles/factory.hpp"
 
 #include <pthread.h>
@@ -158,7 +159,7 @@ PreparedRun prepare_run(const RunRequest& request, bool validate_planner) {
   EpisodeOptions& options = run.options;
   options.stop_on_collision = !request.continue_after_collision;
   options.make_sensor = range_sensor_factory();
-  if (scene.vehicles.empty()) throw InputError(scene_file, "/objects", "expected a scene with a vehicle to run");
+  check_runnable(scene);  // a vehicle at all
   if (!request.vehicle.empty()) {
     const VehicleDef* v = scene.find_vehicle(request.vehicle);
     if (!v) throw InputError("command line", "--vehicle", "no vehicle \"" + request.vehicle + "\" in " + scene_file);
@@ -169,15 +170,15 @@ PreparedRun prepare_run(const RunRequest& request, bool validate_planner) {
   // Another planner than the scene's starts from its defaults: --set its parameters anew.
   if (!request.planner.empty()) choose_planner(def.planner, request.planner, "command line");
   if (def.planner.name.empty()) def.planner.name = std::string(kDefaultPlanner);
-  if (def.mission.empty()) {
-    throw InputError(scene_file, "/objects", "expected vehicle \"" + def.alias + "\" to have a mission");
-  }
+  check_runnable(scene, options.vehicle_index);
   // Validate every parameter before anything runs.
   validate_vehicle_params(def);
   if (validate_planner) {
     const PlannerMaker make_planner = request.make_planner ? request.make_planner : PlannerMaker(&create_planner);
     make_planner(def.planner, {def.type, &scene, &def});
   }
+  // The other vehicles' too, as `campo validate` checks them: a file is valid or not whichever vehicle runs.
+  check_vehicles_and_planners(scene, options.vehicle_index);
   return run;
 }
 

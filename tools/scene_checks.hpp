@@ -1,16 +1,22 @@
 #pragma once
-/// Checks of a scene beyond scene/'s loader, shared by `campo validate` and
-/// `campo sweep`: the parameters that vehicles/ and planners/ interpret.
+/// Checks of a scene beyond scene/'s loader, shared by `campo validate`,
+/// `campo run` and `campo sweep` (so that each refuses what the others
+/// refuse): the parameters that vehicles/ and planners/ interpret, and
+/// whether a run can start.
+#include <cstddef>
+#include <limits>
+
 #include "campo/scene.hpp"
 
 namespace campo::cli {
 
-/// Validates every vehicle's parameters and creates its planner once (which
-/// checks the planner's name and parameters); throws InputError.
-void check_vehicles_and_planners(const Scene& scene);
+/// Validates every vehicle's parameters but vehicle `skip`'s and creates its
+/// planner once (which checks the planner's name and parameters); throws InputError.
+void check_vehicles_and_planners(const Scene& scene, std::size_t skip = std::numeric_limits<std::size_t>::max());
 
-/// Checks that a run of the scene can start: its first vehicle (the one
-/// `campo run` drives by default) exists and has a mission; throws InputError.
-void check_runnable(const Scene& scene);
+/// Checks that a run of the scene can start: the scene has a vehicle and
+/// vehicle `vehicle_index` (the first is the one `campo run` drives by
+/// default) has a mission; throws InputError with `campo run`'s message.
+void check_runnable(const Scene& scene, std::size_t vehicle_index = 0);
 
 }  // namespace campo::cli

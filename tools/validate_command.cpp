@@ -16,8 +16,9 @@ Command add_validate(CLI::App& app) {
   add_plugin_option(app, *plugins);
   app.footer(
       "Every file is checked in full: unknown keys, wrong types, out-of-range values,\n"
-      "duplicate aliases, dangling references, unreadable data files, and vehicle and\n"
-      "planner parameters are errors; a scene naming a plugin's planner needs --plugin.\n"
+      "duplicate aliases, dangling references, unreadable data files, vehicle and planner\n"
+      "parameters, and a first vehicle without a mission (or no vehicle) are errors, exactly\n"
+      "what campo run refuses; a scene naming a plugin's planner needs --plugin.\n"
       "Prints one line per file; exits 0 if all are valid, 2 otherwise.");
   return [files, plugins] {
     load_plugins(*plugins);
@@ -25,7 +26,9 @@ Command add_validate(CLI::App& app) {
     for (const auto& file : *files) {
       try {
         const Scene scene = load_scene(file);
-        // Parameters checked by vehicles/ and planners/ are part of the file too.
+        // What `campo run FILE` checks, in its order: a vehicle with a mission to run, then the
+        // parameters that vehicles/ and planners/ check (of every vehicle, as run checks them too).
+        check_runnable(scene);
         check_vehicles_and_planners(scene);
         std::cout << "ok " << file << ": " << scene.shapes.size() << " shapes, "
                   << scene.frames.size() << " frames, " << scene.movers.size() << " movers, "

@@ -199,6 +199,24 @@ TEST_F(HostileGenerated, TenMegabyteNameInFigureTitles) {
                                            R"(", "world": {"time_limit_s": 1}, "objects": [)" + kDrone + "]}"));
 }
 
+TEST_F(HostileGenerated, SlowTenThousandGridBoxesOnTerrain) {
+  // A grid_obstacles block at its limit: 10000 blocks, each over most of a 10000 x 10000 grid, on rolling
+  // terrain. Sampling 257 x 257 points under every block took 15-23 s; one budget of ground queries per
+  // generator (docs/limits.md) makes it about 0.4 s to validate, 1.6 s to run (Release).
+  std::string boxes;
+  for (int k = 0; k < 10000; ++k) {
+    boxes += (k ? "," : "") + std::string(R"({"rows": [)") + std::to_string(1 + k % 100) + ", " +
+             std::to_string(10000 - k % 37) + R"(], "cols": [)" + std::to_string(1 + k * 7 % 1000) + ", " +
+             std::to_string(10000 - k * 13 % 500) + R"(], "height_m": )" + std::to_string(1 + k % 5) + "}";
+  }
+  replay_scene(write("grid_boxes.json", R"({"campo_scene": 1, "name": "grid_boxes", "world": {"time_limit_s": 2},
+      "objects": [{"alias": "hills", "type": "rolling_terrain", "size_m": [200, 200], "spacing_m": 0.5, "amplitude_m": 2},
+        {"alias": "g", "type": "grid_obstacles", "origin_m": [10, -50], "rows": 10000, "cols": 10000,
+         "cell_size_m": 0.01, "boxes": [)" + boxes + R"(]},
+        {"alias": "drone", "type": "quadrotor", "pose": {"position_m": [0, 0, 3.5]}, "planner": {"name": "straight"},
+         "mission": {"waypoints": [{"position_m": [5, 0, 3.5]}]}}]})"));
+}
+
 TEST_F(HostileGenerated, SweepSpecWithAHugeValueList) {
   std::string values;
   for (int i = 0; i < 400000; ++i) values += std::to_string(i % 7 + 1) + ",";

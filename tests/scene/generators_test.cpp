@@ -487,6 +487,54 @@ TEST(GeneratorsGridObstacles, TopFollowsAGroundPeakInsideTheBlock) {
   EXPECT_GE(top, true_max + 10.0 - (2.0 / 25.0) * h * h / 8.0);
 }
 
+// Ground work of one generator is bounded whatever its blocks: 10000 blocks over a whole 10000 x 10000
+// grid once cost 10000 x 257^2 ground queries (15-23 s); now they share kGridBoxGroundVisits.
+TEST(GeneratorsGridObstacles, GroundSamplesStayWithinOneBudgetPerGenerator) {
+  GridObstaclesConfig config;
+  config.rows = config.cols = 10000;
+  config.cell_size_m = 0.01;
+  config.boxes.assign(10000, GridBox{1, 10000, 1, 10000, 2.0});
+  const int n = grid_box_samples_per_side(config, 1);
+  EXPECT_EQ(n, 19);  // floor(sqrt(2^22 / 10000)) - 1: 20 x 20 points a block
+  long queries = 0;
+  const auto counting = [&](double x, double y) {
+    ++queries;
+    return sine_ground(x, y);
+  };
+  const auto shapes = make_grid_obstacles(config, "g", counting, n);
+  ASSERT_EQ(shapes.size(), 10000u);
+  EXPECT_EQ(queries, 10000L * 20 * 20);
+  EXPECT_LE(static_cast<double>(queries), kGridBoxGroundVisits);
+  // Coarser, not wrong: the samples lie under the block (x in [0, 100] m, every 5.26 m), so the top stands
+  // 2 m above a sampled crest of sin(x / 5), never above the true crest and here within 0.09 of it.
+  const double top = shapes[0].pose.translation().z() + 0.5 * shapes[0].size_m.z();
+  EXPECT_LE(top, 1.0 + 2.0 + 1e-12);
+  EXPECT_GE(top, 0.91 + 2.0);
+  // Three ground shapes per query: a third of the points.
+  EXPECT_EQ(grid_box_samples_per_side(config, 3), 10);
+  // Far beyond the budget (10^6 ground shapes): the corners, never fewer.
+  EXPECT_EQ(grid_box_samples_per_side(config, 1000000), 1);
+  // A flat ground needs the corners alone.
+  EXPECT_EQ(grid_box_samples_per_side(config, 0), 1);
+}
+
+TEST(GeneratorsGridObstacles, SmallOrFewBlocksKeepEveryCornerAndCentre) {
+  GridObstaclesConfig config;
+  config.rows = config.cols = 10000;
+  // 10000 blocks of 3 x 3 cells: 7 x 7 points each, well within the budget.
+  config.boxes.assign(10000, GridBox{1, 3, 1, 3, 2.0});
+  EXPECT_EQ(grid_box_samples_per_side(config, 1), kGridBoxGroundSamples);
+  // A few blocks over the whole grid: 257 x 257 points each, as before the budget.
+  config.boxes.assign(60, GridBox{1, 10000, 1, 10000, 2.0});
+  EXPECT_EQ(grid_box_samples_per_side(config, 1), kGridBoxGroundSamples);
+  // The budget binds only between the two: 64 large blocks plus many small ones.
+  config.boxes.assign(64, GridBox{1, 10000, 1, 10000, 2.0});
+  const int n = grid_box_samples_per_side(config, 1);
+  EXPECT_LT(n, kGridBoxGroundSamples);
+  EXPECT_LE(64.0 * (n + 1) * (n + 1), kGridBoxGroundVisits);
+  EXPECT_GT(64.0 * (n + 2) * (n + 2), kGridBoxGroundVisits);  // the largest that fits
+}
+
 TEST(GeneratorsGridObstacles, RejectsBadBlocks) {
   GridObstaclesConfig config = map_001();
   config.boxes = {{1, 1, 1, 1, 5.0}, {10, 101, 1, 1, 5.0}};

@@ -1,6 +1,7 @@
 #include "campo/scene_loader.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -308,6 +309,44 @@ TEST(StepsPerPeriod, WholeStepsOnlyWithinARelativeTolerance) {
   EXPECT_EQ(steps_per_period(60.0 * (1.0 + 1e-12), 1.0 / 240.0), 4);
   EXPECT_EQ(dividing_rates_near(100.0, 1.0 / 240.0), (std::vector<double>{240.0, 120.0, 80.0, 60.0}));
   EXPECT_EQ(dividing_rates_near(1000.0, 1.0 / 240.0), (std::vector<double>{240.0, 120.0}));
+}
+
+// Below 0.01 Hz a sensor's period would exceed 10^7 physics steps; 1e-14 Hz once ran
+// dividing_rates_near() past 2^53 into std::bad_alloc. The same reader serves --set and sweep axes.
+TEST(SceneLoaderErrors, SensorRatesHaveARange) {
+  const auto sensor_with_rate = [](const std::string& rate) {
+    return with_objects(R"j({"alias": "v", "type": "quadrotor", "sensors": [
+        {"alias": "down", "type": "lidar", "preset": "leddar_vu8", "rate_hz": )j" + rate + "}]}");
+  };
+  for (const std::string rate : {"1e-14", "0.001", "-1", "10001", "1e+300"}) {
+    EXPECT_EQ(error_of(sensor_with_rate(rate)),
+              "inline.json: /objects/0/sensors/0/rate_hz: expected 0 (world.sensor_rate_hz) or a number in "
+              "[0.01, 10000], got " + rate)
+        << rate;
+  }
+  EXPECT_THAT(error_of(sensor_with_rate("\"fast\"")), HasSubstr("/objects/0/sensors/0/rate_hz: expected a finite number, got \"fast\""));
+  // The ends of the range: 0.01 Hz is 24000 steps at 240 Hz physics; 0 is the world's rate.
+  EXPECT_EQ(parse(sensor_with_rate("0.01")).vehicles[0].sensors[0].lidar.rate_hz, 0.01);
+  EXPECT_EQ(parse(sensor_with_rate("0")).vehicles[0].sensors[0].lidar.rate_hz, 0.0);
+  EXPECT_EQ(parse(R"j({"world": {"physics_step_s": 0.0001, "control_rate_hz": 100, "sensor_rate_hz": 100},
+      "objects": [{"alias": "v", "type": "quadrotor",
+      "sensors": [{"alias": "s", "type": "lidar", "preset": "leddar_vu8", "rate_hz": 10000}]}]})j")
+                .vehicles[0].sensors[0].lidar.rate_hz,
+            10000.0);
+}
+
+// However slow the rate (or none), a few rates, from counted loops: no 2^53 treadmill.
+TEST(StepsPerPeriod, DividingRatesNearIsBoundedForAnyRate) {
+  for (const double rate : {1e-14, 1e-300, 0.0, -1.0, std::nan("")}) {
+    const std::vector<double> rates = dividing_rates_near(rate, 1.0 / 240.0);
+    EXPECT_LE(rates.size(), 4u) << rate;
+    EXPECT_GE(rates.size(), 2u) << rate;
+    for (const double r : rates) EXPECT_TRUE(r > 0.0 && r <= 240.0) << rate << " gave " << r;
+  }
+  // 1e-14 Hz lies 2.4e16 steps out: listed from 2^52 steps, slowest last.
+  const std::vector<double> slow = dividing_rates_near(1e-14, 1.0 / 240.0);
+  EXPECT_DOUBLE_EQ(slow.back(), 240.0 / (4503599627370496.0 + 1.0));
+  EXPECT_TRUE(std::is_sorted(slow.rbegin(), slow.rend()));
 }
 
 TEST(SceneLoaderErrors, SeedsAreIntegersReadExactly) {

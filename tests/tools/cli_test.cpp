@@ -70,6 +70,42 @@ TEST_F(Cli, InvalidSceneExitsTwoWithPointer) {
   EXPECT_THAT(r.err, HasSubstr("bad.json: /objects/0/size_m/1: expected a number in (0, 1e+06], got -2"));
 }
 
+// validate refuses exactly what run refuses, with run's message: no vehicle, a first vehicle without a
+// mission, a sensor rate out of range, and another vehicle's bad planner parameters (run checks them too).
+TEST_F(Cli, ValidateRefusesExactlyWhatRunRefuses) {
+  const std::string drone = R"({"alias": "drone", "type": "quadrotor", "pose": {"position_m": [0, 0, 1.5]},
+      "mission": {"waypoints": [{"position_m": [5, 0, 1.5]}]}})";
+  struct Case {
+    std::string file;
+    std::string message;
+  };
+  for (const Case& c : {
+           Case{write("no_vehicle.json", R"({"objects": [{"alias": "ground", "type": "plane"}]})"),
+                "no_vehicle.json: /objects: expected a scene with a vehicle to run"},
+           Case{write("no_mission.json", R"({"objects": [{"alias": "drone", "type": "quadrotor"}]})"),
+                "no_mission.json: /objects: expected vehicle \"drone\" to have a mission"},
+           Case{write("slow_sensor.json", R"({"objects": [{"alias": "drone", "type": "quadrotor",
+                "sensors": [{"alias": "s", "type": "lidar", "preset": "leddar_vu8", "rate_hz": 1e-14}],
+                "mission": {"waypoints": [{"position_m": [5, 0, 1.5]}]}}]})"),
+                "slow_sensor.json: /objects/0/sensors/0/rate_hz: expected 0 (world.sensor_rate_hz) or a number in "
+                "[0.01, 10000], got 1e-14"},
+           Case{write("second.json", R"({"objects": [)" + drone + R"(, {"alias": "other", "type": "quadrotor",
+                "planner": {"name": "depth_reactive", "params": {"speed_mps": -1}}}]})"),
+                "second.json: /objects/1/planner/params/speed_mps: expected"},
+       }) {
+    const Result validate = campo("validate " + c.file);
+    EXPECT_EQ(validate.exit_code, 2) << c.file;
+    EXPECT_THAT(validate.err, HasSubstr("error: " + (dir_ / c.message).string())) << c.file;
+    const Result run = campo("run " + c.file + " --out " + (dir_ / "run").string());
+    EXPECT_EQ(run.exit_code, 2) << c.file;
+    EXPECT_THAT(run.err, HasSubstr("error: " + (dir_ / c.message).string())) << c.file;
+    EXPECT_FALSE(fs::exists(dir_ / "run")) << c.file;
+  }
+  // A second vehicle needs no mission: only the one that runs does.
+  const std::string two = write("two.json", R"({"objects": [)" + drone + R"(, {"alias": "idle", "type": "rover"}]})");
+  EXPECT_EQ(campo("validate " + two).exit_code, 0);
+}
+
 TEST_F(Cli, ScanWritesAllOutputsMatchingGeometry) {
   const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json";
   const fs::path out = dir_ / "scan";
