@@ -28,6 +28,7 @@
 #include "sensors/sensor_factory.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
+#include "tools/path_options.hpp"
 #include "vehicles/factory.hpp"
 
 namespace campo::cli {
@@ -465,7 +466,8 @@ Command add_bench(CLI::App& app) {
       ->capture_default_str();
   app.add_option("--json", o->json_file,
                  "Also write every figure to this file, with the machine, command, date and git revision "
-                 "(the form --compare reads)");
+                 "(the form --compare reads)")
+      ->check(input_path());  // an empty path is refused, not taken for "no record"
   app.add_option("--compare", o->baseline_file,
                  "Compare every figure with the same figure of an earlier --json file; exit 3 when one is more "
                  "than --tolerance slower")
@@ -501,8 +503,9 @@ Command add_bench(CLI::App& app) {
       "with the peer's beside it, and prints docs/PERFORMANCE.md's peers table (--table FILE prints\n"
       "it again from the --json record).");
   return [o]() {
-    // Read first: a bad baseline is bad input before minutes of measuring.
+    // Read first: a bad baseline or an unwritable record is bad input before minutes of measuring.
     if (!o->baseline_file.empty()) read_baseline(o->baseline_file);
+    if (!o->json_file.empty()) check_output_file(o->json_file, "--json");
     if (!o->table_file.empty()) {
       try {
         std::cout << peers_table(parse_json_text(read_text_file(o->table_file), o->table_file));

@@ -1,4 +1,5 @@
 // campo: physics simulator with embedded planners for robot-navigation research.
+#include <filesystem>
 #include <iostream>
 #include <map>
 
@@ -50,6 +51,13 @@ int main(int argc, char** argv) {
     }
   } catch (const campo::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
+    return campo::cli::kBadInput;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // The file system refused (a full disk, a read-only folder, a file where a folder should be):
+    // the place to write is refused, not a bug; every path campo writes is meant to become an
+    // OutputError first, this is the net under them.
+    std::cerr << "error: " << campo::printable(e.path1().empty() ? std::string("file system") : e.path1().string())
+              << ": " << e.code().message() << "\n";
     return campo::cli::kBadInput;
   } catch (const std::exception& e) {
     std::cerr << "internal error: " << campo::printable(e.what()) << "\n";

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/output_dir.hpp"
 #include "sweep/chart.hpp"
 #include "sweep/results.hpp"
 #include "tools/commands.hpp"
@@ -22,6 +23,7 @@ struct PlotOptions {
 };
 
 int run_plot(const PlotOptions& o) {
+  check_output_file(o.out, "--out");
   const fs::path dir = o.dir;
   TableLayout layout = table_layout(dir);
   // The results a line at a time, each run folded into its point or box: memory grows with the plot.

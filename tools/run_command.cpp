@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "campo/json_reader.hpp"
+#include "core/output_dir.hpp"
 #include "planners/registry.hpp"
 #include "run/event_log.hpp"
 #include "tools/bundled.hpp"
@@ -39,6 +40,7 @@ int run_run(const RunOptions& o) {
     print_planners(std::cout);
     return kOk;
   }
+  check_output_directory(o.out, "--out");
   RunRequest request;
   request.scene = file_or_bundled(o.scene, &bundled_scene).string();
   request.overrides = o.sets;

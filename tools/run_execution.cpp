@@ -202,7 +202,7 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   // Depth maps of every n-th scan, for `campo render --kind depth`.
   std::vector<int> scans_seen(def.sensors.size(), 0);
   if (request.record_depth_every > 0) {
-    std::filesystem::create_directories(output().path("depth"));
+    create_output_directories(output().path("depth"));
     options.on_scan = [&](std::size_t i, const LidarScan& scan) {
       if (scans_seen[i]++ % request.record_depth_every != 0) return;
       char name[96];
@@ -219,7 +219,7 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
         // Only image sensors give a depth map worth drawing (not a leddar's single row).
         const bool image = reading.config->beams.empty() && reading.config->rows > 1;
         if (reading.alias != *replan->sensor || !reading.scan || !image) continue;
-        std::filesystem::create_directories(output().path("replans"));
+        create_output_directories(output().path("replans"));
         write_depth_png(depth_map(*reading.scan, *reading.config),
                         output().path("replans") / replan_depth_file(replan->index));
       }
@@ -298,7 +298,7 @@ ExecutedRun execute_run(const RunRequest& request) {
     executed.figure_failures = write_run_files(run, request, output());
     out->commit();
   } catch (const OutputError& e) {
-    throw OutputError(e.file(), std::string(e.what()).substr(e.file().size() + 2) +
+    throw OutputError(e.file(), e.message() +
                                     "; the run completed (" + run_summary_line(run.record) +
                                     ") but none of its files were kept");
   }

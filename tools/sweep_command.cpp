@@ -200,11 +200,13 @@ void add_triage(nlohmann::json& line, const SweepRun& run, const fs::path& dir) 
   if (reached) return;
   const std::string where = triage_dir(run);
   const std::string command = repro_command(run, fs::absolute(dir / where).lexically_normal().string());
-  fs::create_directories(dir / where);
+  const OutputDirectory triage(dir / where);
   const fs::path script = dir / where / "repro.sh";
   write_file_atomically(script, "#!/bin/sh\n# " + run.name + " (" + run.id + ")\n" + command + "\n");
+  std::error_code ec;
   fs::permissions(script, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
-                  fs::perm_options::add);
+                  fs::perm_options::add, ec);
+  if (ec) throw OutputError(script, system_reason("cannot make it executable", ec.value()));
   line["triage"] = {{"dir", where}, {"repro", command}};
 }
 
@@ -275,8 +277,11 @@ int run_sweep(const SweepOptions& o) {
     manifest["plugins"].push_back({{"path", plugin.path}, {"sha256", plugin.sha256}, {"planners", plugin.planners}});
   }
   const fs::path dir = o.out;
+  check_output_directory(dir, "--out");
+  // Files of a sweep begun before are written through, and must be files (a FIFO would block).
+  for (const char* file : {"sweep.json", "results.jsonl"}) output_file_target(dir / file);
   check_same_sweep(dir / "sweep.json", manifest);
-  fs::create_directories(dir);
+  const OutputDirectory sweep_dir(dir);
   write_file_atomically(dir / "sweep.json", manifest.dump(2) + "\n");
 
   const fs::path results_file = dir / "results.jsonl";
@@ -347,9 +352,11 @@ int run_sweep(const SweepOptions& o) {
   // The sweep's state on disk, this invocation's runs and earlier ones alike.
   std::set<std::string> ids;
   for (const SweepRun& run : runs) ids.insert(run.id);
-  std::size_t completed = 0, failed = 0;
+  std::size_t completed = 0, failed = 0, files_failed = 0;
   for (const RunResult& r : read_results(results_file).runs) {
-    if (ids.contains(r.id)) ++(r.completed ? completed : failed);
+    if (!ids.contains(r.id)) continue;
+    ++(r.completed ? completed : failed);
+    files_failed += !r.completed && r.files_failed;
   }
   if (returned > 0) {
     std::cerr << "sweep overhead: " << 1000.0 * overhead_s / static_cast<double>(returned)
@@ -358,7 +365,16 @@ int run_sweep(const SweepOptions& o) {
   std::cout << spec.name << ": " << completed << " of " << runs.size() << " runs completed, " << failed
             << " failed (" << pending.size() << " run now, " << skipped << " already recorded); results in "
             << results_file.string() << " (campo table " << dir.string() << ")\n";
-  return failed == 0 && files_errors == 0 ? kOk : kInternalError;
+  if (failed == 0 && files_errors == 0) return kOk;
+  // Runs whose only failure was the place to write them (a full disk) are the output's fault, not
+  // campo's: exit 2, as for any output that cannot be written; a resumed sweep redoes them.
+  if (failed == files_failed) {
+    std::cerr << "error: " << dir.string() << ": the files of " << files_failed + files_errors
+              << " runs could not be written (see the lines above and results.jsonl); campo sweep "
+              << "redoes those runs when resumed\n";
+    return kBadInput;
+  }
+  return kInternalError;
 }
 
 }  // namespace

@@ -5,10 +5,12 @@
 #include <string>
 #include <vector>
 
+#include "core/output_dir.hpp"
 #include "sweep/chart.hpp"
 #include "sweep/results.hpp"
 #include "sweep/table.hpp"
 #include "tools/commands.hpp"
+#include "tools/path_options.hpp"
 
 namespace campo::cli {
 
@@ -28,6 +30,8 @@ struct TableOptions {
 
 int run_table(const TableOptions& o) {
   const fs::path dir = o.dir;
+  // A chart asked for must be writable before any work; the default one only when the sweep has a chart.
+  if (!o.no_chart && !o.chart.empty()) check_output_file(o.chart, "--chart");
   TableLayout layout = table_layout(dir);
   // Which table: the options', else the spec's, else the summary. Checked before anything is written.
   std::optional<TableRequest> request;
@@ -97,7 +101,8 @@ Command add_table(CLI::App& app) {
   app.add_flag("--summary", o->summary, "The summary table, even when the sweep's spec has a \"table\"")
       ->excludes(rows)
       ->excludes(cols);
-  auto* chart = app.add_option("--chart", o->chart, "Where to write the chart PNG (default: DIR/chart.png)");
+  auto* chart = app.add_option("--chart", o->chart, "Where to write the chart PNG (default: DIR/chart.png)")
+                    ->check(input_path());  // an empty path is refused, not taken for the default
   app.add_flag("--no-chart", o->no_chart, "Do not draw the chart")->excludes(chart);
   app.footer(
       "With --rows FIELD [--cols FIELD] --metrics M1,M2 (or the spec's \"table\"): one row per value of\n"

@@ -112,6 +112,7 @@ class PythonEpisode {
   py::object metrics() const { return from_json(campo::to_json(finished().metrics)); }
 
   py::object write(const std::filesystem::path& out, bool figures) const {
+    check_output_directory(out, "out");
     const EpisodeResult& result = finished();
     cli::RunRequest request = request_;
     request.out = out;
@@ -194,6 +195,7 @@ py::object run(const std::string& scene, const py::object& planner, const std::o
   }
   nlohmann::json record;
   if (out) {
+    check_output_directory(*out, "out");  // before the episode is simulated
     request.out = *out;
     const cli::ExecutedRun executed = cli::execute_run(request);
     PythonEpisode::warn_figure_failures(executed.figure_failures);
