@@ -130,7 +130,7 @@ std::string_view to_string(RrtStarStatus status) {
 }
 
 RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m, const Eigen::Vector2d& goal_m,
-                       const RrtStarConfig& config) {
+                       const RrtStarConfig& config, const RrtStarProgress& progress) {
   validate(config);
   RrtStarResult result;
   if (!start_m.allFinite() || grid.is_occupied(start_m)) {
@@ -175,7 +175,13 @@ RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m
   };
   result.best_cost_by_iteration.reserve(static_cast<std::size_t>(config.max_iterations));
 
+  int iterations = 0;
   for (int iteration = 1; iteration <= config.max_iterations; ++iteration) {
+    if (progress && (iteration - 1) % kRrtStarProgressEvery == 0 && !progress(iteration - 1)) {
+      result.stopped = true;
+      break;
+    }
+    iterations = iteration;
     const std::int64_t cells_before = cells;
     const Eigen::Vector2d sample = rng.bernoulli(config.goal_bias)
                                        ? goal_m
@@ -222,7 +228,7 @@ RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m
 
   work.index_query_reads = index.query_reads();
   work.index_build_reads = index.build_reads();
-  result.iterations = config.max_iterations;
+  result.iterations = iterations;
   result.nodes = tree.nodes.size();
   if (tree.best_goal.id < 0) return result;
   result.status = RrtStarStatus::solved;

@@ -6,6 +6,7 @@
 /// same tree and path.
 #include <cstdint>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <string_view>
@@ -81,13 +82,21 @@ struct RrtStarResult {
   std::vector<Eigen::Vector2d> path_m;  ///< start .. a node inside the goal region; empty unless solved
   double cost_m = std::numeric_limits<double>::infinity();  ///< length of path_m
   int first_solution_iteration = -1;  ///< 1-based iteration that first reached the goal region; 0: start inside it
-  int iterations = 0;                 ///< iterations run
+  int iterations = 0;                 ///< iterations run (fewer than max_iterations when stopped)
+  bool stopped = false;               ///< the progress callback stopped the search before its budget
   std::size_t nodes = 0;              ///< tree size at the end
   /// Best cost after each iteration (index i: after iteration i + 1); +inf
   /// before the first solution. Never increases: rewiring only lowers costs.
   std::vector<double> best_cost_by_iteration;
   RrtStarWork work;
 };
+
+/// Iterations between two calls of an RrtStarProgress.
+inline constexpr int kRrtStarProgressEvery = 1024;
+/// Told the iterations done before iterations 1, 1 + kRrtStarProgressEvery,
+/// 1 + 2 kRrtStarProgressEvery, ... (a progress display, a wall-clock
+/// deadline); returning false stops the search there, with the tree so far.
+using RrtStarProgress = std::function<bool(int iterations_done)>;
 
 /// Grows the tree from `start_m` for config.max_iterations iterations:
 /// sample (the goal with probability goal_bias, else uniform over the grid),
@@ -99,10 +108,11 @@ struct RrtStarResult {
 /// dynamic k-d tree and a buffer of the newest nodes), so an iteration costs
 /// O(log^2 n) index work (amortized) plus at most 2 k(n) + 1 segment checks of about 3 lambda / resolution
 /// cells each, independent of the grid's extent. The path is the cheapest
-/// tree path to a node inside the goal region. Throws std::invalid_argument
-/// for a bad config.
+/// tree path to a node inside the goal region. `progress`, if given, may stop
+/// the search early (result.stopped); without it the result depends only on
+/// the inputs. Throws std::invalid_argument for a bad config.
 RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m, const Eigen::Vector2d& goal_m,
-                       const RrtStarConfig& config = {});
+                       const RrtStarConfig& config = {}, const RrtStarProgress& progress = {});
 
 /// A MovingAI map as an occupancy grid of 1 m cells, origin (0, 0): map
 /// cell (x, y), y counted from the top row, becomes grid cell

@@ -15,6 +15,8 @@
 #include <utility>
 #include <vector>
 
+#include <unistd.h>
+
 #include "campo/json_reader.hpp"
 #include "grid/astar.hpp"
 #include "grid/dstar_lite.hpp"
@@ -22,6 +24,7 @@
 #include "grid/movingai.hpp"
 #include "planners/dubins.hpp"
 #include "planners/rrt_star.hpp"
+#include "sweep/progress.hpp"
 #include "tools/commands.hpp"
 
 namespace campo::cli {
@@ -40,6 +43,8 @@ struct PlanOptions {
   std::string seed;
   std::string iterations;
   std::string step;
+  std::string time_limit;
+  std::string progress_every;
   // Set by add_plan: which options the command line gave.
   std::vector<std::pair<std::string, const CLI::Option*>> given;
 
@@ -161,6 +166,93 @@ double elapsed_ms(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// How far the planning has come, on stderr as a sweep shows it (sweep/progress.hpp): on a
+// terminal one bar redrawn in place (from the first second on, at most 10 times a second),
+// otherwise a plain line every --progress-every seconds (default 10), so quick plans print
+// nothing. Also the --time-limit deadline: update() returns false once it has passed.
+class PlanProgress {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  PlanProgress(std::string what, double time_limit_s, double every_s)
+      : what_(std::move(what)), time_limit_s_(time_limit_s), every_s_(every_s), tty_(::isatty(STDERR_FILENO) == 1) {}
+
+  /// The work ahead: `items` (problems) of `per_item` units each (iterations; 1 for a grid search).
+  void expect(std::size_t items, std::uint64_t per_item, std::string unit) {
+    per_item_ = per_item;
+    total_ = static_cast<std::uint64_t>(items) * per_item;
+    unit_ = std::move(unit);
+  }
+  /// Item `index` (0-based) begins.
+  void begin_item(std::size_t index) { base_ = static_cast<std::uint64_t>(index) * per_item_; }
+  /// Item `index` has ended (a search that was not stopped ran every unit).
+  void end_item(std::size_t index) {
+    if (!timed_out_) done_ = static_cast<std::uint64_t>(index + 1) * per_item_;
+  }
+  /// `done` units of the current item are done; false when the time limit has passed.
+  bool update(std::uint64_t done) {
+    done_ = base_ + done;
+    const Clock::time_point now = Clock::now();
+    const double elapsed = seconds(now - start_);
+    if (time_limit_s_ > 0.0 && elapsed >= time_limit_s_) {
+      timed_out_ = true;
+      return false;
+    }
+    if (tty_ ? elapsed >= 1.0 && seconds(now - last_) >= 0.1 : seconds(now - last_) >= every_s_) {
+      last_ = now;
+      show(elapsed);
+    }
+    return true;
+  }
+  /// A terminal's bar keeps its last state on a line of its own.
+  void finish() {
+    if (!drawn_) return;
+    show(seconds(Clock::now() - start_));
+    std::cerr << "\n";
+  }
+  bool timed_out() const { return timed_out_; }
+
+ private:
+  static double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+  // "[#####.........] rrt_star: 1234567/10000000 iterations | 81234 iterations/s | ETA 1m48s"
+  void show(double elapsed_s) {
+    const double fraction = total_ == 0 ? 0.0 : static_cast<double>(done_) / static_cast<double>(total_);
+    std::string line = what_ + ": " + std::to_string(done_) + "/" + std::to_string(total_) + " " + unit_;
+    if (done_ > 0 && elapsed_s > 0.0) {
+      char pace[64];
+      std::snprintf(pace, sizeof pace, " | %.0f %s/s", static_cast<double>(done_) / elapsed_s, unit_.c_str());
+      line += pace;
+      line += " | ETA " + format_duration(elapsed_s / fraction - elapsed_s);
+    } else {
+      line += " | ETA --";
+    }
+    if (!tty_) {
+      std::cerr << "progress: " << line << "\n";
+      return;
+    }
+    constexpr int kWidth = 30;
+    const int filled = std::clamp(static_cast<int>(fraction * kWidth), 0, kWidth);
+    std::cerr << "\r[" << std::string(static_cast<std::size_t>(filled), '#')
+              << std::string(static_cast<std::size_t>(kWidth - filled), '.') << "] " << line << "\033[K" << std::flush;
+    drawn_ = true;
+  }
+
+  std::string what_;
+  double time_limit_s_;  // 0: none
+  double every_s_;
+  bool tty_;
+  std::string unit_;
+  std::uint64_t per_item_ = 1;
+  std::uint64_t total_ = 0;
+  std::uint64_t base_ = 0;
+  std::uint64_t done_ = 0;
+  bool drawn_ = false;
+  bool timed_out_ = false;
+  Clock::time_point start_ = Clock::now();
+  Clock::time_point last_ = start_;
+};
+
 // One solved scenario problem: the cost in cells (-1 when unsolved) and the
 // time spent planning.
 struct Solved {
@@ -170,28 +262,42 @@ struct Solved {
 
 // Solves every problem of --scen and prints the CSV; `match` decides the last
 // column, `what` names the criterion in the summary on stderr.
+// `progress` counts `per_problem` units a problem and may stop before a problem at the time limit.
 int run_scenario(const PlanOptions& o, const grid::MovingAiMap& map,
                  const std::function<Solved(const grid::Cell&, const grid::Cell&)>& solve,
-                 const std::function<bool(double cost, double optimal)>& match, const std::string& what) {
+                 const std::function<bool(double cost, double optimal)>& match, const std::string& what,
+                 PlanProgress& progress, std::uint64_t per_problem, const std::string& unit) {
   const auto problems = grid::read_movingai_scenario(o.scen);
   grid::check_scenario(o.scen, problems, map);
+  progress.expect(problems.size(), per_problem, unit);
   std::cout << "index,start_x,start_y,goal_x,goal_y,optimal,cost,match\n";
   std::size_t mismatches = 0;
   double total_ms = 0.0;
+  std::size_t tried = 0;
   for (std::size_t i = 0; i < problems.size(); ++i) {
+    progress.begin_item(i);
+    if (!progress.update(0)) break;
+    ++tried;
     const grid::MovingAiProblem& p = problems[i];
     const Solved s = solve(p.start, p.goal);
+    progress.end_item(i);
     const bool matched = match(s.cost, p.optimal_length);
     mismatches += matched ? 0 : 1;
     total_ms += s.time_ms;
     std::cout << i << ',' << p.start.x << ',' << p.start.y << ',' << p.goal.x << ',' << p.goal.y << ','
               << format_cost(p.optimal_length) << ',' << format_cost(s.cost) << ',' << (matched ? 1 : 0) << '\n';
   }
+  progress.finish();
   char searching[64];
   std::snprintf(searching, sizeof searching, "%.1f ms searching", total_ms);
-  std::cerr << problems.size() - mismatches << " of " << problems.size() << " problems " << what << " (" << o.planner
-            << ", " << searching << ")\n";
-  return mismatches == 0 ? kOk : kInternalError;
+  std::cerr << tried - mismatches << " of " << problems.size() << " problems " << what << " (" << o.planner << ", "
+            << searching << ")";
+  if (progress.timed_out()) {
+    std::cerr << "; stopped at --time-limit " << o.time_limit << " s with " << problems.size() - tried
+              << " problems not tried";
+  }
+  std::cerr << "\n";
+  return mismatches == 0 && tried == problems.size() ? kOk : kInternalError;
 }
 
 // Either --start and --goal (true) or --scen (false), never both or neither.
@@ -220,15 +326,27 @@ int with_format_errors(F&& run) {
   }
 }
 
+// --time-limit and --progress-every (seconds), read before any work; 0: no time limit.
+struct ProgressOptions {
+  double time_limit_s = 0.0;
+  double every_s = 10.0;
+};
+constexpr double kMinSeconds = 1e-3;
+constexpr double kMaxSeconds = 1e6;
+ProgressOptions parse_progress_options(const PlanOptions& o);
+
 int run_grid(const PlanOptions& o) {
   const GridPlanner planner = planner_from_name(o.planner);
   reject(o, {"--from", "--to", "--radius", "--seed", "--iterations", "--step"});
   const bool single = single_problem(o);
+  const ProgressOptions progress_options = parse_progress_options(o);
   return with_format_errors([&] {
     const grid::MovingAiMap map = grid::read_movingai_map(o.map);
     grid::GridGraph graph = grid::to_grid_graph(map);
     Solver solver(graph, planner);
     if (!single) {
+      // One search is bounded by the map (at most 4096 x 4096 cells); the problems are counted.
+      PlanProgress progress(o.planner, progress_options.time_limit_s, progress_options.every_s);
       return run_scenario(
           o, map,
           [&](const grid::Cell& start, const grid::Cell& goal) {
@@ -236,7 +354,8 @@ int run_grid(const PlanOptions& o) {
             const grid::SearchResult result = solver.solve(start, goal);
             return Solved{grid::to_cells(result.cost), elapsed_ms(t0)};
           },
-          [](double cost, double optimal) { return grid::matches_optimal(cost, optimal); }, "at the optimal length");
+          [](double cost, double optimal) { return grid::matches_optimal(cost, optimal); }, "at the optimal length",
+          progress, 1, "problems");
     }
     const grid::Cell start = parse_cell(o.start, "--start", map), goal = parse_cell(o.goal, "--goal", map);
     const auto t0 = std::chrono::steady_clock::now();
@@ -288,6 +407,18 @@ double parse_in_range(const std::string& text, const std::string& option, const 
   return *value;
 }
 
+ProgressOptions parse_progress_options(const PlanOptions& o) {
+  ProgressOptions p;
+  if (o.has("--time-limit")) {
+    p.time_limit_s = parse_in_range(o.time_limit, "--time-limit", "seconds of wall time", kMinSeconds, kMaxSeconds);
+  }
+  if (o.has("--progress-every")) {
+    p.every_s = parse_in_range(o.progress_every, "--progress-every", "seconds between progress lines", kMinSeconds,
+                               kMaxSeconds);
+  }
+  return p;
+}
+
 template <class Int>
 Int parse_integer(const std::string& text, const std::string& option, Int min, Int max) {
   Int value{};
@@ -328,7 +459,8 @@ std::string fixed6(double value) {
 }
 
 int run_dubins(const PlanOptions& o) {
-  reject(o, {"--map", "--start", "--goal", "--scen", "--seed", "--iterations", "--step"});
+  reject(o, {"--map", "--start", "--goal", "--scen", "--seed", "--iterations", "--step", "--time-limit",
+             "--progress-every"});
   for (const char* option : {"--from", "--to", "--radius"}) {
     if (!o.has(option)) {
       throw InputError("command line", option,
@@ -355,10 +487,11 @@ struct RrtRun {
 };
 
 RrtRun solve_rrt(const OccupancyGrid& occupancy, const grid::MovingAiMap& map, const grid::Cell& start,
-                 const grid::Cell& goal, const RrtStarConfig& config) {
+                 const grid::Cell& goal, const RrtStarConfig& config, PlanProgress& progress) {
   const Eigen::Vector2d goal_m = movingai_cell_centre(map, goal);
   const auto t0 = std::chrono::steady_clock::now();
-  RrtRun run{rrt_star(occupancy, movingai_cell_centre(map, start), goal_m, config)};
+  RrtRun run{rrt_star(occupancy, movingai_cell_centre(map, start), goal_m, config,
+                      [&](int done) { return progress.update(static_cast<std::uint64_t>(done)); })};
   run.time_ms = elapsed_ms(t0);
   if (run.result.status == RrtStarStatus::solved) {
     run.cost = run.result.cost_m;
@@ -381,27 +514,38 @@ int run_rrt_star(const PlanOptions& o) {
   config.step_m =
       o.has("--step") ? parse_in_range(o.step, "--step", "the step in cells", kMinStepM, kMaxLengthM) : kRrtDefaultStep;
   config.goal_radius_m = kRrtGoalRadius;
+  const ProgressOptions progress_options = parse_progress_options(o);
   return with_format_errors([&] {
     const grid::MovingAiMap map = grid::read_movingai_map(o.map);
     const OccupancyGrid occupancy = to_occupancy_grid(map);
+    const auto iterations = static_cast<std::uint64_t>(config.max_iterations);
     if (!single) {
+      PlanProgress progress(o.planner, progress_options.time_limit_s, progress_options.every_s);
       return run_scenario(
           o, map,
           [&](const grid::Cell& start, const grid::Cell& goal) {
-            const RrtRun run = solve_rrt(occupancy, map, start, goal, config);
+            const RrtRun run = solve_rrt(occupancy, map, start, goal, config, progress);
             return Solved{run.cost, run.time_ms};
           },
           [](double cost, double optimal) {
             return cost >= 0.0 && cost <= (1.0 + kRrtMatchTolerance) * optimal + 1e-3;
           },
-          "at most 10 % longer than the optimal length");
+          "at most 10 % longer than the optimal length", progress, iterations, "iterations");
     }
     const grid::Cell start = parse_cell(o.start, "--start", map), goal = parse_cell(o.goal, "--goal", map);
-    const RrtRun run = solve_rrt(occupancy, map, start, goal, config);
+    PlanProgress progress(o.planner, progress_options.time_limit_s, progress_options.every_s);
+    progress.expect(1, iterations, "iterations");
+    const RrtRun run = solve_rrt(occupancy, map, start, goal, config, progress);
+    progress.end_item(0);
+    progress.finish();
     const std::size_t steps = run.result.path_m.empty() ? 0 : run.result.path_m.size() - 1;
     std::cout << "cost=" << format_cost(run.cost) << " steps=" << steps << " iterations=" << run.result.iterations
               << " first_solution=" << run.result.first_solution_iteration << " time_ms=" << format_ms(run.time_ms)
               << "\n";
+    if (run.result.stopped) {
+      std::cerr << "rrt_star: stopped at --time-limit " << o.time_limit << " s after " << run.result.iterations
+                << " of " << config.max_iterations << " iterations; the path is the best found by then\n";
+    }
     return static_cast<int>(kOk);
   });
 }
@@ -436,6 +580,12 @@ Command add_plan(CLI::App& app) {
   add("--seed", o->seed, "rrt_star: seed of the sampler (default 0)");
   add("--iterations", o->iterations, "rrt_star: iterations, 1 to 10000000 (default 20000)");
   add("--step", o->step, "rrt_star: farthest a new node lies from the tree, cells, 0.001 to 1000000 (default 5)");
+  add("--time-limit", o->time_limit,
+      "Seconds of wall time the planning may take, 0.001 to 1000000 (default: none): rrt_star stops its search "
+      "there with the best path so far; with --scen, the problems not yet tried are not (exit 1)");
+  add("--progress-every", o->progress_every,
+      "Seconds between progress lines when stderr is not a terminal, 0.001 to 1000000 (default 10; on a "
+      "terminal, a progress bar with ETA from the first second on)");
   add("--from", o->from,
       "dubins: start pose X,Y,HEADING (metres, metres, degrees CCW from +x; |X|, |Y| <= 1e7, |HEADING| <= 1e6)");
   add("--to", o->to, "dubins: goal pose X,Y,HEADING");
@@ -444,6 +594,7 @@ Command add_plan(CLI::App& app) {
       "  campo plan [--planner astar|dstar_lite|lpa_star] --map FILE.map (--start X,Y --goal X,Y | --scen FILE.scen)\n"
       "  campo plan --planner rrt_star --map FILE.map (--start X,Y --goal X,Y | --scen FILE.scen)\n"
       "             [--seed N] [--iterations N] [--step CELLS]\n"
+      "  (map planners also take [--time-limit S] [--progress-every S])\n"
       "  campo plan --planner dubins --from X,Y,HEADING --to X,Y,HEADING --radius R\n"
       "\n"
       "Grid planners plan on a 2D grid map, 8-connected: straight moves cost 1, diagonal moves\n"
@@ -480,6 +631,14 @@ Command add_plan(CLI::App& app) {
       "with the word (L left arc, R right arc, S straight), the length and the three segment\n"
       "lengths in metres, 6 decimals; a segment that is not needed has length 0. Accepted: |X|, |Y|\n"
       "up to 1e7 m, |HEADING| up to 1e6 degrees, R from 1e-6 to 1e7 m.\n"
+      "\n"
+      "Planning that lasts shows how far it has come on stderr: on a terminal a bar with ETA (from the\n"
+      "first second on), otherwise a line every 10 s (--progress-every). It ends in bounded time: one\n"
+      "grid search visits each of the map's at most 4096 x 4096 cells a bounded number of times, and\n"
+      "rrt_star runs at most 10000000 iterations (several minutes). --time-limit S stops rrt_star's\n"
+      "search after S seconds of wall time with the best path so far (iterations= tells how many ran,\n"
+      "and a line on stderr says so) and, with --scen, tries no further problem (exit 1). Without it,\n"
+      "the results depend on the inputs only.\n"
       "\n"
       "Options that do not apply to the planner are errors.\n"
       "Exit 0 when done (with --scen: every cost matched), 1 when a cost did not match or on an\n"

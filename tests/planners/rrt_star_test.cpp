@@ -117,6 +117,40 @@ TEST(RrtStar, SameSeedSamePath) {
   EXPECT_NE(rrt_star(grid, kStart, kGoal, config).path_m, a.path_m);
 }
 
+// The progress callback sees the iterations done every kRrtStarProgressEvery; it may stop the search
+// (campo plan --time-limit), which then is the same search cut short. Watching changes nothing.
+TEST(RrtStar, ProgressSeesEveryThousandIterationsAndMayStopTheSearch) {
+  const OccupancyGrid grid = walled_field();
+  RrtStarConfig config;
+  config.seed = 42;
+  config.max_iterations = 5000;
+  const RrtStarResult full = rrt_star(grid, kStart, kGoal, config);
+  std::vector<int> seen;
+  const RrtStarResult watched = rrt_star(grid, kStart, kGoal, config, [&](int done) {
+    seen.push_back(done);
+    return true;
+  });
+  EXPECT_EQ(seen, (std::vector<int>{0, 1024, 2048, 3072, 4096}));
+  EXPECT_FALSE(watched.stopped);
+  EXPECT_EQ(watched.iterations, 5000);
+  EXPECT_EQ(watched.path_m, full.path_m);
+  EXPECT_EQ(watched.best_cost_by_iteration, full.best_cost_by_iteration);
+
+  const RrtStarResult stopped = rrt_star(grid, kStart, kGoal, config, [](int done) { return done < 2048; });
+  EXPECT_TRUE(stopped.stopped);
+  EXPECT_EQ(stopped.iterations, 2048);
+  ASSERT_EQ(stopped.best_cost_by_iteration.size(), 2048u);
+  EXPECT_TRUE(std::equal(stopped.best_cost_by_iteration.begin(), stopped.best_cost_by_iteration.end(),
+                         full.best_cost_by_iteration.begin()));
+  if (stopped.status == RrtStarStatus::solved) EXPECT_EQ(stopped.cost_m, stopped.best_cost_by_iteration.back());
+  // Stopped before the first iteration: no tree beyond the start.
+  const RrtStarResult none = rrt_star(grid, kStart, kGoal, config, [](int) { return false; });
+  EXPECT_TRUE(none.stopped);
+  EXPECT_EQ(none.iterations, 0);
+  EXPECT_EQ(none.nodes, 1u);
+  EXPECT_EQ(none.status, RrtStarStatus::no_solution);
+}
+
 TEST(RrtStar, FixedRewiringRadiusAlsoConverges) {
   const OccupancyGrid grid = walled_field();
   RrtStarConfig config;

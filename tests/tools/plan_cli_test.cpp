@@ -105,7 +105,8 @@ TEST_F(PlanCli, HelpExplainsFormatAndOutput) {
                            "--planner rrt_star --map FILE.map", "cost=C steps=S iterations=I first_solution=K time_ms=T",
                            "at most 10 % longer", "--planner dubins --from X,Y,HEADING --to X,Y,HEADING --radius R",
                            "word=LSL length=L segments=A,B,C", "counter-clockwise from +x",
-                           "Options that do not apply to the planner are errors"}) {
+                           "Options that do not apply to the planner are errors", "--time-limit S",
+                           "at most 10000000 iterations", "bar with ETA"}) {
     EXPECT_THAT(r.out, HasSubstr(text));
   }
 }
@@ -233,6 +234,58 @@ TEST_F(PlanCli, RrtStarScenarioMatchesWithinTenPercent) {
   EXPECT_THAT(mismatch.err, HasSubstr("0 of 1 problems"));
 }
 
+// ---- progress and bounds ----
+
+TEST_F(PlanCli, RrtStarShowsProgressOffATerminalOnlyWhenAsked) {
+  const std::string problem = "--planner rrt_star --map " + kData + "arena.map --start 1,7 --goal 47,46";
+  // Quick plans say nothing (a line every 10 s by default)...
+  const Result quiet = plan(problem + " --iterations 3000");
+  EXPECT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+  // ...but every --progress-every seconds, a plain line with the count, the pace and the ETA.
+  const Result r = plan(problem + " --iterations 20000 --progress-every 0.001");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const auto lines = lines_of(r.err);
+  ASSERT_FALSE(lines.empty());
+  for (const std::string& line : lines) {
+    EXPECT_TRUE(std::regex_match(line, std::regex("progress: rrt_star: [0-9]+/20000 iterations \\| "
+                                                  "([0-9]+ iterations/s \\| ETA [0-9hms]+|ETA --)")))
+        << line;
+  }
+  // Progress changes nothing: the same line as without it but for the time.
+  EXPECT_EQ(without_time(r.out), without_time(plan(problem + " --iterations 20000").out));
+}
+
+TEST_F(PlanCli, TimeLimitStopsRrtStarWithTheBestPathSoFar) {
+  const std::string problem = "--planner rrt_star --map " + kData + "arena.map --start 1,7 --goal 47,46";
+  // 10^7 iterations would take minutes; a tenth of a second ends it.
+  const Result r = plan(problem + " --iterations 10000000 --time-limit 0.1");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const std::smatch m = [&] {
+    std::smatch found;
+    std::regex_search(r.out, found, std::regex(" iterations=([0-9]+) "));
+    return found;
+  }();
+  ASSERT_EQ(m.size(), 2u) << r.out;
+  const long iterations = std::stol(m[1]);
+  EXPECT_GT(iterations, 0);
+  EXPECT_LT(iterations, 10000000);
+  EXPECT_EQ(iterations % 1024, 0);  // stopped where the search looks at the clock
+  EXPECT_THAT(r.err, HasSubstr("rrt_star: stopped at --time-limit 0.1 s after " + std::to_string(iterations) +
+                               " of 10000000 iterations"));
+  // A scenario tries no further problem once the time is up, and says how many it left (exit 1).
+  const Result scen = plan("--planner rrt_star --iterations 10000000 --time-limit 0.1 --map " + kData +
+                           "arena.map --scen " + kData + "arena.map.scen");
+  EXPECT_EQ(scen.exit_code, 1);
+  EXPECT_EQ(lines_of(scen.out).size(), 2u) << scen.out;  // the header and the problem cut short
+  EXPECT_THAT(scen.err, HasSubstr("of 160 problems"));
+  EXPECT_THAT(scen.err, HasSubstr("stopped at --time-limit 0.1 s with 159 problems not tried"));
+  // Grid searches stop between problems.
+  const Result grid = plan("--time-limit 0.001 --map " + kData + "arena.map --scen " + kData + "arena.map.scen");
+  EXPECT_EQ(grid.exit_code, 1);
+  EXPECT_THAT(grid.err, HasSubstr("problems not tried"));
+}
+
 // ---- which options apply ----
 
 TEST_F(PlanCli, OptionsThatDoNotApplyOrAreBadExitTwo) {
@@ -284,6 +337,12 @@ TEST_F(PlanCli, OptionsThatDoNotApplyOrAreBadExitTwo) {
            Case{rrt + " --step 0", "--step: expected the step in cells, a number in [0.001, 1e+06], got \"0\""},
            Case{rrt + " --step 1e-300", "--step: expected the step in cells, a number in [0.001, 1e+06], got \"1e-300\""},
            Case{rrt + " --step 1e300", "--step: expected the step in cells, a number in [0.001, 1e+06]"},
+           Case{rrt + " --iterations 10000001", "--iterations: expected an integer in [1, 10000000], got \"10000001\""},
+           Case{rrt + " --time-limit 0", "--time-limit: expected seconds of wall time, a number in [0.001, 1e+06], got \"0\""},
+           Case{rrt + " --time-limit inf", "--time-limit: expected seconds of wall time"},
+           Case{arena + " --scen x --time-limit -1", "--time-limit: expected seconds of wall time"},
+           Case{rrt + " --progress-every 0", "--progress-every: expected seconds between progress lines, a number in [0.001, 1e+06]"},
+           Case{dubins + " --from 0,0,90 --to 4,0,-90 --radius 2 --time-limit 1", "--time-limit: does not apply to --planner dubins"},
        }) {
     const Result r = plan(c.args);
     EXPECT_EQ(r.exit_code, 2) << c.args;
