@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -63,14 +65,48 @@ json solid_json(const Shape& s, int mover) {
   return j;
 }
 
+// The heights of `g` on a grid of at most cols x rows vertices over the same extent, bilinear.
+HeightGrid resampled(const HeightGrid& g, int cols, int rows) {
+  if (cols >= g.cols && rows >= g.rows) return g;
+  HeightGrid out;
+  out.cols = std::max(2, std::min(cols, g.cols));
+  out.rows = std::max(2, std::min(rows, g.rows));
+  out.spacing_x_m = g.size_x_m() / (out.cols - 1);
+  out.spacing_y_m = g.size_y_m() / (out.rows - 1);
+  out.heights_m.resize(static_cast<std::size_t>(out.cols) * out.rows);
+  for (int r = 0; r < out.rows; ++r) {
+    const double y = static_cast<double>(r) * (g.rows - 1) / (out.rows - 1);
+    const int r0 = std::min(static_cast<int>(y), g.rows - 2);
+    const double fy = y - r0;
+    for (int c = 0; c < out.cols; ++c) {
+      const double x = static_cast<double>(c) * (g.cols - 1) / (out.cols - 1);
+      const int c0 = std::min(static_cast<int>(x), g.cols - 2);
+      const double fx = x - c0;
+      const double low = g.at(c0, r0) + fx * (g.at(c0 + 1, r0) - g.at(c0, r0));
+      const double high = g.at(c0, r0 + 1) + fx * (g.at(c0 + 1, r0 + 1) - g.at(c0, r0 + 1));
+      out.heights_m[static_cast<std::size_t>(r) * out.cols + c] = low + fy * (high - low);
+    }
+  }
+  return out;
+}
+
 json scene_json(const Scene& scene, double duration_s, const ReplayLimits& limits, Eigen::AlignedBox3d& bounds) {
   json shapes = json::array(), planes = json::array(), terrains = json::array(), movers = json::array();
+  // Terrains share max_terrain_vertices: a finer set is resampled by one factor along both sides.
+  double vertices = 0.0;
+  for (const Shape& s : scene.shapes) {
+    if (s.type == ShapeType::heightfield) vertices += static_cast<double>(s.terrain->cols) * s.terrain->rows;
+  }
+  const double shrink = vertices > static_cast<double>(limits.max_terrain_vertices)
+                            ? std::sqrt(static_cast<double>(limits.max_terrain_vertices) / vertices)
+                            : 1.0;
   for (const Shape& s : scene.shapes) {
     if (s.type == ShapeType::plane) {
       planes.push_back({{"position_m", xyz(s.pose.translation())}, {"normal", xyz(s.pose.linear().col(2))},
                         {"color", rgb(s.color)}});
     } else if (s.type == ShapeType::heightfield) {
-      const HeightGrid& g = *s.terrain;
+      const HeightGrid g = resampled(*s.terrain, static_cast<int>(std::floor((s.terrain->cols - 1) * shrink)) + 1,
+                                     static_cast<int>(std::floor((s.terrain->rows - 1) * shrink)) + 1);
       json heights = json::array();
       for (double h : g.heights_m) heights.push_back(rounded(h));
       terrains.push_back({{"position_m", xyz(s.pose.translation())}, {"rotation", rotation(s.pose.linear())},
@@ -88,11 +124,14 @@ json scene_json(const Scene& scene, double duration_s, const ReplayLimits& limit
       bounds.extend(s.pose.translation());
     }
   }
+  // Bounded whatever the recorded duration claims, and shared by the movers.
+  const std::size_t mover_samples =
+      std::max<std::size_t>(1, std::min(limits.max_mover_samples,
+                                        limits.max_total_mover_samples / std::max<std::size_t>(scene.movers.size(), 1)));
   for (std::size_t i = 0; i < scene.movers.size(); ++i) {
     const Mover& m = scene.movers[i];
     json times = json::array(), positions = json::array();
-    // Bounded whatever the recorded duration claims.
-    const double step_s = std::max(limits.mover_sample_s, duration_s / static_cast<double>(limits.max_mover_samples));
+    const double step_s = std::max(limits.mover_sample_s, duration_s / static_cast<double>(mover_samples));
     const auto samples = static_cast<std::size_t>(std::ceil(duration_s / step_s)) + 1;
     for (std::size_t k = 0; k < samples; ++k) {
       const double t = std::min(static_cast<double>(k) * step_s, duration_s);
@@ -105,6 +144,19 @@ json scene_json(const Scene& scene, double duration_s, const ReplayLimits& limit
   return {{"name", scene.name}, {"shapes", std::move(shapes)}, {"planes", std::move(planes)},
           {"terrains", std::move(terrains)}, {"movers", std::move(movers)}};
 }
+
+// What one of `runs` runs may put in the page: its share of the totals.
+struct RunBudget {
+  RunBudget(const ReplayLimits& limits, std::size_t runs)
+      : track_samples(std::max<std::size_t>(2, std::min(limits.max_track_samples, limits.max_total_track_samples / runs))),
+        scans(limits.max_scans),
+        points_per_scan(limits.max_scan_points),
+        scan_points(limits.max_total_scan_points / runs) {}
+  std::size_t track_samples;
+  std::size_t scans;
+  std::size_t points_per_scan;
+  std::size_t scan_points;  ///< over all of the run's scans
+};
 
 // trajectory.csv's poses, sample by sample.
 struct RecordedPoses {
@@ -128,7 +180,7 @@ struct RecordedPoses {
 
 // The returns of the run's first sensor with recorded depth maps, in the world frame, from
 // the vehicle's recorded pose at each scan.
-json scans_json(const RecordedRun& run, const RecordedPoses& poses, const ReplayLimits& limits) {
+json scans_json(const RecordedRun& run, const RecordedPoses& poses, const RunBudget& budget) {
   json scans = json::array();
   const std::vector<RecordedDepthMap> maps = recorded_depth_maps(run);
   if (maps.empty()) return scans;
@@ -145,7 +197,11 @@ json scans_json(const RecordedRun& run, const RecordedPoses& poses, const Replay
   for (const auto& m : maps) {
     if (m.sensor == sensor->alias) own.push_back(m);
   }
-  for (std::size_t k : thinned(own.size(), limits.max_scans)) {
+  // The run's share of the scan points: fewer scans first (at least 100 points each), then fewer points.
+  const std::size_t kept_scans = std::min(budget.scans, std::max<std::size_t>(1, budget.scan_points / 100));
+  const std::size_t points_per_scan =
+      std::min(budget.points_per_scan, std::max<std::size_t>(1, budget.scan_points / kept_scans));
+  for (std::size_t k : thinned(own.size(), kept_scans)) {
     const RecordedDepthMap& m = own[k];
     // The recorded sample at the scan (samples are at least as frequent as scans).
     const auto it = std::upper_bound(poses.time.begin(), poses.time.end(), m.time_s + 1e-9);
@@ -153,18 +209,18 @@ json scans_json(const RecordedRun& run, const RecordedPoses& poses, const Replay
     const std::vector<Eigen::Vector3d> points =
         depth_map_returns(read_depth_map(m.file), *sensor, to_isometry(poses.at(i)), m.file);
     json pts = json::array();
-    for (std::size_t p : thinned(points.size(), limits.max_scan_points)) pts.push_back(xyz(points[p]));
+    for (std::size_t p : thinned(points.size(), points_per_scan)) pts.push_back(xyz(points[p]));
     scans.push_back({{"time_s", rounded(m.time_s)}, {"points_m", std::move(pts)}});
   }
   return scans;
 }
 
-json run_json(const RecordedRun& run, std::size_t index, const ReplayLimits& limits, Eigen::AlignedBox3d& bounds) {
+json run_json(const RecordedRun& run, std::size_t index, const RunBudget& budget, Eigen::AlignedBox3d& bounds) {
   const TrajectoryTable table = read_trajectory_table(run.dir / "trajectory.csv");
   const RecordedPoses poses(table);
   if (poses.time.empty()) throw InputError(table.file, "", "no samples; expected a track");
   json times = json::array(), positions = json::array(), attitudes = json::array();
-  for (std::size_t i : thinned(poses.time.size(), limits.max_track_samples)) {
+  for (std::size_t i : thinned(poses.time.size(), budget.track_samples)) {
     const Pose pose = poses.at(i);
     times.push_back(rounded(poses.time[i], 1e-4));
     positions.push_back(xyz(pose.position_m));
@@ -181,7 +237,7 @@ json run_json(const RecordedRun& run, std::size_t index, const ReplayLimits& lim
           {"times_s", std::move(times)},
           {"positions_m", std::move(positions)},
           {"rpy_deg", std::move(attitudes)},
-          {"scans", scans_json(run, poses, limits)}};
+          {"scans", scans_json(run, poses, budget)}};
 }
 
 // The page: each line of the template that is one marker alone becomes that content; the
@@ -217,29 +273,48 @@ std::string assemble(const ReplayAssets& assets, const std::string& data) {
 
 }  // namespace
 
-nlohmann::json replay_data(const std::vector<RecordedRun>& runs, const ReplayLimits& limits) {
-  if (runs.empty()) throw std::invalid_argument("replay_data: no runs");
-  for (const RecordedRun& run : runs) {
-    if (run.scene.name != runs.front().scene.name) {
-      throw InputError((run.dir / "scene.json").string(), "/name",
-                       "expected the scene of the other runs (\"" + runs.front().scene.name + "\"): one replay shows one scene, got \"" +
-                           run.scene.name + "\"");
-    }
+void check_replay_runs(std::size_t runs, const ReplayLimits& limits) {
+  if (runs > limits.max_runs) {
+    throw InputError("command line", "runs",
+                     "at most " + std::to_string(limits.max_runs) + " run directories in one replay, got " +
+                         std::to_string(runs) + " (a page of more would be too heavy to open; make several)");
   }
+}
+
+namespace {
+
+void check_same_scene(const RecordedRun& run, const RecordedRun& first) {
+  if (run.scene.name != first.scene.name) {
+    throw InputError((run.dir / "scene.json").string(), "/name",
+                     "expected the scene of the other runs (\"" + first.scene.name + "\"): one replay shows one scene, got \"" +
+                         run.scene.name + "\"");
+  }
+}
+
+// The page's data from the runs, `run(i)` giving the i-th of `count` (loaded or read then).
+json replay_json(std::size_t count, const std::function<const RecordedRun&(std::size_t)>& run,
+                 const ReplayLimits& limits) {
+  if (count == 0) throw std::invalid_argument("replay_data: no runs");
+  check_replay_runs(count, limits);
+  const RunBudget budget(limits, count);
   Eigen::AlignedBox3d bounds;
   json run_list = json::array();
   double duration_s = 0.0;
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    run_list.push_back(run_json(runs[i], i, limits, bounds));
+  std::optional<RecordedRun> first;
+  for (std::size_t i = 0; i < count; ++i) {
+    const RecordedRun& r = run(i);
+    if (i == 0) first = r;
+    check_same_scene(r, *first);
+    run_list.push_back(run_json(r, i, budget, bounds));
     duration_s = std::max(duration_s, run_list.back()["times_s"].back().get<double>());
   }
-  json scene = scene_json(runs.front().scene, duration_s, limits, bounds);
+  json scene = scene_json(first->scene, duration_s, limits, bounds);
   scene["bounds_m"] = {{"min", xyz(bounds.min())}, {"max", xyz(bounds.max())}};
-  std::string title = runs.front().scene.name;
-  if (runs.size() == 1) {
-    title += ": " + runs.front().view.label + (runs.front().view.outcome.empty() ? "" : " (" + runs.front().view.outcome + ")");
+  std::string title = first->scene.name;
+  if (count == 1) {
+    title += ": " + first->view.label + (first->view.outcome.empty() ? "" : " (" + first->view.outcome + ")");
   } else {
-    title += ": " + std::to_string(runs.size()) + " runs";
+    title += ": " + std::to_string(count) + " runs";
   }
   return {{"campo_replay", 1},       {"title", title},
           {"generator", "campo " + std::string(library_version())},
@@ -247,7 +322,22 @@ nlohmann::json replay_data(const std::vector<RecordedRun>& runs, const ReplayLim
           {"runs", std::move(run_list)}};
 }
 
-std::string replay_html(const nlohmann::json& data) {
+}  // namespace
+
+nlohmann::json replay_data(const std::vector<RecordedRun>& runs, const ReplayLimits& limits) {
+  return replay_json(runs.size(), [&](std::size_t i) -> const RecordedRun& { return runs[i]; }, limits);
+}
+
+nlohmann::json replay_data(const std::vector<std::filesystem::path>& dirs, const ReplayLimits& limits) {
+  check_replay_runs(dirs.size(), limits);
+  RecordedRun current;  // one run at a time
+  return replay_json(dirs.size(), [&](std::size_t i) -> const RecordedRun& {
+    current = load_run_dir(dirs[i]);
+    return current;
+  }, limits);
+}
+
+std::string replay_html(const nlohmann::json& data, const ReplayLimits& limits) {
   const std::optional<ReplayAssets> assets = replay_assets();
   if (!assets) {
     throw std::runtime_error(
@@ -259,6 +349,11 @@ std::string replay_html(const nlohmann::json& data) {
   for (char c : data.dump()) {
     if (c == '<') text += "\\u003c";
     else text += c;
+  }
+  if (text.size() > limits.max_page_bytes) {
+    throw InputError("command line", "runs",
+                     "a replay page of at most " + std::to_string(limits.max_page_bytes >> 20) + " MiB, got " +
+                         std::to_string(text.size() >> 20) + " MiB of data; give fewer runs");
   }
   return assemble(*assets, text);
 }

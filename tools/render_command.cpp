@@ -113,12 +113,19 @@ int run_render(const RenderOptions& o) {
   if (html_file && (o.kinds.size() != 1 || !wants(o, "replay"))) {
     throw InputError("command line", "--out", "names an HTML file, which holds --kind replay alone; give a directory");
   }
+  // Bounded work whatever is given (docs/limits.md): the runs of a replay, the runs made into videos.
+  if (wants(o, "replay")) check_replay_runs(o.runs.size());
+  if (wants(o, "video")) check_video_runs(o.runs.size(), o.video);
   VideoOptions video = o.video;
   if (wants(o, "video")) video.frame_px = parse_size(o.size);
   const std::optional<std::vector<int>> step_indices = replan_steps ? parse_steps(o.steps) : std::nullopt;
   // Load every run first, and find the steps asked for: bad input stops before anything is drawn.
+  // A replay alone reads its runs one at a time (render/replay.hpp): nothing loaded up front.
+  const bool replay_only = std::all_of(o.kinds.begin(), o.kinds.end(), [](const std::string& k) { return k == "replay"; });
   std::vector<RecordedRun> runs;
-  for (const auto& dir : o.runs) runs.push_back(load_run_dir(dir));
+  if (!replay_only) {
+    for (const auto& dir : o.runs) runs.push_back(load_run_dir(dir));
+  }
   std::vector<std::vector<ReplanStep>> steps;
   if (replan_steps) {
     for (const RecordedRun& run : runs) steps.push_back(find_replan_steps(run, step_indices));
@@ -128,10 +135,11 @@ int run_render(const RenderOptions& o) {
       // Every run in one page; beside the run when there is one, else in the current directory.
       std::filesystem::path file = html_file ? std::filesystem::path(o.out)
                                    : !o.out.empty() ? std::filesystem::path(o.out) / "replay.html"
-                                   : runs.size() == 1 ? runs.front().dir / "replay.html"
+                                   : o.runs.size() == 1 ? std::filesystem::path(o.runs.front()) / "replay.html"
                                                       : std::filesystem::path("replay.html");
       if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-      write_file_atomically(file, replay_html(replay_data(runs)));
+      const std::vector<std::filesystem::path> dirs(o.runs.begin(), o.runs.end());
+      write_file_atomically(file, replay_html(replay_only ? replay_data(dirs) : replay_data(runs)));
       std::cout << "wrote " << file.string() << "\n";
       continue;
     }

@@ -206,8 +206,28 @@ std::string planner_state(const RecordedRun& run, const RunView& so_far, double 
 
 }  // namespace
 
-void write_video(const RecordedRun& run, const VideoOptions& options, const std::filesystem::path& out,
+void check_video_runs(std::size_t runs, const VideoOptions& options) {
+  if (runs > options.max_runs) {
+    throw InputError("command line", "runs",
+                     "at most " + std::to_string(options.max_runs) + " run directories for --kind video, got " +
+                         std::to_string(runs) + " (each run's files are held while the videos are made)");
+  }
+}
+
+void write_video(const RecordedRun& recorded, const VideoOptions& options, const std::filesystem::path& out,
                  const std::function<void(std::size_t, std::size_t)>& progress) {
+  // Every frame draws the track so far: a longer track is thinned evenly (the last sample kept),
+  // so the work is frames x max_track_samples at most.
+  std::optional<RecordedRun> thinned;
+  if (recorded.view.track.size() > options.max_track_samples && options.max_track_samples >= 2) {
+    thinned = recorded;
+    std::vector<TrackPoint>& track = thinned->view.track;
+    const std::size_t n = track.size(), keep = options.max_track_samples;
+    std::vector<TrackPoint> kept;
+    for (std::size_t k = 0; k < keep; ++k) kept.push_back(track[k * (n - 1) / (keep - 1)]);
+    track = std::move(kept);
+  }
+  const RecordedRun& run = thinned ? *thinned : recorded;
   const std::optional<VideoFormat> format = video_format_of(out);
   if (!format) throw InputError("command line", "--out", "expected a video file ending in .mp4 or .gif, got " + out.string());
   if (run.view.track.empty()) throw InputError((run.dir / "trajectory.csv").string(), "", "no samples; expected a track");
@@ -233,6 +253,11 @@ void write_video(const RecordedRun& run, const VideoOptions& options, const std:
   }
   const std::size_t moving = static_cast<std::size_t>(moving_frames);
   const std::size_t total = moving + static_cast<std::size_t>(held_frames);
+  if (*format == VideoFormat::gif && total > options.max_gif_frames) {
+    throw InputError("command line", "--out",
+                     "a GIF of at most " + std::to_string(options.max_gif_frames) + " frames, got " +
+                         std::to_string(total) + "; raise --speed, lower --fps or write an .mp4");
+  }
   const Eigen::Vector3d size_m = vehicle_size_m(run);
   VideoFrames frames(run.scene, run.view, size_m, options.frame_px);
   SensorPanel sensor(run, vehicle, size_m);

@@ -16,7 +16,13 @@ struct VideoOptions {
   double speed = 1.0;              ///< simulated seconds per second of video, [0.05, 100]
   cv::Size frame_px{1600, 900};    ///< even sides, at least 480 x 270
   std::size_t max_frames = 60000;  ///< longer videos are refused (raise --speed)
+  std::size_t max_gif_frames = 3000;       ///< a GIF's frames (2 min at 25 fps): longer ones are refused
+  std::size_t max_track_samples = 20000;   ///< a longer track is thinned evenly for drawing (each frame draws it)
+  std::size_t max_runs = 16;               ///< runs made into videos by one command; more are refused
 };
+
+/// InputError ("command line", "runs") when `runs` is more than one command makes videos of.
+void check_video_runs(std::size_t runs, const VideoOptions& options);
 
 /// Writes the video of `run` to `out` (.mp4: H.264; .gif), from the recorded
 /// files alone: frame k shows the run at k * speed / fps simulated seconds,

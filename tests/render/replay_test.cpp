@@ -162,6 +162,45 @@ TEST_F(Replay, PageIsSelfContainedAndRefusesMixedScenes) {
   }
 }
 
+TEST_F(Replay, BoundedInRunsSamplesAndPageWhateverIsGiven) {
+  // More run directories than a replay shows are refused before any is read (they are not runs).
+  std::string many;
+  for (int i = 0; i < 65; ++i) {
+    fs::create_directories(dir_ / ("r" + std::to_string(i)));
+    many += " " + (dir_ / ("r" + std::to_string(i))).string();
+  }
+  const Result refused = campo("render" + many + " --kind replay --out " + (dir_ / "many.html").string());
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_THAT(refused.err, HasSubstr("error: command line: runs: at most 64 run directories in one replay, got 65"));
+  EXPECT_FALSE(fs::exists(dir_ / "many.html"));
+  const Result videos = campo("render" + many + " --kind video --out " + (dir_ / "videos").string());
+  EXPECT_EQ(videos.exit_code, 2);
+  EXPECT_THAT(videos.err, HasSubstr("at most 16 run directories for --kind video, got 65"));
+  // The runs share the totals: each keeps its part of the track samples and scan points.
+  const fs::path a = record(std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json", "a");
+  const RecordedRun run = load_run_dir(a);
+  ReplayLimits small;
+  small.max_total_track_samples = 400;
+  small.max_total_scan_points = 2000;
+  const nlohmann::json data = replay_data({run, run, run, run}, small);
+  ASSERT_EQ(data["runs"].size(), 4u);
+  for (const auto& r : data["runs"]) {
+    EXPECT_LE(r["times_s"].size(), 101u);  // 400 / 4, and the last sample
+    EXPECT_GT(r["times_s"].size(), 50u);  // thinned by a whole stride: more than half the share
+    std::size_t points = 0;
+    for (const auto& scan : r["scans"]) points += scan["points_m"].size();
+    EXPECT_GT(points, 0u);
+    EXPECT_LE(points, 6u * 101u);  // 2000 / 4 = 500: 5 scans of 100 points (thinning keeps the last of each)
+  }
+  // Read from the directories one at a time, the data are the same.
+  EXPECT_EQ(replay_data(std::vector<fs::path>{a, a, a, a}, small), data);
+  // A GIF longer than its limit is refused before a frame is drawn.
+  const Result gif = campo("render " + a.string() + " --kind video --speed 0.05 --out " + (dir_ / "slow.gif").string());
+  EXPECT_EQ(gif.exit_code, 2);
+  EXPECT_THAT(gif.err, HasSubstr("--out: a GIF of at most 3000 frames, got "));
+  EXPECT_FALSE(fs::exists(dir_ / "slow.gif"));
+}
+
 TEST_F(Replay, LoadsCleanlyAndTheSliderMovesTheVehicle) {
   const fs::path run_dir = record(std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json", "run");
   ASSERT_EQ(campo("render " + run_dir.string() + " --kind replay").exit_code, 0);
