@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
 # Fuzzes the scene loader and the sweep spec reader with libFuzzer under ASan
-# and UBSan for SECONDS each, both at once on two or more cores
-# (docs/running.md, "Fuzzing"). Builds only the two fuzz targets with clang in
-# build-fuzz/. The seed corpus is the bundled files plus the regression corpus
-# tests/hostile/corpus/{scenes,sweeps} but for its slow_* files, copied into a scratch corpus under
+# and UBSan for SECONDS each, both at once on two or more cores, then the file
+# readers (terrain CSV, PNG, MovingAI map) for SECONDS / 2 each, two at a time:
+# about 2 x SECONDS of wall time on two cores (docs/running.md, "Fuzzing").
+# Builds only the fuzz targets with clang in build-fuzz/. The seed corpus is
+# the bundled files plus the regression corpus
+# tests/hostile/corpus/{scenes,sweeps,maps} (terrain .csv and .png files
+# included) but for its slow_* files, and the benchmark maps of tests/data,
+# copied into a scratch corpus under
 # build-fuzz/fuzz/ that keeps what the fuzzer finds; the source tree is never
 # written. Exit 0: nothing found; 1: a crash, a sanitizer report, an uncaught
-# exception other than InputError, a timeout or an out-of-memory, with the
+# exception other than the reader's refusal, a timeout or an out-of-memory, with the
 # input that caused it printed; 2: bad usage.
 #   tools/fuzz.sh [SECONDS]                  default 60
 #   CAMPO_FUZZ_BUILD_DIR=dir tools/fuzz.sh   build and fuzz elsewhere
@@ -30,7 +34,7 @@ if [ ! -f "$build_dir/CMakeCache.txt" ]; then
   CC=clang CXX=clang++ cmake -S "$root" -B "$build_dir" -DCAMPO_FUZZ=ON >/dev/null
 fi
 jobs="$(nproc 2>/dev/null || echo 2)"
-targets=(--target fuzz_scene_loader fuzz_sweep_spec)
+targets=(--target fuzz_scene_loader fuzz_sweep_spec fuzz_heightfield_csv fuzz_png fuzz_movingai)
 cmake --build "$build_dir" -j "$jobs" "${targets[@]}" -- --no-print-directory -s >/dev/null \
   || cmake --build "$build_dir" -j 1 "${targets[@]}"   # on failure, rebuild serially so the error is readable
 
@@ -50,7 +54,7 @@ fi
 # seeds' quoted words (keys, type names, aliases) and the words the given docs
 # write as `code` (keys and names no seed uses), so mutations write real keys.
 prepare() {
-  local name="$1" bundled_glob="$2" hostile_dir="$3"
+  local name="$1" bundled_glob="$2" hostile_dir="$3" hostile_glob="${HOSTILE_GLOB:-*}"
   shift 3
   local work="$build_dir/fuzz/$name"
   mkdir -p "$work/corpus" "$work/findings"
@@ -61,7 +65,7 @@ prepare() {
   if [ -d "$hostile_dir" ]; then
     # slow_*: valid inputs at the documented work limits (seconds each in an
     # instrumented build); tests/hostile replays them, the fuzzer would only stall on them.
-    for f in "$hostile_dir"/*; do
+    for f in "$hostile_dir"/$hostile_glob; do
       case "$(basename "$f")" in slow_*) continue ;; esac
       if [ -f "$f" ]; then cp "$f" "$work/corpus/hostile-$(basename "$f")"; fi
     done
@@ -75,10 +79,10 @@ prepare() {
   } >"$work/dict"
 }
 
-# Runs fuzz_NAME for the given seconds; its output goes to the work folder's fuzz.log.
+# Runs fuzz_NAME for SECONDS (default: all of them); its output goes to the work folder's fuzz.log.
 run() {
-  local name="$1" work="$build_dir/fuzz/$1"
-  "$build_dir/fuzz_$name" "$work/corpus" -dict="$work/dict" -max_total_time="$seconds" -rss_limit_mb=2048 \
+  local name="$1" time="${2:-$seconds}" work="$build_dir/fuzz/$1"
+  "$build_dir/fuzz_$name" "$work/corpus" -dict="$work/dict" -max_total_time="$time" -rss_limit_mb=2048 \
     -timeout=10 -print_final_stats=1 -artifact_prefix="$work/findings/" >"$work/fuzz.log" 2>&1
 }
 
@@ -90,7 +94,7 @@ report() {
     local runs units
     runs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)"
     units="$(ls "$work/corpus" | wc -l)"
-    echo "fuzz_$name: no finding in ${runs:-?} inputs over ${seconds} s (corpus: $units units in $work/corpus)"
+    echo "fuzz_$name: no finding in ${runs:-?} inputs (corpus: $units units in $work/corpus)"
     return 0
   fi
   echo "fuzz_$name: FOUND a failure (libFuzzer exit $status); report from $log:" >&2
@@ -100,27 +104,44 @@ report() {
   input="$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | tail -n 1)"
   if [ -n "$input" ]; then
     echo "fuzz_$name: the input is $input; reproduce with: $build_dir/fuzz_$name $input" >&2
-    echo "fuzz_$name: once understood, keep it as tests/hostile/corpus/$kind/WHAT_IT_DOES.json" >&2
+    echo "fuzz_$name: once understood, keep it as tests/hostile/corpus/$kind/WHAT_IT_DOES.${4:-json}" >&2
   fi
   return 1
 }
 
 prepare scene_loader "scenes/*.json" tests/hostile/corpus/scenes docs/scene-format.md docs/planners.md docs/vehicles.md
 prepare sweep_spec "scenes/sweeps/*.json" tests/hostile/corpus/sweeps docs/sweeps.md
+HOSTILE_GLOB="*.csv" prepare heightfield_csv "scenes/*.csv" tests/hostile/corpus/scenes docs/scene-format.md
+HOSTILE_GLOB="*.png" prepare png "scenes/*.png" tests/hostile/corpus/scenes docs/scene-format.md
+HOSTILE_GLOB="*.map" prepare movingai "tests/data/movingai/*.map*" tests/hostile/corpus/maps docs/grid.md
 
-status_scene=0
-status_sweep=0
+# The two readers of whole scenes and specs share SECONDS; the three file readers, smaller and
+# faster per input, SECONDS / 2 each (at least 1 s), two at a time.
+share=$(( seconds / 2 > 0 ? seconds / 2 : 1 ))
+declare -A status
 if [ "$jobs" -ge 2 ]; then
-  run scene_loader & pid_scene=$!
-  run sweep_spec & pid_sweep=$!
-  wait "$pid_scene" || status_scene=$?
-  wait "$pid_sweep" || status_sweep=$?
+  for pair in "scene_loader:$seconds sweep_spec:$seconds" "heightfield_csv:$share png:$share" "movingai:$share"; do
+    declare -A pids=()
+    for job in $pair; do
+      run "${job%%:*}" "${job##*:}" & pids[${job%%:*}]=$!
+    done
+    for name in "${!pids[@]}"; do
+      status[$name]=0
+      wait "${pids[$name]}" || status[$name]=$?
+    done
+    unset pids
+  done
 else
-  run scene_loader || status_scene=$?
-  run sweep_spec || status_sweep=$?
+  for job in scene_loader:$seconds sweep_spec:$seconds heightfield_csv:$share png:$share movingai:$share; do
+    status[${job%%:*}]=0
+    run "${job%%:*}" "${job##*:}" || status[${job%%:*}]=$?
+  done
 fi
 
 failed=0
-report scene_loader "$status_scene" scenes || failed=1
-report sweep_spec "$status_sweep" sweeps || failed=1
+report scene_loader "${status[scene_loader]}" scenes || failed=1
+report sweep_spec "${status[sweep_spec]}" sweeps || failed=1
+report heightfield_csv "${status[heightfield_csv]}" scenes csv || failed=1
+report png "${status[png]}" scenes png || failed=1
+report movingai "${status[movingai]}" maps map || failed=1
 exit "$failed"
