@@ -30,7 +30,7 @@ std::optional<bool> every_run_reaches_without_collision(const std::vector<RunOut
 
 std::optional<bool> never_trapped(const std::vector<RunOutcome>& runs) {
   if (runs.empty()) return std::nullopt;
-  return count_outcomes(runs).reached == static_cast<int>(runs.size());
+  return std::none_of(runs.begin(), runs.end(), [](const RunOutcome& r) { return r.timed_out; });
 }
 
 double longest_standstill_s(const std::vector<double>& time_s, const std::vector<double>& speed_mps, double still_mps) {
@@ -87,12 +87,26 @@ int steering_reversals(const std::vector<double>& heading_deg, double deadband_d
   return reversals;
 }
 
-std::optional<bool> hysteresis_holds(const std::vector<int>& reversals_without_bonus,
-                                     const std::vector<int>& reversals_with_bonus, int indecisive_reversals) {
-  if (reversals_without_bonus.empty() || reversals_with_bonus.empty()) return std::nullopt;
-  const auto indecisive = [&](int r) { return r >= indecisive_reversals; };
-  return std::any_of(reversals_without_bonus.begin(), reversals_without_bonus.end(), indecisive) &&
-         std::none_of(reversals_with_bonus.begin(), reversals_with_bonus.end(), indecisive);
+int gap_flips(const std::vector<double>& chosen_centre_deg, double jump_deg) {
+  std::vector<std::pair<double, double>> stretches;  // first and last value of each stretch
+  for (double c : chosen_centre_deg) {
+    if (!std::isfinite(c)) continue;
+    if (!stretches.empty() && std::abs(c - stretches.back().second) <= jump_deg) stretches.back().second = c;
+    else stretches.push_back({c, c});
+  }
+  int flips = 0;
+  for (std::size_t k = 2; k < stretches.size(); ++k) {
+    flips += std::abs(stretches[k].first - stretches[k - 2].second) <= jump_deg;
+  }
+  return flips;
+}
+
+std::optional<bool> hysteresis_holds(const std::vector<int>& flips_without_bonus,
+                                     const std::vector<int>& flips_with_bonus, int indecisive) {
+  if (flips_without_bonus.empty() || flips_with_bonus.empty()) return std::nullopt;
+  const auto undecided = [&](int r) { return r >= indecisive; };
+  return std::any_of(flips_without_bonus.begin(), flips_without_bonus.end(), undecided) &&
+         std::none_of(flips_with_bonus.begin(), flips_with_bonus.end(), undecided);
 }
 
 double signed_cross_track(const Eigen::Vector2d& point, const std::vector<Eigen::Vector2d>& route) {
@@ -218,7 +232,20 @@ std::optional<bool> lookahead_holds(const std::vector<LookaheadRun>& runs, doubl
   }
   if (!reference || smallest->lookahead_m >= reference_m || largest->lookahead_m <= reference_m) return std::nullopt;
   return smallest->straight_oscillations > reference->straight_oscillations &&
-         largest->curve_cross_track_max_m > reference->curve_cross_track_max_m;
+         largest->curve_miss_m > reference->curve_miss_m;
+}
+
+double curve_miss_m(const std::vector<Eigen::Vector2d>& route, const std::vector<Eigen::Vector2d>& track,
+                    double curve_min) {
+  const std::vector<double> k = route_curvature(route);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < route.size(); ++i) {
+    if (std::abs(k[i]) < curve_min) continue;
+    double best = std::numeric_limits<double>::infinity();
+    for (const Eigen::Vector2d& p : track) best = std::min(best, (p - route[i]).squaredNorm());
+    worst = std::max(worst, std::sqrt(best));
+  }
+  return worst;
 }
 
 double max_distance_to_geometry(const std::vector<Eigen::Vector2d>& points, const std::vector<Segment2>& segments,

@@ -19,6 +19,7 @@ struct RunOutcome {
   bool reached = false;      ///< outcome "reached"
   int collisions = 0;
   double avoiding_s = 0.0;   ///< time spent in local avoidance
+  bool timed_out = false;    ///< outcome "timeout": still going at the time limit
 };
 
 /// Runs counted for a fraction (with its Wilson 95 % interval in the report).
@@ -37,9 +38,9 @@ OutcomeCounts count_outcomes(const std::vector<RunOutcome>& runs);
 /// reaches the goal without a collision. Empty without runs.
 std::optional<bool> every_run_reaches_without_collision(const std::vector<RunOutcome>& runs);
 
-/// 003 §2.4.2: follow-the-gap "has no local-minimum problems": in every run the
-/// rover reaches the goal (a run still avoiding at the time limit was
-/// trapped). Empty without runs.
+/// 003 §2.4.2: follow-the-gap "has no local-minimum problems": no run is
+/// trapped, i.e. still short of the goal at the time limit (a collision is a
+/// failure of another kind, judged by other claims). Empty without runs.
 std::optional<bool> never_trapped(const std::vector<RunOutcome>& runs);
 
 /// The longest interval (s) during which the speed stayed below
@@ -74,13 +75,19 @@ int fig46_switches(const std::vector<CrossingRun>& runs);
 /// route) changes sign, ignoring values within `deadband_deg` of 0.
 int steering_reversals(const std::vector<double>& heading_deg, double deadband_deg);
 
+/// Flips of the chosen gap: its centre's values in time order are cut into
+/// stretches where consecutive values differ by at most `jump_deg`; a flip is
+/// a stretch that returns to within `jump_deg` of the stretch before the
+/// previous one (A, B, A: the choice went back). Non-finite values are skipped.
+int gap_flips(const std::vector<double>& chosen_centre_deg, double jump_deg);
+
 /// 003 §3.6, Fig. 44: between two gaps of similar score the choice may flip
 /// "continuously and suddenly" (a zig-zag), which the bonus for the previous
 /// gap resolves. The criterion: without the bonus at least one run is
-/// indecisive (`indecisive_reversals` or more steering reversals) and with it
-/// none is. Empty when either list is empty.
-std::optional<bool> hysteresis_holds(const std::vector<int>& reversals_without_bonus,
-                                     const std::vector<int>& reversals_with_bonus, int indecisive_reversals);
+/// indecisive (`indecisive` or more flips, or reversals) and with it none is.
+/// Empty when either list is empty.
+std::optional<bool> hysteresis_holds(const std::vector<int>& flips_without_bonus,
+                                     const std::vector<int>& flips_with_bonus, int indecisive);
 
 /// Signed distance from `point` to the polyline `route`: positive left of its
 /// direction at the nearest segment. Infinity for an empty route.
@@ -123,11 +130,18 @@ std::optional<bool> every_run_rejoins(const std::vector<std::optional<double>>& 
 /// +`band_m` to beyond -`band_m` or back.
 int oscillations(const std::vector<double>& signed_offset_m, double band_m);
 
+/// How far the track passes from the route's curves: the largest distance from
+/// a route point of |curvature| >= `curve_min` to the nearest track sample
+/// (a track that cuts a corner passes far from the arc's apex). 0 when the
+/// route has no such point; infinity when the track is empty.
+double curve_miss_m(const std::vector<Eigen::Vector2d>& route, const std::vector<Eigen::Vector2d>& track,
+                    double curve_min);
+
 /// One lookahead distance's tracking of the same route.
 struct LookaheadRun {
   double lookahead_m = 0.0;
   int straight_oscillations = 0;        ///< oscillations on the straights
-  double curve_cross_track_max_m = 0.0; ///< largest distance from the route on the curves
+  double curve_miss_m = 0.0;            ///< curve_miss_m(): how far the track passes from the curves
 };
 
 /// 003 §3.4, Fig. 35: "very small values lead to tracking rich in oscillations

@@ -38,9 +38,11 @@ TEST(Seed003Criteria, Fig45EveryDrawReachedCleanlyOrNot) {
 }
 
 TEST(Seed003Criteria, TrappedRunFailsNoLocalMinimum) {
-  std::vector<RunOutcome> runs{{true, 0, 30.0}, {true, 0, 424.8}};
+  std::vector<RunOutcome> runs{{true, 0, 30.0, false}, {true, 0, 424.8, false}};
   EXPECT_EQ(never_trapped(runs), true);
-  runs.push_back({false, 0, 292.4});  // timed out standing behind a box
+  runs.push_back({false, 1, 10.0, false});  // a collision is not a trap
+  EXPECT_EQ(never_trapped(runs), true);
+  runs.push_back({false, 0, 292.4, true});  // timed out standing behind a box
   EXPECT_EQ(never_trapped(runs), false);
   EXPECT_EQ(result(never_trapped(runs), true, true), Verdict::deviates);
   EXPECT_EQ(never_trapped({}), std::nullopt);
@@ -76,6 +78,10 @@ TEST(Seed003Criteria, Fig46SwitchRightThenLeftAndSafePassage) {
 TEST(Seed003Criteria, HysteresisNeedsIndecisionWithoutTheBonusAndNoneWithIt) {
   EXPECT_EQ(steering_reversals({10.0, 12.0, -8.0, 1.0, -9.0, 9.0}, 2.0), 2);
   EXPECT_EQ(steering_reversals({10.0, 0.5, -0.5, 10.0}, 2.0), 0);
+  // Measured: the chosen gap's centre 75° left, 11° after the obstacle, one scan back at 60°, then 13°: two flips.
+  EXPECT_EQ(gap_flips({75.0, 74.0, 73.0, 11.0, 12.0, 60.0, 13.0, 12.0, 6.0, -2.0}, 20.0), 2);
+  EXPECT_EQ(gap_flips({75.0, 73.0, 11.0, 12.0, 6.0, -2.0}, 20.0), 0);  // one change, kept
+  EXPECT_EQ(gap_flips({}, 20.0), 0);
   EXPECT_EQ(hysteresis_holds({0, 5, 1}, {0, 1, 1}, 3), true);
   EXPECT_EQ(result(hysteresis_holds({0, 5, 1}, {0, 1, 1}, 3), true, false), Verdict::reproduced_with_departures);
   EXPECT_EQ(hysteresis_holds({0, 5, 1}, {0, 4, 1}, 3), false);  // the bonus did not help
@@ -143,6 +149,13 @@ TEST(Seed003Criteria, RejoinFromAStartOffTheRoute) {
 
 TEST(Seed003Criteria, LookaheadOscillatesWhenSmallAndCutsCornersWhenLarge) {
   EXPECT_EQ(oscillations({0.0, 0.03, 0.01, -0.03, -0.01, 0.04, 0.005, -0.005}, 0.02), 2);
+  // A track that follows the U-turn misses its arc by nothing; one that cuts straight across at y = 10 by 2 m.
+  const std::vector<Eigen::Vector2d> route = u_turn_route();
+  EXPECT_NEAR(curve_miss_m(route, route, 0.3), 0.0, 1e-12);
+  std::vector<Eigen::Vector2d> cut;
+  for (int i = 0; i <= 40; ++i) cut.emplace_back(0.1 * i, 10.0);
+  EXPECT_NEAR(curve_miss_m(route, cut, 0.3), 2.0, 0.01);
+  EXPECT_EQ(curve_miss_m(route, {{0.0, 0.0}}, 5.0), 0.0);  // no point that curved
   const std::vector<LookaheadRun> runs{{0.3, 9, 0.05}, {1.5, 0, 0.3}, {6.0, 0, 1.4}};
   EXPECT_EQ(lookahead_holds(runs, 1.5), true);
   EXPECT_EQ(result(lookahead_holds(runs, 1.5), false, false), Verdict::reproduced);

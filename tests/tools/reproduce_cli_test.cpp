@@ -28,9 +28,13 @@ TEST_F(ReproduceCli, QuickReportMeasuresEveryClaimAndDrawsItsFigures) {
                               "### 001: The slot in the obstacle field", "### 001: The zigzag weave",
                               "### 001: The wall climbed over", "### 001: Cost model and LIDAR mounting",
                               "### 001: Bridge: column mapping against OctoMap",
-                              "### 003: Fig. 45, obstacles on the route",
+                              "### 003: Fig. 45, random obstacles on the route",
+                              "### 003: No local-minimum problems, with the printed follow-the-gap",
                               "### 003: Fig. 46, a crossing obstacle and follow-the-gap",
-                              "### 003: Follow-the-gap with the thesis's gaps does not get stuck"}) {
+                              "### 003: Fig. 44, hysteresis against gap indecision",
+                              "### 003: Precise tracking without obstacles, slower in curves",
+                              "### 003: Fig. 35, the lookahead distance", "### 003: Fig. 33, Dubins route along the rows",
+                              "### 003: Rejoining the route from a start off it"}) {
     EXPECT_THAT(text, HasSubstr(heading));
   }
   // Every experiment completed (a failed one would say so), every figure exists.
