@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <optional>
+#include <stdexcept>
 #include <string_view>
 
 #include "campo/json_reader.hpp"
@@ -101,6 +103,42 @@ std::vector<AxisPoint> axis_points(const SweepSpec& spec) {
   return points;
 }
 
+constexpr const char* kSeedPointer = "/world/seed";
+
+// What the run is, not where it sits in the spec: its name (scene, planner,
+// values, seed) and effective document (as text) give the same ID in any
+// order or shard, and the name keeps identical documents apart (a scene under
+// two names, a value drawn twice).
+std::string run_id(const std::string& name, const std::string& document_text) {
+  return sha256_hex(std::string(library_version()) + "\n" + name + "\n" + document_text).substr(0, 16);
+}
+
+// The text (dump()) of a document for any /world/seed, from two dumps: an
+// unsigned integer is written as its digits and nothing else changes, so the
+// texts at seeds 1 and 2 differ in that one character, and every seed's text
+// is their common prefix, its digits, their common suffix. Saves a dump per
+// run of a sweep (most of the time of `campo sweep --list`).
+class SeededText {
+ public:
+  explicit SeededText(nlohmann::json document) {
+    document["world"]["seed"] = std::uint64_t{1};
+    const std::string one = document.dump();
+    document["world"]["seed"] = std::uint64_t{2};
+    const std::string two = document.dump();
+    std::size_t p = 0;
+    while (p < one.size() && one[p] == two[p]) ++p;
+    if (one.size() != two.size() || p == one.size() || one.compare(p + 1, std::string::npos, two, p + 1) != 0) {
+      throw std::logic_error("SeededText: the seed is not one digit of the document's text");
+    }
+    prefix_ = one.substr(0, p);
+    suffix_ = one.substr(p + 1);
+  }
+  std::string with(std::uint64_t seed) const { return prefix_ + std::to_string(seed) + suffix_; }
+
+ private:
+  std::string prefix_, suffix_;
+};
+
 // Builds the runs of one scene, each with its document validated.
 class SceneExpander {
  public:
@@ -125,16 +163,17 @@ class SceneExpander {
     }
   }
 
-  /// The run of this planner (null: the scene's), axis point and seed.
-  SweepRun run(const SweepPlanner* planner, const AxisPoint& point, std::uint64_t seed) {
+  /// The runs of this planner (null: the scene's) and axis point, one per seed in order, each handed to
+  /// `emit` once validated.
+  void runs(const SweepPlanner* planner, const AxisPoint& point, const std::function<void(const SweepRun&)>& emit) {
     SweepRun run;
     run.scene = scene_.label;
     if (planner) run.planner = planner->label;
     run.scene_file = scene_.file;
-    run.seed = seed;
     run.scene_sha256 = sha256_;
     run.params = nlohmann::json::object();
-    run.name = scene_.label + (planner ? "__" + planner->label : "") + point.label + "__seed-" + std::to_string(seed);
+    const std::string name = scene_.label + (planner ? "__" + planner->label : "") + point.label + "__seed-";
+    run.name = name + std::to_string(spec_.first_seed);  // errors of the overrides below name the first run
 
     nlohmann::json document = document_;
     if (planner) apply_planner(document, run, *planner);
@@ -144,26 +183,48 @@ class SceneExpander {
       run.params[axis.name] = point.values[a];
       for (const std::string& pointer : axis.pointers) apply(document, run, pointer, point.values[a], point.origins[a]);
     }
-    apply(document, run, "/world/seed", seed, "/seeds");
-    if (spec_.vary_scene_with_seed) apply_generator_seeds(document, run);
-    if (spec_.start_jitter) apply_start_jitter(document, run, *spec_.start_jitter);
+    const std::size_t shared_overrides = run.overrides.size();
+    // Without vary_scene_with_seed and start_jitter the seeds' documents differ in /world/seed alone, which
+    // no check looks at (it only seeds noise, generators' streams and planners): the first seed's run is
+    // validated and the others share its verdict, and their documents' text, which the IDs hash, is the
+    // first one's with the seed's digits in place of its own (SeededText).
+    const bool seed_only = !spec_.vary_scene_with_seed && !spec_.start_jitter;
+    std::optional<SeededText> text;
+    for (int k = 0; k < spec_.seed_count; ++k) {
+      const std::uint64_t seed = spec_.first_seed + static_cast<std::uint64_t>(k);
+      run.seed = seed;
+      run.name = name + std::to_string(seed);
+      run.overrides.resize(shared_overrides);
+      if (text) {
+        run.overrides.push_back(kSeedPointer + ("=" + std::to_string(seed)));  // as apply() records it
+        run.id = run_id(run.name, text->with(seed));
+        emit(run);
+        continue;
+      }
+      nlohmann::json copy;
+      if (!seed_only) copy = document;
+      nlohmann::json& seeded = seed_only ? document : copy;
+      apply(seeded, run, kSeedPointer, seed, "/seeds");
+      if (spec_.vary_scene_with_seed) apply_generator_seeds(seeded, run);
+      if (spec_.start_jitter) apply_start_jitter(seeded, run, *spec_.start_jitter);
 
-    const Scene scene = validated(document, run);
-    if (!planner) {
-      // The scene's planner as the overrides left it.
-      const std::string& name = scene.vehicles.empty() ? std::string() : scene.vehicles.front().planner.name;
-      run.planner = name.empty() ? std::string(kDefaultPlanner) : name;
+      if (!seed_only || k == 0) {
+        const Scene scene = validated(seeded, run);
+        if (!planner) {
+          // The scene's planner as the overrides left it.
+          const std::string& scene_planner = scene.vehicles.empty() ? std::string() : scene.vehicles.front().planner.name;
+          run.planner = scene_planner.empty() ? std::string(kDefaultPlanner) : scene_planner;
+        }
+        if (spec_.start_jitter && !scene.find_vehicle(spec_.start_jitter->vehicle)) {
+          throw InputError(spec_file_, spec_.start_jitter->origin + "/vehicle",
+                           "expected a vehicle of scene " + scene_.label + ", got \"" + spec_.start_jitter->vehicle +
+                               "\"");
+        }
+      }
+      run.id = run_id(run.name, seeded.dump());
+      emit(run);
+      if (seed_only && spec_.seed_count > 1) text = SeededText(seeded);
     }
-    if (spec_.start_jitter && !scene.find_vehicle(spec_.start_jitter->vehicle)) {
-      throw InputError(spec_file_, spec_.start_jitter->origin + "/vehicle",
-                       "expected a vehicle of scene " + scene_.label + ", got \"" + spec_.start_jitter->vehicle + "\"");
-    }
-    // What the run is, not where it sits in the spec: its name (scene,
-    // planner, values, seed) and effective document give the same ID in any
-    // order or shard, and the name keeps identical documents apart (a scene
-    // under two names, a value drawn twice).
-    run.id = sha256_hex(std::string(library_version()) + "\n" + run.name + "\n" + document.dump()).substr(0, 16);
-    return run;
   }
 
   /// The most seeded generators re-seeded in one run's scene so far.
@@ -291,19 +352,17 @@ std::vector<std::vector<nlohmann::json>> sample_axes(const SweepSpec& spec) {
   return samples;
 }
 
-std::vector<SweepRun> expand_sweep(const SweepSpec& spec, const SceneCheck& check) {
+void for_each_sweep_run(const SweepSpec& spec, const SceneCheck& check,
+                        const std::function<void(const SweepRun&)>& emit) {
   const std::vector<AxisPoint> points = axis_points(spec);
   std::vector<const SweepPlanner*> planners;
   for (const SweepPlanner& p : spec.planners) planners.push_back(&p);
   if (planners.empty()) planners.push_back(nullptr);  // each scene's own
-  std::vector<SweepRun> runs;
   std::size_t generators = 0;
   for (const SweepScene& scene : spec.scenes) {
     SceneExpander expander(spec, scene, check);
     for (const SweepPlanner* planner : planners) {
-      for (const AxisPoint& point : points) {
-        for (int k = 0; k < spec.seed_count; ++k) runs.push_back(expander.run(planner, point, spec.first_seed + k));
-      }
+      for (const AxisPoint& point : points) expander.runs(planner, point, emit);
     }
     generators += expander.generators();
   }
@@ -314,6 +373,11 @@ std::vector<SweepRun> expand_sweep(const SweepSpec& spec, const SceneCheck& chec
     throw InputError(spec.file.string(), "/vary_scene_with_seed",
                      "expected a scene with a seeded generator (" + types + "), or false");
   }
+}
+
+std::vector<SweepRun> expand_sweep(const SweepSpec& spec, const SceneCheck& check) {
+  std::vector<SweepRun> runs;
+  for_each_sweep_run(spec, check, [&](const SweepRun& run) { runs.push_back(run); });
   return runs;
 }
 

@@ -49,6 +49,15 @@ std::vector<std::vector<nlohmann::json>> sample_axes(const SweepSpec& spec);
 /// naming the spec file, the spec's JSON pointer and the run.
 std::vector<SweepRun> expand_sweep(const SweepSpec& spec, const SceneCheck& check = {});
 
+/// expand_sweep's runs, in its order, each handed to `emit` as soon as it is
+/// validated and then dropped: memory does not grow with the runs (`campo
+/// sweep --list` of 100,000 runs). Runs that differ in their seed alone
+/// (neither "vary_scene_with_seed" nor "start_jitter") share the validation
+/// of their first seed: /world/seed changes nothing a check looks at. An
+/// error may come after some runs were emitted.
+void for_each_sweep_run(const SweepSpec& spec, const SceneCheck& check,
+                        const std::function<void(const SweepRun&)>& emit);
+
 /// Object types of the scene format whose shapes come from a seeded
 /// generator (scene/generators.hpp), re-seeded by "vary_scene_with_seed".
 inline constexpr std::array<std::string_view, 3> kSeededGeneratorTypes{"rolling_terrain", "trees", "vineyard"};

@@ -255,17 +255,25 @@ int run_sweep(const SweepOptions& o) {
   // Loaded here, so the runs' processes (forked from this one) have their planners.
   for (const SweepPlugin& plugin : spec.plugins) load_planner_plugin(plugin.file, spec.file.string(), plugin.origin);
   load_plugins(o.plugins);
-  const std::vector<SweepRun> all_runs = expand_sweep(spec, [](const Scene& scene) {
-    check_vehicles_and_planners(scene);
+  // What `campo validate` and `campo run` check, in their order.
+  const SceneCheck check = [](const Scene& scene) {
     check_runnable(scene);
-  });
-  const std::vector<SweepRun> runs = shard_of(all_runs, shard.index, shard.count);
+    check_vehicles_and_planners(scene);
+  };
   if (o.list) {
-    for (const SweepRun& run : runs) std::cout << manifest_entry(run).dump() << "\n";
-    std::cerr << spec.name << ": " << runs.size() << " runs" << (o.shard.empty() ? "" : " in shard " + o.shard)
+    // Streamed: each run printed as soon as it is validated, none kept (100,000 runs: about a second).
+    std::size_t index = 0, listed = 0;
+    for_each_sweep_run(spec, check, [&](const SweepRun& run) {
+      if (index++ % static_cast<std::size_t>(shard.count) != static_cast<std::size_t>(shard.index - 1)) return;
+      std::cout << manifest_entry(run).dump() << '\n';
+      ++listed;
+    });
+    std::cerr << spec.name << ": " << listed << " runs" << (o.shard.empty() ? "" : " in shard " + o.shard)
               << ", all valid; nothing was run\n";
     return kOk;
   }
+  const std::vector<SweepRun> all_runs = expand_sweep(spec, check);
+  const std::vector<SweepRun> runs = shard_of(all_runs, shard.index, shard.count);
   if (o.out.empty()) throw InputError("command line", "--out", "expected an output directory (or --list)");
   if (o.videos && !o.figures && !o.triage) {
     throw InputError("command line", "--videos", "draws videos of the runs --figures or --triage keep; add one of them");
@@ -389,7 +397,8 @@ Command add_sweep(CLI::App& app) {
   app.add_option("--out", o->out, "Output directory (created if missing; an interrupted sweep resumes there)");
   app.add_flag("--list", o->list,
                "Validate every run and print the manifest, one JSON line per run (id, name, scene, planner, "
-               "params, seed, overrides, scene_file), without running anything");
+               "params, seed, overrides, scene_file), without running anything; each line is printed as soon as "
+               "its run is validated, so a run that is refused ends the listing with exit 2");
   app.add_option("--jobs,-j", o->jobs, "Runs at a time, each in its own process (default: every available core)")
       ->check(CLI::Range(1, 1024));
   app.add_option("--shard", o->shard, "Run only part K of N of the manifest (runs K, K+N, K+2N, ...; K from 1)");

@@ -236,6 +236,65 @@ TEST_F(SweepSpecTest, RunIdsAreContentHashesStableAcrossSpecs) {
   for (const auto& [name, id] : first) EXPECT_NE(changed.at(name), id) << name;
 }
 
+// An ID hashes the version, the name and the run's document: the scene file with the run's overrides
+// applied in order, as `campo run --set` applies them, however the expansion builds it (the seeds of one
+// point share a document whose text has the seed's digits spliced in).
+TEST_F(SweepSpecTest, RunIdsHashTheDocumentTheOverridesMake) {
+  for (const std::string text : {
+           std::string(R"({"campo_sweep": 1, "scenes": ["two_barriers", "wall"],
+               "planners": ["straight", {"name": "depth_reactive", "params": {"speed_mps": 0.5}}],
+               "set": {"/world/time_limit_s": 30},
+               "axes": [{"name": "rate", "values": [10, 20], "set": ["/world/sensor_rate_hz"]}],
+               "seeds": {"first": 7, "count": 5}})"),
+           std::string(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
+               "seeds": {"first": 18446744073709551610, "count": 6}})"),
+           std::string(R"({"campo_sweep": 1, "scenes": ["trees_rolling_terrain"], "vary_scene_with_seed": true,
+               "seeds": {"first": 1, "count": 3}})"),
+           std::string(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "seeds": {"first": 8, "count": 3},
+               "start_jitter": {"vehicle": "drone", "radius_m": 0.5}})"),
+       }) {
+    const std::vector<SweepRun> runs = expand_sweep(read_sweep_spec(write(text)));
+    ASSERT_FALSE(runs.empty());
+    std::size_t streamed = 0;
+    for_each_sweep_run(read_sweep_spec(write(text)), {}, [&](const SweepRun& run) {
+      ASSERT_LT(streamed, runs.size());
+      EXPECT_EQ(run.id, runs[streamed].id);
+      EXPECT_EQ(run.overrides, runs[streamed++].overrides);
+    });
+    EXPECT_EQ(streamed, runs.size());
+    for (const SweepRun& run : runs) {
+      nlohmann::json document = read_json_file(run.scene_file);
+      for (const std::string& o : run.overrides) apply_override(document, o);
+      EXPECT_EQ(run.id, sha256_hex(std::string(library_version()) + "\n" + run.name + "\n" + document.dump())
+                            .substr(0, 16))
+          << run.name;
+      EXPECT_EQ(run.overrides.back().rfind("/world/seed=", 0) == 0,
+                text.find("vary") == std::string::npos && text.find("jitter") == std::string::npos)
+          << run.name;
+    }
+  }
+}
+
+// Runs differing in their seed alone share one validation: a spec of 10 x 10 points and 100 seeds
+// validates 100 scenes, not 10,000 (campo sweep --list of 100,000 runs in about a second).
+TEST_F(SweepSpecTest, SeedsOfOnePointShareOneValidation) {
+  int checks = 0;
+  const SweepSpec spec = read_sweep_spec(write(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
+      "axes": [{"name": "a", "values": [1, 2, 3, 4, 5, 6, 7, 8, 9, 10], "set": ["/world/time_limit_s"]},
+               {"name": "b", "values": [1, 2, 3, 4, 5, 6, 8, 10, 12, 15], "set": ["/world/sensor_rate_hz"]}],
+      "seeds": {"first": 0, "count": 100}})"));
+  std::size_t runs = 0;
+  for_each_sweep_run(spec, [&](const Scene&) { ++checks; }, [&](const SweepRun&) { ++runs; });
+  EXPECT_EQ(runs, 10000u);
+  EXPECT_EQ(checks, 100);
+  // With the seeds varying the scene, each run is validated.
+  checks = 0;
+  const SweepSpec varying = read_sweep_spec(write(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
+      "seeds": {"first": 0, "count": 4}, "start_jitter": {"vehicle": "drone", "radius_m": 0.5}})"));
+  for_each_sweep_run(varying, [&](const Scene&) { ++checks; }, [](const SweepRun&) {});
+  EXPECT_EQ(checks, 4);
+}
+
 TEST_F(SweepSpecTest, RangesExpandToValues) {
   const SweepSpec spec = read_sweep_spec(write(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
     "axes": [{"name": "limit", "range": {"from": 0.1, "to": 0.5, "step": 0.1}, "set": ["/world/time_limit_s"]},
