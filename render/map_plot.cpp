@@ -21,6 +21,42 @@ constexpr int kMinColorbarPx = 160;
 constexpr int kMaxColorbarPx = 320;
 constexpr int kScaleBlockPx = 52; // scale bar and north arrow
 constexpr int kPanelGapPx = 24;   // between the blocks of the legend column
+
+// Overlay labels without what they all share: sweep run names ("vineyard__lookahead_m-0.2__seed-1") differ only in
+// their middle, which a legend cut at its end would hide. Parts are separated by "__"; labels are kept whole when
+// fewer than two, any is empty, or nothing would be left of one.
+std::vector<std::string> distinct_parts(const std::vector<std::string>& labels) {
+  if (labels.size() < 2) return labels;
+  std::vector<std::vector<std::string>> parts;
+  for (const std::string& label : labels) {
+    if (label.empty()) return labels;
+    std::vector<std::string> p;
+    for (std::size_t from = 0;;) {
+      const std::size_t at = label.find("__", from);
+      p.push_back(label.substr(from, at == std::string::npos ? std::string::npos : at - from));
+      if (at == std::string::npos) break;
+      from = at + 2;
+    }
+    parts.push_back(std::move(p));
+  }
+  const auto shared = [&](auto index) {
+    for (const auto& p : parts) {
+      if (index(p) == nullptr || *index(p) != *index(parts.front())) return false;
+    }
+    return true;
+  };
+  std::size_t head = 0, tail = 0;
+  while (shared([&](const std::vector<std::string>& p) { return head < p.size() ? &p[head] : nullptr; })) ++head;
+  while (shared([&](const std::vector<std::string>& p) { return tail < p.size() ? &p[p.size() - 1 - tail] : nullptr; })) ++tail;
+  std::vector<std::string> out;
+  for (const auto& p : parts) {
+    if (head + tail >= p.size()) return labels;
+    std::string text;
+    for (std::size_t i = head; i < p.size() - tail; ++i) text += (text.empty() ? "" : ", ") + p[i];
+    out.push_back(text);
+  }
+  return out;
+}
 constexpr double kSameSpotM = 0.25;  // markers closer than this are drawn once in overlays
 
 cv::Scalar to_scalar(const cv::Vec3b& v) { return {double(v[0]), double(v[1]), double(v[2])}; }
@@ -238,9 +274,12 @@ MapPlan plan_map(const Scene& scene, std::vector<const RunView*> runs, const Fig
     if (!plan.runs.front()->avoiding_s.empty()) plan.legend.push_back(line_entry(kAvoiding, 11, "avoiding obstacle"));
   }
   if (overlay) {
+    std::vector<std::string> labels;
+    for (const RunView* r : plan.runs) labels.push_back(r->label);
+    labels = distinct_parts(labels);
     for (std::size_t i = 0; i < plan.runs.size(); ++i) {
       const RunView& r = *plan.runs[i];
-      std::string text = r.label.empty() ? "run " + std::to_string(i + 1) : r.label;
+      std::string text = labels[i].empty() ? "run " + std::to_string(i + 1) : labels[i];
       if (!r.outcome.empty()) text += " (" + r.outcome + ")";
       plan.legend.push_back(line_entry(run_color(i), 3, text));
     }
