@@ -15,6 +15,7 @@ enum ExitCode : int {
   kInternalError = 1, ///< a bug or an I/O failure
   kBadInput = 2,      ///< invalid input; nothing was written
   kRegressed = 3,     ///< campo bench --compare: a figure is slower than its baseline
+  kIncomplete = 4,    ///< campo plan --scen: --time-limit stopped it before every problem was tried
 };
 
 using Command = std::function<int()>;
