@@ -49,13 +49,33 @@ cv::Size parse_size(const std::string& text) {
   return {w, h};
 }
 
+// The folders a render makes: kept while the command runs, and those still empty when it
+// fails are removed again.
+using MadeFolders = std::vector<OutputDirectory>;
+
+// The folder of one run's figures: --out/RUN, or the run's own directory.
+std::filesystem::path figure_dir(const RenderOptions& o, const RecordedRun& run, MadeFolders& made) {
+  const std::filesystem::path dir = o.out.empty() ? run.dir : std::filesystem::path(o.out) / run.dir.filename();
+  made.emplace_back(dir);
+  return dir;
+}
+
 // Where the video of `run` goes: --out itself when it names a video file, else video.mp4 in
 // --out (or the run's directory).
-std::filesystem::path video_path(const RenderOptions& o, const RecordedRun& run) {
+std::filesystem::path video_path(const RenderOptions& o, const RecordedRun& run, MadeFolders& made) {
   if (!o.out.empty() && video_format_of(o.out)) return o.out;
-  const std::filesystem::path dir = o.out.empty() ? run.dir : std::filesystem::path(o.out) / run.dir.filename();
-  std::filesystem::create_directories(dir);
-  return dir / "video.mp4";
+  return figure_dir(o, run, made) / "video.mp4";
+}
+
+// The file or folder --out names can be written, before any run is read.
+void check_out(const RenderOptions& o, bool one_file) {
+  if (o.out.empty()) {
+    for (const std::string& run : o.runs) check_output_directory(run, "run directory");
+  } else if (one_file) {
+    check_output_file(o.out, "--out");
+  } else {
+    check_output_directory(o.out, "--out");
+  }
 }
 
 // A bar on a terminal, a line every tenth otherwise: "[#####.....] 120/600 frames | ETA 12s".
@@ -113,6 +133,7 @@ int run_render(const RenderOptions& o) {
   if (html_file && (o.kinds.size() != 1 || !wants(o, "replay"))) {
     throw InputError("command line", "--out", "names an HTML file, which holds --kind replay alone; give a directory");
   }
+  check_out(o, video_file || html_file);
   // Bounded work whatever is given (docs/limits.md): the runs of a replay, the runs made into videos.
   if (wants(o, "replay")) check_replay_runs(o.runs.size());
   if (wants(o, "video")) check_video_runs(o.runs.size(), o.video);
@@ -130,6 +151,7 @@ int run_render(const RenderOptions& o) {
   if (replan_steps) {
     for (const RecordedRun& run : runs) steps.push_back(find_replan_steps(run, step_indices));
   }
+  MadeFolders made;
   for (const std::string& kind : o.kinds) {
     if (kind == "replay") {
       // Every run in one page; beside the run when there is one, else in the current directory.
@@ -137,7 +159,7 @@ int run_render(const RenderOptions& o) {
                                    : !o.out.empty() ? std::filesystem::path(o.out) / "replay.html"
                                    : o.runs.size() == 1 ? std::filesystem::path(o.runs.front()) / "replay.html"
                                                       : std::filesystem::path("replay.html");
-      if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+      if (file.has_parent_path()) made.emplace_back(file.parent_path());
       const std::vector<std::filesystem::path> dirs(o.runs.begin(), o.runs.end());
       write_file_atomically(file, replay_html(replay_only ? replay_data(dirs) : replay_data(runs)));
       std::cout << "wrote " << file.string() << "\n";
@@ -145,21 +167,20 @@ int run_render(const RenderOptions& o) {
     }
     if (kind == "overlay") {
       const std::filesystem::path out = o.out.empty() ? std::filesystem::path(".") : std::filesystem::path(o.out);
-      std::filesystem::create_directories(out);
+      made.emplace_back(out);
       std::cout << "wrote " << write_overlay(runs, out).string() << "\n";
       continue;
     }
     for (std::size_t i = 0; i < runs.size(); ++i) {
       const RecordedRun& run = runs[i];
       if (kind == "video") {
-        const std::filesystem::path file = video_path(o, run);
+        const std::filesystem::path file = video_path(o, run, made);
         FrameProgress progress;
         write_video(run, video, file, std::ref(progress));
         std::cout << "wrote " << file.string() << "\n";
         continue;
       }
-      const std::filesystem::path out = o.out.empty() ? run.dir : std::filesystem::path(o.out) / run.dir.filename();
-      std::filesystem::create_directories(out);
+      const std::filesystem::path out = figure_dir(o, run, made);
       if (kind == "sequence") {
         std::cout << "wrote " << write_sequence(run, o.at_s, out).string() << "\n";
         continue;
