@@ -1,5 +1,7 @@
 #include "render/map_plot.hpp"
 
+#include <cctype>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -170,12 +172,33 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
   if (plan.height_map) {
     if (!plan.footprints.empty()) legend.push_back(line_entry(figure::kInk, 1, "obstacle in the scene"));
   } else if (!plan.footprints.empty()) {
-    // The colour of the largest obstacle stands for all.
-    const auto area = [](const Footprint& f) { return f.box_m.volume(); };
-    const Footprint& largest = *std::max_element(plan.footprints.begin(), plan.footprints.end(),
-                                                 [&](const Footprint& a, const Footprint& b) { return area(a) < area(b); });
-    const cv::Scalar c = to_bgr(largest.shape->color);
-    legend.push_back(patch_entry(c, figure::shade(c, 0.6), "obstacle"));
+    // One entry per obstacle colour (up to four, by area drawn), named after the first obstacle of that colour
+    // ("field/canopy_3" -> "canopy", "box_row" -> "box_row"): rows, boxes and posts read apart.
+    struct Group {
+      cv::Scalar colour;
+      double area = 0.0;
+      std::string name;
+    };
+    std::vector<Group> groups;
+    for (const Footprint& f : plan.footprints) {
+      const cv::Scalar c = to_bgr(f.shape->color);
+      auto g = std::find_if(groups.begin(), groups.end(), [&](const Group& x) { return x.colour == c; });
+      if (g == groups.end()) {
+        std::string name = f.shape->alias.substr(f.shape->alias.find_last_of('/') + 1);
+        while (!name.empty() && (std::isdigit(static_cast<unsigned char>(name.back())) || name.back() == '_')) {
+          name.pop_back();
+        }
+        groups.push_back({c, 0.0, name});
+        g = groups.end() - 1;
+      }
+      g->area += f.box_m.volume();
+    }
+    std::stable_sort(groups.begin(), groups.end(), [](const Group& a, const Group& b) { return a.area > b.area; });
+    if (groups.size() > 4) groups.resize(4);
+    for (const Group& g : groups) {
+      const std::string text = groups.size() == 1 || g.name.empty() ? "obstacle" : "obstacle: " + g.name;
+      legend.push_back(patch_entry(g.colour, figure::shade(g.colour, 0.6), text));
+    }
   }
   if (plan.contour_interval_m > 0.0) {
     legend.push_back(line_entry(plan.ground.contour_color(), 1,

@@ -15,7 +15,8 @@ std::vector<Claim> seed_000_claims(const Workbench& bench);
 /// the bridge with column and OctoMap mapping, Figures 5.4-5.13.
 std::vector<Claim> seed_001_claims(const Workbench& bench);
 
-/// Seed 003: Fig. 45 (obstacles on the route), Fig. 46 (a crossing obstacle, follow-the-gap), follow-the-gap not stuck.
+/// Seed 003: Fig. 45 (random obstacles), no local minimum (§2.4.2), Fig. 46 (a crossing walker), Fig. 44
+/// (hysteresis), tracking and slowing in curves, Fig. 35 (lookahead), Fig. 33 (Dubins route), a start off the route.
 std::vector<Claim> seed_003_claims(const Workbench& bench);
 
 }  // namespace campo
