@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
+#include <new>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -101,7 +102,13 @@ namespace {
 class Watchdog {
  public:
   static Watchdog& get() {
-    static Watchdog* const watchdog = new Watchdog;
+    static Watchdog* const watchdog = [] {
+      auto* w = new Watchdog;
+      // A forked child (each run of a sweep) has none of its parent's threads, and the mutex may
+      // have been held by one of them: the child's watchdog starts anew at its first planner.
+      ::pthread_atfork(nullptr, nullptr, [] { get().reset_in_forked_child(); });
+      return w;
+    }();
     return *watchdog;
   }
 
@@ -113,11 +120,21 @@ class Watchdog {
   void add(GuardEntry* e) {
     std::lock_guard lock(mutex);
     entries.push_back(e);
-    if (!thread_started_) {
-      thread_started_ = true;
-      std::thread([this] { loop(); }).detach();
-    }
+    start_thread_locked();
     wake_.notify_one();
+  }
+
+  /// With `mutex` held: the watching thread runs (once per process).
+  void start_thread_locked() {
+    if (thread_started_) return;
+    thread_started_ = true;
+    std::thread([this] { loop(); }).detach();
+  }
+
+  void reset_in_forked_child() {
+    new (&mutex) std::mutex;
+    new (&wake_) std::condition_variable;
+    thread_started_ = false;
   }
 
   void remove(GuardEntry* e) {
@@ -267,6 +284,7 @@ GuardedCall::GuardedCall(PlannerGuard& guard, std::string what) : guard_(guard) 
   GuardEntry& e = *guard.entry_;
   std::lock_guard lock(w.mutex);
   if (e.failure) throw std::runtime_error(*e.failure);
+  w.start_thread_locked();  // a planner made before a fork is watched in the child too
   e.in_call = true;
   e.call_seq = ++w.next_seq;
   e.call = std::move(what);

@@ -391,6 +391,24 @@ class PlannerLimitsTest(unittest.TestCase):
             self.assertIn('error: environment: CAMPO_PYTHON_CALL_LIMIT_S: expected a number of seconds >= 0 '
                           '(0: no limit), got "soon"', done.stderr)
 
+    def test_the_per_call_limit_holds_in_a_sweeps_runs(self):
+        # Each run is a process forked from the sweep's, which validated the planner first: the
+        # watchdog must run in the child too (a sleeping planner hung the sweep until its own limit).
+        with tempfile.TemporaryDirectory() as out:
+            env = python_env()
+            env["CAMPO_PYTHON_CALL_LIMIT_S"] = "0.5"
+            spec = {"campo_sweep": 1, "name": "sleepy", "scenes": [OPEN_FIELD],
+                    "planners": [{"name": "python:python_planners:Sleeper", "label": "sleeper"}],
+                    "seeds": {"first": 0, "count": 2}}
+            pathlib.Path(out, "spec.json").write_text(json.dumps(spec))
+            done, seconds = run_campo("sweep", "spec.json", "--out", "sweep", "--jobs", "1", cwd=out, env=env)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            self.assertLess(seconds, 60)
+            frame = campo.read_results(os.path.join(out, "sweep"))
+            self.assertEqual(list(frame["outcome"]), ["failed", "failed"])
+            for reason in frame["reason"]:
+                self.assertIn("per-call limit of 0.5 s", reason)
+
     def test_whole_run_time_limit(self):
         with tempfile.TemporaryDirectory() as out:
             # campo run --time-limit: a planner sleeping forever (no per-call limit) is stopped at 1 s.
