@@ -153,9 +153,10 @@ class DepthReactivePlanner final : public Planner {
     const Eigen::Vector3d w = stack_.back().position_m;
     const Eigen::Vector3d delta = w - o.state.position_m;
     // ControllaAltitudine: the least altitude change that brings W within max_elevation_deg.
-    const double allowed_dz = std::tan(config_.max_elevation_deg * kDegToRad) * delta.head<2>().norm();
-    if (std::abs(delta.z()) > allowed_dz + kAltitudeTolerance_m) {
-      const double z = w.z() - std::copysign(allowed_dz, delta.z());
+    const Eigen::Vector3d level = after_altitude_check(o.state.position_m, w, Eigen::Vector3d::UnitZ(),
+                                                       config_.max_elevation_deg, kAltitudeTolerance_m);
+    if (level != o.state.position_m) {
+      const double z = level.z();
       const auto* current = std::get_if<command::Altitude>(&command_);
       if (!current || std::abs(current->z_m - z) > kAltitudeTolerance_m) command_ = command::Altitude{z};
       return;
@@ -181,7 +182,8 @@ class DepthReactivePlanner final : public Planner {
     const double dilation_ms = elapsed_ms(start);
     const StackEntry entry = stack_.back();
     const Eigen::Isometry3d to_sensor = scan.sensor_pose.inverse();
-    VisibilityCheck check = check_visibility(dilated, grid, to_sensor * entry.position_m, config_.safety_radius_m);
+    VisibilityCheck check =
+        check_visibility(dilated, grid, to_sensor * entry.position_m, config_.safety_radius_m, 0.0, depth_margin(), &depth);
     // Hysteresis against VaiVerso's check: a target visible only just (its
     // neighbourhood widened by visible_margin_px holds an obstacle) counts as
     // invisible, so TrovaWP sets a waypoint clear by the same margin instead
@@ -190,7 +192,8 @@ class DepthReactivePlanner final : public Planner {
     if (!entry.temporary && check.visibility == Visibility::visible && config_.visible_margin_px > 0.0 &&
         check.waypoint_range_m > config_.monitor_min_range_m) {
       const VisibilityCheck strict = check_visibility(dilated, grid, to_sensor * entry.position_m,
-                                                      config_.safety_radius_m, config_.visible_margin_px);
+                                                      config_.safety_radius_m, config_.visible_margin_px, depth_margin(),
+                                                      &depth);
       if (strict.visibility != Visibility::visible) {
         check = strict;
         check.visibility = Visibility::invisible;
@@ -218,9 +221,18 @@ class DepthReactivePlanner final : public Planner {
       const auto search_start = Clock::now();
       std::vector<Eigen::Vector3d> avoid;
       for (const Eigen::Vector3d& d : discarded_) avoid.push_back(to_sensor * d);
+      FindWaypointParams search_params = find_waypoint_params(config_);
+      if (config_.margin_in_depth) {
+        // What the vehicle cannot see once it turns at the new waypoint toward the target.
+        const LidarConfig& sensor = *reading.config;
+        search_params.next_leg_check_m = blind_leg_m(config_.dilation_margin_m,
+                                                     0.5 * std::min(sensor.fov_h_deg, sensor.fov_v_deg),
+                                                     sensor.mount.position_m.x());
+      }
       const WaypointSearch search =
           find_waypoint(dilated, grid, check.pixel, check.waypoint_range_m / grid.max_range_m,
-                        check.obstacle_range_m / grid.max_range_m, find_waypoint_params(config_), avoid);
+                        check.obstacle_range_m / grid.max_range_m, search_params, avoid, to_sensor * o.state.position_m,
+                        to_sensor.linear() * Eigen::Vector3d::UnitZ(), &depth);
       replan.details["search_ms"] = elapsed_ms(search_start);
       replan.details["threshold"] = search.threshold;
       replan.details["candidates"] = search.candidates;
@@ -281,13 +293,15 @@ class DepthReactivePlanner final : public Planner {
     if ((entry.position_m - o.state.position_m).norm() < config_.monitor_min_range_m) return;
     const auto start = Clock::now();
     const DepthGrid grid = DepthGrid::of(*reading.config);
-    const cv::Mat dilated = dilate_depth_map(depth_map(*reading.scan, *reading.config), dilation_params(config_, grid));
+    const cv::Mat depth = depth_map(*reading.scan, *reading.config);
+    const cv::Mat dilated = dilate_depth_map(depth, dilation_params(config_, grid));
     // The other side of the hysteresis of evaluate(): on the way the
     // neighbourhood is visible_margin_px narrower than when deciding, so the
     // image shifting by a pixel or two as the drone pitches does not stop it;
     // the dilation still keeps the margin around the line of flight.
     const VisibilityCheck check = check_visibility(dilated, grid, reading.scan->sensor_pose.inverse() * entry.position_m,
-                                                   config_.safety_radius_m, -config_.visible_margin_px);
+                                                   config_.safety_radius_m, -config_.visible_margin_px, depth_margin(),
+                                                   &depth);
     if (check.visibility == Visibility::visible) return;
     // Occluded on the way: stop here and decide again once still.
     ReplanDecision replan = replan_record(reading, *reading.scan, entry, check);
@@ -334,7 +348,8 @@ class DepthReactivePlanner final : public Planner {
   void place_wall_waypoint(const Observation& o, const cv::Mat& dilated,
                            const DepthGrid& grid, PlanResult& result, nlohmann::json& record) {
     const Eigen::Vector2d ahead = grid.project(Eigen::Vector3d::UnitX());
-    const double range = clear_range(dilated, grid, ahead, config_.wall_step_m, config_.safety_radius_m, 0.0, 1.5).value_or(0.0);
+    const double range =
+        clear_range(dilated, grid, ahead, config_.wall_step_m, config_.safety_radius_m, 0.0, 1.5, depth_margin()).value_or(0.0);
     const double yaw = o.state.yaw_rad();
     const Eigen::Vector3d waypoint = o.state.position_m + range * Eigen::Vector3d(std::cos(yaw), std::sin(yaw), 0.0);
     record["waypoint"] = to_json(waypoint);
@@ -343,6 +358,9 @@ class DepthReactivePlanner final : public Planner {
     stack_.push_back({waypoint, true});
     enter(Phase::align, o);
   }
+
+  // Kept toward the sensor as well as across (margin_in_depth).
+  double depth_margin() const { return config_.margin_in_depth ? config_.dilation_margin_m : 0.0; }
 
   DepthReactiveConfig config_;
   std::vector<StackEntry> stack_;     // NavigazioneLocale's stack: the target, then at most one temporary waypoint
@@ -381,6 +399,9 @@ const ConfigFields<DepthReactiveConfig>& depth_reactive_config_fields() {
                   "printed (r s / n)")
           .number("dilation_margin_m", &C::dilation_margin_m, Range::non_negative(), "m",
                   "margin kept around obstacles (`margin`): the drone's bounding radius 0.43 m + 0.07 m")
+          .flag("margin_in_depth", &C::margin_in_depth,
+                "keep the margin toward the sensor too: beyond waypoints, along TrovaWP's corridor and the blind start "
+                "of the next leg (false: Algorithm 2 and TrovaWP as printed)")
           .number("dilation_radius_deg", &C::dilation_radius_deg, Range::closed(0.0, 90.0), "deg",
                   "r of `as_printed` (seed 000: 49 px at 256 px over 90 deg)")
           .number("altitude_penalty", &C::altitude_penalty, Range::non_negative(), "1/px",
@@ -428,7 +449,8 @@ DilationParams dilation_params(const DepthReactiveConfig& c, const DepthGrid& gr
 
 FindWaypointParams find_waypoint_params(const DepthReactiveConfig& c) {
   return {c.altitude_penalty, c.threshold_cap, c.vehicle_radius_m, c.safety_radius_m, c.min_waypoint_distance_m,
-          c.max_candidates};
+          c.max_candidates, c.margin_in_depth ? c.dilation_margin_m : 0.0, 0.0,
+          c.margin_in_depth ? c.max_elevation_deg : 0.0, kAltitudeTolerance_m};
 }
 
 std::unique_ptr<Planner> make_depth_reactive_planner(const ParamsBlock& params, const PlannerContext& context) {

@@ -38,6 +38,14 @@ struct DepthReactiveConfig {
   /// (0.6 x 0.6 x 0.12 m: half-diagonal 0.43 m) plus 0.07 m for tracking
   /// error; rounding the dilation up to whole pixels adds up to a pixel more.
   double dilation_margin_m = 0.5;
+  /// Keep the margin toward the sensor too, not only across the line of
+  /// sight (docs/planners.md, "Safety at coarse resolutions"): an obstacle
+  /// must lie beyond a waypoint by r + dilation_margin_m for it to be
+  /// visible, TrovaWP's waypoints keep that distance, their corridor from the
+  /// vehicle and the start of the next leg (what the vehicle will not see
+  /// once it turns there) keep the margin. false: Algorithm 2 and TrovaWP as
+  /// printed (obstacles beyond a waypoint by r suffice).
+  bool margin_in_depth = true;
   double dilation_radius_deg = 17.2;  ///< r as an angle (layer_radii as_printed; seed 000: 49 px at 256 px over 90 deg)
   double altitude_penalty = 1.0;      ///< k of TrovaWP's cost, per pixel of altitude change
   double threshold_cap = 0.9;         ///< cap of TrovaWP's threshold t

