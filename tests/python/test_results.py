@@ -31,12 +31,13 @@ CAMPO = pathlib.Path(os.environ.get("CAMPO_BIN", SOURCE_DIR / "build" / "campo")
 EXAMPLE = SOURCE_DIR / "examples" / "python" / "analyse_sweep.py"
 
 # Two barriers, seed 000's reactive planner: two scanner resolutions (arrays, labelled 32x32 and 16x8) against two
-# speeds, two seeds with noisy ranges and jittered starts so they differ: 8 runs of under a second each.
+# speeds, two seeds with noisy ranges and jittered starts so they differ: 8 runs of under a second each (at 32x32
+# the drone climbs over a barrier and reaches the goal; at 16x8 it finds no safe way and gives up).
 SPEC = {
     "campo_sweep": 1,
     "name": "tiny",
     "scenes": ["two_barriers"],
-    "set": {"/objects/drone/sensors/scanner/noise_stddev_m": 0.01, "/world/time_limit_s": 40},
+    "set": {"/objects/drone/sensors/scanner/noise_stddev_m": 0.01, "/world/time_limit_s": 120},
     "axes": [{"name": "resolution", "values": [[32, 32], [16, 8]],
               "set": ["/objects/drone/sensors/scanner/resolution"]},
              {"name": "speed_mps", "values": [0.6, 1.5], "set": ["/objects/drone/planner/params/speed_mps"]}],
@@ -194,6 +195,9 @@ class ReadResultsTest(unittest.TestCase):
             else:
                 values = runs[cell["metric"]].dropna()
             self.assertEqual(len(values), int(cell["n"]), cell)
+            if len(values) == 0:  # no run of the cell counts (none reached): campo table leaves it empty
+                self.assertEqual(cell["mean"], "", cell)
+                continue
             self.assertTrue(math.isclose(values.mean(), float(cell["mean"]), rel_tol=1e-12), cell)
 
     def test_the_path_of_results_jsonl_reads_the_same(self) -> None:
@@ -459,11 +463,12 @@ class AnalyseSweepExampleTest(unittest.TestCase):
         printed = {line.split()[0]: line.split() for line in analysed.stdout.splitlines()[3:5]}
         self.assertEqual(set(printed), {"32x32", "16x8"})
         for label, (runs, failed) in {"32x32": (4, 0), "16x8": (4, 1)}.items():
-            ratios = [json.loads(run_json.read_text())["metrics"]["path_ratio"]
-                      for run_json in sorted((SWEEP / "runs").glob(f"*__resolution-{label}__*/run.json"))]
+            metrics = [json.loads(run_json.read_text())["metrics"]
+                       for run_json in sorted((SWEEP / "runs").glob(f"*__resolution-{label}__*/run.json"))]
+            ratios = [m["path_ratio"] for m in metrics]
             self.assertEqual(len(ratios), runs - failed)
             mean = sum(ratios) / len(ratios)
-            success_rate = (runs - failed) / runs  # every completed run of this sweep reaches the goal
+            success_rate = sum(m["outcome"] == "reached" for m in metrics) / runs
             self.assertEqual(printed[label][1:6], [str(runs), str(failed), f"{success_rate:.4g}", str(len(ratios)),
                                                    f"{mean:.4g}"])
 
