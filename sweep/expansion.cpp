@@ -196,7 +196,11 @@ class SceneExpander {
       run.name = name + std::to_string(seed);
       run.overrides.resize(shared_overrides);
       if (text) {
-        run.overrides.push_back(kSeedPointer + ("=" + std::to_string(seed)));  // as apply() records it
+        // As apply() records it; appended piece by piece (GCC 12 warns falsely, -Wrestrict, about "=" + string).
+        std::string seed_override(kSeedPointer);
+        seed_override += '=';
+        seed_override += std::to_string(seed);
+        run.overrides.push_back(std::move(seed_override));
         run.id = run_id(run.name, text->with(seed));
         emit(run);
         continue;
