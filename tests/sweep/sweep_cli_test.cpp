@@ -239,26 +239,28 @@ TEST_F(SweepCli, StaleStagingDirectoriesOfThisHostAreCleaned) {
 
 // Failed runs are recorded, so a rerun skips them unless asked to retry.
 TEST_F(SweepCli, FailedRunsAreRetriedOnlyWhenAsked) {
+  // 16 x 16 flies in about 0.2 s of wall time (a second under the sanitizers), 1024 x 1024 takes many.
   write("slow.json", R"({"campo_sweep": 1, "name": "slow", "scenes": ["two_barriers"],
     "set": {"/objects/drone/sensors/scanner/resolution": [16, 16]},
-    "axes": [{"name": "resolution", "values": [16, 512],
+    "axes": [{"name": "resolution", "values": [16, 1024],
               "set": ["/objects/drone/sensors/scanner/resolution/0", "/objects/drone/sensors/scanner/resolution/1"]}]})");
-  EXPECT_EQ(campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 1").exit_code, 1);
-  const Result again = campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 1");
+  EXPECT_EQ(campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 3").exit_code, 1);
+  const Result again = campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 3");
   EXPECT_EQ(again.exit_code, 1);
   EXPECT_THAT(again.err, HasSubstr("0 runs to do (2 already recorded)"));
-  const Result retry = campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 1 --retry-failed");
+  const Result retry = campo("sweep " + spec("slow.json") + " --out " + out("o") + " --time-limit 3 --retry-failed");
   EXPECT_EQ(retry.exit_code, 1);
   EXPECT_THAT(retry.err, HasSubstr("1 runs to do (1 already recorded)"));
   EXPECT_EQ(lines_of(slurp(dir_ / "o" / "results.jsonl")).size(), 3u);
 }
 
 // A run that goes on past its wall-clock limit is killed and recorded; the
-// others complete. A 512 x 512 scanner takes seconds, 16 x 16 a fraction.
+// others complete. A 1024 x 1024 scanner takes many seconds, 16 x 16 about 0.2 s (a second under the
+// sanitizers: the depth planner climbs over a barrier at 16 px, a 64 s flight).
 TEST_F(SweepCli, ARunPastItsTimeLimitIsKilledAndRecorded) {
-  write("slow.json", R"({"campo_sweep": 1, "name": "slow", "scenes": ["two_barriers"], "time_limit_s": 1,
+  write("slow.json", R"({"campo_sweep": 1, "name": "slow", "scenes": ["two_barriers"], "time_limit_s": 3,
     "set": {"/objects/drone/sensors/scanner/resolution": [16, 16]},
-    "axes": [{"name": "resolution", "values": [16, 512],
+    "axes": [{"name": "resolution", "values": [16, 1024],
               "set": ["/objects/drone/sensors/scanner/resolution/0", "/objects/drone/sensors/scanner/resolution/1"]}]})");
   const Result sweep = campo("sweep " + spec("slow.json") + " --out " + out("o") + " --triage");
   EXPECT_EQ(sweep.exit_code, 1);
@@ -271,10 +273,10 @@ TEST_F(SweepCli, ARunPastItsTimeLimitIsKilledAndRecorded) {
   EXPECT_EQ(by_resolution[16]["status"], "completed");
   EXPECT_EQ(by_resolution[16]["metrics"]["outcome"], "reached");
   EXPECT_FALSE(by_resolution[16].contains("triage"));
-  const nlohmann::json& killed = by_resolution[512];
+  const nlohmann::json& killed = by_resolution[1024];
   EXPECT_EQ(killed["status"], "failed");
-  EXPECT_THAT(killed["reason"].get<std::string>(), StartsWith("exceeded the time limit of 1 s and was killed"));
-  EXPECT_LT(killed["wall_time_s"].get<double>(), 5.0);
+  EXPECT_THAT(killed["reason"].get<std::string>(), StartsWith("exceeded the time limit of 3 s and was killed"));
+  EXPECT_LT(killed["wall_time_s"].get<double>(), 7.0);
   // No record to draw from, but the command that reruns it.
   EXPECT_THAT(killed["triage"]["repro"].get<std::string>(), StartsWith("campo run "));
   EXPECT_TRUE(fs::exists(dir_ / "o" / killed["triage"]["dir"].get<std::string>() / "repro.sh"));
