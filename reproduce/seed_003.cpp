@@ -11,6 +11,7 @@
 
 #include "render/run_files.hpp"
 #include "reproduce/claims.hpp"
+#include "reproduce/evidence.hpp"
 #include "reproduce/seed_003_criteria.hpp"
 #include "reproduce/trajectory_checks.hpp"
 #include "sweep/results.hpp"
@@ -21,30 +22,6 @@ namespace campo {
 namespace fs = std::filesystem;
 
 namespace {
-
-// What a sweep of this report gave: its command and its runs.
-struct SweepRuns {
-  fs::path dir;
-  ResultsFile results;
-  std::vector<const RunResult*> of(const std::string& planner) const {
-    std::vector<const RunResult*> out;
-    for (const RunResult& r : results.runs) {
-      if (planner.empty() || r.planner == planner) out.push_back(&r);
-    }
-    return out;
-  }
-};
-
-SweepRuns sweep(const Workbench& bench, Claim& claim, const std::string& spec_file, const std::string& name,
-                const std::function<void(nlohmann::json&)>& reduce) {
-  const fs::path spec = bench.spec(spec_file, reduce);
-  SweepRuns out;
-  out.dir = bench.work(name);
-  claim.commands.push_back(bench.campo({"sweep", spec.string(), "--out", out.dir.string(), "--keep-runs", "--jobs",
-                                        std::to_string(bench.jobs())}));
-  out.results = read_results(out.dir / "results.jsonl");
-  return out;
-}
 
 RunOutcome outcome_of(const RunResult& r) {
   RunOutcome o;
@@ -62,23 +39,10 @@ std::vector<RunOutcome> outcomes_of(const std::vector<const RunResult*>& runs) {
   return out;
 }
 
-// "17/20 (85 %, 95 % interval 64-95 %)".
-std::string rate(int k, int n) {
-  if (n <= 0) return "no runs";
-  const Interval ci = wilson_interval(k, n);
-  return std::to_string(k) + "/" + std::to_string(n) + " (" + fixed(100.0 * k / n, 0) + " %, 95 % interval " +
-         fixed(100.0 * ci.low, 0) + "-" + fixed(100.0 * ci.high, 0) + " %)";
-}
-
-nlohmann::json rate_json(int k, int n) {
-  const Interval ci = wilson_interval(k, std::max(n, 1));
-  return {{"k", k}, {"n", n}, {"wilson95", {ci.low, ci.high}}};
-}
-
 std::string counts_text(const OutcomeCounts& c) {
-  return "reached without collision " + rate(c.reached_clean, c.runs) + "; reached " + rate(c.reached, c.runs) +
-         "; collision-free " + rate(c.collision_free, c.runs) + "; avoided at least one obstacle and reached cleanly " +
-         rate(c.avoided, c.runs);
+  return "reached without collision " + rate_text(c.reached_clean, c.runs) + "; reached " + rate_text(c.reached, c.runs) +
+         "; collision-free " + rate_text(c.collision_free, c.runs) + "; avoided at least one obstacle and reached cleanly " +
+         rate_text(c.avoided, c.runs);
 }
 
 nlohmann::json counts_json(const OutcomeCounts& c) {
@@ -163,12 +127,12 @@ void fig_45(const Workbench& bench, Claim& claim, RandomObstacles& measured) {
                  "areas occupied by several obstacles.\" §3.2: \"a series of obstacles is placed at random between "
                  "the rows\" of a 100 x 100 m map at 10 cells per metre with \"equispaced rows\". Judged as: over "
                  "random draws of the obstacles, every run reaches the goal without a collision.";
-  measured.main = sweep(bench, claim, "scenes/sweeps/vineyard_random_003.json", "003_random", reduce_random);
+  measured.main = run_sweep(bench, claim, "scenes/sweeps/vineyard_random_003.json", "003_random", reduce_random);
   // The quick version leaves out the two settings beside the main one (their rows then count no runs).
   if (!bench.quick()) {
-    measured.rows5 = sweep(bench, claim, "scenes/sweeps/vineyard_random_rows5_003.json", "003_random_rows5",
+    measured.rows5 = run_sweep(bench, claim, "scenes/sweeps/vineyard_random_rows5_003.json", "003_random_rows5",
                            reduce_random);
-    measured.anywhere = sweep(bench, claim, "scenes/sweeps/vineyard_random_anywhere_003.json", "003_random_anywhere",
+    measured.anywhere = run_sweep(bench, claim, "scenes/sweeps/vineyard_random_anywhere_003.json", "003_random_anywhere",
                               reduce_random);
   }
   std::map<std::string, OutcomeCounts> by;
@@ -180,8 +144,8 @@ void fig_45(const Workbench& bench, Claim& claim, RandomObstacles& measured) {
     for (const RunResult* r : runs) {
       if (r->completed && r->metrics.min_clearance_m) clearance = std::min(clearance, *r->metrics.min_clearance_m);
     }
-    rows.push_back({label, std::to_string(c.runs), rate(c.reached_clean, c.runs), rate(c.reached, c.runs),
-                    rate(c.collision_free, c.runs), rate(c.avoided, c.runs),
+    rows.push_back({label, std::to_string(c.runs), rate_text(c.reached_clean, c.runs), rate_text(c.reached, c.runs),
+                    rate_text(c.collision_free, c.runs), rate_text(c.avoided, c.runs),
                     clearance < 1e300 ? fixed(clearance, 2) : "–"});
     claim.measured_values[key] = counts_json(c);
   };
@@ -245,7 +209,7 @@ void fig_45(const Workbench& bench, Claim& claim, RandomObstacles& measured) {
   claim.verdict = judge(ClaimKind::thesis_result, holds, !claim.departures.empty(), false);
   claim.verdict_reason =
       holds ? (*holds ? "Every draw on the 4 m rows reached the goal without collision (" +
-                            rate(by["campo_4m"].reached_clean, seeds) +
+                            rate_text(by["campo_4m"].reached_clean, seeds) +
                             "), with the departures listed; with the thesis's own follow-the-gap see the table."
                       : "Not every draw reached the goal without collision: " + counts_text(by["campo_4m"]) + "; " +
                             std::to_string(timeouts) + " runs still short of the goal at the 600 s limit (avoiding "
@@ -324,10 +288,10 @@ void no_local_minimum(const Workbench& bench, Claim& claim, const RandomObstacle
                    "trap shows:\n\n" +
                    markdown_table({"Scene", "Runs", "Trapped (timed out)", "Reached", "Reached, no collision"},
                                   {{"random boxes, 4 m rows (the Fig. 45 sweep)", std::to_string(pc.runs),
-                                    rate(trapped, pc.runs), rate(pc.reached, pc.runs), rate(pc.reached_clean, pc.runs)},
+                                    rate_text(trapped, pc.runs), rate_text(pc.reached, pc.runs), rate_text(pc.reached_clean, pc.runs)},
                                    {"the hand-placed boxes, 5 m rows (scenes/vineyard_obstacles.json)", "1",
                                     hand.outcome.timed_out ? "yes" : "no", hand.text(), ""}}) +
-                   "\nFor comparison on the random draws: campo's follow-the-gap reached " + rate(cc.reached, cc.runs) +
+                   "\nFor comparison on the random draws: campo's follow-the-gap reached " + rate_text(cc.reached, cc.runs) +
                    ".";
   claim.departures = {
       {"stop rule and footprint guard", "none (003 §3.6)",
@@ -350,7 +314,7 @@ void no_local_minimum(const Workbench& bench, Claim& claim, const RandomObstacle
   else {
     reason = "The printed follow-the-gap was trapped:";
     if (hand.outcome.timed_out) reason += " on the hand-placed boxes the run " + hand.text() + ";";
-    reason += " on random boxes " + rate(trapped, pc.runs) + " runs timed out. Between vine rows its gaps lead the "
+    reason += " on random boxes " + rate_text(trapped, pc.runs) + " runs timed out. Between vine rows its gaps lead the "
               "rover onto a box's corner, where it stops and turns toward the heading it already has "
               "(docs/planners.md, \"Standing behind a box\"): a local minimum of the kind the thesis says the "
               "method does not have.";
@@ -375,7 +339,7 @@ void fig_46(const Workbench& bench, Claim& claim) {
                  "opening on the left, which has become more favourable. So the rover is able to pass the obstacle "
                  "safely (d) and continue along the original path.\" Judged as: over walker start times and speeds, "
                  "the switch right then left occurs, and every run passes without collision and completes the route.";
-  const SweepRuns s = sweep(bench, claim, "scenes/sweeps/vineyard_gap_003.json", "003_fig46", [](nlohmann::json& d) {
+  const SweepRuns s = run_sweep(bench, claim, "scenes/sweeps/vineyard_gap_003.json", "003_fig46", [](nlohmann::json& d) {
     d["axes"][0]["values"] = {7, 8};
     d["axes"][1]["values"] = {0.5, 0.6};
   });
@@ -418,7 +382,7 @@ void fig_46(const Workbench& bench, Claim& claim) {
                    "the route 12 m ahead walks right across it, starting at each of the times and speeds below. "
                    "Follow-the-gap on 003's own gaps (range steps), as the scene runs it. The switch as the thesis "
                    "describes it (first chosen gap right of the route, then left) in " +
-                   rate(switched, n) + "; reached without collision in " + rate(cs.reached_clean, n) +
+                   rate_text(switched, n) + "; reached without collision in " + rate_text(cs.reached_clean, n) +
                    ". The chosen gap's sides in time order (events.jsonl, decisions.gap.gap_center_deg):\n\n" +
                    markdown_table({"Walker start (s)", "Walker speed (m/s)", "Chosen gap's sides", "Switch as Fig. 46",
                                    "Outcome", "Collisions"},
@@ -444,8 +408,8 @@ void fig_46(const Workbench& bench, Claim& claim) {
       {"gap edges", "only the nearest reading grown (the bubble, 003 §3.6)",
        "the near side of every range step bounding a gap grown by R (grow_gap_edges true, after §2.4.2's point robot)",
        "with the printed gaps the rover steered onto box corners",
-       "the printed algorithm (no grown edges, stop rule or guard): switch as Fig. 46 in " + rate(pswitched, pn) +
-           ", reached without collision in " + rate(ps.reached_clean, pn)},
+       "the printed algorithm (no grown edges, stop rule or guard): switch as Fig. 46 in " + rate_text(pswitched, pn) +
+           ", reached without collision in " + rate_text(ps.reached_clean, pn)},
       activation_departure(),
       scan_departure(),
       guard_departure("see the gap edges row: run together with the printed gaps"),
@@ -454,8 +418,8 @@ void fig_46(const Workbench& bench, Claim& claim) {
   claim.verdict = judge(ClaimKind::thesis_result, holds, true, false);
   claim.verdict_reason =
       !holds ? "No run was measured."
-             : "The switch right then left in " + rate(switched, n) + "; reached without collision in " +
-                   rate(cs.reached_clean, n) + (*holds ? ", with the departures listed." : ": the criterion fails.");
+             : "The switch right then left in " + rate_text(switched, n) + "; reached without collision in " +
+                   rate_text(cs.reached_clean, n) + (*holds ? ", with the departures listed." : ": the criterion fails.");
 }
 
 // ---- Fig. 44 -----------------------------------------------------------------------------------------------------
@@ -477,7 +441,7 @@ void fig_44(const Workbench& bench, Claim& claim) {
                  "which can be resolved by assigning the gap chosen in the previous iteration a 'bonus'.\" Judged as: "
                  "without the bonus at least one run zig-zags (the chosen gap goes back to the previous one " +
                  std::to_string(kIndecisive) + " or more times), and with it none does.";
-  const SweepRuns s = sweep(bench, claim, "scenes/sweeps/vineyard_fig44_003.json", "003_fig44", [](nlohmann::json& d) {
+  const SweepRuns s = run_sweep(bench, claim, "scenes/sweeps/vineyard_fig44_003.json", "003_fig44", [](nlohmann::json& d) {
     d["axes"][1]["values"] = {20.0};
     d["axes"][2]["values"] = {0.3};
   });
@@ -510,8 +474,8 @@ void fig_44(const Workbench& bench, Claim& claim) {
                    "positions and radii below, the route at y = 20 m), follow-the-gap on 003's gaps, the bonus 0.5 "
                    "(the scene's) and 0. Flips: the chosen gap's centre (events.jsonl) jumps by more than " +
                    fixed(kJump_deg, 0) + "° and later back; heading reversals: the steered heading changing side of "
-                   "the route. Zig-zag (" + std::to_string(kIndecisive) + "+ flips) without the bonus in " + rate(zigzags(without), static_cast<int>(without.size())) + ", with it in " +
-                   rate(zigzags(with), static_cast<int>(with.size())) + ".\n\n" +
+                   "the route. Zig-zag (" + std::to_string(kIndecisive) + "+ flips) without the bonus in " + rate_text(zigzags(without), static_cast<int>(without.size())) + ", with it in " +
+                   rate_text(zigzags(with), static_cast<int>(with.size())) + ".\n\n" +
                    markdown_table({"Person at y (m)", "Radius (m)", "Bonus", "Gap flips", "Heading reversals",
                                    "Outcome", "Collisions"},
                                   rows);
@@ -526,14 +490,14 @@ void fig_44(const Workbench& bench, Claim& claim) {
   claim.verdict = judge(ClaimKind::thesis_result, holds, true, cause_known);
   claim.verdict_reason =
       !holds ? "No run was measured."
-      : *holds ? "Without the bonus " + rate(zigzags(without), static_cast<int>(without.size())) +
+      : *holds ? "Without the bonus " + rate_text(zigzags(without), static_cast<int>(without.size())) +
                      " runs zig-zag, with it none, with the departures listed."
       : zigzags(without) == 0
-          ? "No run zig-zagged without the bonus either (" + rate(0, static_cast<int>(without.size())) +
+          ? "No run zig-zagged without the bonus either (" + rate_text(0, static_cast<int>(without.size())) +
                 "): in these symmetric cases campo's follow-the-gap chose one side and kept it, so the instability "
                 "the bonus is for did not appear and its effect is not shown."
-          : "The bonus did not prevent the zig-zag: " + rate(zigzags(with), static_cast<int>(with.size())) +
-                " runs with it (without it " + rate(zigzags(without), static_cast<int>(without.size())) +
+          : "The bonus did not prevent the zig-zag: " + rate_text(zigzags(with), static_cast<int>(with.size())) +
+                " runs with it (without it " + rate_text(zigzags(without), static_cast<int>(without.size())) +
                 "); it lowered the flips per run from " + fixed(mean(without), 1) + " to " + fixed(mean(with), 1) + ".";
 }
 
@@ -561,7 +525,7 @@ void tracking(const Workbench& bench, Claim& claim, Unobstructed& measured) {
                  "never leaves its inter-row (the cross-track error stays below " + fixed(kFreeHalfWidth_m, 1) +
                  " m, the 3.4 m between the 4 m rows' canopies less the 1 m wide rover, halved: a bound of the scene, "
                  "not a tolerance), and its mean speed on the headland arcs is below that on the straights.";
-  measured.runs = sweep(bench, claim, "scenes/sweeps/vineyard_lookahead_003.json", "003_unobstructed",
+  measured.runs = run_sweep(bench, claim, "scenes/sweeps/vineyard_lookahead_003.json", "003_unobstructed",
                         [](nlohmann::json& d) { d["axes"][0]["values"] = {0.2, 1.5, 3}; });
   for (const RunResult* r : measured.runs.of("")) {
     if (r->params.value("lookahead_m", 0.0) == kReferenceLookahead_m) measured.reference = r;
@@ -729,7 +693,7 @@ void rejoin(const Workbench& bench, Claim& claim) {
                  "from the path or when it does not start exactly from the start point ... the robot will follow the "
                  "point at lastFoundIndex\". Judged as: from every start off the route, the rover comes back within " +
                  fixed(100 * kOnRoute_m, 0) + " cm of the route and completes it without collision.";
-  const SweepRuns s = sweep(bench, claim, "scenes/sweeps/vineyard_offstart_003.json", "003_offstart",
+  const SweepRuns s = run_sweep(bench, claim, "scenes/sweeps/vineyard_offstart_003.json", "003_offstart",
                             [](nlohmann::json& d) { d["seeds"]["count"] = 2; });
   std::vector<std::optional<double>> rejoined;
   std::vector<RunOutcome> outcomes;
@@ -763,7 +727,7 @@ void rejoin(const Workbench& bench, Claim& claim) {
   claim.measured_values = {{"rejoined", rate_json(ok, n)}, {"runs", counts_json(count_outcomes(outcomes))}};
   claim.measured = "scenes/vineyard.json without boxes, the rover started at a uniformly drawn point within 1.5 m of "
                    "the route's start (start_jitter), heading north; the first two inter-rows. Back within " +
-                   fixed(100 * kOnRoute_m, 0) + " cm of the route in " + rate(ok, n) + ".\n\n" +
+                   fixed(100 * kOnRoute_m, 0) + " cm of the route in " + rate_text(ok, n) + ".\n\n" +
                    markdown_table({"Seed", "Start off the route (m)", "Driven until back on it (m)", "Outcome",
                                    "Collisions"},
                                   rows) +
@@ -775,7 +739,7 @@ void rejoin(const Workbench& bench, Claim& claim) {
   const std::optional<bool> holds = every_run_rejoins(rejoined, outcomes);
   claim.verdict = judge(ClaimKind::thesis_result, holds, true, false);
   claim.verdict_reason = !holds ? "No run was measured."
-                                : "Back on the route in " + rate(ok, n) + "; " +
+                                : "Back on the route in " + rate_text(ok, n) + "; " +
                                       counts_text(count_outcomes(outcomes)) + ".";
 }
 
