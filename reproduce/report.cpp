@@ -1,9 +1,9 @@
 #include "reproduce/report.hpp"
 
+#include <algorithm>
 #include <cctype>
-#include <exception>
-
 #include <cstdio>
+#include <exception>
 #include <map>
 #include <sstream>
 
@@ -116,6 +116,46 @@ std::string markdown_table(const std::vector<std::string>& header, const std::ve
     out << "\n";
   }
   return out.str();
+}
+
+std::vector<std::string> report_verdict_lines(const std::string& report_markdown) {
+  std::vector<std::string> lines;
+  std::istringstream in(report_markdown);
+  std::string line;
+  bool headline_seen = false;
+  while (std::getline(in, line)) {
+    if (!headline_seen) {
+      // The headline is the first bold line counting the claims ("**15 claims: ...**").
+      headline_seen = line.rfind("**", 0) == 0 && line.find(" claims: ") != std::string::npos;
+      if (headline_seen) lines.push_back(line);
+      continue;
+    }
+    if (line.rfind("|", 0) == 0) {
+      lines.push_back(line);
+    } else if (lines.size() > 1) {
+      break;  // the end of the verdict table
+    }
+  }
+  return lines;
+}
+
+std::vector<std::string> verdict_differences(const std::string& committed, const std::string& regenerated) {
+  const std::vector<std::string> before = report_verdict_lines(committed);
+  const std::vector<std::string> after = report_verdict_lines(regenerated);
+  std::vector<std::string> out;
+  for (const std::string& line : before) {
+    if (std::find(after.begin(), after.end(), line) == after.end()) out.push_back("- " + line);
+  }
+  for (const std::string& line : after) {
+    if (std::find(before.begin(), before.end(), line) == before.end()) out.push_back("+ " + line);
+  }
+  // The same lines in another order (claims reordered) differ too.
+  if (out.empty() && before != after) {
+    for (const std::string& line : before) out.push_back("- " + line);
+    for (const std::string& line : after) out.push_back("+ " + line);
+  }
+  if (before.empty() && out.empty()) out.push_back("- (no headline in the committed report)");
+  return out;
 }
 
 std::string report_headline(const std::vector<Claim>& claims) {

@@ -107,6 +107,16 @@ nlohmann::json claims_json(const std::vector<Claim>& claims, const ReportInfo& i
 /// The headline of the report: "**N claims: ...**", every verdict counted, and the departures.
 std::string report_headline(const std::vector<Claim>& claims);
 
+/// What a report concludes, taken from its Markdown: the headline and the
+/// table of claims and verdicts, line by line, without the run's timing or
+/// provenance. Empty when `report_markdown` has no headline.
+std::vector<std::string> report_verdict_lines(const std::string& report_markdown);
+
+/// The lines of `regenerated`'s verdicts that differ from `committed`'s
+/// (report_verdict_lines), each prefixed "- " (only in the committed report)
+/// or "+ " (only in the regenerated one); empty when the verdicts agree.
+std::vector<std::string> verdict_differences(const std::string& committed, const std::string& regenerated);
+
 /// A Markdown table: header cells, then rows of cells ('|' in cells escaped).
 std::string markdown_table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows);
 

@@ -25,6 +25,7 @@ struct ReproduceOptions {
   std::string work = "out/reproduce";
   bool quick = false;
   int jobs = 0;  ///< 0: every core
+  std::string check_against;  ///< a committed report whose verdicts the new one must repeat
 };
 
 fs::path this_executable() {
@@ -42,6 +43,8 @@ int reproduce(const ReproduceOptions& o) {
   }
   const fs::path report = o.report;
   check_output_file(report, "--report");
+  // Read before anything is written: --check-against may be the report being regenerated.
+  const std::string committed = o.check_against.empty() ? std::string() : read_text_file(o.check_against);
   const fs::path claims_file = report.parent_path() / "claims.json";
   check_output_file(claims_file, "--report (claims.json beside it)");
   check_output_directory(o.work, "--work");
@@ -72,10 +75,20 @@ int reproduce(const ReproduceOptions& o) {
   info.jobs = config.jobs;
   info.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_file_atomically(claims_file, claims_json(claims, info).dump(2) + "\n");
-  write_file_atomically(report, format_report(claims, info));
+  const std::string markdown = format_report(claims, info);
+  write_file_atomically(report, markdown);
   std::cout << "campo reproduce: " << report_headline(claims) << "\nreport in " << report.string() << ", "
             << claims_file.string() << ", figures in " << config.figure_dir.string() << "\n";
-  return kOk;
+  if (o.check_against.empty()) return kOk;
+  const std::vector<std::string> differences = verdict_differences(committed, markdown);
+  if (differences.empty()) {
+    std::cout << "campo reproduce: the headline and every verdict are those of " << o.check_against << "\n";
+    return kOk;
+  }
+  std::cerr << "campo reproduce: the headline or verdicts differ from " << o.check_against
+            << " (- there, + now):\n";
+  for (const std::string& line : differences) std::cerr << line << "\n";
+  return kInternalError;
 }
 
 }  // namespace
@@ -90,6 +103,10 @@ Command add_reproduce(CLI::App& app) {
                "of minutes; its numbers are not the reproduction");
   app.add_option("--jobs,-j", o->jobs, "Runs at a time in the sweeps (default: every available core)")
       ->check(CLI::Range(1, 1024));
+  app.add_option("--check-against", o->check_against,
+                 "A committed report (docs/reproductions.md): after writing the new report, exit 1 listing the "
+                 "lines of the headline and the verdict table that differ from it")
+      ->check(existing_file());
   app.footer(
       "Runs every experiment of the seed theses that campo reproduces (the bundled scenes and sweep specs), from "
       "campo's source directory, each as the campo command the report lists, and writes the report: for every "
@@ -100,7 +117,8 @@ Command add_reproduce(CLI::App& app) {
       "value, measured values, verdict and departures). A claim whose experiment fails is reported as not "
       "reproduced with the reason; the other claims still are.\n"
       "Examples: campo reproduce\n"
-      "          campo reproduce --quick --report out/quick/reproductions.md --work out/quick/work");
+      "          campo reproduce --quick --report out/quick/reproductions.md --work out/quick/work\n"
+      "          campo reproduce --report out/check/reproductions.md --check-against docs/reproductions.md");
   return [o] { return reproduce(*o); };
 }
 
