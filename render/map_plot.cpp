@@ -174,21 +174,25 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
   } else if (!plan.footprints.empty()) {
     // One entry per obstacle colour (up to four, by area drawn), named after the first obstacle of that colour
     // ("field/canopy_3" -> "canopy", "box_row" -> "box_row"): rows, boxes and posts read apart.
+    // Solids above the flight band are a group of their own, drawn pale with a dashed edge.
     struct Group {
       cv::Scalar colour;
+      bool above = false;
       double area = 0.0;
       std::string name;
     };
     std::vector<Group> groups;
-    for (const Footprint& f : plan.footprints) {
+    for (std::size_t i = 0; i < plan.footprints.size(); ++i) {
+      const Footprint& f = plan.footprints[i];
       const cv::Scalar c = to_bgr(f.shape->color);
-      auto g = std::find_if(groups.begin(), groups.end(), [&](const Group& x) { return x.colour == c; });
+      const bool above = i < plan.above_band.size() && plan.above_band[i];
+      auto g = std::find_if(groups.begin(), groups.end(), [&](const Group& x) { return x.colour == c && x.above == above; });
       if (g == groups.end()) {
         std::string name = f.shape->alias.substr(f.shape->alias.find_last_of('/') + 1);
         while (!name.empty() && (std::isdigit(static_cast<unsigned char>(name.back())) || name.back() == '_')) {
           name.pop_back();
         }
-        groups.push_back({c, 0.0, name});
+        groups.push_back({c, above, 0.0, name});
         g = groups.end() - 1;
       }
       g->area += f.box_m.volume();
@@ -196,8 +200,13 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
     std::stable_sort(groups.begin(), groups.end(), [](const Group& a, const Group& b) { return a.area > b.area; });
     if (groups.size() > 4) groups.resize(4);
     for (const Group& g : groups) {
-      const std::string text = groups.size() == 1 || g.name.empty() ? "obstacle" : "obstacle: " + g.name;
-      legend.push_back(patch_entry(g.colour, figure::shade(g.colour, 0.6), text));
+      std::string text = groups.size() == 1 || g.name.empty() ? "obstacle" : "obstacle: " + g.name;
+      if (g.above) {
+        text += ", above the flight band";
+        legend.push_back(patch_entry(figure::lighten(g.colour, kAboveBandLighten), figure::shade(g.colour, 0.6), text));
+      } else {
+        legend.push_back(patch_entry(g.colour, figure::shade(g.colour, 0.6), text));
+      }
     }
   }
   if (plan.contour_interval_m > 0.0) {
@@ -254,6 +263,8 @@ MapPlan plan_map(const Scene& scene, std::vector<const RunView*> runs, const Fig
   for (auto& f : solids) {
     if (f.box_m.intersects(plan.bounds)) plan.footprints.push_back(std::move(f));
   }
+  plan.band_top_agl_m = flight_band_top_agl(plan.runs, plan.ground);
+  for (const Footprint& f : plan.footprints) plan.above_band.push_back(above_flight_band(f, plan.ground, plan.band_top_agl_m));
   for (std::size_t i = 0; i < scene.movers.size(); ++i) {
     Eigen::AlignedBox2d path;
     for (const auto& p : scene.movers[i].path_m) path.extend(xy(p));
@@ -341,6 +352,31 @@ FigureLayout layout_map(const MapPlan& plan, const FigureStyle& style) {
   l.min = min;
   l.px_per_unit = Eigen::Vector2d::Constant(px_per_m);
   return l;
+}
+
+std::optional<double> flight_band_top_agl(const std::vector<const RunView*>& runs, const Ground& ground) {
+  std::optional<double> top;
+  for (const RunView* run : runs) {
+    for (const TrackPoint& p : run->track) {
+      const double agl = p.position_m.z() - ground.height(p.position_m.x(), p.position_m.y()).value_or(0.0);
+      top = std::max(top.value_or(agl), agl);
+    }
+  }
+  return top;
+}
+
+bool above_flight_band(const Footprint& f, const Ground& ground, std::optional<double> band_top_agl_m) {
+  if (!band_top_agl_m) return false;
+  const Eigen::Vector2d c = f.box_m.center();
+  return f.bottom_m - ground.height(c.x(), c.y()).value_or(0.0) > *band_top_agl_m;
+}
+
+void draw_footprint_above_band(cv::Mat& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& colour) {
+  std::vector<cv::Point2d> outline = to.all(f.outline_m);
+  cv::fillConvexPoly(plot, figure::fixed(outline), figure::lighten(colour, kAboveBandLighten), cv::LINE_AA,
+                     figure::kShift);
+  if (!outline.empty()) outline.push_back(outline.front());
+  figure::dashed_polyline(plot, outline, figure::shade(colour, 0.6), 1, 5.0, 4.0);
 }
 
 void draw_footprint(cv::Mat& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& fill) {
@@ -490,7 +526,16 @@ cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLay
       cv::polylines(plot, figure::fixed(to.all(f.outline_m)), true, figure::kInk, 1, cv::LINE_AA, figure::kShift);
     }
   } else {
-    for (const auto& f : plan.footprints) draw_footprint(plot, to, f, to_bgr(f.shape->color));
+    // Above the flight band first, so that trunks and obstacles at flight height are drawn over pale crowns.
+    const auto above = [&](std::size_t i) { return i < plan.above_band.size() && plan.above_band[i]; };
+    for (std::size_t i = 0; i < plan.footprints.size(); ++i) {
+      const Footprint& f = plan.footprints[i];
+      if (above(i)) draw_footprint_above_band(plot, to, f, to_bgr(f.shape->color));
+    }
+    for (std::size_t i = 0; i < plan.footprints.size(); ++i) {
+      const Footprint& f = plan.footprints[i];
+      if (!above(i)) draw_footprint(plot, to, f, to_bgr(f.shape->color));
+    }
   }
   for (std::size_t k = 0; k < plan.movers.size(); ++k) {
     const Mover& m = scene.movers[plan.movers[k]];

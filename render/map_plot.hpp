@@ -3,6 +3,7 @@
 /// panels of a sequence): what a map shows (MapPlan, plan_map), where its
 /// parts go (layout_map) and drawing it (draw_map_figure). Private to render/.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,11 @@ struct MapPlan {
   Ground ground;
   double contour_interval_m = 0.0;
   std::vector<Footprint> footprints;        // visible solids, lowest top first
+  /// Aligned with `footprints`: the solid's bottom lies higher above the ground beneath it than any run flew
+  /// above the ground (band_top_agl_m), so no run could touch it: drawn pale with a dashed edge (000's tree
+  /// crowns above the flight band read apart from trunks and crowns at flight height).
+  std::vector<bool> above_band;
+  std::optional<double> band_top_agl_m;     // the highest height above the ground of any track point; none without tracks
   std::vector<std::size_t> movers;          // indices of visible movers
   std::vector<Footprint> mover_footprints;  // at their first point, aligned with `movers`
   bool movers_at_start = true;              // false: their paths alone (a video draws them where they are)
@@ -56,9 +62,19 @@ FigureLayout layout_map(const MapPlan& plan, const FigureStyle& style);
 cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLayout& layout,
                         const std::string& title);
 
+/// The highest height above the ground (`ground`, 0 where it has none) of any track point of `runs`; none without
+/// track points.
+std::optional<double> flight_band_top_agl(const std::vector<const RunView*>& runs, const Ground& ground);
+/// Whether a solid's bottom lies above `band_top_agl_m` over the ground beneath its centre; false without a band.
+bool above_flight_band(const Footprint& f, const Ground& ground, std::optional<double> band_top_agl_m);
+
 struct PlotMapper;
 /// A solid's footprint filled with `fill` and outlined a shade darker.
 void draw_footprint(cv::Mat& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& fill);
+/// A solid above the flight band: its colour mixed with white (kAboveBandLighten) and a dashed edge a shade darker.
+void draw_footprint_above_band(cv::Mat& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& colour);
+/// How much white a solid above the flight band is mixed with.
+inline constexpr double kAboveBandLighten = 0.65;
 /// What the planned map shows of its runs (plan.runs): avoidance bands, planned paths, tracks,
 /// recorded sensor hits, planned and discarded waypoints; draw_map_figure draws them over the
 /// scene and under the mission's markers (a video draws them frame by frame).

@@ -14,6 +14,7 @@
 #include <opencv2/core.hpp>
 
 #include "campo/scene_loader.hpp"
+#include "render/map_plot.hpp"
 #include "render/run_files.hpp"
 #include "run/event_log.hpp"
 #include "tests/render/figure_test_support.hpp"
@@ -299,6 +300,80 @@ TEST(FiguresOverlay, ListsEveryRunInTheLegend) {
   runs.push_back(runs.front());
   const int four = overlay_layout(scene, runs, small_style()).legend_px.height;
   EXPECT_GT(four, three);
+}
+
+// A crown whose bottom (4 m) is above every track point (3 m above flat ground), a crown of the same colour
+// reaching down to 1.5 m, and a post at flight height.
+Scene band_scene() {
+  const char* text = R"j({"objects": [
+    {"alias": "ground", "type": "plane"},
+    {"alias": "crown_1", "type": "sphere", "radius_m": 1.0, "pose": {"position_m": [0, 4, 5]},
+     "color": [0.2, 0.6, 0.2]},
+    {"alias": "low_crown_2", "type": "sphere", "radius_m": 1.0, "pose": {"position_m": [4, -3.5, 2.5]},
+     "color": [0.2, 0.6, 0.2]},
+    {"alias": "post", "type": "cylinder", "radius_m": 0.5, "height_m": 4,
+     "pose": {"position_m": [-4, -2.5, 2]}, "color": [0.2, 0.3, 0.8]}
+  ]})j";
+  return parse_scene(nlohmann::json::parse(text), "inline.json", std::filesystem::temp_directory_path());
+}
+
+std::vector<std::string> legend_texts(const figure::MapPlan& plan) {
+  std::vector<std::string> out;
+  for (const auto& e : plan.legend) out.push_back(e.text);
+  return out;
+}
+
+TEST(FiguresOverlay, ObstaclesAboveTheFlightBandAreDrawnPaleAndNamedSo) {
+  const Scene scene = band_scene();
+  const std::vector<RunView> runs = three_runs();  // 3 m above the ground
+  const FigureStyle style = small_style();
+  const FigureLayout layout = overlay_layout(scene, runs, style);
+  const cv::Mat image = draw_overlay(scene, runs, style);
+  const cv::Scalar green = figure::rgb(51, 153, 51), pale = figure::lighten(green, figure::kAboveBandLighten);
+  const auto vec = [](const cv::Scalar& c) {
+    return cv::Vec3b(static_cast<uchar>(std::lround(c[0])), static_cast<uchar>(std::lround(c[1])),
+                     static_cast<uchar>(std::lround(c[2])));
+  };
+  // The crown above the band: pale, far from its own colour; the low crown in its own colour.
+  const cv::Vec3b high = at(image, layout.to_px({0.0, 4.0})), low = at(image, layout.to_px({4.0, -3.5}));
+  EXPECT_LT(colour_distance(high, vec(pale)), 6);
+  EXPECT_GT(colour_distance(high, vec(green)), 200);
+  EXPECT_LT(colour_distance(low, vec(green)), 6);
+
+  std::vector<const RunView*> views;
+  for (const RunView& r : runs) views.push_back(&r);
+  const figure::MapPlan plan = figure::plan_map(scene, views, style, true);
+  ASSERT_TRUE(plan.band_top_agl_m);
+  EXPECT_DOUBLE_EQ(*plan.band_top_agl_m, 3.0);
+  ASSERT_EQ(plan.above_band.size(), plan.footprints.size());
+  for (std::size_t i = 0; i < plan.footprints.size(); ++i) {
+    EXPECT_EQ(plan.above_band[i], plan.footprints[i].shape->alias == "crown_1") << plan.footprints[i].shape->alias;
+  }
+  const std::vector<std::string> texts = legend_texts(plan);
+  for (const char* want : {"obstacle: crown, above the flight band", "obstacle: low_crown", "obstacle: post",
+                           "run_0 (reached)", "run_1 (reached)", "run_2 (collision)"}) {
+    EXPECT_NE(std::find(texts.begin(), texts.end(), want), texts.end()) << want;
+  }
+  // Flown at 5.5 m, nothing is above the band any more.
+  std::vector<RunView> high_runs = runs;
+  for (auto& p : high_runs.front().track) p.position_m.z() = 5.5;
+  std::vector<const RunView*> high_views{&high_runs.front()};
+  const figure::MapPlan above_all = figure::plan_map(scene, high_views, style, true);
+  EXPECT_TRUE(std::none_of(above_all.above_band.begin(), above_all.above_band.end(), [](bool b) { return b; }));
+}
+
+TEST(FiguresOverlay, LegendNamesEachSeedOfASweep) {
+  const Scene scene = test_scene();
+  std::vector<RunView> runs = three_runs();
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    runs[k].label = "trees_rolling_terrain__resolution-256__seed-" + std::to_string(k + 1);
+  }
+  std::vector<const RunView*> views;
+  for (const RunView& r : runs) views.push_back(&r);
+  const std::vector<std::string> texts = legend_texts(figure::plan_map(scene, views, small_style(), true));
+  for (const char* want : {"seed-1 (reached)", "seed-2 (reached)", "seed-3 (collision)"}) {
+    EXPECT_NE(std::find(texts.begin(), texts.end(), want), texts.end()) << want;
+  }
 }
 
 TEST(FiguresOverlay, IsDeterministic) {
