@@ -124,6 +124,16 @@ RouteOptimum route_through(const TrueMap& map, grid::Connectivity connectivity, 
   return best;
 }
 
+Judgement judge_with_thesis_setting(std::optional<bool> thesis_setting, std::optional<bool> bundled,
+                                    bool cause_known) {
+  Judgement j;
+  if (!thesis_setting && !bundled) return j;
+  j.holds = thesis_setting.value_or(false) || bundled.value_or(false);
+  j.has_departures = !thesis_setting.value_or(false);
+  j.cause_known = !*j.holds && cause_known;
+  return j;
+}
+
 bool SlotReading::slot_on_shortest_route() const {
   // Costs are sums of the search's fixed-point moves converted to cells: equal routes convert equally.
   return optimum.found && through_slot.found && through_slot.cost_cells <= optimum.cost_cells + 1e-9;

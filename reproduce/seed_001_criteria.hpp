@@ -75,6 +75,20 @@ RouteOptimum route_optimum(const TrueMap& map, grid::Connectivity connectivity, 
 RouteOptimum route_through(const TrueMap& map, grid::Connectivity connectivity, const MapCell& from,
                            const MapCell& to, double climb_cost_cells, const GridBlock& area);
 
+/// The inputs of judge() for a claim: the criterion, departures, cause.
+struct Judgement {
+  std::optional<bool> holds;
+  bool has_departures = false;
+  bool cause_known = false;
+};
+
+/// A claim measured with the thesis's settings and with the bundled scene's
+/// (each empty when not measured): it holds when either run meets the
+/// criterion, with departures unless the thesis's settings did; `cause_known`
+/// is passed through for a failure. Empty when neither was measured.
+Judgement judge_with_thesis_setting(std::optional<bool> thesis_setting, std::optional<bool> bundled,
+                                    bool cause_known);
+
 // ---- The slot (001 §5.1, Figura 5.4) ------------------------------------------------------------------------------
 
 /// Under one reading of the table's row order: the cheapest route of the leg
@@ -92,13 +106,6 @@ struct SlotReading {
 struct SlotMeasure {
   std::optional<bool> passed_thesis_setting, passed_bundled, passed_other_reading;
   std::vector<SlotReading> readings;  ///< the scenes' reading first
-};
-
-/// The inputs of judge() for a claim: the criterion, departures, cause.
-struct Judgement {
-  std::optional<bool> holds;
-  bool has_departures = false;
-  bool cause_known = false;
 };
 
 /// 001 §5.1: the drone judged it could pass the slot, "hypothesis borne out".

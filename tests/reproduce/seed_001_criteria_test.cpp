@@ -121,6 +121,15 @@ TEST(Seed001Criteria, SlotVerdicts) {
   EXPECT_EQ(verdict_of(judge_slot(m)), Verdict::not_reproduced);
 }
 
+TEST(Seed001Criteria, WithTheThesisSettingOrOnlyWithDepartures) {
+  EXPECT_EQ(verdict_of(judge_with_thesis_setting(true, false, false)), Verdict::reproduced);
+  EXPECT_EQ(verdict_of(judge_with_thesis_setting(false, true, false)), Verdict::reproduced_with_departures);
+  EXPECT_EQ(verdict_of(judge_with_thesis_setting(std::nullopt, true, false)), Verdict::reproduced_with_departures);
+  EXPECT_EQ(verdict_of(judge_with_thesis_setting(false, false, true)), Verdict::deviates);
+  EXPECT_EQ(verdict_of(judge_with_thesis_setting(false, false, false)), Verdict::not_reproduced);
+  EXPECT_EQ(verdict_of(judge_with_thesis_setting(std::nullopt, std::nullopt, true)), Verdict::not_reproduced);
+}
+
 TEST(Seed001Criteria, PassingSides) {
   const std::vector<Rect> buildings{{0.0, 10.0, 0.0, 5.0}, {5.0, 15.0, 10.0, 15.0}, {0.0, 10.0, 30.0, 35.0}};
   // West of the first (mean x 2 < 5), east of the second (mean x 12 > 10), never in the third's span.
