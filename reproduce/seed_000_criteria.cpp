@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "planners/depth_reactive_steps.hpp"
+
 namespace campo {
 
 namespace {
@@ -21,8 +23,8 @@ constexpr ThesisTable51Row kTable51[] = {
 
 std::span<const ThesisTable51Row> thesis_table_5_1() { return kTable51; }
 
-MeanSd mean_sd(const std::vector<double>& values) {
-  MeanSd s;
+SampleStats sample_stats(const std::vector<double>& values) {
+  SampleStats s;
   s.n = static_cast<int>(values.size());
   if (s.n == 0) return s;
   double sum = 0.0;
@@ -45,26 +47,36 @@ const char* passage_crossing_name(PassageCrossing c) {
   switch (c) {
     case PassageCrossing::through_gap: return "through the gap";
     case PassageCrossing::over: return "over a barrier";
-    case PassageCrossing::beside: return "beside the gap";
+    case PassageCrossing::around: return "around a barrier's outer end";
+    case PassageCrossing::into_barrier: return "into a barrier";
     case PassageCrossing::never: return "never crossed";
   }
   return "?";
 }
 
 PassageCrossing first_passage_crossing(std::span<const double> x_m, std::span<const double> y_m,
-                                       std::span<const double> z_m, double line_x_m, double gap_lo_m,
-                                       double gap_hi_m, double top_m) {
+                                       std::span<const double> z_m, const BarrierLine& b) {
   const std::size_t n = std::min({x_m.size(), y_m.size(), z_m.size()});
   for (std::size_t i = 1; i < n; ++i) {
-    const double a = x_m[i - 1] - line_x_m, b = x_m[i] - line_x_m;
-    if (a == 0.0 && b == 0.0) continue;
-    if ((a < 0.0) == (b < 0.0) && a != 0.0 && b != 0.0) continue;
-    const double f = a == b ? 0.0 : a / (a - b);
+    const double a = x_m[i - 1] - b.line_x_m, c = x_m[i] - b.line_x_m;
+    if (a == 0.0 && c == 0.0) continue;
+    if ((a < 0.0) == (c < 0.0) && a != 0.0 && c != 0.0) continue;
+    const double f = a / (a - c);
     const double y = y_m[i - 1] + f * (y_m[i] - y_m[i - 1]), z = z_m[i - 1] + f * (z_m[i] - z_m[i - 1]);
-    if (z >= top_m) return PassageCrossing::over;
-    return y > gap_lo_m && y < gap_hi_m ? PassageCrossing::through_gap : PassageCrossing::beside;
+    if (z >= b.top_m) return PassageCrossing::over;
+    if (y > b.gap_lo_m && y < b.gap_hi_m) return PassageCrossing::through_gap;
+    if (y < b.outer_lo_m || y > b.outer_hi_m) return PassageCrossing::around;
+    return PassageCrossing::into_barrier;
   }
   return PassageCrossing::never;
+}
+
+double free_gap_columns(double edge_a_deg, double range_a_m, double edge_b_deg, double range_b_m, double margin_m,
+                        double fov_deg, int pixels) {
+  const double deg_per_px = fov_deg / pixels;
+  const double width_px = std::abs(edge_b_deg - edge_a_deg) / deg_per_px;
+  return width_px - margin_radius_px(margin_m, range_a_m, deg_per_px, pixels) -
+         margin_radius_px(margin_m, range_b_m, deg_per_px, pixels);
 }
 
 std::optional<bool> barriers_solved_through_gap(const std::vector<BarrierRun>& runs) {
@@ -87,14 +99,14 @@ std::optional<bool> about_count(const std::vector<DepthRun>& runs, int count) {
     if (r.completed && r.reached) set.push_back(r.waypoints_planned);
   }
   if (set.empty()) return std::nullopt;
-  const double mean = mean_sd(set).mean;
+  const double mean = sample_stats(set).mean;
   return mean >= count - 0.5 && mean < count + 0.5;
 }
 
 MeansCompared compare_means(const std::vector<double>& a, const std::vector<double>& b) {
   MeansCompared c;
-  c.a = mean_sd(a);
-  c.b = mean_sd(b);
+  c.a = sample_stats(a);
+  c.b = sample_stats(b);
   c.difference = c.b.mean - c.a.mean;
   if (c.a.n > 0 && c.b.n > 0) {
     c.standard_error = std::sqrt(c.a.sd * c.a.sd / c.a.n + c.b.sd * c.b.sd / c.b.n);

@@ -41,11 +41,11 @@ struct DepthRun {
 };
 
 /// Mean and sample standard deviation of values (sd 0 for fewer than two); empty values: n 0.
-struct MeanSd {
+struct SampleStats {
   int n = 0;
   double mean = 0.0, sd = 0.0;
 };
-MeanSd mean_sd(const std::vector<double>& values);
+SampleStats sample_stats(const std::vector<double>& values);
 
 /// 000 §5.5.1 on Tabella 5.1: "the algorithm completes the path ... the ratio
 /// to the straight-line distance never exceeds the threshold of 1.10". Holds
@@ -55,20 +55,38 @@ std::optional<bool> ratio_never_exceeds(const std::vector<DepthRun>& runs, doubl
 
 /// How a flight crossed the line of two barriers (000 §5.4, first scenario).
 enum class PassageCrossing {
-  through_gap,  ///< between the barriers' ends, below their tops: "flying in the space between one obstacle and the other"
-  over,         ///< at or above the barriers' tops
-  beside,       ///< below the tops but outside the gap (past an outer end, or into a barrier)
-  never,        ///< the track never crossed the barriers' line
+  through_gap,   ///< between the barriers' inner ends, below their tops: "flying in the space between one obstacle and the other"
+  over,          ///< at or above the barriers' tops
+  around,        ///< below the tops, past a barrier's outer end
+  into_barrier,  ///< below the tops, within a barrier's span (a collision, or through it)
+  never,         ///< the track never crossed the barriers' line
 };
 const char* passage_crossing_name(PassageCrossing c);
 
-/// The barriers' line x = `line_x_m`, the gap between y `gap_lo_m` and
-/// `gap_hi_m`, their tops at `top_m`: how the track (equal-length x, y, z
-/// samples in time order) first crossed the line, its y and z interpolated at
-/// the crossing.
+/// The barriers along the line x = `line_x_m`: one spans y from `outer_lo_m`
+/// to `gap_lo_m`, the other from `gap_hi_m` to `outer_hi_m`, their tops at
+/// `top_m`.
+struct BarrierLine {
+  double line_x_m = 0.0;
+  double outer_lo_m = 0.0, gap_lo_m = 0.0, gap_hi_m = 0.0, outer_hi_m = 0.0;
+  double top_m = 0.0;
+};
+
+/// How the track (equal-length x, y, z samples in time order) first crossed
+/// the barriers' line, its y and z interpolated at the crossing.
 PassageCrossing first_passage_crossing(std::span<const double> x_m, std::span<const double> y_m,
-                                       std::span<const double> z_m, double line_x_m, double gap_lo_m,
-                                       double gap_hi_m, double top_m);
+                                       std::span<const double> z_m, const BarrierLine& barriers);
+
+/// How many pixel columns of a gap the depth planner's dilation leaves free,
+/// seen from the sensor: the gap's angular width between its edges (bearings
+/// `edge_a_deg` and `edge_b_deg`, at ranges `range_a_m` and `range_b_m`) in
+/// pixels of `fov_deg` / `pixels`, less the dilation each edge gets
+/// (margin_radius_px: asin(margin / range) plus half a pixel, rounded up).
+/// Below 1 the dilated map shows no free column: the planner cannot set a
+/// waypoint through the gap from there. Evidence for why a run climbed over
+/// the barriers instead.
+double free_gap_columns(double edge_a_deg, double range_a_m, double edge_b_deg, double range_b_m, double margin_m,
+                        double fov_deg, int pixels);
 
 /// A run of the barriers: its outcome and how it crossed.
 struct BarrierRun {
@@ -104,7 +122,7 @@ std::optional<bool> about_count(const std::vector<DepthRun>& runs, int count);
 /// distinguishable at the 5 % level. Empty when either sample has fewer than
 /// two values.
 struct MeansCompared {
-  MeanSd a, b;
+  SampleStats a, b;
   double difference = 0.0;      ///< b.mean - a.mean
   double standard_error = 0.0;  ///< sqrt(sd_a^2 / n_a + sd_b^2 / n_b)
 };

@@ -45,13 +45,13 @@ TEST(Seed000Criteria, TheThesisTableAsPrinted) {
   EXPECT_DOUBLE_EQ(discarded / rows.size(), 17.0 / 12.0);
 }
 
-TEST(Seed000Criteria, MeanAndSampleSd) {
-  const MeanSd s = mean_sd({1.0, 2.0, 3.0, 4.0});
+TEST(Seed000Criteria, SampleMeanAndSd) {
+  const SampleStats s = sample_stats({1.0, 2.0, 3.0, 4.0});
   EXPECT_EQ(s.n, 4);
   EXPECT_DOUBLE_EQ(s.mean, 2.5);
   EXPECT_NEAR(s.sd, std::sqrt(5.0 / 3.0), 1e-12);
-  EXPECT_EQ(mean_sd({}).n, 0);
-  EXPECT_EQ(mean_sd({7.0}).sd, 0.0);
+  EXPECT_EQ(sample_stats({}).n, 0);
+  EXPECT_EQ(sample_stats({7.0}).sd, 0.0);
 }
 
 TEST(Seed000Criteria, RatioNeverAboveTheThesisCeiling) {
@@ -76,9 +76,10 @@ TEST(Seed000Criteria, RatioNeverAboveTheThesisCeiling) {
 }
 
 TEST(Seed000Criteria, HowTheBarriersWereCrossed) {
-  // The line x = 6, the gap y in (0.5, 2.5), tops at 4 m (scenes/two_barriers.json).
-  const auto cross = [](std::vector<double> x, std::vector<double> y, std::vector<double> z) {
-    return first_passage_crossing(x, y, z, 6.0, 0.5, 2.5, 4.0);
+  // scenes/two_barriers.json: the line x = 6, one barrier over y -4.5..0.5, the other 2.5..6.5, tops at 4 m.
+  const BarrierLine line{6.0, -4.5, 0.5, 2.5, 6.5, 4.0};
+  const auto cross = [&](std::vector<double> x, std::vector<double> y, std::vector<double> z) {
+    return first_passage_crossing(x, y, z, line);
   };
   // Through the gap: from (5, 1.0) to (7, 2.0) crosses at y = 1.5.
   EXPECT_EQ(cross({0.0, 5.0, 7.0}, {0.0, 1.0, 2.0}, {1.5, 1.5, 1.5}), PassageCrossing::through_gap);
@@ -86,10 +87,11 @@ TEST(Seed000Criteria, HowTheBarriersWereCrossed) {
   EXPECT_EQ(cross({5.0, 7.0}, {1.0, 2.0}, {4.2, 4.2}), PassageCrossing::over);
   // Climbing from 3.0 to 5.0 m between x = 5 and 7: at x = 6 it is at 4.0 m, the top: over.
   EXPECT_EQ(cross({5.0, 7.0}, {1.0, 1.0}, {3.0, 5.0}), PassageCrossing::over);
-  // Straight along y = 0 at 1.5 m: into the lower barrier (y -4.5..0.5), beside the gap.
-  EXPECT_EQ(cross({0.0, 12.0}, {0.0, 0.0}, {1.5, 1.5}), PassageCrossing::beside);
-  // Around the far end (y = 7).
-  EXPECT_EQ(cross({5.0, 7.0}, {7.0, 7.0}, {1.5, 1.5}), PassageCrossing::beside);
+  // Straight along y = 0 at 1.5 m: into the lower barrier.
+  EXPECT_EQ(cross({0.0, 12.0}, {0.0, 0.0}, {1.5, 1.5}), PassageCrossing::into_barrier);
+  // Around either outer end (y = 7, y = -5).
+  EXPECT_EQ(cross({5.0, 7.0}, {7.0, 7.0}, {1.5, 1.5}), PassageCrossing::around);
+  EXPECT_EQ(cross({5.0, 7.0}, {-5.0, -5.0}, {1.5, 1.5}), PassageCrossing::around);
   // A sample exactly on the line counts once, at that sample.
   EXPECT_EQ(cross({5.0, 6.0, 7.0}, {0.0, 1.2, 9.0}, {1.5, 1.5, 1.5}), PassageCrossing::through_gap);
   // Never reaching the line; the first crossing decides (through, then back over).
@@ -102,12 +104,14 @@ TEST(Seed000Criteria, BarriersSolvedThroughTheGapOrNot) {
   std::vector<BarrierRun> runs(5, BarrierRun{reached(1.03, 1, 1), PassageCrossing::through_gap});
   EXPECT_EQ(barriers_solved_through_gap(runs), true);
   EXPECT_EQ(result(barriers_solved_through_gap(runs), true, false), Verdict::reproduced_with_departures);
-  // The coarse pixels close the gap: a run climbs over a barrier and still reaches the goal.
+  // The coarse pixels close the gap: a run climbs over a barrier (or goes around one) and still reaches the goal.
   runs[2].crossing = PassageCrossing::over;
   runs[2].run.path_ratio = 1.65;
   EXPECT_EQ(barriers_solved_through_gap(runs), false);
   EXPECT_EQ(result(barriers_solved_through_gap(runs), true, true), Verdict::deviates);
   EXPECT_EQ(result(barriers_solved_through_gap(runs), true, false), Verdict::not_reproduced);
+  runs[2].crossing = PassageCrossing::around;
+  EXPECT_EQ(barriers_solved_through_gap(runs), false);
   // Through the gap but with a collision, or timed out: fails too.
   runs[2].crossing = PassageCrossing::through_gap;
   runs[2].run.collisions = 1;
@@ -116,6 +120,26 @@ TEST(Seed000Criteria, BarriersSolvedThroughTheGapOrNot) {
   runs[2].run.reached = false;
   EXPECT_EQ(barriers_solved_through_gap(runs), false);
   EXPECT_EQ(barriers_solved_through_gap({}), std::nullopt);
+}
+
+TEST(Seed000Criteria, TheMarginClosesTheGapAtCoarseResolutions) {
+  // From the origin, the gap's ends at (6, 0.5) and (6, 2.5); margin 0.5 m; 90 deg over N pixels.
+  const double a = std::atan2(0.5, 6.0) * 180.0 / M_PI, b = std::atan2(2.5, 6.0) * 180.0 / M_PI;
+  const double ra = std::hypot(6.0, 0.5), rb = std::hypot(6.0, 2.5);
+  const double asin_a = std::asin(0.5 / ra) * 180.0 / M_PI, asin_b = std::asin(0.5 / rb) * 180.0 / M_PI;
+  for (const int n : {16, 32, 64, 128, 256}) {
+    const double pitch = 90.0 / n;
+    // By hand: the width in pixels less ceil(asin(margin / range) / pitch + 1/2) at each end.
+    const double want = (b - a) / pitch - std::ceil(asin_a / pitch + 0.5) - std::ceil(asin_b / pitch + 0.5);
+    EXPECT_NEAR(free_gap_columns(a, ra, b, rb, 0.5, 90.0, n), want, 1e-9) << n;
+  }
+  // 32 px: 6.35 columns wide, 3 dilated at each end: less than one free column; 64 px: 12.7 less 4 + 4.
+  EXPECT_LT(free_gap_columns(a, ra, b, rb, 0.5, 90.0, 32), 1.0);
+  EXPECT_LT(free_gap_columns(a, ra, b, rb, 0.5, 90.0, 16), 0.0);
+  EXPECT_NEAR(free_gap_columns(a, ra, b, rb, 0.5, 90.0, 64), (b - a) / (90.0 / 64) - 8.0, 1e-9);
+  EXPECT_GT(free_gap_columns(a, ra, b, rb, 0.5, 90.0, 64), 4.0);
+  // No margin: the whole gap, either edge order.
+  EXPECT_NEAR(free_gap_columns(b, rb, a, ra, 0.0, 90.0, 64), (b - a) / (90.0 / 64) - 2.0, 1e-9);
 }
 
 TEST(Seed000Criteria, OneIntermediateWaypointOnTheBarriers) {
@@ -154,7 +178,7 @@ TEST(Seed000Criteria, AboutFourWaypoints) {
 TEST(Seed000Criteria, DiscardedPerRunComparedWithTheThesisMeans) {
   std::vector<double> thesis;
   for (const ThesisTable51Row& r : thesis_table_5_1()) thesis.push_back(r.discarded);
-  const MeanSd t = mean_sd(thesis);
+  const SampleStats t = sample_stats(thesis);
   EXPECT_NEAR(t.mean, 17.0 / 12.0, 1e-12);
   // Hand-computed: the squares sum to 43, about the mean 43 - 17^2/12 = 18.9167; sd = sqrt(18.9167 / 11).
   EXPECT_NEAR(t.sd, std::sqrt((43.0 - 289.0 / 12.0) / 11.0), 1e-12);
@@ -163,7 +187,7 @@ TEST(Seed000Criteria, DiscardedPerRunComparedWithTheThesisMeans) {
   few.insert(few.end(), 10, 1.0);
   const MeansCompared low = compare_means(thesis, few);
   EXPECT_NEAR(low.difference, 0.25 - 17.0 / 12.0, 1e-12);
-  EXPECT_NEAR(low.standard_error, std::sqrt(t.sd * t.sd / 12.0 + mean_sd(few).sd * mean_sd(few).sd / 40.0), 1e-12);
+  EXPECT_NEAR(low.standard_error, std::sqrt(t.sd * t.sd / 12.0 + sample_stats(few).sd * sample_stats(few).sd / 40.0), 1e-12);
   EXPECT_EQ(means_agree(low), false);
   EXPECT_EQ(result(means_agree(low), true, false), Verdict::not_reproduced);
   // 40 runs averaging 1.25 (alternating 1 and 1.5 would not be counts: 30 ones and 10 twos): agree.
