@@ -34,6 +34,7 @@ using figure::xy;
 namespace {
 
 const cv::Scalar kVehicleLine = rgb(31, 119, 180);
+const cv::Scalar kMissionLine = rgb(90, 90, 90);
 
 struct Profile {
   std::vector<double> distance_m;  // horizontal, along the track
@@ -47,6 +48,7 @@ struct Profile {
   std::vector<Footprint> solids;   // lowest top first
   std::vector<Crossing> crossings; // in the order of `solids`
   std::vector<std::pair<double, std::size_t>> waypoints;  // (distance of closest approach, mission index)
+  std::vector<double> mission_m;   // the altitude the mission asks for, NaN where unknown
   double x0 = 0.0, x1 = 1.0, y0 = 0.0, y1 = 1.0;
   std::vector<LegendEntry> legend;
 };
@@ -104,6 +106,23 @@ Profile profile_of(const Scene& scene, const RunView& run) {
     }
     if (!run.track.empty()) p.waypoints.emplace_back(p.distance_m[at], w);
   }
+  // The mission's altitude: knots at the start and at each waypoint's closest approach after the previous one's (a
+  // waypoint revisited later, as 001's laps do, is taken in the order flown).
+  if (!run.track.empty() && !run.mission.empty()) {
+    std::vector<std::pair<double, double>> knots{{0.0, run.track.front().position_m.z()}};
+    std::size_t from = 0;
+    for (const Waypoint& w : run.mission) {
+      double best = std::numeric_limits<double>::infinity();
+      std::size_t at = from;
+      for (std::size_t i = from; i < run.track.size(); ++i) {
+        const double d = (run.track[i].position_m - w.position_m).norm();
+        if (d < best) best = d, at = i;
+      }
+      knots.emplace_back(p.distance_m[at], w.position_m.z());
+      from = at;
+    }
+    p.mission_m = mission_altitude_m(p.distance_m, knots);
+  }
 
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   const auto extend = [&](double v) {
@@ -129,6 +148,9 @@ Profile profile_of(const Scene& scene, const RunView& run) {
   p.x1 = 1.02 * length;
 
   if (!run.track.empty()) p.legend.push_back(line_entry(kVehicleLine, 2, "vehicle altitude"));
+  if (std::any_of(p.mission_m.begin(), p.mission_m.end(), [](double z) { return !std::isnan(z); })) {
+    p.legend.push_back(line_entry(kMissionLine, 1, "mission altitude", true));
+  }
   if (std::any_of(p.ground_m.begin(), p.ground_m.end(), [](double g) { return !std::isnan(g); })) {
     p.legend.push_back(patch_entry(figure::lighten(p.ground_color, 0.45), figure::shade(p.ground_color, 0.6),
                                    "ground beneath track"));
@@ -259,6 +281,13 @@ cv::Mat draw_side_figure(const RunView& run, const Profile& p, const FigureLayou
     cv::fillPoly(plot, polygons, fill, cv::LINE_AA, figure::kShift);
     figure::polyline(plot, surface, edge, 2);
   }
+  for (const auto& [a, b] : runs_where(p.mission_m.size(), [&](std::size_t i) { return !std::isnan(p.mission_m[i]); })) {
+    std::vector<cv::Point2d> nominal;
+    for (std::size_t i = a; i <= b; ++i) nominal.push_back(to(p.distance_m[i], p.mission_m[i]));
+    std::vector<cv::Point2d> thin;
+    for (std::size_t k : thin_out(nominal)) thin.push_back(nominal[k]);
+    figure::dashed_polyline(plot, thin, kMissionLine, 1, 8.0, 5.0);
+  }
   std::vector<cv::Point2d> curve;
   for (std::size_t i = 0; i < n; ++i) curve.push_back(to(p.distance_m[i], p.altitude_m[i]));
   std::vector<cv::Point2d> line;
@@ -282,6 +311,27 @@ cv::Mat draw_side_figure(const RunView& run, const Profile& p, const FigureLayou
 }
 
 }  // namespace
+
+std::vector<double> mission_altitude_m(const std::vector<double>& distance_m,
+                                       const std::vector<std::pair<double, double>>& knots) {
+  std::vector<double> out(distance_m.size(), std::numeric_limits<double>::quiet_NaN());
+  if (knots.empty()) return out;
+  for (std::size_t i = 0; i < distance_m.size(); ++i) {
+    const double s = distance_m[i];
+    if (s < knots.front().first || s > knots.back().first) continue;
+    // The last knot at or before s, so that a climb at one distance (two knots there) takes the later altitude.
+    std::size_t k = 0;
+    while (k + 1 < knots.size() && knots[k + 1].first <= s) ++k;
+    if (k + 1 == knots.size()) {
+      out[i] = knots[k].second;
+      continue;
+    }
+    const auto& [s0, z0] = knots[k];
+    const auto& [s1, z1] = knots[k + 1];
+    out[i] = s1 > s0 ? z0 + (z1 - z0) * (s - s0) / (s1 - s0) : z1;
+  }
+  return out;
+}
 
 FigureLayout side_view_layout(const Scene& scene, const RunView& run, const FigureStyle& style) {
   check_style(style);

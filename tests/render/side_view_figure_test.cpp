@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -89,6 +91,55 @@ TEST(FiguresSideView, ThePanelBelowShowsTheHeightAboveGround) {
     const cv::Vec3b curve = image.at<cv::Vec3b>(static_cast<int>(std::lround(row_of(h))), col);
     EXPECT_GT(curve[0], curve[2] + 60) << "sample " << i;  // the vehicle's blue
   }
+}
+
+TEST(FiguresSideView, MissionAltitudeIsLinearBetweenKnots) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double> z = mission_altitude_m({-1.0, 0.0, 5.0, 10.0, 15.0, 20.0, 25.0}, {{0.0, 0.0}, {10.0, 10.0}, {20.0, 10.0}});
+  const std::vector<double> expected{nan, 0.0, 5.0, 10.0, 10.0, 10.0, nan};
+  ASSERT_EQ(z.size(), expected.size());
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    if (std::isnan(expected[i])) EXPECT_TRUE(std::isnan(z[i])) << i;
+    else EXPECT_DOUBLE_EQ(z[i], expected[i]) << i;
+  }
+  // A climb at one distance (two knots there): the later altitude from there on.
+  const std::vector<double> step = mission_altitude_m({2.5, 5.0, 7.5}, {{0.0, 0.0}, {5.0, 0.0}, {5.0, 7.0}, {10.0, 7.0}});
+  EXPECT_DOUBLE_EQ(step[0], 0.0);
+  EXPECT_DOUBLE_EQ(step[1], 7.0);
+  EXPECT_DOUBLE_EQ(step[2], 7.0);
+  EXPECT_TRUE(mission_altitude_m({1.0}, {}).size() == 1 && std::isnan(mission_altitude_m({1.0}, {})[0]));
+}
+
+TEST(FiguresSideView, DrawsTheMissionAltitudeWhereTheTrackLeavesIt) {
+  // The mission asks for 6 m at its second waypoint while the track stays at 3 m: the dashed grey line rises from
+  // 3 m at the first waypoint's closest approach (6 m along the track) to 6 m at the second's (12 m), above the track.
+  const Scene scene = test_scene();
+  const FigureStyle style = small_style();
+  // Dark neutral pixels between 7 and 10.5 m along the track and 3.6 to 6 m high: away from the markers (at 6, 12
+  // and 16 m) and from the track's line at 3 m; the grid's lines are lighter.
+  const auto grey_above_track = [&](const RunView& run) {
+    const FigureLayout layout = side_view_layout(scene, run, style);
+    const cv::Mat image = draw_side_view(scene, run, style);
+    const cv::Point2d low = layout.to_px({7.0, 3.6}), high = layout.to_px({10.5, 6.0});
+    int grey = 0;
+    for (int y = static_cast<int>(high.y); y <= static_cast<int>(low.y); ++y) {
+      for (int x = static_cast<int>(low.x); x <= static_cast<int>(high.x); ++x) {
+        if (!layout.plot_px.contains({x, y})) continue;  // a lower plot ends below 3.6 m
+        const cv::Vec3b c = image.at<cv::Vec3b>(y, x);
+        grey += std::abs(c[0] - c[1]) < 8 && std::abs(c[1] - c[2]) < 8 && c[0] < 160;
+      }
+    }
+    return grey;
+  };
+  RunView raised = test_run();
+  raised.mission[1].position_m.z() = 6.0;
+  EXPECT_GT(grey_above_track(raised), 10);
+  // With the waypoints there at the track's altitude the line lies under the track: nothing grey above it (a last
+  // waypoint 7 m up at the end keeps the plot's range over the region looked at).
+  RunView flat = test_run();
+  flat.mission.push_back(Waypoint{{8.0, 0.0, 7.0}, {}});
+  ASSERT_GT(side_view_layout(scene, flat, style).to_px({7.0, 6.0}).y, side_view_layout(scene, flat, style).plot_px.y);
+  EXPECT_EQ(grey_above_track(flat), 0);
 }
 
 TEST(FiguresSideView, IsDeterministic) {
