@@ -47,6 +47,7 @@ struct TriangleDistances final : btTriangleCallback {
   btTransform body_pose;        // in the heightfield's frame
   btVector3 body_min, body_max; // the body's box, heightfield frame
   double best = kInfinity;
+  btVector3 best_point{0, 0, 0};  // of the nearest triangle, heightfield frame
   double cutoff = kInfinity;
   std::vector<Candidate>* candidates = nullptr;  // scratch, reused
   void processTriangle(btVector3* v, int, int) override {
@@ -75,7 +76,12 @@ struct TriangleDistances final : btTriangleCallback {
       if (c.bound_m >= std::min(best, cutoff)) break;
       btTriangleShape triangle(c.v[0], c.v[1], c.v[2]);
       triangle.setMargin(0.0);
-      best = std::min(best, signed_distance(*body, body_pose, triangle, btTransform::getIdentity()));
+      btVector3 point;
+      const double d = signed_distance(*body, body_pose, triangle, btTransform::getIdentity(), &point);
+      if (d < best) {
+        best = d;
+        best_point = point;
+      }
     }
     candidates->clear();
   }
@@ -84,7 +90,7 @@ struct TriangleDistances final : btTriangleCallback {
 }  // namespace
 
 double signed_distance(const btConvexShape& a, const btTransform& pose_a, const btConvexShape& b,
-                       const btTransform& pose_b) {
+                       const btTransform& pose_b, btVector3* point_on_b) {
   btVoronoiSimplexSolver simplex;
   btGjkEpaPenetrationDepthSolver epa;
   btGjkPairDetector gjk(&a, &b, &simplex, &epa);
@@ -93,7 +99,14 @@ double signed_distance(const btConvexShape& a, const btTransform& pose_a, const 
   input.m_transformB = pose_b;
   btPointCollector result;
   gjk.getClosestPoints(input, result, nullptr);
-  // No result only when EPA cannot resolve a degenerate overlap: touching.
+  // No result only when EPA cannot resolve a degenerate overlap: touching,
+  // somewhere about b's support point toward a.
+  if (point_on_b) {
+    *point_on_b = result.m_hasResult
+                      ? result.m_pointInWorld
+                      : pose_b * b.localGetSupportingVertex(pose_b.getBasis().transpose() *
+                                                           (pose_a.getOrigin() - pose_b.getOrigin()));
+  }
   return result.m_hasResult ? static_cast<double>(result.m_distance) : 0.0;
 }
 
@@ -111,6 +124,10 @@ void ClearanceQuery::add_static_obstacle(const btConvexShape& shape, const btTra
   // The tree keeps an index, not a pointer: statics_ may still grow.
   static_tree_.insert(btDbvtVolume::FromMM(lo, hi), reinterpret_cast<void*>(statics_.size()));
   statics_.push_back({&shape, pose, id});
+}
+
+void ClearanceQuery::add_static_compound(const btCollisionObject& body, std::vector<int> children) {
+  compounds_.push_back({&body, std::move(children)});
 }
 
 void ClearanceQuery::add_moving_obstacle(const btCollisionObject& body, int id) { moving_.push_back({&body, id}); }
@@ -135,7 +152,8 @@ Clearance ClearanceQuery::measure(const btCollisionWorld& world, double obstacle
   find_vehicle(world);
   Clearance out;
   if (vehicle_.empty()) return out;
-  out.contact = in_contact(world);
+  ContactSeen seen;
+  out.contact = in_contact(world, seen);
   nearest_moving(obstacle_cutoff_m, out);
   // Static obstacles and the ground do not move: while the vehicle has not
   // moved far enough since their last exact answer to come within the
@@ -161,7 +179,85 @@ Clearance ClearanceQuery::measure(const btCollisionWorld& world, double obstacle
     remember(ground_floor_, std::min(out.ground_m, reach));
   }
   if (out.ground_m >= ground_cutoff_m) out.ground_m = kInfinity;
+  if (out.touching()) out.touch = touch(out, seen);
   return out;
+}
+
+Touch ClearanceQuery::touch(const Clearance& c, const ContactSeen& seen) {
+  // An overlap now is what the vehicle is in; a contact Bullet found before
+  // the step's motion names what it was pressed against.
+  if (c.obstacle_m <= 0.0 || c.ground_m <= 0.0) {
+    return c.obstacle_m <= c.ground_m ? touch_obstacle(c.obstacle) : touch_ground(nullptr);
+  }
+  for (const Ground& g : ground_) {
+    if (g.body == seen.other) return touch_ground(&g);
+  }
+  for (const MovingObstacle& m : moving_) {
+    if (m.body == seen.other) return touch_obstacle(m.id);
+  }
+  for (const StaticCompound& compound : compounds_) {
+    if (compound.body != seen.other) continue;
+    if (seen.child >= 0 && static_cast<std::size_t>(seen.child) < compound.children.size()) {
+      return touch_obstacle(compound.children[static_cast<std::size_t>(seen.child)]);
+    }
+  }
+  // A contact with a body the query does not know as a child: the nearest static obstacle.
+  Clearance nearest;
+  nearest_static(kInfinity, nearest);
+  return touch_obstacle(nearest.obstacle);
+}
+
+Touch ClearanceQuery::touch_obstacle(int id) const {
+  const btConvexShape* shape = nullptr;
+  btTransform pose = btTransform::getIdentity();
+  for (const StaticObstacle& o : statics_) {
+    if (o.id == id) {
+      shape = o.shape;
+      pose = o.pose;
+    }
+  }
+  for (const MovingObstacle& m : moving_) {
+    if (m.id == id) {
+      shape = static_cast<const btConvexShape*>(m.body->getCollisionShape());
+      pose = m.body->getWorldTransform();
+    }
+  }
+  Touch t;
+  t.body = id;
+  if (!shape) return t;
+  double best = kInfinity;
+  for (const VehiclePart& part : vehicle_) {
+    btVector3 point;
+    const double d = signed_distance(*static_cast<const btConvexShape*>(part.body->getCollisionShape()),
+                                     part.body->getWorldTransform(), *shape, pose, &point);
+    if (d < best) {
+      best = d;
+      t.point_m = Eigen::Vector3d(point.x(), point.y(), point.z());
+    }
+  }
+  return t;
+}
+
+Touch ClearanceQuery::touch_ground(const Ground* only) {
+  Touch t;
+  t.ground = true;
+  double best = kInfinity;
+  bool found = false;
+  for (const Ground& g : ground_) {
+    if (only && &g != only) continue;
+    for (const VehiclePart& part : vehicle_) {
+      if (!part.ground_counts) continue;
+      btVector3 point;
+      const double d = ground_distance(g, part, kInfinity, &point);
+      if (d < best || !found) {
+        found = true;
+        best = d;
+        t.body = g.body->getUserIndex();
+        t.point_m = Eigen::Vector3d(point.x(), point.y(), point.z());
+      }
+    }
+  }
+  return t;
 }
 
 const ClearanceQuery::VehiclePart* ClearanceQuery::part_of(const btCollisionObject* object) const {
@@ -171,22 +267,29 @@ const ClearanceQuery::VehiclePart* ClearanceQuery::part_of(const btCollisionObje
   return nullptr;
 }
 
-bool ClearanceQuery::in_contact(const btCollisionWorld& world) const {
+bool ClearanceQuery::in_contact(const btCollisionWorld& world, ContactSeen& seen) const {
   // Bullet's manifold accessors are not const; reading them changes nothing.
   btDispatcher* dispatcher = const_cast<btCollisionWorld&>(world).getDispatcher();
   for (int i = 0; i < dispatcher->getNumManifolds(); ++i) {
     const btPersistentManifold* m = dispatcher->getManifoldByIndexInternal(i);
     const VehiclePart* mine = part_of(m->getBody0());
     const btCollisionObject* other = m->getBody1();
+    bool other_first = false;
     if (!mine) {
       mine = part_of(other);
       other = m->getBody0();
+      other_first = true;
     }
     if (!mine || part_of(other)) continue;
     const bool ground = std::any_of(ground_.begin(), ground_.end(), [other](const Ground& g) { return g.body == other; });
     if (ground && !mine->ground_counts) continue;  // a wheel on the ground
     for (int c = 0; c < m->getNumContacts(); ++c) {
-      if (m->getContactPoint(c).getDistance() <= Clearance::kContact_m) return true;
+      const btManifoldPoint& point = m->getContactPoint(c);
+      if (point.getDistance() <= Clearance::kContact_m) {
+        // A compound's manifold point carries the child's index on its side.
+        seen = {other, other_first ? point.m_index0 : point.m_index1};
+        return true;
+      }
     }
   }
   return false;
@@ -299,59 +402,64 @@ void ClearanceQuery::nearest_static(double cutoff_m, Clearance& out) {
 // triangle within a box that grows as in nearest_obstacle.
 void ClearanceQuery::nearest_ground(double cutoff_m, Clearance& out) {
   for (const Ground& g : ground_) {
-    const btCollisionObject* ground = g.body;
-    const btCollisionShape* shape = ground->getCollisionShape();
-    const btTransform& ground_pose = ground->getWorldTransform();
     for (const VehiclePart& part : vehicle_) {
-      if (!part.ground_counts) continue;
-      const auto* mine = static_cast<const btConvexShape*>(part.body->getCollisionShape());
-      const btTransform& pose = part.body->getWorldTransform();
-      if (shape->getShapeType() == STATIC_PLANE_PROXYTYPE) {
-        const auto* plane = static_cast<const btStaticPlaneShape*>(shape);
-        const btVector3 normal = ground_pose.getBasis() * plane->getPlaneNormal();
-        const btVector3 on_plane = ground_pose * (plane->getPlaneNormal() * plane->getPlaneConstant());
-        const btVector3 lowest = pose * mine->localGetSupportingVertex(pose.getBasis().transpose() * -normal);
-        out.ground_m = std::min(out.ground_m, static_cast<double>(normal.dot(lowest - on_plane)));
-        continue;
-      }
-      const auto* terrain = static_cast<const btConcaveShape*>(shape);
-      TriangleDistances triangles;
-      triangles.body = mine;
-      triangles.candidates = &triangle_scratch_;
-      triangles.body_pose = ground_pose.inverse() * pose;
-      mine->getAabb(triangles.body_pose, triangles.body_min, triangles.body_max);
-      // Terrain under the reach of the cutoff that lies lower than the
-      // cutoff below the body cannot be nearer than it.
-      if (!g.blocks.empty() && std::isfinite(cutoff_m)) {
-        const btVector3& lo = triangles.body_min;
-        const btVector3& hi = triangles.body_max;
-        const double top = g.blocks.highest(lo.x() - cutoff_m, hi.x() + cutoff_m, lo.y() - cutoff_m, hi.y() + cutoff_m);
-        if (lo.z() - top >= cutoff_m) continue;
-      }
-      double radius = std::min(cutoff_m, std::max(kMinSearch_m, 2.0 * ground_hint_m_));
-      for (;;) {
-        triangles.cutoff = radius;
-        const btVector3 pad(radius, radius, radius);
-        // Bullet's own triangles, read from the heights it was given
-        // without its per-vertex virtual calls.
-        if (!g.blocks.empty()) {
-          g.blocks.triangles_under(triangles.body_min - pad, triangles.body_max + pad, triangles);
-        } else {
-          terrain->processAllTriangles(&triangles, triangles.body_min - pad, triangles.body_max + pad);
-        }
-        triangles.measure();
-        if (triangles.best <= radius || radius >= cutoff_m) break;
-        btVector3 all_min, all_max;
-        terrain->getAabb(btTransform::getIdentity(), all_min, all_max);
-        // Every triangle lies under a box that covers the terrain's footprint.
-        if (covers(triangles.body_min - pad, triangles.body_max + pad, all_min, all_max, 2)) break;
-        radius = std::min(cutoff_m, 2.0 * radius);
-      }
-      out.ground_m = std::min(out.ground_m, triangles.best);
+      if (part.ground_counts) out.ground_m = std::min(out.ground_m, ground_distance(g, part, cutoff_m, nullptr));
     }
   }
   if (out.ground_m >= cutoff_m) out.ground_m = kInfinity;
   if (std::isfinite(out.ground_m)) ground_hint_m_ = std::max(0.0, out.ground_m);
+}
+
+double ClearanceQuery::ground_distance(const Ground& g, const VehiclePart& part, double cutoff_m, btVector3* point) {
+  const btCollisionObject* ground = g.body;
+  const btCollisionShape* shape = ground->getCollisionShape();
+  const btTransform& ground_pose = ground->getWorldTransform();
+  const auto* mine = static_cast<const btConvexShape*>(part.body->getCollisionShape());
+  const btTransform& pose = part.body->getWorldTransform();
+  if (shape->getShapeType() == STATIC_PLANE_PROXYTYPE) {
+    const auto* plane = static_cast<const btStaticPlaneShape*>(shape);
+    const btVector3 normal = ground_pose.getBasis() * plane->getPlaneNormal();
+    const btVector3 on_plane = ground_pose * (plane->getPlaneNormal() * plane->getPlaneConstant());
+    const btVector3 lowest = pose * mine->localGetSupportingVertex(pose.getBasis().transpose() * -normal);
+    const double d = normal.dot(lowest - on_plane);
+    if (point) *point = lowest - normal * d;  // straight below the lowest point, on the plane
+    return d;
+  }
+  const auto* terrain = static_cast<const btConcaveShape*>(shape);
+  TriangleDistances triangles;
+  triangles.body = mine;
+  triangles.candidates = &triangle_scratch_;
+  triangles.body_pose = ground_pose.inverse() * pose;
+  mine->getAabb(triangles.body_pose, triangles.body_min, triangles.body_max);
+  // Terrain under the reach of the cutoff that lies lower than the
+  // cutoff below the body cannot be nearer than it.
+  if (!g.blocks.empty() && std::isfinite(cutoff_m)) {
+    const btVector3& lo = triangles.body_min;
+    const btVector3& hi = triangles.body_max;
+    const double top = g.blocks.highest(lo.x() - cutoff_m, hi.x() + cutoff_m, lo.y() - cutoff_m, hi.y() + cutoff_m);
+    if (lo.z() - top >= cutoff_m) return kInfinity;
+  }
+  double radius = std::min(cutoff_m, std::max(kMinSearch_m, 2.0 * ground_hint_m_));
+  for (;;) {
+    triangles.cutoff = radius;
+    const btVector3 pad(radius, radius, radius);
+    // Bullet's own triangles, read from the heights it was given
+    // without its per-vertex virtual calls.
+    if (!g.blocks.empty()) {
+      g.blocks.triangles_under(triangles.body_min - pad, triangles.body_max + pad, triangles);
+    } else {
+      terrain->processAllTriangles(&triangles, triangles.body_min - pad, triangles.body_max + pad);
+    }
+    triangles.measure();
+    if (triangles.best <= radius || radius >= cutoff_m) break;
+    btVector3 all_min, all_max;
+    terrain->getAabb(btTransform::getIdentity(), all_min, all_max);
+    // Every triangle lies under a box that covers the terrain's footprint.
+    if (covers(triangles.body_min - pad, triangles.body_max + pad, all_min, all_max, 2)) break;
+    radius = std::min(cutoff_m, 2.0 * radius);
+  }
+  if (point) *point = ground_pose * triangles.best_point;
+  return triangles.best;
 }
 
 }  // namespace campo

@@ -22,8 +22,10 @@ namespace campo {
 /// Signed distance between two convex shapes placed at `pose_a` and
 /// `pose_b`, collision margins included: > 0 apart, 0 touching, < 0 the
 /// depth of their overlap.
+/// `point_on_b`, when given, is set to the point of b's surface nearest a
+/// (the deepest when they overlap), in the frame of the poses.
 double signed_distance(const btConvexShape& a, const btTransform& pose_a, const btConvexShape& b,
-                       const btTransform& pose_b);
+                       const btTransform& pose_b, btVector3* point_on_b = nullptr);
 
 /// A heightfield triangle gathered by the ground search, with a lower bound
 /// of its distance to the body (clearance.cpp).
@@ -44,6 +46,9 @@ class ClearanceQuery {
 
   /// A static obstacle (a child of a static compound), never moving.
   void add_static_obstacle(const btConvexShape& shape, const btTransform& pose, int id);
+  /// The Bullet body that holds static obstacles as the children of its
+  /// compound shape: `children[i]` is the id given add_static_obstacle for child i.
+  void add_static_compound(const btCollisionObject& body, std::vector<int> children);
   /// A body that moves (dynamic shape, mover): read where it is at each query.
   void add_moving_obstacle(const btCollisionObject& body, int id);
   /// A plane or heightfield body; a heightfield's `grid` (the heights Bullet
@@ -51,8 +56,9 @@ class ClearanceQuery {
   void add_ground(const btCollisionObject& body, const HeightGrid* grid = nullptr);
 
   /// Clearance of the bodies tagged kVehicleBodyTag or kVehicleWheelTag in
-  /// `world`: exact below each cutoff, +infinity when nothing is nearer; and
-  /// whether Bullet's narrow phase has them in contact.
+  /// `world`: exact below each cutoff, +infinity when nothing is nearer;
+  /// whether Bullet's narrow phase has them in contact; and when they touch,
+  /// what and where (Clearance::touch).
   Clearance measure(const btCollisionWorld& world, double obstacle_cutoff_m, double ground_cutoff_m);
 
  private:
@@ -65,9 +71,19 @@ class ClearanceQuery {
     const btCollisionObject* body;
     int id;
   };
+  struct StaticCompound {
+    const btCollisionObject* body;
+    std::vector<int> children;
+  };
   struct Ground {
     const btCollisionObject* body;
     HeightBlocks blocks;  // empty for planes
+  };
+  // The first contact in_contact found: the body the vehicle touches and,
+  // for a compound, the child's index (Bullet's index on that side).
+  struct ContactSeen {
+    const btCollisionObject* other = nullptr;
+    int child = -1;
   };
   struct VehiclePart {
     const btCollisionObject* body;
@@ -86,15 +102,23 @@ class ClearanceQuery {
   void nearest_moving(double cutoff_m, Clearance& out) const;
   void nearest_static(double cutoff_m, Clearance& out);
   void nearest_ground(double cutoff_m, Clearance& out);
+  // Distance from one vehicle part to one ground body, exact below the
+  // cutoff (+infinity beyond), and the ground's point nearest it (world frame).
+  double ground_distance(const Ground& g, const VehiclePart& part, double cutoff_m, btVector3* point);
   void remember(Floor& floor, double floor_m) const;
   const VehiclePart* part_of(const btCollisionObject* object) const;
-  bool in_contact(const btCollisionWorld& world) const;
+  bool in_contact(const btCollisionWorld& world, ContactSeen& seen) const;
+  // What the vehicle touches and where, from the contact seen or the overlap measured.
+  Touch touch(const Clearance& c, const ContactSeen& seen);
+  Touch touch_obstacle(int id) const;
+  Touch touch_ground(const Ground* only);
   // How far any point of the vehicle's bodies may have moved since `floor` was set.
   double travel_since(const Floor& floor) const;
 
   std::vector<StaticObstacle> statics_;
   btDbvt static_tree_;  // leaves: index into statics_
   btVector3 statics_min_, statics_max_;
+  std::vector<StaticCompound> compounds_;
   std::vector<MovingObstacle> moving_;
   std::vector<Ground> ground_;
   std::vector<VehiclePart> vehicle_;

@@ -186,6 +186,7 @@ World::World(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()
     d.bodies.push_back(std::make_unique<btRigidBody>(info));
     d.bodies.back()->setUserIndex(compound_tag(k));
     d.dynamics->addRigidBody(d.bodies.back().get());
+    d.clearance.add_static_compound(*d.bodies.back(), d.compound_children[k]);
   }
   for (std::size_t i = 0; i < scene.movers.size(); ++i) {
     impl_->mover_bodies.push_back(impl_->add_body(scene.movers[i].shape, mover_tag(i), true));

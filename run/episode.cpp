@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <span>
@@ -233,6 +234,21 @@ double avoiding_time(std::span<const PlannerEvent> events, double end_time_s) {
   return total;
 }
 
+namespace {
+
+nlohmann::json collision_events_json(const std::vector<CollisionEvent>& events) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const CollisionEvent& e : events) {
+    list.push_back({{"time_s", e.time_s},
+                    {"body", e.body},
+                    {"ground", e.ground},
+                    {"point_m", {e.point_m.x(), e.point_m.y(), e.point_m.z()}}});
+  }
+  return list;
+}
+
+}  // namespace
+
 std::string_view to_string(Outcome outcome) {
   static constexpr std::string_view kNames[] = {"reached", "collision", "timeout", "aborted", "failed"};
   return kNames[static_cast<int>(outcome)];
@@ -253,6 +269,7 @@ nlohmann::json to_json(const EpisodeMetrics& m) {
       {"min_ground_clearance_m",
        std::isfinite(m.min_ground_clearance_m) ? nlohmann::json(m.min_ground_clearance_m) : nlohmann::json()},
       {"collisions", m.collisions},
+      {"collision_events", collision_events_json(m.collision_events)},
       {"planner_calls", m.planner_calls},
       {"planner_time_ms_mean", m.planner_time_ms_mean},
       {"planner_time_ms_max", m.planner_time_ms_max},
@@ -309,6 +326,14 @@ constexpr double kExact = std::numeric_limits<double>::infinity();
 std::string body_name(const Scene& scene, int id) {
   if (id >= 0) return scene.shapes.at(static_cast<std::size_t>(id)).alias;
   return scene.movers.at(static_cast<std::size_t>(-1 - id)).shape.alias;
+}
+
+// "collision with forest/tree4/crown at t = 3.120000 s, at (12.411, 4.032, 2.950) m".
+std::string collision_reason(const CollisionEvent& e) {
+  char point[96];
+  std::snprintf(point, sizeof point, "(%.3f, %.3f, %.3f)", e.point_m.x(), e.point_m.y(), e.point_m.z());
+  const std::string with = e.ground ? "the ground (" + e.body + ")" : e.body;
+  return "collision with " + with + " at t = " + std::to_string(e.time_s) + " s, at " + point + " m";
 }
 
 }  // namespace
@@ -417,10 +442,16 @@ struct Episode::Loop {
     const bool colliding = clearance.touching();
     if (colliding && !was_colliding) {
       ++m.collisions;
-      if (options.stop_on_collision) {
-        const std::string with = clearance.obstacle_m <= 0.0 ? body_name(scene, clearance.obstacle) : "the ground";
-        end(Outcome::collision, "collision with " + with + " at t = " + std::to_string(world.time_s()) + " s");
+      // Strings only here, when a collision begins: a step that touches nothing allocates nothing.
+      CollisionEvent e;
+      e.time_s = world.time_s();
+      if (clearance.touch) {  // always set when touching (ClearanceQuery::measure)
+        e.body = body_name(scene, clearance.touch->body);
+        e.ground = clearance.touch->ground;
+        e.point_m = clearance.touch->point_m;
       }
+      if (options.stop_on_collision) end(Outcome::collision, collision_reason(e));
+      if (m.collision_events.size() < EpisodeMetrics::kMaxCollisionEvents) m.collision_events.push_back(std::move(e));
     }
     was_colliding = colliding;
     if (!outcome && world.time_s() >= scene.world.time_limit_s) {

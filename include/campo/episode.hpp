@@ -43,6 +43,14 @@ struct GateMetrics {
   std::optional<double> time_s;  ///< first trajectory sample inside the gate; nullopt: never
 };
 
+/// A collision: when the vehicle began to touch something, what, and where.
+struct CollisionEvent {
+  double time_s = 0.0;  ///< at the end of the physics step that found it
+  std::string body;     ///< the alias path of the body touched (a ground shape's when `ground`)
+  bool ground = false;  ///< a plane or heightfield
+  Eigen::Vector3d point_m = Eigen::Vector3d::Zero();  ///< on the touched body's surface (Touch::point_m), world frame
+};
+
 /// Metrics of one run, named as in run.json.
 struct EpisodeMetrics {
   Outcome outcome = Outcome::aborted;
@@ -64,6 +72,14 @@ struct EpisodeMetrics {
   /// a rover's chassis, not its wheels) and the ground (planes, heightfields).
   double min_ground_clearance_m = 0.0;
   int collisions = 0;  ///< times the collision shapes began to touch (Clearance::touching)
+  /// The first kMaxCollisionEvents of them, in order, as "collision_events".
+  /// Bounded because a vehicle scraping along a wall or a rover bumping over
+  /// a kerb can begin a new contact every few steps for a whole run, and a
+  /// sweep copies every run's metrics into its results: 100 keeps a record
+  /// within about 10 kB while a run that stops at its first collision, or
+  /// any run a person would read event by event, is complete; `collisions` counts them all.
+  std::vector<CollisionEvent> collision_events;
+  static constexpr std::size_t kMaxCollisionEvents = 100;
   int planner_calls = 0;
   double planner_time_ms_mean = 0.0;  ///< measured
   double planner_time_ms_max = 0.0;   ///< measured

@@ -24,6 +24,18 @@ inline constexpr int kVehicleBodyTag = -2000000000;
 /// ... and one that may rest on the ground but touch nothing else (a wheel).
 inline constexpr int kVehicleWheelTag = -2000000001;
 
+/// What a vehicle's collision shapes touch, and where.
+struct Touch {
+  /// Index into Scene::shapes (a plane or heightfield when `ground`), or
+  /// -(1 + mover index), as Clearance::obstacle.
+  int body = 0;
+  bool ground = false;  ///< a plane or heightfield
+  /// The point of the touched body's surface nearest the vehicle (the
+  /// deepest when they overlap), world frame, where the physics has them
+  /// at the end of the step.
+  Eigen::Vector3d point_m = Eigen::Vector3d::Zero();
+};
+
 /// Signed distances from a vehicle's collision shapes to the other collision
 /// shapes of the world (Bullet GJK, EPA when penetrating): negative when
 /// they overlap, 0 when they touch. Ground (planes, heightfields) is kept
@@ -39,6 +51,10 @@ struct Clearance {
   /// travel in the step, yet they are in contact.)
   bool contact = false;
   static constexpr double kContact_m = 1e-3;
+  /// When touching(): what (Bullet's contact when there is one, else the
+  /// deeper overlap) and where; measured only then, so a step that touches
+  /// nothing costs nothing more.
+  std::optional<Touch> touch;
   /// The collision shapes touch: what the closed loop counts as a collision.
   /// Overlapping shapes (a clearance <= 0) always touch.
   bool touching() const { return contact || obstacle_m <= 0.0 || ground_m <= 0.0; }

@@ -124,5 +124,62 @@ TEST(VehicleClearance, GroundOfAHeightfieldAndMovingBodies) {
   EXPECT_EQ(p.scene.shapes.at(static_cast<std::size_t>(c.obstacle)).alias, "box");
 }
 
+// Bullet's narrow phase counts a contact within 1 mm as touching while the
+// clearance is still positive (the case the closed loop once called "the
+// ground" whatever it was): what is touched comes from the contact itself, a
+// child of a compound of static obstacles named by its own index.
+TEST(VehicleTouch, ABulletContactNamesTheChildOfACompoundTouched) {
+  // Trunk, crown and rock share one compound (same friction, same 8 m cell),
+  // the crown its third child. The crown (radius 1) is 0.5 mm from the
+  // drone's box's top edge (x = 0.3, z = 2.06) along the diagonal, so that
+  // their bounding boxes overlap and Bullet's narrow phase measures the pair.
+  const double gap = 0.5 * kMm;
+  const double a = (1.0 + gap) / std::sqrt(2.0);
+  const Eigen::Vector3d centre(0.3 + a, 0, 2.06 + a);
+  const std::string crown_at = "[" + std::to_string(centre.x()) + ", 0, " + std::to_string(centre.z()) + "]";
+  const Placed p(R"j({"alias": "rock", "type": "cuboid", "size_m": [1, 1, 1], "pose": {"position_m": [4, 3, 0.5]}},
+    {"alias": "trunk", "type": "cylinder", "radius_m": 0.2, "height_m": 1.8, "pose": {"position_m": [1.0075, 0, 0.9]}},
+    {"alias": "crown", "type": "sphere", "radius_m": 1, "pose": {"position_m": )j" + crown_at + R"j(}},
+    {"alias": "drone", "type": "quadrotor", "pose": {"position_m": [0, 0, 2]}})j");
+  ASSERT_NEAR(p.world.vehicle_clearance().obstacle_m, gap, 1e-5);
+  World& world = const_cast<World&>(p.world);
+  world.step();  // Bullet's narrow phase runs within a step
+  const Clearance c = world.vehicle_clearance();
+  ASSERT_TRUE(c.contact);
+  EXPECT_GT(c.obstacle_m, 0.0);  // not overlapping: the contact says what is touched
+  ASSERT_TRUE(c.touch.has_value());
+  EXPECT_FALSE(c.touch->ground);
+  EXPECT_EQ(p.scene.shapes.at(static_cast<std::size_t>(c.touch->body)).alias, "crown");
+  // On the crown's sphere, at the edge it nearly touches: within the gap
+  // plus the drone's fall in one step (g dt^2 / 2, 0.09 mm at 240 Hz).
+  EXPECT_NEAR((c.touch->point_m - centre).norm(), 1.0, 1e-6);
+  EXPECT_LE((c.touch->point_m - Eigen::Vector3d(0.3, 0, 2.06)).norm(), 2 * gap);
+}
+
+TEST(VehicleTouch, ABulletContactWithTheGroundNamesIt) {
+  // The box's bottom face 0.5 mm above the plane z = 0.
+  const Placed p(R"j({"alias": "field", "type": "plane"},
+    {"alias": "post", "type": "cylinder", "radius_m": 0.1, "height_m": 1, "pose": {"position_m": [0.5, 0, 0.5]}},
+    {"alias": "drone", "type": "quadrotor", "pose": {"position_m": [0, 0, 0.0605]}})j");
+  World& world = const_cast<World&>(p.world);
+  world.step();
+  const Clearance c = world.vehicle_clearance();
+  ASSERT_TRUE(c.contact);
+  EXPECT_GT(c.ground_m, 0.0);
+  ASSERT_TRUE(c.touch.has_value());
+  EXPECT_TRUE(c.touch->ground);
+  EXPECT_EQ(p.scene.shapes.at(static_cast<std::size_t>(c.touch->body)).alias, "field");
+  EXPECT_NEAR(c.touch->point_m.z(), 0.0, 1e-9);  // straight below the box's lowest point, on the plane
+  EXPECT_LE(c.touch->point_m.head<2>().cwiseAbs().maxCoeff(), 0.3 + 1e-6);  // under the box
+}
+
+TEST(VehicleTouch, NothingWhenNothingTouches) {
+  const Placed p(R"j({"alias": "field", "type": "plane"},
+    {"alias": "drone", "type": "quadrotor", "pose": {"position_m": [0, 0, 1]}})j");
+  World& world = const_cast<World&>(p.world);
+  world.step();
+  EXPECT_FALSE(world.vehicle_clearance().touch.has_value());
+}
+
 }  // namespace
 }  // namespace campo

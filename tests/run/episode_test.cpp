@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <random>
 
 #include <btBulletDynamicsCommon.h>
@@ -156,7 +157,8 @@ TEST_F(EpisodeTest, StopsAtTheFirstCollisionOrCountsThem) {
   EXPECT_EQ(r.metrics.outcome, Outcome::collision);
   EXPECT_EQ(r.metrics.collisions, 1);
   EXPECT_NEAR(r.metrics.sim_time_s, 1.51, 1e-9);
-  EXPECT_EQ(r.metrics.reason, "collision with wall at t = 1.510000 s");
+  // The wall's face x = 2.005, straight ahead of the sphere's centre (0, 1).
+  EXPECT_EQ(r.metrics.reason, "collision with wall at t = 1.510000 s, at (2.005, 0.000, 1.000) m");
   // Touching is clearance <= 0: the two always agree.
   EXPECT_LE(r.metrics.min_clearance_m, 0.0);
   EXPECT_NEAR(r.metrics.min_clearance_m, -0.005, 1e-6);
@@ -167,6 +169,120 @@ TEST_F(EpisodeTest, StopsAtTheFirstCollisionOrCountsThem) {
   EXPECT_EQ(r.metrics.collisions, 1);  // one contact episode, however long
   // Passing through, the sphere's centre crosses the wall: overlap of its radius plus half the wall.
   EXPECT_NEAR(r.metrics.min_clearance_m, -(0.5 + 0.0475), 3e-3);
+}
+
+// Signed distances to solids, for checking that a contact point lies on the surface touched.
+double box_sdf(const Eigen::Vector3d& p, const Eigen::Vector3d& centre, const Eigen::Vector3d& half) {
+  const Eigen::Vector3d q = (p - centre).cwiseAbs() - half;
+  return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+}
+double cylinder_sdf(const Eigen::Vector3d& p, const Eigen::Vector3d& centre, double radius, double height) {
+  const Eigen::Vector2d q((p - centre).head<2>().norm() - radius, std::abs(p.z() - centre.z()) - 0.5 * height);
+  return q.cwiseMax(0.0).norm() + std::min(q.maxCoeff(), 0.0);
+}
+
+// One kind of body in the sphere's way (radius 0.5, from (0, 0, 1) toward
+// (3, 0, 1) at 1 m/s, 0.01 s steps): the alias the collision must name and
+// the touched body's signed distance function where the physics had it.
+struct TouchCase {
+  std::string kind;
+  std::string objects;  // each followed by a comma
+  std::string alias;
+  bool ground;
+  std::function<double(const Scene&, const CollisionEvent&)> surface;
+};
+
+std::vector<TouchCase> touch_cases() {
+  return {
+      {"box", R"j({"alias": "wall", "type": "cuboid", "size_m": [0.095, 0.8, 2], "pose": {"position_m": [2.0525, 0, 1]}},)j",
+       "wall", false,
+       [](const Scene&, const CollisionEvent& e) {
+         return box_sdf(e.point_m, {2.0525, 0, 1}, {0.0475, 0.4, 1});
+       }},
+      {"cylinder", R"j({"alias": "pole", "type": "cylinder", "radius_m": 0.1, "height_m": 2, "pose": {"position_m": [2.6, 0.05, 1]}},)j",
+       "pole", false,
+       [](const Scene&, const CollisionEvent& e) { return cylinder_sdf(e.point_m, {2.6, 0.05, 1}, 0.1, 2); }},
+      // A generated tree whose crown (centre 0.2 + 0.6 x 0.3 m up) the sphere meets over a trunk too
+      // low to touch: crown and trunk are children of one compound in the physics.
+      {"crown", R"j({"alias": "forest", "type": "trees", "area_min_m": [2.7, -0.15], "area_max_m": [2.9, -0.05],
+         "count": 1, "min_spacing_m": 1, "trunk_radius_m": [0.1, 0.1], "trunk_height_m": [0.2, 0.2],
+         "crown": "sphere", "crown_radius_m": [0.3, 0.3], "seed": 3},)j",
+       "forest/tree0/crown", false,
+       [](const Scene& scene, const CollisionEvent& e) {
+         const Shape& crown = *scene.find_shape("forest/tree0/crown");
+         return (e.point_m - crown.pose.translation()).norm() - crown.radius_m;
+       }},
+      // A mover crossing the route: measured where it was at the time of the collision.
+      {"mover", R"j({"alias": "walker", "type": "mover", "shape": {"type": "cuboid", "size_m": [0.4, 0.4, 0.4]},
+         "path_m": [[1.5, -4, 1.1], [1.5, 4, 1.1]], "speed_mps": 2},)j",
+       "walker", false,
+       [](const Scene& scene, const CollisionEvent& e) {
+         return box_sdf(e.point_m, scene.movers.at(0).position_at(e.time_s), {0.2, 0.2, 0.2});
+       }},
+      {"plane", R"j({"alias": "floor", "type": "plane", "pose": {"position_m": [0, 0, 0.55]}},)j", "floor", true,
+       [](const Scene&, const CollisionEvent& e) { return e.point_m.z() - 0.55; }},
+      // A tilted plane as a heightfield: its triangles are the plane exactly. The sphere comes within
+      // its radius of it at x = (0.7 - 0.5 sqrt(1.05)) / 0.2 = 0.94.
+      {"heightfield", R"j({"alias": "hill", "type": "heightfield", "size_m": [40, 40], "spacing_m": 0.5,
+         "expression": "0.2 * x + 0.1 * y + 0.3"},)j",
+       "hill", true,
+       [](const Scene&, const CollisionEvent& e) {
+         return (e.point_m.z() - (0.2 * e.point_m.x() + 0.1 * e.point_m.y() + 0.3)) / std::sqrt(1.05);
+       }},
+  };
+}
+
+TEST_F(EpisodeTest, ACollisionNamesTheBodyTouchedAndWhere) {
+  for (const TouchCase& c : touch_cases()) {
+    SCOPED_TRACE(c.kind);
+    const Scene scene = scene_with("", c.objects);
+    const EpisodeResult r = run_episode(scene, &make_point, &make_follower);
+    ASSERT_EQ(r.metrics.outcome, Outcome::collision);
+    ASSERT_EQ(r.metrics.collision_events.size(), 1u);
+    const CollisionEvent& e = r.metrics.collision_events.front();
+    EXPECT_EQ(e.body, c.alias);
+    EXPECT_EQ(e.ground, c.ground);
+    EXPECT_DOUBLE_EQ(e.time_s, r.metrics.sim_time_s);
+    // On the surface touched: the point's distance to it is GJK/EPA's precision
+    // (double precision, relative to the scene's metres), far below the depth
+    // the sphere can reach in one step (1 m/s x 0.01 s).
+    EXPECT_NEAR(c.surface(scene, e), 0.0, 1e-6);
+    const std::string with = c.ground ? "the ground (" + c.alias + ")" : c.alias;
+    EXPECT_EQ(r.metrics.reason.rfind("collision with " + with + " at t = ", 0), 0u) << r.metrics.reason;
+    EXPECT_NE(r.metrics.reason.find(" m"), std::string::npos);
+    // run.json's list, as documented (docs/running.md).
+    const nlohmann::json j = to_json(r.metrics).at("collision_events");
+    ASSERT_EQ(j.size(), 1u);
+    EXPECT_EQ(j[0].at("body"), c.alias);
+    EXPECT_EQ(j[0].at("ground"), c.ground);
+    EXPECT_EQ(j[0].at("time_s"), e.time_s);
+    EXPECT_EQ(j[0].at("point_m"), nlohmann::json({e.point_m.x(), e.point_m.y(), e.point_m.z()}));
+  }
+}
+
+TEST_F(EpisodeTest, CollisionEventsAreBoundedButAllCounted) {
+  // A row of thin walls across the first leg, each passed through: one collision each.
+  const int n = static_cast<int>(EpisodeMetrics::kMaxCollisionEvents) + 5;
+  std::string objects;
+  for (int i = 0; i < n; ++i) {
+    // 1.2 m apart along y = 0, beyond the sphere's reach of each other.
+    objects += R"j({"alias": "w)j" + std::to_string(i) + R"j(", "type": "cuboid", "size_m": [0.01, 0.2, 0.2], "pose": {"position_m": [)j" +
+               std::to_string(2.0 + 1.2 * i) + R"j(, 0, 1]}},)j";
+  }
+  const Scene scene = parse_scene(nlohmann::json::parse(R"j({"world": {"physics_step_s": 0.01, "control_rate_hz": 20,
+    "sensor_rate_hz": 5, "time_limit_s": 300}, "objects": [)j" + objects + R"j(
+    {"alias": "v", "type": "quadrotor", "pose": {"position_m": [0, 0, 1]},
+     "mission": {"waypoints": [{"position_m": [)j" + std::to_string(2.0 + 1.2 * n) + R"j(, 0, 1]}]}}]})j"),
+                      "inline.json", std::filesystem::temp_directory_path());
+  EpisodeOptions keep_going;
+  keep_going.stop_on_collision = false;
+  const EpisodeResult r = run_episode(scene, &make_point, &make_follower, keep_going);
+  EXPECT_EQ(r.metrics.outcome, Outcome::reached);
+  EXPECT_EQ(r.metrics.collisions, n);
+  ASSERT_EQ(r.metrics.collision_events.size(), EpisodeMetrics::kMaxCollisionEvents);
+  for (std::size_t i = 0; i < r.metrics.collision_events.size(); ++i) {
+    EXPECT_EQ(r.metrics.collision_events[i].body, "w" + std::to_string(i));
+  }
 }
 
 TEST_F(EpisodeTest, PlannerGivingUpAbortsWithItsReason) {
