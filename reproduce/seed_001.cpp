@@ -415,6 +415,15 @@ std::vector<Departure> cost_model_departures(const Measured& m, const std::strin
   };
 }
 
+// The same three departures for a claim measured on the bundled runs and on the run with all three of the thesis's
+// settings only (`with_thesis` says what that run gave); the sweep's runs of one setting are not measured for it.
+std::vector<Departure> bundled_departures(const Measured& m, const std::string& with_thesis) {
+  std::vector<Departure> out = cost_model_departures(m, "the weave and the climb over the wall both hold",
+                                                     [](const SweepSetting*) { return std::string(); });
+  for (Departure& d : out) d.with_thesis_setting = "with all three of the thesis's settings together: " + with_thesis;
+  return out;
+}
+
 // ---- Claims -------------------------------------------------------------------------------------------------------
 
 void obstacle_tables(Measured& m, Claim& claim) {
@@ -619,11 +628,9 @@ void high_lap(Measured& m, Claim& claim) {
   claim.measured = "The largest horizontal distance (m) of each 42 m lap's samples from the straight lines between "
                    "its waypoints (the climb from the take-off point left out):\n\n" +
                    markdown_table({"Scene", "Lap", "Bundled settings", "The thesis's settings"}, rows);
-  claim.departures = cost_model_departures(m, "the weave and the climb over the wall both hold", [&](const SweepSetting* s) {
-    return s ? std::string("see the column \"The thesis's settings\" for all three; the sweep's runs of single "
-                           "settings are not measured for this claim")
-             : std::string("not run");
-  });
+  std::string thesis_text;
+  for (const double d : thesis_offsets) thesis_text += (thesis_text.empty() ? "" : ", ") + fixed(d, 2);
+  claim.departures = bundled_departures(m, thesis_measured ? "largest distances " + thesis_text + " m" : "not run");
   const Judgement j = judge_with_thesis_setting(thesis_measured ? laps_coincide(thesis_offsets, cell_m) : std::nullopt,
                                                 laps_coincide(bundled_offsets, cell_m), false);
   claim.verdict = judge(ClaimKind::thesis_result, j.holds, j.has_departures, j.cause_known);
@@ -697,9 +704,7 @@ void low_blocks(Measured& m, Claim& claim) {
                    ") and how the lap passed them:\n\n" +
                    markdown_table({"Block", "Top level on 001's graph", "Bundled settings", "The thesis's settings"},
                                   rows);
-  claim.departures = cost_model_departures(m, "the weave and the climb over the wall both hold", [&](const SweepSetting* s) {
-    return s ? std::string("see the column \"The thesis's settings\" for all three") : std::string("not run");
-  });
+  claim.departures = bundled_departures(m, thesis ? "see the table's last column" : "not run");
   const Judgement j = judge_with_thesis_setting(thesis ? low_blocks_ignored(*thesis, kClimbThresholdM) : std::nullopt,
                                                 low_blocks_ignored(bundled, kClimbThresholdM), false);
   claim.verdict = judge(ClaimKind::thesis_result, j.holds, j.has_departures, j.cause_known);
