@@ -905,7 +905,9 @@ void weave(const Workbench& bench, Measured& m, Claim& claim) {
   else if (*j.holds && !j.has_departures) claim.verdict_reason = "With the thesis's settings the lap weaves between the buildings at its altitude, shorter than round the outside.";
   else if (*j.holds)
     claim.verdict_reason = "The lap weaves only with the bundled settings; with the thesis's it " +
-                           std::string(thesis && thesis->climbed ? "climbs over the buildings" : "does not weave") +
+                           std::string(thesis && thesis->climbed ? "climbs over buildings (" + fixed(thesis->lap_m, 1) +
+                                                                       " m, passing them on " + sides_text(thesis->sides) + ")"
+                                                                 : "does not weave") +
                            ". With 001's equal link weights the six-connected graph's own optimum " +
                            (y.six_equal.leaves_level ? "climbs (" : "stays at altitude (") + route_text(y.six_equal) +
                            ").";
