@@ -29,10 +29,12 @@ cv::Vec3b sequential_color(double fraction) {
 }
 
 cv::Scalar run_color(std::size_t index) {
-  // Tableau 10 without green and red, which mark start and goal.
-  static const std::array<cv::Scalar, 8> palette{rgb(31, 119, 180), rgb(255, 127, 14), rgb(148, 103, 189),
-                                                 rgb(23, 190, 207), rgb(140, 86, 75),  rgb(227, 119, 194),
-                                                 rgb(188, 189, 34), rgb(127, 127, 127)};
+  // Tableau 10 without green and red, which mark start and goal, then four darker hues, so that the ten seeds
+  // of a reproduction's overlay each get their own colour.
+  static const std::array<cv::Scalar, kRunColors> palette{
+      rgb(31, 119, 180), rgb(255, 127, 14), rgb(148, 103, 189), rgb(23, 190, 207), rgb(140, 86, 75),
+      rgb(227, 119, 194), rgb(188, 189, 34), rgb(127, 127, 127), rgb(57, 59, 121),  rgb(140, 109, 49),
+      rgb(0, 128, 128),   rgb(123, 65, 115)};
   return palette[index % palette.size()];
 }
 

@@ -97,7 +97,9 @@ struct FigureLayout {
   cv::Point2d to_px(const Eigen::Vector2d& p) const;
 };
 
-/// Colour of a run in overlays: a fixed qualitative palette, cycled (BGR).
+/// Colours of run_color before it repeats.
+inline constexpr std::size_t kRunColors = 12;
+/// Colour of a run in overlays: a fixed qualitative palette of kRunColors, cycled (BGR).
 cv::Scalar run_color(std::size_t index);
 /// Sequential colour map of tracks (time, speed) and depth values (viridis,
 /// BGR); `fraction` is clamped to [0, 1]. Tracks map [first time, last time]

@@ -186,12 +186,15 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
       const Footprint& f = plan.footprints[i];
       const cv::Scalar c = to_bgr(f.shape->color);
       const bool above = i < plan.above_band.size() && plan.above_band[i];
-      auto g = std::find_if(groups.begin(), groups.end(), [&](const Group& x) { return x.colour == c && x.above == above; });
+      std::string name = f.shape->alias.substr(f.shape->alias.find_last_of('/') + 1);
+      while (!name.empty() && (std::isdigit(static_cast<unsigned char>(name.back())) || name.back() == '_')) {
+        name.pop_back();
+      }
+      // Above the band, one entry per kind (a forest's crowns vary in shade); at flight height, per colour.
+      auto g = std::find_if(groups.begin(), groups.end(), [&](const Group& x) {
+        return x.above == above && (above ? x.name == name : x.colour == c);
+      });
       if (g == groups.end()) {
-        std::string name = f.shape->alias.substr(f.shape->alias.find_last_of('/') + 1);
-        while (!name.empty() && (std::isdigit(static_cast<unsigned char>(name.back())) || name.back() == '_')) {
-          name.pop_back();
-        }
         groups.push_back({c, above, 0.0, name});
         g = groups.end() - 1;
       }
@@ -200,11 +203,12 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
     std::stable_sort(groups.begin(), groups.end(), [](const Group& a, const Group& b) { return a.area > b.area; });
     if (groups.size() > 4) groups.resize(4);
     for (const Group& g : groups) {
-      std::string text = groups.size() == 1 || g.name.empty() ? "obstacle" : "obstacle: " + g.name;
       if (g.above) {
-        text += ", above the flight band";
+        // Short enough for the legend column: "crown, above flight band".
+        const std::string text = (g.name.empty() ? std::string("obstacle") : g.name) + ", above flight band";
         legend.push_back(patch_entry(figure::lighten(g.colour, kAboveBandLighten), figure::shade(g.colour, 0.6), text));
       } else {
+        const std::string text = groups.size() == 1 || g.name.empty() ? "obstacle" : "obstacle: " + g.name;
         legend.push_back(patch_entry(g.colour, figure::shade(g.colour, 0.6), text));
       }
     }

@@ -289,6 +289,11 @@ TEST(FiguresOverlay, DrawsEachRunInItsOwnColour) {
     EXPECT_LT(nearest_colour(image, layout.to_px(runs[k].track[30].position_m.head<2>()), want), 10) << "run " << k;
     EXPECT_NE(run_color(k), run_color(k + 1));
   }
+  // The ten seeds of a reproduction's overlay each get their own colour.
+  for (std::size_t a = 0; a < kRunColors; ++a) {
+    for (std::size_t b = a + 1; b < kRunColors; ++b) EXPECT_NE(run_color(a), run_color(b)) << a << " " << b;
+  }
+  EXPECT_EQ(run_color(kRunColors), run_color(0));
   EXPECT_GT(non_background(image, layout.legend_px), 1000);
   EXPECT_GT(non_background(image, layout.title_px), 100);
 }
@@ -302,8 +307,8 @@ TEST(FiguresOverlay, ListsEveryRunInTheLegend) {
   EXPECT_GT(four, three);
 }
 
-// A crown whose bottom (4 m) is above every track point (3 m above flat ground), a crown of the same colour
-// reaching down to 1.5 m, and a post at flight height.
+// Two crowns of different shades whose bottoms (4 m, 5.2 m) are above every track point (3 m above flat ground), a
+// crown of the first one's colour reaching down to 1.5 m, and a post at flight height.
 Scene band_scene() {
   const char* text = R"j({"objects": [
     {"alias": "ground", "type": "plane"},
@@ -311,6 +316,8 @@ Scene band_scene() {
      "color": [0.2, 0.6, 0.2]},
     {"alias": "low_crown_2", "type": "sphere", "radius_m": 1.0, "pose": {"position_m": [4, -3.5, 2.5]},
      "color": [0.2, 0.6, 0.2]},
+    {"alias": "crown_3", "type": "sphere", "radius_m": 0.8, "pose": {"position_m": [-6, 4, 6]},
+     "color": [0.25, 0.55, 0.2]},
     {"alias": "post", "type": "cylinder", "radius_m": 0.5, "height_m": 4,
      "pose": {"position_m": [-4, -2.5, 2]}, "color": [0.2, 0.3, 0.8]}
   ]})j";
@@ -347,10 +354,13 @@ TEST(FiguresOverlay, ObstaclesAboveTheFlightBandAreDrawnPaleAndNamedSo) {
   EXPECT_DOUBLE_EQ(*plan.band_top_agl_m, 3.0);
   ASSERT_EQ(plan.above_band.size(), plan.footprints.size());
   for (std::size_t i = 0; i < plan.footprints.size(); ++i) {
-    EXPECT_EQ(plan.above_band[i], plan.footprints[i].shape->alias == "crown_1") << plan.footprints[i].shape->alias;
+    const std::string& alias = plan.footprints[i].shape->alias;
+    EXPECT_EQ(plan.above_band[i], alias == "crown_1" || alias == "crown_3") << alias;
   }
   const std::vector<std::string> texts = legend_texts(plan);
-  for (const char* want : {"obstacle: crown, above the flight band", "obstacle: low_crown", "obstacle: post",
+  // One entry for the crowns above the band, whatever their shades.
+  EXPECT_EQ(std::count(texts.begin(), texts.end(), "crown, above flight band"), 1);
+  for (const char* want : {"crown, above flight band", "obstacle: low_crown", "obstacle: post",
                            "run_0 (reached)", "run_1 (reached)", "run_2 (collision)"}) {
     EXPECT_NE(std::find(texts.begin(), texts.end(), want), texts.end()) << want;
   }
