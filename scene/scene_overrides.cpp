@@ -39,18 +39,25 @@ bool is_index(const std::string& segment) { return all_digits(segment) && (segme
 
 }  // namespace
 
-void apply_override(nlohmann::json& document, const std::string& assignment) {
+nlohmann::json override_value(const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  const std::string text = eq == std::string::npos ? std::string() : assignment.substr(eq + 1);
+  nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
+  if (value.is_discarded()) value = text;
+  return value;
+}
+
+std::string apply_override(nlohmann::json& document, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0 || assignment[0] != '/') {
     fail(assignment, "expected PATH=VALUE with PATH a JSON pointer such as /world/seed");
   }
   const std::string path = assignment.substr(0, eq);
-  const std::string text = assignment.substr(eq + 1);
-  nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
-  if (value.is_discarded()) value = text;
+  nlohmann::json value = override_value(assignment);
 
   nlohmann::json* node = &document;
   std::string walked;  // the pointer so far, as written
+  std::string resolved;  // the same with array elements by index
   std::size_t start = 1;
   while (true) {
     const std::size_t slash = path.find('/', start);
@@ -59,6 +66,7 @@ void apply_override(nlohmann::json& document, const std::string& assignment) {
     const bool last = slash == std::string::npos;
     const std::string parent = walked.empty() ? std::string("/") : walked;
     walked += "/" + raw;
+    std::string resolved_segment = raw;
     if (node->is_object()) {
       // Missing keys are created (objects on the way); validation judges them after.
       if (!node->contains(segment) && !last) (*node)[segment] = nlohmann::json::object();
@@ -85,13 +93,16 @@ void apply_override(nlohmann::json& document, const std::string& assignment) {
         }
       }
       node = &(*node)[index];
+      resolved_segment = std::to_string(index);
     } else {
       fail(assignment, "cannot descend into a " + std::string(node->type_name()) + " at " + walked);
     }
+    resolved += "/" + resolved_segment;
     if (last) break;
     start = slash + 1;
   }
   *node = std::move(value);
+  return resolved;
 }
 
 }  // namespace campo

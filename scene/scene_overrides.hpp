@@ -15,6 +15,11 @@ namespace campo {
 /// afterwards, like anything in the file). VALUE is JSON
 /// ("0.8", "[1,2,3]", "true", "\"text\""); anything that does not parse as
 /// JSON is taken as a string. Errors are InputErrors naming "--set".
-void apply_override(nlohmann::json& document, const std::string& assignment);
+/// Returns the pointer assigned, array elements by index (an alias resolved
+/// to the index it named then), segments escaped as written.
+std::string apply_override(nlohmann::json& document, const std::string& assignment);
+
+/// The VALUE of a "PATH=VALUE" assignment, read as apply_override reads it.
+nlohmann::json override_value(const std::string& assignment);
 
 }  // namespace campo

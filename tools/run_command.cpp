@@ -88,7 +88,8 @@ Command add_run(CLI::App& app) {
   app.add_option("--planner", o->planner,
                  "Planner (" + planners + ", a plugin's, or a Python class as python:package.module:ClassName, "
                  "found from the working directory and PYTHONPATH); default: the scene's, else straight. Another "
-                 "planner than the scene's runs with its default parameters");
+                 "planner than the scene's runs with its default parameters and the --set's of the vehicle's planner "
+                 "parameters, checked by it");
   add_plugin_option(app, o->plugins);
   app.add_flag("--list-planners", o->list_planners,
                "Print every planner (with --plugin, the plugins' too): name, source (built-in or the plugin file) and "

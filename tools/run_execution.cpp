@@ -144,6 +144,37 @@ class WallLimitedPlanner final : public Planner {
   WallLimit& limit_;
 };
 
+// `--planner` for vehicle `def`, whose planner the overrides (at
+// `pointers`, as apply_override resolved them) have already set up as the scene's.
+void choose_planner_with_overrides(VehicleDef& def, const RunRequest& request,
+                                   const std::vector<std::string>& pointers) {
+  const std::string& params = def.planner.params.pointer;  // "/objects/<i>/planner/params"
+  const std::string planner = params.substr(0, params.rfind('/'));
+  const bool another = def.planner.name != request.planner;
+  for (std::size_t i = 0; i < pointers.size(); ++i) {
+    const std::string& p = pointers[i];
+    if (another && (p == planner || p == planner + "/name")) {
+      throw InputError("command line", "--set " + request.overrides[i],
+                       "chooses the planner of vehicle " + def.alias + " (\"" + def.planner.name + "\") while --planner " +
+                           request.planner + " chooses another: give the planner one way");
+    }
+  }
+  choose_planner(def.planner, request.planner, "command line");
+  if (!another) return;  // the scene's planner: its parameters, overrides included, stand
+  for (std::size_t i = 0; i < pointers.size(); ++i) {
+    const std::string& p = pointers[i];
+    if (p != params && !p.starts_with(params + "/")) continue;
+    const nlohmann::json value = override_value(request.overrides[i]);
+    if (p == params) {
+      def.planner.params.values = value;
+    } else {
+      def.planner.params.values[nlohmann::json::json_pointer(p.substr(params.size()))] = value;
+    }
+  }
+  // Checked by the planner as the scene's own would be, at the block's place.
+  def.planner.params.file = "command line (--planner " + request.planner + " with --set)";
+}
+
 }  // namespace
 
 PreparedRun prepare_run(const RunRequest& request, bool validate_planner) {
@@ -152,7 +183,22 @@ PreparedRun prepare_run(const RunRequest& request, bool validate_planner) {
   const std::string bytes = read_text_file(scene_file);
   PreparedRun run;
   run.document = parse_json_text(bytes, scene_file);
-  for (const auto& assignment : request.overrides) apply_override(run.document, assignment);
+  for (const auto& assignment : request.overrides) {
+    run.override_pointers.push_back(apply_override(run.document, assignment));
+  }
+  // A scene without a planner block gets one from overrides of its
+  // parameters; with --planner, it is that planner's.
+  if (!request.planner.empty()) {
+    for (const std::string& p : run.override_pointers) {
+      const std::size_t at = p.find("/planner/params");
+      const std::size_t end = at + std::string_view("/planner").size();
+      if (at == std::string::npos || (p.size() > end + 7 && p[end + 7] != '/')) continue;
+      const nlohmann::json::json_pointer planner(p.substr(0, end));
+      if (!run.document.contains(planner)) continue;
+      nlohmann::json& block = run.document[planner];
+      if (block.is_object() && !block.contains("name")) block["name"] = request.planner;
+    }
+  }
   run.scene = parse_scene(run.document, scene_file, request.scene.parent_path(), sha256_hex(bytes));
   Scene& scene = run.scene;
 
@@ -167,8 +213,10 @@ PreparedRun prepare_run(const RunRequest& request, bool validate_planner) {
   }
   run.vehicle_index = options.vehicle_index;
   VehicleDef& def = scene.vehicles[options.vehicle_index];
-  // Another planner than the scene's starts from its defaults: --set its parameters anew.
-  if (!request.planner.empty()) choose_planner(def.planner, request.planner, "command line");
+  // Another planner than the scene's starts from its defaults, and takes the
+  // overrides of the vehicle's planner parameters: they were given for the
+  // planner that runs, and a --set recorded must be a --set applied.
+  if (!request.planner.empty()) choose_planner_with_overrides(def, request, run.override_pointers);
   if (def.planner.name.empty()) def.planner.name = std::string(kDefaultPlanner);
   check_runnable(scene, options.vehicle_index);
   // Validate every parameter before anything runs.

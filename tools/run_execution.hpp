@@ -44,9 +44,14 @@ struct PreparedRun {
   nlohmann::json document;
   std::size_t vehicle_index = 0;
   EpisodeOptions options;
+  /// Where each of the request's overrides assigned, aliases resolved to
+  /// indices (apply_override): "/objects/4/planner/params/speed_mps".
+  std::vector<std::string> override_pointers;
 };
 
-/// Reads the scene, applies the overrides, picks the vehicle and planner and
+/// Reads the scene, applies the overrides, picks the vehicle and planner
+/// (`request.planner` other than the scene's takes the overrides of the
+/// vehicle's planner parameters; one that names another planner is refused) and
 /// validates every input (InputError naming the file and JSON path), the
 /// planner's parameters too unless `validate_planner` is false (an episode
 /// driven from outside has no planner).

@@ -22,6 +22,7 @@
 #include "python/bindings/observation.hpp"
 #include "python/bindings/planner_limits.hpp"
 #include "python/bindings/python_planner.hpp"
+#include "scene/scene_overrides.hpp"
 #include "sweep/bundled.hpp"
 #include "tools/run_execution.hpp"
 #include "vehicles/factory.hpp"
@@ -70,6 +71,7 @@ class PythonEpisode {
                 const std::string& vehicle, bool continue_after_collision)
       : request_(run_request(scene, seed, overrides, vehicle, continue_after_collision)) {
     // Read and check everything now, so bad input fails at construction.
+    refuse_planner_overrides();
     cli::prepare_run(request_, false);
   }
 
@@ -154,6 +156,25 @@ class PythonEpisode {
     return *run_->result;
   }
 
+  // The caller's commands drive the vehicle: an override of a vehicle's
+  // planner (/objects/<vehicle>/planner...) would be recorded (run.json's
+  // overrides) and never applied. Checked on the document before the scene
+  // is read, which would judge a planner block the override made first.
+  void refuse_planner_overrides() const {
+    const std::string file = request_.scene.string();
+    nlohmann::json document = parse_json_text(read_text_file(file), file);
+    for (const std::string& assignment : request_.overrides) {
+      const std::string p = apply_override(document, assignment);
+      const std::size_t index_end = p.find('/', std::string_view("/objects/").size());
+      if (!p.starts_with("/objects/") || index_end == std::string::npos) continue;
+      const std::string rest = p.substr(index_end);
+      if (rest != "/planner" && !rest.starts_with("/planner/")) continue;
+      throw InputError("overrides", assignment.substr(0, assignment.find('=')),
+                       "campo.Episode runs no planner (step()'s commands drive the vehicle), so an override of a "
+                       "planner would be ignored; pass planner parameters to campo.run");
+    }
+  }
+
   cli::RunRequest request_;
   std::shared_ptr<EpisodeRun> run_;
 };
@@ -189,7 +210,13 @@ py::object run(const std::string& scene, const py::object& planner, const std::o
       throw InputError("planner", "", "a planner name or an object with a plan(self, obs) method");
     }
     request.planner = python_planner_name(planner);
-    request.make_planner = [planner](const PlannerSpec&, const PlannerContext&) {
+    request.make_planner = [planner](const PlannerSpec& spec, const PlannerContext&) {
+      // The object was built by the caller: overrides of the vehicle's planner parameters would be dropped.
+      if (!spec.params.values.empty()) {
+        throw InputError(spec.params.file, spec.params.pointer,
+                         "a planner given as a Python object takes its parameters from its own constructor, not "
+                         "from overrides (they would be ignored): got " + spec.params.values.dump());
+      }
       return wrap_python_planner(planner, nlohmann::json::object());
     };
   }

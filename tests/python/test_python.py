@@ -210,6 +210,22 @@ class PythonPlannerTest(unittest.TestCase):
         self.assertEqual(m["outcome"], "failed")
         self.assertIn("command the vehicle cannot follow", m["reason"])
 
+    def test_planner_overrides_reach_the_planner_chosen(self):
+        # The scene names no planner: overrides of its parameters go to the planner given (issue 31).
+        record = campo.run(OPEN_FIELD, planner="straight", overrides={"/objects/drone/planner/params/speed_mps": 2.0})
+        self.assertEqual(record["parameters"]["planner"]["parameters"]["speed_mps"], 2.0)
+        with self.assertRaisesRegex(campo.InputError, "/objects/2/planner/params/speed_mps: expected a number in"):
+            campo.run(OPEN_FIELD, planner="straight", overrides={"/objects/drone/planner/params/speed_mps": 99})
+        # A planner object was built by the caller: overrides of its parameters would be dropped.
+        with self.assertRaisesRegex(campo.InputError, "takes its parameters from its own constructor"):
+            campo.run(OPEN_FIELD, planner=python_planners.GoStraight(speed_mps=1.0),
+                      overrides={"/objects/drone/planner/params/speed_mps": 2.0})
+        # An Episode runs no planner at all.
+        with self.assertRaisesRegex(campo.InputError, "campo.Episode runs no planner"):
+            campo.Episode(OPEN_FIELD, overrides={"/objects/drone/planner/params/speed_mps": 2.0})
+        with self.assertRaisesRegex(campo.InputError, "campo.Episode runs no planner"):
+            campo.Episode(OPEN_FIELD, overrides={"/objects/drone/planner": {"name": "straight"}})
+
     def test_vehicle_types_are_declared(self):
         with self.assertRaisesRegex(campo.InputError, "drives a rover only, not a quadrotor"):
             campo.run(OPEN_FIELD, planner="python:python_planners:RoverOnly")
