@@ -100,7 +100,7 @@ Command add_run(CLI::App& app) {
                  "Repeatable; validated like the file");
   app.add_option("--seed", o->seed, "World seed, an integer in [0, 2^64-1] (same as --set /world/seed=N)")
       ->each([o](const std::string&) { o->seed_set = true; });
-  app.add_option("--vehicle", o->vehicle, "Vehicle to run (default: the first)");
+  app.add_option("--vehicle", o->vehicle, "Vehicle to run, by alias (a scene has one: campo simulates one vehicle per scene)");
   app.add_flag("--continue-after-collision", o->continue_after_collision,
                "Count collisions but keep going until the mission ends or times out");
   app.add_flag("!--no-figures", o->figures, "Do not draw map.png and side.png (for sweeps)");

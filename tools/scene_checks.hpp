@@ -14,9 +14,10 @@ namespace campo::cli {
 /// planner once (which checks the planner's name and parameters); throws InputError.
 void check_vehicles_and_planners(const Scene& scene, std::size_t skip = std::numeric_limits<std::size_t>::max());
 
-/// Checks that a run of the scene can start: the scene has a vehicle and
-/// vehicle `vehicle_index` (the first is the one `campo run` drives by
-/// default) has a mission; throws InputError with `campo run`'s message.
+/// Checks that a run of the scene can start: the scene has exactly one
+/// vehicle (one is simulated; a second would be ignored, so it is refused,
+/// naming them all) and vehicle `vehicle_index` has a mission; throws
+/// InputError with `campo run`'s message.
 void check_runnable(const Scene& scene, std::size_t vehicle_index = 0);
 
 }  // namespace campo::cli

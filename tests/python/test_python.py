@@ -247,6 +247,20 @@ class ErrorsTest(unittest.TestCase):
                                                             "params": {"gain": 2}}})
         self.assertTrue(issubclass(campo.InputError, ValueError))
 
+    def test_a_scene_with_two_vehicles_is_refused_naming_them(self):
+        # One vehicle is simulated; a second would silently be absent from the physics (issue 31).
+        scene = json.loads(pathlib.Path(OPEN_FIELD).read_text())
+        scene["objects"].append({"alias": "wingman", "type": "quadrotor", "pose": {"position_m": [0, 3, 1.5]}})
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "two.json")
+            pathlib.Path(path).write_text(json.dumps(scene))
+            message = ('/objects/3: expected one vehicle: campo simulates one vehicle per scene, and this scene has 2: '
+                       '"drone" \\(/objects/2\\), "wingman" \\(/objects/3\\)')
+            with self.assertRaisesRegex(campo.InputError, message):
+                campo.Episode(path)
+            with self.assertRaisesRegex(campo.InputError, message):
+                campo.run(path, planner="straight")
+
     def test_outputs_that_cannot_be_written_are_output_errors_and_leave_nothing(self):
         with tempfile.TemporaryDirectory() as tmp:
             fifo = os.path.join(tmp, "fifo")

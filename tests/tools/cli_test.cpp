@@ -89,9 +89,11 @@ TEST_F(Cli, ValidateRefusesExactlyWhatRunRefuses) {
                 "mission": {"waypoints": [{"position_m": [5, 0, 1.5]}]}}]})"),
                 "slow_sensor.json: /objects/0/sensors/0/rate_hz: expected 0 (world.sensor_rate_hz) or a number in "
                 "[0.01, 10000], got 1e-14"},
-           Case{write("second.json", R"({"objects": [)" + drone + R"(, {"alias": "other", "type": "quadrotor",
-                "planner": {"name": "depth_reactive", "params": {"speed_mps": -1}}}]})"),
-                "second.json: /objects/1/planner/params/speed_mps: expected"},
+           // One vehicle is simulated: a second would be ignored, so it is refused, naming both (issue 31).
+           Case{write("second.json", R"({"objects": [{"alias": "ground", "type": "plane"}, )" + drone +
+                R"(, {"alias": "other", "type": "quadrotor", "pose": {"position_m": [3, 0, 1.5]}}]})"),
+                "second.json: /objects/2: expected one vehicle: campo simulates one vehicle per scene, and this "
+                "scene has 2: \"drone\" (/objects/1), \"other\" (/objects/2); keep the one to run"},
        }) {
     const Result validate = campo("validate " + c.file);
     EXPECT_EQ(validate.exit_code, 2) << c.file;
@@ -101,9 +103,13 @@ TEST_F(Cli, ValidateRefusesExactlyWhatRunRefuses) {
     EXPECT_THAT(run.err, HasSubstr("error: " + (dir_ / c.message).string())) << c.file;
     EXPECT_FALSE(fs::exists(dir_ / "run")) << c.file;
   }
-  // A second vehicle needs no mission: only the one that runs does.
+  // However idle the second vehicle, and whichever --vehicle would run.
   const std::string two = write("two.json", R"({"objects": [)" + drone + R"(, {"alias": "idle", "type": "rover"}]})");
-  EXPECT_EQ(campo("validate " + two).exit_code, 0);
+  const Result validate = campo("validate " + two);
+  EXPECT_EQ(validate.exit_code, 2);
+  EXPECT_THAT(validate.err, HasSubstr("\"drone\" (/objects/0), \"idle\" (/objects/1)"));
+  EXPECT_EQ(campo("run " + two + " --vehicle drone --out " + (dir_ / "run").string()).exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "run"));
 }
 
 TEST_F(Cli, ScanWritesAllOutputsMatchingGeometry) {
