@@ -146,8 +146,9 @@ class WallLimitedPlanner final : public Planner {
 
 // `--planner` for vehicle `def`, whose planner the overrides (at
 // `pointers`, as apply_override resolved them) have already set up as the scene's.
+// The effective document (scene.json) then names the planner that runs, with its parameters.
 void choose_planner_with_overrides(VehicleDef& def, const RunRequest& request,
-                                   const std::vector<std::string>& pointers) {
+                                   const std::vector<std::string>& pointers, nlohmann::json& document) {
   const std::string& params = def.planner.params.pointer;  // "/objects/<i>/planner/params"
   const std::string planner = params.substr(0, params.rfind('/'));
   const bool another = def.planner.name != request.planner;
@@ -173,6 +174,7 @@ void choose_planner_with_overrides(VehicleDef& def, const RunRequest& request,
   }
   // Checked by the planner as the scene's own would be, at the block's place.
   def.planner.params.file = "command line (--planner " + request.planner + " with --set)";
+  document[nlohmann::json::json_pointer(planner)] = {{"name", request.planner}, {"params", def.planner.params.values}};
 }
 
 }  // namespace
@@ -216,7 +218,7 @@ PreparedRun prepare_run(const RunRequest& request, bool validate_planner) {
   // Another planner than the scene's starts from its defaults, and takes the
   // overrides of the vehicle's planner parameters: they were given for the
   // planner that runs, and a --set recorded must be a --set applied.
-  if (!request.planner.empty()) choose_planner_with_overrides(def, request, run.override_pointers);
+  if (!request.planner.empty()) choose_planner_with_overrides(def, request, run.override_pointers, run.document);
   if (def.planner.name.empty()) def.planner.name = std::string(kDefaultPlanner);
   check_runnable(scene, options.vehicle_index);
   // Validate every parameter before anything runs.

@@ -36,6 +36,15 @@ TEST_F(Overrides, PlannerSetsGoToThePlannerChosenOnTheCommandLine) {
   const nlohmann::json planner = planner_of(dir_ / "fast");
   EXPECT_EQ(planner.at("name"), "straight");
   EXPECT_EQ(planner.at("parameters").at("speed_mps"), 2.0);
+  // The effective scene is the one that ran: running it again is the same run.
+  const auto scene_json = nlohmann::json::parse(slurp(dir_ / "fast" / "scene.json"));
+  EXPECT_EQ(scene_json.at("objects").at(4).at("planner"),
+            nlohmann::json::parse(R"({"name": "straight", "params": {"speed_mps": 2.0}})"));
+  const Result again = campo("run " + (dir_ / "fast" / "scene.json").string() + " --no-figures --out " +
+                             (dir_ / "again").string());
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir_ / "again" / "run.json")).at("final_state_hash"),
+            nlohmann::json::parse(slurp(dir_ / "fast" / "run.json")).at("final_state_hash"));
   // And flown: the mean speed over the run exceeds the default speed and stays within the one set.
   const double default_speed = planner_of(dir_ / "base").at("parameters").at("speed_mps").get<double>();
   ASSERT_LT(default_speed, 2.0);
