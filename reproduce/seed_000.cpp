@@ -78,6 +78,19 @@ std::vector<const RunResult*> at_thesis_resolutions(const SweepRuns& s, const st
   return out;
 }
 
+// "256-32", or the thesis's resolutions a quick report measured ("64").
+std::string thesis_resolutions_text(const std::vector<int>& measured) {
+  std::vector<int> in;
+  for (int r : kThesisResolutions) {
+    if (std::find(measured.begin(), measured.end(), r) != measured.end()) in.push_back(r);
+  }
+  if (in.empty()) return "none of 256-32";
+  if (in.size() == std::size(kThesisResolutions)) return "256-32";
+  std::string out;
+  for (int r : in) out += (out.empty() ? "" : ", ") + std::to_string(r);
+  return out;
+}
+
 std::vector<DepthRun> depth_runs(const std::vector<const RunResult*>& runs) {
   std::vector<DepthRun> out;
   for (const RunResult* r : runs) out.push_back(depth_run(*r));
@@ -298,7 +311,8 @@ void table_5_1(const Workbench& bench, Claim& claim, Measured& m) {
   }
   const std::vector<const RunResult*> judged = at_thesis_resolutions(m.main, kTrees, "");
   const std::optional<bool> holds = ratio_never_exceeds(depth_runs(judged), kThesisRatioCeiling);
-  claim.seeds = seeds_text(judged) + " per resolution (" + std::to_string(judged.size()) + " runs at 256-32)";
+  claim.seeds = seeds_text(judged) + " per resolution (" + std::to_string(judged.size()) + " runs at " +
+                thesis_resolutions_text(m.resolutions) + ")";
 
   // Side by side per resolution: the thesis's three rows against campo's runs.
   std::vector<std::vector<std::string>> side_by_side;
@@ -348,7 +362,8 @@ void table_5_1(const Workbench& bench, Claim& claim, Measured& m) {
   // Beside: the criterion on each of the thesis's settings.
   const auto criterion_on = [&](const std::vector<const RunResult*>& runs) {
     const std::optional<bool> h = ratio_never_exceeds(depth_runs(runs), kThesisRatioCeiling);
-    return std::pair{h, outcomes_text(summarize(runs)) + " at 256-32: " + verdict_word(h)};
+    return std::pair{h, outcomes_text(summarize(runs)) + " at " + thesis_resolutions_text(m.resolutions) + ": " +
+                          verdict_word(h)};
   };
   const auto [thesis_holds, thesis_text] = criterion_on(at_thesis_resolutions(m.thesis_trees, kThesisTrees, ""));
   const auto [checks_holds, checks_text] = criterion_on(at_thesis_resolutions(m.printed, kTrees, "printed_checks"));
@@ -372,7 +387,7 @@ void table_5_1(const Workbench& bench, Claim& claim, Measured& m) {
   }
   claim.verdict_reason =
       !holds ? "No run was measured."
-      : *holds ? "Every one of the " + std::to_string(all.runs) + " runs at 256-32 reached the goal, the largest "
+      : *holds ? "Every one of the " + std::to_string(all.runs) + " runs at " + thesis_resolutions_text(m.resolutions) + " reached the goal, the largest "
                  "normalised length " + fixed(all.max_ratio(), 3) + " (the thesis: never above 1.10), " +
                  std::to_string(all.collisions) + " collisions; with the departures listed."
                : "Not every run reached the goal within 1.10: " + over + "." +
@@ -537,6 +552,11 @@ void barriers(Claim& claim, const Measured& m) {
     }
   }
   for (const auto& [what, count] : failures) failing += (failing.empty() ? "" : "; ") + what + " (" + std::to_string(count) + ")";
+  const std::optional<bool> checks_hold = barriers_solved_through_gap(by_setting["printed checks"]);
+  const std::string printed_checks_text =
+      !checks_hold ? std::string()
+      : *checks_hold ? " The printed checks, which keep no margin toward the sensor, solve it (table)."
+                     : " The printed checks, which keep no margin toward the sensor, do not solve it either (table).";
   claim.verdict_reason =
       !holds ? "No run was measured."
       : *holds ? "Every run at every resolution flew through the gap and reached the goal without collision (" +
@@ -545,8 +565,8 @@ void barriers(Claim& claim, const Measured& m) {
             "; the others: " + failing + "." +
             (cause_known ? " Each of them at a resolution (" + closed + " px) where the 0.5 m margin, with the errors "
                            "of a coarse pixel, leaves less than one free column of the gap seen from the start (table), "
-                           "so the dilated map shows no way through it from there. The printed checks, which keep no "
-                           "margin toward the sensor, do not solve it either (table)."
+                           "so the dilated map shows no way through it from there." +
+                           printed_checks_text
                          : " Not every failing run is at a resolution where the margin closes the gap: the cause is "
                            "not established.");
 }
@@ -703,7 +723,7 @@ void discarded(Claim& claim, const Measured& m) {
                    ", standard error " + fixed(c.standard_error, 2) + ".";
   const auto beside = [&](const std::vector<const RunResult*>& other) {
     const MeansCompared o = compare_means(thesis, discards(other));
-    return fixed(o.b.mean, 2) + " per run at 256-32 (difference " + fixed(o.difference, 2) + ", standard error " +
+    return fixed(o.b.mean, 2) + " per run at " + thesis_resolutions_text(m.resolutions) + " (difference " + fixed(o.difference, 2) + ", standard error " +
            fixed(o.standard_error, 2) + "): " + verdict_word(means_agree(o));
   };
   const std::optional<bool> thesis_scene = means_agree(compare_means(thesis, discards(at_thesis_resolutions(m.thesis_trees, kThesisTrees, ""))));
