@@ -42,6 +42,18 @@ TEST(SceneOverrides, SetsValuesByPointerAndAlias) {
   EXPECT_EQ(d["objects"][1]["params"]["controller"]["speed_limit_mps"], 1);  // created on the way
 }
 
+// Where an override assigned, aliases resolved to the index they named: how
+// `campo run --planner` finds the overrides of the vehicle's planner (issue 31).
+TEST(SceneOverrides, ReturnsThePointerAssignedWithIndices) {
+  nlohmann::json d = document();
+  EXPECT_EQ(apply_override(d, "/objects/drone/planner/params/speed_mps=2"), "/objects/1/planner/params/speed_mps");
+  EXPECT_EQ(apply_override(d, "/objects/0/size_m/2=4"), "/objects/0/size_m/2");
+  EXPECT_EQ(apply_override(d, "/world/a~1b=1"), "/world/a~1b");  // segments escaped as written
+  EXPECT_EQ(override_value("/world/seed=2"), 2);
+  EXPECT_EQ(override_value("/objects/0/alias=crate"), "crate");  // not JSON: a string
+  EXPECT_EQ(override_value("/objects/0/size_m=[1,2,3]"), nlohmann::json::parse("[1,2,3]"));
+}
+
 TEST(SceneOverrides, ReportsBadPaths) {
   EXPECT_THAT(error_of("world.seed=3"), HasSubstr("command line: --set world.seed=3: expected PATH=VALUE"));
   EXPECT_THAT(error_of("/world/seed"), HasSubstr("expected PATH=VALUE"));
