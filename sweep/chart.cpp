@@ -143,12 +143,38 @@ void draw_marker(cv::Mat& image, cv::Point2d p, const cv::Scalar& color, const C
   cv::circle(image, figure::fixed(p), radius(style.marker_px), color, cv::FILLED, cv::LINE_AA, figure::kShift);
 }
 
+// An error bar whose end lies beyond the frame: drawn to the frame's edge, ending in an arrowhead
+// there instead of a cap, so a very wide interval (n = 2) does not squash the plot yet reads as wider.
+void draw_clipped_error_bar(cv::Mat& image, const PlotFrame& frame, double x, double lo, double hi, double dodge_px,
+                            const cv::Scalar& color, const ChartStyle& style) {
+  const auto px = [&](double y) { return frame.to_px(x, y) + cv::Point2d(dodge_px, 0.0); };
+  const bool low_out = lo < frame.y0, high_out = hi > frame.y1;
+  if (!low_out && !high_out) return draw_error_bar(image, px(lo), px(hi), color, style);
+  const cv::Point2d a = px(std::max(lo, frame.y0)), b = px(std::min(hi, frame.y1));
+  const int thickness = std::max(1, style.line_px - 1);
+  cv::line(image, figure::fixed(a), figure::fixed(b), color, thickness, cv::LINE_AA, figure::kShift);
+  for (const auto& [end, out, toward] : {std::tuple{a, low_out, 1.0}, std::tuple{b, high_out, -1.0}}) {
+    if (!out) {
+      cv::line(image, figure::fixed(end - cv::Point2d(style.cap_px, 0)), figure::fixed(end + cv::Point2d(style.cap_px, 0)),
+               color, thickness, cv::LINE_AA, figure::kShift);
+      continue;
+    }
+    // The arrowhead points out of the frame (up at the top, where y pixels grow downwards).
+    const double depth = 1.6 * style.cap_px;
+    const std::vector<cv::Point2d> head{end, end + cv::Point2d(-style.cap_px, -toward * depth),
+                                        end + cv::Point2d(style.cap_px, -toward * depth)};
+    std::vector<cv::Point> fixed_head;
+    for (const cv::Point2d& p : head) fixed_head.push_back(figure::fixed(p));
+    cv::fillConvexPoly(image, fixed_head, color, cv::LINE_AA, figure::kShift);
+  }
+}
+
 // Error bars, then the line through the points (unless `connect` is false), then markers on top.
 void draw_series(cv::Mat& image, const PlotFrame& frame, const std::vector<Point>& points, double dodge_px,
                  const cv::Scalar& color, const ChartStyle& style, bool connect = true) {
   const auto px = [&](double x, double y) { return frame.to_px(x, y) + cv::Point2d(dodge_px, 0.0); };
   for (const Point& p : points) {
-    if (p.hi > p.lo) draw_error_bar(image, px(p.x, p.lo), px(p.x, p.hi), color, style);
+    if (p.hi > p.lo) draw_clipped_error_bar(image, frame, p.x, p.lo, p.hi, dodge_px, color, style);
   }
   std::vector<cv::Point2d> line;
   for (const Point& p : points) line.push_back(px(p.x, p.y));
@@ -199,6 +225,16 @@ LegendRow line_row(const cv::Scalar& color, const std::string& text, const Chart
           text};
 }
 
+// The symbol of the interval drawn: a grey error bar with its marker.
+LegendRow interval_row(const std::string& text, const ChartStyle& style) {
+  return {[&style](cv::Mat& m, cv::Point2d c) {
+            const double half = 0.4 * style.legend_row_px;
+            draw_error_bar(m, c - cv::Point2d(0, half), c + cv::Point2d(0, half), figure::kMutedInk, style);
+            draw_marker(m, c, figure::kMutedInk, style);
+          },
+          text};
+}
+
 // The x axis of numeric values: log2 when all are powers of two; ticked at the values.
 struct NumericAxis {
   bool log2 = false;
@@ -223,6 +259,19 @@ NumericAxis numeric_axis(const std::vector<nlohmann::json>& values) {
 std::pair<double, double> padded(double lo, double hi, double min_pad) {
   const double pad = std::max(0.08 * (hi - lo), min_pad);
   return {lo - pad, hi + pad};
+}
+
+// The y range of means and their intervals: every mean and interval, but an interval reaching
+// beyond three times the means' spread (and the means' own size) past them is cut at the frame
+// (draw_clipped_error_bar marks it), so one wide interval of two runs does not flatten the rest.
+std::pair<double, double> interval_range(double mean_lo, double mean_hi, double lo, double hi) {
+  const double reach = 3.0 * std::max({mean_hi - mean_lo, std::abs(mean_hi), std::abs(mean_lo), 1e-9});
+  return {std::max(lo, mean_lo - reach), std::min(hi, mean_hi + reach)};
+}
+
+// The name of a mean's interval in legends: what statistics.hpp computes for this support.
+std::string interval_name(Support support) {
+  return support == Support::non_negative ? "mean, 95% CI (log t)" : "mean, 95% CI (t)";
 }
 
 // The summary table as series: one per scene, in order of first appearance.
@@ -253,20 +302,28 @@ cv::Mat draw_sweep_chart(const SweepTable& table) {
   const NumericAxis x_axis = numeric_axis(values);
 
   std::vector<Series> series;
-  double ratio_lo = 1.0, ratio_hi = 1.0;  // the ideal ratio 1 is always in view
+  // The means and their intervals' extent; the ideal ratio 1 is always in view.
+  double mean_lo = 1.0, mean_hi = 1.0, ratio_lo = 1.0, ratio_hi = 1.0;
   for (const TableRow& row : table.rows) {
     auto it = std::find_if(series.begin(), series.end(), [&](const Series& s) { return s.scene == row.scene; });
     if (it == series.end()) it = series.insert(series.end(), Series{row.scene, {}, {}});
     const double x = x_axis.to_x(row.params.front().get<double>());
-    // Successes only: an aborted run's short path would pull the mean below the ideal 1.
+    // Successes only: an aborted run's short path would pull the mean below the ideal 1. The
+    // interval is the one campo plot and the tables give (the ratio is >= 0: log scale).
     if (row.path_ratio_reached) {
       const MeanSd& r = *row.path_ratio_reached;
-      it->path_ratio.push_back({x, r.mean, r.mean - r.sd, r.mean + r.sd});
-      ratio_lo = std::min(ratio_lo, r.mean - r.sd);
-      ratio_hi = std::max(ratio_hi, r.mean + r.sd);
+      const Interval ci = r.ci95 && !row.identical ? *r.ci95 : Interval{r.mean, r.mean};
+      it->path_ratio.push_back({x, r.mean, ci.low, ci.high});
+      mean_lo = std::min(mean_lo, r.mean);
+      mean_hi = std::max(mean_hi, r.mean);
+      ratio_lo = std::min(ratio_lo, ci.low);
+      ratio_hi = std::max(ratio_hi, ci.high);
     }
-    it->success.push_back({x, 100.0 * row.success_rate, 100.0 * row.success_rate, 100.0 * row.success_rate});
+    const Interval wilson = row.identical ? Interval{row.success_rate, row.success_rate}
+                                          : wilson_interval(row.reached, row.runs);
+    it->success.push_back({x, 100.0 * row.success_rate, 100.0 * wilson.low, 100.0 * wilson.high});
   }
+  std::tie(ratio_lo, ratio_hi) = interval_range(mean_lo, mean_hi, ratio_lo, ratio_hi);
   for (Series& s : series) {
     for (auto* points : {&s.path_ratio, &s.success}) {
       std::sort(points->begin(), points->end(), [](const Point& a, const Point& b) { return a.x < b.x; });
@@ -281,13 +338,16 @@ cv::Mat draw_sweep_chart(const SweepTable& table) {
 
   std::vector<LegendRow> legend;
   for (std::size_t i = 0; i < series.size(); ++i) legend.push_back(line_row(run_color(i), series[i].scene, style));
+  legend.push_back(interval_row(interval_name(Support::non_negative), style));
+  legend.push_back(interval_row("rate, 95% Wilson", style));
   // The legend is as wide as the longest scene name needs (within limits); the image ends after it.
   const int legend_px = legend_width(legend, "", style, 170, 400);
   const int width = kLegendX + legend_px + 15;
 
   cv::Mat image(kHeight, width, CV_8UC3, figure::kWhite);
-  put_title(image, table.name + ": path length and success rate vs " + axis, {0, 0, width, kTitleBandPx}, style.title);
-  const std::string x_label = axis + (x_axis.log2 ? " (log2 scale)" : "");
+  put_title(image, table.name + ": path length and success rate vs " + quantity_name(axis).words,
+            {0, 0, width, kTitleBandPx}, style.title);
+  const std::string x_label = field_heading(axis) + (x_axis.log2 ? ", log2 scale" : "");
   const auto ratio_y = linear_ticks(ratio_frame.y0, ratio_frame.y1, kPlotHeight / figure::kTickSpacingPx);
   const auto success_y = percent_ticks();
 
@@ -298,9 +358,9 @@ cv::Mat draw_sweep_chart(const SweepTable& table) {
     std::vector<Point> Series::*points;
     std::optional<double> reference_y;  ///< a dashed line: the ideal value
   } panels[] = {
-      {ratio_frame, ratio_y, "Normalized path length, reached runs (mean +/- sd)", "path length / nominal route",
+      {ratio_frame, ratio_y, "Normalized path length, reached runs", metric_label("path_ratio"),
        &Series::path_ratio, 1.0},
-      {success_frame, success_y, "Success rate (%)", "runs reaching the goal (%)", &Series::success, std::nullopt},
+      {success_frame, success_y, "Success rate", metric_label("success"), &Series::success, std::nullopt},
   };
   for (const auto& panel : panels) {
     const cv::Rect& p = panel.frame.plot_px;
@@ -434,7 +494,9 @@ cv::Mat PlotBuilder::draw(const PlotConfig& config) const {
     std::optional<BoxStats> box;     ///< box plots of numbers
   };
   std::vector<Mark> marks;
+  const Support support = metric_support(request.y);
   double y_lo = HUGE_VAL, y_hi = -HUGE_VAL;
+  double mean_lo = HUGE_VAL, mean_hi = -HUGE_VAL;  // line plots: the means alone
   int run_count = 0, failed = 0;
   for (const Group& g : groups) {
     run_count += g.fold.runs;
@@ -443,8 +505,10 @@ cv::Mat PlotBuilder::draw(const PlotConfig& config) const {
     Mark mark{series_index, x_of(g.key[0]), std::nullopt, std::nullopt};
     if (line || rate) {
       if (g.fold.stats.count() == 0) continue;
-      mark.summary = kind == MetricKind::number ? g.fold.stats.values() : g.fold.stats.rate();
+      mark.summary = kind == MetricKind::number ? g.fold.stats.values(support) : g.fold.stats.rate();
       const Summary& s = *mark.summary;
+      mean_lo = std::min(mean_lo, scale * s.mean);
+      mean_hi = std::max(mean_hi, scale * s.mean);
       y_lo = std::min({y_lo, scale * s.mean, s.ci95 ? scale * s.ci95->low : HUGE_VAL});
       y_hi = std::max({y_hi, scale * s.mean, s.ci95 ? scale * s.ci95->high : -HUGE_VAL});
     } else {
@@ -456,6 +520,7 @@ cv::Mat PlotBuilder::draw(const PlotConfig& config) const {
     marks.push_back(std::move(mark));
   }
   if (marks.empty()) throw InputError(cli, "--y", "a metric with values: no run has \"" + request.y + "\"");
+  if (line && !rate) std::tie(y_lo, y_hi) = interval_range(mean_lo, mean_hi, y_lo, y_hi);
 
   // Layout: title and note on top, the legend right of the plot.
   const ChartStyle& style = kPaperStyle;
@@ -477,6 +542,12 @@ cv::Mat PlotBuilder::draw(const PlotConfig& config) const {
                         text});
     }
   }
+  // What the error bars are, named in the legend.
+  if (rate) {
+    legend.push_back(interval_row("rate, 95% Wilson", style));
+  } else if (line) {
+    legend.push_back(interval_row(interval_name(support), style));
+  }
   const std::string legend_heading = request.group.empty() ? "" : field_heading(request.group);
   const int legend_px = legend_width(legend, legend_heading, style, 220, config.width_px / 4);
   const int left = 170, top = 150, bottom_margin = 130;
@@ -496,11 +567,15 @@ cv::Mat PlotBuilder::draw(const PlotConfig& config) const {
   }
 
   cv::Mat image(config.height_px, config.width_px, CV_8UC3, figure::kWhite);
-  const std::string y_label = metric_heading(request.y);
-  const std::string title = request.title.empty() ? layout.name + ": " + y_label + " vs " + request.x : request.title;
+  const std::string y_label = request.y_label.empty() ? metric_heading(request.y) : request.y_label;
+  const std::string title = !request.title.empty() ? request.title
+                                                   : layout.name + ": " + metric_heading(request.y) + " vs " +
+                                                         quantity_name(request.x).words;
   put_title(image, title, {0, 10, config.width_px, 60}, style.title);
-  const std::string spread = rate ? "rate with 95% Wilson interval"
-                             : line ? "mean with 95% confidence interval (Student t)"
+  const std::string spread = rate   ? "rate with 95% Wilson interval"
+                             : line ? (support == Support::non_negative
+                                           ? "mean and 95% confidence interval (t on the log scale: the metric is >= 0)"
+                                           : "mean and 95% confidence interval (Student t)")
                                     : "median, quartiles, whiskers at 1.5 IQR, outliers";
   const std::string note = spread + "; " + std::to_string(run_count) + " runs" +
                            (failed > 0 ? ", " + std::to_string(failed) + " failed" : "");
@@ -542,7 +617,8 @@ cv::Mat PlotBuilder::draw(const PlotConfig& config) const {
     std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return a.x < b.x; });
     draw_series(image, frame, points, dodge, color, style, line);
   }
-  const std::string x_label = field_heading(request.x) + (x_axis.log2 ? " (log2 scale)" : "");
+  const std::string x_label =
+      !request.x_label.empty() ? request.x_label : field_heading(request.x) + (x_axis.log2 ? ", log2 scale" : "");
   draw_axes(image, frame, x_ticks, y_ticks, x_label, y_label, style);
   draw_legend(image, {plot_px.x + plot_px.width + 40, plot_px.y}, legend_px, legend, legend_heading, style);
   return image;

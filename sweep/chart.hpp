@@ -1,9 +1,11 @@
 #pragma once
 /// Charts of sweep results (SPEC §9), drawn with OpenCV, the same pixels for
 /// the same results. The summary chart of `campo table`: two panels,
-/// normalized path length (mean with ± sd error bars) and success rate (%)
-/// against one numeric axis, one coloured series per scene (the path length
-/// over the runs that reached their goal only). The plots of
+/// normalized path length (mean and its 95 % confidence interval, the one
+/// `campo plot` and the tables give: mean_interval95, on the log scale as the
+/// ratio is >= 0) and success rate (%, with its Wilson interval) against one
+/// numeric axis, one coloured series per scene (the path length over the runs
+/// that reached their goal only); the legend names both intervals. The plots of
 /// `campo plot`: any metric against any field, as lines or box plots.
 #include <filesystem>
 #include <memory>
@@ -28,7 +30,8 @@ void write_sweep_chart(const SweepTable& table, const std::filesystem::path& png
 
 enum class PlotKind {
   automatic,  ///< line when every x value is a number, else box
-  line,       ///< x numeric (log2 when all are powers of two): mean and 95 % interval per x, lines through the means
+  line,       ///< x numeric (log2 when all are powers of two): mean and 95 % interval per x (mean_interval95 with
+              ///< metric_support, named in the legend), lines through the means
   box,        ///< x as categories: median, quartiles, whiskers at 1.5 IQR, outliers (rates: the rate and its interval)
 };
 
@@ -38,7 +41,9 @@ struct PlotRequest {
   std::string y;       ///< a metric (check_metric), "success" for the success rate, "path_ratio@reached" over successes
   std::string group;   ///< a field other than x: one coloured series per value; empty: one series
   PlotKind kind = PlotKind::automatic;
-  std::string title;   ///< empty: "<sweep>: <metric label> vs <x>"
+  std::string title;    ///< empty: "<sweep>: <metric heading> vs <x>"
+  std::string x_label;  ///< empty: field_heading(x), with its unit, and ", log2 scale" when it is
+  std::string y_label;  ///< empty: metric_heading(y), with its unit
 };
 
 /// Size of a plot; the fonts suit it (a figure for a paper).

@@ -85,11 +85,12 @@ RunResult read_result(const JsonNode& node) {
   return result;
 }
 
-// Mean and sd of one metric over some completed runs; empty when there are none.
+// Mean, sd and interval of one metric over some completed runs; empty when there are none.
+// Every statistic of the summary (waypoints, lengths, ratios, times) is >= 0 by definition.
 std::optional<MeanSd> spread(const RunningStats& stats) {
   if (stats.count() == 0) return std::nullopt;
-  const Summary s = stats.values();
-  return MeanSd{s.mean, s.sd};
+  const Summary s = stats.values(Support::non_negative);
+  return MeanSd{s.mean, s.sd, s.ci95};
 }
 
 // One row of the summary table, a run at a time.
@@ -528,6 +529,28 @@ MetricKind check_metric(const std::string& metric, const std::vector<RunResult>&
   return catalog.check(metric, file, where);
 }
 
+bool non_negative_metric(const std::string& metric) {
+  const std::string base = split_metric(metric).base;
+  if (base.find("clearance") != std::string::npos) return false;  // signed distances
+  static constexpr std::array<std::string_view, 7> kNonNegative{
+      "path_ratio", "collisions", "replans", "planner_calls", "waypoints_planned", "waypoints_reached",
+      "waypoints_discarded"};
+  if (std::find(kNonNegative.begin(), kNonNegative.end(), base) != kNonNegative.end()) return true;
+  // A unit of time or length among the words after the first: "sim_time_s", "replan_time_ms_max".
+  std::size_t start = base.find('_');
+  while (start != std::string::npos) {
+    const std::size_t end = base.find('_', start + 1);
+    const std::string_view word(base.data() + start + 1, (end == std::string::npos ? base.size() : end) - start - 1);
+    if (word == "s" || word == "ms" || word == "m") return true;
+    start = end;
+  }
+  return false;
+}
+
+Support metric_support(const std::string& metric) {
+  return non_negative_metric(metric) ? Support::non_negative : Support::real;
+}
+
 std::optional<double> metric_value(const RunResult& run, const std::string& metric) {
   const MetricName name = split_metric(metric);
   const bool reached = run.completed && run.metrics.outcome == "reached";
@@ -546,7 +569,7 @@ std::optional<Summary> summarize_metric(const std::vector<const RunResult*>& run
     if (const auto v = metric_value(*run, metric)) values.push_back(*v);
   }
   if (values.empty()) return std::nullopt;
-  if (kind == MetricKind::number) return summarize_values(values);
+  if (kind == MetricKind::number) return summarize_values(values, metric_support(metric));
   const auto successes = std::count(values.begin(), values.end(), 1.0);
   return summarize_rate(static_cast<int>(successes), static_cast<int>(values.size()));
 }

@@ -256,6 +256,18 @@ std::vector<std::string> available_metrics(const std::vector<RunResult>& runs);
 MetricKind check_metric(const std::string& metric, const std::vector<RunResult>& runs, const std::string& file,
                         const std::string& where);
 
+/// Whether a metric's values are >= 0 by its definition in run.json
+/// (docs/running.md), which gives its mean a log-transformed interval
+/// (mean_interval95): path_ratio; counts (collisions, replans,
+/// planner_calls, waypoints_*); durations and lengths, named with a unit
+/// of time or length ("_s", "_ms", "_m" as one of its words: sim_time_s,
+/// replan_time_ms_max, path_length_m, cross_track_rms_m) except clearances,
+/// which are signed (negative when the shapes overlapped). Any other metric
+/// (a plugin's) is taken as signed: the Student t interval.
+bool non_negative_metric(const std::string& metric);
+/// non_negative_metric() as a Support.
+Support metric_support(const std::string& metric);
+
 /// A run's value of `metric`: for "success" (and "outcome"), 1 when the run
 /// completed with outcome "reached", else 0 (failed runs included); otherwise
 /// the completed run's number, or 1/0 for a boolean; empty when it has none,
@@ -311,10 +323,12 @@ class RunGroups {
 std::vector<RunGroup> group_runs(const std::vector<RunResult>& runs, const TableLayout& layout,
                                  const std::vector<std::string>& fields);
 
-/// Mean and sample standard deviation (n - 1; 0 for one value).
+/// Mean and sample standard deviation (n - 1; 0 for one value), and the
+/// 95 % interval of the mean (mean_interval95; empty for one value).
 struct MeanSd {
   double mean = 0.0;
   double sd = 0.0;
+  std::optional<Interval> ci95 = std::nullopt;
 };
 
 /// One row of the table: the runs of one scene with the same axis values.

@@ -70,7 +70,22 @@ double student_t_quantile(double p, int dof) {
   return 0.5 * (lo + hi);
 }
 
-Summary summarize_values(const std::vector<double>& values) {
+std::optional<Interval> mean_interval95(double mean, double sd, int n, Support support) {
+  if (n < 2) return std::nullopt;
+  const double se = sd / std::sqrt(static_cast<double>(n));
+  const double t = student_t_quantile(0.975, n - 1);
+  if (support == Support::non_negative) {
+    assert(mean >= 0.0);
+    // Values >= 0 with mean 0 are all 0: no spread to widen.
+    if (mean <= 0.0 || se <= 0.0) return Interval{mean, mean};
+    // The t interval of log(mean), with the delta method's standard error se / mean, taken back.
+    const double factor = std::exp(t * se / mean);
+    return Interval{mean / factor, mean * factor};
+  }
+  return Interval{mean - t * se, mean + t * se};
+}
+
+Summary summarize_values(const std::vector<double>& values, Support support) {
   assert(!values.empty());
   Summary s;
   s.n = static_cast<int>(values.size());
@@ -79,8 +94,8 @@ Summary summarize_values(const std::vector<double>& values) {
   double squares = 0.0;
   for (double v : values) squares += (v - s.mean) * (v - s.mean);
   s.sd = std::sqrt(squares / (s.n - 1));
-  const double half = student_t_quantile(0.975, s.n - 1) * s.sd / std::sqrt(static_cast<double>(s.n));
-  s.ci95 = Interval{s.mean - half, s.mean + half};
+  const bool negative = std::any_of(values.begin(), values.end(), [](double v) { return v < 0.0; });
+  s.ci95 = mean_interval95(s.mean, s.sd, s.n, negative ? Support::real : support);
   return s;
 }
 
@@ -126,6 +141,7 @@ BoxStats box_stats(std::vector<double> values) {
 
 void RunningStats::add(double value) {
   ++n_;
+  if (value < 0.0) negative_ = true;
   if (value == 1.0) ++ones_;
   sum_ += value;
   const double delta = value - mean_;
@@ -133,15 +149,14 @@ void RunningStats::add(double value) {
   m2_ += delta * (value - mean_);
 }
 
-Summary RunningStats::values() const {
+Summary RunningStats::values(Support support) const {
   assert(n_ > 0);
   Summary s;
   s.n = n_;
   s.mean = sum_ / n_;
   if (n_ < 2) return s;
   s.sd = std::sqrt(std::max(m2_, 0.0) / (n_ - 1));
-  const double half = student_t_quantile(0.975, n_ - 1) * s.sd / std::sqrt(static_cast<double>(n_));
-  s.ci95 = Interval{s.mean - half, s.mean + half};
+  s.ci95 = mean_interval95(s.mean, s.sd, n_, negative_ ? Support::real : support);
   return s;
 }
 

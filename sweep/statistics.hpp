@@ -29,8 +29,26 @@ struct Summary {
   std::optional<Interval> ci95;  ///< 95 % interval of the mean; empty for n < 2 (numbers) or n = 0 (rates)
 };
 
-/// Mean, sd and the t interval mean ± t(0.975, n - 1) sd / sqrt(n) of `values` (not empty).
-Summary summarize_values(const std::vector<double>& values);
+/// What values a metric can take, which decides its interval's method.
+enum class Support {
+  real,          ///< any sign: the Student t interval
+  non_negative,  ///< >= 0 by definition (lengths, times, counts, ratios): the log-transformed t interval
+};
+
+/// The 95 % confidence interval of the mean of `n` >= 2 values with this
+/// mean and sample sd; empty for n < 2. Support::real: the Student t
+/// interval mean ± t sd / sqrt(n), t = t(0.975, n - 1). Support::non_negative
+/// (mean >= 0): the same interval computed for log(mean), whose standard
+/// error is by the delta method (sd / sqrt(n)) / mean, and taken back:
+/// [mean / f, mean * f] with f = exp(t sd / (sqrt(n) mean)). It is as wide as
+/// the t interval in relative terms for small spreads, never below 0, and
+/// holds the mean; a mean of 0 (all values 0) gives [0, 0].
+std::optional<Interval> mean_interval95(double mean, double sd, int n, Support support);
+
+/// Mean, sd and mean_interval95() of `values` (not empty). Support::non_negative
+/// applies when every value is >= 0; a negative value means the metric is
+/// signed after all, and the t interval is used.
+Summary summarize_values(const std::vector<double>& values, Support support = Support::real);
 
 /// `successes` of `trials` (> 0) as a rate: mean = fraction, sd of the 0/1
 /// values, ci95 the Wilson score interval (sensible at 0 % and 100 %).
@@ -59,13 +77,14 @@ class RunningStats {
   void add(double value);
   int count() const { return n_; }
   /// summarize_values() of the values added (count() > 0).
-  Summary values() const;
+  Summary values(Support support = Support::real) const;
   /// summarize_rate() with the values equal to 1 as successes (count() > 0).
   Summary rate() const;
 
  private:
   int n_ = 0;
   int ones_ = 0;
+  bool negative_ = false;  ///< some value < 0
   double sum_ = 0.0;   ///< in order of addition
   double mean_ = 0.0;  ///< Welford's running mean
   double m2_ = 0.0;    ///< sum of squared deviations from it

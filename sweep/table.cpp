@@ -45,6 +45,13 @@ constexpr auto kStatColumns = std::to_array<std::string_view>({
 // What a cell or row of identical runs says instead of a spread.
 constexpr std::string_view kIdenticalNote = "identical runs: seeds vary nothing";
 
+constexpr std::array<std::pair<std::string_view, CellStat>, 4> kCellStatNames{{
+    {"mean", CellStat::mean}, {"mean-sd", CellStat::mean_sd}, {"mean-ci", CellStat::mean_ci},
+    {"mean-sd-ci", CellStat::mean_sd_ci}}};
+
+bool shows_sd(CellStat stat) { return stat == CellStat::mean_sd || stat == CellStat::mean_sd_ci; }
+bool shows_ci(CellStat stat) { return stat == CellStat::mean_ci || stat == CellStat::mean_sd_ci; }
+
 // Shortest text that reads back as the same double.
 std::string exact(double value) {
   char text[32];
@@ -127,8 +134,19 @@ const HumanStyle kLatexStyle{[](const std::string& text) {
                              },
                              " $\\pm$ ", "\\%", "--"};
 
+// A mean with its sd and interval as the cell format asks (`ci` empty: one value); `decimals` for all three.
+std::string spread_text(double mean, double sd, const std::optional<Interval>& ci, int decimals,
+                        const CellFormat& format, const HumanStyle& style) {
+  std::string text = fixed(mean, decimals);
+  // One value has no sd to speak of (nor an interval): the mean alone.
+  if (shows_sd(format.stat) && ci) text += style.plus_minus + fixed(sd, decimals);
+  if (shows_ci(format.stat) && ci) text += " [" + fixed(ci->low, decimals) + ", " + fixed(ci->high, decimals) + "]";
+  return text;
+}
+
 // Header and body cells of the summary table, shared by Markdown and LaTeX.
-std::vector<std::vector<std::string>> human_cells(const SweepTable& table, const HumanStyle& style) {
+std::vector<std::vector<std::string>> human_cells(const SweepTable& table, const HumanStyle& style,
+                                                  const CellFormat& format) {
   std::vector<std::string> header{"Scene"};
   for (const std::string& axis : table.axes) header.push_back(field_heading(axis));
   for (const char* h : {"Runs", "Success", "Reached runs"}) header.emplace_back(h);
@@ -147,9 +165,13 @@ std::vector<std::vector<std::string>> human_cells(const SweepTable& table, const
     line.push_back(std::to_string(row.reached));
     for (const SpreadColumn& column : kSpreadColumns) {
       const std::optional<MeanSd>& s = row.*column.member;
-      std::string text = s ? fixed(s->mean, column.decimals) : style.missing;
-      if (s && !row.identical) text += style.plus_minus + fixed(s->sd, column.decimals);
-      line.push_back(text);
+      if (!s) {
+        line.push_back(style.missing);
+      } else if (row.identical) {
+        line.push_back(fixed(s->mean, column.decimals));  // one run repeated: no spread to speak of
+      } else {
+        line.push_back(spread_text(s->mean, s->sd, s->ci95, column.decimals, format, style));
+      }
     }
     line.push_back(std::to_string(row.collisions));
     line.push_back(row.min_clearance_m ? fixed(*row.min_clearance_m, 3) : style.missing);
@@ -175,15 +197,16 @@ std::string markdown_grid(const std::vector<std::vector<std::string>>& cells) {
   return out;
 }
 
-// A LaTeX tabular; `heading` (complete lines) goes above the first row, which is the header.
+// A booktabs tabular; `heading` (complete lines) goes above the first row, which is the header.
 std::string latex_tabular(const std::vector<std::vector<std::string>>& cells, const std::string& heading = "") {
-  std::string out = "\\begin{tabular}{l" + std::string(cells.front().size() - 1, 'r') + "}\n\\hline\n" + heading;
+  std::string out = "% needs \\usepackage{booktabs}\n\\begin{tabular}{l" +
+                    std::string(cells.front().size() - 1, 'r') + "}\n\\toprule\n" + heading;
   for (std::size_t r = 0; r < cells.size(); ++r) {
     for (std::size_t c = 0; c < cells[r].size(); ++c) out += (c == 0 ? "" : " & ") + cells[r][c];
     out += " \\\\\n";
-    if (r == 0) out += "\\hline\n";
+    if (r == 0) out += "\\midrule\n";
   }
-  return out + "\\hline\n\\end{tabular}\n";
+  return out + "\\bottomrule\n\\end{tabular}\n";
 }
 
 // Label of a row or column value; `missing` for null (a run without that axis or planner).
@@ -203,31 +226,36 @@ int metric_decimals(const MetricTable& table, std::size_t metric) {
 }
 
 std::string human_cell(const MetricCell& cell, std::size_t metric, MetricKind kind, int decimals,
-                       const HumanStyle& style) {
+                       const HumanStyle& style, const CellFormat& format) {
   if (cell.runs == 0) return style.missing;
   const std::optional<Summary>& s = cell.metrics[metric];
   const int n = s ? s->n : 0;
-  std::string counts = " (n=" + std::to_string(n) +
-                       (cell.failed > 0 ? ", " + std::to_string(cell.failed) + " failed" : "") + ")";
+  // The counts after the statistic: n when asked for, failed runs always.
+  std::vector<std::string> notes;
+  if (format.with_n) notes.push_back("n=" + std::to_string(n));
+  if (cell.failed > 0) notes.push_back(std::to_string(cell.failed) + " failed");
   if (cell.identical) {
     // One run repeated: its value, and no spread or interval, which would pretend to a sample.
-    counts = " (n=" + (n == cell.runs ? "" : std::to_string(n) + " of ") + std::to_string(cell.runs) + " " +
-             std::string(kIdenticalNote) + ")";
+    notes.assign(1, format.with_n ? "n=" + (n == cell.runs ? "" : std::to_string(n) + " of ") +
+                                        std::to_string(cell.runs) + " " + std::string(kIdenticalNote)
+                                  : std::string("identical runs"));
   }
+  std::string counts;
+  for (std::size_t i = 0; i < notes.size(); ++i) counts += (i == 0 ? " (" : ", ") + notes[i];
+  if (!notes.empty()) counts += ")";
   if (!s) return style.missing + counts;
   if (cell.identical) {
     return (kind == MetricKind::rate ? fixed(100.0 * s->mean, 0) + style.percent : fixed(s->mean, decimals)) + counts;
   }
   if (kind == MetricKind::rate) {
-    return fixed(100.0 * s->mean, 0) + style.percent + " [" + fixed(100.0 * s->ci95->low, 0) + ", " +
-           fixed(100.0 * s->ci95->high, 0) + "]" + counts;
+    // A rate has no sd worth printing: the rate, and its Wilson interval when intervals are asked for.
+    std::string text = fixed(100.0 * s->mean, 0) + style.percent;
+    if (shows_ci(format.stat) && s->ci95) {
+      text += " [" + fixed(100.0 * s->ci95->low, 0) + ", " + fixed(100.0 * s->ci95->high, 0) + "]";
+    }
+    return text + counts;
   }
-  std::string text = fixed(s->mean, decimals);
-  if (s->ci95) {
-    text += style.plus_minus + fixed(s->sd, decimals) + " [" + fixed(s->ci95->low, decimals) + ", " +
-            fixed(s->ci95->high, decimals) + "]";
-  }
-  return text + counts;
+  return spread_text(s->mean, s->sd, s->ci95, decimals, format, style) + counts;
 }
 
 std::string capitalized(std::string text) {
@@ -237,14 +265,15 @@ std::string capitalized(std::string text) {
 
 // Header and body cells of a metric table; `grouped_header`: column values above (LaTeX), not in each header cell.
 std::vector<std::vector<std::string>> metric_cells(const MetricTable& table, const HumanStyle& style,
-                                                   bool grouped_header) {
+                                                   bool grouped_header, const CellFormat& format) {
   const std::size_t metrics = table.request.metrics.size();
   std::vector<std::string> header{style.escape(field_heading(table.request.rows))};
   for (const nlohmann::json& col : table.cols) {
     for (const std::string& metric : table.request.metrics) {
       const std::string label = capitalized(metric_heading(metric));
-      header.push_back(style.escape(col.is_null() || grouped_header ? label
-                                                                   : value_label(col) + ": " + label));
+      header.push_back(style.escape(table.request.cols.empty() || grouped_header
+                                        ? label
+                                        : field_value_heading(table.request.cols, col) + ": " + label));
     }
   }
   std::vector<int> decimals;
@@ -253,7 +282,9 @@ std::vector<std::vector<std::string>> metric_cells(const MetricTable& table, con
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
     std::vector<std::string> line{style.escape(value_text(table.rows[r], style.missing))};
     for (const MetricCell& cell : table.cells[r]) {
-      for (std::size_t m = 0; m < metrics; ++m) line.push_back(human_cell(cell, m, table.kinds[m], decimals[m], style));
+      for (std::size_t m = 0; m < metrics; ++m) {
+        line.push_back(human_cell(cell, m, table.kinds[m], decimals[m], style, format));
+      }
     }
     cells.push_back(line);
   }
@@ -295,28 +326,44 @@ std::string metric_csv(const MetricTable& table) {
   return out;
 }
 
-std::string metric_latex(const MetricTable& table) {
+std::string metric_latex(const MetricTable& table, const CellFormat& format) {
   std::string heading;
   if (!table.request.cols.empty()) {
-    // One \multicolumn group per column value over its metrics.
-    for (const nlohmann::json& col : table.cols) {
-      heading += " & \\multicolumn{" + std::to_string(table.request.metrics.size()) + "}{c}{" +
-                 kLatexStyle.escape(value_text(col, kLatexStyle.missing)) + "}";
+    // One \multicolumn group per column value over its metrics, headed by the field and the
+    // value, a rule under each group (trimmed, so neighbouring groups' rules stay apart).
+    const std::size_t width = table.request.metrics.size();
+    std::string rules;
+    for (std::size_t c = 0; c < table.cols.size(); ++c) {
+      heading += " & \\multicolumn{" + std::to_string(width) + "}{c}{" +
+                 kLatexStyle.escape(field_value_heading(table.request.cols, table.cols[c])) + "}";
+      const std::size_t first = 2 + c * width;
+      rules += (c == 0 ? "" : " ") + std::string("\\cmidrule(lr){") + std::to_string(first) + "-" +
+               std::to_string(first + width - 1) + "}";
     }
-    heading += " \\\\\n";
+    heading += " \\\\\n" + rules + "\n";
   }
-  return latex_tabular(metric_cells(table, kLatexStyle, true), heading);
+  std::vector<std::vector<std::string>> cells = metric_cells(table, kLatexStyle, true, format);
+  // Long headings on two lines (the metric, then the runs it is over), so the columns stay narrow.
+  for (std::size_t c = 1; c < cells.front().size(); ++c) {
+    std::string& h = cells.front()[c];
+    if (const std::size_t comma = h.rfind(", "); comma != std::string::npos) {
+      h = "\\begin{tabular}[b]{@{}c@{}}" + h.substr(0, comma + 1) + "\\\\" + h.substr(comma + 2) + "\\end{tabular}";
+    }
+  }
+  return latex_tabular(cells, heading);
 }
 
 }  // namespace
 
 std::span<const std::string_view> table_stat_columns() { return kStatColumns; }
 
-std::string format_table(const SweepTable& table, TableFormat format) {
+std::span<const std::pair<std::string_view, CellStat>> cell_stat_names() { return kCellStatNames; }
+
+std::string format_table(const SweepTable& table, TableFormat format, const CellFormat& cell) {
   switch (format) {
-    case TableFormat::markdown: return markdown_grid(human_cells(table, kMarkdownStyle));
+    case TableFormat::markdown: return markdown_grid(human_cells(table, kMarkdownStyle, cell));
     case TableFormat::csv: return csv(table);
-    case TableFormat::latex: return latex_tabular(human_cells(table, kLatexStyle));
+    case TableFormat::latex: return latex_tabular(human_cells(table, kLatexStyle, cell));
   }
   return {};
 }
@@ -412,7 +459,9 @@ MetricTable MetricTableBuilder::finish() const {
     for (std::size_t m = 0; m < request.metrics.size(); ++m) {
       const RunningStats& values = fold.metrics[m];
       std::optional<Summary> s;
-      if (values.count() > 0) s = table.kinds[m] == MetricKind::number ? values.values() : values.rate();
+      if (values.count() > 0) {
+        s = table.kinds[m] == MetricKind::number ? values.values(metric_support(request.metrics[m])) : values.rate();
+      }
       // Identical runs are one value, not a sample: no interval (a Wilson interval would still be wide).
       if (s && cell.identical) s->ci95.reset();
       cell.metrics.push_back(s);
@@ -427,38 +476,50 @@ MetricTable tabulate(const std::vector<RunResult>& runs, const TableLayout& layo
   return builder.finish();
 }
 
-std::string format_metric_table(const MetricTable& table, TableFormat format) {
+std::string format_metric_table(const MetricTable& table, TableFormat format, const CellFormat& cell) {
   switch (format) {
-    case TableFormat::markdown: return markdown_grid(metric_cells(table, kMarkdownStyle, false));
+    case TableFormat::markdown: return markdown_grid(metric_cells(table, kMarkdownStyle, false, cell));
     case TableFormat::csv: return metric_csv(table);
-    case TableFormat::latex: return metric_latex(table);
+    case TableFormat::latex: return metric_latex(table, cell);
   }
   return {};
+}
+
+QuantityName quantity_name(const std::string& name) {
+  // Unit suffixes of run.json's metric and parameter names, wherever they stand after the first word.
+  static constexpr std::array<std::pair<std::string_view, std::string_view>, 14> kUnits{{
+      {"m", "m"}, {"s", "s"}, {"ms", "ms"}, {"mps", "m/s"}, {"mps2", "m/s^2"}, {"rad", "rad"},
+      {"radps", "rad/s"}, {"deg", "deg"}, {"degps", "deg/s"}, {"hz", "Hz"}, {"px", "px"}, {"kg", "kg"},
+      {"pct", "%"}, {"percent", "%"}}};
+  QuantityName q;
+  std::size_t start = 0;
+  for (bool first = true; start <= name.size(); first = false) {
+    const std::size_t end = std::min(name.find('_', start), name.size());
+    const std::string_view word(name.data() + start, end - start);
+    const auto u = std::find_if(kUnits.begin(), kUnits.end(), [&](const auto& entry) { return entry.first == word; });
+    if (!first && q.unit.empty() && u != kUnits.end()) {
+      q.unit = u->second;
+    } else if (!word.empty()) {
+      (q.words += q.words.empty() ? "" : " ") += word;
+    }
+    start = end + 1;
+  }
+  return q;
+}
+
+std::string quantity_label(const std::string& name) {
+  const QuantityName q = quantity_name(name);
+  const std::string words = capitalized(q.words);
+  return q.unit.empty() ? words : words + " (" + q.unit + ")";
 }
 
 std::string metric_label(const std::string& metric_text) {
   const MetricName name = split_metric(metric_text);
   if (name.reached_only) return metric_label(name.base) + ", reached runs";
   const std::string& metric = name.base;
-  if (metric == "success" || metric == "outcome") return "success rate (%)";
-  if (metric == "path_ratio") return "normalized path length";
-  // Unit suffixes of run.json's metric names, wherever they stand after the first word.
-  static constexpr std::array<std::pair<std::string_view, std::string_view>, 7> kUnits{{
-      {"m", "m"}, {"s", "s"}, {"ms", "ms"}, {"mps", "m/s"}, {"radps", "rad/s"}, {"deg", "deg"}, {"hz", "Hz"}}};
-  std::string words, unit;
-  std::size_t start = 0;
-  for (bool first = true; start <= metric.size(); first = false) {
-    const std::size_t end = std::min(metric.find('_', start), metric.size());
-    const std::string_view word(metric.data() + start, end - start);
-    const auto u = std::find_if(kUnits.begin(), kUnits.end(), [&](const auto& entry) { return entry.first == word; });
-    if (!first && unit.empty() && u != kUnits.end()) {
-      unit = u->second;
-    } else if (!word.empty()) {
-      (words += words.empty() ? "" : " ") += word;
-    }
-    start = end + 1;
-  }
-  return unit.empty() ? words : words + " (" + unit + ")";
+  if (metric == "success" || metric == "outcome") return "Success rate (%)";
+  if (metric == "path_ratio") return "Normalized path length";
+  return quantity_label(metric);
 }
 
 std::string metric_heading(const std::string& metric) {
@@ -467,10 +528,12 @@ std::string metric_heading(const std::string& metric) {
   return metric_label(metric) + ", all runs";
 }
 
-std::string field_heading(const std::string& field) {
-  std::string heading = field;
-  for (char& c : heading) c = c == '_' ? ' ' : c;
-  return capitalized(heading);
+std::string field_heading(const std::string& field) { return quantity_label(field); }
+
+std::string field_value_heading(const std::string& field, const nlohmann::json& value) {
+  const QuantityName q = quantity_name(field);
+  if (value.is_null()) return capitalized(q.words) + " = -";
+  return capitalized(q.words) + " = " + value_label(value) + (q.unit.empty() ? "" : " " + q.unit);
 }
 
 }  // namespace campo

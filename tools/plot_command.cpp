@@ -65,13 +65,24 @@ Command add_plot(CLI::App& app) {
       ->transform(CLI::CheckedTransformer(std::map<std::string, PlotKind>{{"auto", PlotKind::automatic},
                                                                           {"line", PlotKind::line},
                                                                           {"box", PlotKind::box}},
-                                          CLI::ignore_case));
+                                          CLI::ignore_case)
+                      .description(""))  // the choices are in the text above, not the transformer's map
+      ->option_text("line|box|auto");
   app.add_option("--title", o->request.title, "Title (default: \"<sweep>: <metric> vs <x>\")");
+  app.add_option("--xlabel", o->request.x_label,
+                 "Label of the x axis (default: the field's name with its unit, e.g. \"Speed (m/s)\")");
+  app.add_option("--ylabel", o->request.y_label,
+                 "Label of the y axis (default: the metric's name with its unit and the runs it is over, e.g. "
+                 "\"Sim time (s), all runs\")");
   app.add_option("--out", o->out, "PNG file to write")->required();
   app.footer(
       "A 1600 x 1000 PNG for a paper: the metric against the field, one coloured series per --group\n"
-      "value with a legend, axis labels with units, and a note of the spread shown and the runs.\n"
-      "Line plots: the mean per x with its 95% confidence interval (Student t; rates: Wilson), x on a\n"
+      "value with a legend, axis labels with units (from the names' suffixes: _m, _s, _mps ...), and a\n"
+      "note of the spread shown and the runs.\n"
+      "Line plots: the mean per x with its 95% confidence interval, named in the legend: for a metric\n"
+      "that cannot be negative (lengths, times, counts, path_ratio) the t interval of log(mean), never\n"
+      "below 0; for others the Student t interval; for rates the Wilson interval (docs/sweeps.md). An\n"
+      "interval reaching far beyond the means (two runs) ends in an arrowhead at the frame. x on a\n"
       "log2 scale when every value is a power of two. Box plots: median, quartiles, whiskers at 1.5 IQR\n"
       "and outliers per category. The same results give the same bytes.\n"
       "Example: campo plot out/resolution --x resolution --y path_ratio --group scene --out ratio.png");

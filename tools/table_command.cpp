@@ -21,6 +21,7 @@ namespace fs = std::filesystem;
 struct TableOptions {
   std::string dir;
   TableFormat format = TableFormat::markdown;
+  CellFormat cell;
   std::string rows, cols;            ///< fields; empty: the spec's table, else the summary
   std::vector<std::string> metrics;
   bool summary = false;              ///< the summary table even when the spec has a table
@@ -59,8 +60,8 @@ int run_table(const TableOptions& o) {
       });
   for (const std::string& warning : warnings) std::cerr << "warning: " << warning << "\n";
   const SweepTable summary = summary_rows->finish();
-  const std::string table = request ? format_metric_table(metric_cells->finish(), o.format)
-                                    : format_table(summary, o.format);
+  const std::string table = request ? format_metric_table(metric_cells->finish(), o.format, o.cell)
+                                    : format_table(summary, o.format, o.cell);
   // The chart first: a chart that cannot be written is an error (exit 2) with nothing printed before it.
   std::optional<fs::path> chart;
   if (!o.no_chart && chartable(summary)) {
@@ -83,12 +84,25 @@ Command add_table(CLI::App& app) {
   app.add_option("dir", o->dir, "Sweep output directory (holding results.jsonl, from campo sweep)")
       ->required()
       ->check(input_path());
-  app.add_option("--format", o->format, "Table format: markdown (or md), csv or latex (default: markdown)")
+  // The choices are named in the help text; the transformer's own description (its map) is not for people.
+  app.add_option("--format", o->format,
+                 "Table format: markdown (or md), csv or latex (a booktabs tabular; default: markdown)")
       ->transform(CLI::CheckedTransformer(std::map<std::string, TableFormat>{{"markdown", TableFormat::markdown},
                                                                              {"md", TableFormat::markdown},
                                                                              {"csv", TableFormat::csv},
                                                                              {"latex", TableFormat::latex}},
-                                          CLI::ignore_case));
+                                          CLI::ignore_case)
+                      .description(""))
+      ->option_text("markdown|csv|latex");
+  std::map<std::string, CellStat> cell_stats;
+  for (const auto& [name, stat] : cell_stat_names()) cell_stats.emplace(name, stat);
+  app.add_option("--cell", o->cell.stat,
+                 "What a Markdown or LaTeX cell shows: mean, mean-sd (mean ± sd; default), mean-ci (mean and "
+                 "95% confidence interval) or mean-sd-ci; a rate shows its Wilson interval with -ci only. CSV "
+                 "always has every statistic in its own column")
+      ->transform(CLI::CheckedTransformer(cell_stats, CLI::ignore_case).description(""))
+      ->option_text("mean|mean-sd|mean-ci|mean-sd-ci");
+  app.add_flag("--with-n", o->cell.with_n, "Also print each cell's number of runs: \"(n=5)\"");
   auto* rows = app.add_option("--rows", o->rows, "Field giving the rows: scene, planner, seed or an axis name");
   auto* cols = app.add_option("--cols", o->cols, "Field giving the column groups (default: one group)")->needs(rows);
   auto* metrics = app.add_option("--metrics", o->metrics,
@@ -106,12 +120,16 @@ Command add_table(CLI::App& app) {
   app.add_flag("--no-chart", o->no_chart, "Do not draw the chart")->excludes(chart);
   app.footer(
       "With --rows FIELD [--cols FIELD] --metrics M1,M2 (or the spec's \"table\"): one row per value of\n"
-      "the rows field, one column group per value of the cols field, and in each cell every metric\n"
-      "over the cell's runs: mean, sample sd and 95% confidence interval (Student t) of numbers, over\n"
-      "every completed run or, for METRIC@reached, over the runs that reached their goal; the rate\n"
-      "with its 95% Wilson interval for success and boolean metrics; n and the failed runs. A cell\n"
-      "whose runs are identical (same metrics but wall-clock times, same trajectory) shows the value\n"
-      "and \"n=N identical runs: seeds vary nothing\" instead of a spread and interval.\n"
+      "the rows field, one column group per value of the cols field (headed \"Resolution = 64\"), and in\n"
+      "each cell every metric over the cell's runs, as --cell says: the mean, sample sd and 95%\n"
+      "confidence interval of the mean of numbers, over every completed run or, for METRIC@reached,\n"
+      "over the runs that reached their goal; the rate with its 95% Wilson interval for success and\n"
+      "boolean metrics; the failed runs, and n with --with-n. The interval of a metric that cannot be\n"
+      "negative (lengths, times, counts, path_ratio) is the t interval of log(mean) (delta method),\n"
+      "never below 0; of any other, the Student t interval (docs/sweeps.md). A cell whose runs are\n"
+      "identical (same metrics but wall-clock times, same trajectory) shows the value and \"identical\n"
+      "runs\" instead of a spread and interval.\n"
+      "LaTeX is a booktabs tabular (\\toprule, \\midrule, \\cmidrule, \\bottomrule: \\usepackage{booktabs}).\n"
       "CSV is tidy: one line per row, column and metric (metric, over: all|reached, runs, failed, n,\n"
       "mean, sd, ci95_low, ci95_high, identical).\n"
       "Otherwise the summary table: one row per scene and axis values, over the seeds: runs, success\n"
@@ -120,9 +138,9 @@ Command add_table(CLI::App& app) {
       "total collisions, the median of the runs' median replanning times, the runs that failed, and\n"
       "whether the runs are identical.\n"
       "Rows follow the sweep's expansion order. With exactly one numeric axis, also draws\n"
-      "DIR/chart.png: normalized path length of the reached runs (mean +/- sd) and success rate\n"
-      "against the axis.\n"
-      "Example: campo table out/resolution --rows resolution --cols scene --metrics success,path_ratio --format csv");
+      "DIR/chart.png: normalized path length of the reached runs (mean and 95% confidence interval,\n"
+      "as campo plot draws it) and success rate (with its Wilson interval) against the axis.\n"
+      "Example: campo table out/resolution --rows scene --cols resolution --metrics success,path_ratio --format latex");
   return [o] { return run_table(*o); };
 }
 

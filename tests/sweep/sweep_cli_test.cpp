@@ -149,7 +149,8 @@ TEST_F(SweepCli, SeedsThatVaryNothingGiveIdenticalRunsAndTheTableSaysSo) {
     EXPECT_EQ(line["trajectory_sha256"], first["trajectory_sha256"]);
     EXPECT_EQ(line["trajectory_sha256"].get<std::string>().size(), 64u);
   }
-  Result table = campo("table " + out("same") + " --rows resolution --metrics success,path_ratio --no-chart");
+  Result table = campo("table " + out("same") + " --rows resolution --metrics success,path_ratio --no-chart --cell "
+                       "mean-sd-ci --with-n");
   ASSERT_EQ(table.exit_code, 0) << table.err;
   EXPECT_THAT(table.out, HasSubstr("| 16 | 0% (n=3 identical runs: seeds vary nothing) | "));
   EXPECT_THAT(table.out, ::testing::Not(HasSubstr("[")));
@@ -158,7 +159,8 @@ TEST_F(SweepCli, SeedsThatVaryNothingGiveIdenticalRunsAndTheTableSaysSo) {
   same["start_jitter"] = nlohmann::json::parse(kTinySpec)["start_jitter"];
   write("jittered.json", same.dump());
   ASSERT_EQ(campo("sweep " + spec("jittered.json") + " --out " + out("jittered") + " --jobs 2").exit_code, 0);
-  table = campo("table " + out("jittered") + " --rows resolution --metrics success,path_ratio --no-chart");
+  table = campo("table " + out("jittered") + " --rows resolution --metrics success,path_ratio --no-chart --cell "
+                "mean-sd-ci --with-n");
   ASSERT_EQ(table.exit_code, 0) << table.err;
   EXPECT_THAT(table.out, HasSubstr("| 16 | 0% [0, 56] (n=3) | "));
   EXPECT_THAT(table.out, ::testing::Not(HasSubstr("identical")));

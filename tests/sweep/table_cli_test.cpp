@@ -1,4 +1,6 @@
 // `campo table --rows ...` and `campo plot` run as a user would, on hand-written results.
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -32,7 +34,8 @@ TEST_F(TableCli, RowsColsAndMetricsAsTidyCsv) {
   const auto lines = campo::testing::lines_of(r.out);
   ASSERT_EQ(lines.size(), 9u);
   EXPECT_EQ(lines[0], "resolution,scene,metric,over,kind,runs,failed,n,mean,sd,ci95_low,ci95_high,identical");
-  EXPECT_THAT(lines[2], ::testing::StartsWith("32,two_barriers,path_ratio,all,mean,3,0,3,2,1,-0.48413"));
+  // path_ratio is >= 0: its interval on the log scale, 2 / exp(t(0.975, 2) / sqrt(3) / 2) = 0.57757.
+  EXPECT_THAT(lines[2], ::testing::StartsWith("32,two_barriers,path_ratio,all,mean,3,0,3,2,1,0.57757"));
   EXPECT_EQ(lines[6], "16,two_barriers,path_ratio,all,mean,3,2,1,1.5,0,,,false");
 }
 
@@ -41,8 +44,20 @@ TEST_F(TableCli, TheSpecsTableIsTheDefaultAndMdIsMarkdown) {
                           {{"rows", "resolution"}, {"cols", "scene"}, {"metrics", {"success", "sim_time_s"}}}));
   const Result r = campo("table " + dir() + " --format md");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("| Resolution | two_barriers: Success rate (%) | two_barriers: Sim time (s), all runs |"));
-  EXPECT_THAT(r.out, HasSubstr("| 32 | 67% [21, 94] (n=3) | 20 ± 10 [-5, 45] (n=3) |"));
+  EXPECT_THAT(r.out, HasSubstr("| Resolution | Scene = two_barriers: Success rate (%) | "
+                               "Scene = two_barriers: Sim time (s), all runs |"));
+  EXPECT_THAT(r.out, HasSubstr("| 32 | 67% | 20 ± 10 |"));  // the default cell: mean ± sd
+  // Times 10, 20 and 30 s: the t interval would start at -5 s; on the log scale 20 / f, 20 f with
+  // f = exp(4.30265273 * 10 / sqrt(3) / 20) = 3.4628: [6, 69].
+  const Result full = campo("table " + dir() + " --format md --cell mean-sd-ci --with-n --no-chart");
+  ASSERT_EQ(full.exit_code, 0) << full.err;
+  EXPECT_THAT(full.out, HasSubstr("| 32 | 67% [21, 94] (n=3) | 20 ± 10 [6, 69] (n=3) |"));
+  const Result ci = campo("table " + dir() + " --cell MEAN-CI --no-chart");
+  ASSERT_EQ(ci.exit_code, 0) << ci.err;
+  EXPECT_THAT(ci.out, HasSubstr("| 32 | 67% [21, 94] | 20 [6, 69] |"));
+  const Result bad_cell = campo("table " + dir() + " --cell median --no-chart");
+  EXPECT_EQ(bad_cell.exit_code, 2);
+  EXPECT_THAT(bad_cell.err, HasSubstr("--cell"));
   EXPECT_THAT(r.err, HasSubstr("wrote " + (dir_ / "chart.png").string()));  // the summary chart as before
   // --summary: the summary table instead.
   const Result summary = campo("table " + dir() + " --summary --no-chart");
@@ -55,10 +70,10 @@ TEST_F(TableCli, ReachedRunMetricsInTheSpecsTableAndThePlot) {
                           {{"rows", "resolution"}, {"cols", "scene"}, {"metrics", {"path_ratio@reached", "path_ratio"}}}));
   const Result r = campo("table " + dir() + " --no-chart");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("| Resolution | two_barriers: Normalized path length, reached runs | "
-                               "two_barriers: Normalized path length, all runs |"));
+  EXPECT_THAT(r.out, HasSubstr("| Resolution | Scene = two_barriers: Normalized path length, reached runs | "
+                               "Scene = two_barriers: Normalized path length, all runs |"));
   // Resolution 32 on two_barriers: ratios 1 and 2 reached the goal, 3 collided.
-  EXPECT_THAT(r.out, HasSubstr("| 32 | 1.50 ± 0.71 [-4.85, 7.85] (n=2) | 2.00 ± 1.00 [-0.48, 4.48] (n=3) |"));
+  EXPECT_THAT(r.out, HasSubstr("| 32 | 1.50 ± 0.71 | 2.00 ± 1.00 |"));
 
   const std::string png = (dir_ / "reached.png").string();
   const Result plot = campo("plot " + dir() + " --x resolution --y path_ratio@reached --group scene --out " + png);
@@ -111,6 +126,71 @@ TEST_F(TableCli, PlotWritesAPng) {
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_THAT(bad.err, HasSubstr("--kind: line needs numeric values"));
   EXPECT_FALSE(fs::exists(png + ".2"));
+}
+
+// LaTeX for a paper: booktabs rules, column groups headed by the field and its value, cells as asked.
+TEST_F(TableCli, LatexIsBooktabsAndCompilesWhereATeXEngineIs) {
+  const Result r = campo("table " + dir() + " --rows scene --cols resolution --metrics success,sim_time_s --format latex "
+                         "--no-chart");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("\\toprule\n"));
+  EXPECT_THAT(r.out, HasSubstr(" & \\multicolumn{2}{c}{Resolution = 32} & \\multicolumn{2}{c}{Resolution = 16} \\\\\n"
+                               "\\cmidrule(lr){2-3} \\cmidrule(lr){4-5}\n"));
+  EXPECT_THAT(r.out, HasSubstr("\\midrule\n"));
+  EXPECT_THAT(r.out, HasSubstr("two\\_barriers & 67\\% & 20 $\\pm$ 10 & "));
+  EXPECT_THAT(r.out, HasSubstr("\\bottomrule\n\\end{tabular}\n"));
+  EXPECT_THAT(r.out, ::testing::Not(HasSubstr("\\hline")));
+  // Every row has as many cells as the tabular has columns: l and 4 r.
+  EXPECT_THAT(r.out, HasSubstr("\\begin{tabular}{lrrrr}"));
+  for (const std::string& line : campo::testing::lines_of(r.out)) {
+    if (line.starts_with("two") || line.starts_with("trees") || line.starts_with("Scene")) {
+      EXPECT_EQ(std::count(line.begin(), line.end(), '&'), 4) << line;
+    }
+  }
+  const Result summary = campo("table " + dir() + " --summary --format latex --no-chart");
+  ASSERT_EQ(summary.exit_code, 0) << summary.err;
+
+  if (std::system("command -v pdflatex > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "pdflatex is not installed: the LaTeX was checked structurally only";
+  }
+  for (const auto& [name, table] : {std::pair{"metrics", r.out}, std::pair{"summary", summary.out}}) {
+    const std::string tex = write(std::string(name) + ".tex",
+                                  "\\documentclass{article}\n\\usepackage[utf8]{inputenc}\n\\usepackage{booktabs}\n"
+                                  "\\usepackage[landscape,margin=1cm]{geometry}\n\\begin{document}\n" + table +
+                                  "\\end{document}\n");
+    const std::string command = "cd " + dir() + " && pdflatex -interaction=nonstopmode -halt-on-error " + tex +
+                                " > " + dir() + "/" + name + ".out 2>&1";
+    EXPECT_EQ(std::system(command.c_str()), 0) << slurp(dir_ / (std::string(name) + ".out"));
+    EXPECT_TRUE(fs::exists(dir_ / (std::string(name) + ".pdf")));
+  }
+}
+
+// Axis labels with units by default, the user's words when given.
+TEST_F(TableCli, PlotLabelsOverride) {
+  const std::string png = (dir_ / "time.png").string();
+  const Result r = campo("plot " + dir() + " --x resolution --y sim_time_s --xlabel 'Grid resolution' --ylabel "
+                         "'Flight time (s)' --title 'Time' --out " + png);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const cv::Mat labelled = cv::imread(png);
+  ASSERT_EQ(campo("plot " + dir() + " --x resolution --y sim_time_s --out " + png).exit_code, 0);
+  const cv::Mat plain = cv::imread(png);
+  ASSERT_EQ(labelled.size(), plain.size());
+  EXPECT_GT(cv::norm(labelled, plain, cv::NORM_L1), 0.0);  // the labels drew other text
+}
+
+// Help texts name the choices, never the argument parser's internals (a transformer's map "csv->1").
+TEST_F(TableCli, HelpTextsShowNoParserInternals) {
+  for (const char* command : {"table", "plot", "sweep", "merge", "run", "validate", "plan", "render", "scan", "bench",
+                              "reproduce"}) {
+    const Result r = campo(std::string(command) + " --help");
+    EXPECT_EQ(r.exit_code, 0) << command;
+    EXPECT_THAT(r.out, ::testing::Not(::testing::ContainsRegex("[a-z]->[0-9]"))) << command;
+    EXPECT_THAT(r.out, ::testing::Not(HasSubstr("} OR {"))) << command;
+  }
+  const Result table = campo("table --help");
+  EXPECT_THAT(table.out, HasSubstr("--format markdown|csv|latex"));
+  EXPECT_THAT(table.out, HasSubstr("--cell mean|mean-sd|mean-ci|mean-sd-ci"));
+  EXPECT_THAT(campo("plot --help").out, HasSubstr("--kind line|box|auto"));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include "sweep/table.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -50,6 +51,44 @@ TEST(Statistics, MeanSampleSdAndTInterval) {
   EXPECT_FALSE(one.ci95);  // no interval from one value
 }
 
+TEST(Statistics, IntervalOfANonNegativeMetricNeverGoesBelowZero) {
+  // Two runs' times, 20 s and 30 s: mean 25, sd sqrt(50), standard error 5, t(0.975, 1) = 12.7062047.
+  // The Student t interval is 25 ± 63.53: from -38.5 s, a time no run can take.
+  const Summary t = summarize_values({20.0, 30.0});
+  EXPECT_NEAR(t.ci95->low, 25.0 - 12.7062047 * 5.0, 1e-6);
+  // On the log scale: log(25) ± 12.7062047 * 5 / 25 (the delta method's standard error of log(mean)),
+  // taken back: 25 / f and 25 f with f = exp(2.54124094) = 12.6954155.
+  const Summary s = summarize_values({20.0, 30.0}, Support::non_negative);
+  ASSERT_TRUE(s.ci95);
+  EXPECT_DOUBLE_EQ(s.mean, 25.0);
+  EXPECT_NEAR(s.ci95->low, 25.0 / 12.6954155, 1e-6);  // 1.969 s
+  EXPECT_NEAR(s.ci95->high, 25.0 * 12.6954155, 1e-5);  // 317.4 s
+  EXPECT_GT(s.ci95->low, 0.0);
+  // The same from the running statistics tables and plots keep.
+  RunningStats running;
+  running.add(20.0);
+  running.add(30.0);
+  EXPECT_NEAR(running.values(Support::non_negative).ci95->low, 25.0 / 12.6954155, 1e-6);
+  // All zeros (no collisions in any run): [0, 0]; one value: none.
+  const Summary zeros = summarize_values({0.0, 0.0, 0.0}, Support::non_negative);
+  EXPECT_EQ(zeros.ci95->low, 0.0);
+  EXPECT_EQ(zeros.ci95->high, 0.0);
+  EXPECT_FALSE(mean_interval95(3.0, 0.0, 1, Support::non_negative));
+  // A negative value says the metric is signed after all: the t interval.
+  EXPECT_NEAR(summarize_values({-1.0, 1.0}, Support::non_negative).ci95->low, -12.7062047, 1e-6);
+  // Which metrics are >= 0 by definition.
+  EXPECT_TRUE(non_negative_metric("sim_time_s"));
+  EXPECT_TRUE(non_negative_metric("sim_time_s@reached"));
+  EXPECT_TRUE(non_negative_metric("path_length_m"));
+  EXPECT_TRUE(non_negative_metric("path_ratio"));
+  EXPECT_TRUE(non_negative_metric("replan_time_ms_median"));
+  EXPECT_TRUE(non_negative_metric("collisions"));
+  EXPECT_TRUE(non_negative_metric("cross_track_rms_m"));
+  EXPECT_FALSE(non_negative_metric("min_clearance_m"));  // negative when the shapes overlapped
+  EXPECT_FALSE(non_negative_metric("min_ground_clearance_m"));
+  EXPECT_FALSE(non_negative_metric("heading_error"));  // unknown: signed
+}
+
 TEST(Statistics, WilsonIntervalOfARate) {
   const auto expect = [](int k, int n, double low, double high) {
     const Interval i = wilson_interval(k, n);
@@ -82,15 +121,28 @@ TEST(Statistics, BoxStatsWithTukeyWhiskers) {
 }
 
 TEST(MetricLabel, NamesWithUnitsFromTheSuffix) {
-  EXPECT_EQ(metric_label("path_length_m"), "path length (m)");
-  EXPECT_EQ(metric_label("sim_time_s"), "sim time (s)");
-  EXPECT_EQ(metric_label("replan_time_ms_median"), "replan time median (ms)");
-  EXPECT_EQ(metric_label("cross_track_rms_m"), "cross track rms (m)");
-  EXPECT_EQ(metric_label("speed_mps"), "speed (m/s)");
-  EXPECT_EQ(metric_label("path_ratio"), "normalized path length");
-  EXPECT_EQ(metric_label("success"), "success rate (%)");
-  EXPECT_EQ(metric_label("waypoints_reached"), "waypoints reached");
+  EXPECT_EQ(metric_label("path_length_m"), "Path length (m)");
+  EXPECT_EQ(metric_label("sim_time_s"), "Sim time (s)");
+  EXPECT_EQ(metric_label("replan_time_ms_median"), "Replan time median (ms)");
+  EXPECT_EQ(metric_label("cross_track_rms_m"), "Cross track rms (m)");
+  EXPECT_EQ(metric_label("speed_mps"), "Speed (m/s)");
+  EXPECT_EQ(metric_label("path_ratio"), "Normalized path length");
+  EXPECT_EQ(metric_label("success"), "Success rate (%)");
+  EXPECT_EQ(metric_label("waypoints_reached"), "Waypoints reached");
+  // Parameters (axes) get their units from the same function.
   EXPECT_EQ(field_heading("start_gap"), "Start gap");
+  EXPECT_EQ(field_heading("speed_mps"), "Speed (m/s)");
+  EXPECT_EQ(field_heading("time_s"), "Time (s)");
+  EXPECT_EQ(field_heading("yaw_deg"), "Yaw (deg)");
+  EXPECT_EQ(field_heading("image_width_px"), "Image width (px)");
+  EXPECT_EQ(field_heading("rate_hz"), "Rate (Hz)");
+  EXPECT_EQ(field_heading("resolution"), "Resolution");
+  EXPECT_EQ(field_heading("scene"), "Scene");
+  EXPECT_EQ(quantity_label("accel_max_mps2"), "Accel max (m/s^2)");
+  // A column group: the field, the value and its unit.
+  EXPECT_EQ(field_value_heading("resolution", 64), "Resolution = 64");
+  EXPECT_EQ(field_value_heading("speed_mps", 2.5), "Speed = 2.5 m/s");
+  EXPECT_EQ(field_value_heading("scene", "two_barriers"), "Scene = two_barriers");
 }
 
 class MetricTableTest : public testing::FixtureSweepTest {
@@ -158,16 +210,38 @@ TEST_F(MetricTableTest, OneColumnGroupWithoutCols) {
 }
 
 TEST_F(MetricTableTest, MarkdownCellsShowMeanSdIntervalAndCounts) {
+  // Everything: mean ± sd [95 % interval] (n, failed). path_ratio is >= 0: its interval is on the log
+  // scale, mean / f to mean * f with f = exp(t(0.975, 2) * sd / sqrt(3) / mean): 2 ± 1 -> f = 3.4628,
+  // [0.58, 6.93]; 1.2 ± 0.2 -> f = 1.5129, [0.79, 1.82].
+  const CellFormat everything{.stat = CellStat::mean_sd_ci, .with_n = true};
   const std::string md = format_metric_table(table("resolution", "scene", {"success", "path_ratio"}),
-                                             TableFormat::markdown);
+                                             TableFormat::markdown, everything);
   EXPECT_EQ(md,
-            "| Resolution | two_barriers: Success rate (%) | two_barriers: Normalized path length, all runs | "
-            "trees: Success rate (%) | trees: Normalized path length, all runs |\n"
+            "| Resolution | Scene = two_barriers: Success rate (%) | Scene = two_barriers: Normalized path length, "
+            "all runs | Scene = trees: Success rate (%) | Scene = trees: Normalized path length, all runs |\n"
             "| --- | ---: | ---: | ---: | ---: |\n"
-            "| 32 | 67% [21, 94] (n=3) | 2.00 ± 1.00 [-0.48, 4.48] (n=3) | 100% [44, 100] (n=3) | "
-            "1.20 ± 0.20 [0.70, 1.70] (n=3) |\n"
+            "| 32 | 67% [21, 94] (n=3) | 2.00 ± 1.00 [0.58, 6.93] (n=3) | 100% [44, 100] (n=3) | "
+            "1.20 ± 0.20 [0.79, 1.82] (n=3) |\n"
             "| 16 | 33% [6, 79] (n=3, 2 failed) | 1.50 (n=1, 2 failed) | 0% [0, 56] (n=3, 1 failed) | "
             "2.00 ± 0.00 [2.00, 2.00] (n=2, 1 failed) |\n");
+  // The default: mean ± sd, the failed runs, no n; a rate alone.
+  const std::string plain = format_metric_table(table("resolution", "scene", {"success", "path_ratio"}),
+                                                TableFormat::markdown);
+  EXPECT_THAT(plain, HasSubstr("| 32 | 67% | 2.00 ± 1.00 | 100% | 1.20 ± 0.20 |\n"));
+  EXPECT_THAT(plain, HasSubstr("| 16 | 33% (2 failed) | 1.50 (2 failed) | 0% (1 failed) | 2.00 ± 0.00 (1 failed) |\n"));
+  // The mean alone, the mean with its interval, with n.
+  const auto row32 = [&](CellFormat format) {
+    const std::string text = format_metric_table(table("resolution", "", {"path_ratio"}), TableFormat::markdown, format);
+    return text.substr(text.find("| 32 |"), text.find('\n', text.find("| 32 |")) - text.find("| 32 |"));
+  };
+  // Resolution 32 over both scenes: 1, 2, 3, 1.2, 1.4, 1.0: mean 1.6, sd sqrt(3.04 / 5) = 0.780;
+  // f = exp(t(0.975, 5) sd / sqrt(6) / 1.6).
+  const double f = std::exp(2.57058184 * std::sqrt(3.04 / 5.0) / std::sqrt(6.0) / 1.6);
+  char interval[64];
+  std::snprintf(interval, sizeof interval, "[%.2f, %.2f]", 1.6 / f, 1.6 * f);
+  EXPECT_EQ(row32({.stat = CellStat::mean}), "| 32 | 1.60 |");
+  EXPECT_EQ(row32({.stat = CellStat::mean_ci}), "| 32 | 1.60 " + std::string(interval) + " |");
+  EXPECT_EQ(row32({.stat = CellStat::mean_sd, .with_n = true}), "| 32 | 1.60 ± 0.78 (n=6) |");
 }
 
 TEST_F(MetricTableTest, TidyCsvOneLinePerCellAndMetric) {
@@ -201,23 +275,43 @@ TEST_F(MetricTableTest, TidyCsvOneLinePerCellAndMetric) {
   const double none = std::nan("");
   const double half = 4.30265273 / std::sqrt(3.0);
   expect(1, {"32", "two_barriers", "success", "all", "rate", "3", "0", "3"}, {2.0 / 3.0, std::sqrt(1.0 / 3.0), 0.20765960, 0.93850806});
-  expect(2, {"32", "two_barriers", "path_ratio", "all", "mean", "3", "0", "3"}, {2.0, 1.0, 2.0 - half, 2.0 + half});
+  // path_ratio is >= 0: mean / f, mean * f with f = exp(t sd / sqrt(n) / mean).
+  const double f2 = std::exp(half / 2.0), f12 = std::exp(0.2 * half / 1.2);
+  expect(2, {"32", "two_barriers", "path_ratio", "all", "mean", "3", "0", "3"}, {2.0, 1.0, 2.0 / f2, 2.0 * f2});
   expect(3, {"32", "trees", "success", "all", "rate", "3", "0", "3"}, {1.0, 0.0, 0.43850297, 1.0});
-  expect(4, {"32", "trees", "path_ratio", "all", "mean", "3", "0", "3"}, {1.2, 0.2, 1.2 - 0.2 * half, 1.2 + 0.2 * half});
+  expect(4, {"32", "trees", "path_ratio", "all", "mean", "3", "0", "3"}, {1.2, 0.2, 1.2 / f12, 1.2 * f12});
   expect(5, {"16", "two_barriers", "success", "all", "rate", "3", "2", "3"}, {1.0 / 3.0, std::sqrt(1.0 / 3.0), 0.06149194, 0.79234040});
   expect(6, {"16", "two_barriers", "path_ratio", "all", "mean", "3", "2", "1"}, {1.5, 0.0, none, none});
   expect(8, {"16", "trees", "path_ratio", "all", "mean", "3", "1", "2"}, {2.0, 0.0, 2.0, 2.0});
 }
 
-TEST_F(MetricTableTest, LatexGroupsColumnsUnderTheirValue) {
-  const std::string tex = format_metric_table(table("resolution", "scene", {"success", "path_ratio"}),
+TEST_F(MetricTableTest, LatexIsBooktabsWithGroupsHeadedByFieldAndValue) {
+  const std::string tex = format_metric_table(table("scene", "resolution", {"success", "path_ratio"}),
                                               TableFormat::latex);
-  EXPECT_THAT(tex, HasSubstr("\\begin{tabular}{lrrrr}\n\\hline\n"
-                             " & \\multicolumn{2}{c}{two\\_barriers} & \\multicolumn{2}{c}{trees} \\\\\n"
-                             "Resolution & Success rate (\\%) & Normalized path length, all runs & "
-                             "Success rate (\\%) & Normalized path length, all runs \\\\\n\\hline\n"));
-  EXPECT_THAT(tex, HasSubstr("32 & 67\\% [21, 94] (n=3) & 2.00 $\\pm$ 1.00 [-0.48, 4.48] (n=3) &"));
-  EXPECT_THAT(tex, HasSubstr("\\end{tabular}\n"));
+  EXPECT_EQ(tex,
+            "% needs \\usepackage{booktabs}\n"
+            "\\begin{tabular}{lrrrr}\n"
+            "\\toprule\n"
+            " & \\multicolumn{2}{c}{Resolution = 32} & \\multicolumn{2}{c}{Resolution = 16} \\\\\n"
+            "\\cmidrule(lr){2-3} \\cmidrule(lr){4-5}\n"
+            "Scene & Success rate (\\%) & \\begin{tabular}[b]{@{}c@{}}Normalized path length,\\\\all runs\\end{tabular} & "
+            "Success rate (\\%) & \\begin{tabular}[b]{@{}c@{}}Normalized path length,\\\\all runs\\end{tabular} \\\\\n"
+            "\\midrule\n"
+            "two\\_barriers & 67\\% & 2.00 $\\pm$ 1.00 & 33\\% (2 failed) & 1.50 (2 failed) \\\\\n"
+            "trees & 100\\% & 1.20 $\\pm$ 0.20 & 0\\% (1 failed) & 2.00 $\\pm$ 0.00 (1 failed) \\\\\n"
+            "\\bottomrule\n"
+            "\\end{tabular}\n");
+  EXPECT_THAT(tex, Not(HasSubstr("\\hline")));
+  // Cell formats apply to LaTeX too.
+  const std::string full = format_metric_table(table("scene", "resolution", {"success", "path_ratio"}),
+                                               TableFormat::latex, {.stat = CellStat::mean_sd_ci, .with_n = true});
+  EXPECT_THAT(full, HasSubstr("two\\_barriers & 67\\% [21, 94] (n=3) & 2.00 $\\pm$ 1.00 [0.58, 6.93] (n=3) &"));
+  // Units in the group heading; the summary table is booktabs as well.
+  EXPECT_EQ(field_value_heading("speed_mps", 2), "Speed = 2 m/s");
+  const std::string summary = format_table(aggregate(runs_, layout_), TableFormat::latex);
+  EXPECT_THAT(summary, HasSubstr("\\toprule\nScene & Resolution & Runs"));
+  EXPECT_THAT(summary, HasSubstr("\\bottomrule\n\\end{tabular}\n"));
+  EXPECT_THAT(summary, Not(HasSubstr("\\hline")));
 }
 
 TEST_F(MetricTableTest, ErrorsNameTheOptionAndListWhatExists) {
@@ -274,8 +368,8 @@ class OwnResultsTest : public testing::FixtureSweepTest {
   MetricTable table(std::vector<std::string> metrics) const {
     return tabulate(runs_, layout_, TableRequest{.rows = "resolution", .metrics = std::move(metrics)});
   }
-  std::string text(std::vector<std::string> metrics, TableFormat format) const {
-    return format_metric_table(table(std::move(metrics)), format);
+  std::string text(std::vector<std::string> metrics, TableFormat format, const CellFormat& cell = {}) const {
+    return format_metric_table(table(std::move(metrics)), format, cell);
   }
 
   // Three seeds of one run: the same metrics and trajectory, different wall-clock measurements.
@@ -315,7 +409,8 @@ TEST_F(OwnResultsTest, ReachedRunMeansBesideAllRunMeans) {
   EXPECT_EQ(c.metrics[1]->n, 2);
   EXPECT_DOUBLE_EQ(c.metrics[1]->mean, 1.2);
   EXPECT_NEAR(c.metrics[1]->sd, std::sqrt(0.02), 1e-12);
-  EXPECT_NEAR(c.metrics[1]->ci95->low, 1.2 - 12.7062047 * 0.1, 1e-6);  // t(0.975, 1) sd / sqrt(2)
+  // t(0.975, 1) sd / sqrt(2) / mean on the log scale: 1.2 / exp(12.7062047 * 0.1 / 1.2).
+  EXPECT_NEAR(c.metrics[1]->ci95->low, 1.2 / std::exp(12.7062047 * 0.1 / 1.2), 1e-6);
   EXPECT_EQ(c.metrics[2]->n, 3);
   EXPECT_DOUBLE_EQ(c.metrics[2]->mean, 0.9);
   EXPECT_NEAR(c.metrics[2]->sd, std::sqrt(0.28), 1e-12);  // (0.04 + 0.16 + 0.36) / 2
@@ -324,15 +419,21 @@ TEST_F(OwnResultsTest, ReachedRunMeansBesideAllRunMeans) {
   EXPECT_DOUBLE_EQ(c.metrics[4]->mean, 55.0 / 3.0);
   EXPECT_DOUBLE_EQ(c.metrics[5]->mean, 12.0);  // 11 and 13 m
 
-  const std::string md = text({"success", "path_ratio@reached", "path_ratio"}, TableFormat::markdown);
+  // Two reached runs: f = exp(12.7062047 * 0.1 / 1.2) = 2.88305, [0.42, 3.46] (the t interval: [-0.07, 2.47]);
+  // three completed: f = exp(4.30265273 * sqrt(0.28 / 3) / 0.9) = 4.30827, [0.209, 3.877].
+  const std::string md = text({"success", "path_ratio@reached", "path_ratio"}, TableFormat::markdown,
+                              {.stat = CellStat::mean_sd_ci, .with_n = true});
   EXPECT_EQ(md,
             "| Resolution | Success rate (%) | Normalized path length, reached runs | "
             "Normalized path length, all runs |\n"
             "| --- | ---: | ---: | ---: |\n"
-            "| 32 | 50% [15, 85] (n=4, 1 failed) | 1.20 ± 0.14 [-0.07, 2.47] (n=2, 1 failed) | "
-            "0.900 ± 0.529 [-0.414, 2.214] (n=3, 1 failed) |\n");
+            "| 32 | 50% [15, 85] (n=4, 1 failed) | 1.20 ± 0.14 [0.42, 3.46] (n=2, 1 failed) | "
+            "0.900 ± 0.529 [0.209, 3.877] (n=3, 1 failed) |\n");
+  // The times of the two reached runs, 20 s and 30 s: never below 0 s (the t interval's low end is -38.5 s).
+  EXPECT_NEAR(c.metrics[3]->ci95->low, 25.0 / 12.6954155, 1e-6);
   const std::string tex = text({"path_ratio@reached", "path_ratio"}, TableFormat::latex);
-  EXPECT_THAT(tex, HasSubstr("Resolution & Normalized path length, reached runs & Normalized path length, all runs"));
+  EXPECT_THAT(tex, HasSubstr("Resolution & \\begin{tabular}[b]{@{}c@{}}Normalized path length,\\\\reached runs\\end{tabular} & "
+                             "\\begin{tabular}[b]{@{}c@{}}Normalized path length,\\\\all runs\\end{tabular} \\\\\n"));
 
   // Tidy CSV: the metric's name, then which runs.
   const std::string csv = text({"path_ratio@reached", "path_ratio"}, TableFormat::csv);
@@ -363,13 +464,16 @@ TEST_F(OwnResultsTest, IdenticalRunsOverSeedsSaySoWithoutAnInterval) {
   }
   EXPECT_DOUBLE_EQ(c.metrics[1]->mean, 1.2);
 
-  const std::string md = text({"success", "path_ratio@reached", "hovered"}, TableFormat::markdown);
+  const CellFormat everything{.stat = CellStat::mean_sd_ci, .with_n = true};
+  const std::string md = text({"success", "path_ratio@reached", "hovered"}, TableFormat::markdown, everything);
   EXPECT_THAT(md, HasSubstr("| 16 | 100% (n=3 identical runs: seeds vary nothing) | "
                             "1.20 (n=3 identical runs: seeds vary nothing) | "
                             "100% (n=3 identical runs: seeds vary nothing) |\n"));
   EXPECT_THAT(md, Not(HasSubstr("±")));
   EXPECT_THAT(md, Not(HasSubstr("[")));
-  EXPECT_THAT(text({"path_ratio"}, TableFormat::latex), HasSubstr("16 & 1.20 (n=3 identical runs: seeds vary nothing) \\\\"));
+  EXPECT_THAT(text({"path_ratio"}, TableFormat::latex), HasSubstr("16 & 1.20 (identical runs) \\\\"));
+  EXPECT_THAT(text({"path_ratio"}, TableFormat::latex, everything),
+              HasSubstr("16 & 1.20 (n=3 identical runs: seeds vary nothing) \\\\"));
   const std::string csv = text({"success", "path_ratio@reached"}, TableFormat::csv);
   EXPECT_THAT(csv, HasSubstr("\n16,success,all,rate,3,0,3,1,,,,true\n"));
   EXPECT_THAT(csv, HasSubstr("\n16,path_ratio,reached,mean,3,0,3,1.2,,,,true\n"));
@@ -387,7 +491,7 @@ TEST_F(OwnResultsTest, IdenticalRunsOverSeedsSaySoWithoutAnInterval) {
 
   // Repeated runs that never reach the goal have no reached-run value, and say why.
   use(repeated_run("timeout"));
-  EXPECT_THAT(text({"path_ratio@reached"}, TableFormat::markdown),
+  EXPECT_THAT(text({"path_ratio@reached"}, TableFormat::markdown, {.with_n = true}),
               HasSubstr("| 16 | – (n=0 of 3 identical runs: seeds vary nothing) |"));
 }
 
@@ -397,7 +501,7 @@ TEST_F(OwnResultsTest, DistinctRunsStillPrintTheirInterval) {
   lines[1]["trajectory_sha256"] = "another-trajectory";
   use(lines);
   EXPECT_FALSE(table({"success"}).cells[0][0].identical);
-  EXPECT_THAT(text({"success", "path_ratio"}, TableFormat::markdown),
+  EXPECT_THAT(text({"success", "path_ratio"}, TableFormat::markdown, {.stat = CellStat::mean_sd_ci, .with_n = true}),
               HasSubstr("| 16 | 100% [44, 100] (n=3) | 1.20 ± 0.00 [1.20, 1.20] (n=3) |"));
   EXPECT_THAT(text({"success"}, TableFormat::csv), HasSubstr("\n16,success,all,rate,3,0,3,1,0,0.43850"));
   EXPECT_FALSE(aggregate(runs_, layout_).rows[0].identical);
@@ -440,10 +544,10 @@ TEST(IdenticalRuns, OlderResultsWithoutADigestCompareTheirMetrics) {
 }
 
 TEST_F(MetricTableTest, MetricsOverReachedRunsAreNamedAndChecked) {
-  EXPECT_EQ(metric_label("path_ratio@reached"), "normalized path length, reached runs");
-  EXPECT_EQ(metric_heading("path_ratio@reached"), "normalized path length, reached runs");
-  EXPECT_EQ(metric_heading("sim_time_s"), "sim time (s), all runs");
-  EXPECT_EQ(metric_heading("success"), "success rate (%)");
+  EXPECT_EQ(metric_label("path_ratio@reached"), "Normalized path length, reached runs");
+  EXPECT_EQ(metric_heading("path_ratio@reached"), "Normalized path length, reached runs");
+  EXPECT_EQ(metric_heading("sim_time_s"), "Sim time (s), all runs");
+  EXPECT_EQ(metric_heading("success"), "Success rate (%)");
   EXPECT_EQ(split_metric("sim_time_s@reached").base, "sim_time_s");
   EXPECT_TRUE(split_metric("sim_time_s@reached").reached_only);
   const auto message = [&](const std::string& metric) {
