@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <numeric>
 #include <optional>
@@ -149,6 +150,10 @@ class SceneExpander {
       document_ = parse_json_text(bytes_, scene_file_);
       // Planners go to the first vehicle, as `campo run` drives it.
       const Scene base = parse_scene(document_, scene_file_, scene.file.parent_path(), "");
+      // One name per scene: the one run.json's provenance, replays and videos give it (its "name",
+      // else its file's stem), in results and tables too; run names need it filesystem-safe.
+      name_ = base.name;
+      name_id_ = value_id_label(nlohmann::json(name_));
       if (!base.vehicles.empty()) {
         vehicle_ = base.vehicles.front().alias;
         planner_ = base.vehicles.front().planner.name;
@@ -159,7 +164,7 @@ class SceneExpander {
     sha256_ = sha256_hex(bytes_);
     if (!spec.planners.empty() && !top_level_object(document_, vehicle_).first) {
       throw InputError(spec_file_, "/planners",
-                       "expected a scene whose first vehicle is at the top level of \"objects\" (scene " + scene.label + ")");
+                       "expected a scene whose first vehicle is at the top level of \"objects\" (scene " + name_ + ")");
     }
   }
 
@@ -167,12 +172,12 @@ class SceneExpander {
   /// `emit` once validated.
   void runs(const SweepPlanner* planner, const AxisPoint& point, const std::function<void(const SweepRun&)>& emit) {
     SweepRun run;
-    run.scene = scene_.label;
+    run.scene = name_;
     if (planner) run.planner = planner->label;
     run.scene_file = scene_.file;
     run.scene_sha256 = sha256_;
     run.params = nlohmann::json::object();
-    const std::string name = scene_.label + (planner ? "__" + planner->label : "") + point.label + "__seed-";
+    const std::string name = name_id_ + (planner ? "__" + planner->label : "") + point.label + "__seed-";
     run.name = name + std::to_string(spec_.first_seed);  // errors of the overrides below name the first run
 
     nlohmann::json document = document_;
@@ -221,7 +226,7 @@ class SceneExpander {
         }
         if (spec_.start_jitter && !scene.find_vehicle(spec_.start_jitter->vehicle)) {
           throw InputError(spec_file_, spec_.start_jitter->origin + "/vehicle",
-                           "expected a vehicle of scene " + scene_.label + ", got \"" + spec_.start_jitter->vehicle +
+                           "expected a vehicle of scene " + name_ + ", got \"" + spec_.start_jitter->vehicle +
                                "\"");
         }
       }
@@ -233,6 +238,8 @@ class SceneExpander {
 
   /// The most seeded generators re-seeded in one run's scene so far.
   std::size_t generators() const { return generators_; }
+  /// The scene's name, as its runs and results call it.
+  const std::string& name() const { return name_; }
 
  private:
   // The run's scene, validated like a scene file; errors name the run.
@@ -253,7 +260,7 @@ class SceneExpander {
     try {
       apply_override(document, assignment);
     } catch (const InputError& e) {
-      throw InputError(spec_file_, origin, "in scene " + scene_.label + ": " + e.message());
+      throw InputError(spec_file_, origin, "in scene " + name_ + ": " + e.message());
     }
     run.overrides.push_back(assignment);
   }
@@ -283,7 +290,7 @@ class SceneExpander {
         if (pointer != g.pointer && pointer != g.index_pointer) return;
         throw InputError(spec_file_, "/vary_scene_with_seed",
                          "expected no other override of a generator's seed when the run seeds vary the scene (" +
-                             pointer + " is also set at " + origin + ", scene " + scene_.label + ")");
+                             pointer + " is also set at " + origin + ", scene " + name_ + ")");
       };
       for (const SweepOverride& o : spec_.set) conflict(o.pointer, o.origin);
       for (const SweepAxis& axis : spec_.axes) {
@@ -299,7 +306,7 @@ class SceneExpander {
     const auto [vehicle, index] = top_level_object(document, jitter.vehicle);
     if (!vehicle) {
       throw InputError(spec_file_, jitter.origin + "/vehicle",
-                       "expected the alias of a vehicle at the top level of \"objects\" in scene " + scene_.label +
+                       "expected the alias of a vehicle at the top level of \"objects\" in scene " + name_ +
                            ", got \"" + jitter.vehicle + "\"");
     }
     Eigen::Vector3d start = Eigen::Vector3d::Zero();  // the scene format's default position
@@ -324,6 +331,8 @@ class SceneExpander {
   std::string vehicle_;  // alias of the first vehicle
   std::string planner_;  // its planner in the scene file
   std::size_t generators_ = 0;  // most seeded generators in one run's scene (vary_scene_with_seed)
+  std::string name_;     // the scene's name (Scene::name)
+  std::string name_id_;  // the same, filesystem-safe, in run names
 };
 
 }  // namespace
@@ -363,8 +372,15 @@ void for_each_sweep_run(const SweepSpec& spec, const SceneCheck& check,
   for (const SweepPlanner& p : spec.planners) planners.push_back(&p);
   if (planners.empty()) planners.push_back(nullptr);  // each scene's own
   std::size_t generators = 0;
+  std::map<std::string, std::string> scene_at;  // scene name -> where the spec names it
   for (const SweepScene& scene : spec.scenes) {
     SceneExpander expander(spec, scene, check);
+    // Two files of one name would be one scene in every table.
+    if (const auto [it, added] = scene_at.emplace(expander.name(), scene.origin); !added) {
+      throw InputError(spec.file.string(), scene.origin,
+                       "expected scenes with distinct names: " + scene.file.string() + " is named \"" + expander.name() +
+                           "\" as the scene at " + it->second + " (set \"name\" in one of them)");
+    }
     for (const SweepPlanner* planner : planners) {
       for (const AxisPoint& point : points) expander.runs(planner, point, emit);
     }

@@ -21,8 +21,10 @@ struct SweepRun {
   /// its effective scene document (scene, every override, the seed): the same
   /// run has the same ID in every spec, order and shard.
   std::string id;
-  std::string name;                    ///< readable and filesystem-safe: "two_barriers__resolution-256__seed-1"
-  std::string scene;                   ///< the scene's label
+  std::string name;                    ///< readable and filesystem-safe: "two_barriers__resolution-256__seed-1" (the scene's name, value_id_label)
+  /// The scene's name (its "name", else its file's stem): what run.json's
+  /// provenance, replays and videos call it; in results and tables too.
+  std::string scene;
   std::string planner;                 ///< the planner's label (the scene's planner name without "planners")
   std::filesystem::path scene_file;
   nlohmann::json params;               ///< axis name -> value

@@ -181,6 +181,9 @@ Child spawn(std::size_t index, const std::function<std::string(std::size_t)>& wo
   std::cerr.flush();
   std::fflush(nullptr);
   const pid_t parent = ::getpid();
+  // The clock starts before the fork: the child may run (and start timing its job) before this process
+  // returns from fork(), so a start taken after it could make wall_time_s shorter than work_time_s.
+  const Clock::time_point start = Clock::now();
   const pid_t pid = ::fork();
   if (pid < 0) {
     for (int fd : {result_pipe[0], result_pipe[1], log_pipe[0], log_pipe[1]}) ::close(fd);
@@ -198,7 +201,7 @@ Child spawn(std::size_t index, const std::function<std::string(std::size_t)>& wo
   child.pid = pid;
   child.result_fd = result_pipe[0];
   child.log_fd = log_pipe[0];
-  child.start = Clock::now();
+  child.start = start;
   return child;
 }
 

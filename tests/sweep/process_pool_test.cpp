@@ -43,6 +43,26 @@ TEST(ProcessPool, ReturnsEveryJobsOutputOnce) {
 }
 
 // A child that returned is reaped without holding up the next job, and none is left behind.
+// The sweep's overhead per run is wall_time_s - work_time_s: never negative, even when a child starts its
+// job before its parent returns from fork() (the parent's clock starts before the fork). Many short jobs,
+// more at a time than there are cores, so children often run first.
+TEST(ProcessPool, WallTimeHoldsTheJobsTimeSoOverheadIsNeverNegative) {
+  const auto outcomes = run_all(
+      120,
+      [](std::size_t i) {
+        volatile double x = 0.0;
+        for (std::size_t k = 0; k < 20000 + 1000 * (i % 7); ++k) x = x + 1.0 / static_cast<double>(k + 1);
+        return std::to_string(x);
+      },
+      {.jobs = 6});
+  ASSERT_EQ(outcomes.size(), 120u);
+  for (const auto& [i, o] : outcomes) {
+    ASSERT_TRUE(o.ok) << o.reason;
+    EXPECT_GT(o.work_time_s, 0.0) << i;
+    EXPECT_GE(o.wall_time_s - o.work_time_s, 0.0) << "job " << i;
+  }
+}
+
 TEST(ProcessPool, ReturnedChildrenAreReapedAndNoneIsLeft) {
   const auto outcomes = run_all(20, [](std::size_t i) { return std::to_string(i); }, {.jobs = 2});
   ASSERT_EQ(outcomes.size(), 20u);

@@ -457,4 +457,48 @@ TEST_F(SweepCli, HelpHasExamples) {
   }
 }
 
+// One name per scene: a scene file whose "name" differs from its file name is called by its "name" in
+// the sweep's runs, results and tables, as its run.json's provenance calls it; two files of one name
+// are refused. The overhead the sweep reports per run is never negative.
+TEST_F(SweepCli, AScenesNameIsTheOneItsRunsResultsAndTablesUse) {
+  nlohmann::json scene = nlohmann::json::parse(slurp(fs::path(CAMPO_SOURCE_DIR) / "scenes" / "two_barriers.json"));
+  scene["name"] = "barriers_renamed";
+  write("field_copy.json", scene.dump());
+  nlohmann::json spec_json = nlohmann::json::parse(kTinySpec);
+  spec_json["scenes"] = {"field_copy.json"};
+  spec_json["axes"][0]["values"] = {16};
+  write("renamed.json", spec_json.dump());
+  const Result sweep = campo("sweep " + spec("renamed.json") + " --out " + out("renamed") + " --keep-runs --jobs 1");
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  const nlohmann::json line = nlohmann::json::parse(lines_of(slurp(dir_ / "renamed" / "results.jsonl")).at(0));
+  EXPECT_EQ(line["scene"], "barriers_renamed");
+  EXPECT_THAT(line["name"].get<std::string>(), StartsWith("barriers_renamed__resolution-16__seed-1"));
+  const nlohmann::json record =
+      nlohmann::json::parse(slurp(dir_ / "renamed" / line["run_dir"].get<std::string>() / "run.json"));
+  EXPECT_EQ(record["provenance"]["scene"]["name"], line["scene"]);
+  // The same scene run alone has that name too.
+  const Result run = campo("run " + spec("field_copy.json") + " --set /world/time_limit_s=1 --out " + out("alone"));
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir_ / "alone" / "run.json"))["provenance"]["scene"]["name"],
+            "barriers_renamed");
+  const Result table = campo("table " + out("renamed") + " --rows scene --metrics success --no-chart");
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_THAT(table.out, HasSubstr("| barriers_renamed |"));
+  EXPECT_THAT(table.out, ::testing::Not(HasSubstr("field_copy")));
+
+  // The overhead per run: wall time of the run's process minus the run's own time, measured from before the fork.
+  const std::size_t at = sweep.err.find("sweep overhead: ");
+  ASSERT_NE(at, std::string::npos) << sweep.err;
+  EXPECT_GE(std::stod(sweep.err.substr(at + 16)), 0.0) << sweep.err;
+
+  // Two files of one name would be one scene in every table: refused, naming both.
+  write("field_other.json", scene.dump());
+  spec_json["scenes"] = {"field_copy.json", "field_other.json"};
+  write("twice.json", spec_json.dump());
+  const Result twice = campo("sweep " + spec("twice.json") + " --list");
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_THAT(twice.err, HasSubstr("/scenes/1: expected scenes with distinct names"));
+  EXPECT_THAT(twice.err, HasSubstr("is named \"barriers_renamed\" as the scene at /scenes/0"));
+}
+
 }  // namespace

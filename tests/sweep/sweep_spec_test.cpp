@@ -153,8 +153,11 @@ TEST_F(SweepSpecTest, RangeCountsAreCheckedBeforeTheyBecomeIntegers) {
 }
 
 TEST_F(SweepSpecTest, ExpandsScenesAxesAndSeedsInOrder) {
-  // A scene beside the spec, by relative path, and a bundled one.
-  fs::copy_file(fs::path(CAMPO_SOURCE_DIR) / "scenes/two_barriers.json", dir_ / "local.json");
+  // A scene beside the spec, by relative path, and a bundled one. Runs call a scene by its name (the
+  // copy of two_barriers renamed "local"), as run.json does; the copy under its own name would be refused.
+  nlohmann::json local = nlohmann::json::parse(std::ifstream(fs::path(CAMPO_SOURCE_DIR) / "scenes/two_barriers.json"));
+  local["name"] = "local";
+  write(local.dump(), "local.json");
   const SweepSpec spec = read_sweep_spec(write(R"({
     "campo_sweep": 1, "name": "order",
     "scenes": ["local.json", "two_barriers"],
