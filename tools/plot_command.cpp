@@ -1,8 +1,10 @@
+#include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/output_dir.hpp"
@@ -15,6 +17,29 @@ namespace campo::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+// A choice among names, case-insensitive, as the enum's value; an error that lists the names
+// ("expected markdown, md, csv or latex, got \"x\"") rather than the parser's map of them.
+template <class E>
+CLI::Validator named_choice(std::vector<std::pair<std::string, E>> names) {
+  return CLI::Validator(
+      [names](std::string& text) -> std::string {
+        std::string lower = text;
+        for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        for (const auto& [name, value] : names) {
+          if (lower == name) {
+            text = std::to_string(static_cast<int>(value));
+            return {};
+          }
+        }
+        std::string list;
+        for (std::size_t i = 0; i < names.size(); ++i) {
+          list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i].first;
+        }
+        return "expected " + list + ", got \"" + text + "\"";
+      },
+      "");
+}
 
 struct PlotOptions {
   std::string dir;
@@ -62,11 +87,8 @@ Command add_plot(CLI::App& app) {
   app.add_option("--kind", o->request.kind,
                  "line (numeric x: mean and 95% interval), box (x as categories: quartiles, whiskers, outliers) "
                  "or auto (line when every x value is a number; default)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, PlotKind>{{"auto", PlotKind::automatic},
-                                                                          {"line", PlotKind::line},
-                                                                          {"box", PlotKind::box}},
-                                          CLI::ignore_case)
-                      .description(""))  // the choices are in the text above, not the transformer's map
+      ->transform(named_choice<PlotKind>({{"line", PlotKind::line}, {"box", PlotKind::box},
+                                          {"auto", PlotKind::automatic}}))  // by name, not a map "line->1"
       ->option_text("line|box|auto");
   app.add_option("--title", o->request.title, "Title (default: \"<sweep>: <metric> vs <x>\")");
   app.add_option("--xlabel", o->request.x_label,

@@ -1,8 +1,10 @@
+#include <cctype>
 #include <filesystem>
 #include <iostream>
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/output_dir.hpp"
@@ -17,6 +19,29 @@ namespace campo::cli {
 namespace {
 
 namespace fs = std::filesystem;
+
+// A choice among names, case-insensitive, as the enum's value; an error that lists the names
+// ("expected markdown, md, csv or latex, got \"x\"") rather than the parser's map of them.
+template <class E>
+CLI::Validator named_choice(std::vector<std::pair<std::string, E>> names) {
+  return CLI::Validator(
+      [names](std::string& text) -> std::string {
+        std::string lower = text;
+        for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        for (const auto& [name, value] : names) {
+          if (lower == name) {
+            text = std::to_string(static_cast<int>(value));
+            return {};
+          }
+        }
+        std::string list;
+        for (std::size_t i = 0; i < names.size(); ++i) {
+          list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i].first;
+        }
+        return "expected " + list + ", got \"" + text + "\"";
+      },
+      "");
+}
 
 struct TableOptions {
   std::string dir;
@@ -84,23 +109,21 @@ Command add_table(CLI::App& app) {
   app.add_option("dir", o->dir, "Sweep output directory (holding results.jsonl, from campo sweep)")
       ->required()
       ->check(input_path());
-  // The choices are named in the help text; the transformer's own description (its map) is not for people.
+  // The choices, in the help and in errors, by name (not a transformer's map "csv->1").
   app.add_option("--format", o->format,
                  "Table format: markdown (or md), csv or latex (a booktabs tabular; default: markdown)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, TableFormat>{{"markdown", TableFormat::markdown},
-                                                                             {"md", TableFormat::markdown},
-                                                                             {"csv", TableFormat::csv},
-                                                                             {"latex", TableFormat::latex}},
-                                          CLI::ignore_case)
-                      .description(""))
+      ->transform(named_choice<TableFormat>({{"markdown", TableFormat::markdown},
+                                             {"md", TableFormat::markdown},
+                                             {"csv", TableFormat::csv},
+                                             {"latex", TableFormat::latex}}))
       ->option_text("markdown|csv|latex");
-  std::map<std::string, CellStat> cell_stats;
-  for (const auto& [name, stat] : cell_stat_names()) cell_stats.emplace(name, stat);
+  std::vector<std::pair<std::string, CellStat>> cell_stats;
+  for (const auto& [name, stat] : cell_stat_names()) cell_stats.emplace_back(name, stat);
   app.add_option("--cell", o->cell.stat,
                  "What a Markdown or LaTeX cell shows: mean, mean-sd (mean ± sd; default), mean-ci (mean and "
                  "95% confidence interval) or mean-sd-ci; a rate shows its Wilson interval with -ci only. CSV "
                  "always has every statistic in its own column")
-      ->transform(CLI::CheckedTransformer(cell_stats, CLI::ignore_case).description(""))
+      ->transform(named_choice(cell_stats))
       ->option_text("mean|mean-sd|mean-ci|mean-sd-ci");
   app.add_flag("--with-n", o->cell.with_n, "Also print each cell's number of runs: \"(n=5)\"");
   auto* rows = app.add_option("--rows", o->rows, "Field giving the rows: scene, planner, seed or an axis name");

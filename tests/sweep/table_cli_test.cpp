@@ -191,6 +191,15 @@ TEST_F(TableCli, HelpTextsShowNoParserInternals) {
   EXPECT_THAT(table.out, HasSubstr("--format markdown|csv|latex"));
   EXPECT_THAT(table.out, HasSubstr("--cell mean|mean-sd|mean-ci|mean-sd-ci"));
   EXPECT_THAT(campo("plot --help").out, HasSubstr("--kind line|box|auto"));
+  // A wrong choice: the names, not the parser's map.
+  const Result format = campo("table " + dir() + " --format tex");
+  EXPECT_EQ(format.exit_code, 2);
+  EXPECT_THAT(format.err, HasSubstr("error: command line: --format: expected markdown, md, csv or latex, got \"tex\""));
+  const Result cell = campo("table " + dir() + " --cell median");
+  EXPECT_THAT(cell.err, HasSubstr("--cell: expected mean, mean-sd, mean-ci or mean-sd-ci, got \"median\""));
+  const Result kind = campo("plot " + dir() + " --x resolution --y success --kind bar --out " + dir() + "/k.png");
+  EXPECT_THAT(kind.err, HasSubstr("--kind: expected line, box or auto, got \"bar\""));
+  for (const Result& r : {format, cell, kind}) EXPECT_THAT(r.err, ::testing::Not(::testing::ContainsRegex("[a-z]->[0-9]")));
 }
 
 }  // namespace
