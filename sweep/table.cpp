@@ -209,6 +209,25 @@ std::string latex_tabular(const std::vector<std::vector<std::string>>& cells, co
   return out + "\\bottomrule\n\\end{tabular}\n";
 }
 
+// LaTeX headings on two lines at their last ", " (the metric, then the runs it is over), in a nested
+// tabular (no package needed), so the columns are not as wide as the headings.
+std::vector<std::vector<std::string>> two_line_headings(std::vector<std::vector<std::string>> cells) {
+  for (std::size_t c = 1; c < cells.front().size(); ++c) {
+    std::string& h = cells.front()[c];
+    // The last ", " outside parentheses ("Replanning (ms, median)" stays whole).
+    std::size_t comma = std::string::npos;
+    int depth = 0;
+    for (std::size_t i = 0; i + 1 < h.size(); ++i) {
+      depth += h[i] == '(' ? 1 : h[i] == ')' ? -1 : 0;
+      if (depth == 0 && h[i] == ',' && h[i + 1] == ' ') comma = i;
+    }
+    if (comma != std::string::npos) {
+      h = "\\begin{tabular}[b]{@{}c@{}}" + h.substr(0, comma + 1) + "\\\\" + h.substr(comma + 2) + "\\end{tabular}";
+    }
+  }
+  return cells;
+}
+
 // Label of a row or column value; `missing` for null (a run without that axis or planner).
 std::string value_text(const nlohmann::json& value, const std::string& missing) {
   return value.is_null() ? missing : value_label(value);
@@ -342,15 +361,7 @@ std::string metric_latex(const MetricTable& table, const CellFormat& format) {
     }
     heading += " \\\\\n" + rules + "\n";
   }
-  std::vector<std::vector<std::string>> cells = metric_cells(table, kLatexStyle, true, format);
-  // Long headings on two lines (the metric, then the runs it is over), so the columns stay narrow.
-  for (std::size_t c = 1; c < cells.front().size(); ++c) {
-    std::string& h = cells.front()[c];
-    if (const std::size_t comma = h.rfind(", "); comma != std::string::npos) {
-      h = "\\begin{tabular}[b]{@{}c@{}}" + h.substr(0, comma + 1) + "\\\\" + h.substr(comma + 2) + "\\end{tabular}";
-    }
-  }
-  return latex_tabular(cells, heading);
+  return latex_tabular(two_line_headings(metric_cells(table, kLatexStyle, true, format)), heading);
 }
 
 }  // namespace
@@ -363,7 +374,7 @@ std::string format_table(const SweepTable& table, TableFormat format, const Cell
   switch (format) {
     case TableFormat::markdown: return markdown_grid(human_cells(table, kMarkdownStyle, cell));
     case TableFormat::csv: return csv(table);
-    case TableFormat::latex: return latex_tabular(human_cells(table, kLatexStyle, cell));
+    case TableFormat::latex: return latex_tabular(two_line_headings(human_cells(table, kLatexStyle, cell)));
   }
   return {};
 }

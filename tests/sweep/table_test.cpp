@@ -310,6 +310,8 @@ TEST_F(MetricTableTest, LatexIsBooktabsWithGroupsHeadedByFieldAndValue) {
   EXPECT_EQ(field_value_heading("speed_mps", 2), "Speed = 2 m/s");
   const std::string summary = format_table(aggregate(runs_, layout_), TableFormat::latex);
   EXPECT_THAT(summary, HasSubstr("\\toprule\nScene & Resolution & Runs"));
+  EXPECT_THAT(summary, HasSubstr(" & \\begin{tabular}[b]{@{}c@{}}Time (s),\\\\reached runs\\end{tabular} & "));
+  EXPECT_THAT(summary, HasSubstr(" & Replanning (ms, median) & "));
   EXPECT_THAT(summary, HasSubstr("\\bottomrule\n\\end{tabular}\n"));
   EXPECT_THAT(summary, Not(HasSubstr("\\hline")));
 }
