@@ -89,6 +89,29 @@ TEST(SweepChart, PathRatioOfTheReachedRunsOnly) {
   EXPECT_NE(png(longer), base);
 }
 
+// The chart's error bars are the 95 % interval the tables and plots give (MeanSd::ci95), not ± sd.
+TEST(SweepChart, ErrorBarsAreTheConfidenceIntervalNotTheSd) {
+  const auto png = [](const SweepTable& table) {
+    std::vector<uchar> bytes;
+    cv::imencode(".png", draw_sweep_chart(table), bytes);
+    return bytes;
+  };
+  SweepTable with_ci = resolution_table();
+  with_ci.rows[1].path_ratio_reached = MeanSd{1.03, 0.01, Interval{1.0, 1.2}};
+  SweepTable other_sd = with_ci;
+  other_sd.rows[1].path_ratio_reached->sd = 0.3;  // the sd alone changes nothing drawn
+  EXPECT_EQ(png(with_ci), png(other_sd));
+  SweepTable wider = with_ci;
+  wider.rows[1].path_ratio_reached->ci95 = Interval{0.9, 1.4};
+  EXPECT_NE(png(wider), png(with_ci));
+  // The summary's intervals are those of values >= 0: from two runs of ratios 1 and 2 none reaches below 0.
+  RunningStats two;
+  two.add(1.0);
+  two.add(2.0);
+  EXPECT_GT(two.values(Support::non_negative).ci95->low, 0.0);
+  EXPECT_LT(two.values(Support::real).ci95->low, 0.0);  // the t interval would
+}
+
 TEST(SweepChart, LinearAxisForOtherValues) {
   SweepTable table{"speeds", {"speed"}, {}};
   for (double v : {0.3, 0.6, 0.9, 1.2}) table.rows.push_back(row("two_barriers", v, 1.0 + v / 10, 0.01, 1.0));
