@@ -248,6 +248,15 @@ void cross_marker(cv::Mat& image, cv::Point2d p, const cv::Scalar& color) {
   }
 }
 
+void collision_marker(cv::Mat& image, cv::Point2d p) {
+  cv::circle(image, fixed(p), 9 << kShift, kWhite, cv::FILLED, cv::LINE_AA, kShift);
+  cv::circle(image, fixed(p), 7 << kShift, kCollision, cv::FILLED, cv::LINE_AA, kShift);
+  for (const double s : {1.0, -1.0}) {
+    cv::line(image, fixed(p + cv::Point2d(-3.5, -3.5 * s)), fixed(p + cv::Point2d(3.5, 3.5 * s)), kWhite, 2,
+             cv::LINE_AA, kShift);
+  }
+}
+
 namespace {
 constexpr int kLegendPadPx = 10;
 constexpr int kLegendRowPx = 26;

@@ -87,6 +87,10 @@ void goal_marker(cv::Mat& image, cv::Point2d p, bool filled);
 void waypoint_marker(cv::Mat& image, cv::Point2d p, int number, bool filled);
 void diamond_marker(cv::Mat& image, cv::Point2d p, const cv::Scalar& color);
 void cross_marker(cv::Mat& image, cv::Point2d p, const cv::Scalar& color);
+/// Where the vehicle collided: a red disc with a white cross, haloed in white.
+void collision_marker(cv::Mat& image, cv::Point2d p);
+/// Its red.
+inline const cv::Scalar kCollision = rgb(214, 39, 40);
 
 /// One legend row: a symbol drawn around `centre` and its text.
 struct LegendEntry {

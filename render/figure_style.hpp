@@ -50,6 +50,9 @@ struct RunView {
   /// at the last track time), highlighted on the map.
   std::vector<std::pair<double, double>> avoiding_s;
   std::string outcome;                      ///< run outcome, for titles
+  /// Each collision recorded (run.json's collision_events): when, s, and the
+  /// point of the body touched, world frame; marked on maps, side views and videos.
+  std::vector<std::pair<double, Eigen::Vector3d>> collisions;
 };
 
 enum class TrackColoring { time, speed };

@@ -162,6 +162,9 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
   if (steps && std::any_of(plan.runs.begin(), plan.runs.end(), [](const RunView* r) { return r->planned_path.size() >= 2; })) {
     legend.push_back(line_entry(overlay ? kNeutralMarker : kPlannedPath, 1, "planned path", true));
   }
+  if (std::any_of(plan.runs.begin(), plan.runs.end(), [](const RunView* r) { return !r->collisions.empty(); })) {
+    legend.push_back(marker_entry(figure::collision_marker, "collision"));
+  }
   if (steps && !overlay && has_nominal_route(*plan.runs.front())) {
     legend.push_back(line_entry(kNominalRoute, 2, "nominal route", true));
   }
@@ -437,6 +440,10 @@ void draw_run_marks(cv::Mat& plot, const PlotMapper& to, const MapPlan& plan) {
     for (const auto& p : run.discarded) {
       figure::cross_marker(plot, to(p), plan.overlay ? run_color(i) : kDiscardedWaypoint);
     }
+  }
+  // Last, over everything of the runs: where each hit something.
+  for (const RunView* run : plan.runs) {
+    for (const auto& [t, p] : run->collisions) figure::collision_marker(plot, to(p));
   }
 }
 

@@ -181,6 +181,11 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
       v.mission.push_back(w);
     }
     add_decisions(v, run.events, std::numeric_limits<double>::infinity(), (dir / "run.json").string());
+    // Runs recorded before collisions were listed have none to mark.
+    const nlohmann::json& metrics = run.record.at("metrics");
+    if (const auto events = metrics.find("collision_events"); events != metrics.end()) {
+      for (const auto& e : *events) v.collisions.emplace_back(e.at("time_s").get<double>(), vector3(e.at("point_m")));
+    }
   } catch (const nlohmann::json::exception& e) {
     throw InputError((dir / "run.json").string(), "", std::string("malformed run record: ") + e.what());
   }
@@ -198,6 +203,9 @@ RunView run_view_at(const RecordedRun& run, double time_s) {
   }
   if (v.track.empty() && !run.view.track.empty()) v.track.push_back(run.view.track.front());
   add_decisions(v, run.events, time_s, (run.dir / "run.json").string());
+  for (const auto& c : run.view.collisions) {
+    if (c.first <= time_s) v.collisions.push_back(c);
+  }
   return v;
 }
 

@@ -49,6 +49,7 @@ struct Profile {
   std::vector<Crossing> crossings; // in the order of `solids`
   std::vector<std::pair<double, std::size_t>> waypoints;  // (distance of closest approach, mission index)
   std::vector<double> mission_m;   // the altitude the mission asks for, NaN where unknown
+  std::vector<std::pair<double, double>> collisions;  // (distance along the track, altitude) of each point touched
   double x0 = 0.0, x1 = 1.0, y0 = 0.0, y1 = 1.0;
   std::vector<LegendEntry> legend;
 };
@@ -136,6 +137,21 @@ Profile profile_of(const Scene& scene, const RunView& run) {
   }
   for (const auto& c : p.crossings) extend(p.solids[c.solid].top_m);
   for (const auto& [d, w] : p.waypoints) extend(run.mission[w].position_m.z());
+  // A collision at the distance of the last sample before it, plus how far ahead of it the point lies along the
+  // track's heading there (its sideways offset is not distance along the track).
+  for (const auto& [t, point] : run.collisions) {
+    if (run.track.empty()) break;
+    std::size_t i = 0;
+    while (i + 1 < run.track.size() && run.track[i + 1].time_s <= t) ++i;
+    const std::size_t j = i > 0 ? i - 1 : 0, k = i > 0 ? i : std::min<std::size_t>(1, run.track.size() - 1);
+    Eigen::Vector2d heading = xy(run.track[k].position_m) - xy(run.track[j].position_m);
+    const Eigen::Vector2d offset = xy(point) - xy(run.track[i].position_m);
+    const double ahead = heading.norm() > 1e-9 ? std::max(0.0, offset.dot(heading.normalized())) : offset.norm();
+    const double d = p.distance_m[i] + ahead;
+    p.collisions.emplace_back(d, point.z());
+    extend(point.z());
+    s = std::max(s, d);
+  }
   if (!(hi >= lo)) {  // no track
     lo = 0.0;
     hi = 1.0;
@@ -160,6 +176,7 @@ Profile profile_of(const Scene& scene, const RunView& run) {
     p.legend.push_back(patch_entry(c, figure::shade(c, 0.6), "obstacle on the track"));
   }
   if (!run.track.empty()) p.legend.push_back(marker_entry(figure::start_marker, "start"));
+  if (!p.collisions.empty()) p.legend.push_back(marker_entry(figure::collision_marker, "collision"));
   bool reached = false, missed = false;
   for (const auto& [d, w] : p.waypoints) {
     if (w + 1 == run.mission.size()) continue;
@@ -302,6 +319,7 @@ cv::Mat draw_side_figure(const RunView& run, const Profile& p, const FigureLayou
     }
   }
   if (n > 0) figure::start_marker(plot, curve.front());
+  for (const auto& [d, z] : p.collisions) figure::collision_marker(plot, to(d, z));
 
   figure::draw_axes(image, frame, "distance along track, horizontal (m)", "altitude (m)");
   if (!layout.agl_plot_px.empty()) draw_height_above_ground(image, p, layout.agl_plot_px);

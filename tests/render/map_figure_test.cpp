@@ -111,6 +111,27 @@ TEST(FiguresMap, DrawsTheTrackInItsTimeColours) {
   }
 }
 
+// Where a run collided is marked (issue 31): a red disc at the point touched; a video's frame shows it from then on.
+TEST(FiguresMap, MarksWhereTheRunCollided) {
+  const Scene scene = test_scene();
+  RunView run = test_run();
+  const FigureStyle style = small_style();
+  const Eigen::Vector3d point(2.0, -1.0, 1.0);
+  const FigureLayout before = map_layout(scene, run, style);
+  EXPECT_GT(colour_distance(at(draw_map(scene, run, style), before.to_px({2.0, -1.0}) + cv::Point2d(5, 0)),
+                            {40, 39, 214}), 100);
+  run.collisions.emplace_back(3.0, point);
+  const FigureLayout layout = map_layout(scene, run, style);  // the legend has one entry more
+  const cv::Mat image = draw_map(scene, run, style);
+  // Inside the disc (radius 7 px), off its white cross's diagonals.
+  EXPECT_LT(colour_distance(at(image, layout.to_px({2.0, -1.0}) + cv::Point2d(5, 0)), {40, 39, 214}), 10);
+  RecordedRun recorded;
+  recorded.view = run;
+  EXPECT_TRUE(run_view_at(recorded, 2.9).collisions.empty());
+  ASSERT_EQ(run_view_at(recorded, 3.0).collisions.size(), 1u);
+  EXPECT_EQ(run_view_at(recorded, 3.0).collisions.front().second, point);
+}
+
 TEST(FiguresMap, DrawsObstaclesWaypointsLegendTitleAndColourBar) {
   const Scene scene = test_scene();
   const RunView run = test_run();
