@@ -2,7 +2,10 @@
 /// Checks of the command-line options that name paths to read or take a
 /// number, and the one form of every command-line error: "error: command
 /// line: WHAT" on one line (docs/limits.md), whether CLI11 or campo finds it.
+#include <cctype>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -21,6 +24,30 @@ CLI::Validator existing_file();
 CLI::Validator non_negative_number();
 /// A finite number > 0.
 CLI::Validator positive_number();
+
+/// A choice among names, case-insensitive, given to the option as the enum's
+/// value; refused with the names listed ("--format: expected markdown, md, csv
+/// or latex, got \"x\""), never CLI11's map of names to numbers.
+template <class E>
+CLI::Validator named_choice(std::vector<std::pair<std::string, E>> names) {
+  return CLI::Validator(
+      [names](std::string& text) -> std::string {
+        std::string lower = text;
+        for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        for (const auto& [name, value] : names) {
+          if (lower == name) {
+            text = std::to_string(static_cast<int>(value));
+            return {};
+          }
+        }
+        std::string list;
+        for (std::size_t i = 0; i < names.size(); ++i) {
+          list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i].first;
+        }
+        return "expected " + list + ", got \"" + text + "\"";
+      },
+      "");
+}
 
 /// What campo prints for a CLI11 parse error (an unknown option, a missing or
 /// refused value): "error: command line: " and CLI11's text with control

@@ -20,29 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A choice among names, case-insensitive, as the enum's value; an error that lists the names
-// ("expected markdown, md, csv or latex, got \"x\"") rather than the parser's map of them.
-template <class E>
-CLI::Validator named_choice(std::vector<std::pair<std::string, E>> names) {
-  return CLI::Validator(
-      [names](std::string& text) -> std::string {
-        std::string lower = text;
-        for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        for (const auto& [name, value] : names) {
-          if (lower == name) {
-            text = std::to_string(static_cast<int>(value));
-            return {};
-          }
-        }
-        std::string list;
-        for (std::size_t i = 0; i < names.size(); ++i) {
-          list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i].first;
-        }
-        return "expected " + list + ", got \"" + text + "\"";
-      },
-      "");
-}
-
 struct TableOptions {
   std::string dir;
   TableFormat format = TableFormat::markdown;
