@@ -31,7 +31,7 @@ const std::map<std::string, std::set<std::string>> kMayInclude = {
     {"run", {"core", "scene", "physics", "sensors", "vehicles", "grid", "planners"}},
     {"render", {"core", "scene", "sensors", "run"}},
     {"sweep", {"core", "scene", "sensors", "run", "render", "planners"}},
-    {"reproduce", {"core", "scene", "sensors", "run", "render", "sweep", "planners"}},
+    {"reproduce", {"core", "scene", "sensors", "grid", "run", "render", "sweep", "planners"}},
 };
 
 struct Include {
