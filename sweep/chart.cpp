@@ -1,12 +1,12 @@
 #include "sweep/chart.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
 
 
-#include "core/image_io.hpp"
 #include "render/figure_canvas.hpp"
 #include "render/figures.hpp"
 #include "sweep/sweep_spec.hpp"
@@ -34,9 +34,9 @@ struct ChartStyle {
 const ChartStyle kPanelStyle{figure::kTitleFont, figure::kLabelFont, figure::kTickFont, figure::kLegendFont,
                              figure::kSmallFont, 2, 4.0, 4.0, 5.0, 5.0, 24};
 // `campo plot`: one large plot whose text stays legible scaled down to a column of a paper.
-const ChartStyle kPaperStyle{{cv::FONT_HERSHEY_DUPLEX, 1.3, 2}, {cv::FONT_HERSHEY_SIMPLEX, 1.0, 2},
-                             {cv::FONT_HERSHEY_SIMPLEX, 0.85, 2}, {cv::FONT_HERSHEY_SIMPLEX, 0.9, 2},
-                             {cv::FONT_HERSHEY_SIMPLEX, 0.75, 1}, 3, 7.0, 9.0, 9.0, 9.0, 44};
+// Its former Hershey fonts drawn 2 px thick are the bold ones.
+const ChartStyle kPaperStyle{{1.3, true}, {1.0, true}, {0.85, true}, {0.9, true}, {0.75, false},
+                             3, 7.0, 9.0, 9.0, 9.0, 44};
 
 struct Tick {
   double value;
@@ -65,59 +65,55 @@ std::vector<Tick> percent_ticks() {
   return ticks;
 }
 
-void put_title(cv::Mat& image, const std::string& title, const cv::Rect& band, Font font) {
+void put_title(figure::Canvas& canvas, const std::string& title, const cv::Rect& band, Font font) {
   while (font.scale > 0.45 && figure::text_size(title, font).width > band.width - 24) font.scale *= 0.92;
-  figure::put_text(image, title, {band.x + 0.5 * band.width, band.y + 0.5 * band.height}, font, figure::kInk,
+  figure::put_text(canvas, title, {band.x + 0.5 * band.width, band.y + 0.5 * band.height}, font, figure::kInk,
                    Align::centre);
 }
 
-void draw_grid(cv::Mat& image, const PlotFrame& frame, const std::vector<Tick>& x_ticks,
+void draw_grid(figure::Canvas& canvas, const PlotFrame& frame, const std::vector<Tick>& x_ticks,
                const std::vector<Tick>& y_ticks) {
   const cv::Rect& p = frame.plot_px;
   for (const Tick& t : x_ticks) {
     const double x = frame.to_px(t.value, frame.y0).x;
-    cv::line(image, figure::fixed({x, p.y - 0.5}), figure::fixed({x, p.y + p.height - 0.5}), figure::kGridInk, 1,
-             cv::LINE_AA, figure::kShift);
+    canvas.line({x, p.y - 0.5}, {x, p.y + p.height - 0.5}, figure::kGridInk, 1.0);
   }
   for (const Tick& t : y_ticks) {
     const double y = frame.to_px(frame.x0, t.value).y;
-    cv::line(image, figure::fixed({p.x - 0.5, y}), figure::fixed({p.x + p.width - 0.5, y}), figure::kGridInk, 1,
-             cv::LINE_AA, figure::kShift);
+    canvas.line({p.x - 0.5, y}, {p.x + p.width - 0.5, y}, figure::kGridInk, 1.0);
   }
 }
 
 // Frame, ticks with labels (an x label that would overlap the previous one is left out) and axis titles.
-void draw_axes(cv::Mat& image, const PlotFrame& frame, const std::vector<Tick>& x_ticks,
+void draw_axes(figure::Canvas& canvas, const PlotFrame& frame, const std::vector<Tick>& x_ticks,
                const std::vector<Tick>& y_ticks, const std::string& x_label, const std::string& y_label,
                const ChartStyle& style) {
   const cv::Rect& p = frame.plot_px;
-  cv::rectangle(image, {p.x - 1, p.y - 1}, {p.x + p.width, p.y + p.height}, figure::kInk, 1, cv::LINE_8);
+  canvas.rectangle({p.x - 1, p.y - 1, p.width + 2, p.height + 2}, figure::kInk, 1.0);
   const double bottom = p.y + p.height;
   const double tick_text = figure::text_size("0", style.tick).height;
   const double label_text = figure::text_size("0", style.label).height;
   double free_from = -1e9;  // x where the next tick label may start
   for (const Tick& t : x_ticks) {
     const double x = frame.to_px(t.value, frame.y0).x;
-    cv::line(image, figure::fixed({x, bottom}), figure::fixed({x, bottom + style.tick_px}), figure::kInk, 1,
-             cv::LINE_AA, figure::kShift);
+    canvas.line({x, bottom}, {x, bottom + style.tick_px}, figure::kInk, 1.0);
     const double half = 0.5 * figure::text_size(t.label, style.tick).width;
     if (x - half < free_from) continue;
-    figure::put_text(image, t.label, {x, bottom + style.tick_px + 6.0 + 0.5 * tick_text}, style.tick, figure::kInk,
+    figure::put_text(canvas, t.label, {x, bottom + style.tick_px + 6.0 + 0.5 * tick_text}, style.tick, figure::kInk,
                      Align::centre);
     free_from = x + half + 8.0;
   }
   int widest = 0;
   for (const Tick& t : y_ticks) {
     const double y = frame.to_px(frame.x0, t.value).y;
-    cv::line(image, figure::fixed({p.x - 1.0 - style.tick_px, y}), figure::fixed({p.x - 1.0, y}), figure::kInk, 1,
-             cv::LINE_AA, figure::kShift);
-    figure::put_text(image, t.label, {p.x - style.tick_px - 5.0, y}, style.tick, figure::kInk, Align::right);
+    canvas.line({p.x - 1.0 - style.tick_px, y}, {p.x - 1.0, y}, figure::kInk, 1.0);
+    figure::put_text(canvas, t.label, {p.x - style.tick_px - 5.0, y}, style.tick, figure::kInk, Align::right);
     widest = std::max(widest, figure::text_size(t.label, style.tick).width);
   }
-  figure::put_text(image, x_label,
+  figure::put_text(canvas, x_label,
                    {p.x + 0.5 * p.width, bottom + style.tick_px + 6.0 + tick_text + 18.0 + 0.5 * label_text},
                    style.label, figure::kInk, Align::centre);
-  figure::put_text_vertical(image, y_label,
+  figure::put_text_vertical(canvas, y_label,
                             {p.x - style.tick_px - 5.0 - widest - 16.0 - 0.5 * label_text, p.y + 0.5 * p.height},
                             style.label, figure::kInk);
 }
@@ -127,64 +123,67 @@ struct Point {
   double x, y, lo, hi;
 };
 
-void draw_error_bar(cv::Mat& image, cv::Point2d lo, cv::Point2d hi, const cv::Scalar& color, const ChartStyle& style) {
-  const int thickness = std::max(1, style.line_px - 1);
-  cv::line(image, figure::fixed(lo), figure::fixed(hi), color, thickness, cv::LINE_AA, figure::kShift);
-  for (const cv::Point2d& end : {lo, hi}) {
-    cv::line(image, figure::fixed(end - cv::Point2d(style.cap_px, 0)), figure::fixed(end + cv::Point2d(style.cap_px, 0)),
-             color, thickness, cv::LINE_AA, figure::kShift);
-  }
+double error_bar_width(const ChartStyle& style) { return std::max(1, style.line_px - 1); }
+
+void draw_cap(figure::Canvas& canvas, cv::Point2d end, const cv::Scalar& color, const ChartStyle& style) {
+  canvas.line(end - cv::Point2d(style.cap_px, 0), end + cv::Point2d(style.cap_px, 0), color, error_bar_width(style));
 }
 
-void draw_marker(cv::Mat& image, cv::Point2d p, const cv::Scalar& color, const ChartStyle& style) {
-  const auto radius = [](double px) { return static_cast<int>(std::lround(px * (1 << figure::kShift))); };
-  cv::circle(image, figure::fixed(p), radius(style.marker_px + 2.0), figure::kWhite, cv::FILLED, cv::LINE_AA,
-             figure::kShift);
-  cv::circle(image, figure::fixed(p), radius(style.marker_px), color, cv::FILLED, cv::LINE_AA, figure::kShift);
+void draw_error_bar(figure::Canvas& canvas, cv::Point2d lo, cv::Point2d hi, const cv::Scalar& color,
+                    const ChartStyle& style) {
+  canvas.line(lo, hi, color, error_bar_width(style));
+  for (const cv::Point2d& end : {lo, hi}) draw_cap(canvas, end, color, style);
+}
+
+void draw_marker(figure::Canvas& canvas, cv::Point2d p, const cv::Scalar& color, const ChartStyle& style) {
+  canvas.fill_circle(p, style.marker_px + 2.0, figure::kWhite);
+  canvas.fill_circle(p, style.marker_px, color);
+}
+
+// A box of a box plot (and its legend symbol): filled with the colour lightened, edged in the colour.
+void draw_box(figure::Canvas& canvas, cv::Point2d a, cv::Point2d b, const cv::Scalar& color) {
+  canvas.fill_box(a, b, figure::lighten(color, 0.55));
+  canvas.polyline({a, {b.x, a.y}, b, {a.x, b.y}}, color, 2.0, true);
 }
 
 // An error bar whose end lies beyond the frame: drawn to the frame's edge, ending in an arrowhead
 // there instead of a cap, so a very wide interval (n = 2) does not squash the plot yet reads as wider.
-void draw_clipped_error_bar(cv::Mat& image, const PlotFrame& frame, double x, double lo, double hi, double dodge_px,
+void draw_clipped_error_bar(figure::Canvas& canvas, const PlotFrame& frame, double x, double lo, double hi, double dodge_px,
                             const cv::Scalar& color, const ChartStyle& style) {
   const auto px = [&](double y) { return frame.to_px(x, y) + cv::Point2d(dodge_px, 0.0); };
   const bool low_out = lo < frame.y0, high_out = hi > frame.y1;
-  if (!low_out && !high_out) return draw_error_bar(image, px(lo), px(hi), color, style);
+  if (!low_out && !high_out) return draw_error_bar(canvas, px(lo), px(hi), color, style);
   const cv::Point2d a = px(std::max(lo, frame.y0)), b = px(std::min(hi, frame.y1));
-  const int thickness = std::max(1, style.line_px - 1);
-  cv::line(image, figure::fixed(a), figure::fixed(b), color, thickness, cv::LINE_AA, figure::kShift);
+  canvas.line(a, b, color, error_bar_width(style));
   for (const auto& [end, out, toward] : {std::tuple{a, low_out, 1.0}, std::tuple{b, high_out, -1.0}}) {
     if (!out) {
-      cv::line(image, figure::fixed(end - cv::Point2d(style.cap_px, 0)), figure::fixed(end + cv::Point2d(style.cap_px, 0)),
-               color, thickness, cv::LINE_AA, figure::kShift);
+      draw_cap(canvas, end, color, style);
       continue;
     }
     // The arrowhead points out of the frame (up at the top, where y pixels grow downwards).
     const double depth = 1.6 * style.cap_px;
     const std::vector<cv::Point2d> head{end, end + cv::Point2d(-style.cap_px, -toward * depth),
                                         end + cv::Point2d(style.cap_px, -toward * depth)};
-    std::vector<cv::Point> fixed_head;
-    for (const cv::Point2d& p : head) fixed_head.push_back(figure::fixed(p));
-    cv::fillConvexPoly(image, fixed_head, color, cv::LINE_AA, figure::kShift);
+    canvas.fill_polygon(head, color);
   }
 }
 
 // Error bars, then the line through the points (unless `connect` is false), then markers on top.
-void draw_series(cv::Mat& image, const PlotFrame& frame, const std::vector<Point>& points, double dodge_px,
+void draw_series(figure::Canvas& canvas, const PlotFrame& frame, const std::vector<Point>& points, double dodge_px,
                  const cv::Scalar& color, const ChartStyle& style, bool connect = true) {
   const auto px = [&](double x, double y) { return frame.to_px(x, y) + cv::Point2d(dodge_px, 0.0); };
   for (const Point& p : points) {
-    if (p.hi > p.lo) draw_clipped_error_bar(image, frame, p.x, p.lo, p.hi, dodge_px, color, style);
+    if (p.hi > p.lo) draw_clipped_error_bar(canvas, frame, p.x, p.lo, p.hi, dodge_px, color, style);
   }
   std::vector<cv::Point2d> line;
   for (const Point& p : points) line.push_back(px(p.x, p.y));
-  if (connect) figure::polyline(image, line, color, style.line_px);
-  for (const cv::Point2d& p : line) draw_marker(image, p, color, style);
+  if (connect) canvas.polyline(line, color, style.line_px);
+  for (const cv::Point2d& p : line) draw_marker(canvas, p, color, style);
 }
 
 // A legend row: a symbol drawn around a centre, then the text.
 struct LegendRow {
-  std::function<void(cv::Mat&, cv::Point2d)> symbol;
+  std::function<void(figure::Canvas&, cv::Point2d)> symbol;
   std::string text;
 };
 
@@ -196,30 +195,30 @@ int legend_width(const std::vector<LegendRow>& rows, const std::string& heading,
 }
 
 // A white box with a border: an optional heading, then one row per entry.
-void draw_legend(cv::Mat& image, cv::Point top_left, int width, const std::vector<LegendRow>& rows,
+void draw_legend(figure::Canvas& canvas, cv::Point top_left, int width, const std::vector<LegendRow>& rows,
                  const std::string& heading, const ChartStyle& style) {
   const int pad = style.legend_row_px / 3;
   const int heading_rows = heading.empty() ? 0 : 1;
   const cv::Rect box(top_left.x, top_left.y, width,
                      2 * pad + static_cast<int>(rows.size() + heading_rows) * style.legend_row_px);
-  cv::rectangle(image, box, figure::kWhite, cv::FILLED);
-  cv::rectangle(image, box, figure::kMutedInk, 1, cv::LINE_8);
+  canvas.fill_rectangle(box, figure::kWhite);
+  canvas.rectangle(box, figure::kMutedInk, 1.0);
   const double row_px = style.legend_row_px;
   if (heading_rows) {
-    figure::put_text(image, heading, {box.x + 0.5 * row_px, box.y + pad + 0.5 * row_px}, style.legend, figure::kInk);
+    figure::put_text(canvas, heading, {box.x + 0.5 * row_px, box.y + pad + 0.5 * row_px}, style.legend, figure::kInk);
   }
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const double cy = box.y + pad + row_px * (i + heading_rows + 0.5);
-    rows[i].symbol(image, {box.x + row_px, cy});
-    figure::put_text(image, rows[i].text, {box.x + 2.2 * row_px, cy}, style.legend, figure::kInk);
+    rows[i].symbol(canvas, {box.x + row_px, cy});
+    figure::put_text(canvas, rows[i].text, {box.x + 2.2 * row_px, cy}, style.legend, figure::kInk);
   }
 }
 
 // A line with a marker: the symbol of a line series.
 LegendRow line_row(const cv::Scalar& color, const std::string& text, const ChartStyle& style) {
-  return {[color, &style](cv::Mat& m, cv::Point2d c) {
+  return {[color, &style](figure::Canvas& m, cv::Point2d c) {
             const double half = 0.6 * style.legend_row_px;
-            figure::polyline(m, {c - cv::Point2d(half, 0), c + cv::Point2d(half, 0)}, color, style.line_px);
+            m.line(c - cv::Point2d(half, 0), c + cv::Point2d(half, 0), color, style.line_px);
             draw_marker(m, c, color, style);
           },
           text};
@@ -227,7 +226,7 @@ LegendRow line_row(const cv::Scalar& color, const std::string& text, const Chart
 
 // The symbol of the interval drawn: a grey error bar with its marker.
 LegendRow interval_row(const std::string& text, const ChartStyle& style) {
-  return {[&style](cv::Mat& m, cv::Point2d c) {
+  return {[&style](figure::Canvas& m, cv::Point2d c) {
             const double half = 0.4 * style.legend_row_px;
             draw_error_bar(m, c - cv::Point2d(0, half), c + cv::Point2d(0, half), figure::kMutedInk, style);
             draw_marker(m, c, figure::kMutedInk, style);
@@ -289,7 +288,7 @@ bool chartable(const SweepTable& table) {
                      [](const TableRow& row) { return row.params.front().is_number(); });
 }
 
-cv::Mat draw_sweep_chart(const SweepTable& table) {
+figure::Canvas draw_sweep_chart(const SweepTable& table) {
   if (!chartable(table)) throw std::invalid_argument("draw_sweep_chart: expected one numeric axis");
   // Layout, pixels: two plots side by side, the legend to their right.
   constexpr int kHeight = 580, kTitleBandPx = 50;
@@ -344,8 +343,8 @@ cv::Mat draw_sweep_chart(const SweepTable& table) {
   const int legend_px = legend_width(legend, "", style, 170, 400);
   const int width = kLegendX + legend_px + 15;
 
-  cv::Mat image(kHeight, width, CV_8UC3, figure::kWhite);
-  put_title(image, table.name + ": path length and success rate vs " + quantity_name(axis).words,
+  figure::Canvas canvas({width, kHeight});
+  put_title(canvas, table.name + ": path length and success rate vs " + quantity_name(axis).words,
             {0, 0, width, kTitleBandPx}, style.title);
   const std::string x_label = field_heading(axis) + (x_axis.log2 ? ", log2 scale" : "");
   const auto ratio_y = linear_ticks(ratio_frame.y0, ratio_frame.y1, kPlotHeight / figure::kTickSpacingPx);
@@ -364,25 +363,47 @@ cv::Mat draw_sweep_chart(const SweepTable& table) {
   };
   for (const auto& panel : panels) {
     const cv::Rect& p = panel.frame.plot_px;
-    draw_grid(image, panel.frame, x_axis.ticks, panel.y_ticks);
+    draw_grid(canvas, panel.frame, x_axis.ticks, panel.y_ticks);
     if (panel.reference_y) {
       const double y = panel.frame.to_px(panel.frame.x0, *panel.reference_y).y;
-      figure::dashed_polyline(image, {{p.x - 0.5, y}, {p.x + p.width - 0.5, y}}, figure::kMutedInk, 1, 6.0, 4.0);
+      canvas.dashed_polyline({{p.x - 0.5, y}, {p.x + p.width - 0.5, y}}, figure::kMutedInk, 1.0, 6.0, 4.0);
     }
-    figure::put_text(image, panel.subtitle, {p.x + 0.5 * p.width, p.y - 18.0}, style.label, figure::kInk,
+    figure::put_text(canvas, panel.subtitle, {p.x + 0.5 * p.width, p.y - 18.0}, style.label, figure::kInk,
                      Align::centre);
     for (std::size_t i = 0; i < series.size(); ++i) {
       const double dodge = (static_cast<double>(i) - 0.5 * (series.size() - 1.0)) * style.dodge_px;
-      draw_series(image, panel.frame, series[i].*panel.points, dodge, run_color(i), style);
+      draw_series(canvas, panel.frame, series[i].*panel.points, dodge, run_color(i), style);
     }
-    draw_axes(image, panel.frame, x_axis.ticks, panel.y_ticks, x_label, panel.y_label, style);
+    draw_axes(canvas, panel.frame, x_axis.ticks, panel.y_ticks, x_label, panel.y_label, style);
   }
-  draw_legend(image, {kLegendX, kPlotTop}, legend_px, legend, "", style);
-  return image;
+  draw_legend(canvas, {kLegendX, kPlotTop}, legend_px, legend, "", style);
+  return canvas;
 }
 
-void write_sweep_chart(const SweepTable& table, const std::filesystem::path& png) {
-  write_png(draw_sweep_chart(table), png);
+std::vector<std::filesystem::path> figure_files(const std::filesystem::path& path,
+                                                const std::vector<figure::FigureFormat>& formats) {
+  std::string given = path.extension().string();
+  for (char& c : given) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const bool figure_extension = given == ".png" || given == ".pdf" || given == ".svg";
+  std::vector<std::filesystem::path> files;
+  for (const figure::FigureFormat format : formats) {
+    std::filesystem::path file = path;
+    if (figure_extension) {
+      file.replace_extension(figure::extension(format));
+    } else {
+      file += std::string(".") + figure::extension(format);
+    }
+    files.push_back(std::move(file));
+  }
+  return files;
+}
+
+std::vector<std::filesystem::path> write_figure(const figure::Canvas& figure, const std::filesystem::path& path,
+                                                const std::vector<figure::FigureFormat>& formats) {
+  const std::vector<std::filesystem::path> files = figure_files(path, formats);
+  // Each file already ends in its format's extension, which Canvas::write keeps.
+  for (std::size_t i = 0; i < files.size(); ++i) figure.write(files[i], {formats[i]});
+  return files;
 }
 
 namespace {
@@ -439,14 +460,14 @@ void PlotBuilder::add(const RunResult& run, std::size_t index) {
   }
 }
 
-cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& layout, const PlotRequest& request,
+figure::Canvas draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& layout, const PlotRequest& request,
                         const PlotConfig& config) {
   PlotBuilder builder(layout, request);
   for (std::size_t i = 0; i < runs.size(); ++i) builder.add(runs[i], i);
   return builder.draw(config);
 }
 
-cv::Mat PlotBuilder::draw(const PlotConfig& config) const {
+figure::Canvas PlotBuilder::draw(const PlotConfig& config) const {
   const Impl& d = *impl_;
   const PlotRequest& request = d.request;
   const TableLayout& layout = d.layout;
@@ -532,12 +553,9 @@ cv::Mat PlotBuilder::draw(const PlotConfig& config) const {
     if (line || rate) {
       legend.push_back(line_row(color, text, style));
     } else {
-      legend.push_back({[color, row_px = style.legend_row_px](cv::Mat& m, cv::Point2d c) {
+      legend.push_back({[color, row_px = style.legend_row_px](figure::Canvas& m, cv::Point2d c) {
                           const cv::Point2d half(0.5 * row_px, 0.3 * row_px);
-                          cv::rectangle(m, figure::fixed(c - half), figure::fixed(c + half), figure::lighten(color, 0.55),
-                                        cv::FILLED, cv::LINE_AA, figure::kShift);
-                          cv::rectangle(m, figure::fixed(c - half), figure::fixed(c + half), color, 2, cv::LINE_AA,
-                                        figure::kShift);
+                          draw_box(m, c - half, c + half, color);
                         },
                         text});
     }
@@ -566,12 +584,12 @@ cv::Mat PlotBuilder::draw(const PlotConfig& config) const {
     for (std::size_t i = 0; i < xs.size(); ++i) x_ticks.push_back({double(i), xs[i].is_null() ? "-" : value_label(xs[i])});
   }
 
-  cv::Mat image(config.height_px, config.width_px, CV_8UC3, figure::kWhite);
+  figure::Canvas canvas({config.width_px, config.height_px});
   const std::string y_label = request.y_label.empty() ? metric_heading(request.y) : request.y_label;
   const std::string title = !request.title.empty() ? request.title
                                                    : layout.name + ": " + metric_heading(request.y) + " vs " +
                                                          quantity_name(request.x).words;
-  put_title(image, title, {0, 10, config.width_px, 60}, style.title);
+  put_title(canvas, title, {0, 10, config.width_px, 60}, style.title);
   const std::string spread = rate   ? "rate with 95% Wilson interval"
                              : line ? (support == Support::non_negative
                                            ? "mean and 95% confidence interval (t on the log scale: the metric is >= 0)"
@@ -579,9 +597,9 @@ cv::Mat PlotBuilder::draw(const PlotConfig& config) const {
                                     : "median, quartiles, whiskers at 1.5 IQR, outliers";
   const std::string note = spread + "; " + std::to_string(run_count) + " runs" +
                            (failed > 0 ? ", " + std::to_string(failed) + " failed" : "");
-  figure::put_text(image, note, {config.width_px * 0.5, 95.0}, style.note, figure::kMutedInk, Align::centre);
+  figure::put_text(canvas, note, {config.width_px * 0.5, 95.0}, style.note, figure::kMutedInk, Align::centre);
 
-  draw_grid(image, frame, line ? x_ticks : std::vector<Tick>{}, y_ticks);
+  draw_grid(canvas, frame, line ? x_ticks : std::vector<Tick>{}, y_ticks);
   // Series side by side within a category (box) or slightly apart (line).
   const double slot_px = line ? style.dodge_px : 0.8 * plot_px.width / xs.size() / series.size();
   for (std::size_t i = 0; i < series.size(); ++i) {
@@ -601,31 +619,21 @@ cv::Mat PlotBuilder::draw(const PlotConfig& config) const {
       const double cx = frame.to_px(m.x, 0.0).x + dodge;
       const double half = std::min(0.4 * slot_px, 45.0);
       const auto y_px = [&](double v) { return frame.to_px(m.x, v).y; };
-      draw_error_bar(image, {cx, y_px(b.whisker_low)}, {cx, y_px(b.q1)}, color, style);
-      draw_error_bar(image, {cx, y_px(b.q3)}, {cx, y_px(b.whisker_high)}, color, style);
-      const cv::Point2d a(cx - half, y_px(b.q3)), c(cx + half, y_px(b.q1));
-      cv::rectangle(image, figure::fixed(a), figure::fixed(c), figure::lighten(color, 0.55), cv::FILLED, cv::LINE_AA,
-                    figure::kShift);
-      cv::rectangle(image, figure::fixed(a), figure::fixed(c), color, 2, cv::LINE_AA, figure::kShift);
-      cv::line(image, figure::fixed({cx - half, y_px(b.median)}), figure::fixed({cx + half, y_px(b.median)}),
-               figure::shade(color, 0.55), style.line_px + 1, cv::LINE_AA, figure::kShift);
-      for (double v : b.outliers) {
-        cv::circle(image, figure::fixed({cx, y_px(v)}), static_cast<int>(style.marker_px) << figure::kShift, color, 2,
-                   cv::LINE_AA, figure::kShift);
-      }
+      draw_error_bar(canvas, {cx, y_px(b.whisker_low)}, {cx, y_px(b.q1)}, color, style);
+      draw_error_bar(canvas, {cx, y_px(b.q3)}, {cx, y_px(b.whisker_high)}, color, style);
+      draw_box(canvas, {cx - half, y_px(b.q3)}, {cx + half, y_px(b.q1)}, color);
+      canvas.line({cx - half, y_px(b.median)}, {cx + half, y_px(b.median)}, figure::shade(color, 0.55),
+                  style.line_px + 1);
+      for (double v : b.outliers) canvas.circle({cx, y_px(v)}, style.marker_px, color, 2.0);
     }
     std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return a.x < b.x; });
-    draw_series(image, frame, points, dodge, color, style, line);
+    draw_series(canvas, frame, points, dodge, color, style, line);
   }
   const std::string x_label =
       !request.x_label.empty() ? request.x_label : field_heading(request.x) + (x_axis.log2 ? ", log2 scale" : "");
-  draw_axes(image, frame, x_ticks, y_ticks, x_label, y_label, style);
-  draw_legend(image, {plot_px.x + plot_px.width + 40, plot_px.y}, legend_px, legend, legend_heading, style);
-  return image;
-}
-
-void write_png(const cv::Mat& image, const std::filesystem::path& png) {
-  write_png_file(image, png);
+  draw_axes(canvas, frame, x_ticks, y_ticks, x_label, y_label, style);
+  draw_legend(canvas, {plot_px.x + plot_px.width + 40, plot_px.y}, legend_px, legend, legend_heading, style);
+  return canvas;
 }
 
 }  // namespace campo

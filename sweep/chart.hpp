@@ -1,6 +1,6 @@
 #pragma once
-/// Charts of sweep results (SPEC §9), drawn with OpenCV, the same pixels for
-/// the same results. The summary chart of `campo table`: two panels,
+/// Charts of sweep results (SPEC §9), drawn on a figure::Canvas (PNG, PDF or
+/// SVG from one drawing), the same bytes for the same results. The summary chart of `campo table`: two panels,
 /// normalized path length (mean and its 95 % confidence interval, the one
 /// `campo plot` and the tables give: mean_interval95, on the log scale as the
 /// ratio is >= 0) and success rate (%, with its Wilson interval) against one
@@ -10,9 +10,9 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
-#include <opencv2/core.hpp>
-
+#include "render/figure_canvas.hpp"
 #include "sweep/results.hpp"
 
 namespace campo {
@@ -20,13 +20,22 @@ namespace campo {
 /// Whether the table can be charted: exactly one axis, all its values numbers.
 bool chartable(const SweepTable& table);
 
-/// The chart of a chartable table (BGR). The x axis is log2 when every value
+/// The chart of a chartable table. The x axis is log2 when every value
 /// is a positive power of two (resolutions), else linear; it is ticked at the
-/// swept values. The same table gives the same pixels.
-cv::Mat draw_sweep_chart(const SweepTable& table);
+/// swept values. The same table gives the same drawing.
+figure::Canvas draw_sweep_chart(const SweepTable& table);
 
-/// Draws the chart and writes it as PNG.
-void write_sweep_chart(const SweepTable& table, const std::filesystem::path& png);
+/// The files a figure asked for as `path` is written to, one per format: a
+/// path ending in .png, .pdf or .svg (any case) has that extension replaced by
+/// each format's ("fig.png" with png,pdf: fig.png and fig.pdf; with pdf alone:
+/// fig.pdf); any other path gets the format's extension appended ("fig" and
+/// "fig.v2" with pdf: fig.pdf and fig.v2.pdf), so no part of a name is lost.
+std::vector<std::filesystem::path> figure_files(const std::filesystem::path& path,
+                                                const std::vector<figure::FigureFormat>& formats);
+
+/// Writes `figure` to figure_files(path, formats), each atomically; returns the files written.
+std::vector<std::filesystem::path> write_figure(const figure::Canvas& figure, const std::filesystem::path& path,
+                                                const std::vector<figure::FigureFormat>& formats);
 
 enum class PlotKind {
   automatic,  ///< line when every x value is a number, else box
@@ -64,9 +73,9 @@ class PlotBuilder {
   PlotBuilder& operator=(PlotBuilder&&) noexcept;
   /// `index`: the run's place in order of first appearance (for_each_result).
   void add(const RunResult& run, std::size_t index);
-  /// The plot of the runs added (BGR). Checks the request first: InputError
+  /// The plot of the runs added. Checks the request first: InputError
   /// naming the option (--x, --y, --group, --kind) and what was expected.
-  cv::Mat draw(const PlotConfig& config = {}) const;
+  figure::Canvas draw(const PlotConfig& config = {}) const;
 
  private:
   struct Impl;
@@ -74,10 +83,7 @@ class PlotBuilder {
 };
 
 /// The plot of `runs` (PlotBuilder).
-cv::Mat draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& layout, const PlotRequest& request,
-                        const PlotConfig& config = {});
-
-/// Writes `image` as PNG, atomically.
-void write_png(const cv::Mat& image, const std::filesystem::path& png);
+figure::Canvas draw_sweep_plot(const std::vector<RunResult>& runs, const TableLayout& layout, const PlotRequest& request,
+                              const PlotConfig& config = {});
 
 }  // namespace campo

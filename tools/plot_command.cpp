@@ -11,6 +11,7 @@
 #include "sweep/chart.hpp"
 #include "sweep/results.hpp"
 #include "tools/commands.hpp"
+#include "tools/path_options.hpp"
 
 namespace campo::cli {
 
@@ -22,10 +23,12 @@ struct PlotOptions {
   std::string dir;
   PlotRequest request;
   std::string out;
+  std::vector<figure::FigureFormat> formats{figure::FigureFormat::png};
 };
 
 int run_plot(const PlotOptions& o) {
-  check_output_file(o.out, "--out");
+  // Every file to be written must be writable before any work.
+  for (const fs::path& file : figure_files(o.out, o.formats)) check_output_file(file, "--out");
   const fs::path dir = o.dir;
   TableLayout layout = table_layout(dir);
   // The results a line at a time, each run folded into its point or box: memory grows with the plot.
@@ -43,9 +46,9 @@ int run_plot(const PlotOptions& o) {
         plot->add(run, index);
       });
   for (const std::string& warning : warnings) std::cerr << "warning: " << warning << "\n";
-  const cv::Mat image = plot->draw();
-  write_png(image, o.out);
-  std::cerr << "wrote " << o.out << "\n";
+  for (const fs::path& file : write_figure(plot->draw(), o.out, o.formats)) {
+    std::cerr << "wrote " << file.string() << "\n";
+  }
   return kOk;
 }
 
@@ -73,11 +76,16 @@ Command add_plot(CLI::App& app) {
   app.add_option("--ylabel", o->request.y_label,
                  "Label of the y axis (default: the metric's name with its unit and the runs it is over, e.g. "
                  "\"Sim time (s), all runs\")");
-  app.add_option("--out", o->out, "PNG file to write")->required();
+  app.add_option("--out", o->out,
+                 "File to write, e.g. ratio.png; its extension (.png, .pdf or .svg) is replaced by each "
+                 "--figure-format's, any other name gets the format's extension appended")
+      ->required();
+  add_figure_format_option(app, &o->formats);
   app.footer(
-      "A 1600 x 1000 PNG for a paper: the metric against the field, one coloured series per --group\n"
-      "value with a legend, axis labels with units (from the names' suffixes: _m, _s, _mps ...), and a\n"
-      "note of the spread shown and the runs.\n"
+      "A 1600 x 1000 figure for a paper (PNG, and with --figure-format PDF or SVG: vectors, text as\n"
+      "text): the metric against the field, one coloured series per --group value with a legend, axis\n"
+      "labels with units (from the names' suffixes: _m, _s, _mps ...), and a note of the spread shown\n"
+      "and the runs. --out ratio.png --figure-format png,pdf writes ratio.png and ratio.pdf.\n"
       "Line plots: the mean per x with its 95% confidence interval, named in the legend: for a metric\n"
       "that cannot be negative (lengths, times, counts, path_ratio) the t interval of log(mean), never\n"
       "below 0; for others the Student t interval; for rates the Wilson interval (docs/sweeps.md). An\n"

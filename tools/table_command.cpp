@@ -29,12 +29,15 @@ struct TableOptions {
   bool summary = false;              ///< the summary table even when the spec has a table
   std::string chart;                 ///< empty: DIR/chart.png
   bool no_chart = false;
+  std::vector<figure::FigureFormat> formats{figure::FigureFormat::png};  ///< of the chart
 };
 
 int run_table(const TableOptions& o) {
   const fs::path dir = o.dir;
   // A chart asked for must be writable before any work; the default one only when the sweep has a chart.
-  if (!o.no_chart && !o.chart.empty()) check_output_file(o.chart, "--chart");
+  if (!o.no_chart && !o.chart.empty()) {
+    for (const fs::path& file : figure_files(o.chart, o.formats)) check_output_file(file, "--chart");
+  }
   TableLayout layout = table_layout(dir);
   // Which table: the options', else the spec's, else the summary. Checked before anything is written.
   std::optional<TableRequest> request;
@@ -65,15 +68,14 @@ int run_table(const TableOptions& o) {
   const std::string table = request ? format_metric_table(metric_cells->finish(), o.format, o.cell)
                                     : format_table(summary, o.format, o.cell);
   // The chart first: a chart that cannot be written is an error (exit 2) with nothing printed before it.
-  std::optional<fs::path> chart;
+  std::vector<fs::path> charts;
   if (!o.no_chart && chartable(summary)) {
-    chart = o.chart.empty() ? dir / "chart.png" : fs::path(o.chart);
-    write_sweep_chart(summary, *chart);
+    charts = write_figure(draw_sweep_chart(summary), o.chart.empty() ? dir / "chart.png" : fs::path(o.chart),
+                          o.formats);
   }
   std::cout << table << std::flush;
-  if (chart) {
-    std::cerr << "wrote " << chart->string() << "\n";
-  } else if (!o.no_chart) {
+  for (const fs::path& chart : charts) std::cerr << "wrote " << chart.string() << "\n";
+  if (charts.empty() && !o.no_chart) {
     std::cerr << "no chart: it needs exactly one axis with numeric values (campo plot draws any)\n";
   }
   return kOk;
@@ -115,9 +117,13 @@ Command add_table(CLI::App& app) {
   app.add_flag("--summary", o->summary, "The summary table, even when the sweep's spec has a \"table\"")
       ->excludes(rows)
       ->excludes(cols);
-  auto* chart = app.add_option("--chart", o->chart, "Where to write the chart PNG (default: DIR/chart.png)")
+  auto* chart = app.add_option("--chart", o->chart,
+                               "Where to write the chart (default: DIR/chart.png); its extension (.png, .pdf or "
+                               ".svg) is replaced by each --figure-format's, any other name gets the format's "
+                               "extension appended")
                     ->check(input_path());  // an empty path is refused, not taken for the default
-  app.add_flag("--no-chart", o->no_chart, "Do not draw the chart")->excludes(chart);
+  auto* formats = add_figure_format_option(app, &o->formats);
+  app.add_flag("--no-chart", o->no_chart, "Do not draw the chart")->excludes(chart)->excludes(formats);
   app.footer(
       "With --rows FIELD [--cols FIELD] --metrics M1,M2 (or the spec's \"table\"): one row per value of\n"
       "the rows field, one column group per value of the cols field (headed \"Resolution = 64\"), and in\n"
@@ -139,7 +145,8 @@ Command add_table(CLI::App& app) {
       "whether the runs are identical.\n"
       "Rows follow the sweep's expansion order. With exactly one numeric axis, also draws\n"
       "DIR/chart.png: normalized path length of the reached runs (mean and 95% confidence interval,\n"
-      "as campo plot draws it) and success rate (with its Wilson interval) against the axis.\n"
+      "as campo plot draws it) and success rate (with its Wilson interval) against the axis; with\n"
+      "--figure-format png,pdf also DIR/chart.pdf (PDF and SVG: vectors, text as text).\n"
       "Example: campo table out/resolution --rows scene --cols resolution --metrics success,path_ratio --format latex");
   return [o] { return run_table(*o); };
 }
