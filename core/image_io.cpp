@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 #include <string>
 
 #include <png.h>
@@ -182,6 +183,21 @@ bool decode(const char* data, std::size_t size, cv::Mat* out, ErrorText* error) 
 }
 
 }  // namespace
+
+std::string encode_png(const cv::Mat& image, int compression) {
+  const int type = image.type();
+  if (image.empty() || (type != CV_8UC1 && type != CV_16UC1 && type != CV_8UC3 && type != CV_8UC4)) {
+    throw std::invalid_argument("cannot encode the image as PNG: expected a non-empty 8-bit grey, BGR or BGRA, or "
+                                "16-bit grey image");
+  }
+  const cv::Mat continuous = image.isContinuous() ? image : image.clone();
+  std::string bytes;
+  ErrorText error;
+  if (!encode(continuous, compression, &bytes, &error)) {
+    throw std::runtime_error(std::string("cannot encode the image as PNG: ") + error.text);
+  }
+  return bytes;
+}
 
 void write_png_file(const cv::Mat& image, const std::filesystem::path& path, int compression) {
   const int type = image.type();

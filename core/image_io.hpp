@@ -8,6 +8,7 @@
 /// libraries, GDAL among them, into every process that writes a figure.)
 #include <cstdint>
 #include <filesystem>
+#include <string>
 
 #include <opencv2/core.hpp>
 
@@ -19,6 +20,9 @@ namespace campo {
 /// atomically; OutputError naming the file. Types: CV_8UC1 and CV_16UC1
 /// (grey), CV_8UC3 (BGR) and CV_8UC4 (BGRA).
 void write_png_file(const cv::Mat& image, const std::filesystem::path& path, int compression = 1);
+/// The PNG bytes write_png_file would write; std::invalid_argument for an
+/// image of another type, std::runtime_error if libpng fails.
+std::string encode_png(const cv::Mat& image, int compression = 1);
 
 /// Reads a PNG file as it is stored: grey as CV_8UC1 or CV_16UC1, colour as
 /// CV_8UC3 (BGR) or CV_8UC4 (BGRA) (palettes expanded, 16-bit colour reduced

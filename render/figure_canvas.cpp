@@ -3,8 +3,385 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cctype>
+#include <cstring>
+#include <string_view>
+#include <stdexcept>
+#include <utility>
+
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
+#include <cairo.h>
+
+#include "core/image_io.hpp"
+#include "core/output_dir.hpp"
 
 namespace campo::figure {
+
+// ---- formats ---------------------------------------------------------------
+
+const char* extension(FigureFormat format) {
+  switch (format) {
+    case FigureFormat::png: return "png";
+    case FigureFormat::pdf: return "pdf";
+    case FigureFormat::svg: return "svg";
+  }
+  return "png";
+}
+
+std::vector<FigureFormat> parse_figure_formats(const std::string& list) {
+  std::vector<FigureFormat> formats;
+  std::size_t begin = 0;
+  while (begin <= list.size()) {
+    const std::size_t end = std::min(list.find(',', begin), list.size());
+    const std::string name = list.substr(begin, end - begin);
+    FigureFormat format;
+    if (name == "png") format = FigureFormat::png;
+    else if (name == "pdf") format = FigureFormat::pdf;
+    else if (name == "svg") format = FigureFormat::svg;
+    else throw std::invalid_argument("figure format list '" + list + "': '" + name + "' is not one of png, pdf, svg");
+    if (std::find(formats.begin(), formats.end(), format) != formats.end()) {
+      throw std::invalid_argument("figure format list '" + list + "' names " + name + " twice");
+    }
+    formats.push_back(format);
+    begin = end + 1;
+  }
+  return formats;
+}
+
+// ---- canvas ----------------------------------------------------------------
+
+namespace {
+
+// The figures' typeface; fonts-dejavu-core is one of campo's dependencies
+// (tools/setup.sh), so the same text is laid out alike on every machine that builds it.
+constexpr const char* kFontFamily = "DejaVu Sans";
+// DejaVu Sans's cap height is 0.729 em: a Font of scale s has caps 22 s pixels tall.
+constexpr double kCapHeightEm = 0.729;
+constexpr double kCapPxPerScale = 22.0;
+// One drawing pixel in PDF and SVG points: 96 pixels per inch.
+constexpr double kPointsPerPx = 0.75;
+
+double font_size_px(const Font& font) { return font.scale * kCapPxPerScale / kCapHeightEm; }
+
+void select_font(cairo_t* cr, const Font& font) {
+  cairo_select_font_face(cr, kFontFamily, CAIRO_FONT_SLANT_NORMAL,
+                         font.bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, font_size_px(font));
+}
+
+void set_color(cairo_t* cr, const cv::Scalar& bgr) {
+  cairo_set_source_rgb(cr, bgr[2] / 255.0, bgr[1] / 255.0, bgr[0] / 255.0);
+}
+
+void trace(cairo_t* cr, const std::vector<cv::Point2d>& points, bool closed) {
+  cairo_new_path(cr);
+  for (const auto& p : points) cairo_line_to(cr, p.x, p.y);
+  if (closed) cairo_close_path(cr);
+}
+
+void stroke(cairo_t* cr, const cv::Scalar& color, double width_px) {
+  set_color(cr, color);
+  cairo_set_line_width(cr, width_px);
+  cairo_stroke(cr);
+}
+
+// A context on a 1x1 surface for measuring text (one per thread: cairo
+// contexts are not shared between threads).
+cairo_t* measuring_context() {
+  struct Holder {
+    cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
+    cairo_t* cr = cairo_create(surface);
+    ~Holder() {
+      cairo_destroy(cr);
+      cairo_surface_destroy(surface);
+    }
+  };
+  thread_local Holder holder;
+  return holder.cr;
+}
+
+// Replays `recording` onto `target`, scaled by `scale`.
+void replay(cairo_surface_t* recording, cairo_surface_t* target, double scale) {
+  cairo_t* cr = cairo_create(target);
+  cairo_scale(cr, scale, scale);
+  cairo_set_source_surface(cr, recording, 0.0, 0.0);
+  cairo_paint(cr);
+  cairo_destroy(cr);
+  cairo_surface_flush(target);
+}
+
+// cairo names an SVG's groups after its surfaces' process-wide serial numbers
+// ("surface86"), which depend on what was drawn before in the process: renumbered
+// in order of first appearance, the same figure gives the same bytes.
+std::string renumber_svg_surfaces(const std::string& svg) {
+  static constexpr std::string_view kPrefix = "surface";
+  std::vector<std::pair<std::string, std::string>> renamed;  // cairo's number, ours
+  std::string out;
+  out.reserve(svg.size());
+  std::size_t at = 0;
+  for (std::size_t hit = svg.find(kPrefix); hit != std::string::npos; hit = svg.find(kPrefix, at)) {
+    std::size_t end = hit + kPrefix.size();
+    while (end < svg.size() && std::isdigit(static_cast<unsigned char>(svg[end]))) ++end;
+    out.append(svg, at, end - at);
+    at = end;
+    if (end == hit + kPrefix.size()) continue;  // the word alone
+    const std::string number = svg.substr(hit + kPrefix.size(), end - hit - kPrefix.size());
+    auto it = std::find_if(renamed.begin(), renamed.end(), [&](const auto& r) { return r.first == number; });
+    if (it == renamed.end()) it = renamed.insert(renamed.end(), {number, std::to_string(renamed.size() + 1)});
+    out.resize(out.size() - number.size());
+    out += it->second;
+  }
+  out.append(svg, at, std::string::npos);
+  return out;
+}
+
+cairo_status_t append_to_string(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
+}  // namespace
+
+Canvas::Canvas(cv::Size size_px) : size_(size_px) {
+  if (size_px.width < 1 || size_px.height < 1 || size_px.width > 32768 || size_px.height > 32768) {
+    throw std::invalid_argument("figure size " + std::to_string(size_px.width) + " x " +
+                                std::to_string(size_px.height) + " px: each side must be in [1, 32768]");
+  }
+  const cairo_rectangle_t extents{0.0, 0.0, double(size_px.width), double(size_px.height)};
+  recording_ = cairo_recording_surface_create(CAIRO_CONTENT_COLOR, &extents);
+  cr_ = cairo_create(recording_);
+  cairo_set_source_rgb(cr_, 1.0, 1.0, 1.0);
+  cairo_paint(cr_);
+  // Pixel centres at integer drawing coordinates, as pixel indices.
+  cairo_translate(cr_, 0.5, 0.5);
+  cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr_, CAIRO_LINE_CAP_ROUND);
+}
+
+Canvas::~Canvas() {
+  if (cr_) cairo_destroy(cr_);
+  if (recording_) cairo_surface_destroy(recording_);
+}
+
+Canvas::Canvas(Canvas&& other) noexcept
+    : recording_(std::exchange(other.recording_, nullptr)), cr_(std::exchange(other.cr_, nullptr)), size_(other.size_) {}
+
+Canvas& Canvas::operator=(Canvas&& other) noexcept {
+  if (this != &other) {
+    Canvas gone(std::move(*this));
+    recording_ = std::exchange(other.recording_, nullptr);
+    cr_ = std::exchange(other.cr_, nullptr);
+    size_ = other.size_;
+  }
+  return *this;
+}
+
+Canvas::Region::~Region() { cairo_restore(cr_); }
+
+Canvas::Region Canvas::region(const cv::Rect& rect) {
+  cairo_save(cr_);
+  cairo_rectangle(cr_, rect.x - 0.5, rect.y - 0.5, rect.width, rect.height);
+  cairo_clip(cr_);
+  cairo_translate(cr_, rect.x, rect.y);
+  return Region(cr_);
+}
+
+void Canvas::line(cv::Point2d a, cv::Point2d b, const cv::Scalar& color, double width_px) {
+  trace(cr_, {a, b}, false);
+  stroke(cr_, color, width_px);
+}
+
+void Canvas::polyline(const std::vector<cv::Point2d>& points, const cv::Scalar& color, double width_px, bool closed) {
+  if (points.size() < 2) return;
+  trace(cr_, points, closed);
+  stroke(cr_, color, width_px);
+}
+
+void Canvas::dashed_polyline(const std::vector<cv::Point2d>& points, const cv::Scalar& color, double width_px,
+                             double dash_px, double gap_px) {
+  if (points.size() < 2) return;
+  cairo_save(cr_);
+  // Butt caps: round ones would lengthen each dash by the line's width.
+  cairo_set_line_cap(cr_, CAIRO_LINE_CAP_BUTT);
+  const double pattern[] = {dash_px, gap_px};
+  cairo_set_dash(cr_, pattern, 2, 0.0);
+  trace(cr_, points, false);
+  stroke(cr_, color, width_px);
+  cairo_restore(cr_);
+}
+
+void Canvas::fill_polygon(const std::vector<cv::Point2d>& points, const cv::Scalar& color) {
+  if (points.size() < 3) return;
+  trace(cr_, points, true);
+  set_color(cr_, color);
+  cairo_fill(cr_);
+}
+
+void Canvas::circle(cv::Point2d centre, double radius_px, const cv::Scalar& color, double width_px) {
+  cairo_new_path(cr_);
+  cairo_arc(cr_, centre.x, centre.y, radius_px, 0.0, 2.0 * CV_PI);
+  stroke(cr_, color, width_px);
+}
+
+void Canvas::fill_circle(cv::Point2d centre, double radius_px, const cv::Scalar& color) {
+  cairo_new_path(cr_);
+  cairo_arc(cr_, centre.x, centre.y, radius_px, 0.0, 2.0 * CV_PI);
+  set_color(cr_, color);
+  cairo_fill(cr_);
+}
+
+void Canvas::rectangle(const cv::Rect& rect, const cv::Scalar& color, double width_px) {
+  cairo_new_path(cr_);
+  cairo_rectangle(cr_, rect.x, rect.y, rect.width - 1, rect.height - 1);
+  cairo_save(cr_);
+  cairo_set_line_join(cr_, CAIRO_LINE_JOIN_MITER);
+  stroke(cr_, color, width_px);
+  cairo_restore(cr_);
+}
+
+void Canvas::fill_rectangle(const cv::Rect& rect, const cv::Scalar& color) {
+  fill_box({rect.x - 0.5, rect.y - 0.5}, {rect.x + rect.width - 0.5, rect.y + rect.height - 0.5}, color);
+}
+
+void Canvas::fill_box(cv::Point2d a, cv::Point2d b, const cv::Scalar& color) {
+  cairo_new_path(cr_);
+  cairo_rectangle(cr_, std::min(a.x, b.x), std::min(a.y, b.y), std::abs(b.x - a.x), std::abs(b.y - a.y));
+  set_color(cr_, color);
+  cairo_fill(cr_);
+}
+
+void Canvas::arrow(cv::Point2d tail, cv::Point2d tip, const cv::Scalar& color, double width_px, double head_fraction) {
+  const cv::Point2d d = tip - tail;
+  const double head = head_fraction * std::hypot(d.x, d.y), angle = std::atan2(d.y, d.x);
+  cairo_new_path(cr_);
+  cairo_move_to(cr_, tail.x, tail.y);
+  cairo_line_to(cr_, tip.x, tip.y);
+  for (const double side : {1.0, -1.0}) {
+    const double a = angle + CV_PI + side * CV_PI / 4.0;
+    cairo_move_to(cr_, tip.x + head * std::cos(a), tip.y + head * std::sin(a));
+    cairo_line_to(cr_, tip.x, tip.y);
+  }
+  stroke(cr_, color, width_px);
+}
+
+void Canvas::text(const std::string& text, cv::Point2d origin, const Font& font, const cv::Scalar& color, bool halo,
+                  double angle_deg) {
+  if (text.empty()) return;
+  cairo_save(cr_);
+  select_font(cr_, font);
+  cairo_translate(cr_, origin.x, origin.y);
+  cairo_rotate(cr_, -angle_deg * CV_PI / 180.0);
+  if (halo) {
+    cairo_new_path(cr_);
+    cairo_move_to(cr_, 0.0, 0.0);
+    cairo_text_path(cr_, text.c_str());
+    stroke(cr_, kWhite, 3.0);
+  }
+  cairo_new_path(cr_);
+  cairo_move_to(cr_, 0.0, 0.0);
+  set_color(cr_, color);
+  cairo_show_text(cr_, text.c_str());
+  cairo_restore(cr_);
+}
+
+void Canvas::image(const cv::Mat& bgr, const cv::Rect& where, bool smooth) {
+  if (bgr.empty() || where.width <= 0 || where.height <= 0) return;
+  if (bgr.type() != CV_8UC3 && bgr.type() != CV_8UC4) {
+    throw std::invalid_argument("Canvas::image: expected an 8-bit BGR or BGRA raster");
+  }
+  const bool alpha = bgr.channels() == 4;
+  cairo_surface_t* surface =
+      cairo_image_surface_create(alpha ? CAIRO_FORMAT_ARGB32 : CAIRO_FORMAT_RGB24, bgr.cols, bgr.rows);
+  cairo_surface_flush(surface);
+  unsigned char* data = cairo_image_surface_get_data(surface);
+  const int stride = cairo_image_surface_get_stride(surface);
+  for (int r = 0; r < bgr.rows; ++r) {
+    auto* out = reinterpret_cast<std::uint32_t*>(data + std::ptrdiff_t(r) * stride);
+    const uchar* in = bgr.ptr<uchar>(r);
+    for (int c = 0; c < bgr.cols; ++c, in += bgr.channels()) {
+      const std::uint32_t a = alpha ? in[3] : 255u;
+      // Premultiplied ARGB in native byte order.
+      const auto pre = [a](uchar v) { return (std::uint32_t(v) * a + 127u) / 255u; };
+      out[c] = (a << 24) | (pre(in[2]) << 16) | (pre(in[1]) << 8) | pre(in[0]);
+    }
+  }
+  cairo_surface_mark_dirty(surface);
+  cairo_save(cr_);
+  cairo_translate(cr_, where.x - 0.5, where.y - 0.5);
+  cairo_scale(cr_, double(where.width) / bgr.cols, double(where.height) / bgr.rows);
+  cairo_set_source_surface(cr_, surface, 0.0, 0.0);
+  cairo_pattern_t* pattern = cairo_get_source(cr_);
+  cairo_pattern_set_filter(pattern, smooth ? CAIRO_FILTER_GOOD : CAIRO_FILTER_NEAREST);
+  cairo_pattern_set_extend(pattern, CAIRO_EXTEND_PAD);
+  cairo_new_path(cr_);
+  cairo_rectangle(cr_, 0.0, 0.0, bgr.cols, bgr.rows);
+  cairo_fill(cr_);
+  cairo_restore(cr_);
+  cairo_surface_destroy(surface);
+}
+
+cv::Mat Canvas::raster() const {
+  cairo_surface_t* target = cairo_image_surface_create(CAIRO_FORMAT_RGB24, size_.width, size_.height);
+  replay(recording_, target, 1.0);
+  const unsigned char* data = cairo_image_surface_get_data(target);
+  const int stride = cairo_image_surface_get_stride(target);
+  cv::Mat out(size_, CV_8UC3);
+  for (int r = 0; r < size_.height; ++r) {
+    const auto* in = reinterpret_cast<const std::uint32_t*>(data + std::ptrdiff_t(r) * stride);
+    auto* px = out.ptr<cv::Vec3b>(r);
+    for (int c = 0; c < size_.width; ++c) {
+      px[c] = cv::Vec3b(uchar(in[c] & 0xff), uchar((in[c] >> 8) & 0xff), uchar((in[c] >> 16) & 0xff));
+    }
+  }
+  cairo_surface_destroy(target);
+  return out;
+}
+
+std::string Canvas::encode(FigureFormat format) const {
+  if (format == FigureFormat::png) return encode_png(raster(), 6);
+  std::string bytes;
+  const double w_pt = size_.width * kPointsPerPx, h_pt = size_.height * kPointsPerPx;
+  cairo_surface_t* target = nullptr;
+  if (format == FigureFormat::pdf) {
+    target = cairo_pdf_surface_create_for_stream(append_to_string, &bytes, w_pt, h_pt);
+    // A fixed creation date: the same figure gives the same bytes.
+    cairo_pdf_surface_set_metadata(target, CAIRO_PDF_METADATA_CREATE_DATE, "2000-01-01T00:00:00Z");
+    cairo_pdf_surface_set_metadata(target, CAIRO_PDF_METADATA_CREATOR, "campo");
+  } else {
+    target = cairo_svg_surface_create_for_stream(append_to_string, &bytes, w_pt, h_pt);
+    cairo_svg_surface_restrict_to_version(target, CAIRO_SVG_VERSION_1_1);
+  }
+  replay(recording_, target, kPointsPerPx);
+  cairo_surface_finish(target);
+  const cairo_status_t status = cairo_surface_status(target);
+  cairo_surface_destroy(target);
+  if (status != CAIRO_STATUS_SUCCESS) {
+    throw std::runtime_error(std::string("cannot encode the figure as ") + extension(format) + ": " +
+                             cairo_status_to_string(status));
+  }
+  return format == FigureFormat::svg ? renumber_svg_surfaces(bytes) : bytes;
+}
+
+std::vector<std::filesystem::path> Canvas::write(const std::filesystem::path& path,
+                                                 const std::vector<FigureFormat>& formats) const {
+  std::vector<std::filesystem::path> written;
+  for (const FigureFormat format : formats) {
+    std::filesystem::path file = path;
+    file.replace_extension(extension(format));
+    std::string bytes;
+    try {
+      bytes = encode(format);
+    } catch (const std::exception& e) {
+      throw OutputError(file, e.what());
+    }
+    write_file_atomically(file, bytes);
+    written.push_back(file);
+  }
+  return written;
+}
+
+// ---- primitives ------------------------------------------------------------
 
 cv::Scalar shade(const cv::Scalar& c, double k) { return {c[0] * k, c[1] * k, c[2] * k}; }
 
@@ -12,39 +389,16 @@ cv::Scalar lighten(const cv::Scalar& c, double t) {
   return {c[0] + (255.0 - c[0]) * t, c[1] + (255.0 - c[1]) * t, c[2] + (255.0 - c[2]) * t};
 }
 
-cv::Point fixed(const cv::Point2d& p) {
-  constexpr double k = 1 << kShift;
-  return {static_cast<int>(std::lround(p.x * k)), static_cast<int>(std::lround(p.y * k))};
-}
-
-std::vector<cv::Point> fixed(const std::vector<cv::Point2d>& points) {
-  std::vector<cv::Point> out;
-  out.reserve(points.size());
-  for (const auto& p : points) out.push_back(fixed(p));
-  return out;
-}
-
 cv::Size text_size(const std::string& text, const Font& font) {
-  int baseline = 0;
-  return cv::getTextSize(text, font.face, font.scale, font.thickness, &baseline);
+  cairo_t* cr = measuring_context();
+  select_font(cr, font);
+  cairo_text_extents_t extents;
+  cairo_text_extents(cr, text.c_str(), &extents);
+  return {static_cast<int>(std::lround(extents.x_advance)),
+          static_cast<int>(std::lround(font.scale * kCapPxPerScale))};
 }
 
 namespace {
-
-int fixed_radius(double r) { return static_cast<int>(std::lround(r * (1 << kShift))); }
-
-void circle(cv::Mat& image, cv::Point2d c, double r, const cv::Scalar& color, int thickness) {
-  cv::circle(image, fixed(c), fixed_radius(r), color, thickness, cv::LINE_AA, kShift);
-}
-
-void closed_outline(cv::Mat& image, const std::vector<cv::Point2d>& points, const cv::Scalar& color, int thickness) {
-  cv::polylines(image, fixed(points), true, color, thickness, cv::LINE_AA, kShift);
-}
-
-void fill(cv::Mat& image, const std::vector<cv::Point2d>& points, const cv::Scalar& color) {
-  const std::vector<std::vector<cv::Point>> polygons{fixed(points)};
-  cv::fillPoly(image, polygons, color, cv::LINE_AA, kShift);
-}
 
 // Multiples of `step` in [lo, hi]; none when there would be more than a
 // figure can show (a degenerate or non-finite axis must not allocate without bound).
@@ -72,46 +426,26 @@ std::string fit_text(const std::string& text, const Font& font, int max_width_px
 
 }  // namespace
 
-void put_text(cv::Mat& image, const std::string& text, cv::Point2d anchor, const Font& font,
+void put_text(Canvas& canvas, const std::string& text, cv::Point2d anchor, const Font& font,
               const cv::Scalar& color, Align align, bool halo) {
   const cv::Size size = text_size(text, font);
   double x = anchor.x;
   if (align == Align::centre) x -= 0.5 * size.width;
   if (align == Align::right) x -= size.width;
-  const cv::Point origin(static_cast<int>(std::lround(x)), static_cast<int>(std::lround(anchor.y + 0.5 * size.height)));
-  if (halo) cv::putText(image, text, origin, font.face, font.scale, kWhite, font.thickness + 3, cv::LINE_AA);
-  cv::putText(image, text, origin, font.face, font.scale, color, font.thickness, cv::LINE_AA);
+  canvas.text(text, {x, anchor.y + 0.5 * size.height}, font, color, halo);
 }
 
-void put_text_vertical(cv::Mat& image, const std::string& text, cv::Point2d centre, const Font& font,
+void put_text_vertical(Canvas& canvas, const std::string& text, cv::Point2d centre, const Font& font,
                        const cv::Scalar& color) {
-  // Draw the text as coverage into a small mask, rotate it, and blend the colour through it.
-  int baseline = 0;
-  const cv::Size size = cv::getTextSize(text, font.face, font.scale, font.thickness, &baseline);
-  cv::Mat mask = cv::Mat::zeros(size.height + baseline + 4, size.width + 4, CV_8U);
-  cv::putText(mask, text, {2, size.height + 2}, font.face, font.scale, cv::Scalar(255), font.thickness, cv::LINE_AA);
-  cv::Mat rotated;
-  cv::rotate(mask, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
-  const int x0 = static_cast<int>(std::lround(centre.x - 0.5 * rotated.cols));
-  const int y0 = static_cast<int>(std::lround(centre.y - 0.5 * rotated.rows));
-  for (int r = 0; r < rotated.rows; ++r) {
-    const int y = y0 + r;
-    if (y < 0 || y >= image.rows) continue;
-    for (int c = 0; c < rotated.cols; ++c) {
-      const int x = x0 + c;
-      if (x < 0 || x >= image.cols) continue;
-      const double a = rotated.at<uchar>(r, c) / 255.0;
-      auto& px = image.at<cv::Vec3b>(y, x);
-      for (int k = 0; k < 3; ++k) px[k] = cv::saturate_cast<uchar>(px[k] * (1.0 - a) + color[k] * a);
-    }
-  }
+  const cv::Size size = text_size(text, font);
+  canvas.text(text, {centre.x + 0.5 * size.height, centre.y + 0.5 * size.width}, font, color, false, 90.0);
 }
 
-void put_title(cv::Mat& image, const std::string& title, const cv::Rect& band) {
+void put_title(Canvas& canvas, const std::string& title, const cv::Rect& band) {
   Font font = kTitleFont;
   while (font.scale > 0.45 && text_size(title, font).width > band.width - 24) font.scale *= 0.92;
   const std::string text = fit_text(title, font, band.width - 24);
-  put_text(image, text, {band.x + 0.5 * band.width, band.y + 0.5 * band.height}, font, kInk, Align::centre);
+  put_text(canvas, text, {band.x + 0.5 * band.width, band.y + 0.5 * band.height}, font, kInk, Align::centre);
 }
 
 double nice_step(double span, double target_count) {
@@ -142,118 +476,92 @@ double y_step(const PlotFrame& f) { return nice_step(f.y1 - f.y0, f.plot_px.heig
 
 }  // namespace
 
-void draw_grid(cv::Mat& image, const PlotFrame& frame) {
+void draw_grid(Canvas& canvas, const PlotFrame& frame) {
   const cv::Rect& p = frame.plot_px;
   const double xs = x_step(frame), ys = y_step(frame);
   for (double x : ticks_in(frame.x0, frame.x1, xs)) {
     const double px = frame.to_px(x, frame.y0).x;
-    cv::line(image, fixed({px, p.y - 0.5}), fixed({px, p.y + p.height - 0.5}), kGridInk, 1, cv::LINE_AA, kShift);
+    canvas.line({px, p.y - 0.5}, {px, p.y + p.height - 0.5}, kGridInk, 1.0);
   }
   for (double y : ticks_in(frame.y0, frame.y1, ys)) {
     const double py = frame.to_px(frame.x0, y).y;
-    cv::line(image, fixed({p.x - 0.5, py}), fixed({p.x + p.width - 0.5, py}), kGridInk, 1, cv::LINE_AA, kShift);
+    canvas.line({p.x - 0.5, py}, {p.x + p.width - 0.5, py}, kGridInk, 1.0);
   }
 }
 
-void draw_axes(cv::Mat& image, const PlotFrame& frame, const std::string& x_label, const std::string& y_label) {
+void draw_axes(Canvas& canvas, const PlotFrame& frame, const std::string& x_label, const std::string& y_label) {
   const cv::Rect& p = frame.plot_px;
-  cv::rectangle(image, {p.x - 1, p.y - 1}, {p.x + p.width, p.y + p.height}, kInk, 1, cv::LINE_8);
+  canvas.rectangle({p.x - 1, p.y - 1, p.width + 2, p.height + 2}, kInk, 1.0);
   const double xs = x_step(frame), ys = y_step(frame);
   const int bottom = p.y + p.height;
   for (double x : ticks_in(frame.x0, frame.x1, xs)) {
     const double px = frame.to_px(x, frame.y0).x;
-    cv::line(image, fixed({px, bottom + 0.0}), fixed({px, bottom + 5.0}), kInk, 1, cv::LINE_AA, kShift);
-    put_text(image, format_number(x, xs), {px, bottom + 17.0}, kTickFont, kInk, Align::centre);
+    canvas.line({px, bottom + 0.0}, {px, bottom + 5.0}, kInk, 1.0);
+    put_text(canvas, format_number(x, xs), {px, bottom + 17.0}, kTickFont, kInk, Align::centre);
   }
   int widest = 0;
   for (double y : ticks_in(frame.y0, frame.y1, ys)) {
     const double py = frame.to_px(frame.x0, y).y;
     const std::string label = format_number(y, ys);
-    cv::line(image, fixed({p.x - 6.0, py}), fixed({p.x - 1.0, py}), kInk, 1, cv::LINE_AA, kShift);
-    put_text(image, label, {p.x - 10.0, py}, kTickFont, kInk, Align::right);
+    canvas.line({p.x - 6.0, py}, {p.x - 1.0, py}, kInk, 1.0);
+    put_text(canvas, label, {p.x - 10.0, py}, kTickFont, kInk, Align::right);
     widest = std::max(widest, text_size(label, kTickFont).width);
   }
-  put_text(image, x_label, {p.x + 0.5 * p.width, bottom + 42.0}, kLabelFont, kInk, Align::centre);
-  put_text_vertical(image, y_label, {p.x - 10.0 - widest - 16.0, p.y + 0.5 * p.height}, kLabelFont, kInk);
+  put_text(canvas, x_label, {p.x + 0.5 * p.width, bottom + 42.0}, kLabelFont, kInk, Align::centre);
+  put_text_vertical(canvas, y_label, {p.x - 10.0 - widest - 16.0, p.y + 0.5 * p.height}, kLabelFont, kInk);
 }
 
-void polyline(cv::Mat& image, const std::vector<cv::Point2d>& points, const cv::Scalar& color, int thickness) {
-  if (points.size() < 2) return;
-  cv::polylines(image, fixed(points), false, color, thickness, cv::LINE_AA, kShift);
+void start_marker(Canvas& canvas, cv::Point2d p) {
+  canvas.fill_circle(p, 9.5, kWhite);
+  canvas.fill_circle(p, 7.5, rgb(44, 160, 44));
+  canvas.circle(p, 7.5, rgb(20, 90, 20), 1.0);
 }
 
-void dashed_polyline(cv::Mat& image, const std::vector<cv::Point2d>& points, const cv::Scalar& color,
-                     int thickness, double dash_px, double gap_px) {
-  bool on = true;
-  double left = dash_px;  // of the current dash or gap
-  for (std::size_t i = 1; i < points.size(); ++i) {
-    const cv::Point2d a = points[i - 1], d = points[i] - points[i - 1];
-    const double length = std::hypot(d.x, d.y);
-    for (double t = 0.0; t < length;) {
-      const double step = std::min(left, length - t);
-      if (on) cv::line(image, fixed(a + d * (t / length)), fixed(a + d * ((t + step) / length)), color, thickness, cv::LINE_AA, kShift);
-      t += step;
-      left -= step;
-      if (left <= 1e-9) {
-        on = !on;
-        left = on ? dash_px : gap_px;
-      }
-    }
-  }
-}
-
-void start_marker(cv::Mat& image, cv::Point2d p) {
-  circle(image, p, 9.5, kWhite, cv::FILLED);
-  circle(image, p, 7.5, rgb(44, 160, 44), cv::FILLED);
-  circle(image, p, 7.5, rgb(20, 90, 20), 1);
-}
-
-void goal_marker(cv::Mat& image, cv::Point2d p, bool filled) {
+void goal_marker(Canvas& canvas, cv::Point2d p, bool filled) {
   std::vector<cv::Point2d> star;
   for (int i = 0; i < 10; ++i) {
     const double a = -CV_PI / 2 + i * CV_PI / 5, r = i % 2 == 0 ? 13.0 : 5.5;
     star.push_back(p + cv::Point2d(r * std::cos(a), r * std::sin(a)));
   }
   const cv::Scalar red = rgb(214, 39, 40);
-  closed_outline(image, star, kWhite, 4);
-  fill(image, star, filled ? red : kWhite);
-  closed_outline(image, star, filled ? shade(red, 0.55) : red, filled ? 1 : 2);
+  canvas.polyline(star, kWhite, 4.0, true);
+  canvas.fill_polygon(star, filled ? red : kWhite);
+  canvas.polyline(star, filled ? shade(red, 0.55) : red, filled ? 1.0 : 2.0, true);
 }
 
-void waypoint_marker(cv::Mat& image, cv::Point2d p, int number, bool filled) {
-  circle(image, p, 11.5, kWhite, cv::FILLED);
-  circle(image, p, 9.5, filled ? kInk : kWhite, cv::FILLED);
-  circle(image, p, 9.5, kInk, filled ? 1 : 2);
+void waypoint_marker(Canvas& canvas, cv::Point2d p, int number, bool filled) {
+  canvas.fill_circle(p, 11.5, kWhite);
+  canvas.fill_circle(p, 9.5, filled ? kInk : kWhite);
+  canvas.circle(p, 9.5, kInk, filled ? 1.0 : 2.0);
   if (number <= 0) return;
   const std::string text = std::to_string(number);
   Font font = kSmallFont;
   if (text_size(text, font).width > 15) font.scale = 0.32;
-  put_text(image, text, p + cv::Point2d(0.5, 0.0), font, filled ? kWhite : kInk, Align::centre);
+  put_text(canvas, text, p + cv::Point2d(0.5, 0.0), font, filled ? kWhite : kInk, Align::centre);
 }
 
-void diamond_marker(cv::Mat& image, cv::Point2d p, const cv::Scalar& color) {
+void diamond_marker(Canvas& canvas, cv::Point2d p, const cv::Scalar& color) {
   const std::vector<cv::Point2d> diamond{p + cv::Point2d(0, -7), p + cv::Point2d(7, 0), p + cv::Point2d(0, 7),
                                          p + cv::Point2d(-7, 0)};
-  closed_outline(image, diamond, kWhite, 3);
-  fill(image, diamond, color);
-  closed_outline(image, diamond, shade(color, 0.55), 1);
+  canvas.polyline(diamond, kWhite, 3.0, true);
+  canvas.fill_polygon(diamond, color);
+  canvas.polyline(diamond, shade(color, 0.55), 1.0, true);
 }
 
-void cross_marker(cv::Mat& image, cv::Point2d p, const cv::Scalar& color) {
+void cross_marker(Canvas& canvas, cv::Point2d p, const cv::Scalar& color) {
   for (int pass = 0; pass < 2; ++pass) {
     for (const double s : {1.0, -1.0}) {
-      cv::line(image, fixed(p + cv::Point2d(-6, -6 * s)), fixed(p + cv::Point2d(6, 6 * s)),
-               pass == 0 ? kWhite : color, pass == 0 ? 5 : 2, cv::LINE_AA, kShift);
+      canvas.line(p + cv::Point2d(-6, -6 * s), p + cv::Point2d(6, 6 * s), pass == 0 ? kWhite : color,
+                  pass == 0 ? 5.0 : 2.0);
     }
   }
 }
 
-void collision_marker(cv::Mat& image, cv::Point2d p) {
-  cv::circle(image, fixed(p), 9 << kShift, kWhite, cv::FILLED, cv::LINE_AA, kShift);
-  cv::circle(image, fixed(p), 7 << kShift, kCollision, cv::FILLED, cv::LINE_AA, kShift);
+void collision_marker(Canvas& canvas, cv::Point2d p) {
+  canvas.fill_circle(p, 9.0, kWhite);
+  canvas.fill_circle(p, 7.0, kCollision);
   for (const double s : {1.0, -1.0}) {
-    cv::line(image, fixed(p + cv::Point2d(-3.5, -3.5 * s)), fixed(p + cv::Point2d(3.5, 3.5 * s)), kWhite, 2,
-             cv::LINE_AA, kShift);
+    canvas.line(p + cv::Point2d(-3.5, -3.5 * s), p + cv::Point2d(3.5, 3.5 * s), kWhite, 2.0);
   }
 }
 
@@ -264,31 +572,31 @@ constexpr int kLegendRowPx = 26;
 
 int legend_height(std::size_t count) { return 2 * kLegendPadPx + static_cast<int>(count) * kLegendRowPx; }
 
-void draw_legend(cv::Mat& image, const cv::Rect& box, const std::vector<LegendEntry>& entries) {
-  cv::rectangle(image, box, kWhite, cv::FILLED);
-  cv::rectangle(image, box, kMutedInk, 1, cv::LINE_8);
+void draw_legend(Canvas& canvas, const cv::Rect& box, const std::vector<LegendEntry>& entries) {
+  canvas.fill_rectangle(box, kWhite);
+  canvas.rectangle(box, kMutedInk, 1.0);
   for (std::size_t i = 0; i < entries.size(); ++i) {
     const double cy = box.y + kLegendPadPx + kLegendRowPx * (i + 0.5);
-    entries[i].symbol(image, {box.x + 28.0, cy});
-    put_text(image, fit_text(entries[i].text, kLegendFont, box.width - 62), {box.x + 54.0, cy}, kLegendFont, kInk);
+    entries[i].symbol(canvas, {box.x + 28.0, cy});
+    put_text(canvas, fit_text(entries[i].text, kLegendFont, box.width - 62), {box.x + 54.0, cy}, kLegendFont, kInk);
   }
 }
 
-void draw_colorbar(cv::Mat& image, const cv::Rect& bar, double lo, double hi, const std::string& caption,
+void draw_colorbar(Canvas& canvas, const cv::Rect& bar, double lo, double hi, const std::string& caption,
                    const std::function<cv::Vec3b(double)>& color_of) {
-  for (int r = 0; r < bar.height; ++r) {
-    const cv::Vec3b c = color_of(1.0 - (r + 0.5) / bar.height);
-    cv::line(image, {bar.x, bar.y + r}, {bar.x + bar.width - 1, bar.y + r}, cv::Scalar(c[0], c[1], c[2]), 1, cv::LINE_8);
-  }
-  cv::rectangle(image, {bar.x - 1, bar.y - 1}, {bar.x + bar.width, bar.y + bar.height}, kInk, 1, cv::LINE_8);
+  // One pixel row per shade, embedded as a raster (a smooth ramp in every format).
+  cv::Mat ramp(bar.height, 1, CV_8UC3);
+  for (int r = 0; r < bar.height; ++r) ramp.at<cv::Vec3b>(r, 0) = color_of(1.0 - (r + 0.5) / bar.height);
+  canvas.image(ramp, bar);
+  canvas.rectangle({bar.x - 1, bar.y - 1, bar.width + 2, bar.height + 2}, kInk, 1.0);
   const double step = nice_step(hi - lo, bar.height / 45.0);
   for (double v : ticks_in(lo, hi, step)) {
     const double y = bar.y - 0.5 + bar.height - (v - lo) / (hi - lo) * bar.height;
     const double right = bar.x + bar.width;
-    cv::line(image, fixed({right, y}), fixed({right + 5.0, y}), kInk, 1, cv::LINE_AA, kShift);
-    put_text(image, format_number(v, step), {right + 9.0, y}, kTickFont, kInk);
+    canvas.line({right, y}, {right + 5.0, y}, kInk, 1.0);
+    put_text(canvas, format_number(v, step), {right + 9.0, y}, kTickFont, kInk);
   }
-  put_text(image, caption, {bar.x - 1.0, bar.y - 18.0}, kLabelFont, kInk);
+  put_text(canvas, caption, {bar.x - 1.0, bar.y - 18.0}, kLabelFont, kInk);
 }
 
 }  // namespace campo::figure

@@ -36,24 +36,24 @@ std::string run_title(const FigureStyle& style, const RunView& run, const std::s
 }
 
 LegendEntry line_entry(const cv::Scalar& color, int thickness, std::string text, bool dashed) {
-  return {[=](cv::Mat& image, cv::Point2d c) {
+  return {[=](Canvas& canvas, cv::Point2d c) {
             const std::vector<cv::Point2d> line{c + cv::Point2d(-16, 0), c + cv::Point2d(16, 0)};
-            if (dashed) figure::dashed_polyline(image, line, color, thickness, 7.0, 4.0);
-            else figure::polyline(image, line, color, thickness);
+            if (dashed) canvas.dashed_polyline(line, color, thickness, 7.0, 4.0);
+            else canvas.polyline(line, color, thickness);
           },
           std::move(text)};
 }
 
 LegendEntry patch_entry(const cv::Scalar& fill, const cv::Scalar& edge, std::string text) {
-  return {[=](cv::Mat& image, cv::Point2d c) {
+  return {[=](Canvas& canvas, cv::Point2d c) {
             const cv::Rect box(static_cast<int>(c.x) - 12, static_cast<int>(c.y) - 7, 24, 14);
-            cv::rectangle(image, box, fill, cv::FILLED);
-            cv::rectangle(image, box, edge, 1, cv::LINE_8);
+            canvas.fill_rectangle(box, fill);
+            canvas.rectangle(box, edge, 1.0);
           },
           std::move(text)};
 }
 
-LegendEntry marker_entry(std::function<void(cv::Mat&, cv::Point2d)> marker, std::string text) {
+LegendEntry marker_entry(std::function<void(Canvas&, cv::Point2d)> marker, std::string text) {
   return {std::move(marker), std::move(text)};
 }
 

@@ -42,6 +42,6 @@ LegendEntry line_entry(const cv::Scalar& color, int thickness, std::string text,
 /// Legend entry: a filled patch with an edge.
 LegendEntry patch_entry(const cv::Scalar& fill, const cv::Scalar& edge, std::string text);
 /// Legend entry: a marker drawn by `marker` around the symbol's centre.
-LegendEntry marker_entry(std::function<void(cv::Mat&, cv::Point2d)> marker, std::string text);
+LegendEntry marker_entry(std::function<void(Canvas&, cv::Point2d)> marker, std::string text);
 
 }  // namespace campo::figure

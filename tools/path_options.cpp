@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
 #include <system_error>
 
 #include "campo/json_reader.hpp"
@@ -73,6 +74,26 @@ CLI::Validator existing_file() {
 
 std::string parse_error_message(const CLI::App* /*app*/, const CLI::Error& error) {
   return "error: command line: " + printable(error.what()) + "\nRun with --help for more information.\n";
+}
+
+CLI::Option* add_figure_format_option(CLI::App& app, std::vector<figure::FigureFormat>* formats) {
+  return app
+      .add_option_function<std::string>(
+          "--figure-format",
+          [formats](const std::string& list) { *formats = figure::parse_figure_formats(list); },
+          "Formats of the figures, comma-separated: png (raster), pdf and svg (vector, text as text in PDF), "
+          "e.g. png,pdf (default: png)")
+      ->type_name("LIST")
+      ->check(CLI::Validator(
+          [](std::string& list) -> std::string {
+            try {
+              figure::parse_figure_formats(list);
+            } catch (const std::invalid_argument& e) {
+              return e.what();
+            }
+            return {};
+          },
+          ""));
 }
 
 }  // namespace campo::cli

@@ -9,6 +9,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "render/figure_canvas.hpp"
+
 namespace campo::cli {
 
 /// A path to read: refuses an empty string ("--map: expected a path, got an empty string").
@@ -48,6 +50,11 @@ CLI::Validator named_choice(std::vector<std::pair<std::string, E>> names) {
       },
       "");
 }
+
+/// --figure-format FORMATS: the comma-separated formats (png, pdf, svg) every
+/// figure of the command is written in, into `formats` (default: as given by
+/// the caller, PNG). One definition for every command that draws figures.
+CLI::Option* add_figure_format_option(CLI::App& app, std::vector<figure::FigureFormat>* formats);
 
 /// What campo prints for a CLI11 parse error (an unknown option, a missing or
 /// refused value): "error: command line: " and CLI11's text with control

@@ -18,6 +18,10 @@ packages=(
   libbullet-dev libeigen3-dev libopencv-dev libosmesa6-dev libcli11-dev
   nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
   libmuparser-dev libssl-dev liboctomap-dev libnanoflann-dev libpng-dev
+  # Figures (render/, sweep/chart): cairo draws PNG, PDF and SVG from the same calls, with
+  # DejaVu Sans as the figures' font; the tests read the PDF and SVG back with poppler's
+  # pdftotext/pdftoppm and librsvg's rsvg-convert.
+  libcairo2-dev fonts-dejavu-core poppler-utils librsvg2-bin
   # The Python module (python/): pybind11 against Debian's /usr/bin/python3 and its
   # numpy and pandas; matplotlib for the example analysis script.
   pybind11-dev python3-dev python3-numpy python3-pandas python3-matplotlib

@@ -13,6 +13,7 @@
 
 #include "campo/scene_loader.hpp"
 #include "render/figure_style.hpp"
+#include "tests/render/vector_outputs.hpp"
 
 namespace campo::figure::test {
 
