@@ -52,28 +52,31 @@ void check_depth(const cv::Mat& depth, const DepthOverlays& overlays) {
 double ring_radius(int scale) { return 0.75 * scale + 6.0; }
 
 // Red on a white halo: reads over grey, colour map and black and white alike.
-void draw_ring(cv::Mat& image, cv::Point2d c, double radius) {
-  const int r = static_cast<int>(std::lround(radius * (1 << figure::kShift)));
-  cv::circle(image, figure::fixed(c), r, figure::kWhite, 5, cv::LINE_AA, figure::kShift);
-  cv::circle(image, figure::fixed(c), r, kRing, 2, cv::LINE_AA, figure::kShift);
+void draw_ring(figure::Canvas& canvas, cv::Point2d c, double radius) {
+  canvas.circle(c, radius, figure::kWhite, 5);
+  canvas.circle(c, radius, kRing, 2);
 }
 
 // W' as a plus on a white halo.
-void draw_projection(cv::Mat& image, cv::Point2d c) {
+void draw_projection(figure::Canvas& canvas, cv::Point2d c) {
   for (int pass = 0; pass < 2; ++pass) {
     for (const cv::Point2d d : {cv::Point2d(5, 0), cv::Point2d(0, 5)}) {
-      cv::line(image, figure::fixed(c - d), figure::fixed(c + d), pass == 0 ? figure::kWhite : kProjection,
-               pass == 0 ? 5 : 2, cv::LINE_AA, figure::kShift);
+      canvas.line(c - d, c + d, pass == 0 ? figure::kWhite : kProjection, pass == 0 ? 5 : 2);
     }
   }
 }
 
-// An ellipse of half-axes `axes` (figure pixels) around `c`, on a white halo.
-void draw_ellipse(cv::Mat& image, cv::Point2d c, cv::Size2d axes) {
-  const cv::Size fixed_axes(static_cast<int>(std::lround(axes.width * (1 << figure::kShift))),
-                            static_cast<int>(std::lround(axes.height * (1 << figure::kShift))));
-  cv::ellipse(image, figure::fixed(c), fixed_axes, 0.0, 0.0, 360.0, figure::kWhite, 4, cv::LINE_AA, figure::kShift);
-  cv::ellipse(image, figure::fixed(c), fixed_axes, 0.0, 0.0, 360.0, kProjection, 2, cv::LINE_AA, figure::kShift);
+// An ellipse of half-axes `axes` (figure pixels) around `c`, on a white halo: a closed polygon fine enough
+// (about 2 pixels a side) to read as a curve at any size.
+void draw_ellipse(figure::Canvas& canvas, cv::Point2d c, cv::Size2d axes) {
+  const int sides = std::clamp(static_cast<int>(std::ceil(M_PI * (axes.width + axes.height) / 2.0)), 24, 720);
+  std::vector<cv::Point2d> outline;
+  for (int i = 0; i < sides; ++i) {
+    const double a = 2.0 * M_PI * i / sides;
+    outline.emplace_back(c.x + axes.width * std::cos(a), c.y + axes.height * std::sin(a));
+  }
+  canvas.polyline(outline, figure::kWhite, 4, true);
+  canvas.polyline(outline, kProjection, 2, true);
 }
 
 std::string pixel_text(cv::Point2d p, double step) {
@@ -89,7 +92,7 @@ std::vector<LegendEntry> depth_legend(const DepthOverlays& overlays, bool colour
   if (overlays.waypoint_projection) {
     const bool ellipse = has_ellipse(overlays);
     legend.push_back(marker_entry(
-        [ellipse](cv::Mat& m, cv::Point2d p) {
+        [ellipse](figure::Canvas& m, cv::Point2d p) {
           if (ellipse) draw_ellipse(m, p, {13.0, 8.0});
           draw_projection(m, p);
         },
@@ -97,12 +100,12 @@ std::vector<LegendEntry> depth_legend(const DepthOverlays& overlays, bool colour
   }
   if (overlays.chosen_pixel) {
     const cv::Point c = *overlays.chosen_pixel;
-    legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d p) { draw_ring(m, p, 7.0); },
+    legend.push_back(marker_entry([](figure::Canvas& m, cv::Point2d p) { draw_ring(m, p, 7.0); },
                                   "chosen pixel (column " + std::to_string(c.x) + ", row " + std::to_string(c.y) + ")"));
   }
   if (!overlays.scan_line.empty()) legend.push_back(line_entry(kScanLine, 2, "scan line"));
   if (overlays.new_waypoint_pixel) {
-    legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d p) { figure::diamond_marker(m, p, kPlannedWaypoint); },
+    legend.push_back(marker_entry([](figure::Canvas& m, cv::Point2d p) { figure::diamond_marker(m, p, kPlannedWaypoint); },
                                   "new waypoint (" + pixel_text(*overlays.new_waypoint_pixel, 1.0) + ")"));
   }
   if (colour) {
@@ -129,7 +132,8 @@ std::vector<int> flow_rows(const std::vector<LegendEntry>& entries, int width) {
   return rows;
 }
 
-cv::Mat depth_panel(const cv::Mat& values, bool colour, int scale) {
+// The panel at the map's resolution: the figure embeds it scaled with nearest neighbours.
+cv::Mat depth_panel(const cv::Mat& values, bool colour) {
   cv::Mat small(values.size(), CV_8UC3);
   for (int r = 0; r < values.rows; ++r) {
     for (int c = 0; c < values.cols; ++c) {
@@ -152,9 +156,7 @@ cv::Mat depth_panel(const cv::Mat& values, bool colour, int scale) {
       }
     }
   }
-  cv::Mat big;
-  cv::resize(small, big, {}, scale, scale, cv::INTER_NEAREST);
-  return big;
+  return small;
 }
 
 cv::Vec3b grey(double f) {
@@ -187,9 +189,9 @@ DepthFigureLayout depth_layout(const cv::Mat& depth, const DepthOverlays& overla
   return l;
 }
 
-cv::Mat draw_depth(const cv::Mat& depth, const DepthOverlays& overlays, bool colour, const std::string& title) {
+figure::Canvas draw_depth(const cv::Mat& depth, const DepthOverlays& overlays, bool colour, const std::string& title) {
   const DepthFigureLayout l = depth_layout(depth, overlays, colour);
-  cv::Mat image(l.image_px, CV_8UC3, figure::kWhite);
+  figure::Canvas image(l.image_px);
   std::vector<std::pair<const cv::Mat*, std::string>> panels{{&depth, "depth map"}};
   if (!overlays.dilated.empty()) panels.emplace_back(&overlays.dilated, "dilated");
   if (!overlays.thresholded.empty()) {
@@ -199,18 +201,19 @@ cv::Mat draw_depth(const cv::Mat& depth, const DepthOverlays& overlays, bool col
   }
   for (std::size_t i = 0; i < panels.size(); ++i) {
     const cv::Rect& r = l.panels_px[i];
-    depth_panel(*panels[i].first, colour, l.scale).copyTo(image(r));
-    cv::rectangle(image, {r.x - 1, r.y - 1}, {r.x + r.width, r.y + r.height}, figure::kInk, 1, cv::LINE_8);
+    image.image(depth_panel(*panels[i].first, colour), r);
+    image.rectangle({r.x - 1, r.y - 1, r.width + 2, r.height + 2}, figure::kInk, 1);
     const std::string caption =
         panels.size() == 1 ? panels[i].second : std::string("(") + char('a' + i) + ") " + panels[i].second;
     figure::put_text(image, caption, {r.x + 0.5 * r.width, r.y + r.height + 0.5 * kDepthCaptionPx}, figure::kLabelFont,
                      figure::kInk, Align::centre);
     // Overlays on every panel, clipped to it, so the choice can be followed across the steps.
-    cv::Mat view = image(r);
+    const auto view_clip = image.region(r);
+    figure::Canvas& view = image;
     const cv::Point2d origin(r.x, r.y);
     std::vector<cv::Point2d> scan;
     for (const auto& p : overlays.scan_line) scan.push_back(l.to_px(i, p) - origin);
-    figure::polyline(view, scan, kScanLine, 2);
+    view.polyline(scan, kScanLine, 2);
     if (overlays.waypoint_projection) {
       const cv::Point2d c = l.to_px(i, *overlays.waypoint_projection) - origin;
       if (has_ellipse(overlays)) draw_ellipse(view, c, overlays.safety_ellipse_px * double(l.scale));

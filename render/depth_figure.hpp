@@ -7,6 +7,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "render/figure_canvas.hpp"
+
 namespace campo {
 
 /// Planner overlays on a depth map (seed 000 Fig. 5.2), all optional. Pixel
@@ -28,13 +30,14 @@ struct DepthOverlays {
 };
 
 /// A depth map (CV_32F in [0, 1], SPEC §6) as a report figure: grey or
-/// colour-mapped, upscaled with visible pixels, with a value colour bar and
+/// colour-mapped, each panel a raster at the map's resolution embedded
+/// with nearest neighbours (visible pixels, in PDF and SVG as well), the overlays vectors, with a value colour bar and
 /// the overlays when given (each panel side by side: depth, dilated,
 /// thresholded; the markers on every panel: scan line, W' with its safety
 /// ellipse, chosen pixel ringed, new waypoint as a diamond). Colour mode: sequential_color, with no return (1) light grey and below
 /// min range (0) black. Throws std::invalid_argument for an empty or
 /// non-CV_32F depth map or overlays of another size.
-cv::Mat draw_depth(const cv::Mat& depth, const DepthOverlays& overlays, bool colour, const std::string& title);
+figure::Canvas draw_depth(const cv::Mat& depth, const DepthOverlays& overlays, bool colour, const std::string& title);
 
 /// Where draw_depth puts its parts: the title band (kFigureTitlePx high),
 /// the panels with their captions below, then a legend row (wrapped) of the

@@ -8,6 +8,8 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "render/figure_canvas.hpp"
+
 namespace campo {
 
 /// What the panel shows, in the vehicle's frame (x forward, y left), metres
@@ -22,10 +24,10 @@ struct ScanView {
   std::string status;                      ///< one line under the plot, e.g. "avoiding: gap on the left"
 };
 
-/// The panel (size_px square, BGR): range rings every 1-2-5 metres,
+/// The panel (size_px square): range rings every 1-2-5 metres,
 /// forward up, the vehicle at the centre, the returns as dots, the route
 /// (dashed grey) and chosen heading (blue arrow), the nearest reading as a
 /// dashed amber ring and a legend line. std::invalid_argument for range_m <= 0.
-cv::Mat draw_scan_view(const ScanView& view, int size_px = 640);
+figure::Canvas draw_scan_view(const ScanView& view, int size_px = 640);
 
 }  // namespace campo

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,6 +36,7 @@ namespace {
 
 const cv::Scalar kVehicleLine = rgb(31, 119, 180);
 const cv::Scalar kMissionLine = rgb(90, 90, 90);
+const cv::Scalar kToGoalLine = rgb(214, 39, 40);  // the goal star's red
 
 struct Profile {
   std::vector<double> distance_m;  // horizontal, along the track
@@ -47,7 +49,11 @@ struct Profile {
   };
   std::vector<Footprint> solids;   // lowest top first
   std::vector<Crossing> crossings; // in the order of `solids`
-  std::vector<std::pair<double, std::size_t>> waypoints;  // (distance of closest approach, mission index)
+  // (distance along the track, mission index): a waypoint at the track's closest approach to it; a goal not reached
+  // beyond the track's end (goal_distance_m).
+  std::vector<std::pair<double, std::size_t>> waypoints;
+  // A goal not reached: the track's end (distance, altitude), from where the straight line to the goal is drawn.
+  std::optional<std::pair<double, double>> goal_beyond;
   std::vector<double> mission_m;   // the altitude the mission asks for, NaN where unknown
   std::vector<std::pair<double, double>> collisions;  // (distance along the track, altitude) of each point touched
   double x0 = 0.0, x1 = 1.0, y0 = 0.0, y1 = 1.0;
@@ -105,14 +111,27 @@ Profile profile_of(const Scene& scene, const RunView& run) {
         at = i;
       }
     }
-    if (!run.track.empty()) p.waypoints.emplace_back(p.distance_m[at], w);
+    if (run.track.empty()) continue;
+    if (w + 1 == run.mission.size() && !is_reached(run, w)) {
+      const double d = goal_distance_m(p.distance_m.back(), run.track.back().position_m, run.mission[w].position_m);
+      p.waypoints.emplace_back(d, w);
+      p.goal_beyond.emplace(p.distance_m.back(), run.track.back().position_m.z());
+      s = std::max(s, d);
+    } else {
+      p.waypoints.emplace_back(p.distance_m[at], w);
+    }
   }
   // The mission's altitude: knots at the start and at each waypoint's closest approach after the previous one's (a
   // waypoint revisited later, as 001's laps do, is taken in the order flown).
   if (!run.track.empty() && !run.mission.empty()) {
     std::vector<std::pair<double, double>> knots{{0.0, run.track.front().position_m.z()}};
     std::size_t from = 0;
-    for (const Waypoint& w : run.mission) {
+    for (std::size_t m = 0; m < run.mission.size(); ++m) {
+      const Waypoint& w = run.mission[m];
+      if (m + 1 == run.mission.size() && p.goal_beyond) {  // a goal not reached: where its marker is
+        knots.emplace_back(p.waypoints.back().first, w.position_m.z());
+        break;
+      }
       double best = std::numeric_limits<double>::infinity();
       std::size_t at = from;
       for (std::size_t i = from; i < run.track.size(); ++i) {
@@ -176,6 +195,7 @@ Profile profile_of(const Scene& scene, const RunView& run) {
     p.legend.push_back(patch_entry(c, figure::shade(c, 0.6), "obstacle on the track"));
   }
   if (!run.track.empty()) p.legend.push_back(marker_entry(figure::start_marker, "start"));
+  if (p.goal_beyond) p.legend.push_back(line_entry(kToGoalLine, 1, "straight on to the goal", true));
   if (!p.collisions.empty()) p.legend.push_back(marker_entry(figure::collision_marker, "collision"));
   bool reached = false, missed = false;
   for (const auto& [d, w] : p.waypoints) {
@@ -183,16 +203,16 @@ Profile profile_of(const Scene& scene, const RunView& run) {
     (is_reached(run, w) ? reached : missed) = true;
   }
   if (reached) {
-    p.legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, true); },
+    p.legend.push_back(marker_entry([](figure::Canvas& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, true); },
                                     "waypoint, reached"));
   }
   if (missed) {
-    p.legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, false); },
+    p.legend.push_back(marker_entry([](figure::Canvas& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, false); },
                                     "waypoint, not reached"));
   }
   if (!p.waypoints.empty()) {
     const bool goal = is_reached(run, run.mission.size() - 1);
-    p.legend.push_back(marker_entry([goal](cv::Mat& m, cv::Point2d c) { figure::goal_marker(m, c, goal); },
+    p.legend.push_back(marker_entry([goal](figure::Canvas& m, cv::Point2d c) { figure::goal_marker(m, c, goal); },
                                     goal ? "goal" : "goal, not reached"));
   }
   return p;
@@ -225,8 +245,8 @@ FigureLayout layout_side_view(const Profile& p, const FigureStyle& style) {
 
 // The height above the ground beneath the track, on the profile's distance
 // axis, over the band between its smallest and largest value (shaded, both
-// labelled), with the ground itself as the zero line.
-void draw_height_above_ground(cv::Mat& image, const Profile& p, const cv::Rect& plot_px) {
+// labelled right of the panel), with the ground itself as the zero line.
+void draw_height_above_ground(figure::Canvas& canvas, const Profile& p, const cv::Rect& plot_px) {
   std::vector<double> agl(p.distance_m.size(), std::numeric_limits<double>::quiet_NaN());
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (std::size_t i = 0; i < agl.size(); ++i) {
@@ -237,95 +257,105 @@ void draw_height_above_ground(cv::Mat& image, const Profile& p, const cv::Rect& 
   }
   const double pad = std::max(0.15 * (hi - lo), 0.3);
   const figure::PlotFrame frame{plot_px, p.x0, p.x1, std::min(0.0, lo - pad), hi + pad};
-  figure::draw_grid(image, frame);
-  cv::Mat plot = image(plot_px);
+  figure::draw_grid(canvas, frame);
   const cv::Point2d origin(plot_px.x, plot_px.y);
-  const auto to = [&](double s, double h) { return frame.to_px(s, h) - origin; };
-  const cv::Scalar band = figure::lighten(kVehicleLine, 0.8);
-  cv::rectangle(plot, figure::fixed(to(p.x0, hi)), figure::fixed(to(p.x1, lo)), band, cv::FILLED,
-                cv::LINE_AA, figure::kShift);
-  const cv::Scalar ground_edge = figure::shade(p.ground_color, 0.6);
-  figure::polyline(plot, {to(p.x0, 0.0), to(p.x1, 0.0)}, ground_edge, 2);
-  for (const auto& [a, b] : runs_where(agl.size(), [&](std::size_t i) { return !std::isnan(agl[i]); })) {
-    std::vector<cv::Point2d> curve;
-    for (std::size_t i = a; i <= b; ++i) curve.push_back(to(p.distance_m[i], agl[i]));
-    std::vector<cv::Point2d> line;
-    for (std::size_t k : thin_out(curve)) line.push_back(curve[k]);
-    figure::polyline(plot, line, kVehicleLine, 2);
-  }
-  figure::draw_axes(image, frame, "distance along track, horizontal (m)", "above ground (m)");
-  const double label_x = plot_px.x + plot_px.width + 12.0;
-  figure::put_text(image, "highest " + figure::format_number(hi, 0.01) + " m", {label_x, origin.y + to(p.x1, hi).y},
-                   figure::kLabelFont, figure::kInk);
-  figure::put_text(image, "lowest " + figure::format_number(lo, 0.01) + " m", {label_x, origin.y + to(p.x1, lo).y},
-                   figure::kLabelFont, figure::kInk);
-}
-
-cv::Mat draw_side_figure(const RunView& run, const Profile& p, const FigureLayout& layout,
-                         const std::string& title) {
-  cv::Mat image(layout.image_px, CV_8UC3, figure::kWhite);
-  const figure::PlotFrame frame{layout.plot_px, p.x0, p.x1, p.y0, p.y1};
-  figure::draw_grid(image, frame);
-  cv::Mat plot = image(layout.plot_px);
-  const cv::Point2d origin(layout.plot_px.x, layout.plot_px.y);
-  const auto to = [&](double s, double z) { return frame.to_px(s, z) - origin; };
-  const std::size_t n = p.distance_m.size();
-  // Half-way to the neighbouring samples, so that a run of one sample still has a width.
-  const auto left_edge = [&](std::size_t i) { return i == 0 ? p.distance_m[0] : 0.5 * (p.distance_m[i - 1] + p.distance_m[i]); };
-  const auto right_edge = [&](std::size_t i) {
-    return i + 1 == n ? p.distance_m[i] : 0.5 * (p.distance_m[i] + p.distance_m[i + 1]);
-  };
-
-  // Obstacles over their vertical extent; the ground drawn next hides what is buried.
-  for (const auto& c : p.crossings) {
-    const Footprint& f = p.solids[c.solid];
-    const double top = f.top_m, bottom = std::max(f.bottom_m, p.y0 - 2.0 / layout.px_per_unit.y());
-    const std::vector<cv::Point2d> block{to(left_edge(c.first), bottom), to(left_edge(c.first), top),
-                                         to(right_edge(c.last), top), to(right_edge(c.last), bottom)};
-    const cv::Scalar colour = to_bgr(f.shape->color);
-    const std::vector<cv::Point> outline = figure::fixed(block);
-    cv::fillConvexPoly(plot, outline, colour, cv::LINE_AA, figure::kShift);
-    cv::polylines(plot, outline, true, figure::shade(colour, 0.6), 1, cv::LINE_AA, figure::kShift);
-  }
-  const cv::Scalar fill = figure::lighten(p.ground_color, 0.45), edge = figure::shade(p.ground_color, 0.6);
-  for (const auto& [a, b] : runs_where(n, [&](std::size_t i) { return !std::isnan(p.ground_m[i]); })) {
-    std::vector<cv::Point2d> surface;
-    for (std::size_t i = a; i <= b; ++i) surface.push_back(to(p.distance_m[i], p.ground_m[i]));
-    std::vector<cv::Point2d> area = surface;
-    area.push_back(to(p.distance_m[b], p.y0) + cv::Point2d(0, 2));
-    area.push_back(to(p.distance_m[a], p.y0) + cv::Point2d(0, 2));
-    const std::vector<std::vector<cv::Point>> polygons{figure::fixed(area)};
-    cv::fillPoly(plot, polygons, fill, cv::LINE_AA, figure::kShift);
-    figure::polyline(plot, surface, edge, 2);
-  }
-  for (const auto& [a, b] : runs_where(p.mission_m.size(), [&](std::size_t i) { return !std::isnan(p.mission_m[i]); })) {
-    std::vector<cv::Point2d> nominal;
-    for (std::size_t i = a; i <= b; ++i) nominal.push_back(to(p.distance_m[i], p.mission_m[i]));
-    std::vector<cv::Point2d> thin;
-    for (std::size_t k : thin_out(nominal)) thin.push_back(nominal[k]);
-    figure::dashed_polyline(plot, thin, kMissionLine, 1, 8.0, 5.0);
-  }
-  std::vector<cv::Point2d> curve;
-  for (std::size_t i = 0; i < n; ++i) curve.push_back(to(p.distance_m[i], p.altitude_m[i]));
-  std::vector<cv::Point2d> line;
-  for (std::size_t k : thin_out(curve)) line.push_back(curve[k]);
-  figure::polyline(plot, line, kVehicleLine, 2);
-  for (const auto& [d, w] : p.waypoints) {
-    const cv::Point2d at = to(d, run.mission[w].position_m.z());
-    if (w + 1 == run.mission.size()) {
-      figure::goal_marker(plot, at, is_reached(run, w));
-    } else {
-      figure::waypoint_marker(plot, at, static_cast<int>(w + 1), is_reached(run, w));
+  {
+    const auto clip = canvas.region(plot_px);
+    const auto to = [&](double s, double h) { return frame.to_px(s, h) - origin; };
+    canvas.fill_box(to(p.x0, hi), to(p.x1, lo), figure::lighten(kVehicleLine, 0.8));
+    canvas.line(to(p.x0, 0.0), to(p.x1, 0.0), figure::shade(p.ground_color, 0.6), 2);
+    for (const auto& [a, b] : runs_where(agl.size(), [&](std::size_t i) { return !std::isnan(agl[i]); })) {
+      std::vector<cv::Point2d> curve;
+      for (std::size_t i = a; i <= b; ++i) curve.push_back(to(p.distance_m[i], agl[i]));
+      std::vector<cv::Point2d> line;
+      for (std::size_t k : thin_out(curve)) line.push_back(curve[k]);
+      canvas.polyline(line, kVehicleLine, 2);
     }
   }
-  if (n > 0) figure::start_marker(plot, curve.front());
-  for (const auto& [d, z] : p.collisions) figure::collision_marker(plot, to(d, z));
+  figure::draw_axes(canvas, frame, "distance along track, horizontal (m)", "above ground (m)");
+  // Nearly equal values (a run that held its height) would print one label over the other: apart, or one label
+  // when they read the same.
+  const double label_x = plot_px.x + plot_px.width + 12.0;
+  const std::string high = figure::format_number(hi, 0.01), low = figure::format_number(lo, 0.01);
+  const double y_hi = frame.to_px(p.x1, hi).y, y_lo = frame.to_px(p.x1, lo).y;
+  if (high == low) {
+    figure::put_text(canvas, "highest and lowest " + high + " m", {label_x, 0.5 * (y_hi + y_lo)}, figure::kLabelFont,
+                     figure::kInk);
+    return;
+  }
+  const auto [at_hi, at_lo] = labels_apart_px(y_hi, y_lo, kAglLabelGapPx);
+  figure::put_text(canvas, "highest " + high + " m", {label_x, at_hi}, figure::kLabelFont, figure::kInk);
+  figure::put_text(canvas, "lowest " + low + " m", {label_x, at_lo}, figure::kLabelFont, figure::kInk);
+}
 
-  figure::draw_axes(image, frame, "distance along track, horizontal (m)", "altitude (m)");
-  if (!layout.agl_plot_px.empty()) draw_height_above_ground(image, p, layout.agl_plot_px);
-  if (!p.legend.empty()) figure::draw_legend(image, layout.legend_px, p.legend);
-  figure::put_title(image, title, layout.title_px);
-  return image;
+figure::Canvas draw_side_figure(const RunView& run, const Profile& p, const FigureLayout& layout,
+                                const std::string& title) {
+  figure::Canvas canvas(layout.image_px);
+  const figure::PlotFrame frame{layout.plot_px, p.x0, p.x1, p.y0, p.y1};
+  figure::draw_grid(canvas, frame);
+  {
+    const auto clip = canvas.region(layout.plot_px);
+    const cv::Point2d origin(layout.plot_px.x, layout.plot_px.y);
+    const auto to = [&](double s, double z) { return frame.to_px(s, z) - origin; };
+    const std::size_t n = p.distance_m.size();
+    // Half-way to the neighbouring samples, so that a run of one sample still has a width.
+    const auto left_edge = [&](std::size_t i) { return i == 0 ? p.distance_m[0] : 0.5 * (p.distance_m[i - 1] + p.distance_m[i]); };
+    const auto right_edge = [&](std::size_t i) {
+      return i + 1 == n ? p.distance_m[i] : 0.5 * (p.distance_m[i] + p.distance_m[i + 1]);
+    };
+
+    // Obstacles over their vertical extent; the ground drawn next hides what is buried.
+    for (const auto& c : p.crossings) {
+      const Footprint& f = p.solids[c.solid];
+      const double top = f.top_m, bottom = std::max(f.bottom_m, p.y0 - 2.0 / layout.px_per_unit.y());
+      const std::vector<cv::Point2d> block{to(left_edge(c.first), bottom), to(left_edge(c.first), top),
+                                           to(right_edge(c.last), top), to(right_edge(c.last), bottom)};
+      const cv::Scalar colour = to_bgr(f.shape->color);
+      canvas.fill_polygon(block, colour);
+      canvas.polyline(block, figure::shade(colour, 0.6), 1, true);
+    }
+    const cv::Scalar fill = figure::lighten(p.ground_color, 0.45), edge = figure::shade(p.ground_color, 0.6);
+    for (const auto& [a, b] : runs_where(n, [&](std::size_t i) { return !std::isnan(p.ground_m[i]); })) {
+      std::vector<cv::Point2d> surface;
+      for (std::size_t i = a; i <= b; ++i) surface.push_back(to(p.distance_m[i], p.ground_m[i]));
+      std::vector<cv::Point2d> area = surface;
+      area.push_back(to(p.distance_m[b], p.y0) + cv::Point2d(0, 2));
+      area.push_back(to(p.distance_m[a], p.y0) + cv::Point2d(0, 2));
+      canvas.fill_polygon(area, fill);
+      canvas.polyline(surface, edge, 2);
+    }
+    for (const auto& [a, b] : runs_where(p.mission_m.size(), [&](std::size_t i) { return !std::isnan(p.mission_m[i]); })) {
+      std::vector<cv::Point2d> nominal;
+      for (std::size_t i = a; i <= b; ++i) nominal.push_back(to(p.distance_m[i], p.mission_m[i]));
+      std::vector<cv::Point2d> thin;
+      for (std::size_t k : thin_out(nominal)) thin.push_back(nominal[k]);
+      canvas.dashed_polyline(thin, kMissionLine, 1, 8.0, 5.0);
+    }
+    std::vector<cv::Point2d> curve;
+    for (std::size_t i = 0; i < n; ++i) curve.push_back(to(p.distance_m[i], p.altitude_m[i]));
+    std::vector<cv::Point2d> line;
+    for (std::size_t k : thin_out(curve)) line.push_back(curve[k]);
+    canvas.polyline(line, kVehicleLine, 2);
+    for (const auto& [d, w] : p.waypoints) {
+      const cv::Point2d at = to(d, run.mission[w].position_m.z());
+      if (w + 1 == run.mission.size()) {
+        if (p.goal_beyond) {  // the goal not reached: the straight line still to go, from the track's end
+          canvas.dashed_polyline({to(p.goal_beyond->first, p.goal_beyond->second), at}, kToGoalLine, 1, 4.0, 4.0);
+        }
+        figure::goal_marker(canvas, at, is_reached(run, w));
+      } else {
+        figure::waypoint_marker(canvas, at, static_cast<int>(w + 1), is_reached(run, w));
+      }
+    }
+    if (n > 0) figure::start_marker(canvas, curve.front());
+    for (const auto& [d, z] : p.collisions) figure::collision_marker(canvas, to(d, z));
+  }
+
+  figure::draw_axes(canvas, frame, "distance along track, horizontal (m)", "altitude (m)");
+  if (!layout.agl_plot_px.empty()) draw_height_above_ground(canvas, p, layout.agl_plot_px);
+  if (!p.legend.empty()) figure::draw_legend(canvas, layout.legend_px, p.legend);
+  figure::put_title(canvas, title, layout.title_px);
+  return canvas;
 }
 
 }  // namespace
@@ -356,7 +386,18 @@ FigureLayout side_view_layout(const Scene& scene, const RunView& run, const Figu
   return layout_side_view(profile_of(scene, run), style);
 }
 
-cv::Mat draw_side_view(const Scene& scene, const RunView& run, const FigureStyle& style) {
+double goal_distance_m(double track_length_m, const Eigen::Vector3d& track_end_m, const Eigen::Vector3d& goal_m) {
+  return track_length_m + (xy(goal_m) - xy(track_end_m)).norm();
+}
+
+std::pair<double, double> labels_apart_px(double upper_px, double lower_px, double min_gap_px) {
+  const double gap = lower_px - upper_px;
+  if (gap >= min_gap_px) return {upper_px, lower_px};
+  const double mid = 0.5 * (upper_px + lower_px);
+  return {mid - 0.5 * min_gap_px, mid + 0.5 * min_gap_px};
+}
+
+figure::Canvas draw_side_view(const Scene& scene, const RunView& run, const FigureStyle& style) {
   check_style(style);
   const Profile p = profile_of(scene, run);
   return draw_side_figure(run, p, layout_side_view(p, style), run_title(style, run, "altitude profile"));

@@ -42,15 +42,42 @@ cv::Rect fitted(const cv::Rect& box, cv::Size size) {
           scaled.height};
 }
 
-// `image` scaled into `at` of `frame`.
-void paste(cv::Mat& frame, const cv::Rect& at, const cv::Mat& image) {
+// `image` scaled to `size` (area-averaged when shrinking, so thin lines and text stay smooth).
+cv::Mat scaled(const cv::Mat& image, cv::Size size) {
+  if (image.size() == size) return image;
+  cv::Mat out;
+  const bool shrink = size.width < image.cols;
+  cv::resize(image, out, size, 0.0, 0.0, shrink ? cv::INTER_AREA : cv::INTER_LINEAR);
+  return out;
+}
+
+// `image` (BGR) scaled into `at` of the frame: resampled here, embedded pixel for pixel.
+void paste(figure::Canvas& frame, const cv::Rect& at, const cv::Mat& image) {
   if (image.empty() || at.width <= 0 || at.height <= 0) return;
-  const bool shrink = at.width < image.cols;
-  cv::resize(image, frame(at), at.size(), 0.0, 0.0, shrink ? cv::INTER_AREA : cv::INTER_LINEAR);
+  frame.image(scaled(image, at.size()), at);
+}
+
+// The layout of the map figure `map` pasted scaled onto `at` of a frame: the same world-to-pixel mapping as the
+// pasted pixels (pixel centres to pixel centres, scaling about the corners), with the plot's rectangle rounded to
+// whole frame pixels and the rounding taken up by the data origin, so that the run is drawn in frame pixels.
+FigureLayout pasted_layout(const FigureLayout& map, const cv::Rect& at) {
+  const double kx = static_cast<double>(at.width) / map.image_px.width;
+  const double ky = static_cast<double>(at.height) / map.image_px.height;
+  const cv::Rect& p = map.plot_px;
+  const double left = at.x + p.x * kx, right = at.x + (p.x + p.width) * kx;
+  const double top = at.y + p.y * ky, bottom = at.y + (p.y + p.height) * ky;
+  FigureLayout out = map;
+  out.image_px = at.size();
+  const int x0 = static_cast<int>(std::lround(left)), x1 = static_cast<int>(std::lround(right));
+  const int y0 = static_cast<int>(std::lround(top)), y1 = static_cast<int>(std::lround(bottom));
+  out.plot_px = {x0, y0, x1 - x0, y1 - y0};
+  out.px_per_unit = {map.px_per_unit.x() * kx, map.px_per_unit.y() * ky};
+  out.min = {map.min.x() + (x0 - left) / out.px_per_unit.x(), map.min.y() + (bottom - y1) / out.px_per_unit.y()};
+  return out;
 }
 
 // The vehicle's footprint at its heading, with a line to its front and a ring that finds it at any scale.
-void draw_vehicle(cv::Mat& plot, const PlotMapper& to, const TrackPoint& at, const Eigen::Vector2d& footprint_m) {
+void draw_vehicle(figure::Canvas& plot, const PlotMapper& to, const TrackPoint& at, const Eigen::Vector2d& footprint_m) {
   const double yaw = at.yaw_deg * M_PI / 180.0;
   const Eigen::Vector2d ahead(std::cos(yaw), std::sin(yaw)), left(-ahead.y(), ahead.x());
   const Eigen::Vector2d centre = xy(at.position_m);
@@ -59,27 +86,26 @@ void draw_vehicle(cv::Mat& plot, const PlotMapper& to, const TrackPoint& at, con
                                              centre - half.x() * ahead + half.y() * left,
                                              centre - half.x() * ahead - half.y() * left,
                                              centre + half.x() * ahead - half.y() * left};
-  const std::vector<cv::Point> outline = figure::fixed(to.all(corners));
-  cv::circle(plot, figure::fixed(to(centre)), 14 << figure::kShift, figure::kInk, 2, cv::LINE_AA, figure::kShift);
-  cv::fillConvexPoly(plot, outline, figure::rgb(250, 250, 250), cv::LINE_AA, figure::kShift);
-  cv::polylines(plot, outline, true, figure::kInk, 2, cv::LINE_AA, figure::kShift);
+  const std::vector<cv::Point2d> outline = to.all(corners);
+  plot.circle(to(centre), 14.0, figure::kInk, 2);
+  plot.fill_polygon(outline, figure::rgb(250, 250, 250));
+  plot.polyline(outline, figure::kInk, 2, true);
   const Eigen::Vector2d nose = centre + std::max(half.x(), 0.6) * ahead;
-  cv::line(plot, figure::fixed(to(centre)), figure::fixed(to(nose)), figure::kInk, 2, cv::LINE_AA, figure::kShift);
+  plot.line(to(centre), to(nose), figure::kInk, 2);
 }
 
-void draw_strip(cv::Mat& frame, const cv::Rect& box, const VideoStrip& strip) {
-  frame(box).setTo(kStripFill);
-  cv::line(frame, box.tl(), cv::Point(box.br().x, box.y), figure::kGridInk, 1);
+void draw_strip(figure::Canvas& frame, const cv::Rect& box, const VideoStrip& strip) {
+  frame.fill_rectangle(box, kStripFill);
+  frame.line(cv::Point2d(box.x, box.y), cv::Point2d(box.br().x - 1, box.y), figure::kGridInk, 1);
   char clock[64];
   std::snprintf(clock, sizeof clock, "%.1f s / %.1f s", strip.time_s, strip.duration_s);
   const int row1 = box.y + 24, row2 = box.y + 52;
   figure::put_text(frame, clock, cv::Point2d(box.x + 16, row1), figure::kTitleFont, figure::kInk);
   // How far through the run: a bar under the clock.
   const cv::Rect bar(box.x + 16, row2 - 5, 220, 10);
-  cv::rectangle(frame, bar, figure::kGridInk, cv::FILLED);
+  frame.fill_rectangle(bar, figure::kGridInk);
   const double f = strip.duration_s > 0.0 ? std::clamp(strip.time_s / strip.duration_s, 0.0, 1.0) : 1.0;
-  cv::rectangle(frame, cv::Rect(bar.x, bar.y, static_cast<int>(std::lround(f * bar.width)), bar.height), kClockBar,
-                cv::FILLED);
+  frame.fill_box({bar.x - 0.5, bar.y - 0.5}, {bar.x - 0.5 + f * bar.width, bar.y + bar.height - 0.5}, kClockBar);
   // The values in equal columns right of the clock; the state under them.
   const int x0 = box.x + 270;
   const int column = strip.values.empty() ? 0 : std::max(1, (box.br().x - 16 - x0) / static_cast<int>(strip.values.size()));
@@ -125,37 +151,36 @@ VideoFrames::VideoFrames(const Scene& scene, const RunView& run, const Eigen::Ve
   bare.label = run.label;
   bare.mission = run.mission;
   plan_.runs = {&bare};
-  map_background_ = figure::draw_map_figure(scene, plan_, map_layout_, style.title);
+  const cv::Mat map = figure::draw_map_figure(scene, plan_, map_layout_, style.title).raster();
   plan_.runs.clear();
-  map_paste_px_ = fitted(layout_.map_px, map_background_.size());
+  map_paste_px_ = fitted(layout_.map_px, map.size());
+  map_background_ = scaled(map, map_paste_px_.size());
+  frame_map_layout_ = pasted_layout(map_layout_, map_paste_px_);
 }
 
 cv::Point2d VideoFrames::to_frame_px(const Eigen::Vector2d& world_m) const {
-  // Pixel centres map to pixel centres under the resize: scale about the corners (-0.5, -0.5).
-  const cv::Point2d p = map_layout_.to_px(world_m);
-  const double kx = static_cast<double>(map_paste_px_.width) / map_background_.cols;
-  const double ky = static_cast<double>(map_paste_px_.height) / map_background_.rows;
-  return {map_paste_px_.x + (p.x + 0.5) * kx - 0.5, map_paste_px_.y + (p.y + 0.5) * ky - 0.5};
+  return frame_map_layout_.to_px(world_m);
 }
 
 cv::Mat VideoFrames::draw(const RunView& so_far, double time_s, const cv::Mat& sensor_panel,
                           const std::string& sensor_caption, const VideoStrip& strip) {
   if (so_far.track.empty()) throw std::invalid_argument("VideoFrames::draw: the run has no track");
-  cv::Mat map = map_background_.clone();
-  cv::Mat plot = map(map_layout_.plot_px);
-  const PlotMapper to{map_layout_};
-  plan_.runs = {&so_far};
-  figure::draw_run_marks(plot, to, plan_);
-  plan_.runs.clear();
-  for (const Mover& m : scene_.movers) {
-    Shape then = m.shape;
-    then.pose.translation() = m.position_at(time_s);
-    figure::draw_footprint(plot, to, figure::footprint(then), figure::lighten(figure::to_bgr(m.shape.color), 0.3));
+  figure::Canvas frame(layout_.frame_px);
+  frame.image(map_background_, map_paste_px_);
+  {
+    // The run in frame pixels over the scaled map: lines and markers at their own widths, sharp at any frame size.
+    const auto clip = frame.region(frame_map_layout_.plot_px);
+    const PlotMapper to{frame_map_layout_};
+    plan_.runs = {&so_far};
+    figure::draw_run_marks(frame, to, plan_);
+    plan_.runs.clear();
+    for (const Mover& m : scene_.movers) {
+      Shape then = m.shape;
+      then.pose.translation() = m.position_at(time_s);
+      figure::draw_footprint(frame, to, figure::footprint(then), figure::lighten(figure::to_bgr(m.shape.color), 0.3));
+    }
+    draw_vehicle(frame, to, so_far.track.back(), vehicle_size_m_.head<2>());
   }
-  draw_vehicle(plot, to, so_far.track.back(), vehicle_size_m_.head<2>());
-
-  cv::Mat frame(layout_.frame_px, CV_8UC3, figure::kWhite);
-  paste(frame, map_paste_px_, map);
   const cv::Rect& s = layout_.sensor_px;
   figure::put_text(frame, sensor_caption, cv::Point2d(s.x + 12, s.y + kVideoCaptionPx / 2 + 4), figure::kLabelFont,
                    figure::kInk);
@@ -164,7 +189,7 @@ cv::Mat VideoFrames::draw(const RunView& so_far, double time_s, const cv::Mat& s
     paste(frame, fitted(box, sensor_panel.size()), sensor_panel);
   }
   draw_strip(frame, layout_.strip_px, strip);
-  return frame;
+  return frame.raster();
 }
 
 }  // namespace campo

@@ -56,7 +56,9 @@ class VideoFrames {
 
   /// The frame at `time_s`: `so_far` is the run up to then (run_view_at),
   /// `sensor_panel` any BGR image (fitted into the panel, aspect kept; empty:
-  /// the caption alone), `strip` the strip's content.
+  /// the caption alone), `strip` the strip's content. Drawn on a canvas of
+  /// the frame's size (the map's background a raster, the run and the strip
+  /// vectors) and returned as its BGR raster, for the encoder.
   cv::Mat draw(const RunView& so_far, double time_s, const cv::Mat& sensor_panel, const std::string& sensor_caption,
                const VideoStrip& strip);
 
@@ -64,8 +66,9 @@ class VideoFrames {
   const Scene& scene_;
   figure::MapPlan plan_;
   FigureLayout map_layout_;
-  cv::Mat map_background_;  // the map figure without the run and the movers
-  cv::Rect map_paste_px_;   // where the map figure lands on a frame, scaled
+  cv::Mat map_background_;         // the map figure without the run and the movers, scaled to map_paste_px_
+  cv::Rect map_paste_px_;          // where the map figure lands on a frame
+  FigureLayout frame_map_layout_;  // the map's layout in frame pixels
   Eigen::Vector3d vehicle_size_m_;
   VideoLayout layout_;
 };

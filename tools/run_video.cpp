@@ -82,7 +82,7 @@ class SensorPanel {
     const RecordedDepthMap* scan = latest(depths_, time_s);
     if (scan && !planar) {
       if (shown_ != scan) {
-        image_ = draw_depth(read_depth_map(scan->file), {}, true, sensor_->alias + " depth map");
+        image_ = draw_depth(read_depth_map(scan->file), {}, true, sensor_->alias + " depth map").raster();
         shown_ = scan;
       }
       return {image_, "Depth map of " + sensor_->alias + " at " + fixed(scan->time_s, 1, "s")};
@@ -118,7 +118,7 @@ class SensorPanel {
                                                        (gap->chosen->center_deg > 0.0 ? "left" : "right")
                                                  : std::string("avoiding"))
                            : "following the route";
-    return {draw_scan_view(view), caption};
+    return {draw_scan_view(view).raster(), caption};
   }
 
  private:
