@@ -148,9 +148,15 @@ double Ground::contour_interval(const Eigen::AlignedBox2d& box) const {
 
 cv::Scalar Ground::contour_color() const { return shade(color_, 0.45); }
 
-void Ground::paint(cv::Mat& plot, const Eigen::Vector2d& top_left_m, double px_per_m, double interval_m) const {
-  CV_Assert(plot.type() == CV_8UC3);
-  if (empty()) return;
+void Ground::paint(Canvas& canvas, cv::Size size, const Eigen::Vector2d& top_left_m, double px_per_m,
+                   double interval_m) const {
+  if (empty() || size.width <= 0 || size.height <= 0) return;
+  canvas.image(shading(size, top_left_m, px_per_m, interval_m), cv::Rect({0, 0}, size), /*smooth=*/false);
+}
+
+cv::Mat Ground::shading(cv::Size size, const Eigen::Vector2d& top_left_m, double px_per_m, double interval_m) const {
+  cv::Mat plot(size, CV_8UC4, cv::Scalar(0, 0, 0, 0));
+  if (empty()) return plot;
   // Heights over the plot and a border as wide as the smoothing reaches, so
   // that the shading near the plot's edges sees the terrain beyond them.
   // The smoothing follows the terrain's vertex spacing up to kMaxSmoothing_px:
@@ -199,7 +205,7 @@ void Ground::paint(cv::Mat& plot, const Eigen::Vector2d& top_left_m, double px_p
   };
   for (int r = 0; r < plot.rows; ++r) {
     const auto* h = heights.ptr<float>(r);
-    auto* px = plot.ptr<cv::Vec3b>(r);
+    auto* px = plot.ptr<cv::Vec4b>(r);
     for (int c = 0; c < plot.cols; ++c) {
       if (std::isnan(h[c])) continue;
       const Eigen::Vector2d g = slope(smooth, r, c);
@@ -220,10 +226,11 @@ void Ground::paint(cv::Mat& plot, const Eigen::Vector2d& top_left_m, double px_p
           colour = colour * (1.0 - a) + ink * a;
         }
       }
-      px[c] = cv::Vec3b(cv::saturate_cast<uchar>(colour[0]), cv::saturate_cast<uchar>(colour[1]),
-                        cv::saturate_cast<uchar>(colour[2]));
+      px[c] = cv::Vec4b(cv::saturate_cast<uchar>(colour[0]), cv::saturate_cast<uchar>(colour[1]),
+                        cv::saturate_cast<uchar>(colour[2]), 255);
     }
   }
+  return plot;
 }
 
 }  // namespace campo::figure

@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "campo/scene.hpp"
+#include "render/figure_canvas.hpp"
 
 namespace campo::figure {
 
@@ -37,12 +38,17 @@ class Ground {
   /// Contour interval for the heights over `box`: a 1-2-5 step giving about
   /// ten levels; 0 when there is no relief.
   double contour_interval(const Eigen::AlignedBox2d& box) const;
-  /// Paints the ground under `plot` (CV_8UC3), whose pixel (0, 0) is
-  /// centred at `top_left_m`: hillshade lit from the north-west (from heights
-  /// smoothed over about a grid cell, so that the triangles do not show), a
-  /// light height tint, and contour lines every `interval_m` (every fifth one
-  /// darker) when it is > 0. Pixels without ground are left as they are.
-  void paint(cv::Mat& plot, const Eigen::Vector2d& top_left_m, double px_per_m, double interval_m) const;
+  /// The ground as a raster (CV_8UC4 BGRA) of `size` pixels, whose pixel
+  /// (0, 0) is centred at `top_left_m`: hillshade lit from the north-west
+  /// (from heights smoothed over about a grid cell, so that the triangles do
+  /// not show), a light height tint, and contour lines every `interval_m`
+  /// (every fifth one darker) when it is > 0. Transparent without ground.
+  cv::Mat shading(cv::Size size, const Eigen::Vector2d& top_left_m, double px_per_m, double interval_m) const;
+  /// Embeds shading(size, ...) on `canvas` over the pixels (0, 0) to `size`
+  /// of its current region, one raster pixel per figure pixel (the shading is
+  /// per pixel, so PDF and SVG hold it as an image). Nothing without ground.
+  void paint(Canvas& canvas, cv::Size size, const Eigen::Vector2d& top_left_m, double px_per_m,
+             double interval_m) const;
   /// Colour of the contour lines.
   cv::Scalar contour_color() const;
 

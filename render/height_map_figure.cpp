@@ -49,7 +49,7 @@ FigureLayout height_map_layout(const Scene& scene, const RunView& run, const Fig
   return layout_map(plan_height_map(scene, run, style), style);
 }
 
-cv::Mat draw_height_map(const Scene& scene, const RunView& run, const FigureStyle& style) {
+figure::Canvas draw_height_map(const Scene& scene, const RunView& run, const FigureStyle& style) {
   const MapPlan plan = plan_height_map(scene, run, style);
   return draw_map_figure(scene, plan, layout_map(plan, style), run_title(style, run, "reconstructed height map"));
 }

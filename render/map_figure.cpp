@@ -26,7 +26,7 @@ FigureLayout map_layout(const Scene& scene, const RunView& run, const FigureStyl
   return layout_map(plan_map(scene, {&run}, style, false), style);
 }
 
-cv::Mat draw_map(const Scene& scene, const RunView& run, const FigureStyle& style) {
+figure::Canvas draw_map(const Scene& scene, const RunView& run, const FigureStyle& style) {
   const MapPlan plan = plan_map(scene, {&run}, style, false);
   return draw_map_figure(scene, plan, layout_map(plan, style), run_title(style, run, "map"));
 }
@@ -35,7 +35,7 @@ FigureLayout overlay_layout(const Scene& scene, const std::vector<RunView>& runs
   return layout_map(plan_map(scene, pointers(runs), style, true), style);
 }
 
-cv::Mat draw_overlay(const Scene& scene, const std::vector<RunView>& runs, const FigureStyle& style) {
+figure::Canvas draw_overlay(const Scene& scene, const std::vector<RunView>& runs, const FigureStyle& style) {
   const MapPlan plan = plan_map(scene, pointers(runs), style, true);
   const std::string title = !style.title.empty() ? style.title
                             : runs.size() == 1   ? "1 run"

@@ -5,6 +5,7 @@
 #include <opencv2/core.hpp>
 
 #include "campo/scene.hpp"
+#include "render/figure_canvas.hpp"
 #include "render/figure_style.hpp"
 
 namespace campo {
@@ -16,12 +17,12 @@ namespace campo {
 /// mission waypoints (filled when reached), planned and discarded
 /// intermediate waypoints, recorded sensor hits, start and goal, axes, scale
 /// bar, north arrow and a legend of the symbols present.
-cv::Mat draw_map(const Scene& scene, const RunView& run, const FigureStyle& style = {});
+figure::Canvas draw_map(const Scene& scene, const RunView& run, const FigureStyle& style = {});
 FigureLayout map_layout(const Scene& scene, const RunView& run, const FigureStyle& style = {});
 
 /// Several runs on one map (seed 000 Fig. 5.6), one colour per run (run_color),
 /// legend entries "label (outcome)"; shared start and goal markers.
-cv::Mat draw_overlay(const Scene& scene, const std::vector<RunView>& runs, const FigureStyle& style = {});
+figure::Canvas draw_overlay(const Scene& scene, const std::vector<RunView>& runs, const FigureStyle& style = {});
 FigureLayout overlay_layout(const Scene& scene, const std::vector<RunView>& runs, const FigureStyle& style = {});
 
 }  // namespace campo

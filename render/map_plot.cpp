@@ -92,20 +92,17 @@ std::vector<Eigen::Vector3d> track_between(const std::vector<TrackPoint>& track,
 }
 
 LegendEntry gradient_entry(std::string text) {
-  return {[](cv::Mat& image, cv::Point2d c) {
-            figure::polyline(image, {c + cv::Point2d(-16, 0), c + cv::Point2d(16, 0)}, kTrackHalo, 5);
+  return {[](Canvas& canvas, cv::Point2d c) {
+            canvas.line(c + cv::Point2d(-16, 0), c + cv::Point2d(16, 0), kTrackHalo, 5);
             for (int i = 0; i < 8; ++i) {
               const cv::Point2d a = c + cv::Point2d(-16 + 4 * i, 0), b = a + cv::Point2d(4, 0);
-              cv::line(image, figure::fixed(a), figure::fixed(b), to_scalar(sequential_color(i / 7.0)), 3, cv::LINE_AA,
-                       figure::kShift);
+              canvas.line(a, b, to_scalar(sequential_color(i / 7.0)), 3);
             }
           },
           std::move(text)};
 }
 
-void sensor_hit_marker(cv::Mat& image, cv::Point2d c) {
-  cv::circle(image, figure::fixed(c), 2 << figure::kShift, kSensorHit, cv::FILLED, cv::LINE_AA, figure::kShift);
-}
+void sensor_hit_marker(Canvas& canvas, cv::Point2d c) { canvas.fill_circle(c, 2.0, kSensorHit); }
 
 Eigen::AlignedBox2d map_bounds(const Scene& scene, const std::vector<const RunView*>& runs,
                                const std::vector<Footprint>& solids, double margin_m) {
@@ -228,35 +225,35 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
     return n;
   };
   if (overlay && intermediate > 0) {
-    legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, false); },
+    legend.push_back(marker_entry([](Canvas& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, false); },
                                   "mission waypoint"));
   } else if (!overlay) {
     if (count_reached(true) > 0) {
-      legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, true); },
+      legend.push_back(marker_entry([](Canvas& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, true); },
                                     "waypoint, reached"));
     }
     if (count_reached(false) > 0) {
-      legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, false); },
+      legend.push_back(marker_entry([](Canvas& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, false); },
                                     "waypoint, not reached"));
     }
   }
   if (!plan.mission.empty()) {
     const bool reached = overlay || plan.mission_reached.back();
-    legend.push_back(marker_entry([reached](cv::Mat& m, cv::Point2d c) { figure::goal_marker(m, c, reached); },
+    legend.push_back(marker_entry([reached](Canvas& m, cv::Point2d c) { figure::goal_marker(m, c, reached); },
                                   reached ? "goal" : "goal, not reached"));
   }
   const cv::Scalar planned = overlay ? kNeutralMarker : kPlannedWaypoint;
   const cv::Scalar discarded = overlay ? kNeutralMarker : kDiscardedWaypoint;
   if (steps && any(&RunView::planned)) {
-    legend.push_back(marker_entry([planned](cv::Mat& m, cv::Point2d c) { figure::diamond_marker(m, c, planned); },
+    legend.push_back(marker_entry([planned](Canvas& m, cv::Point2d c) { figure::diamond_marker(m, c, planned); },
                                   "planned waypoint"));
   }
   if (steps && any(&RunView::discarded)) {
-    legend.push_back(marker_entry([discarded](cv::Mat& m, cv::Point2d c) { figure::cross_marker(m, c, discarded); },
+    legend.push_back(marker_entry([discarded](Canvas& m, cv::Point2d c) { figure::cross_marker(m, c, discarded); },
                                   "discarded waypoint"));
   }
   if (!overlay && steps && any(&RunView::sensor_hits)) {
-    legend.push_back(marker_entry([](cv::Mat& m, cv::Point2d c) { sensor_hit_marker(m, c); }, "LIDAR hit"));
+    legend.push_back(marker_entry([](Canvas& m, cv::Point2d c) { sensor_hit_marker(m, c); }, "LIDAR hit"));
   }
 }
 
@@ -378,21 +375,20 @@ bool above_flight_band(const Footprint& f, const Ground& ground, std::optional<d
   return f.bottom_m - ground.height(c.x(), c.y()).value_or(0.0) > *band_top_agl_m;
 }
 
-void draw_footprint_above_band(cv::Mat& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& colour) {
+void draw_footprint_above_band(Canvas& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& colour) {
   std::vector<cv::Point2d> outline = to.all(f.outline_m);
-  cv::fillConvexPoly(plot, figure::fixed(outline), figure::lighten(colour, kAboveBandLighten), cv::LINE_AA,
-                     figure::kShift);
+  plot.fill_polygon(outline, figure::lighten(colour, kAboveBandLighten));
   if (!outline.empty()) outline.push_back(outline.front());
-  figure::dashed_polyline(plot, outline, figure::shade(colour, 0.6), 1, 5.0, 4.0);
+  plot.dashed_polyline(outline, figure::shade(colour, 0.6), 1, 5.0, 4.0);
 }
 
-void draw_footprint(cv::Mat& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& fill) {
-  const std::vector<cv::Point> outline = figure::fixed(to.all(f.outline_m));
-  cv::fillConvexPoly(plot, outline, fill, cv::LINE_AA, figure::kShift);
-  cv::polylines(plot, outline, true, figure::shade(fill, 0.6), 1, cv::LINE_AA, figure::kShift);
+void draw_footprint(Canvas& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& fill) {
+  const std::vector<cv::Point2d> outline = to.all(f.outline_m);
+  plot.fill_polygon(outline, fill);
+  plot.polyline(outline, figure::shade(fill, 0.6), 1, /*closed=*/true);
 }
 
-void draw_run_marks(cv::Mat& plot, const PlotMapper& to, const MapPlan& plan) {
+void draw_run_marks(Canvas& plot, const PlotMapper& to, const MapPlan& plan) {
   for (std::size_t i = 0; i < plan.runs.size(); ++i) {
     const RunView& run = *plan.runs[i];
     const cv::Scalar own = run_color(i);
@@ -403,11 +399,11 @@ void draw_run_marks(cv::Mat& plot, const PlotMapper& to, const MapPlan& plan) {
         std::vector<cv::Point2d> thinned;
         for (std::size_t k : thin_out(band)) thinned.push_back(band[k]);
         if (thinned.size() == 1) thinned.push_back(thinned.front());  // a single spot: a round blob
-        figure::polyline(plot, thinned, kAvoiding, kAvoidingBandPx);
+        plot.polyline(thinned, kAvoiding, kAvoidingBandPx);
       }
     }
     if (!plan.height_map) {
-      figure::dashed_polyline(plot, to.all(run.planned_path), plan.overlay ? own : kPlannedPath, 1, 7.0, 5.0);
+      plot.dashed_polyline(to.all(run.planned_path), plan.overlay ? own : kPlannedPath, 1, 7.0, 5.0);
     }
     std::vector<cv::Point2d> track;
     for (const auto& p : run.track) track.push_back(to(p.position_m));
@@ -415,17 +411,16 @@ void draw_run_marks(cv::Mat& plot, const PlotMapper& to, const MapPlan& plan) {
     std::vector<cv::Point2d> line;
     for (std::size_t k : kept) line.push_back(track[k]);
     if (plan.overlay || plan.height_map) {
-      figure::polyline(plot, line, figure::kWhite, 5);
-      figure::polyline(plot, line, plan.height_map ? kTrackHalo : own, plan.height_map ? 2 : 3);
+      plot.polyline(line, figure::kWhite, 5);
+      plot.polyline(line, plan.height_map ? kTrackHalo : own, plan.height_map ? 2 : 3);
       continue;
     }
-    figure::polyline(plot, line, kTrackHalo, 5);
+    plot.polyline(line, kTrackHalo, 5);
     for (std::size_t k = 1; k < kept.size(); ++k) {
       const TrackPoint& p = run.track[kept[k]];
       const double value = plan.coloring == TrackColoring::time ? p.time_s : p.speed_mps;
       const double f = (value - plan.value_lo) / (plan.value_hi - plan.value_lo);
-      cv::line(plot, figure::fixed(line[k - 1]), figure::fixed(line[k]), to_scalar(sequential_color(f)), 3,
-               cv::LINE_AA, figure::kShift);
+      plot.line(line[k - 1], line[k], to_scalar(sequential_color(f)), 3);
     }
   }
   if (!plan.overlay && !plan.height_map) {
@@ -450,7 +445,7 @@ void draw_run_marks(cv::Mat& plot, const PlotMapper& to, const MapPlan& plan) {
 namespace {
 
 // Scale bar with its length above, and a north arrow on the right, in `box`.
-void draw_scale_bar(cv::Mat& image, const cv::Rect& box, double px_per_m) {
+void draw_scale_bar(Canvas& image, const cv::Rect& box, double px_per_m) {
   // The longest 1-2-5 length that fits left of the arrow.
   const double limit_m = (box.width - 60.0) / px_per_m;
   const double decade = std::pow(10.0, std::floor(std::log10(limit_m)));
@@ -463,22 +458,20 @@ void draw_scale_bar(cv::Mat& image, const cv::Rect& box, double px_per_m) {
   }
   const double bar_px = length_m * px_per_m;
   const double x0 = box.x + 8.0, y0 = box.y + 30.0;
-  cv::rectangle(image, figure::fixed({x0, y0}), figure::fixed({x0 + bar_px / 2, y0 + 7}), figure::kInk, cv::FILLED,
-                cv::LINE_AA, figure::kShift);
-  cv::rectangle(image, figure::fixed({x0, y0}), figure::fixed({x0 + bar_px, y0 + 7}), figure::kInk, 1, cv::LINE_AA,
-                figure::kShift);
+  image.fill_box({x0, y0}, {x0 + bar_px / 2, y0 + 7}, figure::kInk);
+  image.polyline({{x0, y0}, {x0 + bar_px, y0}, {x0 + bar_px, y0 + 7}, {x0, y0 + 7}}, figure::kInk, 1, /*closed=*/true);
   figure::put_text(image, "0", {x0, box.y + 16.0}, figure::kTickFont, figure::kInk, Align::centre);
   figure::put_text(image, figure::format_number(length_m, length_m) + " m", {x0 + bar_px, box.y + 16.0},
                    figure::kTickFont, figure::kInk, Align::centre);
   const cv::Point2d tip(box.x + box.width - 24.0, box.y + 18.0), tail(tip.x, box.y + 46.0);
-  cv::arrowedLine(image, figure::fixed(tail), figure::fixed(tip), figure::kInk, 2, cv::LINE_AA, figure::kShift, 0.35);
+  image.arrow(tail, tip, figure::kInk, 2, 0.35);
   figure::put_text(image, "N", {tip.x, box.y + 6.0}, figure::kLabelFont, figure::kInk, Align::centre);
 }
 
 // Numbered operator waypoints, the goal last. Waypoints on the same spot
 // (e.g. at two altitudes) share one marker labelled with all their numbers;
 // so does one under a start marker, which is drawn over it.
-void draw_mission(cv::Mat& plot, const PlotMapper& to, const MapPlan& plan) {
+void draw_mission(Canvas& plot, int plot_width_px, const PlotMapper& to, const MapPlan& plan) {
   const std::size_t n = plan.mission.size();
   std::vector<std::vector<std::size_t>> groups;
   for (std::size_t i = 0; i < n; ++i) {
@@ -500,68 +493,77 @@ void draw_mission(cv::Mat& plot, const PlotMapper& to, const MapPlan& plan) {
     std::string numbers;
     for (std::size_t i : group) numbers += (numbers.empty() ? "" : ", ") + std::to_string(i + 1);
     // Right of the marker, or left of it when that would leave the plot.
-    const bool fits = p.x + 15.0 + figure::text_size(numbers, figure::kTickFont).width < plot.cols - 2;
+    const bool fits = p.x + 15.0 + figure::text_size(numbers, figure::kTickFont).width < plot_width_px - 2;
     figure::put_text(plot, numbers, p + cv::Point2d(fits ? 15 : -15, -12), figure::kTickFont, figure::kInk,
                      fits ? Align::left : Align::right, true);
   }
 }
 
-// Mapped cells as filled squares coloured by height; unmapped cells keep the ground.
-void paint_height_map(cv::Mat& plot, const PlotMapper& to, const HeightMapView& map, double lo, double hi) {
+// Mapped cells as squares coloured by height; unmapped cells keep the ground. One raster pixel per cell
+// (north row first), stretched sharp over the cells' rectangle: a PDF holds the grid, not a rectangle per cell.
+void paint_height_map(Canvas& plot, const PlotMapper& to, const HeightMapView& map, double lo, double hi) {
+  if (map.rows <= 0 || map.columns <= 0) return;
+  cv::Mat cells(map.rows, map.columns, CV_8UC4, cv::Scalar(0, 0, 0, 0));
   for (int row = 0; row < map.rows; ++row) {
+    auto* out = cells.ptr<cv::Vec4b>(map.rows - 1 - row);
     for (int col = 0; col < map.columns; ++col) {
       const double top = map.top_m[static_cast<std::size_t>(row) * map.columns + col];
       if (std::isnan(top)) continue;
-      const Eigen::Vector2d sw = map.origin_m + map.cell_size_m * Eigen::Vector2d(col, row);
-      const cv::Point2d a = to(sw), b = to(Eigen::Vector2d(sw + Eigen::Vector2d::Constant(map.cell_size_m)));
-      cv::rectangle(plot, figure::fixed(a), figure::fixed(b), to_scalar(sequential_color((top - lo) / (hi - lo))),
-                    cv::FILLED, cv::LINE_8, figure::kShift);
+      const cv::Vec3b c = sequential_color((top - lo) / (hi - lo));
+      out[col] = cv::Vec4b(c[0], c[1], c[2], 255);
     }
   }
+  // The grid's corners in drawing coordinates; a raster pixel's edges lie half a pixel off its centre, so the
+  // rectangle of pixels whose edges are nearest the cells' edges.
+  const cv::Point2d nw = to(Eigen::Vector2d(map.origin_m + Eigen::Vector2d(0.0, map.rows * map.cell_size_m)));
+  const cv::Point2d se = to(Eigen::Vector2d(map.origin_m + Eigen::Vector2d(map.columns * map.cell_size_m, 0.0)));
+  const int x0 = static_cast<int>(std::lround(nw.x + 0.5)), y0 = static_cast<int>(std::lround(nw.y + 0.5));
+  const int x1 = static_cast<int>(std::lround(se.x + 0.5)), y1 = static_cast<int>(std::lround(se.y + 0.5));
+  plot.image(cells, cv::Rect(x0, y0, std::max(1, x1 - x0), std::max(1, y1 - y0)), /*smooth=*/false);
 }
 
 }  // namespace
 
-cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLayout& layout,
-                        const std::string& title) {
-  cv::Mat image(layout.image_px, CV_8UC3, figure::kWhite);
-  cv::Mat plot = image(layout.plot_px);
+void draw_map_figure(Canvas& image, const Scene& scene, const MapPlan& plan, const FigureLayout& layout,
+                     const std::string& title) {
   const PlotMapper to{layout};
   const double px_per_m = layout.px_per_unit.x();
+  {
+    auto clip = image.region(layout.plot_px);
+    Canvas& plot = image;
+    const Eigen::Vector2d top_left = layout.min + Eigen::Vector2d(0.5, layout.plot_px.height - 0.5) / px_per_m;
+    plan.ground.paint(plot, layout.plot_px.size(), top_left, px_per_m, plan.contour_interval_m);
+    if (plan.height_map) {
+      paint_height_map(plot, to, *plan.height_map, plan.value_lo, plan.value_hi);
+      for (const auto& f : plan.footprints) plot.polyline(to.all(f.outline_m), figure::kInk, 1, /*closed=*/true);
+    } else {
+      // Above the flight band first, so that trunks and obstacles at flight height are drawn over pale crowns.
+      const auto above = [&](std::size_t i) { return i < plan.above_band.size() && plan.above_band[i]; };
+      for (std::size_t i = 0; i < plan.footprints.size(); ++i) {
+        const Footprint& f = plan.footprints[i];
+        if (above(i)) draw_footprint_above_band(plot, to, f, to_bgr(f.shape->color));
+      }
+      for (std::size_t i = 0; i < plan.footprints.size(); ++i) {
+        const Footprint& f = plan.footprints[i];
+        if (!above(i)) draw_footprint(plot, to, f, to_bgr(f.shape->color));
+      }
+    }
+    for (std::size_t k = 0; k < plan.movers.size(); ++k) {
+      const Mover& m = scene.movers[plan.movers[k]];
+      const cv::Scalar c = to_bgr(m.shape.color);
+      if (plan.movers_at_start) draw_footprint(plot, to, plan.mover_footprints[k], figure::lighten(c, 0.3));
+      plot.dashed_polyline(to.all(m.path_m), figure::shade(c, 0.7), 2, 10.0, 6.0);
+    }
 
-  const Eigen::Vector2d top_left = layout.min + Eigen::Vector2d(0.5, layout.plot_px.height - 0.5) / px_per_m;
-  plan.ground.paint(plot, top_left, px_per_m, plan.contour_interval_m);
-  if (plan.height_map) {
-    paint_height_map(plot, to, *plan.height_map, plan.value_lo, plan.value_hi);
-    for (const auto& f : plan.footprints) {
-      cv::polylines(plot, figure::fixed(to.all(f.outline_m)), true, figure::kInk, 1, cv::LINE_AA, figure::kShift);
+    draw_run_marks(plot, to, plan);
+    // Over the track, the hits and the planned waypoints, thin and dashed, so that where the track leaves it both
+    // show.
+    if (!plan.overlay && !plan.height_map && has_nominal_route(*plan.runs.front())) {
+      plot.dashed_polyline(to.all(nominal_route(*plan.runs.front())), kNominalRoute, 2, 9.0, 6.0);
     }
-  } else {
-    // Above the flight band first, so that trunks and obstacles at flight height are drawn over pale crowns.
-    const auto above = [&](std::size_t i) { return i < plan.above_band.size() && plan.above_band[i]; };
-    for (std::size_t i = 0; i < plan.footprints.size(); ++i) {
-      const Footprint& f = plan.footprints[i];
-      if (above(i)) draw_footprint_above_band(plot, to, f, to_bgr(f.shape->color));
-    }
-    for (std::size_t i = 0; i < plan.footprints.size(); ++i) {
-      const Footprint& f = plan.footprints[i];
-      if (!above(i)) draw_footprint(plot, to, f, to_bgr(f.shape->color));
-    }
+    draw_mission(plot, layout.plot_px.width, to, plan);
+    for (const auto& s : plan.starts) figure::start_marker(plot, to(s));
   }
-  for (std::size_t k = 0; k < plan.movers.size(); ++k) {
-    const Mover& m = scene.movers[plan.movers[k]];
-    const cv::Scalar c = to_bgr(m.shape.color);
-    if (plan.movers_at_start) draw_footprint(plot, to, plan.mover_footprints[k], figure::lighten(c, 0.3));
-    figure::dashed_polyline(plot, to.all(m.path_m), figure::shade(c, 0.7), 2, 10.0, 6.0);
-  }
-
-  draw_run_marks(plot, to, plan);
-  // Over the track, the hits and the planned waypoints, thin and dashed, so that where the track leaves it both show.
-  if (!plan.overlay && !plan.height_map && has_nominal_route(*plan.runs.front())) {
-    figure::dashed_polyline(plot, to.all(nominal_route(*plan.runs.front())), kNominalRoute, 2, 9.0, 6.0);
-  }
-  draw_mission(plot, to, plan);
-  for (const auto& s : plan.starts) figure::start_marker(plot, to(s));
 
   const figure::PlotFrame frame{layout.plot_px, layout.min.x(), layout.min.x() + layout.plot_px.width / px_per_m,
                                 layout.min.y(), layout.min.y() + layout.plot_px.height / px_per_m};
@@ -573,7 +575,12 @@ cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLay
                           sequential_color);
   }
   figure::put_title(image, title, layout.title_px);
-  return image;
+}
+
+Canvas draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLayout& layout, const std::string& title) {
+  Canvas canvas(layout.image_px);
+  draw_map_figure(canvas, scene, plan, layout, title);
+  return canvas;
 }
 
 }  // namespace campo::figure

@@ -58,9 +58,12 @@ MapPlan plan_map(const Scene& scene, std::vector<const RunView*> runs, const Fig
 void add_symbol_entries(MapPlan& plan, const Scene& scene);
 /// Where the parts of the planned map go (FigureLayout, figure_style.hpp).
 FigureLayout layout_map(const MapPlan& plan, const FigureStyle& style);
-/// Draws the planned map with `layout` under `title`.
-cv::Mat draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLayout& layout,
-                        const std::string& title);
+/// Draws the planned map with `layout` under `title` on a canvas of layout.image_px.
+Canvas draw_map_figure(const Scene& scene, const MapPlan& plan, const FigureLayout& layout, const std::string& title);
+/// Draws it on `canvas` with the figure's top-left corner at the canvas's origin (a sequence's panel
+/// draws into a region of one canvas, so that its PDF stays vector).
+void draw_map_figure(Canvas& canvas, const Scene& scene, const MapPlan& plan, const FigureLayout& layout,
+                     const std::string& title);
 
 /// The highest height above the ground (`ground`, 0 where it has none) of any track point of `runs`; none without
 /// track points.
@@ -70,17 +73,17 @@ bool above_flight_band(const Footprint& f, const Ground& ground, std::optional<d
 
 struct PlotMapper;
 /// A solid's footprint filled with `fill` and outlined a shade darker.
-void draw_footprint(cv::Mat& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& fill);
+void draw_footprint(Canvas& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& fill);
 /// A solid above the flight band: its colour mixed with white (kAboveBandLighten) and a dashed edge a shade darker.
-void draw_footprint_above_band(cv::Mat& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& colour);
+void draw_footprint_above_band(Canvas& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& colour);
 /// How much white a solid above the flight band is mixed with.
 inline constexpr double kAboveBandLighten = 0.65;
 /// What the planned map shows of its runs (plan.runs): avoidance bands, planned paths, tracks,
 /// recorded sensor hits, planned and discarded waypoints; draw_map_figure draws them over the
 /// scene and under the mission's markers (a video draws them frame by frame).
-void draw_run_marks(cv::Mat& plot, const PlotMapper& to, const MapPlan& plan);
+void draw_run_marks(Canvas& plot, const PlotMapper& to, const MapPlan& plan);
 
-// Drawing coordinates relative to the plot area, whose image view clips what lies outside.
+// Drawing coordinates relative to the plot area: draw in canvas.region(layout.plot_px), which clips what lies outside.
 struct PlotMapper {
   const FigureLayout& layout;
   cv::Point2d operator()(const Eigen::Vector2d& p) const {

@@ -5,8 +5,6 @@
 #include <iterator>
 #include <stdexcept>
 
-#include <opencv2/imgproc.hpp>
-
 #include "render/figure_canvas.hpp"
 #include "render/figure_parts.hpp"
 #include "render/map_figure.hpp"
@@ -18,8 +16,8 @@ using figure::check_style;
 using figure::PlotMapper;
 using figure::xy;
 
-cv::Mat draw_sequence(const Scene& scene, const RunView& run, const std::vector<SequencePanel>& panels,
-                      const Eigen::Vector2d& footprint_m, const FigureStyle& style) {
+figure::Canvas draw_sequence(const Scene& scene, const RunView& run, const std::vector<SequencePanel>& panels,
+                              const Eigen::Vector2d& footprint_m, const FigureStyle& style) {
   if (panels.empty()) throw std::invalid_argument("draw_sequence: no panels");
   if (run.track.empty()) throw std::invalid_argument("draw_sequence: the run has no track");
   check_style(style);
@@ -44,12 +42,17 @@ cv::Mat draw_sequence(const Scene& scene, const RunView& run, const std::vector<
   FigureStyle panel_style = style;
   panel_style.bounds_m = Eigen::AlignedBox2d(box.min() - grow, box.max() + grow);
 
-  std::vector<cv::Mat> images;
+  // Each panel's scene (every mover where it was then) and run (up to then); the plans point into them.
+  std::vector<Scene> thens;
+  std::vector<RunView> uptos;
+  thens.reserve(panels.size());
+  uptos.reserve(panels.size());
+  std::vector<figure::MapPlan> plans;
+  std::vector<FigureLayout> layouts;
   for (const SequencePanel& panel : panels) {
-    // The scene with every mover where it was then; the run up to then.
-    Scene then = scene;
+    Scene& then = thens.emplace_back(scene);
     for (Mover& m : then.movers) m.shape.pose.translation() = m.position_at(panel.time_s);
-    RunView upto = run;
+    RunView& upto = uptos.emplace_back(run);
     upto.track.clear();
     for (const TrackPoint& p : run.track) {
       if (p.time_s <= panel.time_s) upto.track.push_back(p);
@@ -60,45 +63,47 @@ cv::Mat draw_sequence(const Scene& scene, const RunView& run, const std::vector<
       if (from <= panel.time_s) upto.avoiding_s.emplace_back(from, std::min(until, panel.time_s));
     }
     panel_style.title = panel.caption;
-    cv::Mat image = draw_map(then, upto, panel_style);
-    const FigureLayout layout = map_layout(then, upto, panel_style);
-    cv::Mat plot = image(layout.plot_px);
+    plans.push_back(figure::plan_map(then, {&upto}, panel_style, false));
+    layouts.push_back(figure::layout_map(plans.back(), panel_style));
+  }
+  // Two panels a row, each in a cell as large as the largest, drawn into regions of one canvas (vectors stay
+  // vectors in PDF and SVG).
+  int w = 0, h = 0;
+  for (const FigureLayout& l : layouts) {
+    w = std::max(w, l.image_px.width);
+    h = std::max(h, l.image_px.height);
+  }
+  const int columns = panels.size() == 1 ? 1 : 2;
+  const int rows = static_cast<int>((panels.size() + columns - 1) / columns);
+  figure::Canvas out({columns * w, rows * h});
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    const SequencePanel& panel = panels[i];
+    const FigureLayout& layout = layouts[i];
+    const int c = static_cast<int>(i) % columns, r = static_cast<int>(i) / columns;
+    auto cell = out.region(cv::Rect(cv::Point(c * w, r * h), layout.image_px));
+    panel_style.title = panel.caption;
+    figure::draw_map_figure(out, thens[i], plans[i], layout, figure::run_title(panel_style, uptos[i], "map"));
+    auto plot = out.region(layout.plot_px);
     const PlotMapper to{layout};
     // The vehicle: its footprint at its recorded heading, and the chosen direction.
-    const TrackPoint& at = upto.track.back();
+    const TrackPoint& at = uptos[i].track.back();
     const double yaw = at.yaw_deg * M_PI / 180.0;
     const Eigen::Vector2d ahead(std::cos(yaw), std::sin(yaw)), left(-ahead.y(), ahead.x());
     const Eigen::Vector2d centre = xy(at.position_m);
     const Eigen::Vector2d half = 0.5 * footprint_m;
-    std::vector<Eigen::Vector2d> corners{centre + half.x() * ahead + half.y() * left,
-                                         centre - half.x() * ahead + half.y() * left,
-                                         centre - half.x() * ahead - half.y() * left,
-                                         centre + half.x() * ahead - half.y() * left};
-    const std::vector<cv::Point> outline = figure::fixed(to.all(corners));
-    cv::fillConvexPoly(plot, outline, figure::rgb(250, 250, 250), cv::LINE_AA, figure::kShift);
-    cv::polylines(plot, outline, true, figure::kInk, 2, cv::LINE_AA, figure::kShift);
-    cv::line(plot, figure::fixed(to(centre)), figure::fixed(to(Eigen::Vector2d(centre + half.x() * ahead))),
-             figure::kInk, 2, cv::LINE_AA, figure::kShift);
+    const std::vector<Eigen::Vector2d> corners{centre + half.x() * ahead + half.y() * left,
+                                               centre - half.x() * ahead + half.y() * left,
+                                               centre - half.x() * ahead - half.y() * left,
+                                               centre + half.x() * ahead - half.y() * left};
+    const std::vector<cv::Point2d> outline = to.all(corners);
+    out.fill_polygon(outline, figure::rgb(250, 250, 250));
+    out.polyline(outline, figure::kInk, 2, /*closed=*/true);
+    out.line(to(centre), to(Eigen::Vector2d(centre + half.x() * ahead)), figure::kInk, 2);
     if (panel.heading_deg) {
-      const double h = *panel.heading_deg * M_PI / 180.0;
-      const Eigen::Vector2d tip = centre + 3.0 * Eigen::Vector2d(std::cos(h), std::sin(h));
-      cv::arrowedLine(plot, figure::fixed(to(centre)), figure::fixed(to(tip)), figure::rgb(20, 110, 200), 3,
-                      cv::LINE_AA, figure::kShift, 0.15);
+      const double heading = *panel.heading_deg * M_PI / 180.0;
+      const Eigen::Vector2d tip = centre + 3.0 * Eigen::Vector2d(std::cos(heading), std::sin(heading));
+      out.arrow(to(centre), to(tip), figure::rgb(20, 110, 200), 3, 0.15);
     }
-    images.push_back(std::move(image));
-  }
-  // Two panels a row, each padded to the largest.
-  int w = 0, h = 0;
-  for (const cv::Mat& m : images) {
-    w = std::max(w, m.cols);
-    h = std::max(h, m.rows);
-  }
-  const int columns = images.size() == 1 ? 1 : 2;
-  const int rows = static_cast<int>((images.size() + columns - 1) / columns);
-  cv::Mat out(rows * h, columns * w, CV_8UC3, figure::kWhite);
-  for (std::size_t i = 0; i < images.size(); ++i) {
-    const int c = static_cast<int>(i) % columns, r = static_cast<int>(i) / columns;
-    images[i].copyTo(out(cv::Rect(c * w, r * h, images[i].cols, images[i].rows)));
   }
   return out;
 }

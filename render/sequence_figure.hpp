@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include "campo/scene.hpp"
+#include "render/figure_canvas.hpp"
 #include "render/figure_style.hpp"
 
 namespace campo {
@@ -26,7 +27,7 @@ struct SequencePanel {
 /// footprint (`footprint_m`, length x width, about its track point) at its
 /// recorded heading and, when given, an arrow along heading_deg.
 /// std::invalid_argument when `panels` is empty or the run has no track.
-cv::Mat draw_sequence(const Scene& scene, const RunView& run, const std::vector<SequencePanel>& panels,
-                      const Eigen::Vector2d& footprint_m, const FigureStyle& style = {});
+figure::Canvas draw_sequence(const Scene& scene, const RunView& run, const std::vector<SequencePanel>& panels,
+                             const Eigen::Vector2d& footprint_m, const FigureStyle& style = {});
 
 }  // namespace campo
