@@ -14,6 +14,8 @@
 #include "campo/json_reader.hpp"
 #include "render/figure_canvas.hpp"
 #include "render/figures.hpp"
+#include "sweep/table.hpp"
+#include "tests/render/vector_outputs.hpp"
 #include "tests/sweep/results_fixture.hpp"
 
 namespace campo {
@@ -56,15 +58,15 @@ TEST(SweepChart, OnlyForOneNumericAxis) {
   EXPECT_THROW(draw_sweep_chart(text), std::invalid_argument);
 }
 
+// The PNG bytes of a chart.
+std::string png(const SweepTable& table) { return draw_sweep_chart(table).encode(figure::FigureFormat::png); }
+
 TEST(SweepChart, SameTableSameBytes) {
-  const cv::Mat image = draw_sweep_chart(resolution_table());
+  const cv::Mat image = draw_sweep_chart(resolution_table()).raster();
   EXPECT_EQ(image.type(), CV_8UC3);
   EXPECT_GT(image.cols, 1000);
   EXPECT_GT(image.rows, 400);
-  std::vector<uchar> a, b;
-  cv::imencode(".png", image, a);
-  cv::imencode(".png", draw_sweep_chart(resolution_table()), b);
-  EXPECT_EQ(a, b);
+  EXPECT_EQ(png(resolution_table()), png(resolution_table()));
   // Not blank: the two series are drawn in colour.
   cv::Mat hsv;
   cv::cvtColor(image, hsv, cv::COLOR_BGR2HSV);
@@ -74,12 +76,7 @@ TEST(SweepChart, SameTableSameBytes) {
 }
 
 TEST(SweepChart, PathRatioOfTheReachedRunsOnly) {
-  const auto png = [](const SweepTable& table) {
-    std::vector<uchar> bytes;
-    cv::imencode(".png", draw_sweep_chart(table), bytes);
-    return bytes;
-  };
-  const std::vector<uchar> base = png(resolution_table());
+  const std::string base = png(resolution_table());
   // An aborted run's short path lowers the all-run mean: the chart does not show it.
   SweepTable aborted = resolution_table();
   aborted.rows[1].path_ratio = MeanSd{0.6, 0.4};
@@ -91,11 +88,6 @@ TEST(SweepChart, PathRatioOfTheReachedRunsOnly) {
 
 // The chart's error bars are the 95 % interval the tables and plots give (MeanSd::ci95), not ± sd.
 TEST(SweepChart, ErrorBarsAreTheConfidenceIntervalNotTheSd) {
-  const auto png = [](const SweepTable& table) {
-    std::vector<uchar> bytes;
-    cv::imencode(".png", draw_sweep_chart(table), bytes);
-    return bytes;
-  };
   SweepTable with_ci = resolution_table();
   with_ci.rows[1].path_ratio_reached = MeanSd{1.03, 0.01, Interval{1.0, 1.2}};
   SweepTable other_sd = with_ci;
@@ -115,8 +107,30 @@ TEST(SweepChart, ErrorBarsAreTheConfidenceIntervalNotTheSd) {
 TEST(SweepChart, LinearAxisForOtherValues) {
   SweepTable table{"speeds", {"speed"}, {}};
   for (double v : {0.3, 0.6, 0.9, 1.2}) table.rows.push_back(row("two_barriers", v, 1.0 + v / 10, 0.01, 1.0));
-  const cv::Mat image = draw_sweep_chart(table);
+  const cv::Mat image = draw_sweep_chart(table).raster();
   EXPECT_FALSE(image.empty());
+}
+
+// The chart as PDF and SVG: the panels' titles, an axis label and the legend as text in the PDF,
+// and both render like the PNG.
+TEST(SweepChart, PdfAndSvgHoldTheSameChart) {
+  figure::test::expect_vector_outputs(draw_sweep_chart(resolution_table()),
+                                      {"Normalized path length, reached runs", "Success rate", field_heading("resolution"),
+                                       "two_barriers", "trees_rolling_terrain", "rate, 95% Wilson"});
+}
+
+// Where --out / --chart put each format: a figure extension replaced, any other name extended.
+TEST(FigureFiles, ExtensionReplacedOrAppended) {
+  using figure::FigureFormat;
+  const std::vector<FigureFormat> all{FigureFormat::png, FigureFormat::pdf, FigureFormat::svg};
+  EXPECT_EQ(figure_files("out/fig.png", all),
+            (std::vector<fs::path>{"out/fig.png", "out/fig.pdf", "out/fig.svg"}));
+  EXPECT_EQ(figure_files("fig.png", {FigureFormat::pdf}), std::vector<fs::path>{"fig.pdf"});
+  EXPECT_EQ(figure_files("fig.SVG", {FigureFormat::png}), std::vector<fs::path>{"fig.png"});
+  EXPECT_EQ(figure_files("fig", {FigureFormat::png, FigureFormat::pdf}),
+            (std::vector<fs::path>{"fig.png", "fig.pdf"}));
+  EXPECT_EQ(figure_files("run.v2", {FigureFormat::svg}), std::vector<fs::path>{"run.v2.svg"});
+  EXPECT_EQ(figure_files("dir.d/fig", {FigureFormat::png}), std::vector<fs::path>{"dir.d/fig.png"});
 }
 
 class SweepPlot : public testing::FixtureSweepTest {
@@ -142,14 +156,13 @@ class SweepPlot : public testing::FixtureSweepTest {
 
 TEST_F(SweepPlot, LinePlotIsAPaperSizedDeterministicPngWithALegend) {
   const PlotRequest request{.x = "resolution", .y = "path_ratio", .group = "scene"};
-  const cv::Mat image = draw_sweep_plot(runs_, layout_, request);
+  const figure::Canvas canvas = draw_sweep_plot(runs_, layout_, request);
+  const cv::Mat image = canvas.raster();
   EXPECT_EQ(image.type(), CV_8UC3);
   EXPECT_EQ(image.cols, 1600);
   EXPECT_EQ(image.rows, 1000);
-  std::vector<uchar> a, b;
-  cv::imencode(".png", image, a);
-  cv::imencode(".png", draw_sweep_plot(runs_, layout_, request), b);
-  EXPECT_EQ(a, b);
+  EXPECT_EQ(canvas.encode(figure::FigureFormat::png),
+            draw_sweep_plot(runs_, layout_, request).encode(figure::FigureFormat::png));
 
   // Both series' colours inside the plot area (the left 1200 px below the title) and in the legend (right).
   const cv::Rect plot(170, 150, 1000, 700), legend(1200, 150, 400, 300);
@@ -164,19 +177,33 @@ TEST_F(SweepPlot, LinePlotIsAPaperSizedDeterministicPngWithALegend) {
   EXPECT_GT(cv::countNonZero(grey(cv::Rect(300, 10, 1000, 60)) < 100), 500);
   EXPECT_GT(cv::countNonZero(grey(cv::Rect(0, 150, 160, 700)) < 100), 300);
 
-  write_png(image, dir_ / "plot.png");
+  EXPECT_EQ(write_figure(canvas, dir_ / "plot.png", {figure::FigureFormat::png}),
+            std::vector<fs::path>{dir_ / "plot.png"});
   EXPECT_EQ(cv::imread((dir_ / "plot.png").string()).size(), image.size());
 }
 
+// The plot as PDF and SVG: title, axis labels, the note and the legend as text; both render like the PNG.
+TEST_F(SweepPlot, PdfAndSvgHoldTheSamePlot) {
+  const PlotRequest request{.x = "resolution", .y = "path_ratio", .group = "scene", .title = "Ratio by resolution"};
+  figure::test::expect_vector_outputs(draw_sweep_plot(runs_, layout_, request),
+                                      {"Ratio by resolution", field_heading("resolution"), metric_heading("path_ratio"),
+                                       "two_barriers", field_heading("scene"), "mean, 95% CI (log t)"});
+  // A box plot too (boxes are filled rectangles, outliers circles).
+  figure::test::expect_vector_outputs(draw_sweep_plot(runs_, layout_, {.x = "scene", .y = "sim_time_s", .group = "resolution"}),
+                                      {field_heading("scene"), "two_barriers"});
+}
+
 TEST_F(SweepPlot, BoxPlotForCategoriesAndRatesInPercent) {
-  const cv::Mat box = draw_sweep_plot(runs_, layout_, {.x = "scene", .y = "sim_time_s", .group = "resolution"});
+  const cv::Mat box = draw_sweep_plot(runs_, layout_, {.x = "scene", .y = "sim_time_s", .group = "resolution"}).raster();
   const cv::Rect plot(170, 150, 1000, 700);
   // Boxes filled with the series' colour lightened (resolution 32), medians darker (16: equal values, flat boxes).
   EXPECT_GT(pixels_of(box, figure::lighten(run_color(0), 0.55), plot, 4), 500);
   EXPECT_GT(pixels_of(box, figure::shade(run_color(1), 0.55), plot, 4), 100);
   // Forcing a box plot of a numeric field, and a line plot of a rate, work too.
-  EXPECT_FALSE(draw_sweep_plot(runs_, layout_, {.x = "resolution", .y = "sim_time_s", .kind = PlotKind::box}).empty());
-  const cv::Mat rate = draw_sweep_plot(runs_, layout_, {.x = "resolution", .y = "success"});
+  EXPECT_FALSE(draw_sweep_plot(runs_, layout_, {.x = "resolution", .y = "sim_time_s", .kind = PlotKind::box})
+                   .raster()
+                   .empty());
+  const cv::Mat rate = draw_sweep_plot(runs_, layout_, {.x = "resolution", .y = "success"}).raster();
   EXPECT_GT(pixels_of(rate, run_color(0), plot), 200);
   EXPECT_NE(cv::norm(rate, box, cv::NORM_L1), 0.0);
 }

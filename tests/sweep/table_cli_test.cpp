@@ -128,6 +128,73 @@ TEST_F(TableCli, PlotWritesAPng) {
   EXPECT_FALSE(fs::exists(png + ".2"));
 }
 
+// --figure-format: the plot and the table's chart in each format named, next to --out / --chart.
+TEST_F(TableCli, FigureFormatsWriteEachFile) {
+  const fs::path out = dir_ / "ratio.png";
+  const Result r = campo("plot " + dir() + " --x resolution --y path_ratio --group scene --out " + out.string() +
+                         " --figure-format png,pdf,svg");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* ext : {".png", ".pdf", ".svg"}) {
+    const fs::path file = fs::path(out).replace_extension(ext);
+    EXPECT_THAT(r.err, HasSubstr("wrote " + file.string())) << ext;
+    EXPECT_TRUE(fs::exists(file)) << ext;
+  }
+  EXPECT_EQ(cv::imread(out.string()).size(), cv::Size(1600, 1000));
+  EXPECT_EQ(slurp(dir_ / "ratio.pdf").rfind("%PDF-", 0), 0u);
+  EXPECT_THAT(slurp(dir_ / "ratio.svg"), HasSubstr("<svg"));
+
+  // --out's extension gives way to the format's; a name without one gets it appended.
+  const Result pdf_only = campo("plot " + dir() + " --x resolution --y path_ratio --out " + dir() +
+                                "/only.png --figure-format pdf");
+  ASSERT_EQ(pdf_only.exit_code, 0) << pdf_only.err;
+  EXPECT_TRUE(fs::exists(dir_ / "only.pdf"));
+  EXPECT_FALSE(fs::exists(dir_ / "only.png"));
+  ASSERT_EQ(campo("plot " + dir() + " --x resolution --y path_ratio --out " + dir() + "/bare --figure-format svg")
+                .exit_code,
+            0);
+  EXPECT_TRUE(fs::exists(dir_ / "bare.svg"));
+
+  // The table's chart: DIR/chart.png and DIR/chart.pdf.
+  const Result table = campo("table " + dir() + " --figure-format png,pdf");
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_THAT(table.err, HasSubstr("wrote " + (dir_ / "chart.png").string()));
+  EXPECT_THAT(table.err, HasSubstr("wrote " + (dir_ / "chart.pdf").string()));
+  EXPECT_FALSE(fs::exists(dir_ / "chart.svg"));
+  const Result named = campo("table " + dir() + " --chart " + dir() + "/summary.svg --figure-format svg");
+  ASSERT_EQ(named.exit_code, 0) << named.err;
+  EXPECT_TRUE(fs::exists(dir_ / "summary.svg"));
+}
+
+TEST_F(TableCli, FigureFormatErrorsExitTwoAndWriteNothing) {
+  const std::string plot = "plot " + dir() + " --x resolution --y path_ratio --out " + dir() + "/f.png";
+  const Result gif = campo(plot + " --figure-format png,gif");
+  EXPECT_EQ(gif.exit_code, 2);
+  EXPECT_THAT(gif.err, HasSubstr("error: command line: "));
+  EXPECT_THAT(gif.err, HasSubstr("--figure-format"));
+  EXPECT_THAT(gif.err, HasSubstr("'gif' is not one of png, pdf, svg"));
+  const Result twice = campo(plot + " --figure-format pdf,png,pdf");
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_THAT(twice.err, HasSubstr("names pdf twice"));
+  const Result empty = campo(plot + " --figure-format ''");
+  EXPECT_EQ(empty.exit_code, 2);
+  const Result table = campo("table " + dir() + " --figure-format svg,jpeg");
+  EXPECT_EQ(table.exit_code, 2);
+  EXPECT_THAT(table.err, HasSubstr("'jpeg' is not one of png, pdf, svg"));
+  EXPECT_EQ(table.out, "");
+  for (const char* file : {"f.png", "f.pdf", "f.svg", "chart.png", "chart.svg"}) {
+    EXPECT_FALSE(fs::exists(dir_ / file)) << file;
+  }
+  // No chart, no chart formats.
+  EXPECT_EQ(campo("table " + dir() + " --no-chart --figure-format pdf").exit_code, 2);
+  // Every file is checked before any work: a PDF that cannot be written leaves no PNG behind.
+  fs::create_directories(dir_ / "taken.pdf");
+  const Result taken = campo("plot " + dir() + " --x resolution --y path_ratio --out " + dir() +
+                             "/taken.png --figure-format png,pdf");
+  EXPECT_EQ(taken.exit_code, 2);
+  EXPECT_THAT(taken.err, HasSubstr("taken.pdf"));
+  EXPECT_FALSE(fs::exists(dir_ / "taken.png"));
+}
+
 // LaTeX for a paper: booktabs rules, column groups headed by the field and its value, cells as asked.
 TEST_F(TableCli, LatexIsBooktabsAndCompilesWhereATeXEngineIs) {
   const Result r = campo("table " + dir() + " --rows scene --cols resolution --metrics success,sim_time_s --format latex "
@@ -191,6 +258,9 @@ TEST_F(TableCli, HelpTextsShowNoParserInternals) {
   EXPECT_THAT(table.out, HasSubstr("--format markdown|csv|latex"));
   EXPECT_THAT(table.out, HasSubstr("--cell mean|mean-sd|mean-ci|mean-sd-ci"));
   EXPECT_THAT(campo("plot --help").out, HasSubstr("--kind line|box|auto"));
+  for (const char* command : {"table", "plot"}) {
+    EXPECT_THAT(campo(std::string(command) + " --help").out, HasSubstr("--figure-format")) << command;
+  }
   // A wrong choice: the names, not the parser's map.
   const Result format = campo("table " + dir() + " --format tex");
   EXPECT_EQ(format.exit_code, 2);
