@@ -31,6 +31,7 @@ struct RenderOptions {
   std::string out;
   VideoOptions video;
   std::string size = "1600x900";   // --size of video frames
+  FigureFormats formats = kPngOnly;  // --figure-format
 };
 
 bool wants(const RenderOptions& o, const char* kind) {
@@ -168,7 +169,7 @@ int run_render(const RenderOptions& o) {
     if (kind == "overlay") {
       const std::filesystem::path out = o.out.empty() ? std::filesystem::path(".") : std::filesystem::path(o.out);
       made.emplace_back(out);
-      std::cout << "wrote " << write_overlay(runs, out).string() << "\n";
+      for (const auto& file : write_overlay(runs, out, o.formats)) std::cout << "wrote " << file.string() << "\n";
       continue;
     }
     for (std::size_t i = 0; i < runs.size(); ++i) {
@@ -182,11 +183,11 @@ int run_render(const RenderOptions& o) {
       }
       const std::filesystem::path out = figure_dir(o, run, made);
       if (kind == "sequence") {
-        std::cout << "wrote " << write_sequence(run, o.at_s, out).string() << "\n";
+        for (const auto& file : write_sequence(run, o.at_s, out, o.formats)) std::cout << "wrote " << file.string() << "\n";
         continue;
       }
-      const auto files = kind == "depth" && replan_steps ? write_replan_figures(run, steps[i], out)
-                                                         : write_figure(run, kind, out);
+      const auto files = kind == "depth" && replan_steps ? write_replan_figures(run, steps[i], out, o.formats)
+                                                         : write_figure(run, kind, out, o.formats);
       for (const auto& file : files) std::cout << "wrote " << file.string() << "\n";
     }
   }
@@ -223,6 +224,7 @@ Command add_render(CLI::App& app) {
       ->capture_default_str();
   app.add_option("--size", o->size, "With --kind video: frame size in pixels, WIDTHxHEIGHT (even sides)")
       ->capture_default_str();
+  add_figure_format_option(app, &o->formats);
   app.footer(
       "Draws figures from recorded run files alone (run.json, trajectory.csv, scene.json), without\n"
       "simulating again. map: top-down map with terrain contours, obstacles, the path coloured by time,\n"
@@ -241,8 +243,12 @@ Command add_render(CLI::App& app) {
       "replay: one self-contained HTML page (three.js inside; opens offline) with every run given in 3D:\n"
       "terrain, obstacles, movers, vehicles, tracks and the returns recorded with --record-depth N, a time\n"
       "slider, play/pause, speed, camera orbit and a legend (default: replay.html beside the one run).\n"
+      "Every figure but video and replay can be written as PNG, PDF and SVG (--figure-format png,pdf,svg):\n"
+      "the same drawing in each; PDF and SVG are vector files (lines, markers and text stay sharp at any\n"
+      "zoom; text is text in the PDF), with the terrain shading, depth maps and snapshots embedded as images.\n"
       "Examples: campo render out/run1 out/run2 out/run3 --kind overlay --out figures\n"
       "          campo render out/run1 --kind depth --step 0 --step 3\n"
+      "          campo render out/run1 --kind map --kind side --figure-format png,pdf,svg\n"
       "          campo render out/gap --kind sequence --at 6 --at 9 --at 12 --at 16\n"
       "          campo render out/run1 --kind video --out run1.mp4 --speed 2\n"
       "          campo render out/run1 out/run2 --kind replay --out replay.html");

@@ -7,7 +7,6 @@
 
 
 #include "campo/json_reader.hpp"
-#include "core/image_io.hpp"
 #include "core/output_dir.hpp"
 #include "planners/depth_reactive.hpp"
 #include "render/snapshot.hpp"
@@ -17,10 +16,15 @@ namespace campo::cli {
 
 namespace {
 
-std::filesystem::path write_png(const cv::Mat& image, const std::filesystem::path& path) {
-  // Fixed compression settings: the same figure gives the same bytes.
-  write_png_file(image, path, 6);
-  return path;
+// A rendered raster (the 3D snapshot) as a figure: PDF and SVG embed it.
+figure::Canvas raster_figure(const cv::Mat& image) {
+  figure::Canvas canvas(image.size());
+  canvas.image(image, {0, 0, image.cols, image.rows});
+  return canvas;
+}
+
+void append(std::vector<std::filesystem::path>& to, std::vector<std::filesystem::path> files) {
+  for (auto& f : files) to.push_back(std::move(f));
 }
 
 std::string title_of(const RecordedRun& run, const std::string& what) {
@@ -34,11 +38,13 @@ std::string record_file(const RecordedRun& run) { return (run.dir / "run.json").
 // A depth figure grey and colour-mapped: out_dir/depth_figures/<stem>_grey.png and _colour.png.
 std::vector<std::filesystem::path> write_depth_pair(const cv::Mat& depth, const DepthOverlays& overlays,
                                                     const std::string& title, const std::filesystem::path& out_dir,
-                                                    const std::string& stem) {
+                                                    const std::string& stem, const FigureFormats& formats) {
   const auto dir = out_dir / "depth_figures";
   const OutputDirectory made(dir);  // removed again if no figure could be written into it
-  return {write_png(draw_depth(depth, overlays, false, title + " (grey)"), dir / (stem + "_grey.png")),
-          write_png(draw_depth(depth, overlays, true, title + " (colour)"), dir / (stem + "_colour.png"))};
+  std::vector<std::filesystem::path> written = draw_depth(depth, overlays, false, title + " (grey)")
+                                                   .write(dir / (stem + "_grey.png"), formats);
+  append(written, draw_depth(depth, overlays, true, title + " (colour)").write(dir / (stem + "_colour.png"), formats));
+  return written;
 }
 
 // The angular grid of sensor `alias` as run.json's parameters.sensors recorded it.
@@ -101,15 +107,15 @@ std::string replan_title(const RecordedRun& run, const ReplanStep& step) {
 }  // namespace
 
 std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const std::string& kind,
-                                                const std::filesystem::path& out_dir) {
+                                                const std::filesystem::path& out_dir, const FigureFormats& formats) {
   FigureStyle style;
   if (kind == "map") {
     style.title = title_of(run, "map");
-    return {write_png(draw_map(run.scene, run.view, style), out_dir / "map.png")};
+    return draw_map(run.scene, run.view, style).write(out_dir / "map.png", formats);
   }
   if (kind == "side") {
     style.title = title_of(run, "side view");
-    return {write_png(draw_side_view(run.scene, run.view, style), out_dir / "side.png")};
+    return draw_side_view(run.scene, run.view, style).write(out_dir / "side.png", formats);
   }
   if (kind == "heightmap") {
     if (run.view.height_map.empty()) {
@@ -118,7 +124,7 @@ std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const st
                        "what lies under an overhang, which a height map cannot show: see the side view)");
     }
     style.title = title_of(run, "reconstructed height map");
-    return {write_png(draw_height_map(run.scene, run.view, style), out_dir / "heightmap.png")};
+    return draw_height_map(run.scene, run.view, style).write(out_dir / "heightmap.png", formats);
   }
   if (kind == "snapshot") {
     std::vector<Eigen::Vector3d> path;
@@ -128,8 +134,8 @@ std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const st
     std::optional<Eigen::Isometry3d> pose;
     if (!path.empty()) pose = Eigen::Isometry3d(Eigen::Translation3d(path.back()));
     const auto type = vehicle_type_from_string(run.record.at("parameters").at("vehicle").at("type").get<std::string>());
-    return {write_png(render_snapshot(run.scene, mesh, camera, path, pose, type.value_or(VehicleType::quadrotor)),
-                      out_dir / "snapshot.png")};
+    return raster_figure(render_snapshot(run.scene, mesh, camera, path, pose, type.value_or(VehicleType::quadrotor)))
+        .write(out_dir / "snapshot.png", formats);
   }
   if (kind == "depth") {
     // Every recorded depth map (campo run --record-depth), grey and colour-mapped.
@@ -146,7 +152,7 @@ std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const st
     }
     for (const auto& frame : frames) {
       const std::string stem = frame.stem().string();
-      for (auto& file : write_depth_pair(read_depth_map(frame), {}, stem, out_dir, stem)) written.push_back(std::move(file));
+      append(written, write_depth_pair(read_depth_map(frame), {}, stem, out_dir, stem, formats));
     }
     return written;
   }
@@ -228,20 +234,21 @@ std::pair<cv::Mat, DepthOverlays> replan_depth(const RecordedRun& run, const Dep
 }  // namespace
 
 std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, const std::vector<ReplanStep>& steps,
-                                                        const std::filesystem::path& out_dir) {
+                                                        const std::filesystem::path& out_dir,
+                                                        const FigureFormats& formats) {
   const DepthReactiveConfig config = recorded_depth_reactive_config(run);
   std::vector<std::filesystem::path> written;
   for (const ReplanStep& step : steps) {
     const auto [depth, overlays] = replan_depth(run, config, step);
     const std::string stem = std::filesystem::path(replan_depth_file(step.decision.index)).stem().string();
-    for (auto& f : write_depth_pair(depth, overlays, replan_title(run, step), out_dir, stem)) written.push_back(std::move(f));
+    append(written, write_depth_pair(depth, overlays, replan_title(run, step), out_dir, stem, formats));
   }
   return written;
 }
 
 cv::Mat draw_replan_figure(const RecordedRun& run, const ReplanStep& step, bool colour) {
   const auto [depth, overlays] = replan_depth(run, recorded_depth_reactive_config(run), step);
-  return draw_depth(depth, overlays, colour, replan_title(run, step));
+  return draw_depth(depth, overlays, colour, replan_title(run, step)).raster();
 }
 
 namespace {
@@ -286,8 +293,8 @@ std::vector<double> gap_switch_instants(const RecordedRun& run) {
   return {chosen->time_s, 0.5 * (chosen->time_s + other->time_s), other->time_s, end};
 }
 
-std::filesystem::path write_sequence(const RecordedRun& run, std::vector<double> times_s,
-                                     const std::filesystem::path& out_dir) {
+std::vector<std::filesystem::path> write_sequence(const RecordedRun& run, std::vector<double> times_s,
+                                                  const std::filesystem::path& out_dir, const FigureFormats& formats) {
   if (times_s.empty()) times_s = gap_switch_instants(run);
   const std::vector<TimedGap> gaps = gap_decisions(run);
   std::vector<SequencePanel> panels;
@@ -320,15 +327,16 @@ std::filesystem::path write_sequence(const RecordedRun& run, std::vector<double>
   FigureStyle style;
   style.max_size_px = 700;
   style.margin_m = 1.5;
-  return write_png(draw_sequence(run.scene, run.view, panels, footprint, style), out_dir / "sequence.png");
+  return draw_sequence(run.scene, run.view, panels, footprint, style).write(out_dir / "sequence.png", formats);
 }
 
-std::filesystem::path write_overlay(const std::vector<RecordedRun>& runs, const std::filesystem::path& out_dir) {
+std::vector<std::filesystem::path> write_overlay(const std::vector<RecordedRun>& runs,
+                                                 const std::filesystem::path& out_dir, const FigureFormats& formats) {
   std::vector<RunView> views;
   for (const auto& r : runs) views.push_back(r.view);
   FigureStyle style;
   style.title = runs.front().scene.name + " - " + std::to_string(runs.size()) + " runs";
-  return write_png(draw_overlay(runs.front().scene, views, style), out_dir / "overlay.png");
+  return draw_overlay(runs.front().scene, views, style).write(out_dir / "overlay.png", formats);
 }
 
 }  // namespace campo::cli

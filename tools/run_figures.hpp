@@ -5,17 +5,24 @@
 #include <string>
 #include <vector>
 
+#include "render/figure_canvas.hpp"
 #include "render/run_files.hpp"
 
 namespace campo::cli {
+
+/// The formats a command writes its figures in (--figure-format); PNG alone by default.
+using FigureFormats = std::vector<figure::FigureFormat>;
+inline const FigureFormats kPngOnly{figure::FigureFormat::png};
 
 /// Figure kinds of one run.
 inline const std::vector<std::string> kRunFigureKinds{"map", "side", "depth", "snapshot"};
 
 /// Draws figure `kind` ("map", "side", "depth", "snapshot") of a run into
-/// out_dir; returns the files written.
+/// out_dir, once per format (map.png, map.pdf ...); returns the files written.
+/// A snapshot is a rendered raster: its PDF and SVG embed the image.
 std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const std::string& kind,
-                                                const std::filesystem::path& out_dir);
+                                                const std::filesystem::path& out_dir,
+                                                const FigureFormats& formats = kPngOnly);
 
 /// One replanning step of a depth_reactive run (Decisions::replan, docs/planners.md).
 struct ReplanStep {
@@ -37,7 +44,8 @@ std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::opt
 /// waypoint), written to out_dir/depth_figures/replan_KKKK_grey.png and
 /// _colour.png; returns the files written.
 std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, const std::vector<ReplanStep>& steps,
-                                                        const std::filesystem::path& out_dir);
+                                                        const std::filesystem::path& out_dir,
+                                                        const FigureFormats& formats = kPngOnly);
 
 /// The figure of one replanning step as write_replan_figures draws it (grey
 /// or colour-mapped), for a video's sensor panel.
@@ -52,11 +60,14 @@ std::vector<double> gap_switch_instants(const RecordedRun& run);
 
 /// The map of a run at `times_s` (2 x 2 for four; gap_switch_instants when
 /// empty), each panel captioned with its letter, time and the gap chosen
-/// then, written to out_dir/sequence.png.
-std::filesystem::path write_sequence(const RecordedRun& run, std::vector<double> times_s,
-                                     const std::filesystem::path& out_dir);
+/// then, written to out_dir/sequence.png (and .pdf, .svg as asked).
+std::vector<std::filesystem::path> write_sequence(const RecordedRun& run, std::vector<double> times_s,
+                                                  const std::filesystem::path& out_dir,
+                                                  const FigureFormats& formats = kPngOnly);
 
-/// Several runs on one map, written to out_dir/overlay.png.
-std::filesystem::path write_overlay(const std::vector<RecordedRun>& runs, const std::filesystem::path& out_dir);
+/// Several runs on one map, written to out_dir/overlay.png (and .pdf, .svg as asked).
+std::vector<std::filesystem::path> write_overlay(const std::vector<RecordedRun>& runs,
+                                                 const std::filesystem::path& out_dir,
+                                                 const FigureFormats& formats = kPngOnly);
 
 }  // namespace campo::cli
