@@ -13,6 +13,8 @@
 #include "campo/scene.hpp"
 #include "core/output_dir.hpp"
 
+#include "render/figure_canvas.hpp"
+
 namespace campo::cli {
 
 struct RunRequest {
@@ -24,6 +26,8 @@ struct RunRequest {
   std::string label;                    ///< figure legend; empty: the directory name
   bool continue_after_collision = false;
   bool figures = true;                  ///< map.png and side.png
+  /// The formats of those figures (PNG alone unless asked).
+  std::vector<figure::FigureFormat> figure_formats{figure::FigureFormat::png};
   int record_depth_every = 0;           ///< depth map of every N-th scan under out/depth/ (0 = none)
   bool record_replans = true;           ///< the depth map of every replanning under out/replans/
   /// Wall clock the whole run may take, s (0: no limit). Checked at every
