@@ -3,11 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
 #include <stdexcept>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "render/figure_canvas.hpp"
 #include "render/figure_style.hpp"
 #include "tests/render/figure_test_support.hpp"
 
@@ -42,7 +46,7 @@ TEST(FiguresDepth, UpscalesEachPanelByAnIntegerFactor) {
   const cv::Mat depth = test_depth();
   const DepthOverlays overlays = test_overlays(depth);
   const DepthFigureLayout layout = depth_layout(depth, overlays, false);
-  const cv::Mat image = draw_depth(depth, overlays, false, "Depth");
+  const cv::Mat image = draw_depth(depth, overlays, false, "Depth").raster();
   EXPECT_EQ(image.size(), layout.image_px);
   EXPECT_EQ(layout.scale, 16);  // 16 px -> 256 px
   ASSERT_EQ(layout.panels_px.size(), 3u);
@@ -67,7 +71,7 @@ TEST(FiguresDepth, DrawsTheChosenPixelAsARingAtItsScaledPosition) {
   const cv::Mat depth = test_depth();
   const DepthOverlays overlays = test_overlays(depth);
   const DepthFigureLayout layout = depth_layout(depth, overlays, false);
-  const cv::Mat image = draw_depth(depth, overlays, false, "Depth");
+  const cv::Mat image = draw_depth(depth, overlays, false, "Depth").raster();
   for (std::size_t panel = 0; panel < layout.panels_px.size(); ++panel) {
     const cv::Point2d centre = layout.to_px(panel, *overlays.chosen_pixel);
     int ring = 0, inside = 0;
@@ -93,7 +97,7 @@ TEST(FiguresDepth, DrawsTheProjectedWaypointWithItsSafetyEllipseAndTheNewWaypoin
   overlays.safety_ellipse_px = {3.0, 2.0};
   overlays.new_waypoint_pixel = cv::Point(3, 12);
   const DepthFigureLayout layout = depth_layout(depth, overlays, false);
-  const cv::Mat image = draw_depth(depth, overlays, false, "Depth");
+  const cv::Mat image = draw_depth(depth, overlays, false, "Depth").raster();
   ASSERT_EQ(layout.scale, 16);
   const cv::Vec3b magenta(220, 0, 220), blue(180, 119, 31);  // W' and planned-waypoint colours, BGR
   for (std::size_t panel = 0; panel < layout.panels_px.size(); ++panel) {
@@ -111,7 +115,7 @@ TEST(FiguresDepth, DrawsTheProjectedWaypointWithItsSafetyEllipseAndTheNewWaypoin
 TEST(FiguresDepth, MarksSpecialValuesInColour) {
   const cv::Mat depth = test_depth();
   const DepthFigureLayout layout = depth_layout(depth, {}, true);
-  const cv::Mat image = draw_depth(depth, {}, true, "Depth");
+  const cv::Mat image = draw_depth(depth, {}, true, "Depth").raster();
   ASSERT_EQ(layout.panels_px.size(), 1u);
   EXPECT_FALSE(layout.legend_px.empty());
   const cv::Vec3b too_near = at(image, layout.to_px(0, {0, 0}));
@@ -125,7 +129,34 @@ TEST(FiguresDepth, MarksSpecialValuesInColour) {
 
 TEST(FiguresDepth, IsDeterministic) {
   const cv::Mat depth = test_depth();
-  EXPECT_EQ(png(draw_depth(depth, test_overlays(depth), true, "D")), png(draw_depth(depth, test_overlays(depth), true, "D")));
+  EXPECT_EQ(png(draw_depth(depth, test_overlays(depth), true, "D").raster()),
+            png(draw_depth(depth, test_overlays(depth), true, "D").raster()));
+}
+
+TEST(FiguresDepth, WritesPdfAndSvgWithThePanelsAsImagesAndTextAsText) {
+  const cv::Mat depth = test_depth();
+  DepthOverlays overlays = test_overlays(depth);
+  overlays.threshold = 0.5;
+  overlays.waypoint_projection = cv::Point2d(10.5, 4.0);
+  overlays.safety_ellipse_px = {3.0, 2.0};
+  const figure::Canvas canvas = draw_depth(depth, overlays, true, "Depth");
+  expect_vector_outputs(canvas, {"Depth", "(a) depth map", "(b) dilated", "(c) thresholded at t = 0.500", "scan line"});
+  // The panels are embedded as images at the depth map's resolution (16 x 16), not drawn as a rectangle per pixel:
+  // poppler's pdfimages lists them.
+  const std::filesystem::path pdf = std::filesystem::temp_directory_path() / ("campo_depth_" + std::to_string(::getpid()) + ".pdf");
+  canvas.write(pdf, {figure::FigureFormat::pdf});
+  const CommandOutput list = run_command("pdfimages -list '" + pdf.string() + "'");
+  std::filesystem::remove(pdf);
+  ASSERT_EQ(list.status, 0);
+  int images_16 = 0;
+  std::istringstream lines(list.text);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream fields(line);
+    std::string page, num, type;
+    int width = 0, height = 0;
+    if (fields >> page >> num >> type >> width >> height && type == "image") images_16 += width == 16 && height == 16;
+  }
+  EXPECT_GE(images_16, 3) << list.text;
 }
 
 TEST(FiguresDepth, RejectsMapsOfTheWrongTypeOrSize) {

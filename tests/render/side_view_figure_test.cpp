@@ -4,11 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
+#include <utility>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
+#include "campo/scene_loader.hpp"
+#include "render/figure_canvas.hpp"
 #include "tests/render/figure_test_support.hpp"
 
 namespace campo {
@@ -20,7 +25,7 @@ TEST(FiguresSideView, HasTheDocumentedSize) {
   const Scene scene = test_scene();
   const FigureStyle style = small_style();
   const FigureLayout layout = side_view_layout(scene, test_run(), style);
-  const cv::Mat image = draw_side_view(scene, test_run(), style);
+  const cv::Mat image = draw_side_view(scene, test_run(), style).raster();
   EXPECT_EQ(image.size(), layout.image_px);
   EXPECT_EQ(layout.plot_px.width, style.max_size_px);
   EXPECT_GE(layout.plot_px.height, 240);
@@ -43,7 +48,7 @@ TEST(FiguresSideView, FillsTheTerrainBelowAFlyingTrack) {
   const RunView run = test_run();
   const FigureStyle style = small_style();
   const FigureLayout layout = side_view_layout(scene, run, style);
-  const cv::Mat image = draw_side_view(scene, run, style);
+  const cv::Mat image = draw_side_view(scene, run, style).raster();
   const int plot_bottom = layout.plot_px.y + layout.plot_px.height - 1;
   // Away from the markers: start at 0 m, waypoints at 6, 12 and 16 m.
   for (const int i : {20, 90, 100}) {
@@ -72,7 +77,7 @@ TEST(FiguresSideView, ThePanelBelowShowsTheHeightAboveGround) {
   const RunView run = test_run();
   const FigureStyle style = small_style();
   const FigureLayout layout = side_view_layout(scene, run, style);
-  const cv::Mat image = draw_side_view(scene, run, style);
+  const cv::Mat image = draw_side_view(scene, run, style).raster();
   double lo = INFINITY, hi = -INFINITY;
   for (const TrackPoint& t : run.track) {
     const double h = t.position_m.z() - *scene.ground_height(t.position_m.x(), t.position_m.y());
@@ -119,7 +124,7 @@ TEST(FiguresSideView, DrawsTheMissionAltitudeWhereTheTrackLeavesIt) {
   // and 16 m) and from the track's line at 3 m; the grid's lines are lighter.
   const auto grey_above_track = [&](const RunView& run) {
     const FigureLayout layout = side_view_layout(scene, run, style);
-    const cv::Mat image = draw_side_view(scene, run, style);
+    const cv::Mat image = draw_side_view(scene, run, style).raster();
     const cv::Point2d low = layout.to_px({7.0, 3.6}), high = layout.to_px({10.5, 6.0});
     int grey = 0;
     for (int y = static_cast<int>(high.y); y <= static_cast<int>(low.y); ++y) {
@@ -144,7 +149,108 @@ TEST(FiguresSideView, DrawsTheMissionAltitudeWhereTheTrackLeavesIt) {
 
 TEST(FiguresSideView, IsDeterministic) {
   const Scene scene = test_scene();
-  EXPECT_EQ(png(draw_side_view(scene, test_run(), small_style())), png(draw_side_view(scene, test_run(), small_style())));
+  EXPECT_EQ(png(draw_side_view(scene, test_run(), small_style()).raster()),
+            png(draw_side_view(scene, test_run(), small_style()).raster()));
+}
+
+TEST(FiguresSideView, WritesPdfAndSvgWithTextAsText) {
+  const Scene scene = test_scene();
+  expect_vector_outputs(draw_side_view(scene, test_run(), small_style()),
+                        {"Test figure", "altitude (m)", "above ground (m)", "vehicle altitude"});
+}
+
+// Rows of `image` within `area` holding ink (darker than the light greys of grids and bands), in runs of
+// consecutive rows: the lines of text in a column of labels.
+std::vector<std::pair<int, int>> ink_row_runs(const cv::Mat& image, const cv::Rect& area) {
+  std::vector<std::pair<int, int>> runs;
+  for (int y = area.y; y < area.y + area.height; ++y) {
+    bool ink = false;
+    for (int x = area.x; x < area.x + area.width && !ink; ++x) {
+      const cv::Vec3b c = image.at<cv::Vec3b>(y, x);
+      ink = c[0] < 150 && c[1] < 150 && c[2] < 150;
+    }
+    if (!ink) continue;
+    if (!runs.empty() && runs.back().second == y - 1) runs.back().second = y;
+    else runs.emplace_back(y, y);
+  }
+  return runs;
+}
+
+TEST(FiguresSideView, HighestAndLowestLabelsOfNearlyEqualHeightsDoNotOverlap) {
+  // Issue 31: two_barriers' side view drew "highest 1.52 m" over "lowest 1.50 m". Over flat ground at 0 m a track
+  // 1.50 m up rising to 1.52 m gives two labels 0.02 m apart (a pixel or so in the panel): they must read as two
+  // lines of text, one above the other, in the column right of the panel.
+  const char* text = R"j({"objects": [
+    {"alias": "flat", "type": "heightfield", "expression": "0", "size_m": [60, 60], "spacing_m": 0.5,
+     "color": [0.5, 0.6, 0.35]}]})j";
+  const Scene scene = parse_scene(nlohmann::json::parse(text), "inline.json", std::filesystem::temp_directory_path());
+  RunView run = test_run();
+  for (std::size_t i = 0; i < run.track.size(); ++i) {
+    run.track[i].position_m.z() = 1.50 + 0.02 * static_cast<double>(i) / (run.track.size() - 1);
+  }
+  for (Waypoint& w : run.mission) w.position_m.z() = 1.5;
+  const FigureStyle style = small_style();
+  const FigureLayout layout = side_view_layout(scene, run, style);
+  ASSERT_FALSE(layout.agl_plot_px.empty());
+  const cv::Mat image = draw_side_view(scene, run, style).raster();
+  const cv::Rect& panel = layout.agl_plot_px;
+  const cv::Rect labels(panel.x + panel.width + 8, panel.y - 30, image.cols - panel.x - panel.width - 8,
+                        panel.height + 60);
+  const auto lines = ink_row_runs(image, labels);
+  ASSERT_EQ(lines.size(), 2u) << "two separate lines of text";
+  EXPECT_GE(lines[1].first - lines[0].second, 3) << "blank rows between them";
+  // Each line no taller than one line of kLabelFont (cap height, descenders and anti-aliasing).
+  const int line_px = figure::text_size("hg", figure::kLabelFont).height;
+  for (const auto& [top, bottom] : lines) EXPECT_LE(bottom - top + 1, 2 * line_px);
+  // Both texts are there: the upper the highest, the lower the lowest.
+  expect_vector_outputs(draw_side_view(scene, run, style), {"highest 1.52 m", "lowest 1.50 m"});
+
+  // Equal heights print the same: one label.
+  for (TrackPoint& t : run.track) t.position_m.z() = 1.5;
+  const cv::Mat flat = draw_side_view(scene, run, style).raster();
+  EXPECT_EQ(ink_row_runs(flat, labels).size(), 1u);
+}
+
+TEST(FiguresSideView, LabelsApartKeepsSeparateLabelsAndSpreadsCloseOnes) {
+  EXPECT_EQ(labels_apart_px(10.0, 50.0, 22.0), std::make_pair(10.0, 50.0));
+  const auto [a, b] = labels_apart_px(100.0, 102.0, 22.0);
+  EXPECT_DOUBLE_EQ(b - a, 22.0);
+  EXPECT_DOUBLE_EQ(0.5 * (a + b), 101.0);  // about their midpoint
+  const auto [c, d] = labels_apart_px(100.0, 100.0, 22.0);
+  EXPECT_DOUBLE_EQ(c, 89.0);
+  EXPECT_DOUBLE_EQ(d, 111.0);
+}
+
+TEST(FiguresSideView, AGoalNotReachedIsDrawnWhereItLiesBeyondTheTrack) {
+  // Issue 31: a failed run's side view put the goal star at the end of the track. The run stops at x = 2 m (10 m
+  // along the track) short of its goal at (8, 0, 3): the goal is 6 m further on in a straight line, 16 m along the
+  // distance axis (goal_distance_m), at its altitude.
+  EXPECT_DOUBLE_EQ(goal_distance_m(10.0, {2.0, 0.0, 1.0}, {5.0, 4.0, 9.0}), 15.0);  // 3-4-5, heights ignored
+  const Scene scene = test_scene();
+  RunView run = test_run();
+  run.track.resize(101);
+  run.outcome = "timeout";
+  run.reached = {0};
+  run.mission[2].position_m.z() = 4.0;  // above the track's 3 m, away from its line
+  const FigureStyle style = small_style();
+  const FigureLayout layout = side_view_layout(scene, run, style);
+  const cv::Mat image = draw_side_view(scene, run, style).raster();
+  const cv::Vec3b star_red(40, 39, 214);  // the open star's outline, BGR
+  const cv::Point2d goal = layout.to_px({16.0, 4.0});
+  ASSERT_TRUE(layout.plot_px.contains(cv::Point(goal)));
+  // The open star: red outline 13 px out at the top point, white inside.
+  EXPECT_LT(nearest_colour(image, goal + cv::Point2d(0, -12), star_red, 2), 60);
+  EXPECT_EQ(at(image, goal), kBackground);
+  // Nothing red at the track's end, where the star used to be.
+  EXPECT_GT(nearest_colour(image, layout.to_px({10.0, 4.0}), star_red, 12), 150);
+  // The dashed line on to the goal: red pixels half-way between the track's end (10 m, 3 m) and the goal.
+  EXPECT_LT(nearest_colour(image, layout.to_px({13.0, 3.5}), star_red, 3), 80);
+  // A reached goal stays at the track's closest approach (its end, 16 m along the whole track).
+  const RunView whole = test_run();
+  const FigureLayout whole_layout = side_view_layout(scene, whole, style);
+  const cv::Mat reached = draw_side_view(scene, whole, style).raster();
+  const cv::Vec3b filled_red(40, 39, 214);
+  EXPECT_LT(nearest_colour(reached, whole_layout.to_px({16.0, 3.0}), filled_red, 3), 40);
 }
 
 }  // namespace

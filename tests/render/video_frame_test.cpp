@@ -98,7 +98,8 @@ TEST(ScanView, ForwardIsUpAndLeftIsLeft) {
   view.footprint_m = {0.2, 0.2};
   view.points_m = {{3.0, 0.0}, {0.0, 3.0}};
   const int size = 640;
-  const cv::Mat image = draw_scan_view(view, size);
+  const figure::Canvas canvas = draw_scan_view(view, size);
+  const cv::Mat image = canvas.raster();
   ASSERT_EQ(image.size(), cv::Size(size, size));
   // Returns are red dots: find them and check which side of the centre they lie on.
   const cv::Vec3b red(40, 39, 214);
@@ -126,6 +127,11 @@ TEST(ScanView, ForwardIsUpAndLeftIsLeft) {
   EXPECT_NEAR(centre.y - sum_up.y / up, 0.6 * radius_px, 1.5);
   EXPECT_NEAR(sum_left.y / left, centre.y, 1.5);
   EXPECT_NEAR(centre.x - sum_left.x / left, 0.6 * radius_px, 1.5);
+  view.route_deg = 20.0;
+  view.gap_heading_deg = 35.0;
+  view.nearest_m = 2.0;
+  view.status = "avoiding: gap on the left";
+  expect_vector_outputs(draw_scan_view(view, size), {"returns", "gap heading", "avoiding: gap on the left", "2 m"});
   view.range_m = 0.0;
   EXPECT_THROW(draw_scan_view(view), std::invalid_argument);
 }
