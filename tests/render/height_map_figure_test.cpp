@@ -23,7 +23,7 @@ TEST(FiguresHeightMap, ColoursMappedCellsByTheirTop) {
   RunView run = test_run();
   run.sensor_hits = {{-6.0, -3.0, 0.2}};
   const FigureStyle style = small_style();
-  const cv::Mat map = draw_map(scene, run, style);
+  const cv::Mat map = draw_map(scene, run, style).raster();
   EXPECT_LT(nearest_colour(map, map_layout(scene, run, style).to_px({-6.0, -3.0}), cv::Vec3b(40, 39, 214), 1), 24);
 
   EXPECT_THROW(draw_height_map(scene, run, style), std::invalid_argument);
@@ -37,7 +37,7 @@ TEST(FiguresHeightMap, ColoursMappedCellsByTheirTop) {
   h.top_m[3 * 10 + 7] = 10.0;  // cell (7, 3): x 4..6, y 1..3, the highest
   h.top_m[1 * 10 + 6] = 2.5;   // cell (6, 1): x 2..4, y -3..-1, a quarter of the way
   const FigureLayout layout = height_map_layout(scene, run, style);
-  const cv::Mat image = draw_height_map(scene, run, style);
+  const cv::Mat image = draw_height_map(scene, run, style).raster();
   EXPECT_LT(colour_distance(at(image, layout.to_px({-5.0, -2.0})), sequential_color(0.0)), 6);
   EXPECT_LT(colour_distance(at(image, layout.to_px({5.0, 2.5})), sequential_color(1.0)), 6);
   EXPECT_LT(colour_distance(at(image, layout.to_px({3.0, -2.5})), sequential_color(0.25)), 6);
@@ -45,7 +45,8 @@ TEST(FiguresHeightMap, ColoursMappedCellsByTheirTop) {
   EXPECT_LT(colour_distance(at(image, layout.to_px({-1.0, -4.0})),
                             at(map, map_layout(scene, run, style).to_px({-1.0, -4.0}))),
             12);
-  EXPECT_EQ(png(image), png(draw_height_map(scene, run, style)));
+  EXPECT_EQ(png(image), png(draw_height_map(scene, run, style).raster()));
+  expect_vector_outputs(draw_height_map(scene, run, style), {"Test figure", "x, east (m)", "mapped top, z (m)"});
 }
 
 }  // namespace

@@ -29,7 +29,7 @@ TEST(FiguresMap, HasTheDocumentedSize) {
   const RunView run = test_run();
   const FigureStyle style = small_style();
   const FigureLayout layout = map_layout(scene, run, style);
-  const cv::Mat image = draw_map(scene, run, style);
+  const cv::Mat image = draw_map(scene, run, style).raster();
   ASSERT_EQ(image.type(), CV_8UC3);
   EXPECT_EQ(image.size(), layout.image_px);
   // Bounds: x from -8 to 8 plus the 3 m margin is the longer side.
@@ -95,7 +95,7 @@ TEST(FiguresMap, DrawsTheTrackInItsTimeColours) {
   const RunView run = test_run();
   const FigureStyle style = small_style();
   const FigureLayout layout = map_layout(scene, run, style);
-  const cv::Mat image = draw_map(scene, run, style);
+  const cv::Mat image = draw_map(scene, run, style).raster();
   // Away from the markers: t = 2.5 s, 7 s, 13 s of 16 s.
   for (const int i : {25, 70, 130}) {
     const TrackPoint& p = run.track[i];
@@ -105,7 +105,7 @@ TEST(FiguresMap, DrawsTheTrackInItsTimeColours) {
   // Coloured by speed, a constant speed is one colour all along.
   FigureStyle by_speed = style;
   by_speed.coloring = TrackColoring::speed;
-  const cv::Mat speed = draw_map(scene, run, by_speed);
+  const cv::Mat speed = draw_map(scene, run, by_speed).raster();
   for (const int i : {25, 130}) {
     EXPECT_LT(nearest_colour(speed, layout.to_px(run.track[i].position_m.head<2>()), sequential_color(1.0)), 24);
   }
@@ -118,11 +118,11 @@ TEST(FiguresMap, MarksWhereTheRunCollided) {
   const FigureStyle style = small_style();
   const Eigen::Vector3d point(2.0, -1.0, 1.0);
   const FigureLayout before = map_layout(scene, run, style);
-  EXPECT_GT(colour_distance(at(draw_map(scene, run, style), before.to_px({2.0, -1.0}) + cv::Point2d(5, 0)),
+  EXPECT_GT(colour_distance(at(draw_map(scene, run, style).raster(), before.to_px({2.0, -1.0}) + cv::Point2d(5, 0)),
                             {40, 39, 214}), 100);
   run.collisions.emplace_back(3.0, point);
   const FigureLayout layout = map_layout(scene, run, style);  // the legend has one entry more
-  const cv::Mat image = draw_map(scene, run, style);
+  const cv::Mat image = draw_map(scene, run, style).raster();
   // Inside the disc (radius 7 px), off its white cross's diagonals.
   EXPECT_LT(colour_distance(at(image, layout.to_px({2.0, -1.0}) + cv::Point2d(5, 0)), {40, 39, 214}), 10);
   RecordedRun recorded;
@@ -137,7 +137,7 @@ TEST(FiguresMap, DrawsObstaclesWaypointsLegendTitleAndColourBar) {
   const RunView run = test_run();
   const FigureStyle style = small_style();
   const FigureLayout layout = map_layout(scene, run, style);
-  const cv::Mat image = draw_map(scene, run, style);
+  const cv::Mat image = draw_map(scene, run, style).raster();
   // Footprints in the shapes' own colours (BGR).
   EXPECT_LT(colour_distance(at(image, layout.to_px({0.0, 4.0})), {51, 51, 204}), 3);
   EXPECT_LT(colour_distance(at(image, layout.to_px({-4.0, -2.5})), {204, 77, 51}), 3);
@@ -177,7 +177,7 @@ TEST(FiguresMap, HighlightsTheTrackWhileAvoiding) {
   const FigureLayout layout = map_layout(scene, run, style), plain_layout = map_layout(scene, plain, style);
   ASSERT_EQ(layout.plot_px, plain_layout.plot_px);
   ASSERT_EQ(layout.min, plain_layout.min);
-  const cv::Mat image = draw_map(scene, run, style), before = draw_map(scene, plain, style);
+  const cv::Mat image = draw_map(scene, run, style).raster(), before = draw_map(scene, plain, style).raster();
   const cv::Vec3b amber(100, 196, 255);
   // Beside the track line (its halo is 5 px wide, the band 15 px), on both sides, all along the interval.
   for (double x = 1.2; x <= 3.8; x += 0.2) {
@@ -214,7 +214,7 @@ TEST(FiguresMap, HighlightsTheTrackWhileAvoiding) {
   for (auto it = legend.begin<cv::Vec3b>(); it != legend.end<cv::Vec3b>(); ++it) amber_in_legend += colour_distance(*it, amber) < 12;
   EXPECT_GT(amber_in_legend, 100);
   // Overlays do not highlight.
-  EXPECT_EQ(png(draw_overlay(scene, {run}, style)), png(draw_overlay(scene, {plain}, style)));
+  EXPECT_EQ(png(draw_overlay(scene, {run}, style).raster()), png(draw_overlay(scene, {plain}, style).raster()));
 }
 
 TEST(FiguresMap, ReadsAvoidanceIntervalsFromTheRunRecord) {
@@ -260,13 +260,22 @@ TEST(FiguresMap, DrawsExactlyTheGivenBounds) {
 TEST(FiguresMap, IsDeterministic) {
   const Scene scene = test_scene();
   const RunView run = test_run();
-  EXPECT_EQ(png(draw_map(scene, run, small_style())), png(draw_map(scene, run, small_style())));
+  EXPECT_EQ(png(draw_map(scene, run, small_style()).raster()), png(draw_map(scene, run, small_style()).raster()));
+}
+
+// PDF and SVG from the same drawing: the texts as text, renderings close to the PNG.
+TEST(FiguresMap, WritesPdfAndSvgOfTheSameDrawing) {
+  const Scene scene = test_scene();
+  RunView run = test_run();
+  run.collisions.emplace_back(3.0, Eigen::Vector3d(2.0, -1.0, 1.0));
+  expect_vector_outputs(draw_map(scene, run, small_style()),
+                        {"Test figure", "x, east (m)", "y, north (m)", "time (s)", "start", "collision"});
 }
 
 TEST(FiguresMap, DrawsAnEmptyRunAroundTheScene) {
   const Scene scene = test_scene();
   const RunView empty;
-  const cv::Mat image = draw_map(scene, empty, small_style());
+  const cv::Mat image = draw_map(scene, empty, small_style()).raster();
   const FigureLayout layout = map_layout(scene, empty, small_style());
   EXPECT_EQ(image.size(), layout.image_px);
   EXPECT_TRUE(layout.colorbar_px.empty());
@@ -300,7 +309,7 @@ TEST(FiguresOverlay, DrawsEachRunInItsOwnColour) {
   const std::vector<RunView> runs = three_runs();
   const FigureStyle style = small_style();
   const FigureLayout layout = overlay_layout(scene, runs, style);
-  const cv::Mat image = draw_overlay(scene, runs, style);
+  const cv::Mat image = draw_overlay(scene, runs, style).raster();
   EXPECT_EQ(image.size(), layout.image_px);
   EXPECT_EQ(image.cols, kFigureLeftPx + style.max_size_px + kFigurePanelPx);
   EXPECT_TRUE(layout.colorbar_px.empty());
@@ -356,7 +365,7 @@ TEST(FiguresOverlay, ObstaclesAboveTheFlightBandAreDrawnPaleAndNamedSo) {
   const std::vector<RunView> runs = three_runs();  // 3 m above the ground
   const FigureStyle style = small_style();
   const FigureLayout layout = overlay_layout(scene, runs, style);
-  const cv::Mat image = draw_overlay(scene, runs, style);
+  const cv::Mat image = draw_overlay(scene, runs, style).raster();
   const cv::Scalar green = figure::rgb(51, 153, 51), pale = figure::lighten(green, figure::kAboveBandLighten);
   const auto vec = [](const cv::Scalar& c) {
     return cv::Vec3b(static_cast<uchar>(std::lround(c[0])), static_cast<uchar>(std::lround(c[1])),
@@ -407,9 +416,14 @@ TEST(FiguresOverlay, LegendNamesEachSeedOfASweep) {
   }
 }
 
+TEST(FiguresOverlay, WritesPdfAndSvgOfTheSameDrawing) {
+  expect_vector_outputs(draw_overlay(test_scene(), three_runs(), small_style()),
+                        {"Test figure", "x, east (m)", "run_0 (reached)", "run_2 (collision)"});
+}
+
 TEST(FiguresOverlay, IsDeterministic) {
   const Scene scene = test_scene();
-  EXPECT_EQ(png(draw_overlay(scene, three_runs(), small_style())), png(draw_overlay(scene, three_runs(), small_style())));
+  EXPECT_EQ(png(draw_overlay(scene, three_runs(), small_style()).raster()), png(draw_overlay(scene, three_runs(), small_style()).raster()));
 }
 
 }  // namespace
