@@ -6,6 +6,7 @@
 #include <limits>
 #include <fstream>
 #include <iterator>
+#include <tuple>
 #include <unordered_map>
 #include <sstream>
 
@@ -76,12 +77,226 @@ std::string printable(std::string_view text) {
   return out;
 }
 
+std::string InputIssue::describe() const {
+  std::string out = file.empty() ? std::string("\"\" (empty path)") : file;
+  if (line > 0) out += ":" + std::to_string(line) + ":" + std::to_string(column);
+  out += ": ";
+  if (!pointer.empty()) out += pointer + (aliases.empty() ? std::string() : " (" + aliases + ")") + ": ";
+  return printable(out + message);
+}
+
+namespace {
+
+std::string describe_all(const std::vector<InputIssue>& issues, std::size_t count) {
+  if (issues.empty()) throw std::logic_error("InputError: no issue");
+  std::string out;
+  for (const InputIssue& issue : issues) out += (out.empty() ? "" : "\n") + issue.describe();
+  if (count > issues.size()) {
+    const std::size_t more = count - issues.size();
+    out += "\n... and " + std::to_string(more) + " more error" + (more == 1 ? "" : "s");
+  }
+  return out;
+}
+
+}  // namespace
+
 InputError::InputError(std::string file, std::string pointer, const std::string& message)
-    : std::runtime_error(printable((file.empty() ? std::string("\"\" (empty path)") : file) + ": " +
-                                   (pointer.empty() ? std::string() : pointer + ": ") + message)),
-      file_(std::move(file)),
-      pointer_(std::move(pointer)),
-      message_(message) {}
+    : InputError(std::vector<InputIssue>{InputIssue{std::move(file), std::move(pointer), message, "", 0, 0}}) {}
+
+InputError::InputError(std::vector<InputIssue> issues, std::size_t total)
+    : std::runtime_error(describe_all(issues, std::max(total, issues.size()))),
+      issues_(std::move(issues)),
+      count_(std::max(total, issues_.size())) {}
+
+void InputErrors::add(const InputError& error) {
+  for (const InputIssue& issue : error.issues()) {
+    if (issues_.size() < max_kept_) issues_.push_back(issue);
+  }
+  count_ += error.count();
+}
+
+void InputErrors::throw_if_any() const {
+  if (count_ > 0) throw InputError(issues_, count_);
+}
+
+namespace {
+
+// A scanner of JSON text already accepted by the parser, for locating values by pointer.
+class PointerScanner {
+ public:
+  explicit PointerScanner(const std::string& text) : text_(text) {}
+
+  std::size_t skip_space(std::size_t p) const {
+    while (p < text_.size() && (text_[p] == ' ' || text_[p] == '\t' || text_[p] == '\n' || text_[p] == '\r')) ++p;
+    return p;
+  }
+  // Past the string starting at `p` (a quote).
+  std::size_t skip_string(std::size_t p) const {
+    for (++p; p < text_.size(); ++p) {
+      if (text_[p] == '\\') ++p;
+      else if (text_[p] == '"') return p + 1;
+    }
+    return p;
+  }
+  // Past the value starting at `p`.
+  std::size_t skip_value(std::size_t p) const {
+    if (p >= text_.size()) return p;
+    if (text_[p] == '"') return skip_string(p);
+    if (text_[p] == '{' || text_[p] == '[') {
+      int depth = 0;
+      while (p < text_.size()) {
+        const char c = text_[p];
+        if (c == '"') {
+          p = skip_string(p);
+          continue;
+        }
+        if (c == '{' || c == '[') ++depth;
+        if (c == '}' || c == ']') {
+          if (--depth == 0) return p + 1;
+        }
+        ++p;
+      }
+      return p;
+    }
+    while (p < text_.size() && std::string_view(",}] \t\r\n").find(text_[p]) == std::string_view::npos) ++p;
+    return p;
+  }
+  // The text of the string starting at `p`, decoded.
+  std::string string_at(std::size_t p) const {
+    const std::size_t end = skip_string(p);
+    const std::string_view raw(text_.data() + p + 1, end - p - 2);
+    if (raw.find('\\') == std::string_view::npos) return std::string(raw);
+    return nlohmann::json::parse(text_.substr(p, end - p)).get<std::string>();
+  }
+
+  // Offset of the value under `token` in the container at `p` (and of its key), or npos.
+  std::pair<std::size_t, std::size_t> child(std::size_t p, const std::string& token) const {
+    constexpr auto npos = std::string::npos;
+    if (p >= text_.size()) return {npos, npos};
+    if (text_[p] == '{') {
+      p = skip_space(p + 1);
+      while (p < text_.size() && text_[p] == '"') {
+        const std::size_t key = p;
+        const std::string name = string_at(p);
+        p = skip_space(skip_string(p));
+        p = skip_space(p + 1);  // the colon
+        if (name == token) return {p, key};
+        p = skip_space(skip_value(p));
+        if (p < text_.size() && text_[p] == ',') p = skip_space(p + 1);
+      }
+      return {npos, npos};
+    }
+    if (text_[p] == '[') {
+      std::size_t index = 0;
+      const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), index);
+      if (token.empty() || ec != std::errc() || end != token.data() + token.size()) return {npos, npos};
+      p = skip_space(p + 1);
+      for (std::size_t i = 0; p < text_.size() && text_[p] != ']'; ++i) {
+        if (i == index) return {p, p};
+        p = skip_space(skip_value(p));
+        if (p < text_.size() && text_[p] == ',') p = skip_space(p + 1);
+      }
+    }
+    return {npos, npos};
+  }
+
+ private:
+  const std::string& text_;
+};
+
+// The reference tokens of a JSON pointer, unescaped.
+std::vector<std::string> pointer_tokens(const std::string& pointer) {
+  std::vector<std::string> tokens;
+  if (pointer.empty() || pointer.front() != '/') return tokens;
+  std::size_t start = 1;
+  while (true) {
+    const std::size_t end = pointer.find('/', start);
+    std::string token = pointer.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    std::string unescaped;
+    for (std::size_t i = 0; i < token.size(); ++i) {
+      if (token[i] == '~' && i + 1 < token.size() && (token[i + 1] == '0' || token[i + 1] == '1')) {
+        unescaped += token[++i] == '0' ? '~' : '/';
+      } else {
+        unescaped += token[i];
+      }
+    }
+    tokens.push_back(std::move(unescaped));
+    if (end == std::string::npos) break;
+    start = end + 1;
+  }
+  return tokens;
+}
+
+}  // namespace
+
+std::optional<std::pair<int, int>> locate_json_pointer(const std::string& text, const std::string& pointer) {
+  if (!pointer.empty() && pointer.front() != '/') return std::nullopt;
+  const PointerScanner scanner(text);
+  std::size_t value = scanner.skip_space(0);
+  std::size_t at = value;
+  for (const std::string& token : pointer_tokens(pointer)) {
+    std::tie(value, at) = scanner.child(value, token);
+    if (value == std::string::npos) return std::nullopt;
+  }
+  if (at >= text.size()) return std::nullopt;
+  const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n');
+  const auto line_start = at == 0 ? std::string::npos : text.rfind('\n', at - 1);
+  const auto column = at - (line_start == std::string::npos ? 0 : line_start + 1) + 1;
+  return std::pair{static_cast<int>(line), static_cast<int>(column)};
+}
+
+InputError with_locations(const InputError& error, const std::string& file, const std::string& text) {
+  std::vector<InputIssue> issues = error.issues();
+  for (InputIssue& issue : issues) {
+    // An error of the whole file (its syntax, its size) says where it is itself.
+    if (issue.file != file || issue.line > 0 || issue.pointer.empty()) continue;
+    try {
+      if (const auto place = locate_json_pointer(text, issue.pointer)) std::tie(issue.line, issue.column) = *place;
+    } catch (const std::exception&) {
+      // Not the text the error was found in: the error stays without its place.
+    }
+  }
+  return InputError(std::move(issues), error.count());
+}
+
+InputError nested_error(const InputError& error, const std::string& file, const std::string& pointer,
+                        const std::string& prefix) {
+  std::vector<InputIssue> issues;
+  for (const InputIssue& issue : error.issues()) issues.push_back({file, pointer, prefix + issue.describe(), "", 0, 0});
+  return InputError(std::move(issues), error.count());
+}
+
+InputError with_aliases(const InputError& error, const std::string& file, const nlohmann::json& document,
+                        std::string_view name_key) {
+  std::vector<InputIssue> issues = error.issues();
+  for (InputIssue& issue : issues) {
+    if (issue.file != file || !issue.aliases.empty()) continue;
+    const nlohmann::json* value = &document;
+    std::string names;
+    for (const std::string& token : pointer_tokens(issue.pointer)) {
+      if (value->is_object()) {
+        const auto it = value->find(token);
+        if (it == value->end()) break;
+        value = &*it;
+      } else if (value->is_array()) {
+        std::size_t index = 0;
+        const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), index);
+        if (token.empty() || ec != std::errc() || end != token.data() + token.size() || index >= value->size()) break;
+        value = &(*value)[index];
+        const auto name = value->is_object() ? value->find(std::string(name_key)) : value->end();
+        // A name with a '/' (refused as an alias) would make the path ambiguous.
+        if (value->is_object() && name != value->end() && name->is_string() &&
+            name->get_ref<const std::string&>().find('/') == std::string::npos) {
+          (names += names.empty() ? "" : "/") += name->get<std::string>();
+        }
+      } else {
+        break;
+      }
+    }
+    issue.aliases = names;
+  }
+  return InputError(std::move(issues), error.count());
+}
 
 namespace {
 
@@ -440,7 +655,8 @@ Eigen::Vector2d JsonNode::as_vector2(const Range& range) const {
   return {items[0].as_number(range), items[1].as_number(range)};
 }
 
-ObjectReader::ObjectReader(const JsonNode& node) : node_(node) {
+ObjectReader::ObjectReader(const JsonNode& node, InputErrors* errors)
+    : node_(node), errors_(errors), errors_at_start_(errors ? errors->count() : 0) {
   if (!node_.value().is_object()) node_.fail("an object");
 }
 
@@ -466,31 +682,31 @@ std::optional<JsonNode> ObjectReader::optional(std::string_view key) {
 }
 
 void ObjectReader::read(std::string_view key, double& out, const Range& range) {
-  if (auto v = optional(key)) out = v->as_number(range);
+  if (auto v = optional(key)) check([&] { out = v->as_number(range); });
 }
 
 void ObjectReader::read(std::string_view key, int& out, std::int64_t min, std::int64_t max) {
-  if (auto v = optional(key)) out = static_cast<int>(v->as_int(min, max));
+  if (auto v = optional(key)) check([&] { out = static_cast<int>(v->as_int(min, max)); });
 }
 
 void ObjectReader::read(std::string_view key, bool& out) {
-  if (auto v = optional(key)) out = v->as_bool();
+  if (auto v = optional(key)) check([&] { out = v->as_bool(); });
 }
 
 void ObjectReader::read(std::string_view key, std::string& out) {
-  if (auto v = optional(key)) out = v->as_string();
+  if (auto v = optional(key)) check([&] { out = v->as_string(); });
 }
 
 void ObjectReader::read_seed(std::string_view key, std::uint64_t& out) {
-  if (auto v = optional(key)) out = v->as_seed();
+  if (auto v = optional(key)) check([&] { out = v->as_seed(); });
 }
 
 void ObjectReader::read(std::string_view key, Eigen::Vector3d& out, const Range& range) {
-  if (auto v = optional(key)) out = v->as_vector3(range);
+  if (auto v = optional(key)) check([&] { out = v->as_vector3(range); });
 }
 
 void ObjectReader::read(std::string_view key, Eigen::Vector2d& out, const Range& range) {
-  if (auto v = optional(key)) out = v->as_vector2(range);
+  if (auto v = optional(key)) check([&] { out = v->as_vector2(range); });
 }
 
 void ObjectReader::accept(std::string_view key) {
@@ -498,15 +714,20 @@ void ObjectReader::accept(std::string_view key) {
 }
 
 void ObjectReader::finish() const {
+  std::vector<InputIssue> unknown;
   for (const auto& [key, value] : node_.value().items()) {
     if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
     std::vector<std::string> allowed = known_;
     std::sort(allowed.begin(), allowed.end());
     std::string list;
     for (const auto& k : allowed) list += (list.empty() ? "" : ", ") + k;
-    throw InputError(node_.file(), child_pointer(node_.pointer(), key),
-                     "unknown key \"" + key + "\"; expected one of: " + list);
+    unknown.push_back({node_.file(), child_pointer(node_.pointer(), key),
+                       "unknown key \"" + key + "\"; expected one of: " + list, "", 0, 0});
   }
+  if (unknown.empty()) return;
+  const InputError error(std::move(unknown));
+  if (!errors_) throw error;
+  errors_->add(error);
 }
 
 }  // namespace campo

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <openssl/evp.h>
@@ -70,6 +71,8 @@ void check_rate(const JsonNode& node, double rate_hz, double physics_step_s) {
   if (steps_per_period(rate_hz, physics_step_s) == 0) node.fail(dividing_rate_expectation(rate_hz, physics_step_s));
 }
 
+SensorDef read_sensor(const JsonNode& node, const SceneLimits& limits, InputErrors* errors);
+
 // Runs a generator; its complaints about the config become input errors at `at`.
 template <class Generate>
 auto generated(const JsonNode& at, Generate generate) -> decltype(generate()) {
@@ -87,32 +90,40 @@ class Loader {
   Loader(const SceneLimits& limits, std::filesystem::path base_dir)
       : limits_(limits), base_dir_(std::move(base_dir)) {}
 
+  // Every error of the scene that can be found is collected (each top-level
+  // key, object, field and waypoint checked on its own) and thrown at the end
+  // as one InputError; what makes the rest meaningless (another format
+  // version, a document that is not an object) is thrown at once.
   Scene load(const JsonNode& root) {
-    ObjectReader r(root);
+    ObjectReader r(root, &errors_);
     if (auto v = r.optional("campo_scene")) {
       if (v->as_int(1, 1000) != 1) v->fail("format version 1");
     }
     r.read("name", scene_.name);
     std::string description;
     r.read("description", description);
-    if (auto world = r.optional("world")) read_world(*world);
-    read_objects(r.required("objects"), Eigen::Isometry3d::Identity(), 0);
+    if (auto world = r.optional("world")) r.check([&] { read_world(*world); });
+    r.check([&] { read_objects(r.required("objects"), Eigen::Isometry3d::Identity(), 0); });
     r.finish();
     // Missions last: they may name frames and grids declared anywhere.
     for (auto& [vehicle_index, mission] : pending_missions_) {
       VehicleDef& vehicle = scene_.vehicles[vehicle_index];
-      vehicle.mission = read_mission(mission, vehicle.mission_area_m, vehicle.gates);
+      errors_.check([&] { vehicle.mission = read_mission(mission, vehicle.mission_area_m, vehicle.gates); });
     }
+    errors_.throw_if_any();
     return std::move(scene_);
   }
 
  private:
   void read_world(const JsonNode& node) {
     WorldConfig& w = scene_.world;
-    world_config_fields().read(node, w);
-    ObjectReader r(node);  // the rates' nodes, for the pointers of the checks below
-    check_world_rate(r, "control_rate_hz", w.control_rate_hz);
-    check_world_rate(r, "sensor_rate_hz", w.sensor_rate_hz);
+    ObjectReader r(node, &errors_);
+    world_config_fields().read_fields(r, w);
+    r.finish();
+    // The rates against the step, once both are known to be valid.
+    if (!r.ok()) return;
+    r.check([&] { check_world_rate(r, "control_rate_hz", w.control_rate_hz); });
+    r.check([&] { check_world_rate(r, "sensor_rate_hz", w.sensor_rate_hz); });
   }
 
   // A world rate, set or default, at the physics step, set or default: the
@@ -134,8 +145,51 @@ class Loader {
       if (++object_count_ > limits_.max_objects) {
         object.fail("at most " + std::to_string(limits_.max_objects) + " objects in a scene");
       }
-      read_object(object, parent, depth);
+      // Each object on its own: an error in one leaves the next to be checked.
+      const std::size_t before = errors_.count();
+      errors_.check([&] { read_object(object, parent, depth); });
+      if (errors_.count() > before) note_failed(object);
     }
+  }
+
+  // An object with errors is not in the scene: what later refers to it (a
+  // mission's grid or frame, ground under a point) must not be blamed on the reference.
+  void note_failed(const JsonNode& object) {
+    const nlohmann::json& value = object.value();
+    if (!value.is_object()) return;
+    const auto alias = value.find("alias");
+    if (alias != value.end() && alias->is_string()) failed_aliases_.insert(alias->get<std::string>());
+    const auto type = value.find("type");
+    const bool ground = type != value.end() && type->is_string() &&
+                        (*type == "heightfield" || *type == "plane" || *type == "rolling_terrain");
+    if (ground && failed_ground_.empty()) failed_ground_ = object.pointer();
+  }
+
+  // Why there is no ground below world (x, y), for "expected ..." messages: no terrain
+  // declared before, a terrain that did not load, or a point outside the terrain's extent.
+  std::string no_ground_reason(double x, double y) const {
+    const std::string point = "(" + format_rate(x) + ", " + format_rate(y) + ")";
+    std::string extents;
+    int terrains = 0;
+    for (const Shape& shape : scene_.shapes) {
+      if (shape.type != ShapeType::heightfield || !shape.terrain) continue;
+      if (++terrains > 4) continue;  // a few are enough to see where the ground is
+      // The grid is centred on its pose; its corners in the world (yaw only).
+      const double hx = 0.5 * shape.terrain->size_x_m(), hy = 0.5 * shape.terrain->size_y_m();
+      Eigen::AlignedBox2d box;
+      for (const double cx : {-hx, hx}) {
+        for (const double cy : {-hy, hy}) box.extend((shape.pose * Eigen::Vector3d(cx, cy, 0.0)).head<2>());
+      }
+      extents += (extents.empty() ? "" : "; ") + ("\"" + shape.alias + "\" covers x in [") +
+                 format_rate(box.min().x()) + ", " + format_rate(box.max().x()) + "] m, y in [" +
+                 format_rate(box.min().y()) + ", " + format_rate(box.max().y()) + "] m";
+    }
+    if (terrains > 4) extents += "; and " + std::to_string(terrains - 4) + " more";
+    if (!extents.empty()) return point + " is outside the terrain declared before this object (" + extents + ")";
+    if (!failed_ground_.empty()) {
+      return "no terrain below " + point + ": the terrain at " + failed_ground_ + " has errors (reported with these)";
+    }
+    return "no terrain below " + point + "; declare the terrain (heightfield, plane or rolling_terrain) before this object";
   }
 
   std::string claim_alias(ObjectReader& r) {
@@ -154,21 +208,21 @@ class Loader {
   Eigen::Isometry3d read_pose(ObjectReader& r, const Eigen::Isometry3d& parent) {
     auto node = r.optional("pose");
     if (!node) return parent;
-    ObjectReader p(*node);
+    ObjectReader p(*node, r.errors());
     Pose pose;
     p.read("position_m", pose.position_m, Range::closed(-1e6, 1e6));
     p.read("rpy_deg", pose.rpy_deg, Range::closed(-360.0, 360.0));
     bool above_ground = false;
     p.read("above_ground", above_ground);
     p.finish();
+    if (!p.ok()) return parent;
     Eigen::Isometry3d world = parent * to_isometry(pose);
     if (above_ground) {
       const Eigen::Vector3d t = world.translation();
       const auto ground = scene_.ground_height(t.x(), t.y());
       if (!ground) {
         throw InputError(node->file(), node->pointer() + "/above_ground",
-                         "no terrain below (" + std::to_string(t.x()) + ", " +
-                             std::to_string(t.y()) + "); declare the terrain before this object");
+                         "expected ground below the object: " + no_ground_reason(t.x(), t.y()));
       }
       world.translation().z() = *ground + pose.position_m.z();
     }
@@ -180,8 +234,8 @@ class Loader {
     r.read("static", shape.is_static);
     r.read("mass_kg", shape.mass_kg, Range{0.0, 1e9, true, false});
     r.read("friction", shape.friction, Range::closed(0.0, 10.0));
-    if (auto c = r.optional("color")) shape.color = read_color(*c);
-    if (!shape.is_static && shape.mass_kg <= 0.0) {
+    if (auto c = r.optional("color")) r.check([&] { shape.color = read_color(*c); });
+    if (r.ok() && !shape.is_static && shape.mass_kg <= 0.0) {
       throw InputError(r.node().file(), r.node().pointer(),
                        "a non-static shape needs \"mass_kg\" > 0");
     }
@@ -191,15 +245,15 @@ class Loader {
   void read_primitive(ObjectReader& r, Shape& shape) {
     switch (shape.type) {
       case ShapeType::cuboid:
-        shape.size_m = r.required("size_m").as_vector3(kLength);
+        r.check([&] { shape.size_m = r.required("size_m").as_vector3(kLength); });
         break;
       case ShapeType::cylinder:
       case ShapeType::cone:
-        shape.radius_m = r.required("radius_m").as_number(kLength);
-        shape.height_m = r.required("height_m").as_number(kLength);
+        r.check([&] { shape.radius_m = r.required("radius_m").as_number(kLength); });
+        r.check([&] { shape.height_m = r.required("height_m").as_number(kLength); });
         break;
       case ShapeType::sphere:
-        shape.radius_m = r.required("radius_m").as_number(kLength);
+        r.check([&] { shape.radius_m = r.required("radius_m").as_number(kLength); });
         break;
       case ShapeType::plane:
       case ShapeType::heightfield:
@@ -262,9 +316,14 @@ class Loader {
             count};
   }
 
+  // The keys of an object are checked on their own where they can be (an
+  // error in one leaves the others to be checked), and nothing of an object
+  // with errors is added to the scene; its type decides which keys it has,
+  // so an error in the type ends the object.
   void read_object(const JsonNode& node, const Eigen::Isometry3d& parent, int depth) {
-    ObjectReader r(node);
-    const std::string alias = claim_alias(r);
+    ObjectReader r(node, &errors_);
+    std::string alias;
+    r.check([&] { alias = claim_alias(r); });
     const JsonNode type_node = r.required("type");
     const std::string type(kTypes[type_node.as_choice({std::begin(kTypes), std::end(kTypes)})]);
 
@@ -272,24 +331,27 @@ class Loader {
       Shape shape;
       shape.alias = alias;
       shape.type = *shape_type;
-      shape.pose = read_pose(r, parent);
+      r.check([&] { shape.pose = read_pose(r, parent); });
       read_shape_properties(r, shape);
       if (shape.type == ShapeType::heightfield) {
-        read_heightfield(r, shape);
+        r.check([&] { read_heightfield(r, shape); });
       } else {
         read_primitive(r, shape);
       }
-      if (!shape.is_static && (shape.type == ShapeType::plane || shape.type == ShapeType::heightfield)) {
-        throw InputError(node.file(), child_pointer(node.pointer(), "static"),
-                         "expected true: planes and heightfields are always static");
-      }
+      r.check([&] {
+        if (!shape.is_static && (shape.type == ShapeType::plane || shape.type == ShapeType::heightfield)) {
+          throw InputError(node.file(), child_pointer(node.pointer(), "static"),
+                           "expected true: planes and heightfields are always static");
+        }
+      });
       const Eigen::Isometry3d frame = shape.pose;
-      add_shape(std::move(shape), node);
-      if (auto children = r.optional("children")) read_objects(*children, frame, depth + 1);
+      if (r.ok()) add_shape(std::move(shape), node);
+      if (auto children = r.optional("children")) r.check([&] { read_objects(*children, frame, depth + 1); });
     } else if (type == "dummy") {
-      Frame frame{alias, read_pose(r, parent)};
-      scene_.frames.push_back(frame);
-      if (auto children = r.optional("children")) read_objects(*children, frame.pose, depth + 1);
+      Frame frame{alias, parent};
+      r.check([&] { frame.pose = read_pose(r, parent); });
+      if (r.ok()) scene_.frames.push_back(frame);
+      if (auto children = r.optional("children")) r.check([&] { read_objects(*children, frame.pose, depth + 1); });
     } else if (type == "rolling_terrain") {
       read_rolling_terrain(r, alias, parent);
     } else if (type == "trees") {
@@ -316,15 +378,20 @@ class Loader {
 
   void read_heightfield(ObjectReader& r, Shape& shape) {
     const JsonNode& node = r.node();
-    const Eigen::Vector3d rpy = rpy_deg_from_rotation(shape.pose.linear());
-    if (std::abs(rpy.x()) > 1e-9 || std::abs(rpy.y()) > 1e-9) {
-      throw InputError(node.file(), child_pointer(node.pointer(), "pose"),
-                       "expected a heightfield pose without roll or pitch");
-    }
     const auto expression = r.optional("expression");
     const auto csv = r.optional("csv");
     const auto png = r.optional("png");
+    // After the sources are read, so that an error here does not leave them unread (reported as unknown).
+    r.check([&] {
+      const Eigen::Vector3d rpy = rpy_deg_from_rotation(shape.pose.linear());
+      if (std::abs(rpy.x()) > 1e-9 || std::abs(rpy.y()) > 1e-9) {
+        throw InputError(node.file(), child_pointer(node.pointer(), "pose"),
+                         "expected a heightfield pose without roll or pitch");
+      }
+    });
     if (static_cast<int>(expression.has_value()) + csv.has_value() + png.has_value() != 1) {
+      // Which other keys belong depends on the source: none is reported unknown.
+      for (const std::string_view key : {"size_m", "spacing_m", "height_scale_m", "min_height_m"}) r.accept(key);
       throw InputError(node.file(), node.pointer(),
                        "expected exactly one height source: \"expression\", \"csv\" or \"png\"");
     }
@@ -336,6 +403,7 @@ class Loader {
     if (expression) {
       r.read("size_m", size_m, kLength);
       r.read("spacing_m", spacing_m, kLength);
+      if (!r.ok()) return;
       check_vertex_count(node, size_m, spacing_m);
       shape.terrain = std::make_shared<HeightGrid>(generated(source, [&] {
         return heightgrid_from_expression(expression->as_string(), size_m, spacing_m, shape.pose);
@@ -343,6 +411,7 @@ class Loader {
     } else if (csv) {
       r.read("spacing_m", spacing_m, kLength);
       const auto path = resolve_path(*csv);
+      if (!r.ok()) return;
       shape.terrain = std::make_shared<HeightGrid>(
           generated(source, [&] { return heightgrid_from_csv(path, spacing_m); }));
     } else {
@@ -350,6 +419,7 @@ class Loader {
       r.read("height_scale_m", height_scale_m, kLength);
       r.read("min_height_m", min_height_m, Range::closed(-1e4, 1e4));
       const auto path = resolve_path(*png);
+      if (!r.ok()) return;
       shape.terrain = std::make_shared<HeightGrid>(generated(
           source, [&] { return heightgrid_from_png(path, size_m, height_scale_m, min_height_m); }));
     }
@@ -389,19 +459,20 @@ class Loader {
                             const Eigen::Isometry3d& parent) {
     RollingTerrainConfig c;
     rolling_terrain_fields().read_fields(r, c);
-    check_vertex_count(r.node(), c.size_m, c.spacing_m);
     Shape shape;
     shape.alias = alias;
     shape.type = ShapeType::heightfield;
-    shape.pose = read_pose(r, parent);
+    r.check([&] { shape.pose = read_pose(r, parent); });
+    shape.color = {0.45, 0.6, 0.3};
+    if (auto col = r.optional("color")) r.check([&] { shape.color = read_color(*col); });
+    r.read("friction", shape.friction, Range::closed(0.0, 10.0));
+    if (!r.ok()) return;
+    check_vertex_count(r.node(), c.size_m, c.spacing_m);
     const Eigen::Vector3d rpy = rpy_deg_from_rotation(shape.pose.linear());
     if (std::abs(rpy.x()) > 1e-9 || std::abs(rpy.y()) > 1e-9) {
       throw InputError(r.node().file(), child_pointer(r.node().pointer(), "pose"),
                        "expected a terrain pose without roll or pitch");
     }
-    shape.color = {0.45, 0.6, 0.3};
-    if (auto col = r.optional("color")) shape.color = read_color(*col);
-    r.read("friction", shape.friction, Range::closed(0.0, 10.0));
     shape.terrain = std::make_shared<HeightGrid>(generated(r.node(), [&] { return make_rolling_terrain(c); }));
     add_shape(std::move(shape), r.node());
   }
@@ -409,6 +480,7 @@ class Loader {
   void read_trees(ObjectReader& r, const std::string& alias) {
     TreesConfig c;
     trees_fields(limits_).read_fields(r, c);
+    if (!r.ok()) return;
     if ((c.area_max_m.array() <= c.area_min_m.array()).any()) {
       r.fail("\"area_max_m\" greater than \"area_min_m\" in x and y");
     }
@@ -418,18 +490,21 @@ class Loader {
   void read_vineyard(ObjectReader& r, const std::string& alias, const Eigen::Isometry3d& parent) {
     VineyardConfig c;
     vineyard_fields(limits_).read_fields(r, c);
+    Eigen::Isometry3d placement = parent;
+    r.check([&] { placement = read_pose(r, parent); });
+    if (!r.ok()) return;
     const double posts_per_row = std::floor(c.field_size_m.y() / c.post_spacing_m) + 2;
     if (posts_per_row * c.row_count > static_cast<double>(limits_.max_vineyard_posts)) {
       r.fail("at most " + std::to_string(limits_.max_vineyard_posts) +
              " posts (row_count x row length / post_spacing_m)");
     }
-    const Eigen::Isometry3d placement = read_pose(r, parent);
     add_generated(generated(r.node(), [&] { return make_vineyard(c, alias); }), r.node(), placement);
   }
 
   void read_grid_obstacles(ObjectReader& r, const std::string& alias) {
     GridObstaclesConfig c;
     grid_obstacles_fields(limits_).read_fields(r, c);
+    if (!r.ok()) return;
     // Ground samples per block within one budget for the generator (generators.hpp).
     add_generated(generated(r.node(),
                             [&] {
@@ -444,22 +519,25 @@ class Loader {
   void read_mover(ObjectReader& r, const std::string& alias, const Eigen::Isometry3d& parent) {
     Mover mover;
     mover.shape.alias = alias;
-    mover.shape.pose = read_pose(r, parent);
-    {
+    r.check([&] { mover.shape.pose = read_pose(r, parent); });
+    r.check([&] {
       const JsonNode shape_node = r.required("shape");
-      ObjectReader s(shape_node);
+      ObjectReader s(shape_node, r.errors());
       const auto type = s.required("type").as_choice({"cuboid", "cylinder", "sphere", "cone"});
       mover.shape.type = *shape_type_from_string(std::array{"cuboid", "cylinder", "sphere", "cone"}[type]);
       read_primitive(s, mover.shape);
-      if (auto c = s.optional("color")) mover.shape.color = read_color(*c);
+      if (auto c = s.optional("color")) s.check([&] { mover.shape.color = read_color(*c); });
       s.finish();
-    }
-    for (const JsonNode& point : r.required("path_m").as_array(2, static_cast<std::size_t>(limits_.max_waypoints))) {
-      mover.path_m.push_back(parent * point.as_vector3(Range::closed(-1e6, 1e6)));
-    }
+    });
+    r.check([&] {
+      for (const JsonNode& point : r.required("path_m").as_array(2, static_cast<std::size_t>(limits_.max_waypoints))) {
+        r.check([&] { mover.path_m.push_back(parent * point.as_vector3(Range::closed(-1e6, 1e6))); });
+      }
+    });
     r.read("speed_mps", mover.speed_mps, Range::closed(1e-3, 100.0));
     r.read("start_time_s", mover.start_time_s, Range::non_negative());
     r.read("loop", mover.loop);
+    if (!r.ok()) return;
     mover.shape.source = r.node().pointer();
     mover.shape.pose.translation() = mover.path_m.front();
     scene_.movers.push_back(std::move(mover));
@@ -473,40 +551,58 @@ class Loader {
     VehicleDef vehicle;
     vehicle.alias = alias;
     vehicle.type = type;
-    vehicle.pose = read_pose(r, parent);
+    r.check([&] { vehicle.pose = read_pose(r, parent); });
     if (auto sensors = r.optional("sensors")) {
       std::map<std::string, std::string> sensor_aliases;
-      for (const JsonNode& s : sensors->as_array(0, static_cast<std::size_t>(limits_.max_sensors))) {
-        ObjectReader sr(s);
-        const JsonNode alias_node = sr.required("alias");
-        const std::string sensor_alias = alias_node.as_string();
-        if (!valid_alias(sensor_alias)) alias_node.fail("an alias of 1-64 letters, digits, '_', '-' or '.'");
-        if (!sensor_aliases.emplace(sensor_alias, alias_node.pointer()).second) {
-          throw InputError(alias_node.file(), alias_node.pointer(),
-                           "duplicate sensor alias \"" + sensor_alias + "\" on vehicle \"" + alias + "\"");
+      r.check([&] {
+        for (const JsonNode& s : sensors->as_array(0, static_cast<std::size_t>(limits_.max_sensors))) {
+          // Each sensor on its own.
+          r.check([&] {
+            ObjectReader sr(s);
+            const JsonNode alias_node = sr.required("alias");
+            const std::string sensor_alias = alias_node.as_string();
+            if (!valid_alias(sensor_alias)) alias_node.fail("an alias of 1-64 letters, digits, '_', '-' or '.'");
+            if (!sensor_aliases.emplace(sensor_alias, alias_node.pointer()).second) {
+              throw InputError(alias_node.file(), alias_node.pointer(),
+                               "duplicate sensor alias \"" + sensor_alias + "\" on vehicle \"" + alias + "\"");
+            }
+            const std::size_t before = errors_.count();
+            SensorDef sensor = read_sensor(s, limits_, &errors_);
+            if (errors_.count() > before) return;
+            // 0 = world.sensor_rate_hz, checked with the world.
+            const double rate_hz = sensor.lidar.rate_hz;
+            if (rate_hz > 0.0) check_rate(*sr.optional("rate_hz"), rate_hz, scene_.world.physics_step_s);
+            vehicle.sensors.push_back(std::move(sensor));
+          });
         }
-        vehicle.sensors.push_back(parse_sensor(s, limits_));
-        // 0 = world.sensor_rate_hz, checked with the world.
-        const double rate_hz = vehicle.sensors.back().lidar.rate_hz;
-        if (rate_hz > 0.0) check_rate(*sr.optional("rate_hz"), rate_hz, scene_.world.physics_step_s);
-      }
+      });
     }
     vehicle.planner.params = {nlohmann::json::object(), r.node().file(),
                               child_pointer(child_pointer(r.node().pointer(), "planner"), "params")};
     if (auto planner = r.optional("planner")) {
-      ObjectReader p(*planner);
-      const JsonNode name = p.required("name");
-      vehicle.planner.name = name.as_string();
-      vehicle.planner.name_pointer = name.pointer();
-      if (auto params = p.optional("params")) vehicle.planner.params = read_params_block(*params);
-      p.finish();
+      r.check([&] {
+        ObjectReader p(*planner, r.errors());
+        p.check([&] {
+          const JsonNode name = p.required("name");
+          vehicle.planner.name = name.as_string();
+          vehicle.planner.name_pointer = name.pointer();
+        });
+        if (auto params = p.optional("params")) p.check([&] { vehicle.planner.params = read_params_block(*params); });
+        p.finish();
+      });
     }
     vehicle.params = {nlohmann::json::object(), r.node().file(), child_pointer(r.node().pointer(), "params")};
-    if (auto params = r.optional("params")) vehicle.params = read_params_block(*params);
-    if (auto noise = r.optional("state_noise")) state_noise_fields().read(*noise, vehicle.state_noise);
-    if (auto mission = r.optional("mission")) {
-      pending_missions_.emplace_back(scene_.vehicles.size(), *mission);
+    if (auto params = r.optional("params")) r.check([&] { vehicle.params = read_params_block(*params); });
+    if (auto noise = r.optional("state_noise")) {
+      r.check([&] {
+        ObjectReader n(*noise, r.errors());
+        state_noise_fields().read_fields(n, vehicle.state_noise);
+        n.finish();
+      });
     }
+    const auto mission = r.optional("mission");
+    if (!r.ok()) return;
+    if (mission) pending_missions_.emplace_back(scene_.vehicles.size(), *mission);
     scene_.vehicles.push_back(std::move(vehicle));
   }
 
@@ -518,22 +614,33 @@ class Loader {
   // The waypoints; `area` becomes the extent of the mission's grid, if any.
   std::vector<Waypoint> read_mission(const JsonNode& node, std::optional<Eigen::AlignedBox2d>& area,
                                      std::vector<MissionGate>& gates) {
-    ObjectReader r(node);
+    ObjectReader r(node, &errors_);
     const GridObstaclesConfig* grid = nullptr;
     if (auto g = r.optional("grid")) {
-      const auto it = grids_.find(g->as_string());
+      const std::string name = g->as_string();
+      const auto it = grids_.find(name);
+      if (it == grids_.end() && failed_aliases_.contains(name)) {
+        // Reported where the grid is; the mission, which depends on it, is not checked.
+        g->fail("a grid_obstacles object without errors (\"" + name + "\" has errors, reported with these)");
+      }
       if (it == grids_.end()) g->fail("the alias of a grid_obstacles object");
       grid = &it->second;
       area = Eigen::AlignedBox2d(grid->origin_m, grid->origin_m + grid->cell_size_m * Eigen::Vector2d(grid->cols, grid->rows));
     }
     std::vector<Waypoint> waypoints;
-    for (const JsonNode& wp :
-         r.required("waypoints").as_array(1, static_cast<std::size_t>(limits_.max_waypoints))) {
-      waypoints.push_back(read_waypoint(wp, grid));
-    }
+    r.check([&] {
+      for (const JsonNode& wp :
+           r.required("waypoints").as_array(1, static_cast<std::size_t>(limits_.max_waypoints))) {
+        r.check([&] { waypoints.push_back(read_waypoint(wp, grid)); });  // each waypoint on its own
+      }
+    });
     if (auto list = r.optional("gates")) {
-      if (!grid) list->fail("a mission with \"grid\" naming a grid_obstacles object");
-      for (const JsonNode& gate : list->as_array(1, 16)) gates.push_back(read_gate(gate, *grid, gates));
+      r.check([&] {
+        if (!grid) list->fail("a mission with \"grid\" naming a grid_obstacles object");
+        for (const JsonNode& gate : list->as_array(1, 16)) {
+          r.check([&] { gates.push_back(read_gate(gate, *grid, gates)); });
+        }
+      });
     }
     r.finish();
     return waypoints;
@@ -596,7 +703,11 @@ class Loader {
                        items.size() == 3 ? items[2].as_number(coordinate) : 0.0};
       xy = wp.position_m.head<2>();
     } else if (frame) {
-      const Frame* f = scene_.find_frame(frame->as_string());
+      const std::string name = frame->as_string();
+      const Frame* f = scene_.find_frame(name);
+      if (!f && failed_aliases_.contains(name)) {
+        frame->fail("a dummy object without errors (\"" + name + "\" has errors, reported with these)");
+      }
       if (!f) frame->fail("the alias of a dummy object");
       wp.position_m = f->pose.translation();
       xy = wp.position_m.head<2>();
@@ -619,7 +730,9 @@ class Loader {
     if (agl) {
       if (frame) agl->fail("no \"agl_m\" with a frame waypoint");
       const auto ground = scene_.ground_height(xy.x(), xy.y());
-      if (!ground) agl->fail("a waypoint above terrain (none below this point)");
+      if (!ground) {
+        throw InputError(agl->file(), agl->pointer(), "expected a waypoint above terrain: " + no_ground_reason(xy.x(), xy.y()));
+      }
       wp.position_m.z() = *ground + agl->as_number(Range::closed(-1e4, 1e5));
     }
     if (auto heading = r.optional("heading_deg")) {
@@ -640,12 +753,18 @@ class Loader {
   std::optional<double> level_ground_m_;
   std::vector<std::pair<std::size_t, JsonNode>> pending_missions_;
   int object_count_ = 0;
+  InputErrors errors_;
+  std::set<std::string> failed_aliases_;  // objects with errors, not in the scene
+  std::string failed_ground_;             // pointer of the first terrain with errors
 };
 
 }  // namespace
 
-SensorDef parse_sensor(const JsonNode& node, const SceneLimits& limits) {
-  ObjectReader r(node);
+namespace {
+
+// parse_sensor, going on past errors into `errors` if given.
+SensorDef read_sensor(const JsonNode& node, const SceneLimits& limits, InputErrors* errors) {
+  ObjectReader r(node, errors);
   SensorDef sensor;
   if (auto alias = r.optional("alias")) sensor.alias = alias->as_string();
   const JsonNode type = r.required("type");
@@ -655,6 +774,10 @@ SensorDef parse_sensor(const JsonNode& node, const SceneLimits& limits) {
   }
   LidarConfig& c = sensor.lidar;
   lidar_config_fields(limits).read_fields(r, c);
+  if (!r.ok()) {
+    r.finish();
+    return sensor;
+  }
   if (sensor.type == SensorType::depth_camera) {
     // One perspective render covers the grid: both angles well below 180 deg.
     if (!c.beams.empty()) r.fail("a depth camera with a beam grid (\"fov_deg\", \"resolution\"), not explicit beams");
@@ -669,6 +792,10 @@ SensorDef parse_sensor(const JsonNode& node, const SceneLimits& limits) {
   r.finish();
   return sensor;
 }
+
+}  // namespace
+
+SensorDef parse_sensor(const JsonNode& node, const SceneLimits& limits) { return read_sensor(node, limits, nullptr); }
 
 std::string sha256_hex(const std::string& bytes) {
   std::array<unsigned char, EVP_MAX_MD_SIZE> digest{};
@@ -687,7 +814,13 @@ Scene parse_scene(const nlohmann::json& document, const std::string& source,
                   const std::filesystem::path& base_dir, const std::string& source_sha256,
                   const SceneLimits& limits) {
   Loader loader(limits, base_dir);
-  Scene scene = loader.load(JsonNode(document, source, ""));
+  Scene scene;
+  try {
+    scene = loader.load(JsonNode(document, source, ""));
+  } catch (const InputError& e) {
+    // Beside each index pointer, the objects it goes through as the file names them.
+    throw with_aliases(e, source, document);
+  }
   if (scene.name.empty()) scene.name = std::filesystem::path(source).stem().string();
   scene.source_path = source;
   scene.source_sha256 = source_sha256;
@@ -700,7 +833,11 @@ Scene load_scene(const std::filesystem::path& path, const SceneLimits& limits) {
 
 Scene load_scene_text(const std::string& text, const std::filesystem::path& path, const SceneLimits& limits) {
   const nlohmann::json document = parse_json_text(text, path.string(), limits.json);
-  return parse_scene(document, path.string(), path.parent_path(), sha256_hex(text), limits);
+  try {
+    return parse_scene(document, path.string(), path.parent_path(), sha256_hex(text), limits);
+  } catch (const InputError& e) {
+    throw with_locations(e, path.string(), text);  // each error's line and column in the file
+  }
 }
 
 }  // namespace campo

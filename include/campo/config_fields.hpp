@@ -272,9 +272,10 @@ class ConfigFields {
     r.finish();
   }
   /// Reads the declared fields from an object whose other keys the caller
-  /// reads itself (and then calls r.finish()).
+  /// reads itself (and then calls r.finish()). A reader given an InputErrors
+  /// reads every field, each on its own (ObjectReader::check).
   void read_fields(ObjectReader& r, Config& config) const {
-    for (const Field& f : fields_) f.read(r, config);
+    for (const Field& f : fields_) r.check([&] { f.read(r, config); });
   }
   /// The same for a params block (its file and pointer name the errors).
   void read(const ParamsBlock& params, Config& config) const {

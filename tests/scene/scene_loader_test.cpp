@@ -213,7 +213,7 @@ TEST(SceneLoader, TextLoadsAsTheFileItIsNamedAfter) {
 
 TEST(SceneLoaderErrors, UnknownKeyNamesPointerAndAllowedKeys) {
   const std::string e = error_of(with_objects(R"j({"alias": "a", "type": "sphere", "radius_m": 1, "radius": 2})j"));
-  EXPECT_THAT(e, HasSubstr("inline.json: /objects/0/radius: unknown key \"radius\"; expected one of:"));
+  EXPECT_THAT(e, HasSubstr("inline.json: /objects/0/radius (a): unknown key \"radius\"; expected one of:"));
   EXPECT_THAT(e, HasSubstr("radius_m"));
 }
 
@@ -221,33 +221,33 @@ TEST(SceneLoaderErrors, UnknownTopLevelAndNestedKeys) {
   EXPECT_THAT(error_of(R"j({"objects": [], "gravity": 1})j"), HasSubstr("/gravity: unknown key"));
   EXPECT_THAT(error_of(R"j({"objects": [], "world": {"step": 1}})j"), HasSubstr("/world/step: unknown key"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "dummy", "pose": {"xyz": [1,2,3]}})j")),
-              HasSubstr("/objects/0/pose/xyz: unknown key"));
+              HasSubstr("/objects/0/pose/xyz (a): unknown key"));
 }
 
 TEST(SceneLoaderErrors, WrongTypes) {
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "cuboid", "size_m": [1, "2", 3]})j")),
-              HasSubstr("/objects/0/size_m/1: expected a number in (0, 1e+06], got \"2\""));
+              HasSubstr("/objects/0/size_m/1 (a): expected a number in (0, 1e+06], got \"2\""));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "cuboid", "size_m": [1, 2]})j")),
-              HasSubstr("/objects/0/size_m: expected an array of 3 elements, got [1,2]"));
+              HasSubstr("/objects/0/size_m (a): expected an array of 3 elements, got [1,2]"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": 7, "type": "sphere", "radius_m": 1})j")),
               HasSubstr("/objects/0/alias: expected a non-empty string, got 7"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "sphere", "radius_m": 1, "static": "yes"})j")),
-              HasSubstr("/objects/0/static: expected true or false"));
+              HasSubstr("/objects/0/static (a): expected true or false"));
   EXPECT_THAT(error_of(R"j({"objects": {}})j"), HasSubstr("/objects: expected an array of 0 to"));
   EXPECT_THAT(error_of(R"j([1, 2])j"), HasSubstr("inline.json: expected an object, got [1,2]"));
 }
 
 TEST(SceneLoaderErrors, OutOfRangeValues) {
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "cuboid", "size_m": [1, -1, 3]})j")),
-              HasSubstr("/objects/0/size_m/1: expected a number in (0, 1e+06], got -1"));
+              HasSubstr("/objects/0/size_m/1 (a): expected a number in (0, 1e+06], got -1"));
   EXPECT_THAT(error_of(R"j({"objects": [], "world": {"physics_step_s": 0}})j"),
               HasSubstr("/world/physics_step_s: expected a number in [1e-05, 0.1], got 0"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "sphere", "radius_m": 1, "color": [0, 2, 0]})j")),
-              HasSubstr("/objects/0/color/1: expected a number in [0, 1], got 2"));
+              HasSubstr("/objects/0/color/1 (a): expected a number in [0, 1], got 2"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "trees", "count": -3})j")),
-              HasSubstr("/objects/0/count: expected an integer in [0, 10000], got -3"));
+              HasSubstr("/objects/0/count (t): expected an integer in [0, 10000], got -3"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "trees", "trunk_radius_m": [0.5, 0.2]})j")),
-              HasSubstr("/objects/0/trunk_radius_m: expected [min, max] with min <= max"));
+              HasSubstr("/objects/0/trunk_radius_m (t): expected [min, max] with min <= max"));
   EXPECT_THAT(error_of(R"j({"objects": [], "world": {"seed": -1}})j"),
               HasSubstr("/world/seed: expected an integer seed in [0, 18446744073709551615], got -1"));
 }
@@ -268,7 +268,7 @@ TEST(SceneLoaderErrors, RatesThatDoNotDivideThePhysicsRate) {
   EXPECT_EQ(error_of(with_objects(R"j({"alias": "v", "type": "quadrotor", "sensors": [
       {"alias": "front", "type": "lidar", "preset": "leddar_vu8"},
       {"alias": "down", "type": "lidar", "preset": "leddar_vu8", "rate_hz": 25}]})j")),
-            "inline.json: /objects/0/sensors/1/rate_hz: expected a rate that divides the physics rate 240 Hz "
+            "inline.json: /objects/0/sensors/1/rate_hz (v/down): expected a rate that divides the physics rate 240 Hz "
             "(1 / physics_step_s) into a whole number of steps, such as 30, 26.6666666667, 24 or 21.8181818182, got 25");
   // The rate checked against the step, whichever of them the file sets.
   EXPECT_EQ(error_of(R"j({"objects": [], "world": {"physics_step_s": 0.002, "control_rate_hz": 60}})j"),
@@ -320,11 +320,11 @@ TEST(SceneLoaderErrors, SensorRatesHaveARange) {
   };
   for (const std::string rate : {"1e-14", "0.001", "-1", "10001", "1e+300"}) {
     EXPECT_EQ(error_of(sensor_with_rate(rate)),
-              "inline.json: /objects/0/sensors/0/rate_hz: expected 0 (world.sensor_rate_hz) or a number in "
+              "inline.json: /objects/0/sensors/0/rate_hz (v/down): expected 0 (world.sensor_rate_hz) or a number in "
               "[0.01, 10000], got " + rate)
         << rate;
   }
-  EXPECT_THAT(error_of(sensor_with_rate("\"fast\"")), HasSubstr("/objects/0/sensors/0/rate_hz: expected a finite number, got \"fast\""));
+  EXPECT_THAT(error_of(sensor_with_rate("\"fast\"")), HasSubstr("/objects/0/sensors/0/rate_hz (v/down): expected a finite number, got \"fast\""));
   // The ends of the range: 0.01 Hz is 24000 steps at 240 Hz physics; 0 is the world's rate.
   EXPECT_EQ(parse(sensor_with_rate("0.01")).vehicles[0].sensors[0].lidar.rate_hz, 0.01);
   EXPECT_EQ(parse(sensor_with_rate("0")).vehicles[0].sensors[0].lidar.rate_hz, 0.0);
@@ -361,14 +361,14 @@ TEST(SceneLoaderErrors, SeedsAreIntegersReadExactly) {
   EXPECT_THAT(error_of(R"j({"objects": [], "world": {"seed": 3.0}})j"),
               HasSubstr("/world/seed: expected an integer seed in [0, 18446744073709551615], got 3.0"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "rolling_terrain", "size_m": [10, 10], "seed": -2})j")),
-              HasSubstr("/objects/0/seed: expected an integer seed in [0, 18446744073709551615], got -2"));
+              HasSubstr("/objects/0/seed (t): expected an integer seed in [0, 18446744073709551615], got -2"));
 }
 
 TEST(SceneLoaderErrors, UnknownTypeAndMissingKeys) {
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "torus"})j")),
-              HasSubstr("/objects/0/type: expected one of \"cuboid\", \"cylinder\""));
+              HasSubstr("/objects/0/type (a): expected one of \"cuboid\", \"cylinder\""));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "cuboid"})j")),
-              HasSubstr("/objects/0: missing required key \"size_m\""));
+              HasSubstr("/objects/0 (a): missing required key \"size_m\""));
   EXPECT_THAT(error_of(with_objects(R"j({"type": "plane"})j")),
               HasSubstr("/objects/0: missing required key \"alias\""));
   EXPECT_THAT(error_of(R"j({})j"), HasSubstr("inline.json: missing required key \"objects\""));
@@ -377,7 +377,7 @@ TEST(SceneLoaderErrors, UnknownTypeAndMissingKeys) {
 TEST(SceneLoaderErrors, DuplicateAliasesNameBothPlaces) {
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "plane"},
       {"alias": "b", "type": "dummy", "children": [{"alias": "a", "type": "dummy"}]})j")),
-              HasSubstr("/objects/1/children/0/alias: duplicate alias \"a\" (first used at /objects/0/alias)"));
+              HasSubstr("/objects/1/children/0/alias (b/a): duplicate alias \"a\" (first used at /objects/0/alias)"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "bad/name", "type": "plane"})j")),
               HasSubstr("/objects/0/alias: expected an alias of 1-64 letters"));
 }
@@ -385,18 +385,19 @@ TEST(SceneLoaderErrors, DuplicateAliasesNameBothPlaces) {
 TEST(SceneLoaderErrors, DanglingReferences) {
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "rover",
       "mission": {"waypoints": [{"frame": "nowhere"}]}})j")),
-              HasSubstr("/objects/0/mission/waypoints/0/frame: expected the alias of a dummy object, got \"nowhere\""));
+              HasSubstr("/objects/0/mission/waypoints/0/frame (v): expected the alias of a dummy object, got \"nowhere\""));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "rover",
       "mission": {"grid": "missing", "waypoints": [{"cell": [1, 1], "agl_m": 1}]}})j")),
-              HasSubstr("/objects/0/mission/grid: expected the alias of a grid_obstacles object"));
+              HasSubstr("/objects/0/mission/grid (v): expected the alias of a grid_obstacles object"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "rover",
       "mission": {"waypoints": [{"cell": [1, 1], "agl_m": 1}]}})j")),
-              HasSubstr("/objects/0/mission/waypoints/0/cell: expected a mission with \"grid\""));
+              HasSubstr("/objects/0/mission/waypoints/0/cell (v): expected a mission with \"grid\""));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "quadrotor",
       "sensors": [{"alias": "s", "type": "lidar", "preset": "kinect"}]})j")),
-              HasSubstr("/objects/0/sensors/0/preset: expected one of \"scanner3d\""));
+              HasSubstr("/objects/0/sensors/0/preset (v/s): expected one of \"scanner3d\""));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "d", "type": "dummy", "pose": {"position_m": [0, 0, 1], "above_ground": true}})j")),
-              HasSubstr("/objects/0/pose/above_ground: no terrain below"));
+              HasSubstr("/objects/0/pose/above_ground (d): expected ground below the object: no terrain below (0, 0); "
+                        "declare the terrain (heightfield, plane or rolling_terrain) before this object"));
 }
 
 TEST(SceneLoaderErrors, GeodeticWaypointsAndGates) {
@@ -404,54 +405,54 @@ TEST(SceneLoaderErrors, GeodeticWaypointsAndGates) {
       {"alias": "g", "type": "grid_obstacles", "cell_size_m": 1.5, "rows": 10, "cols": 10},)j";
   EXPECT_THAT(error_of(with_objects(grid + R"j({"alias": "v", "type": "quadrotor",
       "mission": {"waypoints": [{"geodetic": [40.8, 14.7]}]}})j")),
-              HasSubstr("/objects/2/mission/waypoints/0/geodetic: expected [lat, lon, alt], or [lat, lon] with \"agl_m\""));
+              HasSubstr("/objects/2/mission/waypoints/0/geodetic (v): expected [lat, lon, alt], or [lat, lon] with \"agl_m\""));
   EXPECT_THAT(error_of(with_objects(grid + R"j({"alias": "v", "type": "quadrotor",
       "mission": {"waypoints": [{"geodetic": [40.8, 14.7, 3], "agl_m": 2}]}})j")),
-              HasSubstr("/objects/2/mission/waypoints/0/agl_m: expected no \"agl_m\" with a geodetic [lat, lon, alt]"));
+              HasSubstr("/objects/2/mission/waypoints/0/agl_m (v): expected no \"agl_m\" with a geodetic [lat, lon, alt]"));
   EXPECT_THAT(error_of(R"j({"world": {"geo_reference": {"projection": "utm"}}, "objects": []})j"),
               HasSubstr("/world/geo_reference/projection: expected one of \"wgs84_enu\""));
   EXPECT_THAT(error_of(with_objects(grid + R"j({"alias": "v", "type": "quadrotor",
       "mission": {"gates": [{"name": "s", "rows": [1, 1], "cols": [1, 1]}], "waypoints": [{"position_m": [0, 0, 1]}]}})j")),
-              HasSubstr("/objects/2/mission/gates: expected a mission with \"grid\""));
+              HasSubstr("/objects/2/mission/gates (v): expected a mission with \"grid\""));
   EXPECT_THAT(error_of(with_objects(grid + R"j({"alias": "v", "type": "quadrotor",
       "mission": {"grid": "g", "gates": [{"name": "s", "rows": [1, 11], "cols": [1, 1]}],
                   "waypoints": [{"position_m": [0, 0, 1]}]}})j")),
-              HasSubstr("/objects/2/mission/gates/0/rows/1: expected"));
+              HasSubstr("/objects/2/mission/gates/0/rows/1 (v): expected"));
   EXPECT_THAT(error_of(with_objects(grid + R"j({"alias": "v", "type": "quadrotor",
       "mission": {"grid": "g", "gates": [{"name": "Slot", "rows": [1, 1], "cols": [1, 1]}],
                   "waypoints": [{"position_m": [0, 0, 1]}]}})j")),
-              HasSubstr("/objects/2/mission/gates/0/name: expected a name of lower-case letters"));
+              HasSubstr("/objects/2/mission/gates/0/name (v): expected a name of lower-case letters"));
   EXPECT_THAT(error_of(with_objects(grid + R"j({"alias": "v", "type": "quadrotor",
       "mission": {"grid": "g", "gates": [{"name": "s", "rows": [1, 1], "cols": [1, 1]},
                                          {"name": "s", "rows": [2, 2], "cols": [1, 1]}],
                   "waypoints": [{"position_m": [0, 0, 1]}]}})j")),
-              HasSubstr("/objects/2/mission/gates/1/name: expected a gate name not used before"));
+              HasSubstr("/objects/2/mission/gates/1/name (v): expected a gate name not used before"));
 }
 
 TEST(SceneLoaderErrors, UnreadableDataFiles) {
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "heightfield", "csv": "no_such_file.csv"})j")),
-              HasSubstr("/objects/0/csv: expected a readable file, but"));
+              HasSubstr("/objects/0/csv (t): expected a readable file, but"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "heightfield"})j")),
-              HasSubstr("/objects/0: expected exactly one height source"));
+              HasSubstr("/objects/0 (t): expected exactly one height source"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "heightfield", "expression": "sin(x/"})j")),
-              HasSubstr("/objects/0/expression: "));
+              HasSubstr("/objects/0/expression (t): "));
 }
 
 TEST(SceneLoaderErrors, InconsistentValues) {
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "a", "type": "sphere", "radius_m": 1, "static": false})j")),
-              HasSubstr("/objects/0: a non-static shape needs \"mass_kg\" > 0"));
+              HasSubstr("/objects/0 (a): a non-static shape needs \"mass_kg\" > 0"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "rover", "sensors": [
       {"alias": "s", "type": "lidar", "range_m": [5, 1]}]})j")),
-              HasSubstr("/objects/0/sensors/0/range_m: expected [min, max] with 0 <= min < max"));
+              HasSubstr("/objects/0/sensors/0/range_m (v/s): expected [min, max] with 0 <= min < max"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "rover", "sensors": [
       {"alias": "s", "type": "lidar"}, {"alias": "s", "type": "lidar"}]})j")),
-              HasSubstr("/objects/0/sensors/1/alias: duplicate sensor alias \"s\""));
+              HasSubstr("/objects/0/sensors/1/alias (v/s): duplicate sensor alias \"s\""));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "g", "type": "grid_obstacles", "rows": 10, "cols": 10,
       "boxes": [{"rows": [5, 3], "cols": 1, "height_m": 2}]})j")),
-              HasSubstr("/objects/0/boxes/0/rows/1: expected an integer in [5, 10], got 3"));
+              HasSubstr("/objects/0/boxes/0/rows/1 (g): expected an integer in [5, 10], got 3"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "heightfield", "expression": "x",
       "pose": {"rpy_deg": [10, 0, 0]}})j")),
-              HasSubstr("/objects/0/pose: expected a heightfield pose without roll or pitch"));
+              HasSubstr("/objects/0/pose (t): expected a heightfield pose without roll or pitch"));
 }
 
 TEST(SceneLoaderErrors, SyntaxErrorsReportLineAndColumn) {
@@ -476,15 +477,15 @@ TEST(SceneLoaderErrors, LimitsStopHostileFiles) {
   limits.json.max_file_bytes = 64;
   EXPECT_THAT(error_of(with_objects(std::string(100, ' ')), limits), HasSubstr("file too large"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "rolling_terrain", "size_m": [100000, 100000], "spacing_m": 0.1})j")),
-              HasSubstr("/objects/0: expected a grid of at most 16777216 vertices"));
+              HasSubstr("/objects/0 (t): expected a grid of at most 16777216 vertices"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "trees", "count": 20000})j")),
-              HasSubstr("/objects/0/count: expected an integer in [0, 10000]"));
+              HasSubstr("/objects/0/count (t): expected an integer in [0, 10000]"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "v", "type": "vineyard", "row_count": 400, "post_spacing_m": 0.01})j")),
-              HasSubstr("/objects/0: expected at most 100000 posts"));
+              HasSubstr("/objects/0 (v): expected at most 100000 posts"));
   limits = {};
   limits.max_shapes = 5;
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "t", "type": "trees", "count": 10, "min_spacing_m": 0.1})j"), limits),
-              HasSubstr("/objects/0: expected a scene of at most 5 shapes"));
+              HasSubstr("/objects/0 (t): expected a scene of at most 5 shapes"));
 }
 
 TEST(SceneLoaderErrors, MissingFileIsAnInputError) {
@@ -543,7 +544,7 @@ TEST(SceneLoader, GridKeysReplaceAPresetsBeams) {
   EXPECT_EQ(scene.vehicles[0].sensors[1].lidar.beam_count(), 361);
   EXPECT_THAT(error_of(R"({"objects": [{"alias": "r", "type": "rover", "sensors": [
       {"alias": "a", "type": "lidar", "beams": [[0, 0]], "resolution": [4, 4]}]}]})"),
-              HasSubstr("/objects/0/sensors/0: expected either \"beams\" or a grid"));
+              HasSubstr("/objects/0/sensors/0 (r/a): expected either \"beams\" or a grid"));
 }
 
 }  // namespace
@@ -559,7 +560,7 @@ TEST(SceneLoader, DepthCamerasTakeAGridWithoutNoise) {
   EXPECT_EQ(scene.vehicles[0].sensors[0].lidar.cols, 64);
   EXPECT_THAT(error_of(R"({"objects": [{"alias": "d", "type": "quadrotor", "sensors": [
       {"alias": "cam", "type": "depth_camera", "preset": "planar180"}]}]})"),
-              HasSubstr("/objects/0/sensors/0: expected a depth camera with a beam grid"));
+              HasSubstr("/objects/0/sensors/0 (d/cam): expected a depth camera with a beam grid"));
   EXPECT_THAT(error_of(R"({"objects": [{"alias": "d", "type": "quadrotor", "sensors": [
       {"alias": "cam", "type": "depth_camera", "fov_deg": [170, 90]}]}]})"),
               HasSubstr("expected a depth camera field of view of at most 150 deg"));
@@ -589,9 +590,9 @@ TEST(SceneLoader, ReadsStateNoiseStrictly) {
   EXPECT_FALSE(parse(with_objects(R"j({"alias": "d", "type": "quadrotor"})j")).vehicles.front().state_noise.enabled());
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "d", "type": "quadrotor",
     "state_noise": {"position_stddev_m": -1}})j")),
-              HasSubstr("inline.json: /objects/0/state_noise/position_stddev_m: expected a number in [0, 1000]"));
+              HasSubstr("inline.json: /objects/0/state_noise/position_stddev_m (d): expected a number in [0, 1000]"));
   EXPECT_THAT(error_of(with_objects(R"j({"alias": "d", "type": "quadrotor", "state_noise": {"gps": 1}})j")),
-              HasSubstr("/objects/0/state_noise/gps: unknown key"));
+              HasSubstr("/objects/0/state_noise/gps (d): unknown key"));
 }
 
 }  // namespace
