@@ -1,20 +1,31 @@
 #pragma once
-/// Where the bundled scenes and sweep specs are: ./scenes when run from the
-/// repository root; else, beside the executable, share/campo/scenes of the
-/// prefix campo is installed in (P/bin/campo -> P/share/campo/scenes), or the
-/// source tree's scenes folder for a build directory inside it (build/campo ->
-/// scenes).
+/// Where the bundled scenes and sweep specs are, for the program, the Python
+/// module and the sweeps alike (one lookup: it starts from libcampo, which all
+/// of them load, not from the executable, which for Python is the interpreter).
+/// The folders searched, in order:
+///   1. scenes/ of the working directory (the repository root);
+///   2. the installed prefix's: beside libcampo in P/lib, P/share/campo/scenes
+///      (the install layout, CMakeLists.txt);
+///   3. the source tree's: libcampo in a build directory inside the source tree
+///      (build/libcampo.so), the source tree's scenes/.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace campo {
 
-/// The file of the bundled scene `name` (e.g. "two_barriers"); when it cannot
-/// be found, scenes/NAME.json, so that loading it reports the missing file.
+/// The folders searched for bundled files, in the order above; the first one
+/// relative to the working directory ("scenes"), the others absolute.
+std::vector<std::filesystem::path> bundled_folders();
+
+/// The file of the bundled scene `name` (e.g. "two_barriers"), NAME.json in
+/// the first folder of bundled_folders() that holds it; none holding it, an
+/// InputError naming `name` and listing the folders searched.
 std::filesystem::path bundled_scene(const std::string& name);
 
-/// The file of the bundled sweep spec `name` (e.g. "resolution_000", in
-/// scenes/sweeps/); when it cannot be found, scenes/sweeps/NAME.json.
+/// The file of the bundled sweep spec `name` (e.g. "resolution_000"),
+/// sweeps/NAME.json in the first folder that holds it; else an InputError as
+/// for bundled_scene.
 std::filesystem::path bundled_sweep_spec(const std::string& name);
 
 /// A scene or sweep spec named on the command line: an existing file, or a

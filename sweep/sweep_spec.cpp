@@ -32,12 +32,18 @@ SweepScene read_scene(const JsonNode& node, const std::filesystem::path& spec_fi
     scene.file = path.is_absolute() ? path : spec_file.parent_path() / path;
     scene.label = path.stem().string();
   } else {
-    scene.file = bundled_scene(entry);
     scene.label = entry;
   }
   const bool valid = !scene.label.empty() && scene.label.front() != '.' &&
                      std::all_of(scene.label.begin(), scene.label.end(), label_char);
   if (!valid) node.fail("a bundled scene name or a path to a \".json\" file named with letters, digits, '_', '-' or '.'");
+  if (scene.file.empty()) {
+    try {
+      scene.file = bundled_scene(entry);
+    } catch (const InputError& e) {  // where in the spec, and where it was looked for
+      throw InputError(node.file(), node.pointer(), e.message());
+    }
+  }
   return scene;
 }
 

@@ -18,7 +18,7 @@ namespace campo::cli {
 namespace {
 
 struct RunOptions {
-  std::string scene = bundled_scene("two_barriers").string();
+  std::string scene = "two_barriers";  ///< a file, or a bundled scene's name (file_or_bundled)
   std::string planner;
   std::vector<std::string> sets;
   std::string seed;  ///< as given; checked by parse_seed

@@ -273,6 +273,10 @@ PYBIND11_MODULE(_campo, m) {
         "$CAMPO_PYTHON_CALL_LIMIT_S, else 60); past either the run ends as failed");
   m.def("_guard_process_exit", &guard_process_exit,
         "in an interpreter campo embeds: os._exit from a planner ends its run as failed, not the process");
+  m.def("bundled_scene", &bundled_scene, py::arg("name"),
+        "the file of the bundled scene name, found as campo run finds it (scenes/ of the working directory, "
+        "else the installed prefix's share/campo/scenes, else the source tree's scenes/ beside the build "
+        "directory); InputError listing the folders searched when none holds it");
   m.def("planners", [] {
     std::vector<std::string> names;
     for (const PlannerEntry& entry : planner_registry()) names.push_back(entry.name);

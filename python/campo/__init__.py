@@ -24,6 +24,7 @@ from ._campo import (  # noqa: F401 (re-exported)
     SensorReading,
     State,
     __version__,
+    bundled_scene,
     planners,
     run,
 )
