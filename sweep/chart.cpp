@@ -23,7 +23,8 @@ using figure::PlotFrame;
 // Fonts and sizes of one kind of chart; every chart is drawn with the helpers below.
 struct ChartStyle {
   Font title, label, tick, legend, note;
-  int line_px;          ///< series lines
+  double line_px;       ///< series lines
+  double bar_px;        ///< error bars, whiskers, box edges
   double marker_px;     ///< marker radius
   double cap_px;        ///< half width of error bar caps
   double tick_px;       ///< tick mark length
@@ -31,12 +32,14 @@ struct ChartStyle {
   int legend_row_px;
 };
 // The summary chart of `campo table`: small panels.
+// Line widths are those OpenCV's anti-aliased lines of thickness 2 and 1 (3 and 2 for the
+// paper) covered, so the charts keep their weight.
 const ChartStyle kPanelStyle{figure::kTitleFont, figure::kLabelFont, figure::kTickFont, figure::kLegendFont,
-                             figure::kSmallFont, 2, 4.0, 4.0, 5.0, 5.0, 24};
+                             figure::kSmallFont, 3.0, 1.5, 4.0, 4.0, 5.0, 5.0, 24};
 // `campo plot`: one large plot whose text stays legible scaled down to a column of a paper.
 // Its former Hershey fonts drawn 2 px thick are the bold ones.
 const ChartStyle kPaperStyle{{1.3, true}, {1.0, true}, {0.85, true}, {0.9, true}, {0.75, false},
-                             3, 7.0, 9.0, 9.0, 9.0, 44};
+                             4.0, 3.0, 7.0, 9.0, 9.0, 9.0, 44};
 
 struct Tick {
   double value;
@@ -123,15 +126,13 @@ struct Point {
   double x, y, lo, hi;
 };
 
-double error_bar_width(const ChartStyle& style) { return std::max(1, style.line_px - 1); }
-
 void draw_cap(figure::Canvas& canvas, cv::Point2d end, const cv::Scalar& color, const ChartStyle& style) {
-  canvas.line(end - cv::Point2d(style.cap_px, 0), end + cv::Point2d(style.cap_px, 0), color, error_bar_width(style));
+  canvas.line(end - cv::Point2d(style.cap_px, 0), end + cv::Point2d(style.cap_px, 0), color, style.bar_px);
 }
 
 void draw_error_bar(figure::Canvas& canvas, cv::Point2d lo, cv::Point2d hi, const cv::Scalar& color,
                     const ChartStyle& style) {
-  canvas.line(lo, hi, color, error_bar_width(style));
+  canvas.line(lo, hi, color, style.bar_px);
   for (const cv::Point2d& end : {lo, hi}) draw_cap(canvas, end, color, style);
 }
 
@@ -141,9 +142,9 @@ void draw_marker(figure::Canvas& canvas, cv::Point2d p, const cv::Scalar& color,
 }
 
 // A box of a box plot (and its legend symbol): filled with the colour lightened, edged in the colour.
-void draw_box(figure::Canvas& canvas, cv::Point2d a, cv::Point2d b, const cv::Scalar& color) {
+void draw_box(figure::Canvas& canvas, cv::Point2d a, cv::Point2d b, const cv::Scalar& color, const ChartStyle& style) {
   canvas.fill_box(a, b, figure::lighten(color, 0.55));
-  canvas.polyline({a, {b.x, a.y}, b, {a.x, b.y}}, color, 2.0, true);
+  canvas.polyline({a, {b.x, a.y}, b, {a.x, b.y}}, color, style.bar_px, true);
 }
 
 // An error bar whose end lies beyond the frame: drawn to the frame's edge, ending in an arrowhead
@@ -154,7 +155,7 @@ void draw_clipped_error_bar(figure::Canvas& canvas, const PlotFrame& frame, doub
   const bool low_out = lo < frame.y0, high_out = hi > frame.y1;
   if (!low_out && !high_out) return draw_error_bar(canvas, px(lo), px(hi), color, style);
   const cv::Point2d a = px(std::max(lo, frame.y0)), b = px(std::min(hi, frame.y1));
-  canvas.line(a, b, color, error_bar_width(style));
+  canvas.line(a, b, color, style.bar_px);
   for (const auto& [end, out, toward] : {std::tuple{a, low_out, 1.0}, std::tuple{b, high_out, -1.0}}) {
     if (!out) {
       draw_cap(canvas, end, color, style);
@@ -187,11 +188,24 @@ struct LegendRow {
   std::string text;
 };
 
+// A row's text starts 2.2 rows from the box's left edge and keeps half a row clear of its right one.
+constexpr double kLegendTextStartRows = 2.2, kLegendMarginRows = 0.5;
+
 int legend_width(const std::vector<LegendRow>& rows, const std::string& heading, const ChartStyle& style,
                  int min_px, int max_px) {
-  int width = figure::text_size(heading, style.legend).width + 30;
-  for (const LegendRow& row : rows) width = std::max(width, figure::text_size(row.text, style.legend).width + 3 * style.legend_row_px);
-  return std::clamp(width, min_px, max_px);
+  const double row_px = style.legend_row_px;
+  double width = figure::text_size(heading, style.legend).width + (0.5 + kLegendMarginRows) * row_px;
+  for (const LegendRow& row : rows) {
+    width = std::max(width, figure::text_size(row.text, style.legend).width +
+                                (kLegendTextStartRows + kLegendMarginRows) * row_px);
+  }
+  return std::clamp(static_cast<int>(std::ceil(width)), min_px, max_px);
+}
+
+// `font`, scaled down until `text` is at most `width_px` wide (a legend clamped to its widest).
+Font fitted(const std::string& text, Font font, double width_px) {
+  while (font.scale > 0.3 && figure::text_size(text, font).width > width_px) font.scale *= 0.95;
+  return font;
 }
 
 // A white box with a border: an optional heading, then one row per entry.
@@ -205,12 +219,15 @@ void draw_legend(figure::Canvas& canvas, cv::Point top_left, int width, const st
   canvas.rectangle(box, figure::kMutedInk, 1.0);
   const double row_px = style.legend_row_px;
   if (heading_rows) {
-    figure::put_text(canvas, heading, {box.x + 0.5 * row_px, box.y + pad + 0.5 * row_px}, style.legend, figure::kInk);
+    figure::put_text(canvas, heading, {box.x + 0.5 * row_px, box.y + pad + 0.5 * row_px},
+                     fitted(heading, style.legend, width - (0.5 + kLegendMarginRows) * row_px), figure::kInk);
   }
+  const double text_room = width - (kLegendTextStartRows + kLegendMarginRows) * row_px;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const double cy = box.y + pad + row_px * (i + heading_rows + 0.5);
     rows[i].symbol(canvas, {box.x + row_px, cy});
-    figure::put_text(canvas, rows[i].text, {box.x + 2.2 * row_px, cy}, style.legend, figure::kInk);
+    figure::put_text(canvas, rows[i].text, {box.x + kLegendTextStartRows * row_px, cy},
+                     fitted(rows[i].text, style.legend, text_room), figure::kInk);
   }
 }
 
@@ -553,9 +570,9 @@ figure::Canvas PlotBuilder::draw(const PlotConfig& config) const {
     if (line || rate) {
       legend.push_back(line_row(color, text, style));
     } else {
-      legend.push_back({[color, row_px = style.legend_row_px](figure::Canvas& m, cv::Point2d c) {
-                          const cv::Point2d half(0.5 * row_px, 0.3 * row_px);
-                          draw_box(m, c - half, c + half, color);
+      legend.push_back({[color, &style](figure::Canvas& m, cv::Point2d c) {
+                          const cv::Point2d half(0.5 * style.legend_row_px, 0.3 * style.legend_row_px);
+                          draw_box(m, c - half, c + half, color, style);
                         },
                         text});
     }
@@ -567,7 +584,8 @@ figure::Canvas PlotBuilder::draw(const PlotConfig& config) const {
     legend.push_back(interval_row(interval_name(support), style));
   }
   const std::string legend_heading = request.group.empty() ? "" : field_heading(request.group);
-  const int legend_px = legend_width(legend, legend_heading, style, 220, config.width_px / 4);
+  // At most 30 % of the width (the legend's interval name fits at 1600 px); longer texts are scaled down.
+  const int legend_px = legend_width(legend, legend_heading, style, 220, config.width_px * 3 / 10);
   const int left = 170, top = 150, bottom_margin = 130;
   const cv::Rect plot_px(left, top, config.width_px - left - legend_px - 70, config.height_px - top - bottom_margin);
 
@@ -621,10 +639,10 @@ figure::Canvas PlotBuilder::draw(const PlotConfig& config) const {
       const auto y_px = [&](double v) { return frame.to_px(m.x, v).y; };
       draw_error_bar(canvas, {cx, y_px(b.whisker_low)}, {cx, y_px(b.q1)}, color, style);
       draw_error_bar(canvas, {cx, y_px(b.q3)}, {cx, y_px(b.whisker_high)}, color, style);
-      draw_box(canvas, {cx - half, y_px(b.q3)}, {cx + half, y_px(b.q1)}, color);
+      draw_box(canvas, {cx - half, y_px(b.q3)}, {cx + half, y_px(b.q1)}, color, style);
       canvas.line({cx - half, y_px(b.median)}, {cx + half, y_px(b.median)}, figure::shade(color, 0.55),
-                  style.line_px + 1);
-      for (double v : b.outliers) canvas.circle({cx, y_px(v)}, style.marker_px, color, 2.0);
+                  style.line_px + 1.0);
+      for (double v : b.outliers) canvas.circle({cx, y_px(v)}, style.marker_px, color, style.bar_px);
     }
     std::sort(points.begin(), points.end(), [](const Point& a, const Point& b) { return a.x < b.x; });
     draw_series(canvas, frame, points, dodge, color, style, line);

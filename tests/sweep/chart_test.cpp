@@ -164,8 +164,9 @@ TEST_F(SweepPlot, LinePlotIsAPaperSizedDeterministicPngWithALegend) {
   EXPECT_EQ(canvas.encode(figure::FigureFormat::png),
             draw_sweep_plot(runs_, layout_, request).encode(figure::FigureFormat::png));
 
-  // Both series' colours inside the plot area (the left 1200 px below the title) and in the legend (right).
-  const cv::Rect plot(170, 150, 1000, 700), legend(1200, 150, 400, 300);
+  // Both series' colours inside the plot area (below the title, left of x 1070) and in the legend (right of
+  // x 1100: at most 30 % of the width, and the legend's interval name makes it about that wide).
+  const cv::Rect plot(170, 150, 900, 700), legend(1100, 150, 500, 300);
   for (std::size_t i = 0; i < 2; ++i) {
     EXPECT_GT(pixels_of(image, run_color(i), plot), 200) << "series " << i;
     EXPECT_GT(pixels_of(image, run_color(i), legend), 50) << "legend entry " << i;
@@ -176,6 +177,8 @@ TEST_F(SweepPlot, LinePlotIsAPaperSizedDeterministicPngWithALegend) {
   cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
   EXPECT_GT(cv::countNonZero(grey(cv::Rect(300, 10, 1000, 60)) < 100), 500);
   EXPECT_GT(cv::countNonZero(grey(cv::Rect(0, 150, 160, 700)) < 100), 300);
+  // The legend box ends 30 px before the right edge and its texts within it: nothing drawn beyond.
+  EXPECT_EQ(cv::countNonZero(grey(cv::Rect(1572, 0, 28, 1000)) < 250), 0);
 
   EXPECT_EQ(write_figure(canvas, dir_ / "plot.png", {figure::FigureFormat::png}),
             std::vector<fs::path>{dir_ / "plot.png"});
