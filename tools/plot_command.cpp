@@ -79,7 +79,8 @@ Command add_plot(CLI::App& app) {
   app.add_option("--out", o->out,
                  "File to write, e.g. ratio.png; its extension (.png, .pdf or .svg) is replaced by each "
                  "--figure-format's, any other name gets the format's extension appended")
-      ->required();
+      ->required()
+      ->type_name("FILE");
   add_figure_format_option(app, &o->formats);
   app.footer(
       "A 1600 x 1000 figure for a paper (PNG, and with --figure-format PDF or SVG: vectors, text as\n"
