@@ -49,6 +49,24 @@ std::vector<FigureFormat> parse_figure_formats(const std::string& list) {
   return formats;
 }
 
+std::vector<std::filesystem::path> figure_files(const std::filesystem::path& path,
+                                                const std::vector<FigureFormat>& formats) {
+  std::string given = path.extension().string();
+  for (char& c : given) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const bool figure_extension = given == ".png" || given == ".pdf" || given == ".svg";
+  std::vector<std::filesystem::path> files;
+  for (const FigureFormat format : formats) {
+    std::filesystem::path file = path;
+    if (figure_extension) {
+      file.replace_extension(extension(format));
+    } else {
+      file += std::string(".") + extension(format);
+    }
+    files.push_back(std::move(file));
+  }
+  return files;
+}
+
 // ---- canvas ----------------------------------------------------------------
 
 namespace {
@@ -365,10 +383,11 @@ std::string Canvas::encode(FigureFormat format) const {
 
 std::vector<std::filesystem::path> Canvas::write(const std::filesystem::path& path,
                                                  const std::vector<FigureFormat>& formats) const {
+  const std::vector<std::filesystem::path> files = figure_files(path, formats);
   std::vector<std::filesystem::path> written;
-  for (const FigureFormat format : formats) {
-    std::filesystem::path file = path;
-    file.replace_extension(extension(format));
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const FigureFormat format = formats[i];
+    const std::filesystem::path& file = files[i];
     std::string bytes;
     try {
       bytes = encode(format);

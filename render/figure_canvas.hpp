@@ -27,6 +27,14 @@ const char* extension(FigureFormat format);
 /// naming the list and the choices for an unknown or repeated name or an empty list.
 std::vector<FigureFormat> parse_figure_formats(const std::string& list);
 
+/// The files a figure asked for as `path` is written to, one per format: a
+/// path ending in .png, .pdf or .svg (any case) has that extension replaced by
+/// each format's ("fig.png" with png,pdf: fig.png and fig.pdf; with pdf alone:
+/// fig.pdf); any other path gets the format's extension appended ("fig" and
+/// "fig.v2" with pdf: fig.pdf and fig.v2.pdf), so no part of a name is lost.
+std::vector<std::filesystem::path> figure_files(const std::filesystem::path& path,
+                                                const std::vector<FigureFormat>& formats);
+
 /// A font by size: `scale` 1 is a 22-pixel cap height (the scales of the
 /// figures' former Hershey fonts, kept so their layouts hold).
 struct Font {
@@ -92,8 +100,8 @@ class Canvas {
   /// The figure encoded in `format` (PNG bytes, a PDF or an SVG document).
   /// Same drawing => same bytes.
   std::string encode(FigureFormat format) const;
-  /// Writes `path` with the extension replaced by each format's; returns the
-  /// files written (OutputError naming a file that could not be written).
+  /// Writes figure_files(path, formats), each atomically; returns the files
+  /// written (OutputError naming a file that could not be written).
   std::vector<std::filesystem::path> write(const std::filesystem::path& path,
                                            const std::vector<FigureFormat>& formats) const;
 

@@ -397,32 +397,6 @@ figure::Canvas draw_sweep_chart(const SweepTable& table) {
   return canvas;
 }
 
-std::vector<std::filesystem::path> figure_files(const std::filesystem::path& path,
-                                                const std::vector<figure::FigureFormat>& formats) {
-  std::string given = path.extension().string();
-  for (char& c : given) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  const bool figure_extension = given == ".png" || given == ".pdf" || given == ".svg";
-  std::vector<std::filesystem::path> files;
-  for (const figure::FigureFormat format : formats) {
-    std::filesystem::path file = path;
-    if (figure_extension) {
-      file.replace_extension(figure::extension(format));
-    } else {
-      file += std::string(".") + figure::extension(format);
-    }
-    files.push_back(std::move(file));
-  }
-  return files;
-}
-
-std::vector<std::filesystem::path> write_figure(const figure::Canvas& figure, const std::filesystem::path& path,
-                                                const std::vector<figure::FigureFormat>& formats) {
-  const std::vector<std::filesystem::path> files = figure_files(path, formats);
-  // Each file already ends in its format's extension, which Canvas::write keeps.
-  for (std::size_t i = 0; i < files.size(); ++i) figure.write(files[i], {formats[i]});
-  return files;
-}
-
 namespace {
 
 // The request's fields: checked against the axes when they are known.

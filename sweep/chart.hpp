@@ -25,18 +25,6 @@ bool chartable(const SweepTable& table);
 /// swept values. The same table gives the same drawing.
 figure::Canvas draw_sweep_chart(const SweepTable& table);
 
-/// The files a figure asked for as `path` is written to, one per format: a
-/// path ending in .png, .pdf or .svg (any case) has that extension replaced by
-/// each format's ("fig.png" with png,pdf: fig.png and fig.pdf; with pdf alone:
-/// fig.pdf); any other path gets the format's extension appended ("fig" and
-/// "fig.v2" with pdf: fig.pdf and fig.v2.pdf), so no part of a name is lost.
-std::vector<std::filesystem::path> figure_files(const std::filesystem::path& path,
-                                                const std::vector<figure::FigureFormat>& formats);
-
-/// Writes `figure` to figure_files(path, formats), each atomically; returns the files written.
-std::vector<std::filesystem::path> write_figure(const figure::Canvas& figure, const std::filesystem::path& path,
-                                                const std::vector<figure::FigureFormat>& formats);
-
 enum class PlotKind {
   automatic,  ///< line when every x value is a number, else box
   line,       ///< x numeric (log2 when all are powers of two): mean and 95 % interval per x (mean_interval95 with

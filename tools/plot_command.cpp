@@ -28,7 +28,7 @@ struct PlotOptions {
 
 int run_plot(const PlotOptions& o) {
   // Every file to be written must be writable before any work.
-  for (const fs::path& file : figure_files(o.out, o.formats)) check_output_file(file, "--out");
+  for (const fs::path& file : figure::figure_files(o.out, o.formats)) check_output_file(file, "--out");
   const fs::path dir = o.dir;
   TableLayout layout = table_layout(dir);
   // The results a line at a time, each run folded into its point or box: memory grows with the plot.
@@ -46,7 +46,7 @@ int run_plot(const PlotOptions& o) {
         plot->add(run, index);
       });
   for (const std::string& warning : warnings) std::cerr << "warning: " << warning << "\n";
-  for (const fs::path& file : write_figure(plot->draw(), o.out, o.formats)) {
+  for (const fs::path& file : plot->draw().write(o.out, o.formats)) {
     std::cerr << "wrote " << file.string() << "\n";
   }
   return kOk;

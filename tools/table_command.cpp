@@ -36,7 +36,7 @@ int run_table(const TableOptions& o) {
   const fs::path dir = o.dir;
   // A chart asked for must be writable before any work; the default one only when the sweep has a chart.
   if (!o.no_chart && !o.chart.empty()) {
-    for (const fs::path& file : figure_files(o.chart, o.formats)) check_output_file(file, "--chart");
+    for (const fs::path& file : figure::figure_files(o.chart, o.formats)) check_output_file(file, "--chart");
   }
   TableLayout layout = table_layout(dir);
   // Which table: the options', else the spec's, else the summary. Checked before anything is written.
@@ -70,7 +70,7 @@ int run_table(const TableOptions& o) {
   // The chart first: a chart that cannot be written is an error (exit 2) with nothing printed before it.
   std::vector<fs::path> charts;
   if (!o.no_chart && chartable(summary)) {
-    charts = write_figure(draw_sweep_chart(summary), o.chart.empty() ? dir / "chart.png" : fs::path(o.chart),
+    charts = draw_sweep_chart(summary).write(o.chart.empty() ? dir / "chart.png" : fs::path(o.chart),
                           o.formats);
   }
   std::cout << table << std::flush;

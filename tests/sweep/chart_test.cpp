@@ -123,14 +123,14 @@ TEST(SweepChart, PdfAndSvgHoldTheSameChart) {
 TEST(FigureFiles, ExtensionReplacedOrAppended) {
   using figure::FigureFormat;
   const std::vector<FigureFormat> all{FigureFormat::png, FigureFormat::pdf, FigureFormat::svg};
-  EXPECT_EQ(figure_files("out/fig.png", all),
+  EXPECT_EQ(figure::figure_files("out/fig.png", all),
             (std::vector<fs::path>{"out/fig.png", "out/fig.pdf", "out/fig.svg"}));
-  EXPECT_EQ(figure_files("fig.png", {FigureFormat::pdf}), std::vector<fs::path>{"fig.pdf"});
-  EXPECT_EQ(figure_files("fig.SVG", {FigureFormat::png}), std::vector<fs::path>{"fig.png"});
-  EXPECT_EQ(figure_files("fig", {FigureFormat::png, FigureFormat::pdf}),
+  EXPECT_EQ(figure::figure_files("fig.png", {FigureFormat::pdf}), std::vector<fs::path>{"fig.pdf"});
+  EXPECT_EQ(figure::figure_files("fig.SVG", {FigureFormat::png}), std::vector<fs::path>{"fig.png"});
+  EXPECT_EQ(figure::figure_files("fig", {FigureFormat::png, FigureFormat::pdf}),
             (std::vector<fs::path>{"fig.png", "fig.pdf"}));
-  EXPECT_EQ(figure_files("run.v2", {FigureFormat::svg}), std::vector<fs::path>{"run.v2.svg"});
-  EXPECT_EQ(figure_files("dir.d/fig", {FigureFormat::png}), std::vector<fs::path>{"dir.d/fig.png"});
+  EXPECT_EQ(figure::figure_files("run.v2", {FigureFormat::svg}), std::vector<fs::path>{"run.v2.svg"});
+  EXPECT_EQ(figure::figure_files("dir.d/fig", {FigureFormat::png}), std::vector<fs::path>{"dir.d/fig.png"});
 }
 
 class SweepPlot : public testing::FixtureSweepTest {
@@ -180,7 +180,7 @@ TEST_F(SweepPlot, LinePlotIsAPaperSizedDeterministicPngWithALegend) {
   // The legend box ends 30 px before the right edge and its texts within it: nothing drawn beyond.
   EXPECT_EQ(cv::countNonZero(grey(cv::Rect(1572, 0, 28, 1000)) < 250), 0);
 
-  EXPECT_EQ(write_figure(canvas, dir_ / "plot.png", {figure::FigureFormat::png}),
+  EXPECT_EQ(canvas.write(dir_ / "plot.png", {figure::FigureFormat::png}),
             std::vector<fs::path>{dir_ / "plot.png"});
   EXPECT_EQ(cv::imread((dir_ / "plot.png").string()).size(), image.size());
 }
