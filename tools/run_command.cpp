@@ -12,6 +12,7 @@
 #include "tools/commands.hpp"
 #include "tools/plugin_options.hpp"
 #include "tools/run_execution.hpp"
+#include "tools/run_figures.hpp"
 
 namespace campo::cli {
 
@@ -27,6 +28,7 @@ struct RunOptions {
   std::string out = "out/run";
   bool continue_after_collision = false;
   bool figures = true;
+  FigureFormats figure_formats = kPngOnly;
   int record_depth_every = 0;
   bool record_replans = true;
   double time_limit_s = 0.0;  ///< 0: none
@@ -50,14 +52,18 @@ int run_run(const RunOptions& o) {
   request.out = o.out;
   request.continue_after_collision = o.continue_after_collision;
   request.figures = o.figures;
+  request.figure_formats = o.figure_formats;
   request.record_depth_every = o.record_depth_every;
   request.record_replans = o.record_replans;
   request.time_limit_s = o.time_limit_s;
   const ExecutedRun run = execute_run(request);
   const std::filesystem::path out = o.out;
   std::string figures;
-  for (const char* png : {"map.png", "side.png", "heightmap.png"}) {
-    if (o.figures && std::filesystem::exists(out / png)) figures += std::string(", ") + png;
+  for (const char* name : {"map", "side", "heightmap"}) {
+    for (const figure::FigureFormat format : o.figure_formats) {
+      const std::string file = std::string(name) + "." + figure::extension(format);
+      if (o.figures && std::filesystem::exists(out / file)) figures += ", " + file;
+    }
   }
   std::cout << run_summary_line(run.record) << "; wrote run.json, " << kEventsFile << ", trajectory.csv, scene.json"
             << figures << " to " << o.out << "\n";
@@ -104,6 +110,7 @@ Command add_run(CLI::App& app) {
   app.add_flag("--continue-after-collision", o->continue_after_collision,
                "Count collisions but keep going until the mission ends or times out");
   app.add_flag("!--no-figures", o->figures, "Do not draw map.png and side.png (for sweeps)");
+  add_figure_format_option(app, &o->figure_formats);
   app.add_option("--record-depth", o->record_depth_every,
                  "Save the depth map of every N-th scan of each sensor under DIR/depth/ (0 = none)")
       ->check(non_negative_number());

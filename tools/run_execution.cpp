@@ -329,9 +329,11 @@ std::vector<FigureFailure> write_run_files(const SimulatedRun& run, const RunReq
     recorded->view.label = request.label.empty() ? request.out.filename().string() : request.label;
   });
   if (!recorded) return failures;  // no figure could be drawn from it
-  for (const std::string kind : {"map", "side"}) attempt(kind, [&] { write_figure(*recorded, kind, staged); });
+  for (const std::string kind : {"map", "side"}) {
+    attempt(kind, [&] { write_figure(*recorded, kind, staged, request.figure_formats); });
+  }
   if (!recorded->view.height_map.empty()) {
-    attempt("heightmap", [&] { write_figure(*recorded, "heightmap", staged); });
+    attempt("heightmap", [&] { write_figure(*recorded, "heightmap", staged, request.figure_formats); });
   }
   return failures;
 }
