@@ -5,9 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <set>
 #include <utility>
-
-#include <opencv2/imgproc.hpp>
 
 namespace campo::figure {
 namespace {
@@ -416,15 +415,32 @@ void draw_run_marks(Canvas& plot, const PlotMapper& to, const MapPlan& plan) {
       continue;
     }
     plot.polyline(line, kTrackHalo, 5);
+    // Each segment in the colour of its end point; a run of segments of one colour (the colour map has 256)
+    // as one polyline, so that a PDF or SVG holds a few hundred paths rather than one per segment.
+    std::vector<cv::Point2d> piece;
+    cv::Vec3b piece_colour;
     for (std::size_t k = 1; k < kept.size(); ++k) {
       const TrackPoint& p = run.track[kept[k]];
       const double value = plan.coloring == TrackColoring::time ? p.time_s : p.speed_mps;
-      const double f = (value - plan.value_lo) / (plan.value_hi - plan.value_lo);
-      plot.line(line[k - 1], line[k], to_scalar(sequential_color(f)), 3);
+      const cv::Vec3b colour = sequential_color((value - plan.value_lo) / (plan.value_hi - plan.value_lo));
+      if (!piece.empty() && colour != piece_colour) {
+        plot.polyline(piece, to_scalar(piece_colour), 3);
+        piece.clear();
+      }
+      if (piece.empty()) piece.push_back(line[k - 1]);
+      piece.push_back(line[k]);
+      piece_colour = colour;
     }
+    plot.polyline(piece, to_scalar(piece_colour), 3);
   }
   if (!plan.overlay && !plan.height_map) {
-    for (const auto& p : plan.runs.front()->sensor_hits) sensor_hit_marker(plot, to(p));
+    // One dot per pixel: thousands of hits along a wall land on the same few pixels, and a PDF or SVG would
+    // otherwise hold every one of them.
+    std::set<std::pair<long, long>> drawn;
+    for (const auto& p : plan.runs.front()->sensor_hits) {
+      const cv::Point2d q = to(p);
+      if (drawn.emplace(std::lround(q.x), std::lround(q.y)).second) sensor_hit_marker(plot, q);
+    }
   }
   for (std::size_t i = 0; i < plan.runs.size(); ++i) {
     const RunView& run = *plan.runs[i];
