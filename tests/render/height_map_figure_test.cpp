@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
 #include <stdexcept>
 
 #include <opencv2/core.hpp>
@@ -47,6 +50,36 @@ TEST(FiguresHeightMap, ColoursMappedCellsByTheirTop) {
             12);
   EXPECT_EQ(png(image), png(draw_height_map(scene, run, style).raster()));
   expect_vector_outputs(draw_height_map(scene, run, style), {"Test figure", "x, east (m)", "mapped top, z (m)"});
+}
+
+// The cells reach the PDF as one image of a pixel per cell (10 x 5 here), not as a rectangle per cell.
+TEST(FiguresHeightMap, EmbedsTheCellsAsOneImageOfAPixelPerCell) {
+  const Scene scene = test_scene();
+  RunView run = test_run();
+  HeightMapView& h = run.height_map;
+  h.origin_m = {-10.0, -5.0};
+  h.cell_size_m = 2.0;
+  h.columns = 10;
+  h.rows = 5;
+  h.top_m.assign(50, 1.0);
+  h.top_m[0] = 0.0;
+  const auto dir = std::filesystem::temp_directory_path() / ("campo_height_map_pdf_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  draw_height_map(scene, run, small_style()).write(dir / "heightmap", {figure::FigureFormat::pdf});
+  // pdfimages -list: a header of two lines, then "page num type width height ..." per image.
+  const CommandOutput list = run_command("pdfimages -list '" + (dir / "heightmap.pdf").string() + "'");
+  EXPECT_EQ(list.status, 0);
+  std::istringstream lines(list.text);
+  std::string line;
+  int cell_images = 0;
+  while (std::getline(lines, line)) {
+    std::istringstream fields(line);
+    std::string page, num, type;
+    int width = 0, height = 0;
+    if (fields >> page >> num >> type >> width >> height && type == "image" && width == 10 && height == 5) ++cell_images;
+  }
+  EXPECT_EQ(cell_images, 1) << list.text;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
