@@ -159,7 +159,8 @@ class SceneExpander {
         planner_ = base.vehicles.front().planner.name;
       }
     } catch (const InputError& e) {
-      throw InputError(spec_file_, scene.origin, std::string("cannot load the scene: ") + e.what());
+      // Each error of the scene on a line of its own, with its place in the scene file.
+      throw nested_error(with_locations(e, scene_file_, bytes_), spec_file_, scene.origin, "cannot load the scene: ");
     }
     sha256_ = sha256_hex(bytes_);
     if (!spec.planners.empty() && !top_level_object(document_, vehicle_).first) {
@@ -249,7 +250,8 @@ class SceneExpander {
       if (check_) check_(scene);
       return scene;
     } catch (const InputError& e) {
-      throw InputError(spec_file_, scene_.origin, "run " + run.name + ": " + e.what());
+      throw nested_error(with_locations(with_aliases(e, scene_file_, document), scene_file_, bytes_), spec_file_,
+                         scene_.origin, "run " + run.name + ": ");
     }
   }
 

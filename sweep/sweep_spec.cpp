@@ -166,106 +166,147 @@ class SpecParser {
     spec.file = file_;
     spec.document = document;
     spec.name = file_.stem().string();
-    ObjectReader r(JsonNode(document, file_.string(), ""));
-    const JsonNode version = r.required("campo_sweep");
-    if (version.as_int(1, 1000) != 1) version.fail("format version 1");
+    // Every error of the spec that can be found is collected (each key, and
+    // each scene, planner, override and axis, checked on its own) and thrown
+    // as one InputError; another format version is thrown at once.
+    ObjectReader r(JsonNode(document, file_.string(), ""), &errors_);
+    r.check([&] {
+      const JsonNode version = r.required("campo_sweep");
+      if (version.as_int(1, 1000) != 1) version.fail("format version 1");
+    });
+    if (!r.ok()) errors_.throw_if_any();
     r.read("name", spec.name);
     r.read("description", spec.description);
 
     // Loaded by `campo sweep` before the runs are expanded (the parser itself loads nothing).
     if (auto plugins = r.optional("plugins")) {
-      for (const JsonNode& node : plugins->as_array(0, limits_.max_plugins)) {
-        const std::filesystem::path path(node.as_string());
-        SweepPlugin plugin{(path.is_absolute() ? path : file_.parent_path() / path).lexically_normal(), node.pointer()};
-        for (const SweepPlugin& other : spec.plugins) {
-          if (other.file == plugin.file) {
-            node.fail("plugins named once each (" + plugin.file.string() + " appears twice)");
-          }
+      r.check([&] {
+        for (const JsonNode& node : plugins->as_array(0, limits_.max_plugins)) {
+          r.check([&] {
+            const std::filesystem::path path(node.as_string());
+            SweepPlugin plugin{(path.is_absolute() ? path : file_.parent_path() / path).lexically_normal(),
+                               node.pointer()};
+            for (const SweepPlugin& other : spec.plugins) {
+              if (other.file == plugin.file) {
+                node.fail("plugins named once each (" + plugin.file.string() + " appears twice)");
+              }
+            }
+            spec.plugins.push_back(std::move(plugin));
+          });
         }
-        spec.plugins.push_back(std::move(plugin));
-      }
+      });
     }
 
     std::set<std::string> labels;
-    for (const JsonNode& node : r.required("scenes").as_array(1, limits_.max_scenes)) {
-      spec.scenes.push_back(read_scene(node, file_));
-      if (!labels.insert(spec.scenes.back().label).second) {
-        node.fail("scenes with distinct names (\"" + spec.scenes.back().label + "\" appears twice)");
+    r.check([&] {
+      for (const JsonNode& node : r.required("scenes").as_array(1, limits_.max_scenes)) {
+        r.check([&] {
+          SweepScene scene = read_scene(node, file_);
+          if (!labels.insert(scene.label).second) {
+            node.fail("scenes with distinct names (\"" + scene.label + "\" appears twice)");
+          }
+          spec.scenes.push_back(std::move(scene));
+        });
       }
-    }
-    if (auto planners = r.optional("planners")) {
+    });
+    const auto planners = r.optional("planners");
+    if (planners) {
       std::set<std::string> planner_labels;
-      for (const JsonNode& node : planners->as_array(1, limits_.max_planners)) {
-        spec.planners.push_back(read_planner(node));
-        if (!planner_labels.insert(spec.planners.back().label).second) {
-          node.fail("planners with distinct labels (\"" + spec.planners.back().label + "\" appears twice)");
+      r.check([&] {
+        for (const JsonNode& node : planners->as_array(1, limits_.max_planners)) {
+          r.check([&] {
+            SweepPlanner planner = read_planner(node);
+            if (!planner_labels.insert(planner.label).second) {
+              node.fail("planners with distinct labels (\"" + planner.label + "\" appears twice)");
+            }
+            spec.planners.push_back(std::move(planner));
+          });
         }
-      }
+      });
     }
     // The seeds own the world seed.
     writers_.emplace("/world/seed", "/seeds");
     if (auto set = r.optional("set")) {
-      ObjectReader s(*set);
-      if (set->value().size() > limits_.max_pointers) {
-        set->fail("at most " + std::to_string(limits_.max_pointers) + " overrides");
-      }
-      // Keys come sorted, so a pointer is applied before the pointers below it.
-      for (const auto& [key, value] : set->value().items()) {
-        const JsonNode node = *s.optional(key);
-        read_pointer(JsonNode(nlohmann::json(key), node.file(), node.pointer()));
-        claim(key, node);
-        spec.set.push_back({key, value, node.pointer()});
-      }
-    }
-    if (auto axes = r.optional("axes")) {
-      for (const JsonNode& node : axes->as_array(0, limits_.max_axes)) {
-        SweepAxis axis = read_axis(node);
-        for (const SweepAxis& other : spec.axes) {
-          if (other.name == axis.name) node.fail("axes with distinct names (\"" + axis.name + "\" appears twice)");
+      r.check([&] {
+        ObjectReader s(*set);
+        if (set->value().size() > limits_.max_pointers) {
+          set->fail("at most " + std::to_string(limits_.max_pointers) + " overrides");
         }
-        spec.axes.push_back(std::move(axis));
-      }
+        // Keys come sorted, so a pointer is applied before the pointers below it.
+        for (const auto& [key, value] : set->value().items()) {
+          r.check([&] {
+            const JsonNode node = *s.optional(key);
+            read_pointer(JsonNode(nlohmann::json(key), node.file(), node.pointer()));
+            claim(key, node);
+            spec.set.push_back({key, value, node.pointer()});
+          });
+        }
+      });
     }
+    const std::size_t errors_before_axes = errors_.count();
+    if (auto axes = r.optional("axes")) {
+      r.check([&] {
+        for (const JsonNode& node : axes->as_array(0, limits_.max_axes)) {
+          r.check([&] {
+            SweepAxis axis = read_axis(node);
+            for (const SweepAxis& other : spec.axes) {
+              if (other.name == axis.name) node.fail("axes with distinct names (\"" + axis.name + "\" appears twice)");
+            }
+            spec.axes.push_back(std::move(axis));
+          });
+        }
+      });
+    }
+    const bool axes_ok = errors_.count() == errors_before_axes;  // an axis with errors is not a missing axis
     if (auto seeds = r.optional("seeds")) {
-      ObjectReader s(*seeds);
-      s.read_seed("first", spec.first_seed);
-      s.read("count", spec.seed_count, 1, limits_.max_seeds);
-      s.finish();
-      // The last seed, first + count - 1, is a seed too.
-      if (spec.first_seed > std::numeric_limits<std::uint64_t>::max() - static_cast<std::uint64_t>(spec.seed_count - 1)) {
-        seeds->fail("seeds first .. first + count - 1 that are all in [0, 18446744073709551615]");
-      }
+      r.check([&] {
+        ObjectReader s(*seeds, r.errors());
+        s.read_seed("first", spec.first_seed);
+        s.read("count", spec.seed_count, 1, limits_.max_seeds);
+        s.finish();
+        // The last seed, first + count - 1, is a seed too.
+        if (s.ok() &&
+            spec.first_seed > std::numeric_limits<std::uint64_t>::max() - static_cast<std::uint64_t>(spec.seed_count - 1)) {
+          seeds->fail("seeds first .. first + count - 1 that are all in [0, 18446744073709551615]");
+        }
+      });
     }
     if (auto jitter = r.optional("start_jitter")) {
-      spec.start_jitter = read_start_jitter(*jitter);
-      claim("/objects/" + spec.start_jitter->vehicle + "/pose/position_m", *jitter);
+      r.check([&] {
+        spec.start_jitter = read_start_jitter(*jitter);
+        claim("/objects/" + spec.start_jitter->vehicle + "/pose/position_m", *jitter);
+      });
     }
-    if (!spec.planners.empty()) {
+    if (planners) {
       // The planners own the first vehicle's planner choice.
       for (const auto& [pointer, origin] : writers_) {
         if (pointer.ends_with("/planner") || pointer.ends_with("/planner/name")) {
-          throw InputError(file_.string(), origin,
-                           "expected no planner choice when \"planners\" is given (it sets " + pointer +
-                               "); set the planner's parameters instead");
+          errors_.add(InputError(file_.string(), origin,
+                                 "expected no planner choice when \"planners\" is given (it sets " + pointer +
+                                     "); set the planner's parameters instead"));
         }
       }
     }
     if (auto sampling = r.optional("sampling")) {
-      spec.sampling = read_sampling(*sampling, static_cast<int>(limits_.max_runs));
-      if (spec.axes.empty()) sampling->fail("a sampling of at least one axis (\"axes\" is empty)");
+      r.check([&] {
+        spec.sampling = read_sampling(*sampling, static_cast<int>(limits_.max_runs));
+        if (spec.axes.empty() && axes_ok) sampling->fail("a sampling of at least one axis (\"axes\" is empty)");
+      });
     } else {
       for (const SweepAxis& axis : spec.axes) {
         if (axis.interval) {
-          throw InputError(file_.string(), axis.origin + "/range",
-                           "expected a \"step\" or \"count\" (a range without them is an interval, only for \"sampling\")");
+          errors_.add(InputError(file_.string(), axis.origin + "/range",
+                                 "expected a \"step\" or \"count\" (a range without them is an interval, only for "
+                                 "\"sampling\")"));
         }
       }
     }
     r.read("time_limit_s", spec.time_limit_s, Range::positive());
     r.read("vary_scene_with_seed", spec.vary_scene_with_seed);
     // Read by `campo table`, which checks its fields against the results.
-    if (auto table = r.optional("table")) read_table_request(*table);
+    if (auto table = r.optional("table")) r.check([&] { read_table_request(*table); });
     r.finish();
+    errors_.throw_if_any();
 
     std::size_t runs = spec.scenes.size() * static_cast<std::size_t>(spec.seed_count) *
                        std::max<std::size_t>(spec.planners.size(), 1);
@@ -338,6 +379,7 @@ class SpecParser {
   std::filesystem::path file_;
   SweepLimits limits_;
   std::map<std::string, std::string> writers_;  // scene pointer -> spec pointer that sets it
+  InputErrors errors_;
 };
 
 }  // namespace
@@ -380,12 +422,22 @@ SweepSpec read_sweep_spec(const std::filesystem::path& file, const SweepLimits& 
 
 SweepSpec read_sweep_spec_text(const std::string& text, const std::filesystem::path& file,
                                const SweepLimits& limits) {
-  return parse_sweep_spec(parse_json_text(text, file.string()), file, limits);
+  const nlohmann::json document = parse_json_text(text, file.string());
+  try {
+    return parse_sweep_spec(document, file, limits);
+  } catch (const InputError& e) {
+    throw with_locations(e, file.string(), text);  // each error's line and column in the file
+  }
 }
 
 SweepSpec parse_sweep_spec(const nlohmann::json& document, const std::filesystem::path& file,
                            const SweepLimits& limits) {
-  return SpecParser(file, limits).parse(document);
+  try {
+    return SpecParser(file, limits).parse(document);
+  } catch (const InputError& e) {
+    // Beside each index pointer, the axes and planners it goes through by their names.
+    throw with_aliases(e, file.string(), document, "name");
+  }
 }
 
 }  // namespace campo

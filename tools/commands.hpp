@@ -1,10 +1,14 @@
 #pragma once
 /// The `campo` subcommands. Each registers its options on the app and returns
 /// the function that runs it; the function returns the process exit code.
+#include <algorithm>
 #include <functional>
+#include <ostream>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
+#include "campo/json_reader.hpp"
 #include "tools/path_options.hpp"
 
 namespace campo::cli {
@@ -19,6 +23,17 @@ enum ExitCode : int {
 };
 
 using Command = std::function<int()>;
+
+/// Prints bad input as campo reports it: each error on a line of its own,
+/// "error: " before it (the last line may be "error: ... and N more errors").
+inline void print_input_error(std::ostream& out, const InputError& e) {
+  const std::string text = e.what();
+  for (std::size_t start = 0; start <= text.size();) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    out << "error: " << text.substr(start, end - start) << "\n";
+    start = end + 1;
+  }
+}
 
 Command add_validate(CLI::App& app);
 Command add_run(CLI::App& app);

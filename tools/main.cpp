@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
       if (sub->parsed()) return run();
     }
   } catch (const campo::InputError& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    campo::cli::print_input_error(std::cerr, e);
     return campo::cli::kBadInput;
   } catch (const std::filesystem::filesystem_error& e) {
     // The file system refused (a full disk, a read-only folder, a file where a folder should be):

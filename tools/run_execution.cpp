@@ -179,12 +179,41 @@ void choose_planner_with_overrides(VehicleDef& def, const RunRequest& request,
 
 }  // namespace
 
+namespace {
+
+PreparedRun prepare_checked_run(const RunRequest& request, bool validate_planner, const std::string& bytes,
+                                PreparedRun& run);
+
+}  // namespace
+
 PreparedRun prepare_run(const RunRequest& request, bool validate_planner) {
   const std::string scene_file = request.scene.string();
   // Overrides are applied to the document, then validated like the file itself.
   const std::string bytes = read_text_file(scene_file);
   PreparedRun run;
   run.document = parse_json_text(bytes, scene_file);
+  try {
+    return prepare_checked_run(request, validate_planner, bytes, run);
+  } catch (const InputError& e) {
+    // Each error of the scene with the objects' aliases and its place in the file (an override's
+    // new key has none).
+    const InputError located = with_locations(with_aliases(e, scene_file, run.document), scene_file, bytes);
+    // A value an override set is not the one in the file: no place in it.
+    std::vector<InputIssue> issues = located.issues();
+    for (InputIssue& issue : issues) {
+      for (const std::string& p : run.override_pointers) {
+        if (issue.pointer == p || issue.pointer.starts_with(p + "/")) issue.line = issue.column = 0;
+      }
+    }
+    throw InputError(std::move(issues), located.count());
+  }
+}
+
+namespace {
+
+PreparedRun prepare_checked_run(const RunRequest& request, bool validate_planner, const std::string& bytes,
+                                PreparedRun& run) {
+  const std::string scene_file = request.scene.string();
   for (const auto& assignment : request.overrides) {
     run.override_pointers.push_back(apply_override(run.document, assignment));
   }
@@ -229,8 +258,10 @@ PreparedRun prepare_run(const RunRequest& request, bool validate_planner) {
   }
   // The other vehicles' too, as `campo validate` checks them: a file is valid or not whichever vehicle runs.
   check_vehicles_and_planners(scene, options.vehicle_index);
-  return run;
+  return std::move(run);
 }
+
+}  // namespace
 
 SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& output) {
   if (request.time_limit_s != 0.0 && !(request.time_limit_s > 0.0 && request.time_limit_s <= kMaxTimeLimitS)) {

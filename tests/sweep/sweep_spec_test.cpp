@@ -55,26 +55,26 @@ class SweepSpecTest : public ::testing::Test {
 TEST_F(SweepSpecTest, ErrorsNameFilePointerAndExpectation) {
   const std::string spec = (dir_ / "spec.json").string();
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "seed": 3})"),
-              HasSubstr(spec + ": /seed: unknown key \"seed\""));
+              HasSubstr(spec + ":1:48: /seed: unknown key \"seed\""));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
                            "axes": [{"name": "speed", "values": [1], "set": ["/world/time_limit_s"], "colour": 1}]})"),
-              HasSubstr(spec + ": /axes/0/colour: unknown key \"colour\""));
+              HasSubstr(spec + ":2:102: /axes/0/colour (speed): unknown key \"colour\""));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "seeds": {"count": "3"}})"),
-              HasSubstr(spec + ": /seeds/count: expected an integer in [1, 100000], got \"3\""));
+              HasSubstr(spec + ":1:58: /seeds/count: expected an integer in [1, 100000], got \"3\""));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": "two_barriers"})"),
-              HasSubstr(spec + ": /scenes: expected an array of 1 to 100 elements"));
+              HasSubstr(spec + ":1:20: /scenes: expected an array of 1 to 100 elements"));
   EXPECT_THAT(error_of(R"({"scenes": ["two_barriers"]})"), HasSubstr("missing required key \"campo_sweep\""));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
                            "axes": [{"name": "Speed", "values": [1], "set": ["/world/time_limit_s"]}]})"),
-              HasSubstr(spec + ": /axes/0/name: expected an axis name"));
+              HasSubstr(spec + ":2:38: /axes/0/name (Speed): expected an axis name"));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
                            "axes": [{"name": "runs", "values": [1], "set": ["/world/time_limit_s"]}]})"),
               HasSubstr("or a table column"));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
                            "axes": [{"name": "v", "values": [1, 1.0], "set": ["/world/time_limit_s"]}]})"),
-              HasSubstr(spec + ": /axes/0/values/1: expected values with distinct labels"));
+              HasSubstr(spec + ":2:65: /axes/0/values/1 (v): expected values with distinct labels"));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "start_jitter": {"vehicle": "drone"}})"),
-              HasSubstr(spec + ": /start_jitter: missing required key \"radius_m\""));
+              HasSubstr(spec + ":1:48: /start_jitter: missing required key \"radius_m\""));
 }
 
 // The fuzz target's entry: text read as if it were the spec file, its scene
@@ -102,7 +102,7 @@ TEST_F(SweepSpecTest, BadPointersFailBeforeAnythingRuns) {
   const std::string spec = (dir_ / "spec.json").string();
   // Not a pointer at all.
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "set": {"objects/drone": 1}})"),
-              HasSubstr(spec + ": /set/objects~1drone: expected a JSON pointer"));
+              HasSubstr(spec + ":1:56: /set/objects~1drone: expected a JSON pointer"));
   // A pointer through an alias the scene does not have.
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
                            "set": {"/objects/drones/planner/name": "straight"}})"),
@@ -115,10 +115,10 @@ TEST_F(SweepSpecTest, BadPointersFailBeforeAnythingRuns) {
                                "/world/colour: unknown key"));
   // Two sources for one pointer, the seed included.
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "set": {"/world/seed": 4}})"),
-              HasSubstr(spec + ": /set/~1world~1seed: expected a pointer set in one place only"));
+              HasSubstr(spec + ":1:56: /set/~1world~1seed: expected a pointer set in one place only"));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "set": {"/world/time_limit_s": 4},
                            "axes": [{"name": "t", "values": [1], "set": ["/world/time_limit_s"]}]})"),
-              HasSubstr(spec + ": /axes/0/set/0: expected a pointer set in one place only"));
+              HasSubstr(spec + ":2:74: /axes/0/set/0 (t): expected a pointer set in one place only"));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["missing.json"]})"),
               HasSubstr(spec + ": /scenes/0: cannot load the scene"));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "start_jitter": {"vehicle": "goal", "radius_m": 1}})"),
@@ -146,10 +146,10 @@ TEST_F(SweepSpecTest, RangeCountsAreCheckedBeforeTheyBecomeIntegers) {
   const std::string spec = (dir_ / "spec.json").string();
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "axes": [{"name": "a",
                            "range": {"from": -1e308, "to": 1e308, "step": 1}, "set": ["/world/time_limit_s"]}]})"),
-              HasSubstr(spec + ": /axes/0/range/step: expected a step giving at most "));
+              HasSubstr(spec + ":2:67: /axes/0/range/step (a): expected a step giving at most "));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "axes": [{"name": "a",
                            "range": {"from": 0, "to": 1, "step": 1e-300}, "set": ["/world/time_limit_s"]}]})"),
-              HasSubstr(spec + ": /axes/0/range/step: expected a step giving at most "));
+              HasSubstr(spec + ":2:58: /axes/0/range/step (a): expected a step giving at most "));
 }
 
 TEST_F(SweepSpecTest, ExpandsScenesAxesAndSeedsInOrder) {
@@ -316,26 +316,26 @@ TEST_F(SweepSpecTest, SpecErrorsOfRangesSamplingAndPlanners) {
   const std::string spec = (dir_ / "spec.json").string();
   const std::string head = R"({"campo_sweep": 1, "scenes": ["two_barriers"], )";
   EXPECT_THAT(error_of(head + R"("axes": [{"name": "a", "range": {"from": 1, "to": 2}, "set": ["/world/time_limit_s"]}]})"),
-              HasSubstr(spec + ": /axes/0/range: expected a \"step\" or \"count\" (a range without them is an interval"));
+              HasSubstr(spec + ":1:71: /axes/0/range (a): expected a \"step\" or \"count\" (a range without them is an interval"));
   EXPECT_THAT(error_of(head + R"("axes": [{"name": "a", "values": [1], "range": {"from": 1, "to": 2, "step": 1},
                                 "set": ["/world/time_limit_s"]}]})"),
-              HasSubstr(spec + ": /axes/0: expected an axis with either \"values\" or \"range\""));
+              HasSubstr(spec + ":1:57: /axes/0 (a): expected an axis with either \"values\" or \"range\""));
   EXPECT_THAT(error_of(head + R"("axes": [{"name": "a", "range": {"from": 2, "to": 1, "step": 1}, "set": ["/world/time_limit_s"]}]})"),
-              HasSubstr(spec + ": /axes/0/range/to: expected a number > from (2)"));
+              HasSubstr(spec + ":1:92: /axes/0/range/to (a): expected a number > from (2)"));
   EXPECT_THAT(error_of(head + R"("sampling": {"method": "sobol", "samples": 4}, "axes": [{"name": "a", "values": [1], "set": ["/world/time_limit_s"]}]})"),
-              HasSubstr(spec + ": /sampling/method: expected one of"));
+              HasSubstr(spec + ":1:61: /sampling/method: expected one of"));
   EXPECT_THAT(error_of(head + R"("sampling": {"method": "random", "samples": 4}})"),
-              HasSubstr(spec + ": /sampling: expected a sampling of at least one axis"));
+              HasSubstr(spec + ":1:48: /sampling: expected a sampling of at least one axis"));
   EXPECT_THAT(error_of(head + R"("planners": ["straight", {"name": "straight"}]})"),
-              HasSubstr(spec + ": /planners/1: expected planners with distinct labels"));
+              HasSubstr(spec + ":1:73: /planners/1 (straight): expected planners with distinct labels"));
   EXPECT_THAT(error_of(head + R"("axes": [{"name": "seed", "values": [1], "set": ["/world/time_limit_s"]}]})"),
-              HasSubstr(spec + ": /axes/0/name: expected an axis name that is not also a run field"));
-  EXPECT_THAT(error_of(head + R"("time_limit_s": 0})"), HasSubstr(spec + ": /time_limit_s: expected a number > 0"));
+              HasSubstr(spec + ":1:58: /axes/0/name (seed): expected an axis name that is not also a run field"));
+  EXPECT_THAT(error_of(head + R"("time_limit_s": 0})"), HasSubstr(spec + ":1:48: /time_limit_s: expected a number > 0"));
   EXPECT_THAT(error_of(head + R"("axes": [{"name": "a", "range": {"from": 1, "to": 1.0000000000001, "count": 3},
                                 "set": ["/world/time_limit_s"]}]})"),
-              HasSubstr(spec + ": /axes/0/range: expected values with distinct labels in run names (\"1\" appears twice)"));
+              HasSubstr(spec + ":1:71: /axes/0/range (a): expected values with distinct labels in run names (\"1\" appears twice)"));
   EXPECT_THAT(error_of(head + R"("planners": ["straight"], "set": {"/objects/drone/planner/name": "straight"}})"),
-              HasSubstr(spec + ": /set/~1objects~1drone~1planner~1name: expected no planner choice when \"planners\" is given"));
+              HasSubstr(spec + ":1:82: /set/~1objects~1drone~1planner~1name: expected no planner choice when \"planners\" is given"));
 }
 
 // Latin hypercube: each axis cut into as many slices as samples, every slice
@@ -425,13 +425,13 @@ TEST_F(SweepSpecTest, NoAxesGiveOneRunPerSceneAndSeed) {
 TEST_F(SweepSpecTest, SeedsAreIntegersInZeroTo2To64Minus1) {
   const std::string spec = (dir_ / "spec.json").string();
   EXPECT_EQ(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "seeds": {"first": -1, "count": 2}})"),
-            spec + ": /seeds/first: expected an integer seed in [0, 18446744073709551615], got -1");
+            spec + ":1:58: /seeds/first: expected an integer seed in [0, 18446744073709551615], got -1");
   EXPECT_EQ(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "seeds": {"first": 2.5}})"),
-            spec + ": /seeds/first: expected an integer seed in [0, 18446744073709551615], got 2.5");
+            spec + ":1:58: /seeds/first: expected an integer seed in [0, 18446744073709551615], got 2.5");
   // The last seed, first + count - 1, must be a seed too.
   EXPECT_EQ(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
                           "seeds": {"first": 18446744073709551615, "count": 2}})"),
-            spec + ": /seeds: expected seeds first .. first + count - 1 that are all in [0, 18446744073709551615], "
+            spec + ":2:27: /seeds: expected seeds first .. first + count - 1 that are all in [0, 18446744073709551615], "
                    "got {\"count\":2,\"first\":18446744073709551615}");
   const std::vector<SweepRun> runs = expand_sweep(read_sweep_spec(write(
       R"({"campo_sweep": 1, "scenes": ["two_barriers"], "seeds": {"first": 18446744073709551614, "count": 2}})")));
@@ -444,7 +444,8 @@ TEST_F(SweepSpecTest, SeedsAreIntegersInZeroTo2To64Minus1) {
               HasSubstr(spec + ": /scenes/0: run trees_rolling_terrain__forest--3__seed-1: "));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["trees_rolling_terrain"],
                            "axes": [{"name": "forest", "values": [3, -3], "set": ["/objects/forest/seed"]}]})"),
-              HasSubstr("/seed: expected an integer seed in [0, 18446744073709551615], got -3"));
+              HasSubstr("scenes/trees_rolling_terrain.json:22:7: /objects/1/seed (forest): expected an integer seed in "
+                        "[0, 18446744073709551615], got -3"));
 }
 
 TEST_F(SweepSpecTest, SweptRatesMustDivideThePhysicsRate) {
@@ -453,7 +454,7 @@ TEST_F(SweepSpecTest, SweptRatesMustDivideThePhysicsRate) {
                             "axes": [{"name": "rate", "values": [60, 100], "set": ["/world/control_rate_hz"]}]})"),
               ::testing::AllOf(
                   ::testing::StartsWith(spec + ": /scenes/0: run two_barriers__rate-100__seed-1: "),
-                  ::testing::EndsWith("scenes/two_barriers.json: /world/control_rate_hz: expected a rate that divides "
+                  ::testing::EndsWith("scenes/two_barriers.json:7:5: /world/control_rate_hz: expected a rate that divides "
                                       "the physics rate 240 Hz (1 / physics_step_s) into a whole number of steps, "
                                       "such as 240, 120, 80 or 60, got 100")));
   EXPECT_EQ(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"],
@@ -598,9 +599,9 @@ TEST_F(SweepSpecTest, VarySceneWithSeedReachesNestedGeneratorsAndDiffersPerGener
 TEST_F(SweepSpecTest, VarySceneWithSeedErrors) {
   const std::string spec = (dir_ / "spec.json").string();
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["vineyard"], "vary_scene_with_seed": "yes"})"),
-              HasSubstr(spec + ": /vary_scene_with_seed: expected true or false, got \"yes\""));
+              HasSubstr(spec + ":1:44: /vary_scene_with_seed: expected true or false, got \"yes\""));
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["vineyard"], "vary_scene_with_seed": 1})"),
-              HasSubstr(spec + ": /vary_scene_with_seed: expected true or false, got 1"));
+              HasSubstr(spec + ":1:44: /vary_scene_with_seed: expected true or false, got 1"));
   // Nothing to vary.
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["two_barriers"], "vary_scene_with_seed": true})"),
               HasSubstr(spec + ": /vary_scene_with_seed: expected a scene with a seeded generator (rolling_terrain, "

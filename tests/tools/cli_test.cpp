@@ -67,7 +67,7 @@ TEST_F(Cli, InvalidSceneExitsTwoWithPointer) {
   std::ofstream(dir_ / "bad.json") << R"({"objects": [{"alias": "a", "type": "cuboid", "size_m": [1, -2, 1]}]})";
   const Result r = campo("validate " + (dir_ / "bad.json").string());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("bad.json: /objects/0/size_m/1: expected a number in (0, 1e+06], got -2"));
+  EXPECT_THAT(r.err, HasSubstr("bad.json:1:61: /objects/0/size_m/1 (a): expected a number in (0, 1e+06], got -2"));
 }
 
 // validate refuses exactly what run refuses, with run's message: no vehicle, a first vehicle without a
@@ -81,18 +81,18 @@ TEST_F(Cli, ValidateRefusesExactlyWhatRunRefuses) {
   };
   for (const Case& c : {
            Case{write("no_vehicle.json", R"({"objects": [{"alias": "ground", "type": "plane"}]})"),
-                "no_vehicle.json: /objects: expected a scene with a vehicle to run"},
+                "no_vehicle.json:1:2: /objects: expected a scene with a vehicle to run"},
            Case{write("no_mission.json", R"({"objects": [{"alias": "drone", "type": "quadrotor"}]})"),
-                "no_mission.json: /objects: expected vehicle \"drone\" to have a mission"},
+                "no_mission.json:1:2: /objects: expected vehicle \"drone\" to have a mission"},
            Case{write("slow_sensor.json", R"({"objects": [{"alias": "drone", "type": "quadrotor",
                 "sensors": [{"alias": "s", "type": "lidar", "preset": "leddar_vu8", "rate_hz": 1e-14}],
                 "mission": {"waypoints": [{"position_m": [5, 0, 1.5]}]}}]})"),
-                "slow_sensor.json: /objects/0/sensors/0/rate_hz: expected 0 (world.sensor_rate_hz) or a number in "
+                "slow_sensor.json:2:85: /objects/0/sensors/0/rate_hz (drone/s): expected 0 (world.sensor_rate_hz) or a number in "
                 "[0.01, 10000], got 1e-14"},
            // One vehicle is simulated: a second would be ignored, so it is refused, naming both (issue 31).
            Case{write("second.json", R"({"objects": [{"alias": "ground", "type": "plane"}, )" + drone +
                 R"(, {"alias": "other", "type": "quadrotor", "pose": {"position_m": [3, 0, 1.5]}}]})"),
-                "second.json: /objects/2: expected one vehicle: campo simulates one vehicle per scene, and this "
+                "second.json:2:65: /objects/2 (other): expected one vehicle: campo simulates one vehicle per scene, and this "
                 "scene has 2: \"drone\" (/objects/1), \"other\" (/objects/2); keep the one to run"},
        }) {
     const Result validate = campo("validate " + c.file);
@@ -334,7 +334,7 @@ TEST_F(Cli, RatesThatDoNotDivideThePhysicsRateExitTwoAndWriteNothing) {
                                "got 1000"));
   r = campo("run " + scene + " --set /objects/drone/sensors/0/rate_hz=7 --out " + out.string());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("two_barriers.json: /objects/4/sensors/0/rate_hz: expected a rate that divides the "
+  EXPECT_THAT(r.err, HasSubstr("two_barriers.json: /objects/4/sensors/0/rate_hz (drone/scanner): expected a rate that divides the "
                                "physics rate 240 Hz (1 / physics_step_s) into a whole number of steps, such as "
                                "7.27272727273, 7.05882352941, 6.85714285714 or 6.66666666667, got 7"));
   // The physics step changed alone: the scene's 60 Hz control no longer fits 100 Hz physics.
@@ -345,7 +345,7 @@ TEST_F(Cli, RatesThatDoNotDivideThePhysicsRateExitTwoAndWriteNothing) {
                                "33.3333333333, got 60"));
   r = campo("validate " + write("rates.json", R"({"world": {"sensor_rate_hz": 7}, "objects": []})"));
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("rates.json: /world/sensor_rate_hz: expected a rate that divides the physics rate"));
+  EXPECT_THAT(r.err, HasSubstr("rates.json:1:12: /world/sensor_rate_hz: expected a rate that divides the physics rate"));
   EXPECT_FALSE(fs::exists(out));
 }
 

@@ -135,11 +135,11 @@ TEST_F(Messages, ControlCharactersInFileNamesAndFilesAreEscapedAndUtf8StaysReada
   const std::string hostile = write("bad\x1b[2J\r.json", R"({"campo_scene": 1, "objects": [], "colour": 1})");
   Result r = campo("validate '" + hostile + "'");
   expect_refused(r, "validate");
-  EXPECT_THAT(r.err, HasSubstr("bad\\x1b[2J\\r.json: /colour: unknown key"));
+  EXPECT_THAT(r.err, HasSubstr("bad\\x1b[2J\\r.json:1:35: /colour: unknown key"));
   const std::string utf8 = write("caf\xc3\xa9.json", R"({"campo_scene": 1, "objects": [], "colour": 1})");
   r = campo("validate '" + utf8 + "'");
   expect_refused(r, "validate UTF-8");
-  EXPECT_THAT(r.err, HasSubstr("caf\xc3\xa9.json: /colour: unknown key"));
+  EXPECT_THAT(r.err, HasSubstr("caf\xc3\xa9.json:1:35: /colour: unknown key"));
   // A key with ESC (JSON strings may hold any control character but NUL).
   r = campo("validate '" + write("key.json", R"({"campo_scene": 1, "objects": [], "a\u001b[31m": 1})") + "'");
   expect_refused(r, "validate key");
