@@ -17,11 +17,11 @@
 
 #include "campo/json_reader.hpp"
 #include "campo/scene_loader.hpp"
+#include "metrics/route_metrics.hpp"
 #include "render/run_files.hpp"
 #include "reproduce/claims.hpp"
 #include "reproduce/evidence.hpp"
 #include "reproduce/seed_001_criteria.hpp"
-#include "run/route_metrics.hpp"
 #include "scene/geodesy.hpp"
 #include "sweep/results.hpp"
 

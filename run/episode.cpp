@@ -13,8 +13,8 @@
 #include <Eigen/Geometry>
 
 #include "campo/json_reader.hpp"
+#include "metrics/episode_metrics.hpp"
 #include "run/event_log.hpp"
-#include "run/route_metrics.hpp"
 
 namespace campo {
 
@@ -40,293 +40,7 @@ struct MountedSensor {
   std::int64_t period;
 };
 
-// The per-leg and gate metrics (run/route_metrics.hpp) from the trajectory
-// samples; `reached_sample[k]` is the sample at which waypoint k was reported reached.
-void route_metrics(const VehicleDef& def, const Eigen::Vector3d& start, const std::vector<TrajectorySample>& trajectory,
-                   const std::vector<std::optional<std::size_t>>& reached_sample, EpisodeMetrics& m) {
-  std::vector<Eigen::Vector3d> points;
-  std::vector<double> agl_m;
-  for (const TrajectorySample& s : trajectory) {
-    points.push_back(s.state.position_m);
-    agl_m.push_back(s.height_above_ground_m);
-  }
-  const std::span<const Eigen::Vector3d> all(points);
-  for (std::size_t k = 0; k < def.mission.size(); ++k) {
-    LegMetrics& leg = m.legs.emplace_back();
-    const std::optional<std::size_t> first = k == 0 ? std::optional<std::size_t>(0) : reached_sample[k - 1];
-    const std::optional<std::size_t> last = reached_sample[k];
-    if (!first || !last || *last < *first || *last >= points.size()) continue;
-    const auto flown = all.subspan(*first, *last - *first + 1);
-    leg.path_length_m = polyline_length_m(flown);
-    const Eigen::Vector3d from = k == 0 ? start : def.mission[k - 1].position_m;
-    leg.lateral_before_climb_m = lateral_before_climb_m(flown, from, def.mission[k].position_m);
-  }
-  for (const MissionGate& gate : def.gates) {
-    GateMetrics& g = m.gates.emplace_back();
-    g.name = gate.name;
-    if (const auto i = first_inside(points, agl_m, gate.area_m, gate.max_agl_m)) g.time_s = trajectory[*i].time_s;
-  }
-}
-
-// Counts the planner's decisions into the metrics.
-void count_decisions(const std::vector<PlannerEvent>& events, EpisodeMetrics& m) {
-  std::vector<double> replan_ms;
-  for (const PlannerEvent& e : events) {
-    m.waypoints_planned += e.decisions.planned_waypoint.has_value();
-    m.waypoints_reached += e.decisions.reached_intermediate.has_value();
-    m.waypoints_discarded += e.decisions.discarded_waypoint.has_value();
-    if (e.decisions.replan) replan_ms.push_back(e.decisions.replan->time_ms);
-  }
-  m.replans = static_cast<int>(replan_ms.size());
-  if (replan_ms.empty()) return;
-  std::sort(replan_ms.begin(), replan_ms.end());
-  const std::size_t n = replan_ms.size();
-  m.replan_time_ms_median = n % 2 ? replan_ms[n / 2] : 0.5 * (replan_ms[n / 2 - 1] + replan_ms[n / 2]);
-  m.replan_time_ms_max = replan_ms.back();
-}
-
-// Exact horizontal distance to a polyline, in about log time per query: a
-// binary tree of bounding boxes over halves of the segment index range (a
-// route is spatially coherent, so consecutive segments make tight boxes),
-// searched branch and bound starting from the previous query's nearest
-// segment, which successive trajectory samples mostly share.
-class RouteDistance {
- public:
-  explicit RouteDistance(std::vector<Eigen::Vector2d> points) : points_(std::move(points)) {
-    if (points_.size() == 1) points_.push_back(points_.front());  // one point: a zero-length segment
-    nodes_.reserve(2 * (points_.size() - 1) / kLeafSegments + 2);
-    build(0, points_.size() - 1);
-  }
-
-  double squared_distance(const Eigen::Vector2d& q) {
-    double best = segment_squared_distance(q, hint_);
-    std::vector<std::size_t>& stack = stack_;
-    stack.assign(1, 0);
-    while (!stack.empty()) {
-      const Node& node = nodes_[stack.back()];
-      stack.pop_back();
-      if (box_squared_distance(q, node.box) >= best) continue;
-      if (node.left == kNone) {
-        for (std::size_t s = node.first; s < node.last; ++s) {
-          const double d = segment_squared_distance(q, s);
-          if (d < best) {
-            best = d;
-            hint_ = s;
-          }
-        }
-        continue;
-      }
-      // The nearer child last, so that it is searched first.
-      const double l = box_squared_distance(q, nodes_[node.left].box);
-      const double r = box_squared_distance(q, nodes_[node.right].box);
-      const std::size_t left = node.left, right = node.right;
-      if (l < r) {
-        stack.push_back(right);
-        stack.push_back(left);
-      } else {
-        stack.push_back(left);
-        stack.push_back(right);
-      }
-    }
-    return best;
-  }
-
- private:
-  static constexpr std::size_t kLeafSegments = 8;
-  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
-  struct Node {
-    Eigen::AlignedBox2d box;
-    std::size_t first = 0, last = 0;  // segments [first, last)
-    std::size_t left = kNone, right = kNone;
-  };
-
-  // Builds the node of segments [first, last) and returns its index.
-  std::size_t build(std::size_t first, std::size_t last) {
-    const std::size_t index = nodes_.size();
-    nodes_.push_back({Eigen::AlignedBox2d(), first, last, kNone, kNone});
-    if (last - first <= kLeafSegments) {
-      Eigen::AlignedBox2d box;
-      for (std::size_t i = first; i <= last; ++i) box.extend(points_[i]);
-      nodes_[index].box = box;
-      return index;
-    }
-    const std::size_t middle = first + (last - first) / 2;
-    const std::size_t left = build(first, middle);
-    const std::size_t right = build(middle, last);
-    nodes_[index].left = left;
-    nodes_[index].right = right;
-    nodes_[index].box = nodes_[left].box.merged(nodes_[right].box);
-    return index;
-  }
-
-  double segment_squared_distance(const Eigen::Vector2d& q, std::size_t s) const {
-    const Eigen::Vector2d& a = points_[s];
-    const Eigen::Vector2d d = points_[s + 1] - a;
-    const double length2 = d.squaredNorm();
-    const double t = length2 > 0.0 ? std::clamp((q - a).dot(d) / length2, 0.0, 1.0) : 0.0;
-    return (a + t * d - q).squaredNorm();
-  }
-
-  static double box_squared_distance(const Eigen::Vector2d& q, const Eigen::AlignedBox2d& box) {
-    const Eigen::Vector2d outside = (box.min() - q).cwiseMax(q - box.max()).cwiseMax(0.0);
-    return outside.squaredNorm();
-  }
-
-  std::vector<Eigen::Vector2d> points_;
-  std::vector<Node> nodes_;
-  std::vector<std::size_t> stack_;
-  std::size_t hint_ = 0;
-};
-
-// The (x, y) of a planned path's points.
-std::vector<Eigen::Vector2d> route_points(const std::vector<Eigen::Vector3d>& path) {
-  std::vector<Eigen::Vector2d> points;
-  points.reserve(path.size());
-  for (const Eigen::Vector3d& p : path) points.push_back(p.head<2>());
-  return points;
-}
-
-}  // namespace
-
-CrossTrack cross_track_error(std::span<const TrajectorySample> trajectory, std::span<const PlannerEvent> events) {
-  CrossTrack result;
-  std::optional<RouteDistance> route;
-  const std::vector<Eigen::Vector3d>* pending = nullptr;  // the latest planned path, built when a sample needs it
-  std::size_t e = 0;
-  double sum = 0.0, sum_squares = 0.0, max_squared = 0.0;
-  for (const TrajectorySample& s : trajectory) {
-    for (; e < events.size() && events[e].time_s <= s.time_s; ++e) {
-      if (const auto& path = events[e].decisions.planned_path) pending = &*path;
-    }
-    if (pending) {
-      std::vector<Eigen::Vector2d> points = route_points(*pending);
-      if (points.empty()) route.reset();
-      else route.emplace(std::move(points));
-      pending = nullptr;
-    }
-    if (!route) continue;
-    const double d2 = route->squared_distance(s.state.position_m.head<2>());
-    sum += std::sqrt(d2);
-    sum_squares += d2;
-    max_squared = std::max(max_squared, d2);
-    ++result.samples;
-  }
-  if (result.samples > 0) {
-    result.rms_m = std::sqrt(sum_squares / static_cast<double>(result.samples));
-    result.mean_m = sum / static_cast<double>(result.samples);
-    result.max_m = std::sqrt(max_squared);
-  }
-  return result;
-}
-
-double avoiding_time(std::span<const PlannerEvent> events, double end_time_s) {
-  double total = 0.0;
-  bool on = false;
-  double since = 0.0;
-  for (const PlannerEvent& e : events) {
-    if (!e.decisions.avoiding) continue;
-    const bool now = *e.decisions.avoiding;
-    if (now && !on) since = e.time_s;
-    if (!now && on) total += e.time_s - since;
-    on = now;
-  }
-  if (on) total += std::max(0.0, end_time_s - since);
-  return total;
-}
-
-namespace {
-
-nlohmann::json collision_events_json(const std::vector<CollisionEvent>& events) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const CollisionEvent& e : events) {
-    list.push_back({{"time_s", e.time_s},
-                    {"body", e.body},
-                    {"ground", e.ground},
-                    {"point_m", {e.point_m.x(), e.point_m.y(), e.point_m.z()}}});
-  }
-  return list;
-}
-
-}  // namespace
-
-std::string_view to_string(Outcome outcome) {
-  static constexpr std::string_view kNames[] = {"reached", "collision", "timeout", "aborted", "failed"};
-  return kNames[static_cast<int>(outcome)];
-}
-
-nlohmann::json to_json(const EpisodeMetrics& m) {
-  nlohmann::json j = {
-      {"outcome", to_string(m.outcome)},
-      {"reason", m.reason},
-      {"sim_time_s", m.sim_time_s},
-      {"wall_time_s", m.wall_time_s},
-      {"path_length_m", m.path_length_m},  // the distance travelled
-      {"path_ratio", m.path_ratio},
-      // null when the scene has no obstacles at all
-      {"min_clearance_m", std::isfinite(m.min_clearance_m) ? nlohmann::json(m.min_clearance_m) : nlohmann::json()},
-      {"nearest_obstacle", m.nearest_obstacle.empty() ? nlohmann::json() : nlohmann::json(m.nearest_obstacle)},
-      {"min_clearance_time_s", m.nearest_obstacle.empty() ? nlohmann::json() : nlohmann::json(m.min_clearance_time_s)},
-      {"min_ground_clearance_m",
-       std::isfinite(m.min_ground_clearance_m) ? nlohmann::json(m.min_ground_clearance_m) : nlohmann::json()},
-      {"collisions", m.collisions},
-      {"collision_events", collision_events_json(m.collision_events)},
-      {"planner_calls", m.planner_calls},
-      {"planner_time_ms_mean", m.planner_time_ms_mean},
-      {"planner_time_ms_max", m.planner_time_ms_max},
-      {"waypoints_planned", m.waypoints_planned},
-      {"waypoints_reached", m.waypoints_reached},
-      {"waypoints_discarded", m.waypoints_discarded},
-      {"replans", m.replans},
-      {"replan_time_ms_median", m.replan_time_ms_median},
-      {"replan_time_ms_max", m.replan_time_ms_max},
-      {"cross_track_rms_m", m.cross_track_rms_m},
-      {"cross_track_mean_m", m.cross_track_mean_m},
-      {"cross_track_max_m", m.cross_track_max_m},
-      {"avoiding_time_s", m.avoiding_time_s},
-  };
-  const auto optional = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
-  for (std::size_t k = 0; k < m.legs.size(); ++k) {
-    const std::string leg = "leg" + std::to_string(k);
-    j[leg + "_path_length_m"] = optional(m.legs[k].path_length_m);
-    j[leg + "_lateral_before_climb_m"] = optional(m.legs[k].lateral_before_climb_m);
-  }
-  for (const GateMetrics& gate : m.gates) {
-    j["gate_" + gate.name + "_passed"] = gate.time_s.has_value();
-    j["gate_" + gate.name + "_time_s"] = optional(gate.time_s);
-  }
-  return j;
-}
-
-namespace {
-
-// The running minima of the clearance metrics.
-struct ClearanceMinima {
-  double obstacle_m = std::numeric_limits<double>::infinity();
-  int obstacle = -1;
-  double obstacle_time_s = 0.0;
-  double ground_m = std::numeric_limits<double>::infinity();
-
-  void update(const Clearance& c, double t_s) {
-    if (c.obstacle_m < obstacle_m) {
-      obstacle_m = c.obstacle_m;
-      obstacle = c.obstacle;
-      obstacle_time_s = t_s;
-    }
-    ground_m = std::min(ground_m, c.ground_m);
-  }
-  // Cutoffs for a query that only needs to find a new minimum or a touch:
-  // anything farther than the minima so far cannot change them.
-  double obstacle_cutoff() const { return std::max(obstacle_m, kTouchSearch_m); }
-  double ground_cutoff() const { return std::max(ground_m, kTouchSearch_m); }
-  static constexpr double kTouchSearch_m = 1e-6;  // finds every overlap
-};
-
 constexpr double kExact = std::numeric_limits<double>::infinity();
-
-std::string body_name(const Scene& scene, int id) {
-  if (id >= 0) return scene.shapes.at(static_cast<std::size_t>(id)).alias;
-  return scene.movers.at(static_cast<std::size_t>(-1 - id)).shape.alias;
-}
 
 // "collision with forest/tree4/crown at t = 3.120000 s, at (12.411, 4.032, 2.950) m".
 std::string collision_reason(const CollisionEvent& e) {
@@ -481,34 +195,21 @@ struct Episode::Loop {
     EpisodeMetrics& m = result.metrics;
     m.outcome = *outcome;
     m.sim_time_s = world.time_s();
-    m.min_clearance_m = minima.obstacle_m;
-    m.min_ground_clearance_m = minima.ground_m;
-    if (std::isfinite(minima.obstacle_m)) {
-      m.nearest_obstacle = body_name(scene, minima.obstacle);
-      m.min_clearance_time_s = minima.obstacle_time_s;
-    }
+    minima.write(scene, m);
     // The nominal route: straight legs from the start through every waypoint
     // (for a single goal, the straight start-goal line), each waypoint taken
     // where the vehicle was when it was reached (within the arrival
     // tolerance), so the path flown, which passes through those points, is
     // never shorter than the route: the ratio of a reached run is at least 1.
     if (m.outcome == Outcome::reached && !def.mission.empty()) reached_at.back() = vehicle->state().position_m;
-    double nominal = 0.0;
-    Eigen::Vector3d from = start;
-    for (std::size_t i = 0; i < def.mission.size(); ++i) {
-      const Eigen::Vector3d to = reached_at[i].value_or(def.mission[i].position_m);
-      const Eigen::Vector3d leg = to - from;
-      nominal += def.type == VehicleType::rover ? leg.head<2>().norm() : leg.norm();
-      from = to;
-    }
-    m.path_ratio = nominal > 1e-9 ? m.path_length_m / nominal : 0.0;
+    m.path_ratio = path_ratio(m.path_length_m, nominal_route_m(def.type, start, def.mission, reached_at));
     count_decisions(result.events, m);
     const CrossTrack cross_track = cross_track_error(result.trajectory, result.events);
     m.cross_track_rms_m = cross_track.rms_m;
     m.cross_track_mean_m = cross_track.mean_m;
     m.cross_track_max_m = cross_track.max_m;
     m.avoiding_time_s = avoiding_time(result.events, m.sim_time_s);
-    route_metrics(def, start, result.trajectory, reached_sample, m);
+    leg_and_gate_metrics(def, start, result.trajectory, reached_sample, m);
     m.planner_time_ms_mean = m.planner_calls > 0 ? planner_ms_total / m.planner_calls : 0.0;
     m.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
     result.final_state_hash = world.state_hash();

@@ -30,7 +30,7 @@ enum class Outcome { reached, collision, timeout, aborted, failed };
 std::string_view to_string(Outcome outcome);
 
 /// One leg of the mission: from the start (leg 0) or mission waypoint k - 1
-/// to mission waypoint k (run/route_metrics.hpp), measured on the trajectory
+/// to mission waypoint k (metrics/route_metrics.hpp), measured on the trajectory
 /// samples between the planner calls that reported the two reached.
 struct LegMetrics {
   std::optional<double> path_length_m;           ///< flown; nullopt when waypoint k was not reached

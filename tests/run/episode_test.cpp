@@ -6,7 +6,6 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
-#include <random>
 
 #include <btBulletDynamicsCommon.h>
 #include <gtest/gtest.h>
@@ -388,128 +387,10 @@ TEST_F(EpisodeTest, RecordsTrajectoryAndRunFile) {
   EXPECT_TRUE(run["provenance"].contains("campo_version"));
 }
 
-
-// ---------------------------------------------------------------- route metrics
-
-TrajectorySample sample_at(double t, double x, double y, double z = 0.0) {
-  TrajectorySample s;
-  s.time_s = t;
-  s.state.position_m = {x, y, z};
-  return s;
-}
+// ---------------------------------------------------------------- decisions recorded
 
 Decisions planned(std::vector<Eigen::Vector3d> path) { return {.planned_path = std::move(path)}; }
 Decisions avoiding(bool on) { return {.avoiding = on}; }
-
-// Horizontal distance to the polyline, every segment tried.
-double brute_force_distance(const std::vector<Eigen::Vector3d>& route, const Eigen::Vector3d& q) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i + 1 < route.size() || (i == 0 && route.size() == 1); ++i) {
-    const Eigen::Vector2d a = route[i].head<2>(), b = route[std::min(i + 1, route.size() - 1)].head<2>();
-    const Eigen::Vector2d p = q.head<2>();
-    double t = 0.0;
-    if ((b - a).squaredNorm() > 0.0) t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-    best = std::min(best, (a + t * (b - a) - p).norm());
-  }
-  return best;
-}
-
-TEST(CrossTrackError, MatchesBruteForceOnRandomRoutes) {
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  for (int trial = 0; trial < 20; ++trial) {
-    // Routes: random walks (coherent, like a planner's) and, every third trial, scattered points;
-    // a few of one or two points and some repeated points (zero-length segments).
-    std::vector<PlannerEvent> events;
-    std::vector<std::pair<double, std::vector<Eigen::Vector3d>>> routes;  // (time set, points)
-    const int route_count = 1 + trial % 4;
-    for (int r = 0; r < route_count; ++r) {
-      const std::size_t n = trial == 1 && r == 0 ? 1 : trial == 2 ? 2 : 1 + rng() % 600;
-      std::vector<Eigen::Vector3d> route;
-      Eigen::Vector3d p(50.0 * unit(rng), 50.0 * unit(rng), 5.0 * unit(rng));
-      for (std::size_t i = 0; i < n; ++i) {
-        if (trial % 3 == 0) p = {60.0 * unit(rng), 60.0 * unit(rng), 0.0};
-        else if (rng() % 10 != 0) p += Eigen::Vector3d(2.0 * unit(rng), 2.0 * unit(rng), unit(rng));
-        route.push_back(p);
-      }
-      const double t = r == 0 ? 1.0 : 1.0 + 10.0 * r + (rng() % 3);  // also at a sample's exact time
-      routes.emplace_back(t, route);
-      events.push_back({t, planned(route)});
-      if (rng() % 2) events.push_back({t + 0.5, avoiding(true)});  // other decisions are ignored
-    }
-    std::vector<TrajectorySample> trajectory;
-    double sum = 0.0, max = 0.0;
-    std::size_t measured = 0;
-    for (int i = 0; i < 2000; ++i) {
-      const double t = 0.05 * i;
-      // Near the route mostly, sometimes far away.
-      const double spread = i % 50 == 0 ? 500.0 : 70.0;
-      trajectory.push_back(sample_at(t, spread * unit(rng), spread * unit(rng), 3.0 * unit(rng)));
-      const std::vector<Eigen::Vector3d>* in_force = nullptr;
-      for (const auto& [since, route] : routes) {
-        if (since <= t) in_force = &route;
-      }
-      if (!in_force) continue;
-      const double d = brute_force_distance(*in_force, trajectory.back().state.position_m);
-      sum += d * d;
-      max = std::max(max, d);
-      ++measured;
-    }
-    const CrossTrack c = cross_track_error(trajectory, events);
-    ASSERT_EQ(c.samples, measured) << "trial " << trial;
-    EXPECT_NEAR(c.rms_m, std::sqrt(sum / measured), 1e-9) << "trial " << trial;
-    EXPECT_NEAR(c.max_m, max, 1e-9) << "trial " << trial;
-  }
-}
-
-TEST(CrossTrackError, MeasuresEachSampleAgainstTheRouteInForce) {
-  // Route A along y = 0 from t = 1, route B along y = 10 from t = 2 (recorded at a sample's time).
-  const std::vector<PlannerEvent> events{
-      {1.0, planned({{0, 0, 0}, {10, 0, 0}})},
-      {2.0, planned({{0, 10, 0}, {10, 10, 0}})},
-  };
-  const std::vector<TrajectorySample> trajectory{
-      sample_at(0.5, 5, 100),  // before any route: skipped
-      sample_at(1.0, 5, 3),    // A: 3
-      sample_at(1.5, 13, 4),   // A: beyond the end, 5
-      sample_at(2.0, 5, 6, 40),  // B: 4 (height ignored)
-  };
-  const CrossTrack c = cross_track_error(trajectory, events);
-  EXPECT_EQ(c.samples, 3u);
-  EXPECT_NEAR(c.rms_m, std::sqrt((9.0 + 25.0 + 16.0) / 3.0), 1e-12);
-  EXPECT_NEAR(c.mean_m, (3.0 + 5.0 + 4.0) / 3.0, 1e-12);
-  EXPECT_NEAR(c.max_m, 5.0, 1e-12);
-}
-
-TEST(CrossTrackError, IsZeroWithoutAPlannedPath) {
-  const std::vector<TrajectorySample> trajectory{sample_at(0.0, 1, 2), sample_at(1.0, 3, 4)};
-  const std::vector<PlannerEvent> events{{0.0, {.planned_waypoint = Eigen::Vector3d(1, 1, 1)}}, {0.5, avoiding(true)}};
-  const CrossTrack c = cross_track_error(trajectory, events);
-  EXPECT_EQ(c.samples, 0u);
-  EXPECT_EQ(c.rms_m, 0.0);
-  EXPECT_EQ(c.max_m, 0.0);
-  // An empty planned path leaves no route until the next.
-  const std::vector<PlannerEvent> cleared{{0.0, planned({{0, 0, 0}, {9, 0, 0}})}, {0.5, planned({})}};
-  const CrossTrack c2 = cross_track_error(trajectory, cleared);
-  EXPECT_EQ(c2.samples, 1u);
-  EXPECT_NEAR(c2.max_m, 2.0, 1e-12);
-}
-
-TEST(AvoidingTime, AddsTheIntervalsBetweenOnAndOff) {
-  const std::vector<PlannerEvent> events{
-      {1.0, avoiding(true)},
-      {1.5, avoiding(true)},   // already on: nothing changes
-      {3.0, avoiding(false)},  // 2 s
-      {4.0, avoiding(false)},  // already off
-      {5.0, {.replan = ReplanDecision{.time_ms = 1.0}}},
-      {6.5, avoiding(true)},
-      {7.0, avoiding(false)},  // 0.5 s
-      {9.0, avoiding(true)},   // on until the end: 1.25 s
-  };
-  EXPECT_NEAR(avoiding_time(events, 10.25), 2.0 + 0.5 + 1.25, 1e-12);
-  EXPECT_NEAR(avoiding_time(std::span(events).first(7), 10.25), 2.5, 1e-12);
-  EXPECT_EQ(avoiding_time({}, 10.0), 0.0);
-}
 
 // Records a route 0.5 m left of the first leg and right of the second and avoids between t = 1 and t = 2.
 class RouteRecorder final : public Planner {

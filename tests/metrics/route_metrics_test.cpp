@@ -1,6 +1,6 @@
-// The route measures of the run record (run/route_metrics.hpp), against
+// The route measures of the run record (metrics/route_metrics.hpp), against
 // hand-computed values.
-#include "run/route_metrics.hpp"
+#include "metrics/route_metrics.hpp"
 
 #include <cmath>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "run/route_metrics.hpp"
+#include "metrics/route_metrics.hpp"
 
 #include <algorithm>
 #include <cmath>

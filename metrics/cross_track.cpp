@@ -1,0 +1,151 @@
+// cross_track_error (campo/episode.hpp): the distance of every trajectory
+// sample to the route the planner had recorded by then.
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "campo/episode.hpp"
+
+namespace campo {
+
+namespace {
+
+// Exact horizontal distance to a polyline, in about log time per query: a
+// binary tree of bounding boxes over halves of the segment index range (a
+// route is spatially coherent, so consecutive segments make tight boxes),
+// searched branch and bound starting from the previous query's nearest
+// segment, which successive trajectory samples mostly share.
+class RouteDistance {
+ public:
+  explicit RouteDistance(std::vector<Eigen::Vector2d> points) : points_(std::move(points)) {
+    if (points_.size() == 1) points_.push_back(points_.front());  // one point: a zero-length segment
+    nodes_.reserve(2 * (points_.size() - 1) / kLeafSegments + 2);
+    build(0, points_.size() - 1);
+  }
+
+  double squared_distance(const Eigen::Vector2d& q) {
+    double best = segment_squared_distance(q, hint_);
+    std::vector<std::size_t>& stack = stack_;
+    stack.assign(1, 0);
+    while (!stack.empty()) {
+      const Node& node = nodes_[stack.back()];
+      stack.pop_back();
+      if (box_squared_distance(q, node.box) >= best) continue;
+      if (node.left == kNone) {
+        for (std::size_t s = node.first; s < node.last; ++s) {
+          const double d = segment_squared_distance(q, s);
+          if (d < best) {
+            best = d;
+            hint_ = s;
+          }
+        }
+        continue;
+      }
+      // The nearer child last, so that it is searched first.
+      const double l = box_squared_distance(q, nodes_[node.left].box);
+      const double r = box_squared_distance(q, nodes_[node.right].box);
+      const std::size_t left = node.left, right = node.right;
+      if (l < r) {
+        stack.push_back(right);
+        stack.push_back(left);
+      } else {
+        stack.push_back(left);
+        stack.push_back(right);
+      }
+    }
+    return best;
+  }
+
+ private:
+  static constexpr std::size_t kLeafSegments = 8;
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  struct Node {
+    Eigen::AlignedBox2d box;
+    std::size_t first = 0, last = 0;  // segments [first, last)
+    std::size_t left = kNone, right = kNone;
+  };
+
+  // Builds the node of segments [first, last) and returns its index.
+  std::size_t build(std::size_t first, std::size_t last) {
+    const std::size_t index = nodes_.size();
+    nodes_.push_back({Eigen::AlignedBox2d(), first, last, kNone, kNone});
+    if (last - first <= kLeafSegments) {
+      Eigen::AlignedBox2d box;
+      for (std::size_t i = first; i <= last; ++i) box.extend(points_[i]);
+      nodes_[index].box = box;
+      return index;
+    }
+    const std::size_t middle = first + (last - first) / 2;
+    const std::size_t left = build(first, middle);
+    const std::size_t right = build(middle, last);
+    nodes_[index].left = left;
+    nodes_[index].right = right;
+    nodes_[index].box = nodes_[left].box.merged(nodes_[right].box);
+    return index;
+  }
+
+  double segment_squared_distance(const Eigen::Vector2d& q, std::size_t s) const {
+    const Eigen::Vector2d& a = points_[s];
+    const Eigen::Vector2d d = points_[s + 1] - a;
+    const double length2 = d.squaredNorm();
+    const double t = length2 > 0.0 ? std::clamp((q - a).dot(d) / length2, 0.0, 1.0) : 0.0;
+    return (a + t * d - q).squaredNorm();
+  }
+
+  static double box_squared_distance(const Eigen::Vector2d& q, const Eigen::AlignedBox2d& box) {
+    const Eigen::Vector2d outside = (box.min() - q).cwiseMax(q - box.max()).cwiseMax(0.0);
+    return outside.squaredNorm();
+  }
+
+  std::vector<Eigen::Vector2d> points_;
+  std::vector<Node> nodes_;
+  std::vector<std::size_t> stack_;
+  std::size_t hint_ = 0;
+};
+
+// The (x, y) of a planned path's points.
+std::vector<Eigen::Vector2d> route_points(const std::vector<Eigen::Vector3d>& path) {
+  std::vector<Eigen::Vector2d> points;
+  points.reserve(path.size());
+  for (const Eigen::Vector3d& p : path) points.push_back(p.head<2>());
+  return points;
+}
+
+}  // namespace
+
+CrossTrack cross_track_error(std::span<const TrajectorySample> trajectory, std::span<const PlannerEvent> events) {
+  CrossTrack result;
+  std::optional<RouteDistance> route;
+  const std::vector<Eigen::Vector3d>* pending = nullptr;  // the latest planned path, built when a sample needs it
+  std::size_t e = 0;
+  double sum = 0.0, sum_squares = 0.0, max_squared = 0.0;
+  for (const TrajectorySample& s : trajectory) {
+    for (; e < events.size() && events[e].time_s <= s.time_s; ++e) {
+      if (const auto& path = events[e].decisions.planned_path) pending = &*path;
+    }
+    if (pending) {
+      std::vector<Eigen::Vector2d> points = route_points(*pending);
+      if (points.empty()) route.reset();
+      else route.emplace(std::move(points));
+      pending = nullptr;
+    }
+    if (!route) continue;
+    const double d2 = route->squared_distance(s.state.position_m.head<2>());
+    sum += std::sqrt(d2);
+    sum_squares += d2;
+    max_squared = std::max(max_squared, d2);
+    ++result.samples;
+  }
+  if (result.samples > 0) {
+    result.rms_m = std::sqrt(sum_squares / static_cast<double>(result.samples));
+    result.mean_m = sum / static_cast<double>(result.samples);
+    result.max_m = std::sqrt(max_squared);
+  }
+  return result;
+}
+
+}  // namespace campo
