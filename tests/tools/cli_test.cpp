@@ -340,7 +340,7 @@ TEST_F(Cli, RatesThatDoNotDivideThePhysicsRateExitTwoAndWriteNothing) {
   // The physics step changed alone: the scene's 60 Hz control no longer fits 100 Hz physics.
   r = campo("run " + scene + " --set /world/physics_step_s=0.01 --out " + out.string());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("two_barriers.json: /world/control_rate_hz: expected a rate that divides the physics "
+  EXPECT_THAT(r.err, HasSubstr("two_barriers.json:7:5: /world/control_rate_hz: expected a rate that divides the physics "
                                "rate 100 Hz (1 / physics_step_s) into a whole number of steps, such as 100, 50 or "
                                "33.3333333333, got 60"));
   r = campo("validate " + write("rates.json", R"({"world": {"sensor_rate_hz": 7}, "objects": []})"));
