@@ -235,7 +235,7 @@ class ErrorsTest(unittest.TestCase):
     def test_input_errors_name_file_pointer_and_expectation(self):
         with self.assertRaisesRegex(campo.InputError, "no_such_scene.json"):
             campo.Episode(str(FIXTURES / "no_such_scene.json"))
-        with self.assertRaisesRegex(campo.InputError, "/objects/2/sensors/0/resolution/0: expected an integer"):
+        with self.assertRaisesRegex(campo.InputError, "/objects/2/sensors/0/resolution/0 \\(drone/scanner\\): expected an integer"):
             campo.Episode(OPEN_FIELD, overrides={"/objects/drone/sensors/scanner/resolution": [0, 8]})
         with self.assertRaisesRegex(campo.InputError, "unknown planner \"nope\""):
             campo.run(OPEN_FIELD, planner="nope")
@@ -254,7 +254,7 @@ class ErrorsTest(unittest.TestCase):
         with tempfile.TemporaryDirectory() as tmp:
             path = os.path.join(tmp, "two.json")
             pathlib.Path(path).write_text(json.dumps(scene))
-            message = ('/objects/3: expected one vehicle: campo simulates one vehicle per scene, and this scene has 2: '
+            message = ('/objects/3 \\(wingman\\): expected one vehicle: campo simulates one vehicle per scene, and this scene has 2: '
                        '"drone" \\(/objects/2\\), "wingman" \\(/objects/3\\)')
             with self.assertRaisesRegex(campo.InputError, message):
                 campo.Episode(path)
