@@ -82,7 +82,7 @@ TEST_F(PluginCli, RunsAPluginsPlannerAndRecordsItsFileAndDigest) {
 TEST_F(PluginCli, APluginsPlannerWithoutItsPluginIsAnUnknownPlanner) {
   const Result r = campo("run " + write("goto.json", kGotoScene) + " --out " + (dir_ / "out").string());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("/objects/1/planner/name: unknown planner \"fixture_goto\"; expected one of: straight"));
+  EXPECT_THAT(r.err, HasSubstr("/objects/1/planner/name (drone): unknown planner \"fixture_goto\"; expected one of: straight"));
   EXPECT_THAT(r.err, HasSubstr("--plugin PATH"));
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
@@ -97,7 +97,7 @@ TEST_F(PluginCli, ValidateChecksAPluginPlannersParameters) {
   EXPECT_THAT(r.out, HasSubstr("ok " + good));
   r = campo("validate --plugin " + fixture("two_planners") + " " + bad);
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("bad.json: /objects/1/planner/params/speed_mps: expected a number in [0.1, 5]"));
+  EXPECT_THAT(r.err, HasSubstr("bad.json:4:51: /objects/1/planner/params/speed_mps (drone): expected a number in [0.1, 5]"));
 }
 
 TEST_F(PluginCli, EveryRefusedPluginExitsTwoNamingTheFileAndWhatWasExpected) {
@@ -211,9 +211,9 @@ TEST_F(PluginCli, ASweepSpecsPluginsAreCheckedLikeItsOtherKeys) {
     std::string said;
   };
   const std::vector<Case> cases = {
-      {R"("x.so")", ": /plugins: expected an array"},
-      {R"([3])", ": /plugins/0: expected a non-empty string"},
-      {R"(["a.so", "./a.so"])", ": /plugins/1: expected plugins named once each"},
+      {R"("x.so")", ":1:45: /plugins: expected an array"},
+      {R"([3])", ":1:57: /plugins/0: expected a non-empty string"},
+      {R"(["a.so", "./a.so"])", ":1:65: /plugins/1: expected plugins named once each"},
       {R"(["missing.so"])", ": /plugins/0: plugin " + (dir_ / "missing.so").string() + ": cannot load it ("},
       {"[\"" + fixture("no_planner") + "\"]",
        ": /plugins/0: plugin " + fixture("no_planner") + ": registers no planner"},
