@@ -25,7 +25,7 @@ namespace {
 
 struct RenderOptions {
   std::vector<std::string> runs;
-  std::vector<std::string> kinds{"map", "side"};
+  std::vector<std::string> kinds{"map", "side"};  // --kind: names of figure kinds (figure_kind_names)
   std::vector<std::string> steps;  // --step: replanning step numbers or "all"
   std::vector<double> at_s;        // --at: instants of --kind sequence
   std::string out;
@@ -34,8 +34,15 @@ struct RenderOptions {
   FigureFormats formats = kPngOnly;  // --figure-format
 };
 
-bool wants(const RenderOptions& o, const char* kind) {
-  return std::find(o.kinds.begin(), o.kinds.end(), kind) != o.kinds.end();
+bool wants(const std::vector<FigureKind>& kinds, FigureKind kind) {
+  return std::find(kinds.begin(), kinds.end(), kind) != kinds.end();
+}
+
+// --kind's names as kinds: every one known, as --kind's check takes them from the same table.
+std::vector<FigureKind> figure_kinds(const std::vector<std::string>& names) {
+  std::vector<FigureKind> kinds;
+  for (const std::string& name : names) kinds.push_back(figure_kind_from_string(name).value());
+  return kinds;
 }
 
 // --size: "WIDTHxHEIGHT", even sides of at least 480 x 270.
@@ -118,32 +125,33 @@ std::optional<std::vector<int>> parse_steps(const std::vector<std::string>& valu
 }
 
 int run_render(const RenderOptions& o) {
+  const std::vector<FigureKind> kinds = figure_kinds(o.kinds);
   const bool replan_steps = !o.steps.empty();
-  if (!o.at_s.empty() && std::find(o.kinds.begin(), o.kinds.end(), "sequence") == o.kinds.end()) {
+  if (!o.at_s.empty() && !wants(kinds, FigureKind::sequence)) {
     throw InputError("command line", "--at", "gives the instants of --kind sequence; add --kind sequence");
   }
-  if (replan_steps && std::find(o.kinds.begin(), o.kinds.end(), "depth") == o.kinds.end()) {
+  if (replan_steps && !wants(kinds, FigureKind::depth)) {
     throw InputError("command line", "--step", "draws replanning steps of --kind depth; add --kind depth");
   }
   const bool video_file = !o.out.empty() && video_format_of(o.out).has_value();
-  if (video_file && (o.runs.size() != 1 || o.kinds.size() != 1 || !wants(o, "video"))) {
+  if (video_file && (o.runs.size() != 1 || kinds.size() != 1 || !wants(kinds, FigureKind::video))) {
     throw InputError("command line", "--out",
                      "names a video file, which holds one run's --kind video alone; give a directory for several");
   }
   const bool html_file = std::filesystem::path(o.out).extension() == ".html";
-  if (html_file && (o.kinds.size() != 1 || !wants(o, "replay"))) {
+  if (html_file && (kinds.size() != 1 || !wants(kinds, FigureKind::replay))) {
     throw InputError("command line", "--out", "names an HTML file, which holds --kind replay alone; give a directory");
   }
   check_out(o, video_file || html_file);
   // Bounded work whatever is given (docs/limits.md): the runs of a replay, the runs made into videos.
-  if (wants(o, "replay")) check_replay_runs(o.runs.size());
-  if (wants(o, "video")) check_video_runs(o.runs.size(), o.video);
+  if (wants(kinds, FigureKind::replay)) check_replay_runs(o.runs.size());
+  if (wants(kinds, FigureKind::video)) check_video_runs(o.runs.size(), o.video);
   VideoOptions video = o.video;
-  if (wants(o, "video")) video.frame_px = parse_size(o.size);
+  if (wants(kinds, FigureKind::video)) video.frame_px = parse_size(o.size);
   const std::optional<std::vector<int>> step_indices = replan_steps ? parse_steps(o.steps) : std::nullopt;
   // Load every run first, and find the steps asked for: bad input stops before anything is drawn.
   // A replay alone reads its runs one at a time (render/replay.hpp): nothing loaded up front.
-  const bool replay_only = std::all_of(o.kinds.begin(), o.kinds.end(), [](const std::string& k) { return k == "replay"; });
+  const bool replay_only = std::all_of(kinds.begin(), kinds.end(), [](FigureKind k) { return k == FigureKind::replay; });
   std::vector<RecordedRun> runs;
   if (!replay_only) {
     for (const auto& dir : o.runs) runs.push_back(load_run_dir(dir));
@@ -153,42 +161,54 @@ int run_render(const RenderOptions& o) {
     for (const RecordedRun& run : runs) steps.push_back(find_replan_steps(run, step_indices));
   }
   MadeFolders made;
-  for (const std::string& kind : o.kinds) {
-    if (kind == "replay") {
-      // Every run in one page; beside the run when there is one, else in the current directory.
-      std::filesystem::path file = html_file ? std::filesystem::path(o.out)
-                                   : !o.out.empty() ? std::filesystem::path(o.out) / "replay.html"
-                                   : o.runs.size() == 1 ? std::filesystem::path(o.runs.front()) / "replay.html"
-                                                      : std::filesystem::path("replay.html");
-      if (file.has_parent_path()) made.emplace_back(file.parent_path());
-      const std::vector<std::filesystem::path> dirs(o.runs.begin(), o.runs.end());
-      write_file_atomically(file, replay_html(replay_only ? replay_data(dirs) : replay_data(runs)));
-      std::cout << "wrote " << file.string() << "\n";
-      continue;
-    }
-    if (kind == "overlay") {
-      const std::filesystem::path out = o.out.empty() ? std::filesystem::path(".") : std::filesystem::path(o.out);
-      made.emplace_back(out);
-      for (const auto& file : write_overlay(runs, out, o.formats)) std::cout << "wrote " << file.string() << "\n";
-      continue;
-    }
-    for (std::size_t i = 0; i < runs.size(); ++i) {
-      const RecordedRun& run = runs[i];
-      if (kind == "video") {
-        const std::filesystem::path file = video_path(o, run, made);
-        FrameProgress progress;
-        write_video(run, video, file, std::ref(progress));
+  for (const FigureKind kind : kinds) {
+    switch (kind) {
+      case FigureKind::replay: {
+        // Every run in one page; beside the run when there is one, else in the current directory.
+        std::filesystem::path file = html_file ? std::filesystem::path(o.out)
+                                     : !o.out.empty() ? std::filesystem::path(o.out) / "replay.html"
+                                     : o.runs.size() == 1 ? std::filesystem::path(o.runs.front()) / "replay.html"
+                                                        : std::filesystem::path("replay.html");
+        if (file.has_parent_path()) made.emplace_back(file.parent_path());
+        const std::vector<std::filesystem::path> dirs(o.runs.begin(), o.runs.end());
+        write_file_atomically(file, replay_html(replay_only ? replay_data(dirs) : replay_data(runs)));
         std::cout << "wrote " << file.string() << "\n";
-        continue;
+        break;
       }
-      const std::filesystem::path out = figure_dir(o, run, made);
-      if (kind == "sequence") {
-        for (const auto& file : write_sequence(run, o.at_s, out, o.formats)) std::cout << "wrote " << file.string() << "\n";
-        continue;
+      case FigureKind::overlay: {
+        const std::filesystem::path out = o.out.empty() ? std::filesystem::path(".") : std::filesystem::path(o.out);
+        made.emplace_back(out);
+        for (const auto& file : write_overlay(runs, out, o.formats)) std::cout << "wrote " << file.string() << "\n";
+        break;
       }
-      const auto files = kind == "depth" && replan_steps ? write_replan_figures(run, steps[i], out, o.formats)
-                                                         : write_figure(run, kind, out, o.formats);
-      for (const auto& file : files) std::cout << "wrote " << file.string() << "\n";
+      case FigureKind::video:
+        for (const RecordedRun& run : runs) {
+          const std::filesystem::path file = video_path(o, run, made);
+          FrameProgress progress;
+          write_video(run, video, file, std::ref(progress));
+          std::cout << "wrote " << file.string() << "\n";
+        }
+        break;
+      case FigureKind::sequence:
+        for (const RecordedRun& run : runs) {
+          const std::filesystem::path out = figure_dir(o, run, made);
+          for (const auto& file : write_sequence(run, o.at_s, out, o.formats)) std::cout << "wrote " << file.string() << "\n";
+        }
+        break;
+      case FigureKind::map:
+      case FigureKind::side:
+      case FigureKind::heightmap:
+      case FigureKind::depth:
+      case FigureKind::snapshot:
+        for (std::size_t i = 0; i < runs.size(); ++i) {
+          const RecordedRun& run = runs[i];
+          const std::filesystem::path out = figure_dir(o, run, made);
+          const auto files = kind == FigureKind::depth && replan_steps
+                                 ? write_replan_figures(run, steps[i], out, o.formats)
+                                 : write_figure(run, kind, out, o.formats);
+          for (const auto& file : files) std::cout << "wrote " << file.string() << "\n";
+        }
+        break;
     }
   }
   return kOk;
@@ -202,7 +222,7 @@ Command add_render(CLI::App& app) {
   app.add_option("--kind", o->kinds,
                  "Figures to draw: map, side, heightmap (mapping planners), depth, snapshot, overlay, sequence, "
                  "video, replay (repeatable)")
-      ->check(CLI::IsMember({"map", "side", "heightmap", "depth", "snapshot", "overlay", "sequence", "video", "replay"}))
+      ->check(CLI::IsMember(figure_kind_names()))
       ->capture_default_str();
   app.add_option("--step", o->steps,
                  "With --kind depth: draw replanning step K of a depth_reactive run instead of the recorded depth "

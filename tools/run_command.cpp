@@ -59,9 +59,9 @@ int run_run(const RunOptions& o) {
   const ExecutedRun run = execute_run(request);
   const std::filesystem::path out = o.out;
   std::string figures;
-  for (const char* name : {"map", "side", "heightmap"}) {
+  for (const FigureKind kind : {FigureKind::map, FigureKind::side, FigureKind::heightmap}) {
     for (const figure::FigureFormat format : o.figure_formats) {
-      const std::string file = std::string(name) + "." + figure::extension(format);
+      const std::string file = std::string(to_string(kind)) + "." + figure::extension(format);
       if (o.figures && std::filesystem::exists(out / file)) figures += ", " + file;
     }
   }

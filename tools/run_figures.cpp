@@ -4,7 +4,7 @@
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
-
+#include <utility>
 
 #include "campo/json_reader.hpp"
 #include "core/output_dir.hpp"
@@ -106,57 +106,110 @@ std::string replan_title(const RecordedRun& run, const ReplanStep& step) {
 
 }  // namespace
 
-std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const std::string& kind,
+namespace {
+
+constexpr std::array<std::pair<FigureKind, std::string_view>, kFigureKinds.size()> kFigureKindNames{{
+    {FigureKind::map, "map"},
+    {FigureKind::side, "side"},
+    {FigureKind::heightmap, "heightmap"},
+    {FigureKind::depth, "depth"},
+    {FigureKind::snapshot, "snapshot"},
+    {FigureKind::overlay, "overlay"},
+    {FigureKind::sequence, "sequence"},
+    {FigureKind::video, "video"},
+    {FigureKind::replay, "replay"},
+}};
+
+// The file of a figure of one run: named after its kind (map.png; figure::Canvas::write names the other formats).
+std::filesystem::path figure_file(const std::filesystem::path& out_dir, FigureKind kind) {
+  return out_dir / (std::string(to_string(kind)) + ".png");
+}
+
+}  // namespace
+
+std::string_view to_string(FigureKind kind) {
+  for (const auto& [value, name] : kFigureKindNames) {
+    if (value == kind) return name;
+  }
+  return "?";
+}
+
+std::optional<FigureKind> figure_kind_from_string(std::string_view name) {
+  for (const auto& [value, n] : kFigureKindNames) {
+    if (n == name) return value;
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> figure_kind_names() {
+  std::vector<std::string> names;
+  for (const FigureKind kind : kFigureKinds) names.emplace_back(to_string(kind));
+  return names;
+}
+
+std::vector<std::filesystem::path> write_figure(const RecordedRun& run, FigureKind kind,
                                                 const std::filesystem::path& out_dir, const FigureFormats& formats) {
   FigureStyle style;
-  if (kind == "map") {
-    style.title = title_of(run, "map");
-    return draw_map(run.scene, run.view, style).write(out_dir / "map.png", formats);
-  }
-  if (kind == "side") {
-    style.title = title_of(run, "side view");
-    return draw_side_view(run.scene, run.view, style).write(out_dir / "side.png", formats);
-  }
-  if (kind == "heightmap") {
-    if (run.view.height_map.empty()) {
-      throw InputError(record_file(run), "/events",
-                       "no height map: only dstar_lite_3d with column mapping records one (octomap mapping keeps "
-                       "what lies under an overhang, which a height map cannot show: see the side view)");
-    }
-    style.title = title_of(run, "reconstructed height map");
-    return draw_height_map(run.scene, run.view, style).write(out_dir / "heightmap.png", formats);
-  }
-  if (kind == "snapshot") {
-    std::vector<Eigen::Vector3d> path;
-    for (const TrackPoint& p : run.view.track) path.push_back(p.position_m);
-    const SceneMesh mesh = build_scene_mesh(run.scene);
-    const SnapshotCamera camera = default_snapshot_camera(run.scene, path);
-    std::optional<Eigen::Isometry3d> pose;
-    if (!path.empty()) pose = Eigen::Isometry3d(Eigen::Translation3d(path.back()));
-    const auto type = vehicle_type_from_string(run.record.at("parameters").at("vehicle").at("type").get<std::string>());
-    return raster_figure(render_snapshot(run.scene, mesh, camera, path, pose, type.value_or(VehicleType::quadrotor)))
-        .write(out_dir / "snapshot.png", formats);
-  }
-  if (kind == "depth") {
-    // Every recorded depth map (campo run --record-depth), grey and colour-mapped.
-    std::vector<std::filesystem::path> frames, written;
-    const auto depth_dir = run.dir / "depth";
-    if (std::filesystem::is_directory(depth_dir)) {
-      for (const auto& e : std::filesystem::directory_iterator(depth_dir)) {
-        if (e.path().extension() == ".png") frames.push_back(e.path());
+  switch (kind) {
+    case FigureKind::map:
+      style.title = title_of(run, "map");
+      return draw_map(run.scene, run.view, style).write(figure_file(out_dir, kind), formats);
+    case FigureKind::side:
+      style.title = title_of(run, "side view");
+      return draw_side_view(run.scene, run.view, style).write(figure_file(out_dir, kind), formats);
+    case FigureKind::heightmap:
+      if (run.view.height_map.empty()) {
+        throw InputError(record_file(run), "/events",
+                         "no height map: only dstar_lite_3d with column mapping records one (octomap mapping keeps "
+                         "what lies under an overhang, which a height map cannot show: see the side view)");
       }
+      style.title = title_of(run, "reconstructed height map");
+      return draw_height_map(run.scene, run.view, style).write(figure_file(out_dir, kind), formats);
+    case FigureKind::snapshot: {
+      std::vector<Eigen::Vector3d> path;
+      for (const TrackPoint& p : run.view.track) path.push_back(p.position_m);
+      const SceneMesh mesh = build_scene_mesh(run.scene);
+      const SnapshotCamera camera = default_snapshot_camera(run.scene, path);
+      std::optional<Eigen::Isometry3d> pose;
+      if (!path.empty()) pose = Eigen::Isometry3d(Eigen::Translation3d(path.back()));
+      const auto type =
+          vehicle_type_from_string(run.record.at("parameters").at("vehicle").at("type").get<std::string>());
+      return raster_figure(render_snapshot(run.scene, mesh, camera, path, pose, type.value_or(VehicleType::quadrotor)))
+          .write(figure_file(out_dir, kind), formats);
     }
-    std::sort(frames.begin(), frames.end());
-    if (frames.empty()) {
-      throw InputError(depth_dir.string(), "", "no recorded depth maps; run with --record-depth N");
+    case FigureKind::depth: {
+      // Every recorded depth map (campo run --record-depth), grey and colour-mapped.
+      std::vector<std::filesystem::path> frames, written;
+      const auto depth_dir = run.dir / "depth";
+      if (std::filesystem::is_directory(depth_dir)) {
+        for (const auto& e : std::filesystem::directory_iterator(depth_dir)) {
+          if (e.path().extension() == ".png") frames.push_back(e.path());
+        }
+      }
+      std::sort(frames.begin(), frames.end());
+      if (frames.empty()) {
+        throw InputError(depth_dir.string(), "", "no recorded depth maps; run with --record-depth N");
+      }
+      for (const auto& frame : frames) {
+        const std::string stem = frame.stem().string();
+        append(written, write_depth_pair(read_depth_map(frame), {}, stem, out_dir, stem, formats));
+      }
+      return written;
     }
-    for (const auto& frame : frames) {
-      const std::string stem = frame.stem().string();
-      append(written, write_depth_pair(read_depth_map(frame), {}, stem, out_dir, stem, formats));
-    }
-    return written;
+    case FigureKind::overlay:
+    case FigureKind::sequence:
+    case FigureKind::video:
+    case FigureKind::replay:
+      break;  // several runs, or a run over time: write_overlay, write_sequence, write_video, replay_html
   }
-  throw std::invalid_argument("unknown figure kind " + kind);
+  throw std::invalid_argument("write_figure: " + std::string(to_string(kind)) + " is not a figure of one run");
+}
+
+std::vector<std::filesystem::path> write_figure(const RecordedRun& run, std::string_view kind,
+                                                const std::filesystem::path& out_dir, const FigureFormats& formats) {
+  const std::optional<FigureKind> parsed = figure_kind_from_string(kind);
+  if (!parsed) throw std::invalid_argument("unknown figure kind " + std::string(kind));
+  return write_figure(run, *parsed, out_dir, formats);
 }
 
 std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::optional<std::vector<int>>& indices) {

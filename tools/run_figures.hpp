@@ -1,8 +1,10 @@
 #pragma once
 /// Writing the figures of recorded runs (shared by `campo run` and `campo render`).
+#include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "render/figure_canvas.hpp"
@@ -14,13 +16,34 @@ namespace campo::cli {
 using FigureFormats = std::vector<figure::FigureFormat>;
 inline const FigureFormats kPngOnly{figure::FigureFormat::png};
 
-/// Figure kinds of one run.
-inline const std::vector<std::string> kRunFigureKinds{"map", "side", "depth", "snapshot"};
+/// What `campo render --kind` draws, named on the command line as to_string
+/// gives (one name table, in run_figures.cpp, for both directions).
+enum class FigureKind { map, side, heightmap, depth, snapshot, overlay, sequence, video, replay };
 
-/// Draws figure `kind` ("map", "side", "depth", "snapshot") of a run into
-/// out_dir, once per format (map.png, map.pdf ...); returns the files written.
-/// A snapshot is a rendered raster: its PDF and SVG embed the image.
-std::vector<std::filesystem::path> write_figure(const RecordedRun& run, const std::string& kind,
+/// Every figure kind, in the order --kind's help lists them.
+inline constexpr std::array kFigureKinds{FigureKind::map,      FigureKind::side,    FigureKind::heightmap,
+                                         FigureKind::depth,    FigureKind::snapshot, FigureKind::overlay,
+                                         FigureKind::sequence, FigureKind::video,   FigureKind::replay};
+
+/// The figure kinds of one run that write_figure draws.
+inline constexpr std::array kRunFigureKinds{FigureKind::map, FigureKind::side, FigureKind::heightmap,
+                                            FigureKind::depth, FigureKind::snapshot};
+
+std::string_view to_string(FigureKind kind);
+std::optional<FigureKind> figure_kind_from_string(std::string_view name);
+/// The names of kFigureKinds, in its order (--kind's choices).
+std::vector<std::string> figure_kind_names();
+
+/// Draws figure `kind` of a run (one of kRunFigureKinds) into out_dir, once
+/// per format (map.png, map.pdf ...); returns the files written. A snapshot is
+/// a rendered raster: its PDF and SVG embed the image. std::invalid_argument
+/// for a kind that is not a figure of one run.
+std::vector<std::filesystem::path> write_figure(const RecordedRun& run, FigureKind kind,
+                                                const std::filesystem::path& out_dir,
+                                                const FigureFormats& formats = kPngOnly);
+/// The same, the kind given by its name (figure_kind_from_string);
+/// std::invalid_argument for a name that is no figure kind.
+std::vector<std::filesystem::path> write_figure(const RecordedRun& run, std::string_view kind,
                                                 const std::filesystem::path& out_dir,
                                                 const FigureFormats& formats = kPngOnly);
 
