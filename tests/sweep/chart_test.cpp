@@ -2,8 +2,11 @@
 // are drawn the same every time.
 #include "sweep/chart.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -13,6 +16,7 @@
 
 #include "campo/json_reader.hpp"
 #include "render/figure_canvas.hpp"
+#include "render/figure_style.hpp"
 #include "render/figures.hpp"
 #include "sweep/table.hpp"
 #include "tests/render/vector_outputs.hpp"
@@ -104,11 +108,72 @@ TEST(SweepChart, ErrorBarsAreTheConfidenceIntervalNotTheSd) {
   EXPECT_LT(two.values(Support::real).ci95->low, 0.0);  // the t interval would
 }
 
+// The centres of the markers drawn in `color`, left to right: the pixels of that colour, eroded
+// until only the markers' discs (8 px across) remain of them, not the series' lines (3 px) or
+// error bars (1.5 px).
+std::vector<cv::Point2d> marker_centres(const cv::Mat& image, const cv::Scalar& color) {
+  cv::Mat mask;
+  const cv::Scalar tolerance(10, 10, 10);
+  cv::inRange(image, color - tolerance, color + tolerance, mask);
+  cv::erode(mask, mask, cv::getStructuringElement(cv::MORPH_ELLIPSE, {5, 5}));
+  cv::Mat labels, stats, centroids;
+  const int count = cv::connectedComponentsWithStats(mask, labels, stats, centroids);
+  std::vector<cv::Point2d> centres;
+  for (int i = 1; i < count; ++i) centres.emplace_back(centroids.at<double>(i, 0), centroids.at<double>(i, 1));
+  std::sort(centres.begin(), centres.end(), [](const cv::Point2d& a, const cv::Point2d& b) { return a.x < b.x; });
+  return centres;
+}
+
+// The largest distance of (values[i], px[i]) from their least-squares line: 0 when px is an affine function of values.
+double affine_misfit_px(const std::vector<double>& values, const std::vector<double>& px) {
+  const double n = static_cast<double>(values.size());
+  double sv = 0, sp = 0, svv = 0, svp = 0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    sv += values[i];
+    sp += px[i];
+    svv += values[i] * values[i];
+    svp += values[i] * px[i];
+  }
+  const double slope = (n * svp - sv * sp) / (n * svv - sv * sv);
+  const double offset = (sp - slope * sv) / n;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < values.size(); ++i) worst = std::max(worst, std::abs(offset + slope * values[i] - px[i]));
+  return worst;
+}
+
+// Values that are not all powers of two are placed in proportion to their value: read back from the
+// markers drawn, their x pixels are an affine function of the values, in both panels. The last gap
+// (0.9 to 2.1) is four times the first (0.3 to 0.6): a log2 axis would make it 1.22 times, one of
+// categories the same.
 TEST(SweepChart, LinearAxisForOtherValues) {
+  const std::vector<double> values{0.3, 0.6, 0.9, 1.2, 2.1};
   SweepTable table{"speeds", {"speed"}, {}};
-  for (double v : {0.3, 0.6, 0.9, 1.2}) table.rows.push_back(row("two_barriers", v, 1.0 + v / 10, 0.01, 1.0));
+  for (double v : values) {
+    table.rows.push_back(row("two_barriers", v, 1.0 + v / 10, 0.01, 1.0));
+    table.rows.back().reached = table.rows.back().runs;
+  }
   const cv::Mat image = draw_sweep_chart(table).raster();
-  EXPECT_FALSE(image.empty());
+  const std::vector<cv::Point2d> markers = marker_centres(image, run_color(0));
+  // Five in each panel, left then right, and the legend's, right of both.
+  ASSERT_EQ(markers.size(), 2 * values.size() + 1);
+  for (const std::size_t panel : {0u, 1u}) {
+    const std::vector<cv::Point2d> m(markers.begin() + panel * values.size(),
+                                     markers.begin() + (panel + 1) * values.size());
+    std::vector<double> x_px, y_px;
+    for (const cv::Point2d& p : m) {
+      x_px.push_back(p.x);
+      y_px.push_back(p.y);
+    }
+    EXPECT_LT(affine_misfit_px(values, x_px), 1.0) << "panel " << panel;
+    EXPECT_NEAR((x_px[4] - x_px[2]) / (x_px[1] - x_px[0]), 4.0, 0.05) << "panel " << panel;
+    // The y axes are linear too: the path ratios (1 + v / 10) rise with v; every success rate is 100 %.
+    if (panel == 0) {
+      EXPECT_LT(affine_misfit_px(values, y_px), 1.0);
+      EXPECT_LT(y_px.back(), y_px.front() - 10.0);
+    } else {
+      EXPECT_LT(*std::max_element(y_px.begin(), y_px.end()) - *std::min_element(y_px.begin(), y_px.end()), 1.0);
+    }
+  }
 }
 
 // The chart as PDF and SVG: the panels' titles, an axis label and the legend as text in the PDF,
