@@ -171,8 +171,9 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
   if (plan.height_map) {
     if (!plan.footprints.empty()) legend.push_back(line_entry(figure::kInk, 1, "obstacle in the scene"));
   } else if (!plan.footprints.empty()) {
-    // One entry per obstacle colour (up to four, by area drawn), named after the first obstacle of that colour
-    // ("field/canopy_3" -> "canopy", "box_row" -> "box_row"): rows, boxes and posts read apart.
+    // One entry per kind of obstacle (up to four, by area drawn), the kind read from the alias ("field/canopy_3"
+    // -> "canopy", "box_row" -> "box_row"), so rows, boxes and posts read apart while a forest's trunks, drawn in
+    // several shades, are one entry in the first shade; obstacles without a name are grouped by colour.
     // Solids above the flight band are a group of their own, drawn pale with a dashed edge.
     struct Group {
       cv::Scalar colour;
@@ -189,9 +190,8 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
       while (!name.empty() && (std::isdigit(static_cast<unsigned char>(name.back())) || name.back() == '_')) {
         name.pop_back();
       }
-      // Above the band, one entry per kind (a forest's crowns vary in shade); at flight height, per colour.
       auto g = std::find_if(groups.begin(), groups.end(), [&](const Group& x) {
-        return x.above == above && (above ? x.name == name : x.colour == c);
+        return x.above == above && x.name == name && (!name.empty() || x.colour == c);
       });
       if (g == groups.end()) {
         groups.push_back({c, above, 0.0, name});
