@@ -360,11 +360,10 @@ std::vector<FigureFailure> write_run_files(const SimulatedRun& run, const RunReq
     recorded->view.label = request.label.empty() ? request.out.filename().string() : request.label;
   });
   if (!recorded) return failures;  // no figure could be drawn from it
-  for (const std::string kind : {"map", "side"}) {
-    attempt(kind, [&] { write_figure(*recorded, kind, staged, request.figure_formats); });
-  }
-  if (!recorded->view.height_map.empty()) {
-    attempt("heightmap", [&] { write_figure(*recorded, "heightmap", staged, request.figure_formats); });
+  std::vector<FigureKind> kinds{FigureKind::map, FigureKind::side};
+  if (!recorded->view.height_map.empty()) kinds.push_back(FigureKind::heightmap);
+  for (const FigureKind kind : kinds) {
+    attempt(std::string(to_string(kind)), [&] { write_figure(*recorded, kind, staged, request.figure_formats); });
   }
   return failures;
 }

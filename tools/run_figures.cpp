@@ -205,13 +205,6 @@ std::vector<std::filesystem::path> write_figure(const RecordedRun& run, FigureKi
   throw std::invalid_argument("write_figure: " + std::string(to_string(kind)) + " is not a figure of one run");
 }
 
-std::vector<std::filesystem::path> write_figure(const RecordedRun& run, std::string_view kind,
-                                                const std::filesystem::path& out_dir, const FigureFormats& formats) {
-  const std::optional<FigureKind> parsed = figure_kind_from_string(kind);
-  if (!parsed) throw std::invalid_argument("unknown figure kind " + std::string(kind));
-  return write_figure(run, *parsed, out_dir, formats);
-}
-
 std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::optional<std::vector<int>>& indices) {
   const std::string file = record_file(run);
   const std::string planner = run.record.value("/parameters/planner/name"_json_pointer, std::string());

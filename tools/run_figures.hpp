@@ -41,12 +41,6 @@ std::vector<std::string> figure_kind_names();
 std::vector<std::filesystem::path> write_figure(const RecordedRun& run, FigureKind kind,
                                                 const std::filesystem::path& out_dir,
                                                 const FigureFormats& formats = kPngOnly);
-/// The same, the kind given by its name (figure_kind_from_string);
-/// std::invalid_argument for a name that is no figure kind.
-std::vector<std::filesystem::path> write_figure(const RecordedRun& run, std::string_view kind,
-                                                const std::filesystem::path& out_dir,
-                                                const FigureFormats& formats = kPngOnly);
-
 /// One replanning step of a depth_reactive run (Decisions::replan, docs/planners.md).
 struct ReplanStep {
   double time_s = 0.0;                  ///< when the planner decided, simulated seconds
