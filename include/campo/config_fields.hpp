@@ -72,6 +72,7 @@ template <class Config, class Bound>
 struct DependentBound {
   std::function<Bound(const Config&)> bound;
   std::string described;
+  bool depends = true;  ///< false: the same bound whatever the other fields (ConfigFields::constant)
 };
 
 /// The declared fields of a config struct `Config` (default-constructible).
@@ -87,7 +88,10 @@ class ConfigFields {
   ConfigFields& number(std::string key, double Config::*member, DependentBound<Config, Range> range,
                        std::string unit, std::string doc) {
     Field f = basic(key, member, std::move(unit), range.described, std::move(doc));
-    f.read = [key, member, bound = range.bound](ObjectReader& r, Config& c) { r.read(key, c.*member, bound(c)); };
+    f.read = [key, member, bound = range.bound, depends = range.depends](ObjectReader& r, Config& c) {
+      if (depends && skip_dependent(r, key)) return;
+      r.read(key, c.*member, bound(c));
+    };
     return add(std::move(f));
   }
 
@@ -98,7 +102,8 @@ class ConfigFields {
   ConfigFields& integer(std::string key, int Config::*member, DependentBound<Config, IntRange> range,
                         std::string unit, std::string doc) {
     Field f = basic(key, member, std::move(unit), range.described, std::move(doc));
-    f.read = [key, member, bound = range.bound](ObjectReader& r, Config& c) {
+    f.read = [key, member, bound = range.bound, depends = range.depends](ObjectReader& r, Config& c) {
+      if (depends && skip_dependent(r, key)) return;
       const IntRange b = bound(c);
       r.read(key, c.*member, b.min, b.max);
     };
@@ -252,6 +257,7 @@ class ConfigFields {
   ConfigFields& only_when(std::function<bool(const Config&)> applies, std::string requirement) {
     Field& f = last();
     f.read = [key = f.key, read = std::move(f.read), applies, requirement](ObjectReader& r, Config& c) {
+      if (skip_dependent(r, key)) return;
       if (!applies(c) && r.has(key)) {
         const JsonNode node = *r.optional(key);
         throw InputError(node.file(), node.pointer(), requirement);
@@ -323,7 +329,16 @@ class ConfigFields {
 
   template <class Bound>
   static DependentBound<Config, Bound> constant(Bound bound, std::string described) {
-    return {[bound](const Config&) { return bound; }, std::move(described)};
+    return {[bound](const Config&) { return bound; }, std::move(described), false};
+  }
+
+  // A field checked against the fields before it is not checked once one of
+  // them (or anything else of the object) had an error: it would be checked
+  // against a default the file did not give, and blame the wrong field.
+  static bool skip_dependent(ObjectReader& r, const std::string& key) {
+    if (r.ok()) return false;
+    r.accept(key);
+    return true;
   }
 
   static std::string default_text(const nlohmann::json& value) { return field_value_text(value); }
