@@ -248,6 +248,17 @@ class ProgressReport {
   Clock::time_point start_, last_;
 };
 
+// Runs `expand`; the errors it finds in the spec (a run's scene that does not
+// load, named at the spec's scene entry) get their line and column in it.
+template <class Expand>
+void located_in_spec(const SweepSpec& spec, Expand expand) {
+  try {
+    expand();
+  } catch (const InputError& e) {
+    throw with_locations(e, spec.file.string(), read_text_file(spec.file));
+  }
+}
+
 int run_sweep(const SweepOptions& o) {
   // Everything is validated before anything is written.
   const Shard shard = parse_shard(o.shard);
@@ -263,16 +274,19 @@ int run_sweep(const SweepOptions& o) {
   if (o.list) {
     // Streamed: each run printed as soon as it is validated, none kept (100,000 runs: about a second).
     std::size_t index = 0, listed = 0;
-    for_each_sweep_run(spec, check, [&](const SweepRun& run) {
-      if (index++ % static_cast<std::size_t>(shard.count) != static_cast<std::size_t>(shard.index - 1)) return;
-      std::cout << manifest_entry(run).dump() << '\n';
-      ++listed;
+    located_in_spec(spec, [&] {
+      for_each_sweep_run(spec, check, [&](const SweepRun& run) {
+        if (index++ % static_cast<std::size_t>(shard.count) != static_cast<std::size_t>(shard.index - 1)) return;
+        std::cout << manifest_entry(run).dump() << '\n';
+        ++listed;
+      });
     });
     std::cerr << spec.name << ": " << listed << " runs" << (o.shard.empty() ? "" : " in shard " + o.shard)
               << ", all valid; nothing was run\n";
     return kOk;
   }
-  const std::vector<SweepRun> all_runs = expand_sweep(spec, check);
+  std::vector<SweepRun> all_runs;
+  located_in_spec(spec, [&] { all_runs = expand_sweep(spec, check); });
   const std::vector<SweepRun> runs = shard_of(all_runs, shard.index, shard.count);
   if (o.out.empty()) throw InputError("command line", "--out", "expected an output directory (or --list)");
   if (o.videos && !o.figures && !o.triage) {

@@ -35,13 +35,17 @@ void validate_sweep_spec(const std::string& file, const std::string& text) {
   const SweepSpec spec = read_sweep_spec_text(text, file);
   for (const SweepPlugin& plugin : spec.plugins) load_planner_plugin(plugin.file, spec.file.string(), plugin.origin);
   std::size_t runs = 0;
-  for_each_sweep_run(
-      spec,
-      [](const Scene& scene) {
-        check_runnable(scene);
-        check_vehicles_and_planners(scene);
-      },
-      [&](const SweepRun&) { ++runs; });
+  try {
+    for_each_sweep_run(
+        spec,
+        [](const Scene& scene) {
+          check_runnable(scene);
+          check_vehicles_and_planners(scene);
+        },
+        [&](const SweepRun&) { ++runs; });
+  } catch (const InputError& e) {
+    throw with_locations(e, file, text);  // a run's scene that does not load, at the spec's scene entry
+  }
   std::cout << "ok " << file << ": sweep spec, " << spec.scenes.size() << " scenes, " << runs << " runs\n";
 }
 

@@ -439,7 +439,7 @@ TEST_F(SweepCli, BadInputWritesNothing) {
   write("bad.json", bad);
   const Result r = campo("sweep " + spec("bad.json") + " --out " + out("o"));
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_THAT(r.err, HasSubstr("bad.json: /scenes/0: run two_barriers__resolution-16__seed-1: "));
+  EXPECT_THAT(r.err, HasSubstr("bad.json:4:14: /scenes/0: run two_barriers__resolution-16__seed-1: "));
   EXPECT_THAT(r.err, HasSubstr("resolutoin"));
   EXPECT_FALSE(fs::exists(dir_ / "o"));
   const Result shard = campo("sweep " + spec("tiny.json") + " --out " + out("o") + " --shard 3/2");
