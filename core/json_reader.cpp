@@ -90,7 +90,10 @@ namespace {
 std::string describe_all(const std::vector<InputIssue>& issues, std::size_t count) {
   if (issues.empty()) throw std::logic_error("InputError: no issue");
   std::string out;
-  for (const InputIssue& issue : issues) out += (out.empty() ? "" : "\n") + issue.describe();
+  for (const InputIssue& issue : issues) {
+    if (!out.empty()) out += '\n';
+    out += issue.describe();
+  }
   if (count > issues.size()) {
     const std::size_t more = count - issues.size();
     out += "\n... and " + std::to_string(more) + " more error" + (more == 1 ? "" : "s");
