@@ -27,12 +27,12 @@ int main(int argc, char** argv) {
     commands[sub] = adder(*sub);
   };
   add(campo::cli::add_run, "run", "Run one closed-loop episode of a scene and write metrics, trajectory and a map");
-  add(campo::cli::add_render, "render", "Draw figures (map, side view, depth maps, snapshot, overlay) from recorded runs");
+  add(campo::cli::add_render, "render", "Draw figures (map, side view, depth maps, snapshot, overlay ...; PNG, PDF, SVG) from recorded runs");
   add(campo::cli::add_validate, "validate", "Check scene files strictly; report every error with its JSON path");
   add(campo::cli::add_scan, "scan", "Cast one LIDAR scan in a scene and write ranges, hits, depth map and point cloud");
   add(campo::cli::add_sweep, "sweep", "Run every combination of scenes, parameter values and seeds of a sweep spec");
   add(campo::cli::add_table, "table", "Summarize a sweep as a table (Markdown, CSV, LaTeX) and a chart");
-  add(campo::cli::add_plot, "plot", "Plot a metric of a sweep against a field (line or box plot, PNG)");
+  add(campo::cli::add_plot, "plot", "Plot a metric of a sweep against a field (line or box plot; PNG, PDF, SVG)");
   add(campo::cli::add_merge, "merge", "Combine the results of several directories of one sweep (e.g. its shards) into one");
   add(campo::cli::add_plan, "plan", "Plan on a 2D grid map (MovingAI format) with A*, D* Lite, LPA* or RRT*, or a Dubins path between two poses");
   add(campo::cli::add_reproduce, "reproduce",
