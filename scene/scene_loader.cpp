@@ -87,8 +87,8 @@ auto generated(const JsonNode& at, Generate generate) -> decltype(generate()) {
 
 class Loader {
  public:
-  Loader(const SceneLimits& limits, std::filesystem::path base_dir)
-      : limits_(limits), base_dir_(std::move(base_dir)) {}
+  Loader(const SceneLimits& limits, std::filesystem::path base_dir, const SceneChecks& checks)
+      : limits_(limits), base_dir_(std::move(base_dir)), checks_(checks) {}
 
   // Every error of the scene that can be found is collected (each top-level
   // key, object, field and waypoint checked on its own) and thrown at the end
@@ -579,7 +579,9 @@ class Loader {
     }
     vehicle.planner.params = {nlohmann::json::object(), r.node().file(),
                               child_pointer(child_pointer(r.node().pointer(), "planner"), "params")};
+    bool planner_read = true;
     if (auto planner = r.optional("planner")) {
+      const std::size_t before = errors_.count();
       r.check([&] {
         ObjectReader p(*planner, r.errors());
         p.check([&] {
@@ -590,9 +592,17 @@ class Loader {
         if (auto params = p.optional("params")) p.check([&] { vehicle.planner.params = read_params_block(*params); });
         p.finish();
       });
+      planner_read = errors_.count() == before;
     }
+    // The planner's and the vehicle's parameters, checked here (by planners/ and vehicles/) when
+    // their blocks read well, so that their errors come with this object's others.
+    if (planner_read && checks_.planner) r.check([&] { checks_.planner(vehicle); });
     vehicle.params = {nlohmann::json::object(), r.node().file(), child_pointer(r.node().pointer(), "params")};
-    if (auto params = r.optional("params")) r.check([&] { vehicle.params = read_params_block(*params); });
+    bool params_read = true;
+    if (auto params = r.optional("params")) {
+      params_read = r.check([&] { vehicle.params = read_params_block(*params); });
+    }
+    if (params_read && checks_.vehicle_params) r.check([&] { checks_.vehicle_params(vehicle); });
     if (auto noise = r.optional("state_noise")) {
       r.check([&] {
         ObjectReader n(*noise, r.errors());
@@ -744,6 +754,7 @@ class Loader {
 
   const SceneLimits& limits_;
   std::filesystem::path base_dir_;
+  const SceneChecks& checks_;
   Scene scene_;
   std::map<std::string, std::string> alias_pointers_;
   std::map<std::string, GridObstaclesConfig> grids_;
@@ -812,8 +823,8 @@ std::string sha256_hex(const std::string& bytes) {
 
 Scene parse_scene(const nlohmann::json& document, const std::string& source,
                   const std::filesystem::path& base_dir, const std::string& source_sha256,
-                  const SceneLimits& limits) {
-  Loader loader(limits, base_dir);
+                  const SceneLimits& limits, const SceneChecks& checks) {
+  Loader loader(limits, base_dir, checks);
   Scene scene;
   try {
     scene = loader.load(JsonNode(document, source, ""));
@@ -831,10 +842,11 @@ Scene load_scene(const std::filesystem::path& path, const SceneLimits& limits) {
   return load_scene_text(read_text_file(path, limits.json), path, limits);
 }
 
-Scene load_scene_text(const std::string& text, const std::filesystem::path& path, const SceneLimits& limits) {
+Scene load_scene_text(const std::string& text, const std::filesystem::path& path, const SceneLimits& limits,
+                      const SceneChecks& checks) {
   const nlohmann::json document = parse_json_text(text, path.string(), limits.json);
   try {
-    return parse_scene(document, path.string(), path.parent_path(), sha256_hex(text), limits);
+    return parse_scene(document, path.string(), path.parent_path(), sha256_hex(text), limits, checks);
   } catch (const InputError& e) {
     throw with_locations(e, path.string(), text);  // each error's line and column in the file
   }

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <sstream>
+#include <utility>
 
 #include "campo/episode.hpp"
 #include "campo/json_reader.hpp"
@@ -230,7 +231,18 @@ PreparedRun prepare_checked_run(const RunRequest& request, bool validate_planner
       if (block.is_object() && !block.contains("name")) block["name"] = request.planner;
     }
   }
-  run.scene = parse_scene(run.document, scene_file, request.scene.parent_path(), sha256_hex(bytes));
+  // The parameter blocks are checked with the scene's other keys (one list of errors), but for the
+  // planner of the vehicle that runs when another planner replaces it (--planner, a caller's own):
+  // it is checked once chosen.
+  SceneChecks checks = parameter_checks();
+  if (!request.planner.empty() || !validate_planner) {
+    checks.planner = [check = checks.planner, vehicle = request.vehicle, first = true](const VehicleDef& v) mutable {
+      const bool is_first = std::exchange(first, false);
+      if (vehicle.empty() ? is_first : v.alias == vehicle) return;
+      check(v);
+    };
+  }
+  run.scene = parse_scene(run.document, scene_file, request.scene.parent_path(), sha256_hex(bytes), {}, checks);
   Scene& scene = run.scene;
 
   EpisodeOptions& options = run.options;

@@ -15,6 +15,14 @@ void check_vehicles_and_planners(const Scene& scene, std::size_t skip) {
   }
 }
 
+SceneChecks parameter_checks() {
+  SceneChecks checks;
+  checks.vehicle_params = [](const VehicleDef& vehicle) { validate_vehicle_params(vehicle); };
+  // No scene and no vehicle in the context: the planner checks its parameters alone.
+  checks.planner = [](const VehicleDef& vehicle) { create_planner(vehicle.planner, {vehicle.type, nullptr, nullptr}); };
+  return checks;
+}
+
 void check_runnable(const Scene& scene, std::size_t vehicle_index) {
   if (scene.vehicles.empty()) throw InputError(scene.source_path, "/objects", "expected a scene with a vehicle to run");
   // One vehicle is simulated: another would be in the file, validated and

@@ -7,12 +7,21 @@
 #include <limits>
 
 #include "campo/scene.hpp"
+#include "campo/scene_loader.hpp"
 
 namespace campo::cli {
 
 /// Validates every vehicle's parameters but vehicle `skip`'s and creates its
 /// planner once (which checks the planner's name and parameters); throws InputError.
 void check_vehicles_and_planners(const Scene& scene, std::size_t skip = std::numeric_limits<std::size_t>::max());
+
+/// What check_vehicles_and_planners checks of each vehicle's parameter blocks
+/// alone (the planner's name and parameters, the vehicle's parameters), for
+/// the loader to run on each vehicle as it reads it: their errors then come
+/// with the scene's others, in one list. What needs the whole scene (a
+/// planner's limits on its mission) is checked by check_vehicles_and_planners
+/// once the scene loads.
+SceneChecks parameter_checks();
 
 /// Checks that a run of the scene can start: the scene has exactly one
 /// vehicle (one is simulated; a second would be ignored, so it is refused,

@@ -14,10 +14,10 @@ namespace campo::cli {
 
 namespace {
 
-// A scene file: the loader reports every error it finds; the checks after it
-// (vehicle, planner) need a loaded scene and report theirs once it loads.
+// A scene file: the loader reports every error it finds, those of the vehicles' and planners'
+// parameter blocks with them; the checks that need a loaded scene report theirs once it loads.
 void validate_scene(const std::string& file, const std::string& text) {
-  const Scene scene = load_scene_text(text, file);
+  const Scene scene = load_scene_text(text, file, {}, parameter_checks());
   try {
     // What `campo run FILE` checks, in its order: a vehicle with a mission to run, then the
     // parameters that vehicles/ and planners/ check (of every vehicle, as run checks them too).

@@ -271,11 +271,15 @@ class ConfigFields {
   }
 
   /// Overwrites the fields of `config` given in the object at `node`; throws
-  /// InputError for a key not declared, a wrong type or a value out of range.
+  /// InputError for a key not declared, a wrong type or a value out of range:
+  /// one InputError with every error of the object (each field checked on its
+  /// own, then every unknown key), so that a params block's errors come at once.
   void read(const JsonNode& node, Config& config) const {
-    ObjectReader r(node);
+    InputErrors errors;
+    ObjectReader r(node, &errors);
     read_fields(r, config);
     r.finish();
+    errors.throw_if_any();
   }
   /// Reads the declared fields from an object whose other keys the caller
   /// reads itself (and then calls r.finish()). A reader given an InputErrors

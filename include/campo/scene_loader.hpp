@@ -3,6 +3,7 @@
 /// This is the one place where scene JSON is interpreted; every error is an
 /// InputError naming the file, the JSON pointer and what was expected.
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -28,6 +29,17 @@ struct SceneLimits {
   long max_beams = 2048L * 2048L;      ///< per sensor
 };
 
+/// Checks of the blocks that other modules interpret, run by the loader on
+/// each vehicle as it reads it, so that their errors come with the scene's
+/// own, in one list and in the order of the file (a check throws InputError).
+/// A check sees the vehicle's type and the block it checks, read without
+/// errors; the rest of the scene is not loaded yet (what needs it is checked
+/// once the scene loads). Unset checks are skipped.
+struct SceneChecks {
+  std::function<void(const VehicleDef&)> vehicle_params;  ///< the vehicle's "params" (def.type, def.params)
+  std::function<void(const VehicleDef&)> planner;         ///< the planner's name and "params" (def.type, def.planner)
+};
+
 /// Loads and validates a scene file. Relative data paths (CSV/PNG terrain)
 /// are resolved against the file's directory.
 Scene load_scene(const std::filesystem::path& path, const SceneLimits& limits = {});
@@ -35,13 +47,14 @@ Scene load_scene(const std::filesystem::path& path, const SceneLimits& limits = 
 /// load_scene of `text` as if it were the content of the file `path` (which names
 /// it in errors and whose directory resolves relative data paths); the file is
 /// not read. For the fuzz target (fuzz/) and scenes held in memory.
-Scene load_scene_text(const std::string& text, const std::filesystem::path& path, const SceneLimits& limits = {});
+Scene load_scene_text(const std::string& text, const std::filesystem::path& path, const SceneLimits& limits = {},
+                      const SceneChecks& checks = {});
 
 /// Validates an already-parsed scene document; `source` names it in errors
 /// and `base_dir` resolves relative data paths. `source_sha256` is stored as given.
 Scene parse_scene(const nlohmann::json& document, const std::string& source,
                   const std::filesystem::path& base_dir, const std::string& source_sha256 = "",
-                  const SceneLimits& limits = {});
+                  const SceneLimits& limits = {}, const SceneChecks& checks = {});
 
 /// Widest field of view a depth camera renders in one perspective view, degrees.
 inline constexpr double kMaxDepthCameraFov_deg = 150.0;

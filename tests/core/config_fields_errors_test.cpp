@@ -71,5 +71,35 @@ TEST(ConfigFieldsErrors, AFieldThatDependsOnOneWithAnErrorIsNotBlamed) {
   EXPECT_EQ(read_collecting({{"smoothing_s", 2}}).count(), 1u);
 }
 
+struct OuterConfig {
+  double speed_mps = 1.0;
+  LevelsConfig inner;
+};
+
+// read() of a whole block (a planner's or vehicle's params) throws every error of it at once,
+// those of a nested object included, in declaration order and then the unknown keys.
+TEST(ConfigFieldsErrors, ReadThrowsEveryErrorOfTheBlock) {
+  using C = OuterConfig;
+  const ConfigFields<C> fields = ConfigFields<C>()
+                                     .number("speed_mps", &C::speed_mps, Range::positive(), "m/s", "speed")
+                                     .nested("inner", &C::inner, levels_fields(), "inner");
+  const nlohmann::json document = {{"speed_mps", -1}, {"inner", {{"gain", -2}, {"hue", 0}}}, {"colour", 1}};
+  C config;
+  try {
+    fields.read(JsonNode(document, "p.json", "/params"), config);
+    FAIL();
+  } catch (const InputError& e) {
+    ASSERT_EQ(e.count(), 4u) << e.what();
+    EXPECT_EQ(e.issues()[0].pointer, "/params/speed_mps");
+    EXPECT_EQ(e.issues()[1].pointer, "/params/inner/gain");
+    EXPECT_EQ(e.issues()[2].pointer, "/params/inner/hue");
+    EXPECT_EQ(e.issues()[3].pointer, "/params/colour");
+  }
+  // A valid block is read as before.
+  fields.read(JsonNode(nlohmann::json{{"speed_mps", 2}, {"inner", {{"gain", 3}}}}, "p.json", "/params"), config);
+  EXPECT_EQ(config.speed_mps, 2.0);
+  EXPECT_EQ(config.inner.gain, 3.0);
+}
+
 }  // namespace
 }  // namespace campo
