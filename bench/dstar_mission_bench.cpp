@@ -17,7 +17,7 @@
 #include "grid/dstar_lite.hpp"
 #include "planners/dstar_lite_3d.hpp"
 #include "planners/registry.hpp"
-#include "vehicles/factory.hpp"
+#include "campo/vehicle_factory.hpp"
 
 namespace campo {
 namespace {

@@ -10,7 +10,7 @@
 #include "campo/episode.hpp"
 #include "campo/json_reader.hpp"
 #include "campo/scene_loader.hpp"
-#include "vehicles/factory.hpp"
+#include "campo/vehicle_factory.hpp"
 
 namespace campo {
 namespace {

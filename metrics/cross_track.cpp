@@ -1,5 +1,7 @@
-// cross_track_error (campo/episode.hpp): the distance of every trajectory
+// cross_track_error (campo/episode_record.hpp): the distance of every trajectory
 // sample to the route the planner had recorded by then.
+#include "campo/episode_record.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -7,8 +9,6 @@
 #include <vector>
 
 #include <Eigen/Geometry>
-
-#include "campo/episode.hpp"
 
 namespace campo {
 

@@ -1,9 +1,9 @@
 #pragma once
-/// The metrics of one run (EpisodeMetrics, campo/episode.hpp) as functions of
+/// The metrics of one run (EpisodeMetrics, campo/episode_record.hpp) as functions of
 /// what the closed loop records: its planner events, its trajectory samples,
 /// its mission and the clearances it measured. The loop (run/episode.cpp)
 /// keeps its state and calls these; cross_track_error, avoiding_time, to_json
-/// and to_string(Outcome) are declared in campo/episode.hpp and live here too.
+/// and to_string(Outcome) are declared in campo/episode_record.hpp and live here too.
 #include <algorithm>
 #include <limits>
 #include <optional>
@@ -12,7 +12,7 @@
 
 #include <Eigen/Core>
 
-#include "campo/episode.hpp"
+#include "campo/episode_record.hpp"
 #include "campo/scene.hpp"
 #include "campo/world.hpp"
 

@@ -6,7 +6,7 @@
 #include "campo/config_fields.hpp"
 #include "campo/lidar_config.hpp"
 #include "campo/scene_loader.hpp"
-#include "campo/state_estimation.hpp"
+#include "campo/state_noise.hpp"
 
 namespace campo {
 

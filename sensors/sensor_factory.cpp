@@ -1,4 +1,4 @@
-#include "sensors/sensor_factory.hpp"
+#include "campo/sensor_factory.hpp"
 
 #include "sensors/depth_camera.hpp"
 

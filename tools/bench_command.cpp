@@ -25,11 +25,11 @@
 #include "planners/registry.hpp"
 #include "run/provenance.hpp"
 #include "sensors/lidar.hpp"
-#include "sensors/sensor_factory.hpp"
+#include "campo/sensor_factory.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
 #include "tools/path_options.hpp"
-#include "vehicles/factory.hpp"
+#include "campo/vehicle_factory.hpp"
 
 namespace campo::cli {
 

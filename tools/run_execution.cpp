@@ -27,10 +27,10 @@
 #include "scene/scene_overrides.hpp"
 #include "sensors/depth_image.hpp"
 #include "sensors/lidar.hpp"
-#include "sensors/sensor_factory.hpp"
+#include "campo/sensor_factory.hpp"
 #include "tools/run_figures.hpp"
 #include "tools/scene_checks.hpp"
-#include "vehicles/factory.hpp"
+#include "campo/vehicle_factory.hpp"
 
 #include <pthread.h>
 #include <signal.h>

@@ -10,7 +10,7 @@
 #include "sensors/depth_image.hpp"
 #include "sensors/lidar.hpp"
 #include "sensors/scan_io.hpp"
-#include "sensors/sensor_factory.hpp"
+#include "campo/sensor_factory.hpp"
 #include "tools/commands.hpp"
 
 namespace campo::cli {

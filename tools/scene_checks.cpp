@@ -2,7 +2,7 @@
 
 #include "campo/json_reader.hpp"
 #include "planners/registry.hpp"
-#include "vehicles/factory.hpp"
+#include "campo/vehicle_factory.hpp"
 
 namespace campo::cli {
 

@@ -1,4 +1,4 @@
-#include "vehicles/factory.hpp"
+#include "campo/vehicle_factory.hpp"
 #include "vehicles/quadrotor.hpp"
 #include "vehicles/rover.hpp"
 

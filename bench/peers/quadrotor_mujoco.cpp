@@ -25,7 +25,7 @@
 #include "bench/peers/peer_record.hpp"
 #include "campo/scene_loader.hpp"
 #include "campo/world.hpp"
-#include "vehicles/factory.hpp"
+#include "campo/vehicle_factory.hpp"
 
 namespace campo {
 namespace {

@@ -32,7 +32,7 @@
 #include <nlohmann/json.hpp>
 
 #include "campo/json_reader.hpp"
-#include "campo/scene.hpp"
+#include "campo/params_block.hpp"
 
 namespace campo {
 

@@ -31,7 +31,7 @@ using SensorFactory =
     std::function<std::unique_ptr<RangeSensor>(const Scene& scene, const SensorDef& def, std::uint64_t world_seed)>;
 
 /// The ray-cast LIDAR as a RangeSensor; throws std::invalid_argument for
-/// other sensor types (make_range_sensor in sensors/sensor_factory.hpp builds those).
+/// other sensor types (make_range_sensor in sensor_factory.hpp builds those).
 std::unique_ptr<RangeSensor> make_lidar_sensor(const Scene& scene, const SensorDef& def, std::uint64_t world_seed);
 
 }  // namespace campo

@@ -13,8 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include "campo/lidar_config.hpp"
+#include "campo/params_block.hpp"
 #include "campo/pose.hpp"
-#include "campo/state_estimation.hpp"
+#include "campo/state_noise.hpp"
 
 namespace campo {
 
@@ -111,14 +112,6 @@ struct SensorDef {
 struct Waypoint {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
   std::optional<double> heading_deg;  ///< required heading (Dubins routes), if any
-};
-
-/// Parameters that another module validates (vehicle presets, planners),
-/// kept with where they came from so its errors can name file and pointer.
-struct ParamsBlock {
-  nlohmann::json values = nlohmann::json::object();
-  std::string file;     ///< scene file
-  std::string pointer;  ///< JSON pointer of the block (where it would be, when absent)
 };
 
 struct PlannerSpec {

@@ -25,7 +25,7 @@
 #include "scene/scene_overrides.hpp"
 #include "sweep/bundled.hpp"
 #include "tools/run_execution.hpp"
-#include "vehicles/factory.hpp"
+#include "campo/vehicle_factory.hpp"
 
 namespace campo::python {
 

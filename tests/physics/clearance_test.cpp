@@ -11,7 +11,7 @@
 
 #include "campo/scene_loader.hpp"
 #include "physics/bullet_convert.hpp"
-#include "vehicles/factory.hpp"
+#include "campo/vehicle_factory.hpp"
 
 namespace campo {
 namespace {

@@ -12,7 +12,7 @@
 #include "campo/scene_loader.hpp"
 #include "planners/registry.hpp"
 #include "scene/scene_overrides.hpp"
-#include "vehicles/factory.hpp"
+#include "campo/vehicle_factory.hpp"
 
 namespace campo::testing {
 

@@ -9,8 +9,8 @@
 #include "campo/run_record.hpp"
 #include "campo/scene_loader.hpp"
 #include "planners/registry.hpp"
-#include "sensors/sensor_factory.hpp"
-#include "vehicles/factory.hpp"
+#include "campo/sensor_factory.hpp"
+#include "campo/vehicle_factory.hpp"
 
 namespace campo {
 namespace {

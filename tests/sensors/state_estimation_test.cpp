@@ -9,7 +9,7 @@
 #include "campo/episode.hpp"
 #include "campo/scene_loader.hpp"
 #include "planners/registry.hpp"
-#include "vehicles/factory.hpp"
+#include "campo/vehicle_factory.hpp"
 
 namespace campo {
 namespace {

@@ -8,7 +8,7 @@
 #include "planners/registry.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/sweep_spec.hpp"
-#include "vehicles/factory.hpp"
+#include "campo/vehicle_factory.hpp"
 
 namespace campo {
 namespace {

@@ -16,7 +16,7 @@
 #include "planners/registry.hpp"
 #include "scene/scene_overrides.hpp"
 #include "sweep/expansion.hpp"
-#include "vehicles/factory.hpp"
+#include "campo/vehicle_factory.hpp"
 
 namespace campo {
 namespace {

@@ -1,8 +1,13 @@
 #pragma once
-/// Builds any range sensor: the ray-cast LIDAR, or the OSMesa depth camera.
+/// Building any range sensor: the ray-cast LIDAR or the OSMesa depth camera.
+/// range_sensor_factory() is the SensorFactory (range_sensor.hpp) that a
+/// program embedding campo puts in EpisodeOptions::make_sensor to have
+/// depth cameras too. Implemented in sensors/.
+#include <cstdint>
 #include <memory>
 
 #include "campo/range_sensor.hpp"
+#include "campo/scene.hpp"
 
 namespace campo {
 

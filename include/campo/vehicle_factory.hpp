@@ -1,5 +1,7 @@
 #pragma once
-/// Building vehicles from scene definitions.
+/// Building vehicles from scene definitions: the VehicleFactory (episode.hpp)
+/// that a program embedding campo passes to Episode or run_episode.
+/// Implemented in vehicles/.
 #include <memory>
 
 #include "campo/scene.hpp"
