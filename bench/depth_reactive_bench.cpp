@@ -17,9 +17,9 @@ namespace campo {
 namespace {
 
 struct StartView {
-  LidarConfig config;
+  RangeSensorConfig config;
   DepthGrid grid;
-  LidarScan scan;
+  RangeScan scan;
   Eigen::Vector3d target_m;
 };
 
@@ -27,7 +27,7 @@ StartView start_view(const std::string& name, int resolution) {
   const Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json");
   const VehicleDef& drone = scene.vehicles.front();
   StartView v;
-  v.config = drone.sensors.front().lidar;
+  v.config = drone.sensors.front().range;
   v.config.cols = v.config.rows = resolution;
   v.grid = DepthGrid::of(v.config);
   v.target_m = drone.mission.front().position_m;

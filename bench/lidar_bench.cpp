@@ -19,10 +19,10 @@ Scene bundled(const std::string& name) {
   return load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json");
 }
 
-LidarConfig scanner() { return *lidar_preset("scanner3d"); }
+RangeSensorConfig scanner() { return *sensor_preset("scanner3d"); }
 
 // The vehicle's sensor pose, turned a little each scan so rays see new geometry.
-Eigen::Isometry3d sensor_pose(const Scene& scene, const LidarConfig& config, std::int64_t scan) {
+Eigen::Isometry3d sensor_pose(const Scene& scene, const RangeSensorConfig& config, std::int64_t scan) {
   Eigen::Isometry3d pose = scene.vehicles.front().pose * to_isometry(config.mount);
   pose.linear() = Eigen::AngleAxisd(0.05 * static_cast<double>(scan), Eigen::Vector3d::UnitZ()) * pose.linear();
   return pose;
@@ -32,7 +32,7 @@ void BM_LidarScanner3d(benchmark::State& state, const std::string& name, CastMet
   const Scene scene = bundled(name);
   const RayCaster caster(scene, method);
   Lidar lidar(scanner(), scene.world.seed);
-  LidarScan scan;
+  RangeScan scan;
   std::int64_t scans = 0, hits = 0;
   for (auto _ : state) {
     lidar.scan(caster, sensor_pose(scene, lidar.config(), scans++), 0.0, scan);
@@ -45,7 +45,7 @@ void BM_LidarScanner3d(benchmark::State& state, const std::string& name, CastMet
 void BM_BulletRayTestLoop(benchmark::State& state, const std::string& name) {
   const Scene scene = bundled(name);
   const World world(scene);
-  const LidarConfig config = scanner();
+  const RangeSensorConfig config = scanner();
   const Lidar lidar(config, 0);
   std::int64_t scans = 0, rays = 0;
   for (auto _ : state) {

@@ -24,14 +24,14 @@ SensorDef scanner(int n) {
   SensorDef def;
   def.alias = "camera";
   def.type = SensorType::depth_camera;
-  def.lidar = *lidar_preset("scanner3d");
-  def.lidar.cols = n;
-  def.lidar.rows = n;
+  def.range = *sensor_preset("scanner3d");
+  def.range.cols = n;
+  def.range.rows = n;
   return def;
 }
 
 // The vehicle's sensor pose, turned a little each scan.
-Eigen::Isometry3d sensor_pose(const Scene& scene, const LidarConfig& config, std::int64_t scan) {
+Eigen::Isometry3d sensor_pose(const Scene& scene, const RangeSensorConfig& config, std::int64_t scan) {
   Eigen::Isometry3d pose = scene.vehicles.front().pose * to_isometry(config.mount);
   pose.linear() = Eigen::AngleAxisd(0.05 * static_cast<double>(scan), Eigen::Vector3d::UnitZ()) * pose.linear();
   return pose;
@@ -42,14 +42,14 @@ void BM_DepthCameraScan(benchmark::State& state) {
   const SensorDef def = scanner(static_cast<int>(state.range(0)));
   const auto camera = make_depth_camera(scene, def);
   const std::vector<Eigen::Isometry3d> poses = scripted_poses(scene, 0.0);
-  LidarScan scan;
+  RangeScan scan;
   std::int64_t scans = 0, hits = 0;
   for (auto _ : state) {
-    camera->scan(sensor_pose(scene, def.lidar, scans++), 0.0, poses, scan);
+    camera->scan(sensor_pose(scene, def.range, scans++), 0.0, poses, scan);
     hits += static_cast<std::int64_t>(scan.points.size());
   }
   state.SetItemsProcessed(scans);
-  state.counters["hit_fraction"] = static_cast<double>(hits) / static_cast<double>(scans * def.lidar.beam_count());
+  state.counters["hit_fraction"] = static_cast<double>(hits) / static_cast<double>(scans * def.range.beam_count());
 }
 
 void BM_SceneMeshBuild(benchmark::State& state, const std::string& name) {
@@ -84,7 +84,7 @@ void main() {}
   gl().Viewport(0, 0, kSize, kSize);
   gl().Enable(GL_DEPTH_TEST);
   gl().UseProgram(program.id());
-  const LidarConfig config = scanner(kSize).lidar;
+  const RangeSensorConfig config = scanner(kSize).range;
   // 90 deg square frustum, near 0.05 m, far 10 m; eye looking along the sensor's x.
   constexpr double kNear = 0.05, kFar = 10.0;
   Eigen::Matrix4d projection = Eigen::Matrix4d::Zero();

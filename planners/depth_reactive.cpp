@@ -110,8 +110,7 @@ class DepthReactivePlanner final : public Planner {
   // The reading of the configured sensor, or of the first grid sensor.
   const SensorReading* depth_source(const Observation& o) const {
     for (const SensorReading& r : o.sensors) {
-      const bool grid = r.config && r.config->beams.empty() && r.config->rows > 1;
-      if (grid && (config_.sensor.empty() || r.alias == config_.sensor)) return &r;
+      if (r.config && is_image(*r.config) && (config_.sensor.empty() || r.alias == config_.sensor)) return &r;
     }
     return nullptr;
   }
@@ -175,7 +174,7 @@ class DepthReactivePlanner final : public Planner {
   // One replanning step: DilataMappa, ControllaVisibilita and what Algorithm 3 does with the result.
   void evaluate(const Observation& o, const SensorReading& reading, PlanResult& result) {
     const auto start = Clock::now();
-    const LidarScan& scan = *reading.scan;
+    const RangeScan& scan = *reading.scan;
     const DepthGrid grid = DepthGrid::of(*reading.config);
     const cv::Mat depth = depth_map(scan, *reading.config);
     const cv::Mat dilated = dilate_depth_map(depth, dilation_params(config_, grid));
@@ -224,7 +223,7 @@ class DepthReactivePlanner final : public Planner {
       FindWaypointParams search_params = find_waypoint_params(config_);
       if (config_.margin_in_depth) {
         // What the vehicle cannot see once it turns at the new waypoint toward the target.
-        const LidarConfig& sensor = *reading.config;
+        const RangeSensorConfig& sensor = *reading.config;
         search_params.next_leg_check_m = blind_leg_m(config_.dilation_margin_m,
                                                      0.5 * std::min(sensor.fov_h_deg, sensor.fov_v_deg),
                                                      sensor.mount.position_m.x());
@@ -265,7 +264,7 @@ class DepthReactivePlanner final : public Planner {
     }
   }
 
-  ReplanDecision replan_record(const SensorReading& reading, const LidarScan& scan, const StackEntry& entry,
+  ReplanDecision replan_record(const SensorReading& reading, const RangeScan& scan, const StackEntry& entry,
                                const VisibilityCheck& check) {
     return {.index = replans_++,
             .sensor = std::string(reading.alias),

@@ -11,12 +11,12 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
-#include "campo/lidar_config.hpp"
+#include "campo/range_sensor_config.hpp"
 
 namespace campo {
 
 /// The angular grid of a depth map: pixel centres equiangular in azimuth and
-/// elevation (LidarConfig's convention), ranges up to max_range_m.
+/// elevation (RangeSensorConfig's convention), ranges up to max_range_m.
 struct DepthGrid {
   int cols = 0;
   int rows = 0;
@@ -24,7 +24,7 @@ struct DepthGrid {
   double fov_v_deg = 90.0;
   double max_range_m = 10.0;
 
-  static DepthGrid of(const LidarConfig& config);
+  static DepthGrid of(const RangeSensorConfig& config);
   double deg_per_col() const { return fov_h_deg / cols; }
   double deg_per_row() const { return fov_v_deg / rows; }
   /// The coarser of the two pitches, radians: one pixel spans range * pixel_rad() metres.

@@ -169,7 +169,7 @@ class DStarLite3dPlanner final : public Planner {
   // range, a return or free to the end; without the sensor's beam layout,
   // the hits alone. Returns the planning cells that changed.
   std::vector<grid::CellChange> insert_rays(const SensorReading& lidar) {
-    const LidarScan& scan = *lidar.scan;
+    const RangeScan& scan = *lidar.scan;
     const Eigen::Vector3d origin = scan.sensor_pose.translation();
     std::vector<Eigen::Vector3d> ends;
     std::vector<std::uint8_t> returns;
@@ -196,7 +196,7 @@ class DStarLite3dPlanner final : public Planner {
 
   // For the figures: the scan's hits (to the centimetre) and the new top of
   // every column whose reconstructed height rose.
-  void record_mapping(const LidarScan& scan, const std::vector<grid::CellChange>& changes, PlanResult& result) const {
+  void record_mapping(const RangeScan& scan, const std::vector<grid::CellChange>& changes, PlanResult& result) const {
     const auto cm = [](float v) { return std::round(static_cast<double>(v) * 100.0) / 100.0; };
     std::vector<Eigen::Vector3d>& hits = result.decisions.lidar_hits;
     hits.reserve(scan.points.size());

@@ -419,8 +419,8 @@ class RoverRoutePlanner final : public Planner {
 
   // Whether an obstacle is in the way, and the local planner's heading if so.
   void assess_scan(const SensorReading& reading, const Eigen::Vector2d& position, double heading) {
-    const LidarScan& scan = *reading.scan;
-    const LidarConfig& lidar = *reading.config;
+    const RangeScan& scan = *reading.scan;
+    const RangeSensorConfig& lidar = *reading.config;
     const double sensor_x = lidar.mount.position_m.x();
     // Nearest obstacle straight ahead of the sensor, close enough to stop for.
     double nearest_ahead = std::numeric_limits<double>::infinity();
@@ -542,7 +542,7 @@ class RoverRoutePlanner final : public Planner {
   // obstacle being passed is only in earlier scans. A remembered hit the new
   // scan sees through (a longer range on its beam) is gone — the trail a
   // moving obstacle leaves; one out of the sensor's view stays.
-  void remember(const LidarScan& scan, const LidarConfig& lidar, const Eigen::Vector2d& position) {
+  void remember(const RangeScan& scan, const RangeSensorConfig& lidar, const Eigen::Vector2d& position) {
     const double reach = config_.footprint_half_length_m + config_.guard_horizon_s * config_.pure_pursuit.max_speed_m_s +
                           config_.memory_margin_m;
     const Eigen::Vector2d sensor = scan.sensor_pose.translation().head<2>();
@@ -575,7 +575,7 @@ class RoverRoutePlanner final : public Planner {
     }
   }
 
-  static OccupancyGrid scan_grid(const LidarScan& scan, const Eigen::Vector2d& centre, double half_size_m,
+  static OccupancyGrid scan_grid(const RangeScan& scan, const Eigen::Vector2d& centre, double half_size_m,
                                  double resolution_m) {
     OccupancyGrid g;
     g.resolution_m = resolution_m;

@@ -252,18 +252,18 @@ cv::Mat read_depth_map(const std::filesystem::path& file) {
 
 std::vector<Eigen::Vector3d> depth_map_returns(const cv::Mat& depth, const SensorDef& sensor,
                                                const Eigen::Isometry3d& vehicle_pose, const std::filesystem::path& file) {
-  const std::vector<Beam> beams = lidar_beams(sensor.lidar);
+  const std::vector<Beam> beams = lidar_beams(sensor.range);
   if (depth.type() != CV_32F || depth.total() != beams.size()) {
     throw InputError(file.string(), "", "expected " + std::to_string(beams.size()) + " ranges, one per beam of sensor \"" +
                                             sensor.alias + "\"");
   }
-  const Eigen::Isometry3d sensor_pose = vehicle_pose * to_isometry(sensor.lidar.mount);
+  const Eigen::Isometry3d sensor_pose = vehicle_pose * to_isometry(sensor.range.mount);
   std::vector<Eigen::Vector3d> points;
   const cv::Mat values = depth.reshape(1, 1);  // beam order: the map row by row
   const float* v = values.ptr<float>(0);
   for (std::size_t b = 0; b < beams.size(); ++b) {
     if (v[b] <= 0.0f || v[b] >= 1.0f) continue;  // below min range, or no return
-    points.push_back(sensor_pose * (beam_direction(beams[b]).cast<double>() * (v[b] * sensor.lidar.max_range_m)));
+    points.push_back(sensor_pose * (beam_direction(beams[b]).cast<double>() * (v[b] * sensor.range.max_range_m)));
   }
   return points;
 }

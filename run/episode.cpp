@@ -36,7 +36,7 @@ std::int64_t period_steps(double rate_hz, double dt) {
 
 struct MountedSensor {
   std::unique_ptr<RangeSensor> sensor;
-  std::shared_ptr<LidarScan> scan;  // shared with the readings (SensorReading::scan)
+  std::shared_ptr<RangeScan> scan;  // shared with the readings (SensorReading::scan)
   std::int64_t period;
 };
 
@@ -70,13 +70,13 @@ struct Episode::Loop {
         reached_sample(def.mission.size()) {
     sensors.reserve(def.sensors.size());
     for (const SensorDef& s : def.sensors) {
-      const double rate = s.lidar.rate_hz > 0.0 ? s.lidar.rate_hz : scene.world.sensor_rate_hz;
+      const double rate = s.range.rate_hz > 0.0 ? s.range.rate_hz : scene.world.sensor_rate_hz;
       sensors.push_back(
-          {options.make_sensor(scene, s, scene.world.seed), std::make_shared<LidarScan>(), period_steps(rate, dt)});
+          {options.make_sensor(scene, s, scene.world.seed), std::make_shared<RangeScan>(), period_steps(rate, dt)});
     }
     readings.resize(sensors.size());
     for (std::size_t i = 0; i < sensors.size(); ++i) {
-      readings[i] = {def.sensors[i].alias, &def.sensors[i].lidar, nullptr, false};
+      readings[i] = {def.sensors[i].alias, &def.sensors[i].range, nullptr, false};
     }
     result.vehicle_parameters = vehicle->parameters();
   }
@@ -90,7 +90,7 @@ struct Episode::Loop {
       if (k % s.period != 0) continue;
       if (!poses_read) world.moving_body_poses(body_poses);
       poses_read = true;
-      s.sensor->scan(vehicle->state().pose() * to_isometry(def.sensors[i].lidar.mount), t, body_poses, *s.scan);
+      s.sensor->scan(vehicle->state().pose() * to_isometry(def.sensors[i].range.mount), t, body_poses, *s.scan);
       readings[i].scan = s.scan;
       readings[i].fresh = true;
       if (options.on_scan) options.on_scan(i, *s.scan);

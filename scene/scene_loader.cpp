@@ -570,7 +570,7 @@ class Loader {
             SensorDef sensor = read_sensor(s, limits_, &errors_);
             if (errors_.count() > before) return;
             // 0 = world.sensor_rate_hz, checked with the world.
-            const double rate_hz = sensor.lidar.rate_hz;
+            const double rate_hz = sensor.range.rate_hz;
             if (rate_hz > 0.0) check_rate(*sr.optional("rate_hz"), rate_hz, scene_.world.physics_step_s);
             vehicle.sensors.push_back(std::move(sensor));
           });
@@ -783,8 +783,8 @@ SensorDef read_sensor(const JsonNode& node, const SceneLimits& limits, InputErro
   if (r.has("beams") && (r.has("fov_deg") || r.has("resolution"))) {
     r.fail("either \"beams\" or a grid (\"fov_deg\", \"resolution\"), not both");
   }
-  LidarConfig& c = sensor.lidar;
-  lidar_config_fields(limits).read_fields(r, c);
+  RangeSensorConfig& c = sensor.range;
+  range_sensor_config_fields(limits).read_fields(r, c);
   if (!r.ok()) {
     r.finish();
     return sensor;

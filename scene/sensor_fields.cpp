@@ -23,17 +23,17 @@ const ConfigFields<Pose>& mount_fields() {
 
 }  // namespace
 
-ConfigFields<LidarConfig> lidar_config_fields(const SceneLimits& limits) {
-  using C = LidarConfig;
+ConfigFields<RangeSensorConfig> range_sensor_config_fields(const SceneLimits& limits) {
+  using C = RangeSensorConfig;
   const long max_beams = limits.max_beams;
   const std::string beam_limit = "at most " + std::to_string(max_beams) + " beams";
   return ConfigFields<C>()
       // First: a preset gives the starting values of every other field.
       .custom("preset", "", "`scanner3d`, `leddar_vu8` or `planar180`", "starting values, see below",
               [](const JsonNode& n, C& c) {
-                const auto names = lidar_preset_names();
+                const auto names = sensor_preset_names();
                 const std::vector<std::string_view> choices(names.begin(), names.end());
-                c = *lidar_preset(choices[n.as_choice(choices)]);
+                c = *sensor_preset(choices[n.as_choice(choices)]);
               },
               [](const C& c, nlohmann::json& j) { j["preset"] = c.preset; })
       // A grid given here replaces a preset's explicit beams; written for grid sensors only.

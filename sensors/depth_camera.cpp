@@ -81,7 +81,7 @@ struct Frustum {
   double far_m = 0.0;
 };
 
-Frustum make_frustum(const LidarConfig& c) {
+Frustum make_frustum(const RangeSensorConfig& c) {
   Frustum f;
   const double half_h = 0.5 * c.fov_h_deg * kDegToRad;
   const double half_v = 0.5 * c.fov_v_deg * kDegToRad;
@@ -124,7 +124,7 @@ struct Tap {
   float ray_norm;         // |(X, Y, 1)|: range = z_eye * ray_norm
 };
 
-std::vector<Tap> make_taps(const LidarConfig& c, const Frustum& f) {
+std::vector<Tap> make_taps(const RangeSensorConfig& c, const Frustum& f) {
   std::vector<Tap> taps;
   const std::vector<Beam> beams = lidar_beams(c);
   taps.reserve(beams.size());
@@ -230,7 +230,7 @@ Chunk bound(const SceneMesh& mesh, std::uint32_t first, std::uint32_t count) {
 }
 
 void validate(const SensorDef& def) {
-  const LidarConfig& c = def.lidar;
+  const RangeSensorConfig& c = def.range;
   const std::string name = "depth camera '" + def.alias + "': ";
   if (def.type != SensorType::depth_camera) {
     throw std::invalid_argument(name + "a " + std::string(to_string(def.type)) + " is built by make_lidar_sensor");
@@ -262,14 +262,14 @@ class DepthCamera final : public RangeSensor {
 
   const SensorDef& def() const override { return def_; }
   void scan(const Eigen::Isometry3d& sensor_pose, double time_s, std::span<const Eigen::Isometry3d> body_poses,
-            LidarScan& out) override;
+            RangeScan& out) override;
 
  private:
   bool visible(const Eigen::Affine3f& eye_from_mesh, const Eigen::Vector3f& eye_in_mesh, const Chunk& chunk,
                bool& close_by) const;
   bool back_faces_hidden(const Eigen::Vector3d& eye) const;
   void render(const Eigen::Isometry3d& sensor_pose, std::span<const Eigen::Isometry3d> body_poses);
-  void fill(const Eigen::Isometry3d& sensor_pose, double time_s, LidarScan& out) const;
+  void fill(const Eigen::Isometry3d& sensor_pose, double time_s, RangeScan& out) const;
 
   SensorDef def_;
   Frustum frustum_;
@@ -296,8 +296,8 @@ class DepthCamera final : public RangeSensor {
 };
 
 DepthCamera::DepthCamera(const Scene& scene, const SceneMesh& mesh, const SensorDef& def)
-    : def_(def), frustum_(make_frustum(def.lidar)) {
-  const LidarConfig& c = def_.lidar;
+    : def_(def), frustum_(make_frustum(def.range)) {
+  const RangeSensorConfig& c = def_.range;
   taps_ = make_taps(c, frustum_);
   for (const Beam& beam : lidar_beams(c)) directions_.push_back(beam_direction(beam));
   inverse_depth_.resize(static_cast<std::size_t>(frustum_.width_px) * frustum_.height_px);
@@ -372,7 +372,7 @@ bool DepthCamera::visible(const Eigen::Affine3f& eye_from_mesh, const Eigen::Vec
   for (const Eigen::Vector4f& plane : side_planes_) {
     if (plane.head<3>().dot(centre) > chunk.radius) return false;
   }
-  close_by = close_by || chunk.box.exteriorDistance(eye_in_mesh) < static_cast<float>(def_.lidar.min_range_m);
+  close_by = close_by || chunk.box.exteriorDistance(eye_in_mesh) < static_cast<float>(def_.range.min_range_m);
   return true;
 }
 
@@ -464,10 +464,10 @@ void DepthCamera::render(const Eigen::Isometry3d& sensor_pose, std::span<const E
   for (float& value : inverse_depth_) value = value > 0.0f ? value * scale + near : 0.0f;
 }
 
-void DepthCamera::fill(const Eigen::Isometry3d& sensor_pose, double time_s, LidarScan& out) const {
-  const LidarConfig& c = def_.lidar;
+void DepthCamera::fill(const Eigen::Isometry3d& sensor_pose, double time_s, RangeScan& out) const {
+  const RangeSensorConfig& c = def_.range;
   const std::size_t n = taps_.size();
-  begin_scan(out, c.rows, c.cols, n, time_s, sensor_pose);
+  begin_scan(out, c, time_s, sensor_pose);
   const auto near_far = static_cast<float>(frustum_.near_m * frustum_.far_m);
   const auto max_range = static_cast<float>(c.max_range_m);
   const auto width = static_cast<std::size_t>(frustum_.width_px);
@@ -490,7 +490,7 @@ void DepthCamera::fill(const Eigen::Isometry3d& sensor_pose, double time_s, Lida
 }
 
 void DepthCamera::scan(const Eigen::Isometry3d& sensor_pose, double time_s,
-                       std::span<const Eigen::Isometry3d> body_poses, LidarScan& out) {
+                       std::span<const Eigen::Isometry3d> body_poses, RangeScan& out) {
   render(sensor_pose, body_poses);
   fill(sensor_pose, time_s, out);
 }

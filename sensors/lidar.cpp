@@ -10,7 +10,7 @@ namespace campo {
 namespace {
 constexpr double kDegToRad = std::numbers::pi / 180.0;
 
-void validate(const LidarConfig& c) {
+void validate(const RangeSensorConfig& c) {
   if (c.beam_count() < 1 || (c.beams.empty() && (c.cols < 1 || c.rows < 1))) {
     throw std::invalid_argument("Lidar: the config has no beams");
   }
@@ -33,7 +33,7 @@ Eigen::Vector3f beam_direction(const Beam& beam) {
       .cast<float>();
 }
 
-std::vector<Beam> lidar_beams(const LidarConfig& config) {
+std::vector<Beam> lidar_beams(const RangeSensorConfig& config) {
   if (!config.beams.empty()) return config.beams;
   std::vector<Beam> beams;
   beams.reserve(static_cast<std::size_t>(config.cols) * config.rows);
@@ -49,7 +49,7 @@ std::vector<Beam> lidar_beams(const LidarConfig& config) {
 }
 
 namespace {
-std::vector<Eigen::Vector3f> beam_directions(const LidarConfig& config) {
+std::vector<Eigen::Vector3f> beam_directions(const RangeSensorConfig& config) {
   validate(config);
   std::vector<Eigen::Vector3f> directions;
   for (const Beam& beam : lidar_beams(config)) directions.push_back(beam_direction(beam));
@@ -57,7 +57,7 @@ std::vector<Eigen::Vector3f> beam_directions(const LidarConfig& config) {
 }
 }  // namespace
 
-Lidar::Lidar(const LidarConfig& config, std::uint64_t world_seed)
+Lidar::Lidar(const RangeSensorConfig& config, std::uint64_t world_seed)
     : config_(config),
       rng_(Rng::derive_seed(world_seed, config.seed)),
       directions_sensor_(beam_directions(config)),
@@ -65,14 +65,13 @@ Lidar::Lidar(const LidarConfig& config, std::uint64_t world_seed)
       hits_(directions_sensor_.size()) {}
 
 void Lidar::scan(const RayCaster& caster, const Eigen::Isometry3d& sensor_pose, double time_s,
-                 LidarScan& out) {
+                 RangeScan& out) {
   const std::size_t n = directions_sensor_.size();
   const Eigen::Matrix3f rotation = sensor_pose.linear().cast<float>();
   const auto max_range = static_cast<float>(config_.max_range_m);
   caster.cast(sensor_pose, fan_, static_cast<float>(config_.min_range_m), max_range, hits_);
 
-  begin_scan(out, config_.beams.empty() ? config_.rows : 1,
-             config_.beams.empty() ? config_.cols : static_cast<int>(n), n, time_s, sensor_pose);
+  begin_scan(out, config_, time_s, sensor_pose);
   const bool dropout = config_.dropout_probability > 0.0;
   const bool noise = config_.noise_stddev_m > 0.0;
   for (std::size_t i = 0; i < n; ++i) {
@@ -94,10 +93,10 @@ void Lidar::scan(const RayCaster& caster, const Eigen::Isometry3d& sensor_pose, 
   }
 }
 
-void begin_scan(LidarScan& out, int rows, int cols, std::size_t beams, double time_s,
-                const Eigen::Isometry3d& sensor_pose) {
-  out.rows = rows;
-  out.cols = cols;
+void begin_scan(RangeScan& out, const RangeSensorConfig& config, double time_s, const Eigen::Isometry3d& sensor_pose) {
+  const auto beams = static_cast<std::size_t>(config.beam_count());
+  out.rows = config.scan_rows();
+  out.cols = config.scan_cols();
   out.time_s = time_s;
   out.sensor_pose = sensor_pose;
   out.ranges_m.resize(beams);
@@ -106,13 +105,13 @@ void begin_scan(LidarScan& out, int rows, int cols, std::size_t beams, double ti
   out.points.reserve(beams);
 }
 
-float reported_range(double range_m, const LidarConfig& config) {
+float reported_range(double range_m, const RangeSensorConfig& config) {
   const double q = config.quantization_m;
   if (q > 0.0) range_m = std::round(range_m / q) * q;
   return static_cast<float>(std::clamp(range_m, 0.0, config.max_range_m));
 }
 
-cv::Mat depth_map(const LidarScan& scan, const LidarConfig& config) {
+cv::Mat depth_map(const RangeScan& scan, const RangeSensorConfig& config) {
   cv::Mat depth(scan.rows, scan.cols, CV_32F);
   const double min_range = config.min_range_m;
   const double max_range = config.max_range_m;

@@ -12,10 +12,10 @@ namespace {
 class LidarSensor final : public RangeSensor {
  public:
   LidarSensor(const Scene& scene, const SensorDef& def, std::uint64_t world_seed)
-      : def_(def), caster_(scene), lidar_(def.lidar, world_seed) {}
+      : def_(def), caster_(scene), lidar_(def.range, world_seed) {}
   const SensorDef& def() const override { return def_; }
   void scan(const Eigen::Isometry3d& sensor_pose, double time_s, std::span<const Eigen::Isometry3d> body_poses,
-            LidarScan& out) override {
+            RangeScan& out) override {
     caster_.set_poses(body_poses);
     lidar_.scan(caster_, sensor_pose, time_s, out);
   }

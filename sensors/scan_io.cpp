@@ -9,7 +9,7 @@ namespace campo {
 namespace {
 
 template <class Format>
-std::string grid_csv(const LidarScan& scan, Format format) {
+std::string grid_csv(const RangeScan& scan, Format format) {
   std::string out;
   out.reserve(static_cast<std::size_t>(scan.rows) * scan.cols * 9);
   char buffer[32];
@@ -27,19 +27,19 @@ std::string grid_csv(const LidarScan& scan, Format format) {
 
 }  // namespace
 
-std::string ranges_csv(const LidarScan& scan) {
+std::string ranges_csv(const RangeScan& scan) {
   return grid_csv(scan, [&](char* buf, std::size_t size, std::size_t i) {
     return std::snprintf(buf, size, "%.4f", static_cast<double>(scan.ranges_m[i]));
   });
 }
 
-std::string hits_csv(const LidarScan& scan) {
+std::string hits_csv(const RangeScan& scan) {
   return grid_csv(scan, [&](char* buf, std::size_t size, std::size_t i) {
     return std::snprintf(buf, size, "%d", scan.hits[i] ? 1 : 0);
   });
 }
 
-std::string points_ply(const LidarScan& scan) {
+std::string points_ply(const RangeScan& scan) {
   std::string out = "ply\nformat ascii 1.0\ncomment campo LIDAR scan, world frame, metres\n";
   out += "element vertex " + std::to_string(scan.points.size()) + "\n";
   out += "property float x\nproperty float y\nproperty float z\nend_header\n";
@@ -53,7 +53,7 @@ std::string points_ply(const LidarScan& scan) {
 }
 
 nlohmann::json sensor_json(const SensorDef& sensor) {
-  nlohmann::json j = lidar_config_fields().write(sensor.lidar);
+  nlohmann::json j = range_sensor_config_fields().write(sensor.range);
   j["type"] = to_string(sensor.type);
   if (!sensor.alias.empty()) j["alias"] = sensor.alias;
   return j;

@@ -11,11 +11,11 @@ namespace campo {
 
 /// One line per beam row, comma-separated ranges in metres (0.1 mm
 /// resolution); a beam without a return reads the sensor's max range.
-std::string ranges_csv(const LidarScan& scan);
+std::string ranges_csv(const RangeScan& scan);
 /// Same layout as ranges_csv: 1 for a return, 0 for none.
-std::string hits_csv(const LidarScan& scan);
+std::string hits_csv(const RangeScan& scan);
 /// ASCII PLY of the world-frame hit points.
-std::string points_ply(const LidarScan& scan);
+std::string points_ply(const RangeScan& scan);
 /// The sensor's effective parameters as JSON (the keys of a scene sensor block).
 nlohmann::json sensor_json(const SensorDef& sensor);
 

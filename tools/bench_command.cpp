@@ -194,16 +194,16 @@ class LidarCase {
   }
 
  private:
-  static LidarConfig scanner3d(int resolution) {
-    LidarConfig config = *lidar_preset("scanner3d");
+  static RangeSensorConfig scanner3d(int resolution) {
+    RangeSensorConfig config = *sensor_preset("scanner3d");
     config.cols = config.rows = resolution;
     return config;
   }
-  LidarConfig config_;
+  RangeSensorConfig config_;
   RayCaster caster_;
   Lidar lidar_;
   Eigen::Isometry3d pose_;
-  LidarScan scan_;
+  RangeScan scan_;
 };
 
 // Rays per second of one thread until min_time_s has passed.
@@ -260,9 +260,9 @@ void bench_episodes(const BenchOptions& o, std::vector<Figure>& figures) {
       VehicleDef& def = scene.vehicles.front();
       def.sensors.clear();
       if (resolution > 0) {
-        SensorDef sensor{"scanner", SensorType::lidar, *lidar_preset("scanner3d")};
-        sensor.lidar.cols = sensor.lidar.rows = resolution;
-        sensor.lidar.rate_hz = 10.0;
+        SensorDef sensor{"scanner", SensorType::lidar, *sensor_preset("scanner3d")};
+        sensor.range.cols = sensor.range.rows = resolution;
+        sensor.range.rate_hz = 10.0;
         def.sensors.push_back(sensor);
       }
       // The scene's planner parameters (the vineyard's rover_route) are not straight's.

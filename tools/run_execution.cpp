@@ -296,11 +296,11 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   std::vector<int> scans_seen(def.sensors.size(), 0);
   if (request.record_depth_every > 0) {
     create_output_directories(output().path("depth"));
-    options.on_scan = [&](std::size_t i, const LidarScan& scan) {
+    options.on_scan = [&](std::size_t i, const RangeScan& scan) {
       if (scans_seen[i]++ % request.record_depth_every != 0) return;
       char name[96];
       std::snprintf(name, sizeof name, "%s_%08.3f.png", def.sensors[i].alias.c_str(), scan.time_s);
-      write_depth_png(depth_map(scan, def.sensors[i].lidar), output().path("depth") / name);
+      write_depth_png(depth_map(scan, def.sensors[i].range), output().path("depth") / name);
     };
   }
   // The depth map each replanning used, for `campo render --kind depth --step K`.
@@ -310,8 +310,7 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
       if (!replan || !replan->sensor) return;
       for (const SensorReading& reading : observation.sensors) {
         // Only image sensors give a depth map worth drawing (not a leddar's single row).
-        const bool image = reading.config->beams.empty() && reading.config->rows > 1;
-        if (reading.alias != *replan->sensor || !reading.scan || !image) continue;
+        if (reading.alias != *replan->sensor || !reading.scan || !is_image(*reading.config)) continue;
         create_output_directories(output().path("replans"));
         write_depth_png(depth_map(*reading.scan, *reading.config),
                         output().path("replans") / replan_depth_file(replan->index));
@@ -403,21 +402,21 @@ void write_final_depth(const SimulatedRun& run, const std::filesystem::path& png
   const VehicleDef& vehicle = run.scene.vehicles[run.vehicle_index];
   if (run.result.trajectory.empty()) throw std::runtime_error("no recorded pose to draw a depth map from");
   const auto image = std::find_if(vehicle.sensors.begin(), vehicle.sensors.end(), [](const SensorDef& s) {
-    return s.lidar.beams.empty() && s.lidar.rows > 1;
+    return is_image(s.range);
   });
   SensorDef sensor;
   if (image != vehicle.sensors.end()) {
     sensor = *image;
   } else {
     sensor = parse_sensor(JsonNode(nlohmann::json{{"type", "depth_camera"}, {"preset", "scanner3d"}}, "triage", ""));
-    if (!vehicle.sensors.empty()) sensor.lidar.mount = vehicle.sensors.front().lidar.mount;
+    if (!vehicle.sensors.empty()) sensor.range.mount = vehicle.sensors.front().range.mount;
   }
   const TrajectorySample& last = run.result.trajectory.back();
   const std::unique_ptr<RangeSensor> ranger = make_range_sensor(run.scene, sensor, run.scene.world.seed);
-  LidarScan scan;
+  RangeScan scan;
   // The bodies where the run left them.
-  ranger->scan(last.state.pose() * to_isometry(sensor.lidar.mount), last.time_s, run.result.final_body_poses, scan);
-  write_depth_png(depth_map(scan, sensor.lidar), png);
+  ranger->scan(last.state.pose() * to_isometry(sensor.range.mount), last.time_s, run.result.final_body_poses, scan);
+  write_depth_png(depth_map(scan, sensor.range), png);
 }
 
 std::string run_summary_line(const nlohmann::json& record) {

@@ -78,7 +78,7 @@ class SensorPanel {
       return {image_, "What the planner saw: replanning " + std::to_string(step->decision.index) + " at " +
                           fixed(step->time_s, 1, "s")};
     }
-    const bool planar = sensor_ && sensor_->lidar.rows <= 1;
+    const bool planar = sensor_ && sensor_->range.rows <= 1;
     const RecordedDepthMap* scan = latest(depths_, time_s);
     if (scan && !planar) {
       if (shown_ != scan) {
@@ -93,7 +93,7 @@ class SensorPanel {
     // A planar scan around the vehicle, redrawn each frame (the vehicle turns under it), read once.
     ScanView view;
     view.footprint_m = footprint_m_;
-    view.range_m = sensor_ ? std::min(sensor_->lidar.max_range_m, 8.0) : 5.0;
+    view.range_m = sensor_ ? std::min(sensor_->range.max_range_m, 8.0) : 5.0;
     std::string caption = "Planar scan, vehicle frame, forward up";
     if (scan) {
       if (shown_ != scan) {

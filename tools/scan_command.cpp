@@ -95,7 +95,7 @@ int run_scan(const ScanOptions& o) {
     sensor_block["range_m"] = {v[0], v[1]};
   }
   const SensorDef sensor = parse_sensor(JsonNode(sensor_block, "command line", ""));
-  const LidarConfig& config = sensor.lidar;
+  const RangeSensorConfig& config = sensor.range;
 
   Eigen::Isometry3d sensor_pose;
   if (!o.pose.empty()) {
@@ -109,7 +109,7 @@ int run_scan(const ScanOptions& o) {
 
   const std::uint64_t world_seed = o.seed_set ? parse_seed(o.seed, "command line", "--seed") : scene.world.seed;
   const std::unique_ptr<RangeSensor> ranger = make_range_sensor(scene, sensor, world_seed);
-  LidarScan scan;
+  RangeScan scan;
   ranger->scan(sensor_pose, 0.0, scripted_poses(scene, 0.0), scan);
 
   const cv::Mat depth = depth_map(scan, config);
@@ -144,7 +144,7 @@ Command add_scan(CLI::App& app) {
   auto o = std::make_shared<ScanOptions>();
   app.add_option("scene", o->scene, "Scene file (JSON)")->required()->check(input_path());
   std::string presets;
-  for (auto name : lidar_preset_names()) presets += (presets.empty() ? "" : ", ") + std::string(name);
+  for (auto name : sensor_preset_names()) presets += (presets.empty() ? "" : ", ") + std::string(name);
   app.add_option("--sensor", o->sensor,
                  "LIDAR preset (" + presets + "), or depth_camera (the scanner3d frustum rendered with "
                  "OSMesa); default: the first sensor of the vehicle");

@@ -49,7 +49,7 @@ struct Scans {
 };
 
 Scans scanner3d_scans(const Scene& scene, int count) {
-  LidarConfig config = *lidar_preset("scanner3d");
+  RangeSensorConfig config = *sensor_preset("scanner3d");
   config.cols = config.rows = 256;
   const std::vector<Beam> beams = lidar_beams(config);
   const Eigen::Isometry3d mount = scene.vehicles.front().pose * to_isometry(config.mount);

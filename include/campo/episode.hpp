@@ -42,7 +42,7 @@ struct EpisodeOptions {
   /// Builds the vehicle's sensors (sensor_factory.hpp's range_sensor_factory adds depth cameras).
   SensorFactory make_sensor = &make_lidar_sensor;
   /// Called after every scan with the sensor index and its fresh scan (e.g. to record depth maps).
-  std::function<void(std::size_t sensor, const LidarScan& scan)> on_scan;
+  std::function<void(std::size_t sensor, const RangeScan& scan)> on_scan;
   /// Called after every planner call with what the planner saw and decided
   /// (e.g. to record the depth map a replanning used).
   std::function<void(const Observation& observation, const PlanResult& plan)> on_plan;

@@ -15,7 +15,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
-#include "campo/lidar_scan.hpp"
+#include "campo/range_scan.hpp"
 #include "campo/scene.hpp"
 #include "campo/vehicle.hpp"
 
@@ -24,11 +24,11 @@ namespace campo {
 /// Latest reading of one sensor.
 struct SensorReading {
   std::string_view alias;
-  const LidarConfig* config = nullptr;
+  const RangeSensorConfig* config = nullptr;
   /// Null before the first scan. Shared, so a reader may keep the buffer
   /// alive (the Python module's zero-copy arrays); the sensor's next scan
   /// overwrites it in place.
-  std::shared_ptr<const LidarScan> scan;
+  std::shared_ptr<const RangeScan> scan;
   bool fresh = false;               ///< taken since the previous observation
 };
 

@@ -9,7 +9,7 @@
 
 #include <Eigen/Geometry>
 
-#include "campo/lidar_scan.hpp"
+#include "campo/range_scan.hpp"
 #include "campo/scene.hpp"
 
 namespace campo {
@@ -23,7 +23,7 @@ class RangeSensor {
   /// at `body_poses` (one per moving_bodies(scene) entry, in that order:
   /// World::moving_body_poses in the closed loop).
   virtual void scan(const Eigen::Isometry3d& sensor_pose, double time_s,
-                    std::span<const Eigen::Isometry3d> body_poses, LidarScan& out) = 0;
+                    std::span<const Eigen::Isometry3d> body_poses, RangeScan& out) = 0;
 };
 
 /// Builds the sensor of a definition for a scene (which must outlive it).

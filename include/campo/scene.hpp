@@ -12,7 +12,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
-#include "campo/lidar_config.hpp"
+#include "campo/range_sensor_config.hpp"
 #include "campo/params_block.hpp"
 #include "campo/pose.hpp"
 #include "campo/state_noise.hpp"
@@ -100,12 +100,14 @@ enum class SensorType {
 };
 std::string_view to_string(SensorType type);
 
-/// A sensor mounted on a vehicle. Both types produce the same range image and
-/// depth map over the same angular grid, so planners take either.
+/// A sensor mounted on a vehicle: its kind (`type`) and its range-sensor
+/// configuration. Both kinds produce the same RangeScan (an image, when
+/// is_image(range), giving the same depth map over the same angular grid),
+/// so planners take either.
 struct SensorDef {
   std::string alias;
-  SensorType type = SensorType::lidar;
-  LidarConfig lidar;  ///< angular grid, ranges, mount, rate (a depth camera has no explicit beams)
+  SensorType type = SensorType::lidar;  ///< the kind: beams ray-cast, or an image rendered
+  RangeSensorConfig range;  ///< angular grid, ranges, mount, rate (a depth camera has no explicit beams)
 };
 
 /// A mission waypoint, resolved to world coordinates at load time.

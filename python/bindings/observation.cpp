@@ -22,7 +22,7 @@ py::array_t<double> vector3(const Eigen::Vector3d& v) {
 }
 
 // The scan's shape as an image: rows x cols for a grid sensor, one row of beams otherwise.
-std::pair<py::ssize_t, py::ssize_t> image_shape(const LidarScan& scan) {
+std::pair<py::ssize_t, py::ssize_t> image_shape(const RangeScan& scan) {
   const auto beams = static_cast<py::ssize_t>(scan.ranges_m.size());
   if (scan.rows > 0 && scan.cols > 0 && static_cast<py::ssize_t>(scan.rows) * scan.cols == beams) {
     return {scan.rows, scan.cols};
@@ -32,10 +32,10 @@ std::pair<py::ssize_t, py::ssize_t> image_shape(const LidarScan& scan) {
 
 // A 2-D array over `data` (rows x cols) without a copy; it keeps `scan` (the owner of `data`) alive.
 template <class T>
-py::array_t<T> shared_view(const std::shared_ptr<const LidarScan>& scan, const T* data) {
+py::array_t<T> shared_view(const std::shared_ptr<const RangeScan>& scan, const T* data) {
   const auto [rows, cols] = image_shape(*scan);
-  auto* owner = new std::shared_ptr<const LidarScan>(scan);
-  py::capsule base(owner, [](void* p) { delete static_cast<std::shared_ptr<const LidarScan>*>(p); });
+  auto* owner = new std::shared_ptr<const RangeScan>(scan);
+  py::capsule base(owner, [](void* p) { delete static_cast<std::shared_ptr<const RangeScan>*>(p); });
   py::array_t<T> array({rows, cols}, {static_cast<py::ssize_t>(cols * sizeof(T)), static_cast<py::ssize_t>(sizeof(T))},
                        data, base);
   // A view of the sensor's own buffer: writing to it would change what the next reader sees.
@@ -43,7 +43,7 @@ py::array_t<T> shared_view(const std::shared_ptr<const LidarScan>& scan, const T
   return array;
 }
 
-const LidarScan& scan_of(const SensorView& s) {
+const RangeScan& scan_of(const SensorView& s) {
   if (!s.scan) throw std::runtime_error("sensor \"" + s.alias + "\" has not scanned yet");
   return *s.scan;
 }
@@ -115,7 +115,7 @@ void bind_observation(py::module_& m) {
                              "2-D uint8, 1 where the beam hit something")
       .def_property_readonly("points_m",
                              [](const SensorView& s) {
-                               const LidarScan& scan = scan_of(s);
+                               const RangeScan& scan = scan_of(s);
                                py::array_t<float> out({static_cast<py::ssize_t>(scan.points.size()), py::ssize_t{3}});
                                auto r = out.mutable_unchecked<2>();
                                for (std::size_t i = 0; i < scan.points.size(); ++i) {
@@ -126,8 +126,8 @@ void bind_observation(py::module_& m) {
                              "N x 3 float32 world-frame hit points (hits only, beam order), a copy")
       .def_property_readonly("depth",
                              [](const SensorView& s) {
-                               const LidarScan& scan = scan_of(s);
-                               LidarConfig config;
+                               const RangeScan& scan = scan_of(s);
+                               RangeSensorConfig config;
                                config.min_range_m = s.min_range_m;
                                config.max_range_m = s.max_range_m;
                                const cv::Mat depth = depth_map(scan, config);

@@ -15,7 +15,7 @@ namespace campo::python {
 /// One sensor's latest reading.
 struct SensorView {
   std::string alias;
-  std::shared_ptr<const LidarScan> scan;  ///< the sensor's buffer; null before the first scan
+  std::shared_ptr<const RangeScan> scan;  ///< the sensor's buffer; null before the first scan
   double min_range_m = 0.0;               ///< for the normalised depth map
   double max_range_m = 0.0;
   bool fresh = false;

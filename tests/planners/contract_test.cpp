@@ -144,7 +144,7 @@ TEST_P(PlannerContract, NoExceptionWithoutSensorsOrBeforeTheFirstScan) {
     ASSERT_NO_THROW(r = planner->plan(o)) << "no sensors, " << to_string(v);
     expect_typed(r, "no sensors");
 
-    const SensorReading unscanned{def.sensors[0].alias, &def.sensors[0].lidar, nullptr, false};
+    const SensorReading unscanned{def.sensors[0].alias, &def.sensors[0].range, nullptr, false};
     o.sensors = std::span<const SensorReading>(&unscanned, 1);
     const auto fresh = create_planner(def.planner, context_of(scene));
     for (int call = 0; call < 3; ++call) {

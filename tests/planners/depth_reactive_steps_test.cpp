@@ -43,7 +43,7 @@ cv::Mat brute_force_dilation(const cv::Mat& depth, const DilationParams& p) {
 }
 
 TEST(DepthGrid, ProjectionInvertsPixelDirectionsAndMatchesTheLidarBeams) {
-  LidarConfig config;
+  RangeSensorConfig config;
   config.cols = 16;
   config.rows = 8;
   config.fov_h_deg = 90.0;

@@ -23,8 +23,8 @@ ParamsBlock params(nlohmann::json values) { return {std::move(values), "scene.js
 
 // A hovering drone at (0, 0, 1.5) facing +x whose 32 x 32 scanner reads `range_m` everywhere.
 struct Hover {
-  LidarConfig config = *lidar_preset("scanner3d");
-  LidarScan scan;
+  RangeSensorConfig config = *sensor_preset("scanner3d");
+  RangeScan scan;
   std::vector<SensorReading> readings;
   std::vector<Waypoint> mission;
   Observation observation;
@@ -32,7 +32,7 @@ struct Hover {
   Hover(float range_m, const Eigen::Vector3d& target) {
     config.cols = config.rows = 32;
     config.mount = Pose{};
-    begin_scan(scan, 32, 32, 32 * 32, 0.0, Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, 1.5)));
+    begin_scan(scan, config, 0.0, Eigen::Isometry3d(Eigen::Translation3d(0.0, 0.0, 1.5)));
     std::fill(scan.ranges_m.begin(), scan.ranges_m.end(), range_m);
     std::fill(scan.hits.begin(), scan.hits.end(), range_m < config.max_range_m ? 1 : 0);
     readings = {SensorReading{"scanner", &config, test_support::borrowed(scan), true}};
@@ -162,8 +162,8 @@ EpisodeResult fly(const std::string& name, int resolution, SensorType source = S
   Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json");
   scene.world.seed = seed;
   SensorDef& sensor = scene.vehicles.front().sensors.front();
-  sensor.lidar.cols = sensor.lidar.rows = resolution;
-  sensor.lidar.noise_stddev_m = noise_stddev_m;
+  sensor.range.cols = sensor.range.rows = resolution;
+  sensor.range.noise_stddev_m = noise_stddev_m;
   sensor.type = source;
   EpisodeOptions options;
   options.make_sensor = range_sensor_factory();

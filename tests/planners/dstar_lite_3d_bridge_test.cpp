@@ -39,7 +39,7 @@ Eigen::Vector3d center(int x, int y, int z) { return {0.75 + 1.5 * x, 0.75 + 1.5
 double highest_planned_z(const std::string& mapping) {
   auto planner = make_dstar_lite_3d_planner(params({{"mapping", mapping}}), {VehicleType::quadrotor, nullptr});
   const std::vector<Waypoint> mission{{center(6, 0, 4), {}}};
-  LidarScan scan;
+  RangeScan scan;
   scan.sensor_pose.translation() = center(0, 0, 4);
   for (int x = 2; x <= 4; ++x) {
     for (int y = 0; y <= 11; ++y) scan.points.emplace_back(0.75f + 1.5f * x, 0.75f + 1.5f * y, 19.0f);

@@ -26,7 +26,7 @@ Eigen::Vector3d center(int x, int y, int z) { return {0.75 + 1.5 * x, 0.75 + 1.5
 
 struct Feed {
   std::vector<Waypoint> mission;
-  LidarScan scan;
+  RangeScan scan;
   std::vector<SensorReading> sensors{{"leddar", nullptr, nullptr, false}};
 
   Observation at(const Eigen::Vector3d& p, std::vector<Eigen::Vector3f> hits = {}) {

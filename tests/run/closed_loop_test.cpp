@@ -45,7 +45,7 @@ void expect_repeatable(const Scene& scene) {
 
 TEST(ClosedLoop, QuadrotorEpisodeWithSensorIsBitIdenticalWhenRepeated) {
   Scene scene = bundled("trees_rolling_terrain", 6.0);
-  scene.vehicles[0].sensors[0].lidar.noise_stddev_m = 0.02;  // noise is seeded too
+  scene.vehicles[0].sensors[0].range.noise_stddev_m = 0.02;  // noise is seeded too
   expect_repeatable(scene);
 }
 
@@ -96,15 +96,15 @@ TEST(ClosedLoop, DepthCameraAndLidarGiveTheSameEpisode) {
   // The same frustum from either source: the straight planner ignores it, but the
   // scans are taken from the physics state at the same times and must agree.
   Scene scene = bundled("two_barriers", 3.0);
-  scene.vehicles[0].sensors[0].lidar.cols = scene.vehicles[0].sensors[0].lidar.rows = 32;
+  scene.vehicles[0].sensors[0].range.cols = scene.vehicles[0].sensors[0].range.rows = 32;
   Scene camera_scene = scene;
   camera_scene.vehicles[0].sensors[0].type = SensorType::depth_camera;
-  std::vector<LidarScan> lidar_scans, camera_scans;
+  std::vector<RangeScan> lidar_scans, camera_scans;
   EpisodeOptions options;
   options.make_sensor = range_sensor_factory();
-  options.on_scan = [&](std::size_t, const LidarScan& s) { lidar_scans.push_back(s); };
+  options.on_scan = [&](std::size_t, const RangeScan& s) { lidar_scans.push_back(s); };
   const EpisodeResult a = run_episode(scene, &make_vehicle, &create_planner, options);
-  options.on_scan = [&](std::size_t, const LidarScan& s) { camera_scans.push_back(s); };
+  options.on_scan = [&](std::size_t, const RangeScan& s) { camera_scans.push_back(s); };
   const EpisodeResult b = run_episode(camera_scene, &make_vehicle, &create_planner, options);
   EXPECT_EQ(a.final_state_hash, b.final_state_hash);
   ASSERT_EQ(lidar_scans.size(), camera_scans.size());

@@ -114,7 +114,7 @@ TEST(BundledScenes, ObstacleFieldMatchesTheSeedTable) {
                         {49, 50, 46, 49, 35}, {49, 50, 52, 55, 35}, {30, 31, 50, 51, 35}, {65, 100, 5, 30, 10}});
   expect_route(scene, {{1, 16, 42}, {76, 16, 42}, {76, 46, 42}, {24, 46, 42}, {24, 46, 28}, {24, 16, 28},
                        {76, 16, 28}, {76, 46, 28}, {24, 46, 28}});
-  EXPECT_EQ(scene.vehicles[0].sensors.at(0).lidar.preset, "leddar_vu8");
+  EXPECT_EQ(scene.vehicles[0].sensors.at(0).range.preset, "leddar_vu8");
   // Tabella 5.2.
   expect_geodetic_table(scene, {{40.8210, 14.7035, 42, 1, 16}, {40.8220, 14.7035, 42, 76, 16},
                                 {40.8220, 14.7039, 42, 76, 46}, {40.8213, 14.7039, 42, 24, 46},
@@ -162,7 +162,7 @@ TEST(BundledScenes, TreesStartAndGoalAre23_27MetresApart) {
     highest = std::max(highest, *scene.ground_height(p.x(), p.y()));
   }
   EXPECT_GT(highest - *scene.ground_height(start.x(), start.y()), 1.5);
-  EXPECT_EQ(scene.vehicles[0].sensors.at(0).lidar.preset, "scanner3d");
+  EXPECT_EQ(scene.vehicles[0].sensors.at(0).range.preset, "scanner3d");
   int trunks = 0;
   for (const Shape& s : scene.shapes) {
     if (s.type != ShapeType::cylinder) continue;
@@ -216,7 +216,7 @@ TEST(BundledScenes, VineyardHasRowsFenceObstaclesAndAMovingPerson) {
   EXPECT_LT(m.path_m[0].x(), 0.0);
   EXPECT_GT(m.path_m[1].x(), 0.0);
   EXPECT_EQ(scene.vehicles.at(0).type, VehicleType::rover);
-  EXPECT_EQ(scene.vehicles[0].sensors.at(0).lidar.preset, "planar180");
+  EXPECT_EQ(scene.vehicles[0].sensors.at(0).range.preset, "planar180");
   for (const Waypoint& wp : scene.vehicles[0].mission) EXPECT_TRUE(wp.heading_deg.has_value());
 }
 

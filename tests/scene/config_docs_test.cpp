@@ -20,7 +20,7 @@ TEST(ConfigDocs, SceneTablesAreTheDeclaredFields) {
                                     {"vineyard", vineyard_fields().markdown()},
                                     {"grid_obstacles", grid_obstacles_fields().markdown()},
                                     {"state_noise", state_noise_fields().markdown()},
-                                    {"sensor", lidar_config_fields().markdown()}});
+                                    {"sensor", range_sensor_config_fields().markdown()}});
 }
 
 }  // namespace

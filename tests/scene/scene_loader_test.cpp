@@ -107,10 +107,10 @@ TEST(SceneLoader, ReadsVehicleSensorsAndMissionForms) {
   const VehicleDef& v = scene.vehicles[0];
   EXPECT_EQ(v.type, VehicleType::quadrotor);
   ASSERT_EQ(v.sensors.size(), 1u);
-  EXPECT_EQ(v.sensors[0].lidar.preset, "scanner3d");
-  EXPECT_EQ(v.sensors[0].lidar.cols, 64);
-  EXPECT_EQ(v.sensors[0].lidar.rows, 32);
-  EXPECT_DOUBLE_EQ(v.sensors[0].lidar.max_range_m, 8.0);
+  EXPECT_EQ(v.sensors[0].range.preset, "scanner3d");
+  EXPECT_EQ(v.sensors[0].range.cols, 64);
+  EXPECT_EQ(v.sensors[0].range.rows, 32);
+  EXPECT_DOUBLE_EQ(v.sensors[0].range.max_range_m, 8.0);
   EXPECT_EQ(v.planner.name, "depthmap");
   EXPECT_EQ(v.planner.params.values["k"], 2);
   EXPECT_EQ(v.planner.params.pointer, "/objects/3/planner/params");
@@ -287,7 +287,7 @@ TEST(SceneLoader, RatesThatDivideThePhysicsRateAreKeptAsGiven) {
         {"alias": "odd", "type": "lidar", "preset": "leddar_vu8", "rate_hz": 26.6666666667}]}]})j");
   EXPECT_EQ(scene.world.control_rate_hz, 60.0);
   EXPECT_EQ(scene.world.sensor_rate_hz, 10.0);
-  EXPECT_EQ(scene.vehicles[0].sensors[1].lidar.rate_hz, 26.6666666667);
+  EXPECT_EQ(scene.vehicles[0].sensors[1].range.rate_hz, 26.6666666667);
   // A step with its rates, whichever way they are written (0.004166666666666667 is the bundled scenes' 1/240).
   const Scene bundled = parse(R"j({"world": {"physics_step_s": 0.004166666666666667, "control_rate_hz": 48},
       "objects": []})j");
@@ -326,12 +326,12 @@ TEST(SceneLoaderErrors, SensorRatesHaveARange) {
   }
   EXPECT_THAT(error_of(sensor_with_rate("\"fast\"")), HasSubstr("/objects/0/sensors/0/rate_hz (v/down): expected a finite number, got \"fast\""));
   // The ends of the range: 0.01 Hz is 24000 steps at 240 Hz physics; 0 is the world's rate.
-  EXPECT_EQ(parse(sensor_with_rate("0.01")).vehicles[0].sensors[0].lidar.rate_hz, 0.01);
-  EXPECT_EQ(parse(sensor_with_rate("0")).vehicles[0].sensors[0].lidar.rate_hz, 0.0);
+  EXPECT_EQ(parse(sensor_with_rate("0.01")).vehicles[0].sensors[0].range.rate_hz, 0.01);
+  EXPECT_EQ(parse(sensor_with_rate("0")).vehicles[0].sensors[0].range.rate_hz, 0.0);
   EXPECT_EQ(parse(R"j({"world": {"physics_step_s": 0.0001, "control_rate_hz": 100, "sensor_rate_hz": 100},
       "objects": [{"alias": "v", "type": "quadrotor",
       "sensors": [{"alias": "s", "type": "lidar", "preset": "leddar_vu8", "rate_hz": 10000}]}]})j")
-                .vehicles[0].sensors[0].lidar.rate_hz,
+                .vehicles[0].sensors[0].range.rate_hz,
             10000.0);
 }
 
@@ -539,9 +539,9 @@ TEST(SceneLoader, GridKeysReplaceAPresetsBeams) {
   const Scene scene = parse(R"({"objects": [{"alias": "r", "type": "rover", "sensors": [
       {"alias": "a", "type": "lidar", "preset": "planar180"},
       {"alias": "b", "type": "lidar", "preset": "planar180", "resolution": [361, 1]}]}]})");
-  EXPECT_EQ(scene.vehicles[0].sensors[0].lidar.beam_count(), 181);
-  EXPECT_TRUE(scene.vehicles[0].sensors[1].lidar.beams.empty());
-  EXPECT_EQ(scene.vehicles[0].sensors[1].lidar.beam_count(), 361);
+  EXPECT_EQ(scene.vehicles[0].sensors[0].range.beam_count(), 181);
+  EXPECT_TRUE(scene.vehicles[0].sensors[1].range.beams.empty());
+  EXPECT_EQ(scene.vehicles[0].sensors[1].range.beam_count(), 361);
   EXPECT_THAT(error_of(R"({"objects": [{"alias": "r", "type": "rover", "sensors": [
       {"alias": "a", "type": "lidar", "beams": [[0, 0]], "resolution": [4, 4]}]}]})"),
               HasSubstr("/objects/0/sensors/0 (r/a): expected either \"beams\" or a grid"));
@@ -557,7 +557,7 @@ TEST(SceneLoader, DepthCamerasTakeAGridWithoutNoise) {
   const Scene scene = parse(R"({"objects": [{"alias": "d", "type": "quadrotor", "sensors": [
       {"alias": "cam", "type": "depth_camera", "preset": "scanner3d", "resolution": [64, 48]}]}]})");
   EXPECT_EQ(scene.vehicles[0].sensors[0].type, SensorType::depth_camera);
-  EXPECT_EQ(scene.vehicles[0].sensors[0].lidar.cols, 64);
+  EXPECT_EQ(scene.vehicles[0].sensors[0].range.cols, 64);
   EXPECT_THAT(error_of(R"({"objects": [{"alias": "d", "type": "quadrotor", "sensors": [
       {"alias": "cam", "type": "depth_camera", "preset": "planar180"}]}]})"),
               HasSubstr("/objects/0/sensors/0 (d/cam): expected a depth camera with a beam grid"));

@@ -26,11 +26,11 @@ SensorDef camera_def(int cols, int rows, double fov_h = 90.0, double fov_v = 90.
   SensorDef def;
   def.alias = "camera";
   def.type = SensorType::depth_camera;
-  def.lidar = *lidar_preset("scanner3d");
-  def.lidar.cols = cols;
-  def.lidar.rows = rows;
-  def.lidar.fov_h_deg = fov_h;
-  def.lidar.fov_v_deg = fov_v;
+  def.range = *sensor_preset("scanner3d");
+  def.range.cols = cols;
+  def.range.rows = rows;
+  def.range.fov_h_deg = fov_h;
+  def.range.fov_v_deg = fov_v;
   return def;
 }
 
@@ -66,25 +66,25 @@ void expect_plane_exact(int n, double tilt_deg, const Eigen::Vector3d& tilt_axis
   const auto camera = make_depth_camera(scene, def);
   // Off the origin and turned, so the test does not rely on symmetry.
   const Eigen::Isometry3d pose = to_isometry(Pose{{0.0, 0.4, -0.3}, {3.0, -4.0, 6.0}});
-  LidarScan scan;
+  RangeScan scan;
   camera->scan(pose, 0.0, scripted_poses(scene, 0.0), scan);
   ASSERT_EQ(scan.rows, n);
   ASSERT_EQ(scan.cols, n);
-  const std::vector<Beam> beams = lidar_beams(def.lidar);
+  const std::vector<Beam> beams = lidar_beams(def.range);
   int checked = 0;
   double worst = 0.0;
   std::size_t point_index = 0;
   for (std::size_t i = 0; i < beams.size(); ++i) {
     const Eigen::Vector3d d = pose.linear() * beam_direction(beams[i]).cast<double>();
     const double t = normal.dot(point - pose.translation()) / normal.dot(d);
-    const bool expect_hit = t >= def.lidar.min_range_m && t <= def.lidar.max_range_m;
-    if (std::abs(t - def.lidar.max_range_m) < kCm) {  // on the range limit: either
+    const bool expect_hit = t >= def.range.min_range_m && t <= def.range.max_range_m;
+    if (std::abs(t - def.range.max_range_m) < kCm) {  // on the range limit: either
       point_index += scan.hits[i];
       continue;
     }
     ASSERT_EQ(scan.hits[i], expect_hit ? 1 : 0) << "pixel " << i << " expected range " << t;
     if (!expect_hit) {
-      EXPECT_FLOAT_EQ(scan.ranges_m[i], static_cast<float>(def.lidar.max_range_m));
+      EXPECT_FLOAT_EQ(scan.ranges_m[i], static_cast<float>(def.range.max_range_m));
       continue;
     }
     worst = std::max(worst, std::abs(scan.ranges_m[i] - t));
@@ -130,7 +130,7 @@ double quantile(std::vector<double> values, double q) {
 
 // A pixel is on an edge when its 3x3 neighbourhood in the LIDAR scan has
 // mixed hits or ranges more than 0.3 m apart.
-Agreement compare(const LidarScan& lidar, const LidarScan& camera) {
+Agreement compare(const RangeScan& lidar, const RangeScan& camera) {
   Agreement a;
   std::vector<double> relative, absolute;
   for (int row = 0; row < lidar.rows; ++row) {
@@ -173,14 +173,14 @@ void expect_agreement(const std::string& scene_name, int n) {
   const SensorDef def = camera_def(n, n);
   const auto camera = make_depth_camera(scene, def);
   const auto lidar = make_lidar_sensor(scene, as_lidar(def), 0);
-  const Eigen::Isometry3d start = vehicle.pose * to_isometry(def.lidar.mount);
+  const Eigen::Isometry3d start = vehicle.pose * to_isometry(def.range.mount);
   const std::vector<Eigen::Isometry3d> poses = {
       start,
       start * to_isometry(Pose{{0.0, 0.0, 0.0}, {0.0, 0.0, 35.0}}),
       start * to_isometry(Pose{{4.0, -1.5, 0.3}, {0.0, 15.0, -50.0}}),
       start * to_isometry(Pose{{7.0, 2.0, 1.0}, {5.0, 30.0, 120.0}}),
   };
-  LidarScan expected, actual;
+  RangeScan expected, actual;
   for (std::size_t k = 0; k < poses.size(); ++k) {
     lidar->scan(poses[k], 0.0, scripted_poses(scene, 0.0), expected);
     camera->scan(poses[k], 0.0, scripted_poses(scene, 0.0), actual);
@@ -202,7 +202,7 @@ void expect_agreement(const std::string& scene_name, int n) {
 void expect_matches_lidar(const Scene& scene, const SensorDef& def, const Eigen::Isometry3d& pose, double time_s) {
   const auto camera = make_depth_camera(scene, def);
   const auto lidar = make_lidar_sensor(scene, as_lidar(def), 0);
-  LidarScan expected, actual;
+  RangeScan expected, actual;
   lidar->scan(pose, time_s, scripted_poses(scene, time_s), expected);
   camera->scan(pose, time_s, scripted_poses(scene, time_s), actual);
   EXPECT_EQ(actual.rows, expected.rows);
@@ -224,7 +224,7 @@ TEST(DepthCamera, MoversAppearWhereTheyAreAtTheScanTime) {
      "path_m": [[3, 2, 0.5], [3, -2, 0.5]], "speed_mps": 2.0, "start_time_s": 1.0}]})j");
   const SensorDef def = camera_def(64, 64);
   const auto camera = make_depth_camera(scene, def);
-  LidarScan scan;
+  RangeScan scan;
   // Pixel (32, 32) looks just right of and below straight ahead.
   const std::size_t centre = 32 * 64 + 32;
   camera->scan(Eigen::Isometry3d::Identity(), 0.0, scripted_poses(scene, 0.0), scan);
@@ -245,8 +245,8 @@ TEST(DepthCamera, TwoCamerasWorkSideBySide) {
   far_wall.shapes.push_back(plane({7.0, 0.0, 0.0}, -Eigen::Vector3d::UnitX()));
   auto first = make_depth_camera(near_wall, camera_def(32, 32));
   auto second = make_depth_camera(far_wall, camera_def(48, 16, 60.0, 20.0));
-  LidarScan a, b;
-  const auto straight_ahead = [](const LidarScan& scan) {
+  RangeScan a, b;
+  const auto straight_ahead = [](const RangeScan& scan) {
     // Mean distance along the optical axis of the four pixels around it.
     double sum = 0.0;
     for (const int row : {scan.rows / 2 - 1, scan.rows / 2}) {
@@ -299,20 +299,20 @@ TEST(DepthCamera, SeesBackFacesWhereTheLidarDoes) {
 TEST(DepthCamera, SingleRowWithoutVerticalFieldOfView) {
   const Scene scene = bundled("trees_rolling_terrain");
   SensorDef def = camera_def(181, 1, 120.0, 0.0);
-  def.lidar.max_range_m = 20.0;
+  def.range.max_range_m = 20.0;
   const Eigen::Isometry3d pose = scene.vehicles.front().pose * to_isometry(Pose{{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}});
   expect_matches_lidar(scene, def, pose, 0.0);
-  def.lidar.fov_v_deg = 0.3;
+  def.range.fov_v_deg = 0.3;
   expect_matches_lidar(scene, def, pose, 0.0);
 }
 
 TEST(DepthCamera, FillsTheScanLikeTheLidar) {
   const Scene scene = bundled("two_barriers");
   SensorDef def = camera_def(40, 30, 100.0, 60.0);
-  def.lidar.quantization_m = 0.05;
+  def.range.quantization_m = 0.05;
   const Eigen::Isometry3d pose = to_isometry(Pose{{1.0, 0.5, 1.5}, {0.0, 5.0, 10.0}});
   const auto camera = make_depth_camera(scene, def);
-  LidarScan scan;
+  RangeScan scan;
   scan.points.assign(5000, Eigen::Vector3f::Zero());  // stale content is replaced
   camera->scan(pose, 2.5, scripted_poses(scene, 2.5), scan);
   EXPECT_EQ(scan.rows, 30);
@@ -321,10 +321,10 @@ TEST(DepthCamera, FillsTheScanLikeTheLidar) {
   ASSERT_EQ(scan.ranges_m.size(), 1200u);
   ASSERT_EQ(scan.hits.size(), 1200u);
   std::size_t hits = 0;
-  const std::vector<Beam> beams = lidar_beams(def.lidar);
+  const std::vector<Beam> beams = lidar_beams(def.range);
   for (std::size_t i = 0; i < beams.size(); ++i) {
     if (!scan.hits[i]) {
-      EXPECT_EQ(scan.ranges_m[i], static_cast<float>(def.lidar.max_range_m));
+      EXPECT_EQ(scan.ranges_m[i], static_cast<float>(def.range.max_range_m));
       continue;
     }
     // Quantized, and the point lies along the beam at that range.
@@ -338,7 +338,7 @@ TEST(DepthCamera, FillsTheScanLikeTheLidar) {
   EXPECT_EQ(hits, scan.points.size());
   EXPECT_GT(hits, 300u);
   // The depth map reads it as it reads a LIDAR scan.
-  const cv::Mat depth = depth_map(scan, def.lidar);
+  const cv::Mat depth = depth_map(scan, def.range);
   EXPECT_EQ(depth.rows, 30);
   EXPECT_EQ(depth.cols, 40);
 }
@@ -346,19 +346,19 @@ TEST(DepthCamera, FillsTheScanLikeTheLidar) {
 TEST(DepthCamera, RejectsWhatItCannotRender) {
   const Scene scene;
   SensorDef def = camera_def(16, 16);
-  def.lidar.noise_stddev_m = 0.01;
+  def.range.noise_stddev_m = 0.01;
   EXPECT_THROW(make_depth_camera(scene, def), std::invalid_argument);
   def = camera_def(16, 16);
-  def.lidar.dropout_probability = 0.1;
+  def.range.dropout_probability = 0.1;
   EXPECT_THROW(make_depth_camera(scene, def), std::invalid_argument);
   def = camera_def(16, 16);
-  def.lidar.beams = {{0.0, 0.0}};
+  def.range.beams = {{0.0, 0.0}};
   EXPECT_THROW(make_depth_camera(scene, def), std::invalid_argument);
   def = camera_def(16, 16, 170.0, 90.0);
   EXPECT_THROW(make_depth_camera(scene, def), std::invalid_argument);
   EXPECT_THROW(make_depth_camera(scene, as_lidar(camera_def(16, 16))), std::invalid_argument);
   // An empty scene renders: every pixel a miss.
-  LidarScan scan;
+  RangeScan scan;
   make_depth_camera(scene, camera_def(16, 16))->scan(Eigen::Isometry3d::Identity(), 0.0, scripted_poses(scene, 0.0), scan);
   EXPECT_EQ(std::count(scan.hits.begin(), scan.hits.end(), 0), 256);
 }

@@ -40,8 +40,8 @@ Scene wall_scene(double distance) {
   return scene;
 }
 
-LidarConfig grid_config(int cols, int rows, double fov_h, double fov_v) {
-  LidarConfig c;
+RangeSensorConfig grid_config(int cols, int rows, double fov_h, double fov_v) {
+  RangeSensorConfig c;
   c.cols = cols;
   c.rows = rows;
   c.fov_h_deg = fov_h;
@@ -52,18 +52,18 @@ LidarConfig grid_config(int cols, int rows, double fov_h, double fov_v) {
 
 TEST(LidarPresets, NamesTheThreePresetsAndRejectsOthers) {
   const std::vector<std::string_view> expected{"scanner3d", "leddar_vu8", "planar180"};
-  EXPECT_EQ(lidar_preset_names(), expected);
-  for (const std::string_view name : lidar_preset_names()) {
-    const auto config = lidar_preset(name);
+  EXPECT_EQ(sensor_preset_names(), expected);
+  for (const std::string_view name : sensor_preset_names()) {
+    const auto config = sensor_preset(name);
     ASSERT_TRUE(config.has_value()) << name;
     EXPECT_EQ(config->preset, name);
     EXPECT_NO_THROW(Lidar(*config, 0)) << name;
   }
-  EXPECT_FALSE(lidar_preset("velodyne").has_value());
+  EXPECT_FALSE(sensor_preset("velodyne").has_value());
 }
 
 TEST(LidarPresets, Scanner3dIs256By256Over90By90DegreesLookingForward) {
-  const LidarConfig c = *lidar_preset("scanner3d");
+  const RangeSensorConfig c = *sensor_preset("scanner3d");
   EXPECT_EQ(c.beam_count(), 256 * 256);
   EXPECT_DOUBLE_EQ(c.max_range_m, 10.0);
   EXPECT_DOUBLE_EQ(c.min_range_m, 0.05);
@@ -80,7 +80,7 @@ TEST(LidarPresets, Scanner3dIs256By256Over90By90DegreesLookingForward) {
 }
 
 TEST(LidarPresets, LeddarVu8FansEightBeamsOver48DegreesPitched45Down) {
-  const LidarConfig c = *lidar_preset("leddar_vu8");
+  const RangeSensorConfig c = *sensor_preset("leddar_vu8");
   ASSERT_EQ(c.beam_count(), 8);
   const std::vector<Beam> beams = lidar_beams(c);
   const double expected_az[] = {21.0, 15.0, 9.0, 3.0, -3.0, -9.0, -15.0, -21.0};
@@ -99,11 +99,11 @@ TEST(LidarPresets, LeddarOnADroneAt30MetresHitsFlatGroundAhead) {
   Scene scene;
   scene.shapes.push_back(plane_through(Eigen::Vector3d::Zero()));
   const RayCaster caster(scene);
-  const LidarConfig c = *lidar_preset("leddar_vu8");
+  const RangeSensorConfig c = *sensor_preset("leddar_vu8");
   Lidar lidar(c, 0);
   const double h = 30.0;  // 001 flew at 30 m
   const Eigen::Isometry3d body = to_isometry(Pose{{10.0, -4.0, h}, {0.0, 0.0, 30.0}});
-  LidarScan scan;
+  RangeScan scan;
   lidar.scan(caster, body * to_isometry(c.mount), 0.0, scan);
   ASSERT_EQ(scan.rows, 1);
   ASSERT_EQ(scan.cols, 8);
@@ -128,7 +128,7 @@ TEST(LidarPresets, LeddarOnADroneAt30MetresHitsFlatGroundAhead) {
 }
 
 TEST(LidarPresets, Planar180Has181BeamsOneDegreeApartLeftmostFirst) {
-  const LidarConfig c = *lidar_preset("planar180");
+  const RangeSensorConfig c = *sensor_preset("planar180");
   const std::vector<Beam> beams = lidar_beams(c);
   ASSERT_EQ(beams.size(), 181u);
   EXPECT_EQ(c.beam_count(), 181);
@@ -140,7 +140,7 @@ TEST(LidarPresets, Planar180Has181BeamsOneDegreeApartLeftmostFirst) {
 }
 
 TEST(Lidar, GridBeamsAreRowMajorFromTheTopLeft) {
-  const LidarConfig c = grid_config(4, 3, 80.0, 30.0);
+  const RangeSensorConfig c = grid_config(4, 3, 80.0, 30.0);
   const std::vector<Beam> beams = lidar_beams(c);
   ASSERT_EQ(beams.size(), 12u);
   for (int row = 0; row < 3; ++row) {
@@ -164,13 +164,13 @@ TEST(Lidar, BeamDirectionIsXForwardYLeftZUp) {
 }
 
 TEST(Lidar, ExplicitBeamsReplaceTheGrid) {
-  LidarConfig c = grid_config(16, 16, 90.0, 90.0);
+  RangeSensorConfig c = grid_config(16, 16, 90.0, 90.0);
   c.beams = {{10.0, 0.0}, {0.0, 0.0}, {-10.0, 5.0}};
   ASSERT_EQ(lidar_beams(c).size(), 3u);
   const Scene scene = wall_scene(4.0);
   const RayCaster caster(scene);
   Lidar lidar(c, 0);
-  LidarScan scan;
+  RangeScan scan;
   lidar.scan(caster, Eigen::Isometry3d::Identity(), 0.0, scan);
   EXPECT_EQ(scan.rows, 1);
   EXPECT_EQ(scan.cols, 3);
@@ -183,10 +183,10 @@ TEST(Lidar, ExplicitBeamsReplaceTheGrid) {
 TEST(Lidar, ScanOfAWallFromAMovedSensorMatchesGeometry) {
   const Scene scene = wall_scene(6.0);
   const RayCaster caster(scene);
-  const LidarConfig c = grid_config(32, 24, 60.0, 40.0);
+  const RangeSensorConfig c = grid_config(32, 24, 60.0, 40.0);
   Lidar lidar(c, 0);
   const Eigen::Isometry3d pose = to_isometry(Pose{{1.0, 2.0, 0.5}, {5.0, -8.0, 12.0}});
-  LidarScan scan;
+  RangeScan scan;
   lidar.scan(caster, pose, 1.25, scan);
   EXPECT_EQ(scan.rows, 24);
   EXPECT_EQ(scan.cols, 32);
@@ -204,9 +204,9 @@ TEST(Lidar, ScanOfAWallFromAMovedSensorMatchesGeometry) {
 TEST(Lidar, NoReturnReadsMaxRangeAndDepthOne) {
   const Scene empty;
   const RayCaster caster(empty);
-  const LidarConfig c = grid_config(8, 6, 90.0, 60.0);
+  const RangeSensorConfig c = grid_config(8, 6, 90.0, 60.0);
   Lidar lidar(c, 0);
-  LidarScan scan;
+  RangeScan scan;
   lidar.scan(caster, Eigen::Isometry3d::Identity(), 0.0, scan);
   EXPECT_TRUE(std::all_of(scan.hits.begin(), scan.hits.end(), [](auto h) { return h == 0; }));
   EXPECT_TRUE(
@@ -217,9 +217,9 @@ TEST(Lidar, NoReturnReadsMaxRangeAndDepthOne) {
 }
 
 TEST(Lidar, DepthMapIsRangeOverMaxZeroBelowMinAndOneWithoutReturn) {
-  LidarConfig c = grid_config(2, 2, 10.0, 10.0);
+  RangeSensorConfig c = grid_config(2, 2, 10.0, 10.0);
   c.min_range_m = 0.05;
-  LidarScan scan;
+  RangeScan scan;
   scan.rows = 2;
   scan.cols = 2;
   scan.ranges_m = {5.0f, 0.01f, 10.0f, 2.5f};
@@ -238,9 +238,9 @@ TEST(Lidar, DepthMapPixelZeroZeroLooksUpAndLeft) {
   Scene scene;
   scene.shapes.push_back(box({5.0, 3.0, 3.0}, {1.0, 4.0, 4.0}));  // ahead, up and to the left
   const RayCaster caster(scene);
-  const LidarConfig c = grid_config(16, 16, 90.0, 90.0);
+  const RangeSensorConfig c = grid_config(16, 16, 90.0, 90.0);
   Lidar lidar(c, 0);
-  LidarScan scan;
+  RangeScan scan;
   lidar.scan(caster, Eigen::Isometry3d::Identity(), 0.0, scan);
   const cv::Mat depth = depth_map(scan, c);
   EXPECT_LT(depth.at<float>(4, 4), 1.0f);   // row 4 (upper half), column 4 (left half)
@@ -254,10 +254,10 @@ TEST(Lidar, MinRangeLooksPastTheSensorHousing) {
   scene.shapes.push_back(box({0.03, 0.0, 0.0}, {0.02, 2.0, 2.0}));  // a window 2 cm ahead
   scene.shapes.push_back(plane_through({3.0, 0.0, 0.0}, {0.0, 90.0, 0.0}));
   const RayCaster caster(scene);
-  LidarConfig c = grid_config(4, 4, 20.0, 20.0);
+  RangeSensorConfig c = grid_config(4, 4, 20.0, 20.0);
   c.min_range_m = 0.05;
   Lidar lidar(c, 0);
-  LidarScan scan;
+  RangeScan scan;
   lidar.scan(caster, Eigen::Isometry3d::Identity(), 0.0, scan);
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
     EXPECT_NEAR(scan.ranges_m[i] * lidar.directions()[i].x(), 3.0, kMm) << i;
@@ -265,17 +265,17 @@ TEST(Lidar, MinRangeLooksPastTheSensorHousing) {
 }
 
 // Ranges of a noisy scan minus the noise-free ones, over several scans.
-std::vector<double> range_errors(const LidarConfig& noisy, int scans,
+std::vector<double> range_errors(const RangeSensorConfig& noisy, int scans,
                                  std::vector<std::uint8_t>* hits = nullptr) {
   const Scene scene = wall_scene(5.0);
   const RayCaster caster(scene);
-  LidarConfig clean = noisy;
+  RangeSensorConfig clean = noisy;
   clean.noise_stddev_m = 0.0;
   clean.dropout_probability = 0.0;
   clean.quantization_m = 0.0;
   Lidar truth(clean, 0);
   Lidar lidar(noisy, 0);
-  LidarScan expected, scan;
+  RangeScan expected, scan;
   truth.scan(caster, Eigen::Isometry3d::Identity(), 0.0, expected);
   std::vector<double> errors;
   for (int k = 0; k < scans; ++k) {
@@ -289,7 +289,7 @@ std::vector<double> range_errors(const LidarConfig& noisy, int scans,
 }
 
 TEST(Lidar, GaussianNoiseHasZeroMeanAndTheConfiguredStddev) {
-  LidarConfig c = grid_config(100, 100, 20.0, 20.0);
+  RangeSensorConfig c = grid_config(100, 100, 20.0, 20.0);
   c.noise_stddev_m = 0.05;
   const std::vector<double> e = range_errors(c, 5);
   ASSERT_EQ(e.size(), 50000u);
@@ -304,7 +304,7 @@ TEST(Lidar, GaussianNoiseHasZeroMeanAndTheConfiguredStddev) {
 }
 
 TEST(Lidar, DropoutLosesTheConfiguredFractionOfBeams) {
-  LidarConfig c = grid_config(100, 100, 20.0, 20.0);
+  RangeSensorConfig c = grid_config(100, 100, 20.0, 20.0);
   c.dropout_probability = 0.25;
   std::vector<std::uint8_t> hits;
   const std::vector<double> e = range_errors(c, 5, &hits);
@@ -316,12 +316,12 @@ TEST(Lidar, DropoutLosesTheConfiguredFractionOfBeams) {
 }
 
 TEST(Lidar, DroppedBeamsReadMaxRangeAndGiveNoPoint) {
-  LidarConfig c = grid_config(50, 50, 20.0, 20.0);
+  RangeSensorConfig c = grid_config(50, 50, 20.0, 20.0);
   c.dropout_probability = 0.5;
   const Scene scene = wall_scene(5.0);
   const RayCaster caster(scene);
   Lidar lidar(c, 0);
-  LidarScan scan;
+  RangeScan scan;
   lidar.scan(caster, Eigen::Isometry3d::Identity(), 0.0, scan);
   std::size_t returns = 0;
   for (std::size_t i = 0; i < scan.hits.size(); ++i) {
@@ -335,7 +335,7 @@ TEST(Lidar, DroppedBeamsReadMaxRangeAndGiveNoPoint) {
 }
 
 TEST(Lidar, QuantizationRoundsRangesToTheStep) {
-  LidarConfig c = grid_config(60, 60, 40.0, 40.0);
+  RangeSensorConfig c = grid_config(60, 60, 40.0, 40.0);
   c.quantization_m = 0.1;
   const std::vector<double> e = range_errors(c, 1);
   ASSERT_EQ(e.size(), 3600u);
@@ -344,7 +344,7 @@ TEST(Lidar, QuantizationRoundsRangesToTheStep) {
   const RayCaster caster(scene);
   c.noise_stddev_m = 0.03;
   Lidar lidar(c, 0);
-  LidarScan scan;
+  RangeScan scan;
   lidar.scan(caster, Eigen::Isometry3d::Identity(), 0.0, scan);
   for (float r : scan.ranges_m) {
     const double steps = r / 0.1;
@@ -353,12 +353,12 @@ TEST(Lidar, QuantizationRoundsRangesToTheStep) {
 }
 
 TEST(Lidar, NoiseIsClampedToZeroAndMaxRange) {
-  LidarConfig c = grid_config(100, 100, 20.0, 20.0);
+  RangeSensorConfig c = grid_config(100, 100, 20.0, 20.0);
   c.noise_stddev_m = 20.0;
   const Scene scene = wall_scene(5.0);
   const RayCaster caster(scene);
   Lidar lidar(c, 0);
-  LidarScan scan;
+  RangeScan scan;
   lidar.scan(caster, Eigen::Isometry3d::Identity(), 0.0, scan);
   int at_zero = 0, at_max = 0;
   for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
@@ -373,29 +373,29 @@ TEST(Lidar, NoiseIsClampedToZeroAndMaxRange) {
 }
 
 TEST(Lidar, SameSeedsGiveIdenticalScansOtherSeedsDiffer) {
-  LidarConfig c = grid_config(32, 32, 40.0, 40.0);
+  RangeSensorConfig c = grid_config(32, 32, 40.0, 40.0);
   c.noise_stddev_m = 0.02;
   c.dropout_probability = 0.1;
   c.seed = 7;
   const Scene scene = wall_scene(5.0);
   const RayCaster caster(scene);
-  const auto first_scan = [&](const LidarConfig& config, std::uint64_t world_seed) {
+  const auto first_scan = [&](const RangeSensorConfig& config, std::uint64_t world_seed) {
     Lidar lidar(config, world_seed);
-    LidarScan scan;
+    RangeScan scan;
     lidar.scan(caster, Eigen::Isometry3d::Identity(), 0.0, scan);
     return scan;
   };
-  const LidarScan a = first_scan(c, 1);
-  const LidarScan b = first_scan(c, 1);
+  const RangeScan a = first_scan(c, 1);
+  const RangeScan b = first_scan(c, 1);
   EXPECT_EQ(a.ranges_m, b.ranges_m);
   EXPECT_EQ(a.hits, b.hits);
   EXPECT_NE(first_scan(c, 2).ranges_m, a.ranges_m);
-  LidarConfig other = c;
+  RangeSensorConfig other = c;
   other.seed = 8;
   EXPECT_NE(first_scan(other, 1).ranges_m, a.ranges_m);
   // The stream goes on: a second scan from the same pose is not a repeat.
   Lidar lidar(c, 1);
-  LidarScan s1, s2;
+  RangeScan s1, s2;
   lidar.scan(caster, Eigen::Isometry3d::Identity(), 0.0, s1);
   lidar.scan(caster, Eigen::Isometry3d::Identity(), 0.1, s2);
   EXPECT_EQ(s1.ranges_m, a.ranges_m);
@@ -403,7 +403,7 @@ TEST(Lidar, SameSeedsGiveIdenticalScansOtherSeedsDiffer) {
 }
 
 TEST(Lidar, RejectsConfigsWithoutBeamsOrWithBadRanges) {
-  LidarConfig c = grid_config(0, 4, 90.0, 90.0);
+  RangeSensorConfig c = grid_config(0, 4, 90.0, 90.0);
   EXPECT_THROW(Lidar(c, 0), std::invalid_argument);
   c = grid_config(4, 4, 90.0, 90.0);
   c.min_range_m = 20.0;

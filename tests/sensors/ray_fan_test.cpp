@@ -20,7 +20,7 @@ namespace campo {
 namespace {
 
 std::vector<Eigen::Vector3f> grid_beams(int cols, int rows, double fov_h_deg, double fov_v_deg) {
-  LidarConfig config;
+  RangeSensorConfig config;
   config.cols = cols;
   config.rows = rows;
   config.fov_h_deg = fov_h_deg;
@@ -79,7 +79,7 @@ TEST(RayFan, FitsItsBinsToHowTheRaysSpread) {
   const RayFan scan(grid_beams(256, 256, 90.0, 90.0));
   EXPECT_EQ(scan.grid(0), 64);
   std::vector<Eigen::Vector3f> line;
-  for (const Beam& b : lidar_beams(*lidar_preset("planar180"))) line.push_back(beam_direction(b));
+  for (const Beam& b : lidar_beams(*sensor_preset("planar180"))) line.push_back(beam_direction(b));
   const RayFan planar(line);
   for (int f = 0; f < fan::kFaces; ++f) EXPECT_LE(planar.grid(f), 16) << f;
   EXPECT_THROW(RayFan(std::vector<Eigen::Vector3f>{Eigen::Vector3f::Zero()}), std::invalid_argument);

@@ -623,7 +623,7 @@ TEST(BundledSweeps, SensorSweepOfSeed000IsValid) {
   const SweepSpec spec = read_sweep_spec(fs::path("scenes/sweeps/sensor_000.json"));
   std::vector<std::pair<double, double>> fov_and_range;
   const std::vector<SweepRun> runs = expand_sweep(spec, [&fov_and_range](const Scene& scene) {
-    const LidarConfig& scanner = scene.vehicles.front().sensors.front().lidar;
+    const RangeSensorConfig& scanner = scene.vehicles.front().sensors.front().range;
     EXPECT_EQ(scanner.fov_h_deg, scanner.fov_v_deg);
     fov_and_range.emplace_back(scanner.fov_h_deg, scanner.max_range_m);
     for (const VehicleDef& vehicle : scene.vehicles) create_planner(vehicle.planner, {vehicle.type, &scene});

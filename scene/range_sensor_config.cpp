@@ -1,4 +1,4 @@
-#include "campo/lidar_config.hpp"
+#include "campo/range_sensor_config.hpp"
 
 #include <array>
 
@@ -8,8 +8,8 @@ namespace {
 
 // 000 §5.5: V-REP 3D laser scanner on the quadrotor, 10 m range, 90 x 90 deg,
 // depth maps of 256 x 256 px; forward-looking (identity mount).
-LidarConfig scanner3d() {
-  LidarConfig c;
+RangeSensorConfig scanner3d() {
+  RangeSensorConfig c;
   c.preset = "scanner3d";
   c.fov_h_deg = 90.0;
   c.fov_v_deg = 90.0;
@@ -25,8 +25,8 @@ LidarConfig scanner3d() {
 // positive pitch turns +x toward -z, so pitch +45 deg points the beams down.
 // 001 flies at 30 m, well inside the range; 100 m is the lower end of the
 // ranges the Vu8 is sold with (roughly 100-215 m depending on optics).
-LidarConfig leddar_vu8() {
-  LidarConfig c;
+RangeSensorConfig leddar_vu8() {
+  RangeSensorConfig c;
   c.preset = "leddar_vu8";
   c.fov_h_deg = 48.0;
   c.fov_v_deg = 0.3;
@@ -42,8 +42,8 @@ LidarConfig leddar_vu8() {
 // horizontal resolution, one reading per angle including both ends. Beams are
 // listed leftmost first (+90 .. -90), like grid column 0. 003 does not state
 // the range; 20 m comfortably covers a vineyard inter-row and headland.
-LidarConfig planar180() {
-  LidarConfig c;
+RangeSensorConfig planar180() {
+  RangeSensorConfig c;
   c.preset = "planar180";
   c.fov_h_deg = 180.0;
   c.fov_v_deg = 0.0;
@@ -56,7 +56,7 @@ LidarConfig planar180() {
   return c;
 }
 
-using PresetFactory = LidarConfig (*)();
+using PresetFactory = RangeSensorConfig (*)();
 constexpr std::array<std::pair<std::string_view, PresetFactory>, 3> kPresets{{
     {"scanner3d", &scanner3d},
     {"leddar_vu8", &leddar_vu8},
@@ -65,13 +65,13 @@ constexpr std::array<std::pair<std::string_view, PresetFactory>, 3> kPresets{{
 
 }  // namespace
 
-std::vector<std::string_view> lidar_preset_names() {
+std::vector<std::string_view> sensor_preset_names() {
   std::vector<std::string_view> names;
   for (const auto& [name, factory] : kPresets) names.push_back(name);
   return names;
 }
 
-std::optional<LidarConfig> lidar_preset(std::string_view name) {
+std::optional<RangeSensorConfig> sensor_preset(std::string_view name) {
   for (const auto& [preset_name, factory] : kPresets) {
     if (preset_name == name) return factory();
   }

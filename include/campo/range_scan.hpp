@@ -9,7 +9,7 @@
 namespace campo {
 
 /// One scan. Beam i of a grid sensor is pixel (i % cols, i / cols).
-struct LidarScan {
+struct RangeScan {
   int rows = 0;
   int cols = 0;
   double time_s = 0.0;

@@ -1,5 +1,6 @@
 #pragma once
-/// Configuration of a ray-cast LIDAR (SPEC §6): field of view, beam layout,
+/// Configuration of a range sensor (SPEC §6), the ray-cast LIDAR or the depth
+/// camera alike (SensorDef::type says which): field of view, beam layout,
 /// range limits, mount pose, rate and imperfections.
 #include <cstdint>
 #include <optional>
@@ -21,7 +22,7 @@ struct Beam {
 /// looks at azimuth = fov_h/2 - (col + 0.5) * fov_h / cols (so column 0 is the
 /// leftmost) and elevation = fov_v/2 - (row + 0.5) * fov_v / rows (row 0 the
 /// top), matching the depth-map convention: (0,0) top-left, x right, y down.
-struct LidarConfig {
+struct RangeSensorConfig {
   std::string preset = "custom";  ///< preset it started from, for provenance
   double fov_h_deg = 90.0;        ///< horizontal field of view, (0, 360]
   double fov_v_deg = 90.0;        ///< vertical field of view, [0, 180)
@@ -38,11 +39,23 @@ struct LidarConfig {
   std::uint64_t seed = 0;         ///< noise stream, combined with the world seed
 
   int beam_count() const { return beams.empty() ? cols * rows : static_cast<int>(beams.size()); }
+  /// The scan's layout, the one place a sensor's resolution is read from:
+  /// the grid's rows x cols, or one row of the explicit beams. Sensors size
+  /// their scans (RangeScan::rows, cols) with it and planners take their
+  /// image geometry from the scan they read.
+  int scan_rows() const { return beams.empty() ? rows : 1; }
+  int scan_cols() const { return beams.empty() ? cols : static_cast<int>(beams.size()); }
 };
 
-/// Preset names: "scanner3d", "leddar_vu8", "planar180".
-std::vector<std::string_view> lidar_preset_names();
+/// A range image: a beam grid of more than one row (the depth camera, the
+/// scanner3d LIDAR), as opposed to a fan of beams in one row (a leddar, a
+/// planar scanner). Depth-map planners and figures read only images.
+inline bool is_image(const RangeSensorConfig& c) { return c.beams.empty() && c.rows > 1; }
+
+/// Preset names: "scanner3d", "leddar_vu8", "planar180" (a sensor block's
+/// "preset", for either sensor type).
+std::vector<std::string_view> sensor_preset_names();
 /// The preset's configuration; nullopt for an unknown name.
-std::optional<LidarConfig> lidar_preset(std::string_view name);
+std::optional<RangeSensorConfig> sensor_preset(std::string_view name);
 
 }  // namespace campo
