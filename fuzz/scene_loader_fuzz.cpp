@@ -9,7 +9,7 @@
 
 #include "campo/json_reader.hpp"
 #include "campo/scene_loader.hpp"
-#include "tools/scene_checks.hpp"
+#include "session/scene_checks.hpp"
 
 namespace {
 
@@ -23,7 +23,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     const campo::Scene scene = campo::load_scene_text(text, kInputPath);
-    campo::cli::check_vehicles_and_planners(scene);
+    campo::check_vehicles_and_planners(scene);
   } catch (const campo::InputError&) {
     // Refused with file, pointer and expectation: the contract holds.
   }

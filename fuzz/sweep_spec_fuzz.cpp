@@ -10,7 +10,7 @@
 #include "campo/json_reader.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/sweep_spec.hpp"
-#include "tools/scene_checks.hpp"
+#include "session/scene_checks.hpp"
 
 namespace {
 
@@ -37,8 +37,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const campo::SweepSpec spec = campo::read_sweep_spec_text(text, kInputPath, fuzz_limits());
     campo::expand_sweep(spec, [](const campo::Scene& scene) {
-      campo::cli::check_vehicles_and_planners(scene);
-      campo::cli::check_runnable(scene);
+      campo::check_vehicles_and_planners(scene);
+      campo::check_runnable(scene);
     });
   } catch (const campo::InputError&) {
     // Refused with file, pointer and expectation: the contract holds.

@@ -1,4 +1,4 @@
-#include "tools/run_video.hpp"
+#include "render/run_video.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -15,9 +15,9 @@
 #include "render/video_encoder.hpp"
 #include "render/video_frame.hpp"
 #include "render/depth_figure.hpp"
-#include "tools/run_figures.hpp"
+#include "render/run_figures.hpp"
 
-namespace campo::cli {
+namespace campo {
 
 namespace {
 
@@ -288,4 +288,4 @@ void write_video(const RecordedRun& recorded, const VideoOptions& options, const
   encoder.finish();
 }
 
-}  // namespace campo::cli
+}  // namespace campo

@@ -1,10 +1,10 @@
-#include "tools/scene_checks.hpp"
+#include "session/scene_checks.hpp"
 
 #include "campo/json_reader.hpp"
 #include "planners/registry.hpp"
 #include "campo/vehicle_factory.hpp"
 
-namespace campo::cli {
+namespace campo {
 
 void check_vehicles_and_planners(const Scene& scene, std::size_t skip) {
   for (std::size_t i = 0; i < scene.vehicles.size(); ++i) {
@@ -46,4 +46,4 @@ void check_runnable(const Scene& scene, std::size_t vehicle_index) {
   }
 }
 
-}  // namespace campo::cli
+}  // namespace campo

@@ -9,7 +9,7 @@
 
 #include "render/run_files.hpp"
 
-namespace campo::cli {
+namespace campo {
 
 struct VideoOptions {
   double fps = 25.0;               ///< frames per second of the video, [1, 60]
@@ -36,4 +36,4 @@ void check_video_runs(std::size_t runs, const VideoOptions& options);
 void write_video(const RecordedRun& run, const VideoOptions& options, const std::filesystem::path& out,
                  const std::function<void(std::size_t, std::size_t)>& progress = {});
 
-}  // namespace campo::cli
+}  // namespace campo

@@ -10,7 +10,7 @@
 #include "render/figure_canvas.hpp"
 #include "render/run_files.hpp"
 
-namespace campo::cli {
+namespace campo {
 
 /// The formats a command writes its figures in (--figure-format); PNG alone by default.
 using FigureFormats = std::vector<figure::FigureFormat>;
@@ -33,6 +33,10 @@ std::string_view to_string(FigureKind kind);
 std::optional<FigureKind> figure_kind_from_string(std::string_view name);
 /// The names of kFigureKinds, in its order (--kind's choices).
 std::vector<std::string> figure_kind_names();
+
+/// The figures a run directory gets when it is written (`campo run`, a sweep's
+/// kept runs): the map and the side view, and what its planner's record adds.
+std::vector<FigureKind> run_directory_figures(const RecordedRun& run);
 
 /// Draws figure `kind` of a run (one of kRunFigureKinds) into out_dir, once
 /// per format (map.png, map.pdf ...); returns the files written. A snapshot is
@@ -87,4 +91,4 @@ std::vector<std::filesystem::path> write_overlay(const std::vector<RecordedRun>&
                                                  const std::filesystem::path& out_dir,
                                                  const FigureFormats& formats = kPngOnly);
 
-}  // namespace campo::cli
+}  // namespace campo

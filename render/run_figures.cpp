@@ -1,4 +1,4 @@
-#include "tools/run_figures.hpp"
+#include "render/run_figures.hpp"
 
 #include <algorithm>
 #include <iomanip>
@@ -12,7 +12,7 @@
 #include "render/snapshot.hpp"
 #include "scene/scene_mesh.hpp"
 
-namespace campo::cli {
+namespace campo {
 
 namespace {
 
@@ -145,6 +145,12 @@ std::vector<std::string> figure_kind_names() {
   std::vector<std::string> names;
   for (const FigureKind kind : kFigureKinds) names.emplace_back(to_string(kind));
   return names;
+}
+
+std::vector<FigureKind> run_directory_figures(const RecordedRun& run) {
+  std::vector<FigureKind> kinds{FigureKind::map, FigureKind::side};
+  if (!run.view.height_map.empty()) kinds.push_back(FigureKind::heightmap);
+  return kinds;
 }
 
 std::vector<std::filesystem::path> write_figure(const RecordedRun& run, FigureKind kind,
@@ -385,4 +391,4 @@ std::vector<std::filesystem::path> write_overlay(const std::vector<RecordedRun>&
   return draw_overlay(runs.front().scene, views, style).write(out_dir / "overlay.png", formats);
 }
 
-}  // namespace campo::cli
+}  // namespace campo

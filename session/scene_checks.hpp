@@ -9,7 +9,7 @@
 #include "campo/scene.hpp"
 #include "campo/scene_loader.hpp"
 
-namespace campo::cli {
+namespace campo {
 
 /// Validates every vehicle's parameters but vehicle `skip`'s and creates its
 /// planner once (which checks the planner's name and parameters); throws InputError.
@@ -29,4 +29,4 @@ SceneChecks parameter_checks();
 /// InputError with `campo run`'s message.
 void check_runnable(const Scene& scene, std::size_t vehicle_index = 0);
 
-}  // namespace campo::cli
+}  // namespace campo
