@@ -138,6 +138,13 @@ class RecordFields {
     return RecordField<T>(std::move(info), std::move(write), std::move(read));
   }
 
+  /// Declares a field whose value is JSON of `info.type`, written and read as
+  /// it is (its structure as `info.meaning` says).
+  RecordField<nlohmann::json> declare_json(RecordFieldInfo info) {
+    return declare<nlohmann::json>(
+        std::move(info), [](const nlohmann::json& v) { return v; }, [](const JsonNode& n) { return n.value(); });
+  }
+
   const std::vector<RecordFieldInfo>& fields() const { return fields_; }
   /// The field named `name`, or null.
   const RecordFieldInfo* find(std::string_view name) const;
