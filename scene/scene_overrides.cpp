@@ -39,21 +39,36 @@ bool is_index(const std::string& segment) { return all_digits(segment) && (segme
 
 }  // namespace
 
-nlohmann::json override_value(const std::string& assignment) {
-  const auto eq = assignment.find('=');
-  const std::string text = eq == std::string::npos ? std::string() : assignment.substr(eq + 1);
-  nlohmann::json value = nlohmann::json::parse(text, nullptr, false);
-  if (value.is_discarded()) value = text;
-  return value;
+SceneOverride parse_override(const std::string& text) {
+  SceneOverride o;
+  o.text = text;
+  const auto eq = text.find('=');
+  if (eq == std::string::npos) return o;  // no PATH: refused when applied
+  o.pointer = text.substr(0, eq);
+  const std::string value = text.substr(eq + 1);
+  o.value = nlohmann::json::parse(value, nullptr, false);
+  if (o.value.is_discarded()) o.value = value;
+  return o;
 }
 
-std::string apply_override(nlohmann::json& document, const std::string& assignment) {
-  const auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0 || assignment[0] != '/') {
+SceneOverride make_override(std::string pointer, nlohmann::json value) {
+  std::string text = pointer + "=" + value.dump();
+  return {std::move(pointer), std::move(value), std::move(text)};
+}
+
+std::vector<std::string> override_texts(const std::vector<SceneOverride>& overrides) {
+  std::vector<std::string> texts;
+  texts.reserve(overrides.size());
+  for (const SceneOverride& o : overrides) texts.push_back(o.text);
+  return texts;
+}
+
+std::string apply_override(nlohmann::json& document, const SceneOverride& override) {
+  const std::string& assignment = override.text;
+  const std::string& path = override.pointer;
+  if (path.empty() || path[0] != '/') {
     fail(assignment, "expected PATH=VALUE with PATH a JSON pointer such as /world/seed");
   }
-  const std::string path = assignment.substr(0, eq);
-  nlohmann::json value = override_value(assignment);
 
   nlohmann::json* node = &document;
   std::string walked;  // the pointer so far, as written
@@ -101,7 +116,7 @@ std::string apply_override(nlohmann::json& document, const std::string& assignme
     if (last) break;
     start = slash + 1;
   }
-  *node = std::move(value);
+  *node = override.value;
   return resolved;
 }
 

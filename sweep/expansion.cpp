@@ -206,7 +206,7 @@ class SceneExpander {
         std::string seed_override(kSeedPointer);
         seed_override += '=';
         seed_override += std::to_string(seed);
-        run.overrides.push_back(std::move(seed_override));
+        run.overrides.push_back({kSeedPointer, seed, std::move(seed_override)});
         run.id = run_id(run.name, text->with(seed));
         emit(run);
         continue;
@@ -258,13 +258,13 @@ class SceneExpander {
   // Applies one override to the document and records it in the run.
   void apply(nlohmann::json& document, SweepRun& run, const std::string& pointer, const nlohmann::json& value,
              const std::string& origin) const {
-    const std::string assignment = pointer + "=" + value.dump();
+    SceneOverride assignment = make_override(pointer, value);
     try {
       apply_override(document, assignment);
     } catch (const InputError& e) {
       throw InputError(spec_file_, origin, "in scene " + name_ + ": " + e.message());
     }
-    run.overrides.push_back(assignment);
+    run.overrides.push_back(std::move(assignment));
   }
 
   // The planner of the first vehicle: its parameters on top of the scene's
@@ -427,7 +427,7 @@ Eigen::Vector2d start_jitter_offset(std::uint64_t seed, double radius_m) {
 nlohmann::json manifest_entry(const SweepRun& run) {
   return {{"id", run.id},         {"name", run.name},           {"scene", run.scene},
           {"planner", run.planner}, {"params", run.params},     {"seed", run.seed},
-          {"overrides", run.overrides}, {"scene_file", run.scene_file.string()}};
+          {"overrides", override_texts(run.overrides)}, {"scene_file", run.scene_file.string()}};
 }
 
 nlohmann::json sweep_manifest(const SweepSpec& spec, const std::vector<SweepRun>& runs) {

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "campo/scene.hpp"
+#include "scene/scene_overrides.hpp"
 #include "sweep/sweep_spec.hpp"
 
 namespace campo {
@@ -29,8 +30,9 @@ struct SweepRun {
   std::filesystem::path scene_file;
   nlohmann::json params;               ///< axis name -> value
   std::uint64_t seed = 0;              ///< written to /world/seed
-  /// "POINTER=JSON", in order: planner, set, axes, seed, generator seeds (vary_scene_with_seed), start jitter
-  std::vector<std::string> overrides;
+  /// In order: planner, set, axes, seed, generator seeds (vary_scene_with_seed), start jitter; their
+  /// texts ("POINTER=JSON") are what the manifest and results record.
+  std::vector<SceneOverride> overrides;
   std::string scene_sha256;            ///< of the scene file's bytes
 };
 

@@ -20,13 +20,6 @@ namespace campo {
 
 namespace {
 
-// The fields every line has, whatever its status.
-nlohmann::json result_line(const SweepRun& run, const std::string& status) {
-  return {{"id", run.id},     {"name", run.name},     {"scene", run.scene},       {"planner", run.planner},
-          {"params", run.params}, {"seed", run.seed}, {"status", status},      {"overrides", run.overrides},
-          {"run_dir", nullptr}};
-}
-
 RunMetrics read_metrics(const JsonNode& node) {
   // Only the keys the table uses: run.json's metrics are defined (and grow) in run/, so no finish().
   ObjectReader r(node);
@@ -184,25 +177,76 @@ IdDigest id_digest(const std::string& id) {
 
 std::string run_dir(const std::string& name) { return "runs/" + name; }
 
-nlohmann::json completed_result(const SweepRun& run, const nlohmann::json& run_record,
-                                const std::string& trajectory_sha256) {
+bool SweepItemResult::reached() const { return completed && metrics.value("outcome", "") == "reached"; }
+
+SweepItemResult completed_item(const nlohmann::json& run_record, const std::string& trajectory_sha256) {
   const nlohmann::json& provenance = run_record.at("provenance");
-  nlohmann::json line = result_line(run, "completed");
-  line["metrics"] = run_record.at("metrics");
-  line["campo_version"] = provenance.at("campo_version");
-  line["git_rev"] = provenance.at("git_revision");
-  line["scene_sha256"] = provenance.at("scene").at("sha256");
-  line["trajectory_sha256"] = trajectory_sha256;
-  return line;
+  SweepItemResult result;
+  result.completed = true;
+  result.metrics = run_record.at("metrics");
+  result.campo_version = provenance.at("campo_version");
+  result.git_rev = provenance.at("git_revision");
+  result.scene_sha256 = provenance.at("scene").at("sha256");
+  result.trajectory_sha256 = trajectory_sha256;
+  return result;
 }
 
-nlohmann::json failed_result(const SweepRun& run, const std::string& reason) {
-  nlohmann::json line = result_line(run, "failed");
-  line["reason"] = reason;
-  line["metrics"] = nullptr;
-  line["campo_version"] = library_version();
-  line["git_rev"] = library_git_revision();
-  line["scene_sha256"] = run.scene_sha256;
+SweepItemResult failed_item(const std::string& reason) {
+  SweepItemResult result;
+  result.reason = reason;
+  return result;
+}
+
+nlohmann::json to_json(const SweepItemResult& r) {
+  return {{"completed", r.completed},         {"reason", r.reason},
+          {"files_failed", r.files_failed},   {"files_error", r.files_error},
+          {"metrics", r.metrics},             {"campo_version", r.campo_version},
+          {"git_rev", r.git_rev},             {"scene_sha256", r.scene_sha256},
+          {"trajectory_sha256", r.trajectory_sha256}, {"kept_run_dir", r.kept_run_dir}};
+}
+
+SweepItemResult sweep_item_result_from_json(const nlohmann::json& json) {
+  SweepItemResult r;
+  r.completed = json.at("completed").get<bool>();
+  r.reason = json.at("reason").get<std::string>();
+  r.files_failed = json.at("files_failed").get<bool>();
+  r.files_error = json.at("files_error").get<std::string>();
+  r.metrics = json.at("metrics");
+  r.campo_version = json.at("campo_version");
+  r.git_rev = json.at("git_rev");
+  r.scene_sha256 = json.at("scene_sha256");
+  r.trajectory_sha256 = json.at("trajectory_sha256").get<std::string>();
+  r.kept_run_dir = json.at("kept_run_dir").get<bool>();
+  return r;
+}
+
+nlohmann::json result_line(const SweepRun& run, const SweepItemResult& result, const ResultLineContext& context) {
+  nlohmann::json line = {{"id", run.id},
+                         {"name", run.name},
+                         {"scene", run.scene},
+                         {"planner", run.planner},
+                         {"params", run.params},
+                         {"seed", run.seed},
+                         {"status", result.completed ? "completed" : "failed"},
+                         {"overrides", override_texts(run.overrides)},
+                         {"run_dir", result.kept_run_dir ? nlohmann::json(run_dir(run.name)) : nlohmann::json()}};
+  if (result.completed) {
+    line["metrics"] = result.metrics;
+    line["campo_version"] = result.campo_version;
+    line["git_rev"] = result.git_rev;
+    line["scene_sha256"] = result.scene_sha256;
+    line["trajectory_sha256"] = result.trajectory_sha256;
+  } else {
+    line["reason"] = result.reason;
+    line["metrics"] = nullptr;
+    line["campo_version"] = library_version();
+    line["git_rev"] = library_git_revision();
+    line["scene_sha256"] = run.scene_sha256;
+  }
+  if (!result.files_error.empty()) line["files_error"] = result.files_error;
+  line["wall_time_s"] = context.wall_time_s;
+  line["spec_sha256"] = context.spec_sha256;
+  if (context.triage) line["triage"] = {{"dir", context.triage->dir}, {"repro", context.triage->repro}};
   return line;
 }
 

@@ -26,17 +26,56 @@ namespace campo {
 /// A run's directory inside the sweep directory: "runs/<name>".
 std::string run_dir(const std::string& name);
 
-/// The results.jsonl line of a run that completed, from its run.json:
-/// {id, name, scene, planner, params, seed, status: "completed", overrides,
-/// run_dir (null; the sweep sets it when it keeps the run's files), metrics,
-/// campo_version, git_rev, scene_sha256, trajectory_sha256}.
-/// `trajectory_sha256`: SHA-256 of the run's trajectory.csv text (what
-/// `campo table` compares to tell runs apart).
-nlohmann::json completed_result(const SweepRun& run, const nlohmann::json& run_record,
-                                const std::string& trajectory_sha256);
-/// The line of a run that failed (threw) before writing its record: status
-/// "failed", its `reason`, metrics null.
-nlohmann::json failed_result(const SweepRun& run, const std::string& reason);
+/// How one sweep item (one run) ended, as its process reports it
+/// (session/sweep_item.hpp): typed, and carried from the run's process to the
+/// sweep's as JSON (to_json, sweep_item_result_from_json).
+struct SweepItemResult {
+  bool completed = false;  ///< the run produced its record; else it failed, for `reason`
+  std::string reason;      ///< failed: why
+  /// Failed only because its files (--keep-runs, --figures) could not be written: a resumed sweep runs it again.
+  bool files_failed = false;
+  /// What was asked for and not written: the run's files (files_failed), else the figures, videos and triage
+  /// files that failed ("map: ...; video: ..."); empty when everything was written.
+  std::string files_error;
+  // A completed run's, from its run.json:
+  nlohmann::json metrics;             ///< run.json's metrics
+  nlohmann::json campo_version;       ///< its provenance's
+  nlohmann::json git_rev;
+  nlohmann::json scene_sha256;
+  std::string trajectory_sha256;      ///< SHA-256 of its trajectory.csv text (what `campo table` compares)
+  bool kept_run_dir = false;          ///< its files are in run_dir(name)
+
+  /// Completed with outcome "reached".
+  bool reached() const;
+};
+
+/// A completed run's result from its run.json and the SHA-256 of its trajectory.csv text.
+SweepItemResult completed_item(const nlohmann::json& run_record, const std::string& trajectory_sha256);
+/// A run that failed (threw, crashed, was killed) before writing its record.
+SweepItemResult failed_item(const std::string& reason);
+
+nlohmann::json to_json(const SweepItemResult& result);
+/// The inverse of to_json (what the run's process sent).
+SweepItemResult sweep_item_result_from_json(const nlohmann::json& json);
+
+/// What the sweep's process adds to an item's line.
+struct ResultLineContext {
+  double wall_time_s = 0.0;  ///< the run's process, from fork to exit
+  std::string spec_sha256;
+  struct Triage {
+    std::string dir;     ///< "triage/<name>", in the sweep directory
+    std::string repro;   ///< the command that reruns it alone
+  };
+  std::optional<Triage> triage;  ///< for a run that failed or did not reach its goal, with --triage
+};
+
+/// The one place a results.jsonl line is assembled: {id, name, scene, planner,
+/// params, seed, status ("completed" or "failed"), overrides, run_dir
+/// (run_dir(name) when its files were kept, else null), metrics (null for a
+/// failed run), campo_version, git_rev, scene_sha256, wall_time_s,
+/// spec_sha256}; a completed run's trajectory_sha256, a failed one's
+/// reason, files_error when something was not written, triage {dir, repro}.
+nlohmann::json result_line(const SweepRun& run, const SweepItemResult& result, const ResultLineContext& context);
 
 /// results.jsonl opened for appending. A partial last line (a sweep killed
 /// mid-write) is cut off first, so new lines start on a line of their own.

@@ -16,8 +16,8 @@
 #include "render/video_encoder.hpp"
 #include "sweep/progress.hpp"
 #include "tools/commands.hpp"
-#include "tools/run_figures.hpp"
-#include "tools/run_video.hpp"
+#include "render/run_figures.hpp"
+#include "render/run_video.hpp"
 
 namespace campo::cli {
 

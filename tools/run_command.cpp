@@ -11,8 +11,8 @@
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
 #include "tools/plugin_options.hpp"
-#include "tools/run_execution.hpp"
-#include "tools/run_figures.hpp"
+#include "session/run_session.hpp"
+#include "render/run_figures.hpp"
 
 namespace campo::cli {
 
@@ -45,8 +45,8 @@ int run_run(const RunOptions& o) {
   check_output_directory(o.out, "--out");
   RunRequest request;
   request.scene = file_or_bundled(o.scene, &bundled_scene).string();
-  request.overrides = o.sets;
-  if (o.seed_set) request.overrides.push_back("/world/seed=" + std::to_string(parse_seed(o.seed, "command line", "--seed")));
+  for (const std::string& set : o.sets) request.overrides.push_back(parse_override(set));
+  if (o.seed_set) request.overrides.push_back(make_override("/world/seed", parse_seed(o.seed, "command line", "--seed")));
   request.planner = o.planner;
   request.vehicle = o.vehicle;
   request.out = o.out;
@@ -69,14 +69,9 @@ int run_run(const RunOptions& o) {
             << figures << " to " << o.out << "\n";
   if (!run.figure_failures.empty()) {
     // The run is kept: only the figures that failed are missing.
-    bool bad_input = true;
-    for (const FigureFailure& f : run.figure_failures) {
-      std::cerr << (f.bad_input ? "error: " : "internal error: ") << f.figure << " figure: " << f.message << "\n";
-      bad_input = bad_input && f.bad_input;
-    }
-    std::cerr << "the run completed and its files are kept in " << o.out
-              << "; only the figures above are missing (campo render " << o.out << " redraws them)\n";
-    return bad_input ? kBadInput : kInternalError;
+    const FigureFailureReport report = figure_failure_report(run.figure_failures, o.out);
+    std::cerr << report.text;
+    return report.bad_input ? kBadInput : kInternalError;
   }
   return kOk;
 }

@@ -13,7 +13,6 @@
 #include <unistd.h>
 
 #include "campo/json_reader.hpp"
-#include "campo/run_record.hpp"
 #include "campo/scene_loader.hpp"
 #include "core/output_dir.hpp"
 #include "planners/registry.hpp"
@@ -25,9 +24,8 @@
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
 #include "tools/plugin_options.hpp"
-#include "tools/run_execution.hpp"
-#include "tools/run_video.hpp"
-#include "tools/scene_checks.hpp"
+#include "session/scene_checks.hpp"
+#include "session/sweep_item.hpp"
 
 namespace campo::cli {
 
@@ -43,10 +41,7 @@ struct SweepOptions {
   int jobs = 0;               ///< 0: every core this process may use
   std::string shard;          ///< "K/N"
   double time_limit_s = 0.0;  ///< 0: the spec's
-  bool keep_runs = false;
-  bool figures = false;
-  bool triage = false;
-  bool videos = false;  // --videos: a video of each run that did not reach its goal
+  SweepItemOptions item;      ///< --keep-runs, --figures, --triage, --videos
   bool retry_failed = false;
   double progress_every_s = 10.0;
   std::vector<std::string> plugins;
@@ -96,118 +91,6 @@ void check_same_sweep(const fs::path& manifest_file, const nlohmann::json& manif
                            "; use a new --out directory for another spec, campo version, shard or plugin");
     }
   }
-}
-
-// One shell word: single-quoted unless plainly safe.
-std::string shell_word(const std::string& word) {
-  const bool safe = !word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                           "0123456789/._-+=,:") == std::string::npos;
-  if (safe) return word;
-  std::string quoted = "'";
-  for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return quoted + "'";
-}
-
-// The one command that runs this run alone, as `campo run` would.
-std::string repro_command(const SweepRun& run, const std::string& triage_dir) {
-  std::string command = "campo run " + shell_word(fs::absolute(run.scene_file).lexically_normal().string());
-  for (const LoadedPlugin& plugin : loaded_plugins()) command += " --plugin " + shell_word(plugin.path);
-  for (const std::string& o : run.overrides) command += " --set " + shell_word(o);
-  return command + " --out " + shell_word(triage_dir + "/rerun");
-}
-
-std::string triage_dir(const SweepRun& run) { return "triage/" + run.name; }
-
-// A video of a run that did not reach its goal, beside its files, for triage: at most about 30 s
-// long, 1280 x 720 (encoding a sweep's worth of videos at full size would cost more than the runs).
-void write_failure_video(const fs::path& run_dir) {
-  const RecordedRun run = load_run_dir(run_dir);
-  VideoOptions video;
-  video.frame_px = {1280, 720};
-  if (!run.view.track.empty()) video.speed = std::max(1.0, run.view.track.back().time_s / 30.0);
-  write_video(run, video, run_dir / "video.mp4");
-}
-
-// In the run's process: simulate, write what was asked for, return the results line.
-std::string run_one(const SweepRun& run, const fs::path& dir, const SweepOptions& o) {
-  RunRequest request;
-  request.scene = run.scene_file;
-  request.overrides = run.overrides;
-  request.out = dir / run_dir(run.name);
-  request.label = run.name;
-  request.figures = o.figures;
-  request.record_replans = false;
-  std::optional<SimulatedRun> simulated;
-  try {
-    simulated = simulate_run(request, {});
-  } catch (const std::exception& e) {
-    return failed_result(run, e.what()).dump();
-  }
-  // The trajectory's digest tells `campo table` whether seeds changed anything.
-  nlohmann::json line = completed_result(run, simulated->record, sha256_hex(trajectory_csv(simulated->result)));
-  // The run's own files, asked for and not written (a full disk), make it a failed run with the reason,
-  // which a resumed sweep runs again; a figure that fails is reported, the run and its files kept.
-  std::vector<FigureFailure> figure_failures;
-  if (o.keep_runs || o.figures) {
-    try {
-      StagedOutput out(request.out);
-      figure_failures = write_run_files(*simulated, request, out);
-      out.commit();
-      line["run_dir"] = run_dir(run.name);
-    } catch (const std::exception& e) {
-      nlohmann::json failed =
-          failed_result(run, std::string("completed, but its files could not be written: ") + e.what());
-      failed["files_error"] = e.what();
-      return failed.dump();
-    }
-  }
-  std::string files_error;
-  for (const FigureFailure& f : figure_failures) {
-    files_error += (files_error.empty() ? "" : "; ") + f.figure + ": " + f.message;
-  }
-  const bool reached = simulated->record.at("metrics").at("outcome") == "reached";
-  if (o.videos && !reached && o.figures) {
-    try {
-      write_failure_video(request.out);
-    } catch (const std::exception& e) {
-      files_error += (files_error.empty() ? "video: " : "; video: ") + std::string(e.what());
-    }
-  }
-  try {
-    if (o.triage && !reached) {
-      // What a person needs to see why: the map, the depth map at the last step, the run's files.
-      RunRequest figures = request;
-      figures.out = dir / triage_dir(run);
-      figures.figures = true;
-      StagedOutput out(figures.out);
-      for (const FigureFailure& f : write_run_files(*simulated, figures, out)) {
-        files_error += (files_error.empty() ? "triage " : "; triage ") + f.figure + ": " + f.message;
-      }
-      write_final_depth(*simulated, out.path("depth.png"));
-      out.commit();
-      if (o.videos) write_failure_video(figures.out);
-    }
-  } catch (const std::exception& e) {
-    files_error += (files_error.empty() ? "triage: " : "; triage: ") + std::string(e.what());
-  }
-  if (!files_error.empty()) line["files_error"] = files_error;
-  return line.dump();
-}
-
-// In the sweep's process: the repro command of a failed or unsuccessful run.
-void add_triage(nlohmann::json& line, const SweepRun& run, const fs::path& dir) {
-  const bool reached = line["status"] == "completed" && line["metrics"].value("outcome", "") == "reached";
-  if (reached) return;
-  const std::string where = triage_dir(run);
-  const std::string command = repro_command(run, fs::absolute(dir / where).lexically_normal().string());
-  const OutputDirectory triage(dir / where);
-  const fs::path script = dir / where / "repro.sh";
-  write_file_atomically(script, "#!/bin/sh\n# " + run.name + " (" + run.id + ")\n" + command + "\n");
-  std::error_code ec;
-  fs::permissions(script, fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
-                  fs::perm_options::add, ec);
-  if (ec) throw OutputError(script, system_reason("cannot make it executable", ec.value()));
-  line["triage"] = {{"dir", where}, {"repro", command}};
 }
 
 // Terminal: one bar line redrawn in place. Otherwise: a plain line now and then.
@@ -289,7 +172,7 @@ int run_sweep(const SweepOptions& o) {
   located_in_spec(spec, [&] { all_runs = expand_sweep(spec, check); });
   const std::vector<SweepRun> runs = shard_of(all_runs, shard.index, shard.count);
   if (o.out.empty()) throw InputError("command line", "--out", "expected an output directory (or --list)");
-  if (o.videos && !o.figures && !o.triage) {
+  if (o.item.videos && !o.item.figures && !o.item.triage) {
     throw InputError("command line", "--videos", "draws videos of the runs --figures or --triage keep; add one of them");
   }
   nlohmann::json manifest = sweep_manifest(spec, all_runs);
@@ -334,37 +217,30 @@ int run_sweep(const SweepOptions& o) {
   std::size_t files_errors = 0;
   progress.start();
   run_isolated(
-      pending.size(), [&](std::size_t i) { return run_one(*pending[i], dir, o); },
+      pending.size(), [&](std::size_t i) { return to_json(run_sweep_item(*pending[i], dir, o.item)).dump(); },
       [&](std::size_t i, const JobOutcome& outcome) {
         const SweepRun& run = *pending[i];
-        nlohmann::json line;
+        SweepItemResult result;
         if (outcome.ok) {
-          line = nlohmann::json::parse(outcome.output);
+          result = sweep_item_result_from_json(nlohmann::json::parse(outcome.output));
           overhead_s += outcome.wall_time_s - outcome.work_time_s;
           ++returned;
         } else {
-          // Crashed, hung or threw outside the run: the last thing it said helps.
-          std::string reason = outcome.reason;
-          if (!outcome.stderr_tail.empty()) {
-            const std::string last = outcome.stderr_tail.substr(outcome.stderr_tail.rfind('\n') + 1);
-            reason += "; last output: " + last;
-          }
-          line = failed_result(run, reason);
+          result = failed_job_item(outcome);
         }
-        line["wall_time_s"] = outcome.wall_time_s;
-        line["spec_sha256"] = spec_hash;
-        if (o.triage) add_triage(line, run, dir);
-        log.append(line);
+        ResultLineContext context{outcome.wall_time_s, spec_hash, std::nullopt};
+        if (o.item.triage && !result.reached()) context.triage = write_triage_script(run, dir);
+        log.append(result_line(run, result, context));
         SweepProgress& counts = progress.counts();
         ++counts.done;
-        if (line["status"] == "failed") {
+        if (!result.completed) {
           ++counts.failed;
-          progress.say("failed: " + run.name + " (" + run.id + "): " + line["reason"].get<std::string>());
+          progress.say("failed: " + run.name + " (" + run.id + "): " + result.reason);
         }
-        if (line.contains("files_error") && line["status"] == "completed") {
+        if (!result.files_error.empty() && result.completed) {
           ++files_errors;
           progress.say("completed, but some of its figures could not be written: " + run.name + " (" + run.id +
-                       "): " + line["files_error"].get<std::string>());
+                       "): " + result.files_error);
         }
         progress.tick();
       },
@@ -420,14 +296,14 @@ Command add_sweep(CLI::App& app) {
                  "Wall-clock seconds a run may take before it is killed and recorded as failed (default: the "
                  "spec's time_limit_s, else 3600)")
       ->check(positive_number());
-  app.add_flag("--keep-runs", o->keep_runs,
+  app.add_flag("--keep-runs", o->item.keep_runs,
                "Keep each run's files (run.json, trajectory.csv, scene.json) in DIR/runs/NAME/");
-  app.add_flag("--figures", o->figures, "Also draw map.png and side.png for every run (implies --keep-runs; slower)");
-  app.add_flag("--triage", o->triage,
+  app.add_flag("--figures", o->item.figures, "Also draw map.png and side.png for every run (implies --keep-runs; slower)");
+  app.add_flag("--triage", o->item.triage,
                "For every run that failed or did not reach its goal: DIR/triage/NAME/ with map.png, side.png, "
                "depth.png (what the vehicle saw at the last step), the run's files and repro.sh, the command "
                "that reruns it alone");
-  app.add_flag("--videos", o->videos,
+  app.add_flag("--videos", o->item.videos,
                "With --figures or --triage: also video.mp4 (campo render --kind video, sped up to at most about "
                "30 s) of each run that did not reach its goal, in its run and triage directories");
   app.add_flag("--retry-failed", o->retry_failed, "Rerun the runs recorded as failed (completed runs are kept)");

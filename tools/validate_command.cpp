@@ -8,7 +8,7 @@
 #include "sweep/sweep_spec.hpp"
 #include "tools/commands.hpp"
 #include "tools/plugin_options.hpp"
-#include "tools/scene_checks.hpp"
+#include "session/scene_checks.hpp"
 
 namespace campo::cli {
 

@@ -24,7 +24,7 @@
 #include "python/bindings/python_planner.hpp"
 #include "scene/scene_overrides.hpp"
 #include "sweep/bundled.hpp"
-#include "tools/run_execution.hpp"
+#include "session/run_session.hpp"
 #include "campo/vehicle_factory.hpp"
 
 namespace campo::python {
@@ -38,9 +38,9 @@ constexpr std::string_view kExternalPlanner = "external";
 
 // The run a Python call asks for: a scene file or a bundled scene's name,
 // overrides as {JSON pointer: value}, and a seed.
-cli::RunRequest run_request(const std::string& scene, std::optional<std::uint64_t> seed, const py::object& overrides,
-                            const std::string& vehicle, bool continue_after_collision) {
-  cli::RunRequest request;
+RunRequest run_request(const std::string& scene, std::optional<std::uint64_t> seed, const py::object& overrides,
+                       const std::string& vehicle, bool continue_after_collision) {
+  RunRequest request;
   request.scene = file_or_bundled(scene, &bundled_scene);
   request.vehicle = vehicle;
   request.continue_after_collision = continue_after_collision;
@@ -49,16 +49,16 @@ cli::RunRequest run_request(const std::string& scene, std::optional<std::uint64_
       throw InputError("overrides", "", "a dict {JSON pointer: value}, e.g. {\"/world/time_limit_s\": 60}");
     }
     for (const auto& [pointer, value] : overrides.cast<py::dict>()) {
-      request.overrides.push_back(py::str(pointer).cast<std::string>() + "=" + to_json(value).dump());
+      request.overrides.push_back(make_override(py::str(pointer).cast<std::string>(), to_json(value)));
     }
   }
-  if (seed) request.overrides.push_back("/world/seed=" + std::to_string(*seed));
+  if (seed) request.overrides.push_back(make_override("/world/seed", *seed));
   return request;
 }
 
 // One run of an Episode (a reset): its scene, the loop, and its result once it ended.
 struct EpisodeRun {
-  cli::PreparedRun prepared;
+  PreparedRun prepared;
   std::optional<Episode> episode;
   std::shared_ptr<const std::vector<Eigen::Vector3d>> mission_m;
   std::optional<EpisodeResult> result;
@@ -72,12 +72,12 @@ class PythonEpisode {
       : request_(run_request(scene, seed, overrides, vehicle, continue_after_collision)) {
     // Read and check everything now, so bad input fails at construction.
     refuse_planner_overrides();
-    cli::prepare_run(request_, false);
+    prepare_run(request_, false);
   }
 
   ObservationView reset() {
     run_ = std::make_shared<EpisodeRun>();
-    run_->prepared = cli::prepare_run(request_, false);
+    run_->prepared = prepare_run(request_, false);
     VehicleDef& def = run_->prepared.scene.vehicles[run_->prepared.vehicle_index];
     def.planner.name = std::string(kExternalPlanner);
     def.planner.params.values = nlohmann::json::object();
@@ -116,27 +116,27 @@ class PythonEpisode {
   py::object write(const std::filesystem::path& out, bool figures) const {
     check_output_directory(out, "out");
     const EpisodeResult& result = finished();
-    cli::RunRequest request = request_;
+    RunRequest request = request_;
     request.out = out;
     request.figures = figures;
-    cli::SimulatedRun run;
+    SimulatedRun run;
     run.scene = run_->prepared.scene;
     run.document = run_->prepared.document;
     run.vehicle_index = run_->prepared.vehicle_index;
     run.result = result;
-    run.record = run_json(run.scene, run.result, run_->prepared.options, request.overrides);
+    run.record = run_json(run.scene, run.result, run_->prepared.options, override_texts(request.overrides));
     run.record["provenance"]["planner"] = {{"name", kExternalPlanner},
                                            {"source", "commands given to campo.Episode.step from Python"}};
     if (!run.document.contains("name")) run.document["name"] = run.scene.name;
     StagedOutput staged(out);
-    const std::vector<cli::FigureFailure> failures = cli::write_run_files(run, request, staged);
+    const std::vector<FigureFailure> failures = write_run_files(run, request, staged);
     staged.commit();
     warn_figure_failures(failures);
     return from_json(run.record);
   }
 
-  static void warn_figure_failures(const std::vector<cli::FigureFailure>& failures) {
-    for (const cli::FigureFailure& f : failures) {
+  static void warn_figure_failures(const std::vector<FigureFailure>& failures) {
+    for (const FigureFailure& f : failures) {
       PyErr_WarnEx(PyExc_RuntimeWarning, ("figure " + f.figure + " not drawn: " + f.message).c_str(), 1);
     }
   }
@@ -163,19 +163,19 @@ class PythonEpisode {
   void refuse_planner_overrides() const {
     const std::string file = request_.scene.string();
     nlohmann::json document = parse_json_text(read_text_file(file), file);
-    for (const std::string& assignment : request_.overrides) {
+    for (const SceneOverride& assignment : request_.overrides) {
       const std::string p = apply_override(document, assignment);
       const std::size_t index_end = p.find('/', std::string_view("/objects/").size());
       if (!p.starts_with("/objects/") || index_end == std::string::npos) continue;
       const std::string rest = p.substr(index_end);
       if (rest != "/planner" && !rest.starts_with("/planner/")) continue;
-      throw InputError("overrides", assignment.substr(0, assignment.find('=')),
+      throw InputError("overrides", assignment.pointer,
                        "campo.Episode runs no planner (step()'s commands drive the vehicle), so an override of a "
                        "planner would be ignored; pass planner parameters to campo.run");
     }
   }
 
-  cli::RunRequest request_;
+  RunRequest request_;
   std::shared_ptr<EpisodeRun> run_;
 };
 
@@ -185,7 +185,7 @@ py::object run(const std::string& scene, const py::object& planner, const std::o
                std::optional<std::uint64_t> seed, const py::object& overrides, const std::string& vehicle,
                bool figures, bool continue_after_collision, std::optional<double> time_limit_s,
                std::optional<double> call_limit_s) {
-  cli::RunRequest request = run_request(scene, seed, overrides, vehicle, continue_after_collision);
+  RunRequest request = run_request(scene, seed, overrides, vehicle, continue_after_collision);
   request.figures = figures;
   // The limits its Python planners are held to (planner_limits.hpp), the run's own limit among them.
   PlannerLimits limits = limits_from_environment();
@@ -224,12 +224,12 @@ py::object run(const std::string& scene, const py::object& planner, const std::o
   if (out) {
     check_output_directory(*out, "out");  // before the episode is simulated
     request.out = *out;
-    const cli::ExecutedRun executed = cli::execute_run(request);
+    const ExecutedRun executed = execute_run(request);
     PythonEpisode::warn_figure_failures(executed.figure_failures);
     record = executed.record;
   } else {
     request.record_replans = false;  // nowhere to write them
-    record = cli::simulate_run(request, {}).record;
+    record = simulate_run(request, {}).record;
   }
   return from_json(record);
 }

@@ -20,7 +20,7 @@
 #include <unistd.h>
 
 #include "campo/json_reader.hpp"
-#include "tools/run_execution.hpp"
+#include "session/run_session.hpp"
 
 namespace campo::python {
 
@@ -213,7 +213,7 @@ class Watchdog {
         signal = handler_installed;
       }
       if (signal) {
-        ::pthread_kill(i.pthread, cli::planner_interrupt_signal());
+        ::pthread_kill(i.pthread, planner_interrupt_signal());
         return;
       }
     }
@@ -347,7 +347,7 @@ void bind_limits(py::module_& m) {
   });
   if (!on_main_thread()) return;  // only the main thread may install signal handlers
   try {
-    py::module_::import("signal").attr("signal")(cli::planner_interrupt_signal(), m.attr("_on_interrupt_signal"));
+    py::module_::import("signal").attr("signal")(planner_interrupt_signal(), m.attr("_on_interrupt_signal"));
     std::lock_guard lock(Watchdog::get().mutex);
     Watchdog::get().handler_installed = true;
   } catch (py::error_already_set&) {

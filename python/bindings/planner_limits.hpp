@@ -6,7 +6,7 @@
 /// campo.PlannerInterrupted in it: through a signal when the call runs on
 /// the main thread (which also wakes a time.sleep), as an asynchronous
 /// exception otherwise. The same signal from a run past its own wall-clock
-/// limit (cli::planner_interrupt_signal) interrupts the main thread's call
+/// limit (planner_interrupt_signal) interrupts the main thread's call
 /// in progress. The limits concern the host, never the simulation:
 /// a run that stays within them is the same run, bit for bit.
 #include <chrono>

@@ -19,7 +19,7 @@ nlohmann::json document() {
 std::string error_of(const std::string& assignment) {
   nlohmann::json d = document();
   try {
-    apply_override(d, assignment);
+    apply_override(d, parse_override(assignment));
   } catch (const InputError& e) {
     return e.what();
   }
@@ -28,17 +28,17 @@ std::string error_of(const std::string& assignment) {
 
 TEST(SceneOverrides, SetsValuesByPointerAndAlias) {
   nlohmann::json d = document();
-  apply_override(d, "/world/seed=42");
-  apply_override(d, "/objects/0/size_m/1=5.5");
-  apply_override(d, "/objects/drone/planner/params/speed_mps=1.2");
-  apply_override(d, "/objects/box/color=[1,0,0]");
-  apply_override(d, "/objects/drone/planner/name=other");
+  apply_override(d, parse_override("/world/seed=42"));
+  apply_override(d, parse_override("/objects/0/size_m/1=5.5"));
+  apply_override(d, parse_override("/objects/drone/planner/params/speed_mps=1.2"));
+  apply_override(d, parse_override("/objects/box/color=[1,0,0]"));
+  apply_override(d, parse_override("/objects/drone/planner/name=other"));
   EXPECT_EQ(d["world"]["seed"], 42);
   EXPECT_EQ(d["objects"][0]["size_m"][1], 5.5);
   EXPECT_EQ(d["objects"][1]["planner"]["params"]["speed_mps"], 1.2);
   EXPECT_EQ(d["objects"][0]["color"], nlohmann::json({1, 0, 0}));
   EXPECT_EQ(d["objects"][1]["planner"]["name"], "other");  // not JSON: taken as a string
-  apply_override(d, "/objects/drone/params/controller/speed_limit_mps=1");
+  apply_override(d, parse_override("/objects/drone/params/controller/speed_limit_mps=1"));
   EXPECT_EQ(d["objects"][1]["params"]["controller"]["speed_limit_mps"], 1);  // created on the way
 }
 
@@ -46,12 +46,12 @@ TEST(SceneOverrides, SetsValuesByPointerAndAlias) {
 // `campo run --planner` finds the overrides of the vehicle's planner (issue 31).
 TEST(SceneOverrides, ReturnsThePointerAssignedWithIndices) {
   nlohmann::json d = document();
-  EXPECT_EQ(apply_override(d, "/objects/drone/planner/params/speed_mps=2"), "/objects/1/planner/params/speed_mps");
-  EXPECT_EQ(apply_override(d, "/objects/0/size_m/2=4"), "/objects/0/size_m/2");
-  EXPECT_EQ(apply_override(d, "/world/a~1b=1"), "/world/a~1b");  // segments escaped as written
-  EXPECT_EQ(override_value("/world/seed=2"), 2);
-  EXPECT_EQ(override_value("/objects/0/alias=crate"), "crate");  // not JSON: a string
-  EXPECT_EQ(override_value("/objects/0/size_m=[1,2,3]"), nlohmann::json::parse("[1,2,3]"));
+  EXPECT_EQ(apply_override(d, parse_override("/objects/drone/planner/params/speed_mps=2")), "/objects/1/planner/params/speed_mps");
+  EXPECT_EQ(apply_override(d, parse_override("/objects/0/size_m/2=4")), "/objects/0/size_m/2");
+  EXPECT_EQ(apply_override(d, parse_override("/world/a~1b=1")), "/world/a~1b");  // segments escaped as written
+  EXPECT_EQ(parse_override("/world/seed=2").value, 2);
+  EXPECT_EQ(parse_override("/objects/0/alias=crate").value, "crate");  // not JSON: a string
+  EXPECT_EQ(parse_override("/objects/0/size_m=[1,2,3]").value, nlohmann::json::parse("[1,2,3]"));
 }
 
 TEST(SceneOverrides, ReportsBadPaths) {
@@ -70,7 +70,7 @@ namespace {
 
 TEST(SceneOverrides, UnescapesPointerSegments) {
   nlohmann::json d = nlohmann::json::parse(R"({"a/b": {"c~d": 1}})");
-  apply_override(d, "/a~1b/c~0d=2");
+  apply_override(d, parse_override("/a~1b/c~0d=2"));
   EXPECT_EQ(d["a/b"]["c~d"], 2);
 }
 
@@ -94,10 +94,10 @@ TEST(SceneOverrides, ArrayIndicesAreRfc6901s) {
               HasSubstr("index 99999999999999999999999 out of range at /objects/99999999999999999999999"));
   // "0" and indices without leading zeros still work, and so do aliases made of digits that are not indices.
   nlohmann::json d = document();
-  apply_override(d, "/objects/0/size_m/0=7");
+  apply_override(d, parse_override("/objects/0/size_m/0=7"));
   EXPECT_EQ(d["objects"][0]["size_m"][0], 7);
   d["objects"][0]["alias"] = "1a";
-  apply_override(d, "/objects/1a/size_m/2=8");
+  apply_override(d, parse_override("/objects/1a/size_m/2=8"));
   EXPECT_EQ(d["objects"][0]["size_m"][2], 8);
 }
 

@@ -190,11 +190,11 @@ TEST_F(SweepSpecTest, ExpandsScenesAxesAndSeedsInOrder) {
   EXPECT_EQ(run.seed, 8u);
   EXPECT_EQ(run.params, nlohmann::json({{"speed", 0.5}, {"res", {32, 16}}}));
   // Fixed overrides (by pointer), then the axes in order, then the seed.
-  EXPECT_EQ(run.overrides, (std::vector<std::string>{"/objects/drone/planner/name=\"straight\"",
-                                                     "/world/time_limit_s=5",
-                                                     "/objects/drone/planner/params/speed_mps=0.5",
-                                                     "/objects/drone/sensors/scanner/resolution=[32,16]",
-                                                     "/world/seed=8"}));
+  EXPECT_EQ(override_texts(run.overrides), (std::vector<std::string>{"/objects/drone/planner/name=\"straight\"",
+                                                                    "/world/time_limit_s=5",
+                                                                    "/objects/drone/planner/params/speed_mps=0.5",
+                                                                    "/objects/drone/sensors/scanner/resolution=[32,16]",
+                                                                    "/world/seed=8"}));
   EXPECT_EQ(run.scene_sha256.size(), 64u);
 
   const nlohmann::json manifest = sweep_manifest(spec, runs);
@@ -262,16 +262,16 @@ TEST_F(SweepSpecTest, RunIdsHashTheDocumentTheOverridesMake) {
     for_each_sweep_run(read_sweep_spec(write(text)), {}, [&](const SweepRun& run) {
       ASSERT_LT(streamed, runs.size());
       EXPECT_EQ(run.id, runs[streamed].id);
-      EXPECT_EQ(run.overrides, runs[streamed++].overrides);
+      EXPECT_EQ(override_texts(run.overrides), override_texts(runs[streamed++].overrides));
     });
     EXPECT_EQ(streamed, runs.size());
     for (const SweepRun& run : runs) {
       nlohmann::json document = read_json_file(run.scene_file);
-      for (const std::string& o : run.overrides) apply_override(document, o);
+      for (const SceneOverride& o : run.overrides) apply_override(document, parse_override(o.text));
       EXPECT_EQ(run.id, sha256_hex(std::string(library_version()) + "\n" + run.name + "\n" + document.dump())
                             .substr(0, 16))
           << run.name;
-      EXPECT_EQ(run.overrides.back().rfind("/world/seed=", 0) == 0,
+      EXPECT_EQ(run.overrides.back().text.rfind("/world/seed=", 0) == 0,
                 text.find("vary") == std::string::npos && text.find("jitter") == std::string::npos)
           << run.name;
     }
@@ -369,7 +369,7 @@ TEST_F(SweepSpecTest, LatinHypercubeUsesEverySliceOnceAndIsSeeded) {
   ASSERT_EQ(runs.size(), 8u);
   EXPECT_EQ(runs[2].name, "two_barriers__sample-3__seed-1");
   EXPECT_EQ(runs[2].params["limit"], samples[2][0]);
-  EXPECT_EQ(runs[2].overrides[0], "/world/time_limit_s=" + samples[2][0].dump());
+  EXPECT_EQ(runs[2].overrides[0].text, "/world/time_limit_s=" + samples[2][0].dump());
 
   // Random sampling: values inside the interval, from the seed.
   const auto random = sample_axes(read_sweep_spec(write(spec_text(3, "random"))));
@@ -388,10 +388,10 @@ TEST_F(SweepSpecTest, PlannersAreRunOnEveryScene) {
   ASSERT_EQ(runs.size(), 4u);
   EXPECT_EQ(runs[0].name, "two_barriers__straight__seed-1");
   EXPECT_EQ(runs[0].planner, "straight");
-  EXPECT_EQ(runs[0].overrides[0], R"(/objects/drone/planner={"name":"straight","params":{}})");
+  EXPECT_EQ(runs[0].overrides[0].text, R"(/objects/drone/planner={"name":"straight","params":{}})");
   EXPECT_EQ(runs[3].name, "two_barriers__reactive_slow__seed-2");
   EXPECT_EQ(runs[3].planner, "reactive_slow");
-  EXPECT_EQ(runs[3].overrides[0], "/objects/drone/planner/params/speed_mps=0.5");
+  EXPECT_EQ(runs[3].overrides[0].text, "/objects/drone/planner/params/speed_mps=0.5");
 }
 
 TEST(SweepShards, DisjointCoveringAndBalanced) {
@@ -418,7 +418,7 @@ TEST_F(SweepSpecTest, NoAxesGiveOneRunPerSceneAndSeed) {
   ASSERT_EQ(runs.size(), 3u);
   EXPECT_EQ(runs[0].name, "two_barriers__seed-1");
   EXPECT_EQ(runs[0].planner, "depth_reactive");  // the scene's
-  EXPECT_EQ(runs[2].overrides, std::vector<std::string>{"/world/seed=3"});
+  EXPECT_EQ(override_texts(runs[2].overrides), std::vector<std::string>{"/world/seed=3"});
   EXPECT_EQ(runs[0].params, nlohmann::json::object());
 }
 
@@ -437,7 +437,7 @@ TEST_F(SweepSpecTest, SeedsAreIntegersInZeroTo2To64Minus1) {
       R"({"campo_sweep": 1, "scenes": ["two_barriers"], "seeds": {"first": 18446744073709551614, "count": 2}})")));
   ASSERT_EQ(runs.size(), 2u);
   EXPECT_EQ(runs[1].seed, 18446744073709551615u);
-  EXPECT_EQ(runs[1].overrides.back(), "/world/seed=18446744073709551615");
+  EXPECT_EQ(runs[1].overrides.back().text, "/world/seed=18446744073709551615");
   // A seed swept as an axis (a generator's) goes through the scene loader.
   EXPECT_THAT(error_of(R"({"campo_sweep": 1, "scenes": ["trees_rolling_terrain"],
                            "axes": [{"name": "forest", "values": [3, -3], "set": ["/objects/forest/seed"]}]})"),
@@ -493,7 +493,7 @@ TEST_F(SweepSpecTest, StartJitterMovesTheSceneStartTheSameForEveryAxisValue) {
     "start_jitter": {"vehicle": "drone", "radius_m": 0.25}})")));
   ASSERT_EQ(runs.size(), 4u);
   const auto start_of = [](const SweepRun& run) {
-    const std::string& last = run.overrides.back();
+    const std::string& last = run.overrides.back().text;
     const std::string prefix = "/objects/drone/pose/position_m=";
     EXPECT_EQ(last.substr(0, prefix.size()), prefix);
     return nlohmann::json::parse(last.substr(prefix.size()));
@@ -513,7 +513,7 @@ TEST_F(SweepSpecTest, StartJitterMovesTheSceneStartTheSameForEveryAxisValue) {
 // The scene of a run: its scene file with the run's overrides, loaded as `campo run` loads it.
 Scene run_scene(const SweepRun& run) {
   nlohmann::json document = read_json_file(run.scene_file);
-  for (const std::string& o : run.overrides) apply_override(document, o);
+  for (const SceneOverride& o : run.overrides) apply_override(document, parse_override(o.text));
   return parse_scene(document, run.scene_file.string(), run.scene_file.parent_path());
 }
 
@@ -545,7 +545,7 @@ TEST_F(SweepSpecTest, VarySceneWithSeedReseedsTheScenesGenerators) {
   // Without it, the seeds leave the vineyard's obstacles where the scene file's seed puts them.
   const std::vector<SweepRun> fixed = expand_sweep(read_sweep_spec(write(spec + "}")));
   ASSERT_EQ(fixed.size(), 2u);
-  EXPECT_EQ(fixed[1].overrides, std::vector<std::string>{"/world/seed=2"});
+  EXPECT_EQ(override_texts(fixed[1].overrides), std::vector<std::string>{"/world/seed=2"});
   const auto fixed_1 = obstacle_poses(run_scene(fixed[0]));
   ASSERT_EQ(fixed_1.size(), 12u);  // scenes/vineyard.json's obstacle_count
   EXPECT_EQ(fixed_1, obstacle_poses(run_scene(fixed[1])));
@@ -555,9 +555,9 @@ TEST_F(SweepSpecTest, VarySceneWithSeedReseedsTheScenesGenerators) {
       expand_sweep(read_sweep_spec(write(spec + R"(, "vary_scene_with_seed": true})")));
   ASSERT_EQ(varied.size(), 2u);
   for (const SweepRun& run : varied) {
-    EXPECT_EQ(run.overrides, (std::vector<std::string>{"/world/seed=" + std::to_string(run.seed),
-                                                       "/objects/field/seed=" +
-                                                           std::to_string(generator_seed(run.seed, "field"))}));
+    EXPECT_EQ(override_texts(run.overrides),
+              (std::vector<std::string>{"/world/seed=" + std::to_string(run.seed),
+                                        "/objects/field/seed=" + std::to_string(generator_seed(run.seed, "field"))}));
   }
   const auto varied_1 = obstacle_poses(run_scene(varied[0]));
   const auto varied_2 = obstacle_poses(run_scene(varied[1]));
@@ -568,7 +568,7 @@ TEST_F(SweepSpecTest, VarySceneWithSeedReseedsTheScenesGenerators) {
   EXPECT_NE(varied[0].id, fixed[0].id);  // another effective scene, another ID
   // Deterministic: the same spec expands to the same runs.
   const std::vector<SweepRun> again = expand_sweep(read_sweep_spec(write(spec + R"(, "vary_scene_with_seed": true})")));
-  EXPECT_EQ(again[1].overrides, varied[1].overrides);
+  EXPECT_EQ(override_texts(again[1].overrides), override_texts(varied[1].overrides));
   EXPECT_EQ(again[1].id, varied[1].id);
 }
 
@@ -583,7 +583,7 @@ TEST_F(SweepSpecTest, VarySceneWithSeedReachesNestedGeneratorsAndDiffersPerGener
   const std::vector<SweepRun> runs = expand_sweep(read_sweep_spec(write(R"({"campo_sweep": 1,
     "scenes": ["grove.json"], "seeds": {"first": 5}, "vary_scene_with_seed": true})")));
   ASSERT_EQ(runs.size(), 1u);
-  EXPECT_EQ(runs[0].overrides,
+  EXPECT_EQ(override_texts(runs[0].overrides),
             (std::vector<std::string>{"/world/seed=5",
                                       "/objects/group/children/forest/seed=" + std::to_string(generator_seed(5, "forest")),
                                       "/objects/grove/seed=" + std::to_string(generator_seed(5, "grove"))}));

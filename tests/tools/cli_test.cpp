@@ -283,24 +283,6 @@ TEST_F(Cli, ARunWithManyBigEventsKeepsItsRecordBounded) {
   EXPECT_TRUE(fs::is_regular_file(dir_ / "redrawn" / "d3" / "map.png"));
 }
 
-// A completed run is never thrown away: a figure that cannot be written
-// (a failure injected through the test hook) costs only that figure.
-TEST_F(Cli, AFigureThatFailsKeepsTheRunsFiles) {
-  const fs::path out = dir_ / "kept";
-  ::setenv("CAMPO_TEST_FAIL_FIGURE", "map", 1);
-  const Result r = campo("run --set /world/time_limit_s=1 --no-replan-depth --out " + out.string());
-  ::unsetenv("CAMPO_TEST_FAIL_FIGURE");
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_THAT(r.err, HasSubstr("error: map figure: "));
-  EXPECT_THAT(r.err, HasSubstr("map.png: cannot write: injected failure"));
-  EXPECT_FALSE(fs::exists(out / "map.png"));
-  EXPECT_THAT(r.err, HasSubstr("the run completed and its files are kept in " + out.string()));
-  for (const char* file : {"run.json", "events.jsonl", "trajectory.csv", "scene.json", "side.png"}) {
-    EXPECT_TRUE(fs::is_regular_file(out / file)) << file;
-  }
-  EXPECT_EQ(nlohmann::json::parse(slurp(out / "run.json"))["metrics"]["outcome"], "timeout");
-}
-
 TEST_F(Cli, BadRunInputExitsTwoAndWritesNothing) {
   const std::string scene = std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json";
   const fs::path out = dir_ / "never";

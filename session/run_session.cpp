@@ -1,11 +1,10 @@
-#include "tools/run_execution.hpp"
+#include "session/run_session.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <csignal>
-#include <cstdlib>
 #include <mutex>
 #include <thread>
 #include <functional>
@@ -28,8 +27,8 @@
 #include "sensors/depth_image.hpp"
 #include "sensors/lidar.hpp"
 #include "campo/sensor_factory.hpp"
-#include "tools/run_figures.hpp"
-#include "tools/scene_checks.hpp"
+#include "render/run_figures.hpp"
+#include "session/scene_checks.hpp"
 #include "campo/vehicle_factory.hpp"
 
 #include <pthread.h>
@@ -37,7 +36,7 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
-namespace campo::cli {
+namespace campo {
 
 int planner_interrupt_signal() { return SIGRTMIN + 5; }
 
@@ -156,7 +155,7 @@ void choose_planner_with_overrides(VehicleDef& def, const RunRequest& request,
   for (std::size_t i = 0; i < pointers.size(); ++i) {
     const std::string& p = pointers[i];
     if (another && (p == planner || p == planner + "/name")) {
-      throw InputError("command line", "--set " + request.overrides[i],
+      throw InputError("command line", "--set " + request.overrides[i].text,
                        "chooses the planner of vehicle " + def.alias + " (\"" + def.planner.name + "\") while --planner " +
                            request.planner + " chooses another: give the planner one way");
     }
@@ -166,7 +165,7 @@ void choose_planner_with_overrides(VehicleDef& def, const RunRequest& request,
   for (std::size_t i = 0; i < pointers.size(); ++i) {
     const std::string& p = pointers[i];
     if (p != params && !p.starts_with(params + "/")) continue;
-    const nlohmann::json value = override_value(request.overrides[i]);
+    const nlohmann::json& value = request.overrides[i].value;
     if (p == params) {
       def.planner.params.values = value;
     } else {
@@ -215,7 +214,7 @@ namespace {
 PreparedRun prepare_checked_run(const RunRequest& request, bool validate_planner, const std::string& bytes,
                                 PreparedRun& run) {
   const std::string scene_file = request.scene.string();
-  for (const auto& assignment : request.overrides) {
+  for (const SceneOverride& assignment : request.overrides) {
     run.override_pointers.push_back(apply_override(run.document, assignment));
   }
   // A scene without a planner block gets one from overrides of its
@@ -335,7 +334,7 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   // Ended by the limit, not by the planner: the reason says so.
   if (limit && limit->tripped && run.result.metrics.outcome == Outcome::failed) run.result.metrics.reason = limit->reason();
   limit.reset();
-  run.record = run_json(scene, run.result, options, request.overrides);
+  run.record = run_json(scene, run.result, options, override_texts(request.overrides));
   if (!run.document.contains("name")) run.document["name"] = scene.name;
   return run;
 }
@@ -350,13 +349,8 @@ std::vector<FigureFailure> write_run_files(const SimulatedRun& run, const RunReq
   if (!request.figures) return failures;
   // Drawn from the files just written, exactly as `campo render` would; each on its own, so one that
   // fails costs neither the others nor the run.
-  // Test hook (tests/tools/cli_test.cpp): the figure named fails as on a full disk.
-  const char* const inject = std::getenv("CAMPO_TEST_FAIL_FIGURE");
   const auto attempt = [&](const std::string& figure, const std::function<void()>& draw) {
     try {
-      if (inject && figure == inject) {
-        throw OutputError(out.path(figure + ".png"), "cannot write: injected failure (CAMPO_TEST_FAIL_FIGURE)");
-      }
       draw();
     } catch (const InputError& e) {
       failures.push_back({figure, e.what(), true});
@@ -371,13 +365,33 @@ std::vector<FigureFailure> write_run_files(const SimulatedRun& run, const RunReq
     recorded->view.label = request.label.empty() ? request.out.filename().string() : request.label;
   });
   if (!recorded) return failures;  // no figure could be drawn from it
-  std::vector<FigureKind> kinds{FigureKind::map, FigureKind::side};
-  if (!recorded->view.height_map.empty()) kinds.push_back(FigureKind::heightmap);
-  for (const FigureKind kind : kinds) {
-    attempt(std::string(to_string(kind)), [&] { write_figure(*recorded, kind, staged, request.figure_formats); });
+  const FigureWriter draw = request.write_figure ? request.write_figure
+                                                 : FigureWriter([](const RecordedRun& run, FigureKind kind,
+                                                                   const std::filesystem::path& dir,
+                                                                   const FigureFormats& formats) {
+                                                     write_figure(run, kind, dir, formats);
+                                                   });
+  for (const FigureKind kind : run_directory_figures(*recorded)) {
+    attempt(std::string(to_string(kind)), [&] { draw(*recorded, kind, staged, request.figure_formats); });
   }
   return failures;
 }
+
+FigureFailureReport figure_failure_report(const std::vector<FigureFailure>& failures, const std::string& out) {
+  FigureFailureReport report;
+  for (const FigureFailure& f : failures) {
+    report.text += (f.bad_input ? "error: " : "internal error: ") + f.figure + " figure: " + f.message + "\n";
+    report.bad_input = report.bad_input && f.bad_input;
+  }
+  report.text += "the run completed and its files are kept in " + out +
+                 "; only the figures above are missing (campo render " + out + " redraws them)\n";
+  return report;
+}
+
+RunNotKeptError::RunNotKeptError(const OutputError& cause, nlohmann::json record)
+    : OutputError(cause.file(), cause.message() + "; the run completed (" + run_summary_line(record) +
+                                    ") but none of its files were kept"),
+      record_(std::move(record)) {}
 
 ExecutedRun execute_run(const RunRequest& request) {
   std::optional<StagedOutput> out;
@@ -391,9 +405,7 @@ ExecutedRun execute_run(const RunRequest& request) {
     executed.figure_failures = write_run_files(run, request, output());
     out->commit();
   } catch (const OutputError& e) {
-    throw OutputError(e.file(), e.message() +
-                                    "; the run completed (" + run_summary_line(run.record) +
-                                    ") but none of its files were kept");
+    throw RunNotKeptError(e, run.record);
   }
   return executed;
 }
@@ -429,4 +441,4 @@ std::string run_summary_line(const nlohmann::json& record) {
   return line.str();
 }
 
-}  // namespace campo::cli
+}  // namespace campo

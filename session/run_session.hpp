@@ -12,14 +12,20 @@
 #include "campo/episode.hpp"
 #include "campo/scene.hpp"
 #include "core/output_dir.hpp"
-
 #include "render/figure_canvas.hpp"
+#include "render/run_figures.hpp"
+#include "scene/scene_overrides.hpp"
 
-namespace campo::cli {
+namespace campo {
+
+/// Draws one figure of a recorded run into a directory, in the formats given
+/// (render's write_figure; a test injects one that fails).
+using FigureWriter = std::function<void(const RecordedRun& run, FigureKind kind, const std::filesystem::path& dir,
+                                        const FigureFormats& formats)>;
 
 struct RunRequest {
   std::filesystem::path scene;          ///< scene file
-  std::vector<std::string> overrides;   ///< "/json/pointer=VALUE", applied in order (scene_overrides.hpp)
+  std::vector<SceneOverride> overrides; ///< applied in order; run.json records their texts
   std::string planner;                  ///< empty: the scene's, else the default planner
   std::string vehicle;                  ///< empty: the first vehicle
   std::filesystem::path out;            ///< run directory (created)
@@ -39,6 +45,8 @@ struct RunRequest {
   /// Makes the planner; empty: create_planner (the registry). The Python
   /// module passes one that wraps a Python object.
   PlannerMaker make_planner;
+  /// Draws each figure write_run_files writes; empty: write_figure (render/run_figures.hpp).
+  FigureWriter write_figure;
 };
 
 /// A run's inputs, read and validated: the scene with the overrides, its
@@ -93,6 +101,27 @@ struct FigureFailure {
 std::vector<FigureFailure> write_run_files(const SimulatedRun& run, const RunRequest& request,
                                            const StagedOutput& out);
 
+/// What `campo run` prints when figures failed after the run's files were
+/// written: one line per figure ("error: map figure: ..." for bad input,
+/// "internal error: ..." else), then that the run is kept in `out`.
+struct FigureFailureReport {
+  std::string text;        ///< the lines, each ending in '\n'
+  bool bad_input = true;   ///< every failure was bad input (exit 2), else a bug (exit 1)
+};
+FigureFailureReport figure_failure_report(const std::vector<FigureFailure>& failures, const std::string& out);
+
+/// The run completed but its own files could not be written: the OutputError
+/// of the file, its message naming the run's outcome (run_summary_line) and
+/// that none of its files were kept; the run's record travels with it.
+class RunNotKeptError : public OutputError {
+ public:
+  RunNotKeptError(const OutputError& cause, nlohmann::json record);
+  const nlohmann::json& record() const { return record_; }
+
+ private:
+  nlohmann::json record_;
+};
+
 /// A run executed into its directory.
 struct ExecutedRun {
   nlohmann::json record;                        ///< run.json
@@ -101,8 +130,8 @@ struct ExecutedRun {
 
 /// simulate_run() and write_run_files() into `request.out`. Bad input writes
 /// nothing; a completed run is kept even when a figure fails (reported in
-/// the result). When the run's own files cannot be written, the OutputError
-/// also carries the run's summary line, so its outcome is not lost.
+/// the result). When the run's own files cannot be written: RunNotKeptError,
+/// so its outcome is not lost.
 ExecutedRun execute_run(const RunRequest& request);
 
 /// The depth map the vehicle would see at the end of the run (the failure
@@ -119,4 +148,4 @@ int planner_interrupt_signal();
 /// One line for the terminal: outcome, reason, times and path.
 std::string run_summary_line(const nlohmann::json& record);
 
-}  // namespace campo::cli
+}  // namespace campo
