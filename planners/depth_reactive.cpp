@@ -1,6 +1,8 @@
 #include "planners/depth_reactive.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -201,7 +203,8 @@ class DepthReactivePlanner final : public Planner {
     }
 
     ReplanDecision replan = replan_record(reading, scan, entry, check);
-    if (marginal) replan.details["marginal"] = true;
+    const DepthReactiveRecord& rec = depth_reactive_record();
+    if (marginal) rec.marginal.set(replan.details, true);
     std::string action;
     if (check.visibility == Visibility::visible) {
       action = "fly";
@@ -232,18 +235,18 @@ class DepthReactivePlanner final : public Planner {
           find_waypoint(dilated, grid, check.pixel, check.waypoint_range_m / grid.max_range_m,
                         check.obstacle_range_m / grid.max_range_m, search_params, avoid, to_sensor * o.state.position_m,
                         to_sensor.linear() * Eigen::Vector3d::UnitZ(), &depth);
-      replan.details["search_ms"] = elapsed_ms(search_start);
-      replan.details["threshold"] = search.threshold;
-      replan.details["candidates"] = search.candidates;
+      rec.search_ms.set(replan.details, elapsed_ms(search_start));
+      rec.threshold.set(replan.details, search.threshold);
+      rec.candidates.set(replan.details, search.candidates);
       if (search.found) {
         const FoundWaypoint& f = *search.found;
         const Eigen::Vector3d waypoint = scan.sensor_pose * (f.direction_sensor * f.range_m);
-        replan.details["chosen_pixel"] = to_json(f.pixel);
-        replan.details["edge_pixel"] = to_json(f.edge_pixel);
-        replan.details["waypoint_pixel"] = to_json(f.waypoint_pixel);
-        replan.details["edge_range_m"] = f.edge_range_m;
-        replan.details["new_waypoint_range_m"] = f.range_m;
-        replan.details["tried"] = f.tried;
+        rec.chosen_pixel.set(replan.details, to_json(f.pixel));
+        rec.edge_pixel.set(replan.details, to_json(f.edge_pixel));
+        rec.waypoint_pixel.set(replan.details, to_json(f.waypoint_pixel));
+        rec.edge_range_m.set(replan.details, f.edge_range_m);
+        rec.new_waypoint_range_m.set(replan.details, f.range_m);
+        rec.tried.set(replan.details, f.tried);
         action = "new_waypoint";
         stack_.push_back({waypoint, true});
         result.decisions.planned_waypoint = waypoint;
@@ -254,8 +257,8 @@ class DepthReactivePlanner final : public Planner {
         enter(Phase::wall_look, o);
       }
     }
-    replan.details["action"] = action;
-    replan.details["dilation_ms"] = dilation_ms;
+    rec.action.set(replan.details, action);
+    rec.dilation_ms.set(replan.details, dilation_ms);
     replan.time_ms = elapsed_ms(start);
     result.decisions.replan = std::move(replan);
     if (result.status == PlanStatus::running && replans_ >= config_.max_replans) {
@@ -266,16 +269,17 @@ class DepthReactivePlanner final : public Planner {
 
   ReplanDecision replan_record(const SensorReading& reading, const RangeScan& scan, const StackEntry& entry,
                                const VisibilityCheck& check) {
-    return {.index = replans_++,
-            .sensor = std::string(reading.alias),
-            .details = {{"scan_time_s", scan.time_s},
-                        {"waypoint", to_json(entry.position_m)},
-                        {"role", entry.temporary ? "intermediate" : "target"},
-                        {"visibility", to_string(check.visibility)},
-                        {"pixel", to_json(check.pixel)},
-                        {"radius_px", to_json(Eigen::Vector2d(check.radius_x_px, check.radius_y_px))},
-                        {"waypoint_range_m", check.waypoint_range_m},
-                        {"obstacle_range_m", check.obstacle_range_m}}};
+    ReplanDecision replan{.index = replans_++, .sensor = std::string(reading.alias)};
+    const DepthReactiveRecord& rec = depth_reactive_record();
+    rec.scan_time_s.set(replan.details, scan.time_s);
+    rec.waypoint.set(replan.details, to_json(entry.position_m));
+    rec.role.set(replan.details, entry.temporary ? "intermediate" : "target");
+    rec.visibility.set(replan.details, std::string(to_string(check.visibility)));
+    rec.pixel.set(replan.details, to_json(check.pixel));
+    rec.radius_px.set(replan.details, to_json(Eigen::Vector2d(check.radius_x_px, check.radius_y_px)));
+    rec.waypoint_range_m.set(replan.details, check.waypoint_range_m);
+    rec.obstacle_range_m.set(replan.details, check.obstacle_range_m);
+    return replan;
   }
 
   void discard(const Observation& o, PlanResult& result) {
@@ -291,7 +295,7 @@ class DepthReactivePlanner final : public Planner {
     if (!reading.fresh || !reading.scan || reading.scan->time_s <= phase_start_s_) return;
     if ((entry.position_m - o.state.position_m).norm() < config_.monitor_min_range_m) return;
     const auto start = Clock::now();
-    const DepthGrid grid = DepthGrid::of(*reading.config);
+    const DepthGrid grid = DepthGrid::of(*reading.scan, *reading.config);
     const cv::Mat depth = depth_map(*reading.scan, *reading.config);
     const cv::Mat dilated = dilate_depth_map(depth, dilation_params(config_, grid));
     // The other side of the hysteresis of evaluate(): on the way the
@@ -304,7 +308,7 @@ class DepthReactivePlanner final : public Planner {
     if (check.visibility == Visibility::visible) return;
     // Occluded on the way: stop here and decide again once still.
     ReplanDecision replan = replan_record(reading, *reading.scan, entry, check);
-    replan.details["action"] = "stop";
+    depth_reactive_record().action.set(replan.details, "stop");
     replan.time_ms = elapsed_ms(start);
     result.decisions.replan = std::move(replan);
     command_ = command::Hold{o.state.position_m, o.state.yaw_rad()};
@@ -316,7 +320,7 @@ class DepthReactivePlanner final : public Planner {
   // then set a waypoint wall_step_m ahead.
   void wall_look(const Observation& o, const SensorReading& reading, PlanResult& result) {
     if (!look(o, reading, wall_.goal_yaw + wall_.offset)) return;
-    const DepthGrid grid = DepthGrid::of(*reading.config);
+    const DepthGrid grid = DepthGrid::of(*reading.scan, *reading.config);
     const cv::Mat dilated = dilate_depth_map(depth_map(*reading.scan, *reading.config), dilation_params(config_, grid));
     const double free_value = (config_.wall_step_m + config_.safety_radius_m) / grid.max_range_m;
     const double fraction = free_fraction(dilated, navigable_region(grid, config_.wall_sector_deg, config_.wall_band_deg),
@@ -341,7 +345,7 @@ class DepthReactivePlanner final : public Planner {
         result.reason = "cannot get around the obstacle: no free sector within 180 deg of the goal";
       }
     }
-    result.decisions.extras["wall_following"] = std::move(record);
+    depth_reactive_record().wall_following.set(result.decisions.own, record);
   }
 
   void place_wall_waypoint(const Observation& o, const cv::Mat& dilated,
@@ -352,7 +356,7 @@ class DepthReactivePlanner final : public Planner {
     const double yaw = o.state.yaw_rad();
     const Eigen::Vector3d waypoint = o.state.position_m + range * Eigen::Vector3d(std::cos(yaw), std::sin(yaw), 0.0);
     record["waypoint"] = to_json(waypoint);
-    result.decisions.extras["wall_following"] = record;
+    depth_reactive_record().wall_following.set(result.decisions.own, record);
     result.decisions.planned_waypoint = waypoint;
     stack_.push_back({waypoint, true});
     enter(Phase::align, o);
@@ -450,6 +454,115 @@ FindWaypointParams find_waypoint_params(const DepthReactiveConfig& c) {
   return {c.altitude_penalty, c.threshold_cap, c.vehicle_radius_m, c.safety_radius_m, c.min_waypoint_distance_m,
           c.max_candidates, c.margin_in_depth ? c.dilation_margin_m : 0.0, 0.0,
           c.margin_in_depth ? c.max_elevation_deg : 0.0, kAltitudeTolerance_m};
+}
+
+namespace {
+
+Eigen::Vector2d vector2d(const nlohmann::json& j) { return {j.at(0).get<double>(), j.at(1).get<double>()}; }
+Eigen::Vector2i vector2i(const nlohmann::json& j) { return {j.at(0).get<int>(), j.at(1).get<int>()}; }
+
+// "new_waypoint" -> "new waypoint".
+std::string spaced(std::string text) {
+  std::replace(text.begin(), text.end(), '_', ' ');
+  return text;
+}
+
+std::string replan_action(const ReplanDecision& step) {
+  return spaced(depth_reactive_record().action.get(step.details).value_or(""));
+}
+
+// "target invisible -> new waypoint".
+std::string replan_caption(const ReplanDecision& step) {
+  const DepthReactiveRecord& r = depth_reactive_record();
+  return r.role.get(step.details).value_or("") + " " + r.visibility.get(step.details).value_or("") + " -> " +
+         replan_action(step);
+}
+
+// The overlays of one replanning step, recomputed as evaluate() computes them.
+// The 16-bit file rounds values by at most 1 / 131070, so the maps match the
+// planner's except, rarely, at a pixel that close to a layer boundary or t.
+ImageOverlays replan_overlays(const ReplanDecision& step, const RecordedImage& image, const nlohmann::json& parameters,
+                              const std::string& file, const std::string& pointer) {
+  const DepthReactiveConfig config = parse_depth_reactive_config({parameters, file, pointer});
+  const DepthGrid grid{image.cols, image.rows, image.fov_h_deg, image.fov_v_deg, image.max_range_m};
+  const cv::Mat depth(image.rows, image.cols, CV_32F, const_cast<float*>(image.values.data()));
+  const DepthReactiveRecord& r = depth_reactive_record();
+  const nlohmann::json& d = step.details;
+  const auto required = [&](const RecordField<nlohmann::json>& field) {
+    const std::optional<nlohmann::json> value = field.get(d);
+    if (!value) throw InputError(file, "/events", "replanning step " + std::to_string(step.index) + " has no " + field.name());
+    return *value;
+  };
+  ImageOverlays o;
+  const cv::Mat dilated = dilate_depth_map(depth, dilation_params(config, grid));
+  o.processed.assign(dilated.ptr<float>(), dilated.ptr<float>() + dilated.total());
+  const Eigen::Vector2d projection = vector2d(required(r.pixel));
+  o.target_px = projection;
+  o.ellipse_px = vector2d(required(r.radius_px));
+  if (const auto t = r.threshold.get(d)) {
+    o.mask_threshold = *t;
+    const cv::Mat thresholded = threshold_free(dilated, *t);
+    o.mask.assign(thresholded.ptr<std::uint8_t>(), thresholded.ptr<std::uint8_t>() + thresholded.total());
+  }
+  if (const auto chosen_json = r.chosen_pixel.get(d)) {
+    const Eigen::Vector2i chosen = vector2i(*chosen_json);
+    const Eigen::Vector2i edge = vector2i(required(r.edge_pixel));
+    o.chosen_px = chosen;
+    // TrovaWP's scan from the chosen pixel toward W', up to the obstacle edge;
+    // an edge at the chosen pixel itself means the scan met none and ran on.
+    for (const Eigen::Vector2i& q : pixel_segment(depth.size(), chosen, {projection.x(), projection.y()})) {
+      o.polyline_px.push_back(q);
+      if (q == edge && edge != chosen) break;
+    }
+    o.placed_px = vector2i(required(r.waypoint_pixel));
+  }
+  return o;
+}
+
+}  // namespace
+
+DepthReactiveRecord::DepthReactiveRecord()
+    : wall_following(description.decisions.declare_json(
+          {"wall_following", RecordType::object, "",
+           "a wall-following step: offset_deg (where it looked, deg from the goal), free_fraction (of the navigable "
+           "sector), side (left or right, once chosen), waypoint (the one placed, [x, y, z] m)"})),
+      scan_time_s(description.replan.declare<double>("scan_time_s", "s", "when the depth map read was taken")),
+      waypoint(description.replan.declare_json(
+          {"waypoint", RecordType::array, "m", "the waypoint checked, [x, y, z]"})),
+      role(description.replan.declare<std::string>("role", "", "target (a mission waypoint) or intermediate")),
+      visibility(description.replan.declare<std::string>("visibility", "", "visible, invisible or unreachable")),
+      pixel(description.replan.declare_json(
+          {"pixel", RecordType::array, "px", "W', the waypoint's projection [column, row] (continuous)"})),
+      radius_px(description.replan.declare_json(
+          {"radius_px", RecordType::array, "px", "half-axes of the safety sphere's projection [across, down]"})),
+      waypoint_range_m(description.replan.declare<double>("waypoint_range_m", "m", "range of the waypoint")),
+      obstacle_range_m(description.replan.declare<double>("obstacle_range_m", "m",
+                                                          "range of the nearest obstacle around W'")),
+      marginal(description.replan.declare<bool>("marginal", "", "visible only just: taken as invisible")),
+      search_ms(description.replan.declare<double>("search_ms", "ms", "measured time of TrovaWP's search")),
+      threshold(description.replan.declare<double>("threshold", "", "TrovaWP's threshold t on the dilated map")),
+      candidates(description.replan.declare<std::int64_t>("candidates", "", "pixels at distance 1 from the obstacle")),
+      chosen_pixel(description.replan.declare_json(
+          {"chosen_pixel", RecordType::array, "px", "P-bar, the chosen pixel [column, row]"})),
+      edge_pixel(description.replan.declare_json(
+          {"edge_pixel", RecordType::array, "px", "where the scan toward W' met the obstacle's edge [column, row]"})),
+      waypoint_pixel(description.replan.declare_json(
+          {"waypoint_pixel", RecordType::array, "px", "the new waypoint's pixel [column, row]"})),
+      edge_range_m(description.replan.declare<double>("edge_range_m", "m", "range at the obstacle's edge")),
+      new_waypoint_range_m(description.replan.declare<double>("new_waypoint_range_m", "m",
+                                                              "range of the new waypoint")),
+      tried(description.replan.declare<std::int64_t>("tried", "", "candidates examined before this one succeeded")),
+      action(description.replan.declare<std::string>(
+          "action", "", "fly, discard, abort, new_waypoint, wall_following or stop")),
+      dilation_ms(description.replan.declare<double>("dilation_ms", "ms", "measured time of the dilation")) {
+  description.replan_action = replan_action;
+  description.replan_caption = replan_caption;
+  description.replan_overlays = replan_overlays;
+}
+
+const DepthReactiveRecord& depth_reactive_record() {
+  static const DepthReactiveRecord record;
+  return record;
 }
 
 std::unique_ptr<Planner> make_depth_reactive_planner(const ParamsBlock& params, const PlannerContext& context) {

@@ -10,11 +10,14 @@
 /// there is none; Invisible or Unreachable temporary waypoint -> discarded;
 /// Unreachable target -> the run ends with a reason. The steps are the pure
 /// functions of depth_reactive_steps.hpp.
+#include <cstdint>
 #include <memory>
 #include <string>
 
 #include "campo/config_fields.hpp"
 #include "campo/planner.hpp"
+#include "campo/planner_record.hpp"
+#include "campo/record_fields.hpp"
 #include "planners/depth_reactive_steps.hpp"
 
 namespace campo {
@@ -82,5 +85,38 @@ DepthReactiveConfig parse_depth_reactive_config(const ParamsBlock& params);
 DilationParams dilation_params(const DepthReactiveConfig& config, const DepthGrid& grid);
 /// TrovaWP's parameters.
 FindWaypointParams find_waypoint_params(const DepthReactiveConfig& config);
+
+/// What depth_reactive records beyond the generic decisions (docs/planners.md),
+/// declared once: the description registered with it (with the overlays of
+/// its replanning figures) and its typed fields.
+struct DepthReactiveRecord {
+  PlannerRecord description;
+  /// A wall-following step: {offset_deg, free_fraction, side, waypoint}.
+  RecordField<nlohmann::json> wall_following;
+  // A replanning step's details.
+  RecordField<double> scan_time_s;
+  RecordField<nlohmann::json> waypoint;
+  RecordField<std::string> role;
+  RecordField<std::string> visibility;
+  RecordField<nlohmann::json> pixel;
+  RecordField<nlohmann::json> radius_px;
+  RecordField<double> waypoint_range_m;
+  RecordField<double> obstacle_range_m;
+  RecordField<bool> marginal;
+  RecordField<double> search_ms;
+  RecordField<double> threshold;
+  RecordField<std::int64_t> candidates;
+  RecordField<nlohmann::json> chosen_pixel;
+  RecordField<nlohmann::json> edge_pixel;
+  RecordField<nlohmann::json> waypoint_pixel;
+  RecordField<double> edge_range_m;
+  RecordField<double> new_waypoint_range_m;
+  RecordField<std::int64_t> tried;
+  RecordField<std::string> action;
+  RecordField<double> dilation_ms;
+
+  DepthReactiveRecord();
+};
+const DepthReactiveRecord& depth_reactive_record();
 
 }  // namespace campo

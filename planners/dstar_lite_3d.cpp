@@ -40,9 +40,9 @@ class DStarLite3dPlanner final : public Planner {
       if (config_.mapping == Mapping3d::octomap) octomap_.emplace(map_->config(), config_.octomap);
       // A height map only where the map is one (an octree keeps what lies under an overhang).
       if (!octomap_) {
-        result.decisions.height_map_grid = HeightMapGrid{
-            .origin_m = config_.origin_m, .cell_size_m = config_.cell_size_m, .columns = config_.columns,
-            .rows = config_.rows};
+        dstar_lite_3d_record().height_map_grid.set(
+            result.decisions.own, HeightMapGrid{.origin_m = config_.origin_m, .cell_size_m = config_.cell_size_m,
+                                                .columns = config_.columns, .rows = config_.rows});
       }
       // Moves cost their length: a 7 m climb costs 4.7 cells of 1.5 m, not one,
       // so the drone weaves between buildings at its altitude rather than
@@ -110,14 +110,14 @@ class DStarLite3dPlanner final : public Planner {
     if (replan) {
       grid::SearchResult found = search_->plan();
       const double time_ms = std::chrono::duration<double, std::milli>(Clock::now() - started).count();
-      result.decisions.replan = ReplanDecision{.index = replans_++,
-                                               .sensor = std::string(lidar->alias),
-                                               .time_ms = time_ms,
-                                               .details = {{"start_cell", to_json(*start)},
-                                                           {"goal_cell", to_json(goal)},
-                                                           {"changed_cells", changes.size()},
-                                                           {"expansions", found.expansions},
-                                                           {"mapping_ms", mapping_ms}}};
+      ReplanDecision& step = result.decisions.replan.emplace(
+          ReplanDecision{.index = replans_++, .sensor = std::string(lidar->alias), .time_ms = time_ms});
+      const DStarLite3dRecord& record = dstar_lite_3d_record();
+      record.start_cell.set(step.details, to_json(*start));
+      record.goal_cell.set(step.details, to_json(goal));
+      record.changed_cells.set(step.details, static_cast<std::int64_t>(changes.size()));
+      record.expansions.set(step.details, found.expansions);
+      record.mapping_ms.set(step.details, mapping_ms);
       if (found.status != grid::SearchStatus::found) {
         result.status = PlanStatus::no_path;
         result.reason = "no path from cell " + to_json(*start).dump() + " to mission waypoint " +
@@ -207,12 +207,13 @@ class DStarLite3dPlanner final : public Planner {
       for (const grid::CellChange& c : changes) {
         (c.state == grid::CellState::blocked ? blocked : cleared).push_back(to_json(c.cell));
       }
-      if (!blocked.empty()) result.decisions.extras["blocked_cells"] = std::move(blocked);
-      if (!cleared.empty()) result.decisions.extras["cleared_cells"] = std::move(cleared);
-      result.decisions.extras["occupied_voxels"] = octomap_->occupied_leaf_count();
+      const DStarLite3dRecord& record = dstar_lite_3d_record();
+      if (!blocked.empty()) record.blocked_cells.set(result.decisions.own, blocked);
+      if (!cleared.empty()) record.cleared_cells.set(result.decisions.own, cleared);
+      record.occupied_voxels.set(result.decisions.own, static_cast<std::int64_t>(octomap_->occupied_leaf_count()));
       return;
     }
-    std::vector<HeightMapColumn>& columns = result.decisions.height_map_columns;
+    std::vector<HeightMapColumn> columns;
     for (std::size_t i = 0; i < changes.size(); ++i) {
       const grid::Cell& c = changes[i].cell;
       const bool listed = std::any_of(changes.begin(), changes.begin() + static_cast<std::ptrdiff_t>(i),
@@ -221,6 +222,7 @@ class DStarLite3dPlanner final : public Planner {
       const int top = *map_->top_blocked_level(c.x, c.y);
       columns.push_back({c.x, c.y, map_->center({c.x, c.y, top}).z()});
     }
+    if (!columns.empty()) dstar_lite_3d_record().height_map_columns.set(result.decisions.own, columns);
   }
 
   void record_path(const Eigen::Vector3d& waypoint_m, PlanResult& result) const {
@@ -357,6 +359,114 @@ void check_grid_size(const DStarLite3dConfig& c, const ParamsBlock& params) {
                      "expected level_spacing_m / cell_size_m <= 1000 (a climb's cost in cell moves) or climb_cost_cells "
                      "given, got " + std::to_string(c.level_spacing_m) + " / " + std::to_string(c.cell_size_m));
   }
+}
+
+namespace {
+
+// A cell index of a height-map column: an integer in [0, INT_MAX].
+bool is_cell_index(const nlohmann::json& j) {
+  constexpr std::int64_t kMax = std::numeric_limits<int>::max();
+  if (j.is_number_unsigned()) return j.get<std::uint64_t>() <= static_cast<std::uint64_t>(kMax);
+  return j.is_number_integer() && j.get<std::int64_t>() >= 0 && j.get<std::int64_t>() <= kMax;
+}
+
+nlohmann::json height_map_grid_json(const HeightMapGrid& grid) {
+  return {{"origin_m", {grid.origin_m.x(), grid.origin_m.y()}},
+          {"cell_size_m", grid.cell_size_m},
+          {"columns", grid.columns},
+          {"rows", grid.rows}};
+}
+
+HeightMapGrid read_height_map_grid(const JsonNode& node) {
+  ObjectReader r(node);
+  HeightMapGrid grid;
+  grid.origin_m = r.required("origin_m").as_vector2();
+  grid.cell_size_m = r.required("cell_size_m").as_number(Range::positive());
+  grid.columns = static_cast<int>(r.required("columns").as_int(1, std::numeric_limits<int>::max()));
+  grid.rows = static_cast<int>(r.required("rows").as_int(1, std::numeric_limits<int>::max()));
+  r.finish();
+  return grid;
+}
+
+nlohmann::json height_map_columns_json(const std::vector<HeightMapColumn>& columns) {
+  nlohmann::json j = nlohmann::json::array();
+  for (const HeightMapColumn& c : columns) j.push_back({c.column, c.row, c.top_m});
+  return j;
+}
+
+std::vector<HeightMapColumn> read_height_map_columns(const JsonNode& node) {
+  const nlohmann::json& list = node.value();
+  std::vector<HeightMapColumn> columns;
+  columns.reserve(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    // Checked here rather than by JsonNode: a scan records thousands, a pointer is made only for the message.
+    const nlohmann::json& c = list[i];
+    if (!c.is_array() || c.size() != 3 || !is_cell_index(c[0]) || !is_cell_index(c[1]) || !c[2].is_number()) {
+      JsonNode(c, node.file(), child_pointer(node.pointer(), i))
+          .fail("a height-map column [column, row, top z]: indices from 0, m");
+    }
+    columns.push_back({c[0].get<int>(), c[1].get<int>(), c[2].get<double>()});
+  }
+  return columns;
+}
+
+// The height map as the figures draw it: the grid's frame, then each column's latest top.
+void fold_height_map(const Decisions& decisions, CellsOverlay& cells) {
+  const DStarLite3dRecord& record = dstar_lite_3d_record();
+  if (const auto grid = record.height_map_grid.get(decisions.own, "", "/decisions")) {
+    if (static_cast<std::int64_t>(grid->columns) * grid->rows > (1 << 26)) {
+      throw InputError("", "/decisions/height_map_grid", "a height map of at most 2^26 cells");
+    }
+    cells.origin_m = grid->origin_m;
+    cells.cell_size_m = grid->cell_size_m;
+    cells.columns = grid->columns;
+    cells.rows = grid->rows;
+    cells.unit = "m";
+    cells.values.assign(static_cast<std::size_t>(grid->columns) * grid->rows,
+                        std::numeric_limits<double>::quiet_NaN());
+  }
+  for (const HeightMapColumn& c : record.height_map_columns.get(decisions.own, "", "/decisions").value_or(
+           std::vector<HeightMapColumn>{})) {
+    if (c.column >= cells.columns || c.row >= cells.rows) {
+      throw InputError("", "/decisions/height_map_columns", "columns inside the height_map_grid recorded before them");
+    }
+    cells.values[static_cast<std::size_t>(c.row) * cells.columns + c.column] = c.top_m;
+  }
+}
+
+}  // namespace
+
+DStarLite3dRecord::DStarLite3dRecord()
+    : height_map_grid(description.decisions.declare<HeightMapGrid>(
+          {"height_map_grid", RecordType::object, "m",
+           "the height map's frame {origin_m: [x, y] of cell (0, 0)'s south-west corner, cell_size_m, columns, rows}, "
+           "recorded once, before its columns (column mapping)"},
+          height_map_grid_json, read_height_map_grid)),
+      height_map_columns(description.decisions.declare<std::vector<HeightMapColumn>>(
+          {"height_map_columns", RecordType::array, "m",
+           "the columns whose reconstructed top rose this call, [column, row, top z] each, listed once"},
+          height_map_columns_json, read_height_map_columns)),
+      blocked_cells(description.decisions.declare_json(
+          {"blocked_cells", RecordType::array, "",
+           "planning cells an occupied voxel now blocks, [column, row, level] each (octomap mapping)"})),
+      cleared_cells(description.decisions.declare_json(
+          {"cleared_cells", RecordType::array, "",
+           "planning cells an occupied voxel no longer blocks, [column, row, level] each (octomap mapping)"})),
+      occupied_voxels(description.decisions.declare<std::int64_t>(
+          "occupied_voxels", "", "occupied leaves of the octree after the scan (octomap mapping)")),
+      start_cell(description.replan.declare_json(
+          {"start_cell", RecordType::array, "", "the cell the search started from, [column, row, level]"})),
+      goal_cell(description.replan.declare_json(
+          {"goal_cell", RecordType::array, "", "the cell of the mission waypoint searched for, [column, row, level]"})),
+      changed_cells(description.replan.declare<std::int64_t>("changed_cells", "", "cells the scan changed")),
+      expansions(description.replan.declare<std::int64_t>("expansions", "", "nodes the search expanded")),
+      mapping_ms(description.replan.declare<double>("mapping_ms", "ms", "measured time of the mapping step")) {
+  description.cells = fold_height_map;
+}
+
+const DStarLite3dRecord& dstar_lite_3d_record() {
+  static const DStarLite3dRecord record;
+  return record;
 }
 
 std::unique_ptr<Planner> make_dstar_lite_3d_planner(const ParamsBlock& params, const PlannerContext& context) {

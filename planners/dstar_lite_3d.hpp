@@ -14,6 +14,8 @@
 
 #include "campo/config_fields.hpp"
 #include "campo/planner.hpp"
+#include "campo/planner_record.hpp"
+#include "campo/record_fields.hpp"
 #include "grid/grid_graph.hpp"
 #include "planners/grid_map3d.hpp"
 #include "planners/octomap3d.hpp"
@@ -78,5 +80,50 @@ double climb_cost_cells(const DStarLite3dConfig& config);
 
 /// The map geometry of a configuration, with take-off ground at `ground_z_m`.
 GridMap3dConfig grid_map_config(const DStarLite3dConfig& config, double ground_z_m);
+
+/// The frame of the reconstructed height map (column mapping): a grid of
+/// square cells in the horizontal plane.
+struct HeightMapGrid {
+  Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();  ///< world x, y of the south-west corner of cell (0, 0), m
+  double cell_size_m = 1.0;                             ///< side of a cell, m, > 0
+  int columns = 1;                                      ///< cells along x (east), >= 1
+  int rows = 1;                                         ///< cells along y (north), >= 1
+
+  bool operator==(const HeightMapGrid&) const = default;
+};
+
+/// One column of the height map whose reconstructed top rose.
+struct HeightMapColumn {
+  int column = 0;      ///< cell index along x, from the grid's origin
+  int row = 0;         ///< cell index along y
+  double top_m = 0.0;  ///< world z of the centre of its highest blocked cell, m
+
+  bool operator==(const HeightMapColumn&) const = default;
+};
+
+/// What dstar_lite_3d records beyond the generic decisions (docs/planners.md),
+/// declared once: the description registered with it and its typed fields.
+struct DStarLite3dRecord {
+  PlannerRecord description;
+  /// The height map's frame, recorded once, before its columns (column mapping only).
+  RecordField<HeightMapGrid> height_map_grid;
+  /// The height-map columns whose top rose this call, each listed once.
+  RecordField<std::vector<HeightMapColumn>> height_map_columns;
+  /// Planning cells an occupied voxel now blocks, [column, row, level] each (octomap mapping).
+  RecordField<nlohmann::json> blocked_cells;
+  /// Planning cells an occupied voxel no longer blocks (octomap mapping).
+  RecordField<nlohmann::json> cleared_cells;
+  /// Occupied leaves of the octree after the scan (octomap mapping).
+  RecordField<std::int64_t> occupied_voxels;
+  // The replanning step's details.
+  RecordField<nlohmann::json> start_cell;
+  RecordField<nlohmann::json> goal_cell;
+  RecordField<std::int64_t> changed_cells;
+  RecordField<std::int64_t> expansions;
+  RecordField<double> mapping_ms;
+
+  DStarLite3dRecord();
+};
+const DStarLite3dRecord& dstar_lite_3d_record();
 
 }  // namespace campo

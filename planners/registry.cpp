@@ -33,11 +33,11 @@ std::vector<PlannerRegistration> built_in_planners() {
       {"straight", "head for each mission waypoint in turn in a straight line", &make_straight_planner,
        {kQuadrotor, kRover}},
       {"depth_reactive", "seed 000: reactive quadrotor navigation on dilated depth maps (TrovaWP, wall following)",
-       &make_depth_reactive_planner, {kQuadrotor}},
+       &make_depth_reactive_planner, {kQuadrotor}, &depth_reactive_record().description},
       {"dstar_lite_3d", "seed 001: D* Lite on a LIDAR-mapped 3D grid, flying cell to cell", &make_dstar_lite_3d_planner,
-       {kQuadrotor}},
+       {kQuadrotor}, &dstar_lite_3d_record().description},
       {"rover_route", "seed 003: Dubins (or A*/RRT*) route, pure pursuit, follow-the-gap (or VFH+) avoidance",
-       &make_rover_route_planner, {kRover}},
+       &make_rover_route_planner, {kRover}, &rover_route_record().description},
   };
 }
 
@@ -291,6 +291,14 @@ nlohmann::json planner_provenance(std::string_view name) {
     return provenance;
   }
   return {{"name", name}, {"source", nullptr}};
+}
+
+const PlannerRecord* planner_record(std::string_view name) {
+  if (name.empty()) name = kDefaultPlanner;
+  for (const PlannerEntry& entry : planner_registry()) {
+    if (entry.name == name) return entry.record;
+  }
+  return nullptr;
 }
 
 void choose_planner(PlannerSpec& spec, std::string_view name, const std::string& origin) {

@@ -303,7 +303,7 @@ class RoverRoutePlanner final : public Planner {
     if (scanner && scanner->fresh && scanner->scan) {
       remember(*scanner->scan, *scanner->config, position);
       assess_scan(*scanner, position, heading);
-      result.decisions.gap = std::exchange(gap_record_, std::nullopt);
+      if (gap_record_) rover_route_record().gap.set(result.decisions.own, *std::exchange(gap_record_, std::nullopt));
     }
     if (avoiding_ != last_avoiding_) {
       result.decisions.avoiding = avoiding_;
@@ -410,10 +410,10 @@ class RoverRoutePlanner final : public Planner {
     if ((route_.size() - 1) % every != 0) {
       points.emplace_back(route_.back().x(), route_.back().y(), o.state.position_m.z());
     }
-    result.decisions.replan = ReplanDecision{
-        .index = 0,
-        .time_ms = std::chrono::duration<double, std::milli>(Clock::now() - started).count(),
-        .details = {{"global", kGlobalNames[static_cast<std::size_t>(config_.global)]}, {"route_points", route_.size()}}};
+    ReplanDecision& step = result.decisions.replan.emplace(ReplanDecision{
+        .index = 0, .time_ms = std::chrono::duration<double, std::milli>(Clock::now() - started).count()});
+    rover_route_record().global.set(step.details, std::string(kGlobalNames[static_cast<std::size_t>(config_.global)]));
+    rover_route_record().route_points.set(step.details, static_cast<std::int64_t>(route_.size()));
     return true;
   }
 
@@ -794,6 +794,75 @@ void check_rover_route_extent(const RoverRouteConfig& c, const VehicleDef& vehic
       }
     }
   }
+}
+
+namespace {
+
+nlohmann::json gap_json(const GapDecision& gap) {
+  nlohmann::json j = {{"gaps", gap.gaps},
+                      {"nearest_range_m", gap.nearest_range_m},
+                      {"route_heading_deg", gap.route_heading_deg},
+                      {"goal_deg", gap.goal_deg}};
+  if (gap.chosen) {
+    j["gap_center_deg"] = gap.chosen->center_deg;
+    j["gap_heading_deg"] = gap.chosen->heading_deg;
+    j["gap_width_m"] = gap.chosen->width_m;
+  }
+  return j;
+}
+
+GapDecision read_gap(const JsonNode& node) {
+  ObjectReader r(node);
+  GapDecision gap;
+  gap.gaps = static_cast<int>(r.required("gaps").as_int(0, std::numeric_limits<int>::max()));
+  gap.nearest_range_m = r.required("nearest_range_m").as_number(Range::non_negative());
+  gap.route_heading_deg = r.required("route_heading_deg").as_number();
+  gap.goal_deg = r.required("goal_deg").as_number();
+  // A chosen gap has all three or none.
+  if (r.has("gap_center_deg") || r.has("gap_heading_deg") || r.has("gap_width_m")) {
+    gap.chosen = ChosenGap{.center_deg = r.required("gap_center_deg").as_number(),
+                           .heading_deg = r.required("gap_heading_deg").as_number(),
+                           .width_m = r.required("gap_width_m").as_number(Range::non_negative())};
+  }
+  r.finish();
+  return gap;
+}
+
+// The sequence figure's and the video's mark of a gap decision: the route's direction, the chosen gap's heading.
+std::optional<HeadingMark> gap_mark(const Decisions& decisions) {
+  const std::optional<GapDecision> gap = rover_route_record().gap.get(decisions.own, "", "/decisions");
+  if (!gap) return std::nullopt;
+  HeadingMark mark{.reference_deg = gap->route_heading_deg, .nearest_m = gap->nearest_range_m};
+  if (gap->chosen) {
+    mark.heading_deg = gap->chosen->heading_deg;
+    // Sides by the gap's centre: the heading is blended toward the goal and may cross the route.
+    mark.side = gap->chosen->center_deg > 0.0 ? "left" : "right";
+    mark.status = "gap on the " + mark.side;
+    char heading[32];
+    std::snprintf(heading, sizeof heading, "%+.0f", gap->chosen->heading_deg);
+    mark.caption = mark.status + ", heading " + heading + " deg (arrow)";
+  }
+  return mark;
+}
+
+}  // namespace
+
+RoverRouteRecord::RoverRouteRecord()
+    : gap(description.decisions.declare<GapDecision>(
+          {"gap", RecordType::object, "",
+           "follow-the-gap's view of the scan read this call: gaps (count), nearest_range_m (d_min, m), "
+           "route_heading_deg (the route's direction at the nearest route point, deg counter-clockwise from east), "
+           "goal_deg (the pure-pursuit goal) and, when a gap was chosen, gap_center_deg (phi_center), "
+           "gap_heading_deg (phi_gap) and gap_width_m (L_gap, m); angles in deg relative to the route, positive left"},
+          gap_json, read_gap)),
+      global(description.replan.declare<std::string>("global", "", "the global planner that made the route")),
+      route_points(description.replan.declare<std::int64_t>("route_points", "", "points of the route")) {
+  description.heading = gap_mark;
+}
+
+const RoverRouteRecord& rover_route_record() {
+  static const RoverRouteRecord record;
+  return record;
 }
 
 std::unique_ptr<Planner> make_rover_route_planner(const ParamsBlock& params, const PlannerContext& context) {

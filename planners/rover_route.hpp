@@ -9,10 +9,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "campo/config_fields.hpp"
 #include "campo/planner.hpp"
+#include "campo/planner_record.hpp"
+#include "campo/record_fields.hpp"
 #include "planners/follow_the_gap.hpp"
 #include "planners/path_smoothing.hpp"
 #include "planners/pure_pursuit.hpp"
@@ -96,6 +99,43 @@ inline constexpr std::int64_t kMaxRouteGridCells = 16'000'000;
 void check_rover_route_extent(const RoverRouteConfig& config, const VehicleDef& vehicle, const Scene& scene);
 
 std::unique_ptr<Planner> make_rover_route_planner(const ParamsBlock& params, const PlannerContext& context);
+
+/// The gap follow-the-gap chose on one scan. Angles in degrees relative to
+/// the route's direction (GapDecision::route_heading_deg), positive left.
+struct ChosenGap {
+  double center_deg = 0.0;   ///< phi_center: the middle of the gap, which side of the route the opening is
+  double heading_deg = 0.0;  ///< phi_gap: the heading steered for
+  double width_m = 0.0;      ///< L_gap: distance between the gap's end readings, m
+
+  bool operator==(const ChosenGap&) const = default;
+};
+
+/// Follow-the-gap's view of one scan while rover_route avoids with it.
+struct GapDecision {
+  int gaps = 0;                    ///< how many gaps the scan had
+  double nearest_range_m = 0.0;    ///< d_min: the nearest reading, m
+  /// The route's direction at the rover's nearest route point, degrees
+  /// counter-clockwise from x (east), world frame: what the other angles are relative to.
+  double route_heading_deg = 0.0;
+  double goal_deg = 0.0;           ///< the pure-pursuit goal point, degrees relative to the route, positive left
+  std::optional<ChosenGap> chosen{};  ///< the gap steered for, when one was left
+
+  bool operator==(const GapDecision&) const = default;
+};
+
+/// What rover_route records beyond the generic decisions (docs/planners.md),
+/// declared once: the description registered with it and its typed fields.
+struct RoverRouteRecord {
+  PlannerRecord description;
+  /// Follow-the-gap's choice on the scan read this call.
+  RecordField<GapDecision> gap;
+  // The route's replanning step's details.
+  RecordField<std::string> global;
+  RecordField<std::int64_t> route_points;
+
+  RoverRouteRecord();
+};
+const RoverRouteRecord& rover_route_record();
 
 /// The fields of `params` (keys as RoverRouteConfig's members; nested objects
 /// "pure_pursuit", "follow_the_gap", "vfh_plus", "rrt_star"); parameters()

@@ -23,8 +23,8 @@ struct TrackPoint {
   double yaw_deg = 0.0;  ///< heading, counter-clockwise from x (east); 0 when the file has no yaw
 };
 
-/// A planner's reconstructed height map (Decisions::height_map_grid, then
-/// Decisions::height_map_columns as columns rise): the top of what it mapped per cell.
+/// A planner's reconstructed height map (its PlannerRecord::cells overlay: dstar_lite_3d's
+/// height_map_grid, then its height_map_columns as columns rise): the top of what it mapped per cell.
 struct HeightMapView {
   Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();  ///< south-west corner of cell (0, 0)
   double cell_size_m = 1.0;

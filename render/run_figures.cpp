@@ -8,7 +8,6 @@
 
 #include "campo/json_reader.hpp"
 #include "core/output_dir.hpp"
-#include "planners/depth_reactive.hpp"
 #include "render/snapshot.hpp"
 #include "scene/scene_mesh.hpp"
 
@@ -48,7 +47,7 @@ std::vector<std::filesystem::path> write_depth_pair(const cv::Mat& depth, const 
 }
 
 // The angular grid of sensor `alias` as run.json's parameters.sensors recorded it.
-DepthGrid recorded_grid(const RecordedRun& run, const std::string& alias) {
+RecordedImage recorded_grid(const RecordedRun& run, const std::string& alias) {
   for (const auto& s : run.record.at("parameters").at("sensors")) {
     if (s.value("alias", "") != alias) continue;
     const auto& resolution = s.at("resolution");
@@ -59,48 +58,25 @@ DepthGrid recorded_grid(const RecordedRun& run, const std::string& alias) {
   throw InputError(record_file(run), "/parameters/sensors", "no sensor \"" + alias + "\", which replanning read");
 }
 
-cv::Point2d point2d(const nlohmann::json& j) { return {j.at(0).get<double>(), j.at(1).get<double>()}; }
-Eigen::Vector2i vector2i(const nlohmann::json& j) { return {j.at(0).get<int>(), j.at(1).get<int>()}; }
-cv::Point to_cv(const Eigen::Vector2i& p) { return {p.x(), p.y()}; }
-
-// The overlays of one replanning step, recomputed as depth_reactive.cpp computes
-// them. The 16-bit file rounds values by at most 1 / 131070, so the maps match
-// the planner's except, rarely, at a pixel that close to a layer boundary or t.
-DepthOverlays replan_overlays(const cv::Mat& depth, const nlohmann::json& replan, const DepthReactiveConfig& config,
-                              const DepthGrid& grid) {
-  DepthOverlays o;
-  o.dilated = dilate_depth_map(depth, dilation_params(config, grid));
-  const cv::Point2d projection = point2d(replan.at("pixel"));
-  const cv::Point2d radius = point2d(replan.at("radius_px"));
-  o.waypoint_projection = projection;
-  o.safety_ellipse_px = {radius.x, radius.y};
-  if (replan.contains("threshold")) {
-    o.threshold = replan["threshold"].get<double>();
-    o.thresholded = threshold_free(o.dilated, *o.threshold);
-  }
-  if (replan.contains("chosen_pixel")) {
-    const Eigen::Vector2i chosen = vector2i(replan["chosen_pixel"]);
-    const Eigen::Vector2i edge = vector2i(replan.at("edge_pixel"));
-    o.chosen_pixel = to_cv(chosen);
-    // TrovaWP's scan from the chosen pixel toward W', up to the obstacle edge;
-    // an edge at the chosen pixel itself means the scan met none and ran on.
-    for (const Eigen::Vector2i& q : pixel_segment(depth.size(), chosen, {projection.x, projection.y})) {
-      o.scan_line.push_back(to_cv(q));
-      if (q == edge && edge != chosen) break;
-    }
-    o.new_waypoint_pixel = to_cv(vector2i(replan.at("waypoint_pixel")));
-  }
-  return o;
+// The planner's overlays of one replanning step as the depth figure draws them.
+DepthOverlays depth_overlays(const ImageOverlays& o, const cv::Size& size) {
+  DepthOverlays d;
+  if (!o.processed.empty()) d.dilated = cv::Mat(size, CV_32F, const_cast<float*>(o.processed.data())).clone();
+  if (!o.mask.empty()) d.thresholded = cv::Mat(size, CV_8U, const_cast<std::uint8_t*>(o.mask.data())).clone();
+  d.threshold = o.mask_threshold;
+  if (o.chosen_px) d.chosen_pixel = cv::Point(o.chosen_px->x(), o.chosen_px->y());
+  for (const Eigen::Vector2i& p : o.polyline_px) d.scan_line.emplace_back(p.x(), p.y());
+  if (o.target_px) d.waypoint_projection = cv::Point2d(o.target_px->x(), o.target_px->y());
+  d.safety_ellipse_px = {o.ellipse_px.x(), o.ellipse_px.y()};
+  if (o.placed_px) d.new_waypoint_pixel = cv::Point(o.placed_px->x(), o.placed_px->y());
+  return d;
 }
 
 // "two_barriers - replan 3 at 12.4 s - target invisible -> new waypoint".
 std::string replan_title(const RecordedRun& run, const ReplanStep& step) {
-  const nlohmann::json& details = step.decision.details;
-  std::string action = details.value("action", "");
-  std::replace(action.begin(), action.end(), '_', ' ');
   std::ostringstream title;
   title << run.scene.name << " - replan " << step.decision.index << " at " << std::fixed << std::setprecision(1) << step.time_s
-        << " s - " << details.value("role", "") << " " << details.value("visibility", "") << " -> " << action;
+        << " s - " << (run.planner && run.planner->replan_caption ? run.planner->replan_caption(step.decision) : "");
   return title.str();
 }
 
@@ -214,9 +190,9 @@ std::vector<std::filesystem::path> write_figure(const RecordedRun& run, FigureKi
 std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::optional<std::vector<int>>& indices) {
   const std::string file = record_file(run);
   const std::string planner = run.record.value("/parameters/planner/name"_json_pointer, std::string());
-  if (planner != "depth_reactive") {
+  if (!run.planner || !run.planner->replan_overlays) {
     throw InputError(file, "/parameters/planner/name",
-                     "expected \"depth_reactive\", whose replanning steps --step draws, got \"" + planner + "\"");
+                     "expected a planner whose replanning steps --step draws (depth_reactive), got \"" + planner + "\"");
   }
   std::vector<ReplanStep> recorded;
   for (const PlannerEvent& event : run.events) {
@@ -251,17 +227,8 @@ std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::opt
 
 namespace {
 
-// The planner parameters of a depth_reactive run, as recorded.
-DepthReactiveConfig recorded_depth_reactive_config(const RecordedRun& run) {
-  const std::string file = record_file(run);
-  const auto params = "/parameters/planner/parameters"_json_pointer;
-  if (!run.record.contains(params)) throw InputError(file, params.to_string(), "missing; expected the planner's parameters");
-  return parse_depth_reactive_config({run.record.at(params), file, params.to_string()});
-}
-
 // The depth map replanning `step` read and the planner's overlays on it.
-std::pair<cv::Mat, DepthOverlays> replan_depth(const RecordedRun& run, const DepthReactiveConfig& config,
-                                               const ReplanStep& step) {
+std::pair<cv::Mat, DepthOverlays> replan_depth(const RecordedRun& run, const ReplanStep& step) {
   const std::string file = record_file(run);
   try {
     if (!step.decision.sensor) {
@@ -269,14 +236,22 @@ std::pair<cv::Mat, DepthOverlays> replan_depth(const RecordedRun& run, const Dep
                                             " names no sensor; expected the one whose depth map it read");
     }
     const std::string& sensor = *step.decision.sensor;
-    const DepthGrid grid = recorded_grid(run, sensor);
+    const RecordedImage grid = recorded_grid(run, sensor);
     cv::Mat depth = read_depth_map(step.depth_file);
     if (depth.cols != grid.cols || depth.rows != grid.rows) {
       throw InputError(step.depth_file.string(), "",
                        "expected a " + std::to_string(grid.cols) + " x " + std::to_string(grid.rows) +
                            " depth map, the resolution of sensor \"" + sensor + "\"");
     }
-    DepthOverlays overlays = replan_overlays(depth, step.decision.details, config, grid);
+    RecordedImage image = grid;
+    image.values.assign(depth.ptr<float>(), depth.ptr<float>() + depth.total());
+    const auto params = "/parameters/planner/parameters"_json_pointer;
+    if (!run.record.contains(params)) {
+      throw InputError(file, params.to_string(), "missing; expected the planner's parameters");
+    }
+    DepthOverlays overlays =
+        depth_overlays(run.planner->replan_overlays(step.decision, image, run.record.at(params), file, params.to_string()),
+                       depth.size());
     return {std::move(depth), std::move(overlays)};
   } catch (const nlohmann::json::exception& e) {
     throw InputError(file, "/events", "malformed replanning step " + std::to_string(step.decision.index) + ": " + e.what());
@@ -288,10 +263,9 @@ std::pair<cv::Mat, DepthOverlays> replan_depth(const RecordedRun& run, const Dep
 std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, const std::vector<ReplanStep>& steps,
                                                         const std::filesystem::path& out_dir,
                                                         const FigureFormats& formats) {
-  const DepthReactiveConfig config = recorded_depth_reactive_config(run);
   std::vector<std::filesystem::path> written;
   for (const ReplanStep& step : steps) {
-    const auto [depth, overlays] = replan_depth(run, config, step);
+    const auto [depth, overlays] = replan_depth(run, step);
     const std::string stem = std::filesystem::path(replan_depth_file(step.decision.index)).stem().string();
     append(written, write_depth_pair(depth, overlays, replan_title(run, step), out_dir, stem, formats));
   }
@@ -299,22 +273,23 @@ std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, 
 }
 
 cv::Mat draw_replan_figure(const RecordedRun& run, const ReplanStep& step, bool colour) {
-  const auto [depth, overlays] = replan_depth(run, recorded_depth_reactive_config(run), step);
+  const auto [depth, overlays] = replan_depth(run, step);
   return draw_depth(depth, overlays, colour, replan_title(run, step)).raster();
 }
 
 namespace {
 
-// A follow-the-gap decision of a rover_route run ("gap" event) and when it was taken.
-struct TimedGap {
+// A heading mark the planner left (a rover_route run's follow-the-gap choices) and when.
+struct TimedMark {
   double time_s = 0.0;
-  GapDecision gap;
+  HeadingMark mark;
 };
 
-std::vector<TimedGap> gap_decisions(const RecordedRun& run) {
-  std::vector<TimedGap> out;
+std::vector<TimedMark> heading_marks(const RecordedRun& run) {
+  std::vector<TimedMark> out;
+  if (!run.planner || !run.planner->heading) return out;
   for (const PlannerEvent& event : run.events) {
-    if (event.decisions.gap) out.push_back({event.time_s, *event.decisions.gap});
+    if (auto mark = run.planner->heading(event.decisions)) out.push_back({event.time_s, std::move(*mark)});
   }
   return out;
 }
@@ -322,22 +297,20 @@ std::vector<TimedGap> gap_decisions(const RecordedRun& run) {
 }  // namespace
 
 std::vector<double> gap_switch_instants(const RecordedRun& run) {
-  const std::vector<TimedGap> gaps = gap_decisions(run);
+  const std::vector<TimedMark> marks = heading_marks(run);
   const auto chosen =
-      std::find_if(gaps.begin(), gaps.end(), [](const TimedGap& g) { return g.gap.chosen.has_value(); });
-  if (chosen == gaps.end()) {
-    throw InputError(record_file(run), "/events", "no follow-the-gap decision with a chosen gap (\"gap\" events)");
+      std::find_if(marks.begin(), marks.end(), [](const TimedMark& m) { return !m.mark.side.empty(); });
+  if (chosen == marks.end()) {
+    throw InputError(record_file(run), "/events", "no decision on a side (e.g. a follow-the-gap decision with a chosen gap)");
   }
-  // Sides by the gap's centre: the heading is blended toward the goal and may cross the route.
-  const bool left_first = chosen->gap.chosen->center_deg > 0.0;
-  const auto other = std::find_if(chosen, gaps.end(), [&](const TimedGap& g) {
-    return g.gap.chosen && (g.gap.chosen->center_deg > 0.0) != left_first;
+  const auto other = std::find_if(chosen, marks.end(), [&](const TimedMark& m) {
+    return !m.mark.side.empty() && m.mark.side != chosen->mark.side;
   });
-  if (other == gaps.end()) {
+  if (other == marks.end()) {
     throw InputError(record_file(run), "/events", "the chosen gap never changed sides; give the instants with --at");
   }
-  // Back on the route: 2 s after the avoidance the switch belongs to ended (else the last gap decision).
-  double end = gaps.back().time_s;
+  // Back on the route: 2 s after the avoidance the switch belongs to ended (else the last mark).
+  double end = marks.back().time_s;
   for (const auto& [from, until] : run.view.avoiding_s) {
     if (from <= other->time_s && until >= other->time_s) end = until + 2.0;
   }
@@ -348,7 +321,7 @@ std::vector<double> gap_switch_instants(const RecordedRun& run) {
 std::vector<std::filesystem::path> write_sequence(const RecordedRun& run, std::vector<double> times_s,
                                                   const std::filesystem::path& out_dir, const FigureFormats& formats) {
   if (times_s.empty()) times_s = gap_switch_instants(run);
-  const std::vector<TimedGap> gaps = gap_decisions(run);
+  const std::vector<TimedMark> marks = heading_marks(run);
   std::vector<SequencePanel> panels;
   for (std::size_t i = 0; i < times_s.size(); ++i) {
     SequencePanel panel;
@@ -356,19 +329,17 @@ std::vector<std::filesystem::path> write_sequence(const RecordedRun& run, std::v
     std::ostringstream caption;
     caption << "(" << static_cast<char>('a' + i % 26) << ") " << std::fixed << std::setprecision(1) << panel.time_s
             << " s";
-    // The latest gap decision at or before the instant, if avoidance was on then.
-    const GapDecision* latest = nullptr;
-    for (const TimedGap& g : gaps) {
-      if (g.time_s <= panel.time_s + 1e-9) latest = &g.gap;
+    // The latest mark at or before the instant, if avoidance was on then.
+    const HeadingMark* latest = nullptr;
+    for (const TimedMark& m : marks) {
+      if (m.time_s <= panel.time_s + 1e-9) latest = &m.mark;
     }
     const bool avoiding = std::any_of(run.view.avoiding_s.begin(), run.view.avoiding_s.end(), [&](const auto& a) {
       return a.first <= panel.time_s && panel.time_s < a.second;
     });
-    if (latest && latest->chosen && avoiding) {
-      const double rel = latest->chosen->heading_deg;
-      caption << " - gap on the " << (latest->chosen->center_deg > 0.0 ? "left" : "right") << ", heading "
-              << std::showpos << std::setprecision(0) << rel << std::noshowpos << " deg (arrow)";
-      panel.heading_deg = latest->route_heading_deg + rel;
+    if (latest && latest->heading_deg && avoiding) {
+      caption << " - " << latest->caption;
+      panel.heading_deg = latest->reference_deg + *latest->heading_deg;
     } else {
       caption << " - following the route";
     }

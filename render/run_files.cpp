@@ -40,11 +40,26 @@ std::vector<TrackPoint> read_track(const std::filesystem::path& path) {
   return track;
 }
 
+// The planner's own decisions of every event checked against its declarations: a key it does not
+// declare, or a value not of its declared type, is an InputError (the notes of bound_decisions aside).
+void check_own_decisions(const PlannerRecord& planner, const std::vector<PlannerEvent>& events,
+                         const std::string& record_file) {
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const std::string at = "/events/" + std::to_string(i) + "/decisions";
+    nlohmann::json own = events[i].decisions.own;
+    for (const char* note : {"thinned", "omitted"}) own.erase(note);
+    planner.decisions.check(own, record_file, at);
+    if (events[i].decisions.replan) planner.replan.check(events[i].decisions.replan->details, record_file, at + "/replan");
+  }
+}
+
 // The view's planner decisions (docs/running.md) from the events up to `until_s`: reached mission
 // waypoints, intermediate waypoints set or dropped, a planned path, obstacle avoidance switched
 // on and off, the mapping planners' hits and height map. An avoidance still on at the end lasts
 // to the view's last track sample.
-void add_decisions(RunView& v, const std::vector<PlannerEvent>& events, double until_s, const std::string& record_file) {
+void add_decisions(RunView& v, const std::vector<PlannerEvent>& events, const PlannerRecord* planner, double until_s,
+                   const std::string& record_file) {
+  CellsOverlay cells;
   bool avoiding = false;
   double avoiding_since = 0.0;
   for (const PlannerEvent& event : events) {
@@ -61,25 +76,18 @@ void add_decisions(RunView& v, const std::vector<PlannerEvent>& events, double u
     if (typed.planned_path) v.planned_path = *typed.planned_path;
     // The mapping planners' own decisions (docs/planners.md, dstar_lite_3d).
     v.sensor_hits.insert(v.sensor_hits.end(), typed.lidar_hits.begin(), typed.lidar_hits.end());
-    if (typed.height_map_grid) {
-      const HeightMapGrid& g = *typed.height_map_grid;
-      HeightMapView& h = v.height_map;
-      h.origin_m = g.origin_m;
-      h.cell_size_m = g.cell_size_m;
-      h.columns = g.columns;
-      h.rows = g.rows;
-      if (static_cast<std::int64_t>(h.columns) * h.rows > (1 << 26)) {
-        throw InputError(record_file, "", "height_map_grid: bad size");
+    // The planner's own overlays (docs/planners.md, dstar_lite_3d's height map).
+    if (planner && planner->cells) {
+      try {
+        planner->cells(typed, cells);
+      } catch (const InputError& e) {
+        throw InputError(record_file, "/events" + e.pointer(), e.message());
       }
-      h.top_m.assign(static_cast<std::size_t>(h.columns) * h.rows, std::numeric_limits<double>::quiet_NaN());
     }
-    for (const HeightMapColumn& c : typed.height_map_columns) {
-      HeightMapView& h = v.height_map;
-      if (c.column >= h.columns || c.row >= h.rows) {
-        throw InputError(record_file, "", "height_map_columns: column outside the height_map_grid");
-      }
-      h.top_m[static_cast<std::size_t>(c.row) * h.columns + c.column] = c.top_m;
-    }
+  }
+  if (!cells.empty()) {
+    v.height_map = {.origin_m = cells.origin_m, .cell_size_m = cells.cell_size_m, .columns = cells.columns,
+                    .rows = cells.rows, .top_m = std::move(cells.values)};
   }
   if (avoiding) {  // still on at the end: up to the last sample
     v.avoiding_s.emplace_back(avoiding_since, v.track.empty() ? avoiding_since
@@ -169,6 +177,8 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
   } catch (const nlohmann::json::exception& e) {
     throw InputError((dir / "run.json").string(), "/event_log", std::string("malformed run record: ") + e.what());
   }
+  run.planner = planner_record(run.record.value("/parameters/planner/name"_json_pointer, std::string()));
+  if (run.planner) check_own_decisions(*run.planner, run.events, (dir / "run.json").string());
   RunView& v = run.view;
   v.label = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
   v.outcome = run.record.value("/metrics/outcome"_json_pointer, std::string());
@@ -180,7 +190,7 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
       if (wp.contains("heading_deg")) w.heading_deg = wp["heading_deg"].get<double>();
       v.mission.push_back(w);
     }
-    add_decisions(v, run.events, std::numeric_limits<double>::infinity(), (dir / "run.json").string());
+    add_decisions(v, run.events, run.planner, std::numeric_limits<double>::infinity(), (dir / "run.json").string());
     // Runs recorded before collisions were listed have none to mark.
     const nlohmann::json& metrics = run.record.at("metrics");
     if (const auto events = metrics.find("collision_events"); events != metrics.end()) {
@@ -202,7 +212,7 @@ RunView run_view_at(const RecordedRun& run, double time_s) {
     v.track.push_back(p);
   }
   if (v.track.empty() && !run.view.track.empty()) v.track.push_back(run.view.track.front());
-  add_decisions(v, run.events, time_s, (run.dir / "run.json").string());
+  add_decisions(v, run.events, run.planner, time_s, (run.dir / "run.json").string());
   for (const auto& c : run.view.collisions) {
     if (c.first <= time_s) v.collisions.push_back(c);
   }

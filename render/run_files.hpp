@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "campo/episode.hpp"
+#include "campo/planner_record.hpp"
 #include "campo/scene.hpp"
 #include "render/figures.hpp"
 
@@ -21,6 +22,9 @@ struct RecordedRun {
   std::vector<PlannerEvent> events;
   Scene scene;            ///< from scene.json, the effective scene of the run
   RunView view;           ///< track, mission and planner decisions
+  /// The recorded planner's description of its record (planner_record), found
+  /// by the planner name run.json records; null when it has none or is not loaded.
+  const PlannerRecord* planner = nullptr;
 };
 
 /// trajectory.csv read back as numbers, column by column (docs/running.md);
@@ -38,7 +42,9 @@ struct TrajectoryTable {
 TrajectoryTable read_trajectory_table(const std::filesystem::path& path);
 
 /// Loads a run directory written by `campo run`; InputError naming the file
-/// when something is missing or malformed.
+/// when something is missing or malformed, or when the planner's own
+/// decisions (or its replanning steps' details) hold a key its description
+/// does not declare or a value not of its declared type.
 RecordedRun load_run_dir(const std::filesystem::path& dir);
 
 /// The run as it was at `time_s`: its track samples up to then (at least the

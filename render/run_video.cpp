@@ -34,10 +34,10 @@ const T* latest(const std::vector<T>& items, double t) {
   return it == items.begin() ? nullptr : &*std::prev(it);
 }
 
-// A gap decision and when it was made.
-struct TimedGap {
+// A heading mark the planner left and when.
+struct TimedMark {
   double time_s;
-  GapDecision gap;
+  HeadingMark mark;
 };
 
 // The recorded depth maps of the vehicle's first sensor that has any, in time order.
@@ -57,14 +57,15 @@ class SensorPanel {
  public:
   SensorPanel(const RecordedRun& run, const VehicleDef& vehicle, const Eigen::Vector3d& size_m)
       : run_(run), footprint_m_(size_m.head<2>()) {
-    const std::string planner = run.record.value("/parameters/planner/name"_json_pointer, std::string());
-    if (planner == "depth_reactive" && std::filesystem::is_directory(run.dir / "replans")) {
+    if (run.planner && run.planner->replan_overlays && std::filesystem::is_directory(run.dir / "replans")) {
       replans_ = find_replan_steps(run, std::nullopt);
       std::sort(replans_.begin(), replans_.end(), [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
     }
     std::tie(sensor_, depths_) = recorded_depths(run, vehicle);
-    for (const PlannerEvent& e : run.events) {
-      if (e.decisions.gap) gaps_.push_back({e.time_s, *e.decisions.gap});
+    if (run.planner && run.planner->heading) {
+      for (const PlannerEvent& e : run.events) {
+        if (auto mark = run.planner->heading(e.decisions)) marks_.push_back({e.time_s, std::move(*mark)});
+      }
     }
   }
 
@@ -87,7 +88,7 @@ class SensorPanel {
       }
       return {image_, "Depth map of " + sensor_->alias + " at " + fixed(scan->time_s, 1, "s")};
     }
-    if (!planar && gaps_.empty()) {
+    if (!planar && marks_.empty()) {
       return {cv::Mat(), "No sensor data recorded: campo run --record-depth 1 saves every scan"};
     }
     // A planar scan around the vehicle, redrawn each frame (the vehicle turns under it), read once.
@@ -107,16 +108,14 @@ class SensorPanel {
       view.points_m = points_;
       caption = sensor_->alias + " scan at " + fixed(scan->time_s, 1, "s") + ", vehicle frame, forward up";
     }
-    const TimedGap* timed = latest(gaps_, time_s);
-    const GapDecision* gap = timed ? &timed->gap : nullptr;
-    if (gap) {
-      view.route_deg = gap->route_heading_deg - at.yaw_deg;
-      view.nearest_m = gap->nearest_range_m;
-      if (gap->chosen && avoiding) view.gap_heading_deg = gap->route_heading_deg + gap->chosen->heading_deg - at.yaw_deg;
+    const TimedMark* timed = latest(marks_, time_s);
+    const HeadingMark* mark = timed ? &timed->mark : nullptr;
+    if (mark) {
+      view.route_deg = mark->reference_deg - at.yaw_deg;
+      if (mark->nearest_m) view.nearest_m = *mark->nearest_m;
+      if (mark->heading_deg && avoiding) view.gap_heading_deg = mark->reference_deg + *mark->heading_deg - at.yaw_deg;
     }
-    view.status = avoiding ? (gap && gap->chosen ? std::string("avoiding: gap on the ") +
-                                                       (gap->chosen->center_deg > 0.0 ? "left" : "right")
-                                                 : std::string("avoiding"))
+    view.status = avoiding ? (mark && !mark->status.empty() ? "avoiding: " + mark->status : std::string("avoiding"))
                            : "following the route";
     return {draw_scan_view(view).raster(), caption};
   }
@@ -127,7 +126,7 @@ class SensorPanel {
   std::vector<ReplanStep> replans_;
   const SensorDef* sensor_ = nullptr;
   std::vector<RecordedDepthMap> depths_;
-  std::vector<TimedGap> gaps_;
+  std::vector<TimedMark> marks_;
   const void* shown_ = nullptr;          // the replanning or recorded map image_ or points_ hold
   cv::Mat image_;
   std::vector<Eigen::Vector2d> points_;  // a planar scan's returns, vehicle frame
@@ -191,8 +190,8 @@ std::string planner_state(const RecordedRun& run, const RunView& so_far, double 
   for (const PlannerEvent& e : run.events) {
     if (e.time_s > time_s) break;
     if (e.decisions.replan) {
-      std::string action = e.decisions.replan->details.value("action", "");
-      std::replace(action.begin(), action.end(), '_', ' ');
+      const std::string action =
+          run.planner && run.planner->replan_action ? run.planner->replan_action(*e.decisions.replan) : "";
       if (!avoiding) state = "replanning " + std::to_string(e.decisions.replan->index) + (action.empty() ? "" : ": " + action);
     }
   }

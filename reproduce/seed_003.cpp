@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "planners/rover_route.hpp"
 #include "render/run_files.hpp"
 #include "reproduce/claims.hpp"
 #include "reproduce/evidence.hpp"
@@ -74,7 +75,7 @@ std::vector<double> track_speed(const RecordedRun& run) {
 // The chosen gaps' centres and headings, in time order.
 void chosen_gaps(const RecordedRun& run, std::vector<double>& centres, std::vector<double>& headings) {
   for (const PlannerEvent& event : run.events) {
-    const std::optional<GapDecision>& gap = event.decisions.gap;
+    const std::optional<GapDecision> gap = rover_route_record().gap.get(event.decisions.own, "events.jsonl", "/decisions");
     if (!gap || !gap->chosen) continue;
     centres.push_back(gap->chosen->center_deg);
     headings.push_back(gap->chosen->heading_deg);

@@ -29,30 +29,14 @@ constexpr std::string_view kPlannedPath = "planned_path";
 constexpr std::string_view kAvoiding = "avoiding";
 constexpr std::string_view kReplan = "replan";
 constexpr std::string_view kLidarHits = "lidar_hits";
-constexpr std::string_view kHeightMapGrid = "height_map_grid";
-constexpr std::string_view kHeightMapColumns = "height_map_columns";
-constexpr std::string_view kGap = "gap";
-constexpr std::array<std::string_view, 11> kTypedKeys{
-    kReachedWaypoints, kPlannedWaypoint, kReachedIntermediate, kDiscardedWaypoint, kPlannedPath, kAvoiding,
-    kReplan,           kLidarHits,       kHeightMapGrid,       kHeightMapColumns,  kGap};
+constexpr std::array<std::string_view, 8> kTypedKeys{kReachedWaypoints, kPlannedWaypoint, kReachedIntermediate,
+                                                     kDiscardedWaypoint, kPlannedPath,     kAvoiding,
+                                                     kReplan,           kLidarHits};
 // And of ReplanDecision's.
 constexpr std::string_view kIndex = "index";
 constexpr std::string_view kSensor = "sensor";
 constexpr std::string_view kTimeMs = "time_ms";
 constexpr std::array<std::string_view, 3> kReplanKeys{kIndex, kSensor, kTimeMs};
-// And of HeightMapGrid's.
-constexpr std::string_view kOrigin = "origin_m";
-constexpr std::string_view kCellSize = "cell_size_m";
-constexpr std::string_view kColumns = "columns";
-constexpr std::string_view kRows = "rows";
-// And of GapDecision's, with its ChosenGap's beside them.
-constexpr std::string_view kGaps = "gaps";
-constexpr std::string_view kNearestRange = "nearest_range_m";
-constexpr std::string_view kRouteHeading = "route_heading_deg";
-constexpr std::string_view kGoal = "goal_deg";
-constexpr std::string_view kGapCenter = "gap_center_deg";
-constexpr std::string_view kGapHeading = "gap_heading_deg";
-constexpr std::string_view kGapWidth = "gap_width_m";
 // The notes bound_decisions leaves.
 constexpr std::string_view kThinned = "thinned";
 constexpr std::string_view kOmitted = "omitted";
@@ -62,32 +46,6 @@ nlohmann::json point_json(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z(
 nlohmann::json points_json(const std::vector<Eigen::Vector3d>& points) {
   nlohmann::json j = nlohmann::json::array();
   for (const Eigen::Vector3d& p : points) j.push_back(point_json(p));
-  return j;
-}
-
-nlohmann::json height_map_grid_json(const HeightMapGrid& grid) {
-  return {{kOrigin, {grid.origin_m.x(), grid.origin_m.y()}},
-          {kCellSize, grid.cell_size_m},
-          {kColumns, grid.columns},
-          {kRows, grid.rows}};
-}
-
-nlohmann::json height_map_columns_json(const std::vector<HeightMapColumn>& columns) {
-  nlohmann::json j = nlohmann::json::array();
-  for (const HeightMapColumn& c : columns) j.push_back({c.column, c.row, c.top_m});
-  return j;
-}
-
-nlohmann::json gap_json(const GapDecision& gap) {
-  nlohmann::json j = {{kGaps, gap.gaps},
-                      {kNearestRange, gap.nearest_range_m},
-                      {kRouteHeading, gap.route_heading_deg},
-                      {kGoal, gap.goal_deg}};
-  if (gap.chosen) {
-    j[kGapCenter] = gap.chosen->center_deg;
-    j[kGapHeading] = gap.chosen->heading_deg;
-    j[kGapWidth] = gap.chosen->width_m;
-  }
   return j;
 }
 
@@ -190,57 +148,6 @@ ReplanDecision read_replan(nlohmann::json j, const std::string& file, const std:
   return replan;
 }
 
-HeightMapGrid read_height_map_grid(const nlohmann::json& j, const std::string& file, const std::string& pointer) {
-  ObjectReader r(JsonNode(j, file, pointer));
-  HeightMapGrid grid;
-  grid.origin_m = r.required(kOrigin).as_vector2();
-  grid.cell_size_m = r.required(kCellSize).as_number(Range::positive());
-  grid.columns = static_cast<int>(r.required(kColumns).as_int(1, std::numeric_limits<int>::max()));
-  grid.rows = static_cast<int>(r.required(kRows).as_int(1, std::numeric_limits<int>::max()));
-  r.finish();
-  return grid;
-}
-
-// A cell index of a height-map column: an integer in [0, INT_MAX].
-bool is_cell_index(const nlohmann::json& j) {
-  constexpr std::int64_t kMax = std::numeric_limits<int>::max();
-  if (j.is_number_unsigned()) return j.get<std::uint64_t>() <= static_cast<std::uint64_t>(kMax);
-  return j.is_number_integer() && j.get<std::int64_t>() >= 0 && j.get<std::int64_t>() <= kMax;
-}
-
-std::vector<HeightMapColumn> read_height_map_columns(const nlohmann::json& list, const std::string& file,
-                                                     const std::string& pointer) {
-  if (!list.is_array()) JsonNode(list, file, pointer).fail("a list of height-map columns [column, row, top z]");
-  std::vector<HeightMapColumn> columns;
-  columns.reserve(list.size());
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    // Checked here rather than by JsonNode: a scan records thousands, a pointer is made only for the message.
-    const nlohmann::json& c = list[i];
-    if (!c.is_array() || c.size() != 3 || !is_cell_index(c[0]) || !is_cell_index(c[1]) || !c[2].is_number()) {
-      JsonNode(c, file, child_pointer(pointer, i)).fail("a height-map column [column, row, top z]: indices from 0, m");
-    }
-    columns.push_back({c[0].get<int>(), c[1].get<int>(), c[2].get<double>()});
-  }
-  return columns;
-}
-
-GapDecision read_gap(const nlohmann::json& j, const std::string& file, const std::string& pointer) {
-  ObjectReader r(JsonNode(j, file, pointer));
-  GapDecision gap;
-  gap.gaps = static_cast<int>(r.required(kGaps).as_int(0, std::numeric_limits<int>::max()));
-  gap.nearest_range_m = r.required(kNearestRange).as_number(Range::non_negative());
-  gap.route_heading_deg = r.required(kRouteHeading).as_number();
-  gap.goal_deg = r.required(kGoal).as_number();
-  // A chosen gap has all three or none.
-  if (r.has(kGapCenter) || r.has(kGapHeading) || r.has(kGapWidth)) {
-    gap.chosen = ChosenGap{.center_deg = r.required(kGapCenter).as_number(),
-                           .heading_deg = r.required(kGapHeading).as_number(),
-                           .width_m = r.required(kGapWidth).as_number(Range::non_negative())};
-  }
-  r.finish();
-  return gap;
-}
-
 // Thins every over-long array under `j` (pointer `at`), noting original counts in `thinned`.
 void thin_arrays(nlohmann::json& j, const std::string& at, nlohmann::json& thinned) {
   if (j.is_array() && j.size() > kEventArrayMaxEntries) {
@@ -261,7 +168,7 @@ void thin_arrays(nlohmann::json& j, const std::string& at, nlohmann::json& thinn
 }  // namespace
 
 nlohmann::json decisions_to_json(Decisions decisions) {
-  nlohmann::json j = free_form(std::move(decisions.extras), kTypedKeys, "the extras");
+  nlohmann::json j = free_form(std::move(decisions.own), kTypedKeys, "the planner's own decisions");
   if (!decisions.reached_waypoints.empty()) j[kReachedWaypoints] = decisions.reached_waypoints;
   if (decisions.planned_waypoint) j[kPlannedWaypoint] = point_json(*decisions.planned_waypoint);
   if (decisions.reached_intermediate) j[kReachedIntermediate] = point_json(*decisions.reached_intermediate);
@@ -270,11 +177,6 @@ nlohmann::json decisions_to_json(Decisions decisions) {
   if (decisions.avoiding) j[kAvoiding] = *decisions.avoiding;
   if (decisions.replan) j[kReplan] = replan_json(std::move(*decisions.replan));
   if (!decisions.lidar_hits.empty()) j[kLidarHits] = points_json(decisions.lidar_hits);
-  if (decisions.height_map_grid) j[kHeightMapGrid] = height_map_grid_json(*decisions.height_map_grid);
-  if (!decisions.height_map_columns.empty()) {
-    j[kHeightMapColumns] = height_map_columns_json(decisions.height_map_columns);
-  }
-  if (decisions.gap) j[kGap] = gap_json(*decisions.gap);
   return j;
 }
 
@@ -297,14 +199,7 @@ Decisions decisions_from_json(nlohmann::json record, const std::string& file, co
   }
   if (auto replan = r.take(kReplan)) d.replan = read_replan(std::move(replan->first), file, replan->second);
   d.lidar_hits = r.optional_points(kLidarHits).value_or(std::vector<Eigen::Vector3d>{});
-  if (const auto grid = r.take(kHeightMapGrid)) {
-    d.height_map_grid = read_height_map_grid(grid->first, file, grid->second);
-  }
-  if (const auto columns = r.take(kHeightMapColumns)) {
-    d.height_map_columns = read_height_map_columns(columns->first, file, columns->second);
-  }
-  if (const auto gap = r.take(kGap)) d.gap = read_gap(gap->first, file, gap->second);
-  d.extras = std::move(record);
+  d.own = std::move(record);
   return d;
 }
 
@@ -324,7 +219,7 @@ Decisions bounded_decisions(Decisions decisions) {
 }
 
 bool was_bounded(const Decisions& decisions) {
-  return decisions.extras.contains(kThinned) || decisions.extras.contains(kOmitted);
+  return decisions.own.contains(kThinned) || decisions.own.contains(kOmitted);
 }
 
 bool bound_decisions(nlohmann::json& decisions) {

@@ -24,16 +24,16 @@ inline constexpr const char* kEventsFile = "events.jsonl";
 
 /// The JSON record of a planner's decisions (docs/running.md, "Planner
 /// decisions in the record"): each typed field that was decided under its
-/// name, beside the planner's extras; a replanning step is one object of its
+/// name, beside the planner's own (Decisions::own); a replanning step is one object of its
 /// index, sensor and time_ms with the planner's details. The one writer of
 /// decisions: events.jsonl and everything reading them back agree through
-/// it and decisions_from_json. std::invalid_argument when the extras (or a
+/// it and decisions_from_json. std::invalid_argument when its own decisions (or a
 /// replanning step's details) are not a JSON object or use a typed field's
 /// name, which would make the record ambiguous.
 nlohmann::json decisions_to_json(Decisions decisions);
 
 /// Decisions read back from their JSON record (an object): the typed fields
-/// from their keys, every other key into extras as it is. InputError naming
+/// from their keys, every other key into `own` as it is. InputError naming
 /// `file`, the JSON pointer of the offending value (under `pointer`, that of
 /// the record) and what was expected when the record is not an object or a
 /// typed field is malformed.

@@ -68,49 +68,6 @@ struct ReplanDecision {
   bool operator==(const ReplanDecision&) const = default;
 };
 
-/// The frame of a mapping planner's reconstructed height map (dstar_lite_3d
-/// with column mapping): a grid of square cells in the horizontal plane.
-struct HeightMapGrid {
-  Eigen::Vector2d origin_m = Eigen::Vector2d::Zero();  ///< world x, y of the south-west corner of cell (0, 0), m
-  double cell_size_m = 1.0;                             ///< side of a cell, m, > 0
-  int columns = 1;                                      ///< cells along x (east), >= 1
-  int rows = 1;                                         ///< cells along y (north), >= 1
-
-  bool operator==(const HeightMapGrid&) const = default;
-};
-
-/// One column of the height map whose reconstructed top rose.
-struct HeightMapColumn {
-  int column = 0;      ///< cell index along x, from the grid's origin
-  int row = 0;         ///< cell index along y
-  double top_m = 0.0;  ///< world z of the centre of its highest blocked cell, m
-
-  bool operator==(const HeightMapColumn&) const = default;
-};
-
-/// The gap follow-the-gap chose on one scan. Angles in degrees relative to
-/// the route's direction (GapDecision::route_heading_deg), positive left.
-struct ChosenGap {
-  double center_deg = 0.0;   ///< phi_center: the middle of the gap, which side of the route the opening is
-  double heading_deg = 0.0;  ///< phi_gap: the heading steered for
-  double width_m = 0.0;      ///< L_gap: distance between the gap's end readings, m
-
-  bool operator==(const ChosenGap&) const = default;
-};
-
-/// Follow-the-gap's view of one scan while rover_route avoids with it.
-struct GapDecision {
-  int gaps = 0;                    ///< how many gaps the scan had
-  double nearest_range_m = 0.0;    ///< d_min: the nearest reading, m
-  /// The route's direction at the rover's nearest route point, degrees
-  /// counter-clockwise from x (east), world frame: what the other angles are relative to.
-  double route_heading_deg = 0.0;
-  double goal_deg = 0.0;           ///< the pure-pursuit goal point, degrees relative to the route, positive left
-  std::optional<ChosenGap> chosen{};  ///< the gap steered for, when one was left
-
-  bool operator==(const GapDecision&) const = default;
-};
-
 /// What a planner decided in one call, for the record (events.jsonl,
 /// docs/running.md). The typed fields are the decisions the metrics and
 /// figures read; run/event_log.hpp writes them to JSON and reads them back.
@@ -132,21 +89,15 @@ struct Decisions {
   std::optional<ReplanDecision> replan{};  ///< the replanning step taken this call
   /// The range-sensor hits a mapping planner used this call, drawn on the map.
   std::vector<Eigen::Vector3d> lidar_hits{};
-  /// The frame of a mapping planner's height map, recorded once, before its columns.
-  std::optional<HeightMapGrid> height_map_grid{};
-  /// The height-map columns whose top rose this call, each listed once.
-  std::vector<HeightMapColumn> height_map_columns{};
-  /// Follow-the-gap's choice on the scan read this call (rover_route while avoiding).
-  std::optional<GapDecision> gap{};
-  /// The planner's other decisions (a JSON object), free-form, under keys other
-  /// than the typed fields' names: recorded beside them, for its own figures.
-  nlohmann::json extras = nlohmann::json::object();
+  /// The planner's own decisions (a JSON object), recorded beside the typed
+  /// fields under keys other than theirs: the fields its PlannerRecord::decisions
+  /// declares (campo/planner_record.hpp), written and read through them.
+  nlohmann::json own = nlohmann::json::object();
 
   /// Whether there is nothing to record.
   bool empty() const {
     return reached_waypoints.empty() && !planned_waypoint && !reached_intermediate && !discarded_waypoint &&
-           !planned_path && !avoiding && !replan && lidar_hits.empty() && !height_map_grid &&
-           height_map_columns.empty() && !gap && extras.empty();
+           !planned_path && !avoiding && !replan && lidar_hits.empty() && own.empty();
   }
   bool operator==(const Decisions&) const = default;
 };

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "campo/planner.hpp"
+#include "campo/planner_record.hpp"
 #include "campo/version.hpp"
 
 namespace campo {
@@ -29,6 +30,10 @@ struct PlannerRegistration {
   /// The vehicle types it drives; creating it for another is an InputError
   /// naming the planner's params block (the factory need not check).
   std::vector<VehicleType> vehicles;
+  /// What it records beyond the generic decisions, and the overlays its
+  /// figures draw (campo/planner_record.hpp); null for none. Must outlive the
+  /// registration (a function-local static).
+  const PlannerRecord* record = nullptr;
 };
 
 /// What a plugin's entry point receives. The loader checks every planner

@@ -21,7 +21,7 @@ inline EpisodeResult run_bundled(const std::string& name, const std::string& pla
                                  const std::vector<std::string>& overrides = {}) {
   const std::string file = std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json";
   nlohmann::json document = nlohmann::json::parse(std::ifstream(file));
-  for (const std::string& assignment : overrides) apply_override(document, assignment);
+  for (const std::string& assignment : overrides) apply_override(document, parse_override(assignment));
   const Scene scene = parse_scene(document, file, std::filesystem::path(file).parent_path());
   EXPECT_EQ(scene.vehicles.front().planner.name, planner);
   return run_episode(scene, &make_vehicle, &create_planner);

@@ -73,8 +73,8 @@ TEST(DepthReactive, FliesToAVisibleTarget) {
   ASSERT_NE(go, nullptr);
   EXPECT_EQ(go->target_m, Eigen::Vector3d(6.0, 0.0, 1.5));
   ASSERT_TRUE(r.decisions.replan.has_value());
-  EXPECT_EQ(r.decisions.replan->details["visibility"], "visible");
-  EXPECT_EQ(r.decisions.replan->details["action"], "fly");
+  EXPECT_EQ(depth_reactive_record().visibility.get(r.decisions.replan->details), "visible");
+  EXPECT_EQ(depth_reactive_record().action.get(r.decisions.replan->details), "fly");
   EXPECT_EQ(r.decisions.replan->index, 0);
 }
 
@@ -114,7 +114,7 @@ TEST(DepthReactive, AnUnreachableTargetEndsTheRun) {
   EXPECT_EQ(r.status, PlanStatus::no_path);
   EXPECT_THAT(r.reason, HasSubstr("target unreachable"));
   ASSERT_TRUE(r.decisions.replan.has_value());
-  EXPECT_EQ(r.decisions.replan->details["visibility"], "unreachable");
+  EXPECT_EQ(depth_reactive_record().visibility.get(r.decisions.replan->details), "unreachable");
 }
 
 TEST(DepthReactive, WallFollowingWhenTheDilatedMapIsFull) {
@@ -123,9 +123,9 @@ TEST(DepthReactive, WallFollowingWhenTheDilatedMapIsFull) {
   const PlanResult first = p->plan(hover.observation);
   EXPECT_EQ(first.status, PlanStatus::running);
   ASSERT_TRUE(first.decisions.replan.has_value());
-  EXPECT_EQ(first.decisions.replan->details["visibility"], "invisible");
-  EXPECT_EQ(first.decisions.replan->details["candidates"], 0);
-  EXPECT_EQ(first.decisions.replan->details["action"], "wall_following");
+  EXPECT_EQ(depth_reactive_record().visibility.get(first.decisions.replan->details), "invisible");
+  EXPECT_EQ(depth_reactive_record().candidates.get(first.decisions.replan->details), 0);
+  EXPECT_EQ(depth_reactive_record().action.get(first.decisions.replan->details), "wall_following");
   // Then it looks 60 deg to the left of the goal direction.
   hover.observation.time_s = 1.0 / 60.0;
   const PlanResult second = p->plan(hover.observation);
@@ -146,13 +146,13 @@ TEST(DepthReactive, FindsAWaypointBesideABarrier) {
   }
   const PlanResult r = planner()->plan(hover.observation);
   ASSERT_TRUE(r.decisions.replan.has_value());
-  EXPECT_EQ(r.decisions.replan->details["action"], "new_waypoint");
+  EXPECT_EQ(depth_reactive_record().action.get(r.decisions.replan->details), "new_waypoint");
   ASSERT_TRUE(r.decisions.planned_waypoint.has_value());
   const Eigen::Vector3d w = *r.decisions.planned_waypoint;
   EXPECT_LT(w.y(), 0.0);           // to the right, where it is free
   // Beyond the barrier's edge: every pixel of the barrier reads 4 m, so the
   // waypoint lies farther than 4 m from the sensor (edge + vehicle radius).
-  EXPECT_GT(r.decisions.replan->details["new_waypoint_range_m"].get<double>(), 4.0);
+  EXPECT_GT(depth_reactive_record().new_waypoint_range_m.get(r.decisions.replan->details).value(), 4.0);
   EXPECT_NEAR(w.z(), 1.5, 0.3);    // about level: climbing costs more
 }
 

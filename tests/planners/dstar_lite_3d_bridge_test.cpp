@@ -175,7 +175,7 @@ TEST(DStarLite3dBridge, OctomapFliesUnderTheDeck) {
   EXPECT_LT(c.highest_m, kDeckBottomM);
   // It mapped with the octree: planning cells were blocked (the deck's level, the piers).
   int blocked_events = 0;
-  for (const PlannerEvent& e : r.events) blocked_events += e.decisions.extras.contains("blocked_cells") ? 1 : 0;
+  for (const PlannerEvent& e : r.events) blocked_events += dstar_lite_3d_record().blocked_cells.in(e.decisions.own) ? 1 : 0;
   EXPECT_GT(blocked_events, 0);
 }
 

@@ -62,10 +62,10 @@ TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
   ASSERT_TRUE(r.decisions.planned_path.has_value());
   EXPECT_EQ(r.decisions.planned_path->size(), 3u);
   // The first call records the height map's frame (seed 001's grid), and no scan yet.
-  EXPECT_EQ(r.decisions.height_map_grid,
+  EXPECT_EQ(dstar_lite_3d_record().height_map_grid.get(r.decisions.own),
             (HeightMapGrid{.origin_m = {0.0, 0.0}, .cell_size_m = 1.5, .columns = 100, .rows = 100}));
   EXPECT_TRUE(r.decisions.lidar_hits.empty());
-  EXPECT_TRUE(r.decisions.height_map_columns.empty());
+  EXPECT_FALSE(dstar_lite_3d_record().height_map_columns.in(r.decisions.own));
 
   // Waypoint 0 reached: the next leg runs east along level 4, three cells ahead at a time.
   r = planner->plan(feed.at(center(0, 0, 4) + Eigen::Vector3d(0.1, 0.0, 0.2)));
@@ -73,15 +73,15 @@ TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
   EXPECT_EQ(goto_target(r), center(3, 0, 4));
   ASSERT_TRUE(r.decisions.planned_path.has_value());
   EXPECT_EQ(r.decisions.planned_path->size(), 7u);
-  EXPECT_FALSE(r.decisions.height_map_grid.has_value());  // once
+  EXPECT_FALSE(dstar_lite_3d_record().height_map_grid.in(r.decisions.own));  // once
 
   // A hit on a roof at level 4 in column (2, 0) blocks levels 0..4 there: only
   // those five cells go to D* Lite, and the new path avoids them.
   r = planner->plan(feed.at(center(0, 0, 4), {Eigen::Vector3f(3.0f, 0.75f, 14.5f)}));
   ASSERT_TRUE(r.decisions.replan.has_value());
   EXPECT_EQ(r.decisions.replan->index, 2);
-  EXPECT_EQ(r.decisions.replan->details["changed_cells"], 5);
-  EXPECT_GT(r.decisions.replan->details["expansions"].get<int>(), 0);
+  EXPECT_EQ(dstar_lite_3d_record().changed_cells.get(r.decisions.replan->details), 5);
+  EXPECT_GT(dstar_lite_3d_record().expansions.get(r.decisions.replan->details).value(), 0);
   EXPECT_GE(r.decisions.replan->time_ms, 0.0);
   ASSERT_TRUE(r.decisions.planned_path.has_value());
   for (const Eigen::Vector3d& point : *r.decisions.planned_path) {
@@ -91,7 +91,7 @@ TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
   EXPECT_EQ(r.decisions.planned_path->back(), center(6, 0, 4));
   // For the figures: the hit, and column (2, 0) whose top is now level 4 (centre z 14 m).
   EXPECT_EQ(r.decisions.lidar_hits, (std::vector<Eigen::Vector3d>{{3.0, 0.75, 14.5}}));
-  EXPECT_EQ(r.decisions.height_map_columns, (std::vector<HeightMapColumn>{{2, 0, 14.0}}));
+  EXPECT_EQ(dstar_lite_3d_record().height_map_columns.get(r.decisions.own), (std::vector<HeightMapColumn>{{2, 0, 14.0}}));
 
   const std::vector<Eigen::Vector3d> path = *r.decisions.planned_path;
 
@@ -99,14 +99,14 @@ TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
   r = planner->plan(feed.at(center(0, 0, 4), {Eigen::Vector3f(3.0f, 0.75f, 14.5f)}));
   EXPECT_FALSE(r.decisions.replan.has_value());
   EXPECT_EQ(r.decisions.lidar_hits.size(), 1u);
-  EXPECT_TRUE(r.decisions.height_map_columns.empty());
+  EXPECT_FALSE(dstar_lite_3d_record().height_map_columns.in(r.decisions.own));
 
   // Moving one cell along the path moves D* Lite's start (k_m); the rest of
   // the plan holds, so no new path is recorded.
   r = planner->plan(feed.at(path[1]));
   ASSERT_TRUE(r.decisions.replan.has_value());
   EXPECT_EQ(r.decisions.replan->index, 3);
-  EXPECT_EQ(r.decisions.replan->details["changed_cells"], 0);
+  EXPECT_EQ(dstar_lite_3d_record().changed_cells.get(r.decisions.replan->details), 0);
   EXPECT_FALSE(r.decisions.planned_path.has_value());
 }
 

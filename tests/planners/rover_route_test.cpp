@@ -256,7 +256,7 @@ TEST(RoverRouteClosedLoop, FollowTheGapGetsPastTheStaticObstacles) {
 TEST(RoverRouteClosedLoop, RrtStarAsTheGlobalPlanner) {
   const EpisodeResult r = drive({kNoStaticObstacles, kWalkerAway, kFollowTheGap, "/objects/rover/planner/params/global=rrt_star"});
   expect_route_driven(r, "rrt_star", 0.0);  // its route keeps clearance_m = 0.8 m from the rows
-  EXPECT_EQ(r.events.front().decisions.replan.value().details["global"], "rrt_star");
+  EXPECT_EQ(rover_route_record().global.get(r.events.front().decisions.replan.value().details), "rrt_star");
 }
 
 // Each A* leg leaves its waypoint and reaches the next straight along their
@@ -268,7 +268,7 @@ TEST(RoverRouteClosedLoop, AStarAsTheGlobalPlanner) {
   expect_route_driven(r, "astar", 0.5);
   EXPECT_LT(r.metrics.cross_track_rms_m, 0.1);
   EXPECT_LT(r.metrics.cross_track_max_m, 0.4);
-  EXPECT_EQ(r.events.front().decisions.replan.value().details["global"], "astar");
+  EXPECT_EQ(rover_route_record().global.get(r.events.front().decisions.replan.value().details), "astar");
 }
 
 // ---------------------------------------------------------------- seed 003 Fig. 45 and Fig. 46
@@ -378,8 +378,9 @@ TEST(RoverRouteClosedLoop, Fig46SwitchesToTheLeftGapWhenTheWalkerCutsOffTheRight
   };
   std::vector<Choice> choices;
   for (const PlannerEvent& e : r.events) {
-    if (!e.decisions.gap || !e.decisions.gap->chosen) continue;
-    const ChosenGap& g = *e.decisions.gap->chosen;
+    const std::optional<GapDecision> gap = rover_route_record().gap.get(e.decisions.own);
+    if (!gap || !gap->chosen) continue;
+    const ChosenGap& g = *gap->chosen;
     choices.push_back({e.time_s, g.center_deg, g.heading_deg});
   }
   ASSERT_FALSE(choices.empty());

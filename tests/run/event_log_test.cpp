@@ -14,6 +14,10 @@
 #include <gtest/gtest.h>
 
 #include "campo/json_reader.hpp"
+#include "campo/record_fields.hpp"
+#include "planners/depth_reactive.hpp"
+#include "planners/dstar_lite_3d.hpp"
+#include "planners/rover_route.hpp"
 
 namespace campo {
 namespace {
@@ -33,7 +37,7 @@ std::vector<Eigen::Vector3d> hits(std::size_t n) {
   return p;
 }
 
-// Every typed field decided, with the planner's own details and extras.
+// Every typed field decided, with planners' own decisions and details written through their declarations.
 Decisions every_field() {
   Decisions d;
   d.reached_waypoints = {2, 3};
@@ -44,14 +48,15 @@ Decisions every_field() {
   d.avoiding = false;
   d.replan = ReplanDecision{.index = 7, .sensor = "cam", .time_ms = 12.5, .details = {{"action", "fly"}}};
   d.lidar_hits = {{1.0, 2.0, 3.0}, {-0.25, 0.5, 12.75}};
-  d.height_map_grid = HeightMapGrid{.origin_m = {-30.0, 7.5}, .cell_size_m = 1.5, .columns = 100, .rows = 80};
-  d.height_map_columns = {{2, 0, 14.0}, {99, 79, -7.0}};
-  d.gap = GapDecision{.gaps = 3,
-                      .nearest_range_m = 1.25,
-                      .route_heading_deg = 90.0,
-                      .goal_deg = -2.5,
-                      .chosen = ChosenGap{.center_deg = -4.5, .heading_deg = -6.0, .width_m = 1.75}};
-  d.extras = {{"wall_following", {{"side", "left"}}}};
+  const DStarLite3dRecord& dstar = dstar_lite_3d_record();
+  dstar.height_map_grid.set(d.own, {.origin_m = {-30.0, 7.5}, .cell_size_m = 1.5, .columns = 100, .rows = 80});
+  dstar.height_map_columns.set(d.own, {{2, 0, 14.0}, {99, 79, -7.0}});
+  rover_route_record().gap.set(d.own, {.gaps = 3,
+                                       .nearest_range_m = 1.25,
+                                       .route_heading_deg = 90.0,
+                                       .goal_deg = -2.5,
+                                       .chosen = ChosenGap{.center_deg = -4.5, .heading_deg = -6.0, .width_m = 1.75}});
+  depth_reactive_record().wall_following.set(d.own, {{"side", "left"}});
   return d;
 }
 
@@ -67,17 +72,18 @@ TEST(Decisions, TypedToJsonAndBackIsTheSame) {
   EXPECT_FALSE(back.replan->sensor.has_value());
   EXPECT_TRUE(Decisions().empty());
   EXPECT_FALSE(sparse.empty());
-  EXPECT_FALSE((Decisions{.extras = {{"note", 1}}}.empty()));
+  EXPECT_FALSE((Decisions{.own = {{"note", 1}}}.empty()));
   EXPECT_FALSE((Decisions{.lidar_hits = {{0, 0, 0}}}.empty()));
-  EXPECT_FALSE((Decisions{.height_map_grid = HeightMapGrid{}}.empty()));
-  EXPECT_FALSE((Decisions{.height_map_columns = {{0, 0, 0.0}}}.empty()));
-  EXPECT_FALSE((Decisions{.gap = GapDecision{}}.empty()));
   // A scan without a chosen gap: the chosen gap's keys are absent, and stay so.
-  const Decisions no_gap{.gap = GapDecision{.gaps = 0, .nearest_range_m = 3.0, .route_heading_deg = -45.0}};
+  const GapDecision gap{.gaps = 0, .nearest_range_m = 3.0, .route_heading_deg = -45.0};
+  Decisions no_gap;
+  rover_route_record().gap.set(no_gap.own, gap);
   EXPECT_EQ(decisions_to_json(no_gap),
             (nlohmann::json{{"gap", {{"gaps", 0}, {"nearest_range_m", 3.0}, {"route_heading_deg", -45.0},
                                      {"goal_deg", 0.0}}}}));
-  EXPECT_EQ(decisions_from_json(decisions_to_json(no_gap), "f", ""), no_gap);
+  const Decisions back_gap = decisions_from_json(decisions_to_json(no_gap), "f", "");
+  EXPECT_EQ(back_gap, no_gap);
+  EXPECT_EQ(rover_route_record().gap.get(back_gap.own), gap);
 }
 
 TEST(Decisions, RecordedAsDocumented) {
@@ -97,14 +103,14 @@ TEST(Decisions, RecordedAsDocumented) {
   EXPECT_EQ(event_line({0.0, Decisions{}}), R"({"decisions":{},"time_s":0.0})");
 }
 
-TEST(Decisions, UnknownKeysLandInExtrasAsTheyAre) {
+TEST(Decisions, OtherKeysLandInThePlannersOwnAsTheyAre) {
   const nlohmann::json record = {{"avoiding", true},
                                  {"wall_following", {{"offset_deg", 60.0}, {"side", "left"}}},
                                  {"occupied_voxels", 12},
                                  {"replan", {{"index", 1}, {"time_ms", 2.0}, {"visibility", "visible"}}}};
   const Decisions d = decisions_from_json(record, "f", "");
   EXPECT_EQ(d.avoiding, true);
-  EXPECT_EQ(d.extras, (nlohmann::json{{"wall_following", {{"offset_deg", 60.0}, {"side", "left"}}},
+  EXPECT_EQ(d.own, (nlohmann::json{{"wall_following", {{"offset_deg", 60.0}, {"side", "left"}}},
                                       {"occupied_voxels", 12}}));
   ASSERT_TRUE(d.replan.has_value());
   EXPECT_EQ(d.replan->details, (nlohmann::json{{"visibility", "visible"}}));
@@ -112,6 +118,19 @@ TEST(Decisions, UnknownKeysLandInExtrasAsTheyAre) {
 }
 
 TEST(Decisions, AMalformedFieldIsAnErrorNamingItsKey) {
+  // A planner's own field is checked by its declaration (as a run directory is read back for figures).
+  const auto declared_error = [](const RecordFields& fields, const nlohmann::json& decisions) -> std::string {
+    try {
+      const PlannerEvent e = event_from_json({{"time_s", 1.0}, {"decisions", decisions}}, "run.json", "/events/4");
+      fields.check(e.decisions.own, "run.json", "/events/4/decisions");
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), "run.json");
+      return e.pointer() + " | " + e.what();
+    }
+    return "no error";
+  };
+  const RecordFields& dstar = dstar_lite_3d_record().description.decisions;
+  const RecordFields& rover = rover_route_record().description.decisions;
   const auto error = [](const nlohmann::json& decisions) -> std::string {
     try {
       event_from_json({{"time_s", 1.0}, {"decisions", decisions}}, "run.json", "/events/4");
@@ -155,64 +174,62 @@ TEST(Decisions, AMalformedFieldIsAnErrorNamingItsKey) {
     j[key] = std::move(value);
     return j;
   };
-  EXPECT_THAT(error({{"height_map_grid", with(grid, "cell_size_m", 0.0)}}),
+  EXPECT_THAT(declared_error(dstar, {{"height_map_grid", with(grid, "cell_size_m", 0.0)}}),
               HasSubstr("/events/4/decisions/height_map_grid/cell_size_m | run.json: "
                         "/events/4/decisions/height_map_grid/cell_size_m: expected a number > 0, got"));
-  EXPECT_THAT(error({{"height_map_grid", with(grid, "rows", 0)}}), HasSubstr("/decisions/height_map_grid/rows |"));
-  EXPECT_THAT(error({{"height_map_grid", with(grid, "columns", 2.5)}}),
+  EXPECT_THAT(declared_error(dstar, {{"height_map_grid", with(grid, "rows", 0)}}), HasSubstr("/decisions/height_map_grid/rows |"));
+  EXPECT_THAT(declared_error(dstar, {{"height_map_grid", with(grid, "columns", 2.5)}}),
               HasSubstr("/decisions/height_map_grid/columns |"));
-  EXPECT_THAT(error({{"height_map_grid", with(grid, "origin_m", nlohmann::json::array({1.0}))}}),
+  EXPECT_THAT(declared_error(dstar, {{"height_map_grid", with(grid, "origin_m", nlohmann::json::array({1.0}))}}),
               HasSubstr("/decisions/height_map_grid/origin_m |"));
-  EXPECT_THAT(error({{"height_map_grid", with(grid, "levels", 3)}}),
+  EXPECT_THAT(declared_error(dstar, {{"height_map_grid", with(grid, "levels", 3)}}),
               HasSubstr("/decisions/height_map_grid/levels | run.json: /events/4/decisions/height_map_grid/levels: "
                         "unknown key \"levels\""));
   nlohmann::json no_rows = grid;
   no_rows.erase("rows");
-  EXPECT_THAT(error({{"height_map_grid", no_rows}}),
+  EXPECT_THAT(declared_error(dstar, {{"height_map_grid", no_rows}}),
               HasSubstr("/events/4/decisions/height_map_grid | run.json: /events/4/decisions/height_map_grid: "
                         "missing required key \"rows\""));
-  EXPECT_THAT(error({{"height_map_grid", 1.5}}), HasSubstr("/events/4/decisions/height_map_grid |"));
-  EXPECT_THAT(error({{"height_map_columns", {{1, 2, 3.0}, {1, -2, 3.0}}}}),
+  EXPECT_THAT(declared_error(dstar, {{"height_map_grid", 1.5}}), HasSubstr("/events/4/decisions/height_map_grid |"));
+  EXPECT_THAT(declared_error(dstar, {{"height_map_columns", {{1, 2, 3.0}, {1, -2, 3.0}}}}),
               HasSubstr("/events/4/decisions/height_map_columns/1 | run.json: "
                         "/events/4/decisions/height_map_columns/1: expected a height-map column "
                         "[column, row, top z]: indices from 0, m, got"));
-  EXPECT_THAT(error({{"height_map_columns", {{1.5, 2, 3.0}}}}), HasSubstr("/decisions/height_map_columns/0 |"));
-  EXPECT_THAT(error({{"height_map_columns", {{1, 2, "3"}}}}), HasSubstr("/decisions/height_map_columns/0 |"));
-  EXPECT_THAT(error({{"height_map_columns", {{1, 2}}}}), HasSubstr("/decisions/height_map_columns/0 |"));
-  EXPECT_THAT(error({{"height_map_columns", 5}}), HasSubstr("/decisions/height_map_columns |"));
+  EXPECT_THAT(declared_error(dstar, {{"height_map_columns", {{1.5, 2, 3.0}}}}), HasSubstr("/decisions/height_map_columns/0 |"));
+  EXPECT_THAT(declared_error(dstar, {{"height_map_columns", {{1, 2, "3"}}}}), HasSubstr("/decisions/height_map_columns/0 |"));
+  EXPECT_THAT(declared_error(dstar, {{"height_map_columns", {{1, 2}}}}), HasSubstr("/decisions/height_map_columns/0 |"));
+  EXPECT_THAT(declared_error(dstar, {{"height_map_columns", 5}}), HasSubstr("/decisions/height_map_columns |"));
   const nlohmann::json gap = {{"gaps", 2}, {"nearest_range_m", 1.0}, {"route_heading_deg", 0.0}, {"goal_deg", 0.0}};
-  EXPECT_THAT(error({{"gap", with(gap, "gaps", -1)}}),
+  EXPECT_THAT(declared_error(rover, {{"gap", with(gap, "gaps", -1)}}),
               HasSubstr("/events/4/decisions/gap/gaps | run.json: /events/4/decisions/gap/gaps: expected an integer "
                         "in [0, 2147483647], got"));
-  EXPECT_THAT(error({{"gap", with(gap, "route_heading_deg", "north")}}),
+  EXPECT_THAT(declared_error(rover, {{"gap", with(gap, "route_heading_deg", "north")}}),
               HasSubstr("/decisions/gap/route_heading_deg |"));
-  EXPECT_THAT(error({{"gap", with(gap, "nearest_range_m", -1.0)}}), HasSubstr("/decisions/gap/nearest_range_m |"));
+  EXPECT_THAT(declared_error(rover, {{"gap", with(gap, "nearest_range_m", -1.0)}}), HasSubstr("/decisions/gap/nearest_range_m |"));
   // A chosen gap has its centre, heading and width together.
-  EXPECT_THAT(error({{"gap", with(gap, "gap_center_deg", 5.0)}}),
+  EXPECT_THAT(declared_error(rover, {{"gap", with(gap, "gap_center_deg", 5.0)}}),
               HasSubstr("/events/4/decisions/gap | run.json: /events/4/decisions/gap: missing required key "
                         "\"gap_heading_deg\""));
-  EXPECT_THAT(error({{"gap", with(gap, "side", "left")}}), HasSubstr("/decisions/gap/side |"));
+  EXPECT_THAT(declared_error(rover, {{"gap", with(gap, "side", "left")}}), HasSubstr("/decisions/gap/side |"));
   nlohmann::json no_heading = gap;
   no_heading.erase("route_heading_deg");
-  EXPECT_THAT(error({{"gap", no_heading}}), HasSubstr("missing required key \"route_heading_deg\""));
+  EXPECT_THAT(declared_error(rover, {{"gap", no_heading}}), HasSubstr("missing required key \"route_heading_deg\""));
   // Not an event at all.
   EXPECT_THROW(event_from_json({{"decisions", nlohmann::json::object()}}, "run.json", "/events/0"), InputError);
   EXPECT_THROW(events_from_json(nlohmann::json::object(), "run.json", "/events"), InputError);
 }
 
-TEST(Decisions, ExtrasMayNotTakeATypedFieldsName) {
+TEST(Decisions, OwnMayNotTakeATypedFieldsName) {
   Decisions d;
-  d.extras = {{"avoiding", "maybe"}};
+  d.own = {{"avoiding", "maybe"}};
   EXPECT_THROW(decisions_to_json(d), std::invalid_argument);
-  d.extras = nlohmann::json::array();
+  d.own = nlohmann::json::array();
   EXPECT_THROW(decisions_to_json(d), std::invalid_argument);
-  d.extras = nullptr;  // none
+  d.own = nullptr;  // none
   EXPECT_EQ(decisions_to_json(d), nlohmann::json::object());
-  d.extras = {{"lidar_hits", nlohmann::json::array()}};
+  d.own = {{"lidar_hits", nlohmann::json::array()}};
   EXPECT_THROW(decisions_to_json(d), std::invalid_argument);
-  d.extras = {{"gap", {{"side", "left"}}}};
-  EXPECT_THROW(decisions_to_json(d), std::invalid_argument);
-  d.extras = nullptr;
+  d.own = nullptr;
   d.replan = ReplanDecision{.details = {{"time_ms", 3.0}}};
   EXPECT_THROW(decisions_to_json(d), std::invalid_argument);
 }
@@ -233,7 +250,7 @@ TEST(Decisions, RunRecordsWithInlineEventsReadBack) {
   const Decisions grid = decisions_from_json(
       nlohmann::json::parse(R"({"height_map_grid": {"origin_m": [1, 2], "cell_size_m": 2, "columns": 3, "rows": 4}})"),
       "run.json", "/events/0/decisions");
-  EXPECT_EQ(grid.height_map_grid,
+  EXPECT_EQ(dstar_lite_3d_record().height_map_grid.get(grid.own),
             (HeightMapGrid{.origin_m = {1.0, 2.0}, .cell_size_m = 2.0, .columns = 3, .rows = 4}));
 }
 
@@ -247,19 +264,22 @@ TEST(Decisions, BoundedAsRecorded) {
   EXPECT_EQ(bounded.planned_path->front(), path.front());
   EXPECT_EQ(bounded.planned_path->back(), path.back());
   EXPECT_EQ(bounded.avoiding, true);
-  EXPECT_EQ(bounded.extras, (nlohmann::json{{"thinned", {{"/planned_path", 3000}}}}));
+  EXPECT_EQ(bounded.own, (nlohmann::json{{"thinned", {{"/planned_path", 3000}}}}));
   EXPECT_TRUE(was_bounded(bounded));
   // So are a scan's hits and a height map's columns, typed as they were.
   std::vector<HeightMapColumn> columns;
   for (int i = 0; i < 5000; ++i) columns.push_back({i, 2 * i, 0.5 * i});
-  const Decisions mapped = bounded_decisions({.lidar_hits = hits(2049), .height_map_columns = columns});
+  Decisions many{.lidar_hits = hits(2049)};
+  dstar_lite_3d_record().height_map_columns.set(many.own, columns);
+  const Decisions mapped = bounded_decisions(many);
   ASSERT_EQ(mapped.lidar_hits.size(), kEventArrayMaxEntries);
   EXPECT_EQ(mapped.lidar_hits.front(), Eigen::Vector3d(0.0, 0.5, 1.0));
   EXPECT_EQ(mapped.lidar_hits.back(), Eigen::Vector3d(2048.0, 0.5, 1.0));
-  ASSERT_EQ(mapped.height_map_columns.size(), kEventArrayMaxEntries);
-  EXPECT_EQ(mapped.height_map_columns.front(), columns.front());
-  EXPECT_EQ(mapped.height_map_columns.back(), columns.back());
-  EXPECT_EQ(mapped.extras, (nlohmann::json{{"thinned", {{"/height_map_columns", 5000}, {"/lidar_hits", 2049}}}}));
+  const std::vector<HeightMapColumn> kept = dstar_lite_3d_record().height_map_columns.get(mapped.own).value();
+  ASSERT_EQ(kept.size(), kEventArrayMaxEntries);
+  EXPECT_EQ(kept.front(), columns.front());
+  EXPECT_EQ(kept.back(), columns.back());
+  EXPECT_EQ(mapped.own["thinned"], (nlohmann::json{{"/height_map_columns", 5000}, {"/lidar_hits", 2049}}));
   // Short ones are recorded as they are.
   const Decisions small = every_field();
   EXPECT_EQ(bounded_decisions(small), small);
@@ -297,7 +317,7 @@ TEST(EventLog, LongArraysKeepEvenlySpacedEntriesWithTheirEnds) {
 TEST(EventLog, AnOversizedEventDropsItsLargestKeysFirst) {
   // Strings are not thinned: 300 KiB of text leaves the line over its limit.
   nlohmann::json d = decisions_to_json(
-      {.reached_waypoints = {1}, .avoiding = true, .extras = {{"note", std::string(300u << 10, 'x')}}});
+      {.reached_waypoints = {1}, .avoiding = true, .own = {{"note", std::string(300u << 10, 'x')}}});
   EXPECT_TRUE(bound_decisions(d));
   EXPECT_FALSE(d.contains("note"));
   EXPECT_EQ(d["omitted"]["note"], (300u << 10) + 2);  // its JSON text, quotes included
@@ -320,10 +340,17 @@ TEST(EventLog, LinesAreBoundedWhateverThePlannerDecides) {
 TEST(EventLog, JsonLinesReadBackAsWritten) {
   const auto file = std::filesystem::temp_directory_path() / "campo_event_log_test.jsonl";
   const std::vector<PlannerEvent> events{{0.5, {.planned_waypoint = Eigen::Vector3d(1.0, 2.0, 3.0)}},
-                                         {1.0, {.avoiding = true, .extras = {{"wall_following", {{"side", "left"}}}}}},
+                                         {1.0, {.avoiding = true, .own = {{"wall_following", {{"side", "left"}}}}}},
                                          {1.5, every_field()}};
   std::ofstream(file, std::ios::binary) << events_jsonl(events);
-  EXPECT_EQ(read_events_jsonl(file), events);
+  const std::vector<PlannerEvent> back = read_events_jsonl(file);
+  EXPECT_EQ(back, events);
+  // The planners' own fields read back through their declarations as they were written.
+  EXPECT_EQ(rover_route_record().gap.get(back[2].decisions.own)->chosen->width_m, 1.75);
+  EXPECT_EQ(dstar_lite_3d_record().height_map_columns.get(back[2].decisions.own),
+            (std::vector<HeightMapColumn>{{2, 0, 14.0}, {99, 79, -7.0}}));
+  EXPECT_NO_THROW(dstar_lite_3d_record().description.decisions.check(
+      nlohmann::json{{"height_map_grid", back[2].decisions.own["height_map_grid"]}}, file.string(), ""));
   // A line past the limit is refused, naming the file and line, before it is read whole.
   std::ofstream(file, std::ios::binary) << events_jsonl(events) << std::string(kEventLineMaxBytes + 1, ' ') << "\n";
   try {
@@ -347,8 +374,11 @@ TEST(EventLog, JsonLinesReadBackAsWritten) {
   std::ofstream(file, std::ios::binary) << events_jsonl(events)
                                         << R"({"time_s": 2, "decisions": {"height_map_columns": [[1, 2, 3.5], [4, 5]]}})"
                                         << "\n";
+  // Read back as recorded; its declaration refuses it, naming the key.
+  const std::vector<PlannerEvent> malformed = read_events_jsonl(file);
   try {
-    read_events_jsonl(file);
+    (void)dstar_lite_3d_record().height_map_columns.get(malformed.back().decisions.own, file.string() + " line 4",
+                                                        "/decisions");
     ADD_FAILURE() << "expected an InputError";
   } catch (const InputError& e) {
     EXPECT_EQ(e.file(), file.string() + " line 4");
