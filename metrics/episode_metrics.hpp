@@ -2,8 +2,10 @@
 /// The metrics of one run (EpisodeMetrics, campo/episode_record.hpp) as functions of
 /// what the closed loop records: its planner events, its trajectory samples,
 /// its mission and the clearances it measured. The loop (run/episode.cpp)
-/// keeps its state and calls these; cross_track_error, avoiding_time, to_json
-/// and to_string(Outcome) are declared in campo/episode_record.hpp and live here too.
+/// keeps its state and calls these. What campo/episode_record.hpp declares
+/// (cross_track_error, avoiding_time, to_json, to_string(Outcome)) is in
+/// metrics/episode_record.cpp; the mission's per-leg and per-gate fields in
+/// metrics/mission_metrics.hpp.
 #include <algorithm>
 #include <limits>
 #include <optional>
@@ -22,16 +24,6 @@ namespace campo {
 /// _reached and _discarded, replans, and the median and maximum of the
 /// replans' times (zero without replans).
 void count_decisions(std::span<const PlannerEvent> events, EpisodeMetrics& m);
-
-/// Appends to `m` one LegMetrics per mission waypoint and one GateMetrics per
-/// gate of `def`, measured on the trajectory (metrics/route_metrics.hpp).
-/// Leg k runs from sample reached_sample[k - 1] (sample 0 for leg 0, flown
-/// from `start`) to sample reached_sample[k], the samples of the planner calls
-/// that reported the two waypoints reached (nullopt: not reached; the leg is
-/// left empty). reached_sample holds one entry per mission waypoint.
-void leg_and_gate_metrics(const VehicleDef& def, const Eigen::Vector3d& start,
-                          std::span<const TrajectorySample> trajectory,
-                          std::span<const std::optional<std::size_t>> reached_sample, EpisodeMetrics& m);
 
 /// Length of the nominal route: straight legs from `start` through each
 /// mission waypoint, taken at reached_at[k] when it was reached there, as

@@ -17,6 +17,7 @@
 
 #include "campo/json_reader.hpp"
 #include "campo/scene_loader.hpp"
+#include "metrics/mission_metrics.hpp"
 #include "metrics/route_metrics.hpp"
 #include "render/run_files.hpp"
 #include "reproduce/claims.hpp"
@@ -237,11 +238,16 @@ std::vector<Eigen::Vector2d> nominal(const Flight& f, std::size_t first, std::si
   return out;
 }
 
-std::optional<double> leg_metric(const nlohmann::json& metrics, std::size_t leg, const std::string& what) {
-  const nlohmann::json v = metrics.value("leg" + std::to_string(leg) + "_" + what, nlohmann::json());
-  if (!v.is_number()) return std::nullopt;
-  return v.get<double>();
+// Mission leg k's measures in a run's metrics, through their declarations (metrics/mission_metrics.hpp).
+std::optional<double> leg_path_length_m(const nlohmann::json& metrics, std::size_t k) {
+  return get_unless_null(metrics, LegMetricFields(k).path_length_m);
 }
+std::optional<double> leg_lateral_before_climb_m(const nlohmann::json& metrics, std::size_t k) {
+  return get_unless_null(metrics, LegMetricFields(k).lateral_before_climb_m);
+}
+
+// Whether a run passed through its mission's gate "slot" (the obstacle field's, Tabella 5.1).
+bool passed_slot(const nlohmann::json& metrics) { return GateMetricFields("slot").passed.get(metrics).value_or(false); }
 
 std::string yes_no(std::optional<bool> b) { return b ? (*b ? "yes" : "no") : "–"; }
 
@@ -326,8 +332,8 @@ const SceneInfo& info(Measured& m, const std::string& name) {
 // The weave's measures of a zigzag flight.
 WeaveMeasure weave_measure(const Flight& f, const SceneInfo& s, const Lap& lap) {
   WeaveMeasure w;
-  w.climbed = leg_metric(f.metrics, lap.last, "lateral_before_climb_m").has_value();
-  w.lap_m = leg_metric(f.metrics, lap.last, "path_length_m").value_or(0.0);
+  w.climbed = leg_lateral_before_climb_m(f.metrics, lap.last).has_value();
+  w.lap_m = leg_path_length_m(f.metrics, lap.last).value_or(0.0);
   std::vector<Rect> buildings;
   for (const GridBlock& b : thesis_scene("zigzag").blocks) buildings.push_back(footprint(b, s.cell_m, s.origin_m));
   w.sides = passing_sides(xy(lap_track(f, lap.first, lap.last)), buildings);
@@ -371,7 +377,7 @@ void ensure_sweep(const Workbench& bench, Measured& m, Claim& claim) {
       s.behaviours.pitch_deg = pitch;
       s.runs[r.scene] = &r;
       if (!r.completed) continue;
-      if (r.scene == "obstacle_field") s.behaviours.slot = r.metrics_json.value("gate_slot_passed", false);
+      if (r.scene == "obstacle_field") s.behaviours.slot = passed_slot(r.metrics_json);
       if (r.scene == "zigzag") {
         const WeaveMeasure w = weave_measure(flight(m.sweep->dir / run_dir(r.name)), zigzag, low);
         s.behaviours.weave = weave_holds(w, m.weave->outside_four.found ? std::optional(outside_m) : std::nullopt);
@@ -382,7 +388,7 @@ void ensure_sweep(const Workbench& bench, Measured& m, Claim& claim) {
       if (r.scene == "wall") {
         const SceneInfo& wall = info(m, "wall");
         const Lap wall_low = laps(wall).back();
-        s.wall_sideways_m = leg_metric(r.metrics_json, wall_low.last, "lateral_before_climb_m");
+        s.wall_sideways_m = leg_lateral_before_climb_m(r.metrics_json, wall_low.last);
         s.behaviours.wall =
             wall_holds(r.metrics.outcome == "reached" && r.metrics.collisions == 0, s.wall_sideways_m, wall.cell_m);
       }
@@ -729,7 +735,7 @@ void slot(const Workbench& bench, Measured& m, Claim& claim) {
   const Lap low = laps(s).back();
   // The slot's leg: into the lap's last waypoint (south along column 46, the blocks at rows 49-50 across it).
   SlotMeasure measure;
-  const auto passed = [](const Flight& f) { return f.metrics.value("gate_slot_passed", false); };
+  const auto passed = [](const Flight& f) { return passed_slot(f.metrics); };
   measure.passed_bundled = passed(m.bundled.at("obstacle_field"));
   if (const std::optional<Flight> t = thesis_flight(m, "obstacle_field")) measure.passed_thesis_setting = passed(*t);
   // The quick report leaves out the run with the other reading (the search under it is still computed).
@@ -934,7 +940,7 @@ void wall(const Workbench& bench, Measured& m, Claim& claim) {
   const SceneInfo& s = info(m, "wall");
   const Lap low = laps(s).back();
   const auto measure = [&](const Flight& f) {
-    const std::optional<double> sideways = leg_metric(f.metrics, low.last, "lateral_before_climb_m");
+    const std::optional<double> sideways = leg_lateral_before_climb_m(f.metrics, low.last);
     return std::pair{sideways, wall_holds(reached_clean(f), sideways, s.cell_m)};
   };
   const auto [b_side, b_holds] = measure(m.bundled.at("wall"));

@@ -14,6 +14,7 @@
 
 #include "campo/json_reader.hpp"
 #include "metrics/episode_metrics.hpp"
+#include "metrics/mission_metrics.hpp"
 #include "run/event_log.hpp"
 
 namespace campo {
@@ -209,7 +210,7 @@ struct Episode::Loop {
     m.cross_track_mean_m = cross_track.mean_m;
     m.cross_track_max_m = cross_track.max_m;
     m.avoiding_time_s = avoiding_time(result.events, m.sim_time_s);
-    leg_and_gate_metrics(def, start, result.trajectory, reached_sample, m);
+    write_mission_metrics(def, start, result.trajectory, reached_sample, m.declared);
     m.planner_time_ms_mean = m.planner_calls > 0 ? planner_ms_total / m.planner_calls : 0.0;
     m.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
     result.final_state_hash = world.state_hash();

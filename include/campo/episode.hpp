@@ -22,7 +22,7 @@
 
 namespace campo {
 
-/// Builds the vehicle of a definition inside a world (vehicles/ provides make_vehicle).
+/// Builds the vehicle of a definition inside a world (make_vehicle, campo/vehicle_factory.hpp).
 using VehicleFactory = std::unique_ptr<Vehicle> (*)(World& world, const VehicleDef& def);
 struct EpisodeResult {
   EpisodeMetrics metrics;

@@ -1,11 +1,10 @@
 #pragma once
 /// What the closed loop records of a run and measures on it: how it ended,
 /// its metrics (run.json), its trajectory samples and its planner's events,
-/// with the functions that measure them. Implemented in metrics/, one floor
-/// below the loop itself (episode.hpp, run/), which fills an EpisodeResult
-/// of them.
+/// with the functions that measure them. Implemented in metrics/ (episode_record.cpp),
+/// one floor below the loop itself (episode.hpp, run/), which fills an
+/// EpisodeResult of them.
 #include <cstddef>
-#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -24,20 +23,6 @@ namespace campo {
 /// planner failed (threw: a bug, or a Python planner's exception).
 enum class Outcome { reached, collision, timeout, aborted, failed };
 std::string_view to_string(Outcome outcome);
-
-/// One leg of the mission: from the start (leg 0) or mission waypoint k - 1
-/// to mission waypoint k (metrics/route_metrics.hpp), measured on the trajectory
-/// samples between the planner calls that reported the two reached.
-struct LegMetrics {
-  std::optional<double> path_length_m;           ///< flown; nullopt when waypoint k was not reached
-  std::optional<double> lateral_before_climb_m;  ///< lateral_before_climb_m against the nominal leg; nullopt: no climb
-};
-
-/// Whether the vehicle passed through a mission gate.
-struct GateMetrics {
-  std::string name;
-  std::optional<double> time_s;  ///< first trajectory sample inside the gate; nullopt: never
-};
 
 /// A collision: when the vehicle began to touch something, what, and where.
 struct CollisionEvent {
@@ -97,10 +82,12 @@ struct EpisodeMetrics {
   /// Simulated time spent in local obstacle avoidance: from each decision
   /// avoiding true to the next avoiding false, or to the end of the run (avoiding_time).
   double avoiding_time_s = 0.0;
-  /// Per mission leg, as "leg<k>_path_length_m" and "leg<k>_lateral_before_climb_m".
-  std::vector<LegMetrics> legs;
-  /// Per mission gate, as "gate_<name>_passed" (boolean) and "gate_<name>_time_s".
-  std::vector<GateMetrics> gates;
+  /// Metrics that the room measuring them declares as record fields
+  /// (campo/record_fields.hpp), written through their declarations, e.g. the
+  /// mission's per-leg and per-gate measures (metrics/mission_metrics.hpp):
+  /// an object (null: none), written into run.json's metrics beside the
+  /// fields above. Read them back through the same declarations.
+  nlohmann::json declared;
 };
 nlohmann::json to_json(const EpisodeMetrics& metrics);
 

@@ -1,5 +1,7 @@
-// cross_track_error (campo/episode_record.hpp): the distance of every trajectory
-// sample to the route the planner had recorded by then.
+// What campo/episode_record.hpp declares: the names of the outcomes, run.json's
+// metrics, and the measures taken on the planner's decisions (cross_track_error:
+// the distance of every trajectory sample to the route the planner had recorded
+// by then; avoiding_time).
 #include "campo/episode_record.hpp"
 
 #include <algorithm>
@@ -146,6 +148,76 @@ CrossTrack cross_track_error(std::span<const TrajectorySample> trajectory, std::
     result.max_m = std::sqrt(max_squared);
   }
   return result;
+}
+
+double avoiding_time(std::span<const PlannerEvent> events, double end_time_s) {
+  double total = 0.0;
+  bool on = false;
+  double since = 0.0;
+  for (const PlannerEvent& e : events) {
+    if (!e.decisions.avoiding) continue;
+    const bool now = *e.decisions.avoiding;
+    if (now && !on) since = e.time_s;
+    if (!now && on) total += e.time_s - since;
+    on = now;
+  }
+  if (on) total += std::max(0.0, end_time_s - since);
+  return total;
+}
+
+namespace {
+
+nlohmann::json collision_events_json(const std::vector<CollisionEvent>& events) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const CollisionEvent& e : events) {
+    list.push_back({{"time_s", e.time_s},
+                    {"body", e.body},
+                    {"ground", e.ground},
+                    {"point_m", {e.point_m.x(), e.point_m.y(), e.point_m.z()}}});
+  }
+  return list;
+}
+
+}  // namespace
+
+std::string_view to_string(Outcome outcome) {
+  static constexpr std::string_view kNames[] = {"reached", "collision", "timeout", "aborted", "failed"};
+  return kNames[static_cast<int>(outcome)];
+}
+
+nlohmann::json to_json(const EpisodeMetrics& m) {
+  nlohmann::json j = {
+      {"outcome", to_string(m.outcome)},
+      {"reason", m.reason},
+      {"sim_time_s", m.sim_time_s},
+      {"wall_time_s", m.wall_time_s},
+      {"path_length_m", m.path_length_m},  // the distance travelled
+      {"path_ratio", m.path_ratio},
+      // null when the scene has no obstacles at all
+      {"min_clearance_m", std::isfinite(m.min_clearance_m) ? nlohmann::json(m.min_clearance_m) : nlohmann::json()},
+      {"nearest_obstacle", m.nearest_obstacle.empty() ? nlohmann::json() : nlohmann::json(m.nearest_obstacle)},
+      {"min_clearance_time_s", m.nearest_obstacle.empty() ? nlohmann::json() : nlohmann::json(m.min_clearance_time_s)},
+      {"min_ground_clearance_m",
+       std::isfinite(m.min_ground_clearance_m) ? nlohmann::json(m.min_ground_clearance_m) : nlohmann::json()},
+      {"collisions", m.collisions},
+      {"collision_events", collision_events_json(m.collision_events)},
+      {"planner_calls", m.planner_calls},
+      {"planner_time_ms_mean", m.planner_time_ms_mean},
+      {"planner_time_ms_max", m.planner_time_ms_max},
+      {"waypoints_planned", m.waypoints_planned},
+      {"waypoints_reached", m.waypoints_reached},
+      {"waypoints_discarded", m.waypoints_discarded},
+      {"replans", m.replans},
+      {"replan_time_ms_median", m.replan_time_ms_median},
+      {"replan_time_ms_max", m.replan_time_ms_max},
+      {"cross_track_rms_m", m.cross_track_rms_m},
+      {"cross_track_mean_m", m.cross_track_mean_m},
+      {"cross_track_max_m", m.cross_track_max_m},
+      {"avoiding_time_s", m.avoiding_time_s},
+  };
+  // The fields other rooms declare (metrics/mission_metrics.hpp), beside these; json sorts the keys.
+  if (m.declared.is_object()) j.update(m.declared);
+  return j;
 }
 
 }  // namespace campo
