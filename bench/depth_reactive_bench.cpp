@@ -29,11 +29,11 @@ StartView start_view(const std::string& name, int resolution) {
   StartView v;
   v.config = drone.sensors.front().range;
   v.config.cols = v.config.rows = resolution;
-  v.grid = DepthGrid::of(v.config);
   v.target_m = drone.mission.front().position_m;
   const RayCaster caster(scene);
   Lidar lidar(v.config, scene.world.seed);
   lidar.scan(caster, drone.pose * to_isometry(v.config.mount), 0.0, v.scan);
+  v.grid = DepthGrid::of(v.scan, v.config);
   return v;
 }
 

@@ -23,8 +23,8 @@ Scene bundled(const std::string& name) {
 SensorDef scanner(int n) {
   SensorDef def;
   def.alias = "camera";
-  def.type = SensorType::depth_camera;
   def.range = *sensor_preset("scanner3d");
+  def.range.kind = RangeSensorKind::depth_camera;
   def.range.cols = n;
   def.range.rows = n;
   return def;

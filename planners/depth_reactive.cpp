@@ -177,7 +177,7 @@ class DepthReactivePlanner final : public Planner {
   void evaluate(const Observation& o, const SensorReading& reading, PlanResult& result) {
     const auto start = Clock::now();
     const RangeScan& scan = *reading.scan;
-    const DepthGrid grid = DepthGrid::of(*reading.config);
+    const DepthGrid grid = DepthGrid::of(scan, *reading.config);
     const cv::Mat depth = depth_map(scan, *reading.config);
     const cv::Mat dilated = dilate_depth_map(depth, dilation_params(config_, grid));
     const double dilation_ms = elapsed_ms(start);

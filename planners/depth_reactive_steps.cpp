@@ -106,8 +106,8 @@ Eigen::Vector2d projected_radius_px(const DepthGrid& grid, double radius_m, doub
 
 }  // namespace
 
-DepthGrid DepthGrid::of(const RangeSensorConfig& config) {
-  return {config.scan_cols(), config.scan_rows(), config.fov_h_deg, config.fov_v_deg, config.max_range_m};
+DepthGrid DepthGrid::of(const RangeScan& scan, const RangeSensorConfig& config) {
+  return {scan.cols, scan.rows, config.fov_h_deg, config.fov_v_deg, config.max_range_m};
 }
 
 double DepthGrid::pixel_rad() const { return std::max(deg_per_col(), deg_per_row()) * kDegToRad; }

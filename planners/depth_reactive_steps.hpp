@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
 
+#include "campo/range_scan.hpp"
 #include "campo/range_sensor_config.hpp"
 
 namespace campo {
@@ -24,7 +25,9 @@ struct DepthGrid {
   double fov_v_deg = 90.0;
   double max_range_m = 10.0;
 
-  static DepthGrid of(const RangeSensorConfig& config);
+  /// The grid of `scan`'s depth map: its rows and columns, as the scan was
+  /// laid out; the angles and the range from its sensor's `config`.
+  static DepthGrid of(const RangeScan& scan, const RangeSensorConfig& config);
   double deg_per_col() const { return fov_h_deg / cols; }
   double deg_per_row() const { return fov_v_deg / rows; }
   /// The coarser of the two pitches, radians: one pixel spans range * pixel_rad() metres.

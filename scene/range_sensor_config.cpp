@@ -65,6 +65,8 @@ constexpr std::array<std::pair<std::string_view, PresetFactory>, 3> kPresets{{
 
 }  // namespace
 
+std::string_view to_string(RangeSensorKind kind) { return kind == RangeSensorKind::lidar ? "lidar" : "depth_camera"; }
+
 std::vector<std::string_view> sensor_preset_names() {
   std::vector<std::string_view> names;
   for (const auto& [name, factory] : kPresets) names.push_back(name);

@@ -56,7 +56,6 @@ std::optional<ShapeType> shape_type_from_string(std::string_view name) {
   return value_of(kShapeNames, name);
 }
 std::string_view to_string(VehicleType type) { return name_of(kVehicleNames, type); }
-std::string_view to_string(SensorType type) { return type == SensorType::lidar ? "lidar" : "depth_camera"; }
 std::optional<VehicleType> vehicle_type_from_string(std::string_view name) {
   return value_of(kVehicleNames, name);
 }

@@ -106,8 +106,9 @@ class Loader {
     r.check([&] { read_objects(r.required("objects"), Eigen::Isometry3d::Identity(), 0); });
     r.finish();
     // Missions last: they may name frames and grids declared anywhere.
-    for (auto& [vehicle_index, mission] : pending_missions_) {
-      VehicleDef& vehicle = scene_.vehicles[vehicle_index];
+    for (const auto& pending : pending_missions_) {
+      VehicleDef& vehicle = scene_.vehicles[pending.first];
+      const auto& mission = pending.second;
       errors_.check([&] { vehicle.mission = read_mission(mission, vehicle.mission_area_m, vehicle.gates); });
     }
     errors_.throw_if_any();
@@ -778,28 +779,14 @@ SensorDef read_sensor(const JsonNode& node, const SceneLimits& limits, InputErro
   ObjectReader r(node, errors);
   SensorDef sensor;
   if (auto alias = r.optional("alias")) sensor.alias = alias->as_string();
-  const JsonNode type = r.required("type");
-  sensor.type = type.as_choice({"lidar", "depth_camera"}) == 0 ? SensorType::lidar : SensorType::depth_camera;
+  RangeSensorConfig& c = sensor.range;
+  // The kind first: the fields' requirements depend on it.
+  c.kind = r.required("type").as_choice({"lidar", "depth_camera"}) == 0 ? RangeSensorKind::lidar
+                                                                        : RangeSensorKind::depth_camera;
   if (r.has("beams") && (r.has("fov_deg") || r.has("resolution"))) {
     r.fail("either \"beams\" or a grid (\"fov_deg\", \"resolution\"), not both");
   }
-  RangeSensorConfig& c = sensor.range;
   range_sensor_config_fields(limits).read_fields(r, c);
-  if (!r.ok()) {
-    r.finish();
-    return sensor;
-  }
-  if (sensor.type == SensorType::depth_camera) {
-    // One perspective render covers the grid: both angles well below 180 deg.
-    if (!c.beams.empty()) r.fail("a depth camera with a beam grid (\"fov_deg\", \"resolution\"), not explicit beams");
-    if (c.noise_stddev_m > 0.0 || c.dropout_probability > 0.0) {
-      r.fail("a depth camera without \"noise_stddev_m\" or \"dropout_probability\" (only the LIDAR models them)");
-    }
-    if (c.fov_h_deg > kMaxDepthCameraFov_deg || c.fov_v_deg > kMaxDepthCameraFov_deg) {
-      r.fail("a depth camera field of view of at most " + std::to_string(static_cast<int>(kMaxDepthCameraFov_deg)) +
-             " deg each way");
-    }
-  }
   r.finish();
   return sensor;
 }

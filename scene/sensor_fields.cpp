@@ -33,7 +33,9 @@ ConfigFields<RangeSensorConfig> range_sensor_config_fields(const SceneLimits& li
               [](const JsonNode& n, C& c) {
                 const auto names = sensor_preset_names();
                 const std::vector<std::string_view> choices(names.begin(), names.end());
+                const RangeSensorKind kind = c.kind;  // the block's "type", not the preset's
                 c = *sensor_preset(choices[n.as_choice(choices)]);
+                c.kind = kind;
               },
               [](const C& c, nlohmann::json& j) { j["preset"] = c.preset; })
       // A grid given here replaces a preset's explicit beams; written for grid sensors only.
@@ -105,7 +107,25 @@ ConfigFields<RangeSensorConfig> range_sensor_config_fields(const SceneLimits& li
               },
               [](const C& c, nlohmann::json& j) { j["rate_hz"] = c.rate_hz; })
       .seed("seed", &C::seed, "noise stream, combined with `world.seed`")
-      .nested("mount", &C::mount, mount_fields(), "pose on the vehicle body");
+      .nested("mount", &C::mount, mount_fields(), "pose on the vehicle body")
+      // What a depth camera has of the fields above: one perspective render
+      // covers a beam grid, well below 180 deg each way, without the LIDAR's
+      // noise model. Checked on the values, which may come from the preset.
+      .requirement([](const C& c) { return c.kind != RangeSensorKind::depth_camera || c.beams.empty(); },
+                   "a depth camera with a beam grid (\"fov_deg\", \"resolution\"), not explicit beams")
+      .requirement(
+          [](const C& c) {
+            return c.kind != RangeSensorKind::depth_camera ||
+                   (c.noise_stddev_m == 0.0 && c.dropout_probability == 0.0);
+          },
+          "a depth camera without \"noise_stddev_m\" or \"dropout_probability\" (only the LIDAR models them)")
+      .requirement(
+          [](const C& c) {
+            return c.kind != RangeSensorKind::depth_camera ||
+                   (c.fov_h_deg <= kMaxDepthCameraFov_deg && c.fov_v_deg <= kMaxDepthCameraFov_deg);
+          },
+          "a depth camera field of view of at most " + std::to_string(static_cast<int>(kMaxDepthCameraFov_deg)) +
+              " deg each way");
 }
 
 const ConfigFields<StateNoiseConfig>& state_noise_fields() {

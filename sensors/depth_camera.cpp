@@ -232,8 +232,8 @@ Chunk bound(const SceneMesh& mesh, std::uint32_t first, std::uint32_t count) {
 void validate(const SensorDef& def) {
   const RangeSensorConfig& c = def.range;
   const std::string name = "depth camera '" + def.alias + "': ";
-  if (def.type != SensorType::depth_camera) {
-    throw std::invalid_argument(name + "a " + std::string(to_string(def.type)) + " is built by make_lidar_sensor");
+  if (def.range.kind != RangeSensorKind::depth_camera) {
+    throw std::invalid_argument(name + "a " + std::string(to_string(def.range.kind)) + " is built by make_lidar_sensor");
   }
   if (!c.beams.empty()) throw std::invalid_argument(name + "needs a beam grid, not explicit beams");
   if (c.cols < 1 || c.rows < 1) throw std::invalid_argument(name + "needs at least one column and row");

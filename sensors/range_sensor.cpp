@@ -29,8 +29,8 @@ class LidarSensor final : public RangeSensor {
 }  // namespace
 
 std::unique_ptr<RangeSensor> make_lidar_sensor(const Scene& scene, const SensorDef& def, std::uint64_t world_seed) {
-  if (def.type != SensorType::lidar) {
-    throw std::invalid_argument("sensor " + def.alias + ": a " + std::string(to_string(def.type)) +
+  if (def.range.kind != RangeSensorKind::lidar) {
+    throw std::invalid_argument("sensor " + def.alias + ": a " + std::string(to_string(def.range.kind)) +
                                 " is built by render/ (make_range_sensor)");
   }
   return std::make_unique<LidarSensor>(scene, def, world_seed);

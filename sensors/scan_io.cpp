@@ -54,7 +54,7 @@ std::string points_ply(const RangeScan& scan) {
 
 nlohmann::json sensor_json(const SensorDef& sensor) {
   nlohmann::json j = range_sensor_config_fields().write(sensor.range);
-  j["type"] = to_string(sensor.type);
+  j["type"] = to_string(sensor.range.kind);
   if (!sensor.alias.empty()) j["alias"] = sensor.alias;
   return j;
 }

@@ -260,7 +260,7 @@ void bench_episodes(const BenchOptions& o, std::vector<Figure>& figures) {
       VehicleDef& def = scene.vehicles.front();
       def.sensors.clear();
       if (resolution > 0) {
-        SensorDef sensor{"scanner", SensorType::lidar, *sensor_preset("scanner3d")};
+        SensorDef sensor{"scanner", *sensor_preset("scanner3d")};
         sensor.range.cols = sensor.range.rows = resolution;
         sensor.range.rate_hz = 10.0;
         def.sensors.push_back(sensor);

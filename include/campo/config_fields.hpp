@@ -77,7 +77,7 @@ struct DependentBound {
 
 /// The declared fields of a config struct `Config` (default-constructible).
 /// Declare with the chainable adders; the options omitted_when_default() and
-/// only_when() apply to the field declared last.
+/// only_when() apply to the field declared last, requirement() to the whole.
 template <class Config>
 class ConfigFields {
  public:
@@ -270,6 +270,17 @@ class ConfigFields {
     return *this;
   }
 
+  /// A requirement on the configuration as a whole, for a rule that no one
+  /// field's reader can check: one that holds for one kind of configuration
+  /// only, or whose values may come from another field (e.g. a preset). Once
+  /// every field is read without error, the requirements are checked in
+  /// declaration order and the first one `holds` rejects is an InputError at
+  /// the object saying `requirement`.
+  ConfigFields& requirement(std::function<bool(const Config&)> holds, std::string requirement) {
+    requirements_.push_back({std::move(holds), std::move(requirement)});
+    return *this;
+  }
+
   /// Overwrites the fields of `config` given in the object at `node`; throws
   /// InputError for a key not declared, a wrong type or a value out of range:
   /// one InputError with every error of the object (each field checked on its
@@ -282,10 +293,17 @@ class ConfigFields {
     errors.throw_if_any();
   }
   /// Reads the declared fields from an object whose other keys the caller
-  /// reads itself (and then calls r.finish()). A reader given an InputErrors
-  /// reads every field, each on its own (ObjectReader::check).
+  /// reads itself (and then calls r.finish()), then checks the requirements.
+  /// A reader given an InputErrors reads every field, each on its own
+  /// (ObjectReader::check).
   void read_fields(ObjectReader& r, Config& config) const {
     for (const Field& f : fields_) r.check([&] { f.read(r, config); });
+    if (!r.ok()) return;
+    r.check([&] {
+      for (const Requirement& q : requirements_) {
+        if (!q.holds(config)) r.fail(q.requirement);
+      }
+    });
   }
   /// The same for a params block (its file and pointer name the errors).
   void read(const ParamsBlock& params, Config& config) const {
@@ -329,6 +347,11 @@ class ConfigFields {
     std::function<void(const Config&, nlohmann::json&)> write;
     std::function<bool(const Config&, const Config&)> same;  ///< the two hold the same value
     std::function<void(const Config&, const std::string&, std::vector<FieldDoc>&)> document;
+  };
+
+  struct Requirement {
+    std::function<bool(const Config&)> holds;
+    std::string requirement;
   };
 
   template <class Bound>
@@ -399,6 +422,7 @@ class ConfigFields {
   }
 
   std::vector<Field> fields_;
+  std::vector<Requirement> requirements_;
 };
 
 }  // namespace campo

@@ -1,7 +1,7 @@
 #pragma once
 /// Configuration of a range sensor (SPEC §6), the ray-cast LIDAR or the depth
-/// camera alike (SensorDef::type says which): field of view, beam layout,
-/// range limits, mount pose, rate and imperfections.
+/// camera alike (its kind says which): field of view, beam layout, range
+/// limits, mount pose, rate and imperfections.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -18,11 +18,22 @@ struct Beam {
   double elevation_deg = 0.0;  ///< positive up
 };
 
+/// How a range sensor measures: the scene's sensor "type". Both kinds fill
+/// the same RangeScan (the same depth map over the same angular grid), so
+/// planners take either.
+enum class RangeSensorKind {
+  lidar,         ///< beams ray-cast against the physics geometry (sensors/lidar.hpp)
+  depth_camera,  ///< an image rendered off-screen with OSMesa (sensors/depth_camera.hpp)
+};
+/// "lidar" or "depth_camera", as the scene names the kind.
+std::string_view to_string(RangeSensorKind kind);
+
 /// Sensor frame: x forward, y left, z up. A grid sensor's pixel (col, row)
 /// looks at azimuth = fov_h/2 - (col + 0.5) * fov_h / cols (so column 0 is the
 /// leftmost) and elevation = fov_v/2 - (row + 0.5) * fov_v / rows (row 0 the
 /// top), matching the depth-map convention: (0,0) top-left, x right, y down.
 struct RangeSensorConfig {
+  RangeSensorKind kind = RangeSensorKind::lidar;  ///< ray-cast beams or a rendered image
   std::string preset = "custom";  ///< preset it started from, for provenance
   double fov_h_deg = 90.0;        ///< horizontal field of view, (0, 360]
   double fov_v_deg = 90.0;        ///< vertical field of view, [0, 180)
@@ -53,9 +64,9 @@ struct RangeSensorConfig {
 inline bool is_image(const RangeSensorConfig& c) { return c.beams.empty() && c.rows > 1; }
 
 /// Preset names: "scanner3d", "leddar_vu8", "planar180" (a sensor block's
-/// "preset", for either sensor type).
+/// "preset", for either kind).
 std::vector<std::string_view> sensor_preset_names();
-/// The preset's configuration; nullopt for an unknown name.
+/// The preset's configuration (a LIDAR's); nullopt for an unknown name.
 std::optional<RangeSensorConfig> sensor_preset(std::string_view name);
 
 }  // namespace campo

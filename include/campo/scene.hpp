@@ -94,20 +94,11 @@ enum class VehicleType { quadrotor, rover };
 std::string_view to_string(VehicleType type);
 std::optional<VehicleType> vehicle_type_from_string(std::string_view name);
 
-enum class SensorType {
-  lidar,         ///< ray-cast against the physics geometry (sensors/lidar.hpp)
-  depth_camera,  ///< rendered off-screen with OSMesa (sensors/depth_camera.hpp)
-};
-std::string_view to_string(SensorType type);
-
-/// A sensor mounted on a vehicle: its kind (`type`) and its range-sensor
-/// configuration. Both kinds produce the same RangeScan (an image, when
-/// is_image(range), giving the same depth map over the same angular grid),
-/// so planners take either.
+/// A sensor mounted on a vehicle: its range-sensor configuration, whose kind
+/// says whether it ray-casts beams or renders an image.
 struct SensorDef {
   std::string alias;
-  SensorType type = SensorType::lidar;  ///< the kind: beams ray-cast, or an image rendered
-  RangeSensorConfig range;  ///< angular grid, ranges, mount, rate (a depth camera has no explicit beams)
+  RangeSensorConfig range;  ///< kind, angular grid, ranges, mount, rate
 };
 
 /// A mission waypoint, resolved to world coordinates at load time.

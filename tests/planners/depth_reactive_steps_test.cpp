@@ -48,7 +48,9 @@ TEST(DepthGrid, ProjectionInvertsPixelDirectionsAndMatchesTheLidarBeams) {
   config.rows = 8;
   config.fov_h_deg = 90.0;
   config.fov_v_deg = 60.0;
-  const DepthGrid grid = DepthGrid::of(config);
+  RangeScan scan;
+  begin_scan(scan, config, 0.0, Eigen::Isometry3d::Identity());
+  const DepthGrid grid = DepthGrid::of(scan, config);
   const std::vector<Beam> beams = lidar_beams(config);
   for (int row = 0; row < config.rows; ++row) {
     for (int col = 0; col < config.cols; ++col) {

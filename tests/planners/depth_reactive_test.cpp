@@ -157,14 +157,14 @@ TEST(DepthReactive, FindsAWaypointBesideABarrier) {
 }
 
 // Closed loop on the seed 000 scenes at coarse resolutions.
-EpisodeResult fly(const std::string& name, int resolution, SensorType source = SensorType::lidar,
+EpisodeResult fly(const std::string& name, int resolution, RangeSensorKind source = RangeSensorKind::lidar,
                   std::uint64_t seed = 0, double noise_stddev_m = 0.0) {
   Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json");
   scene.world.seed = seed;
   SensorDef& sensor = scene.vehicles.front().sensors.front();
   sensor.range.cols = sensor.range.rows = resolution;
   sensor.range.noise_stddev_m = noise_stddev_m;
-  sensor.type = source;
+  sensor.range.kind = source;
   EpisodeOptions options;
   options.make_sensor = range_sensor_factory();
   return run_episode(scene, &make_vehicle, &create_planner, options);
@@ -230,7 +230,7 @@ TEST(DepthReactiveClosedLoop, TreesFollowTheTerrainWithinAHeightBand) {
 TEST(DepthReactiveClosedLoop, ReducedTable5_1OnTheTrees) {
   for (const int resolution : {64, 32}) {
     for (const std::uint64_t seed : {1u, 2u}) {
-      const EpisodeResult r = fly("trees_rolling_terrain", resolution, SensorType::lidar, seed, 0.01);
+      const EpisodeResult r = fly("trees_rolling_terrain", resolution, RangeSensorKind::lidar, seed, 0.01);
       SCOPED_TRACE(std::to_string(resolution) + " px, seed " + std::to_string(seed));
       EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
       EXPECT_EQ(r.metrics.collisions, 0);
@@ -242,7 +242,7 @@ TEST(DepthReactiveClosedLoop, ReducedTable5_1OnTheTrees) {
 
 TEST(DepthReactiveClosedLoop, TwoBarriersWithTheDepthCamera) {
   // At 32 x 32 over a barrier, not through the gap (TwoBarriersAtCoarseResolutions).
-  const EpisodeResult r = fly("two_barriers", 32, SensorType::depth_camera);
+  const EpisodeResult r = fly("two_barriers", 32, RangeSensorKind::depth_camera);
   EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
   EXPECT_EQ(r.metrics.collisions, 0);
   EXPECT_GE(r.metrics.waypoints_planned, 1);

@@ -98,7 +98,7 @@ TEST(ClosedLoop, DepthCameraAndLidarGiveTheSameEpisode) {
   Scene scene = bundled("two_barriers", 3.0);
   scene.vehicles[0].sensors[0].range.cols = scene.vehicles[0].sensors[0].range.rows = 32;
   Scene camera_scene = scene;
-  camera_scene.vehicles[0].sensors[0].type = SensorType::depth_camera;
+  camera_scene.vehicles[0].sensors[0].range.kind = RangeSensorKind::depth_camera;
   std::vector<RangeScan> lidar_scans, camera_scans;
   EpisodeOptions options;
   options.make_sensor = range_sensor_factory();

@@ -556,7 +556,7 @@ namespace {
 TEST(SceneLoader, DepthCamerasTakeAGridWithoutNoise) {
   const Scene scene = parse(R"({"objects": [{"alias": "d", "type": "quadrotor", "sensors": [
       {"alias": "cam", "type": "depth_camera", "preset": "scanner3d", "resolution": [64, 48]}]}]})");
-  EXPECT_EQ(scene.vehicles[0].sensors[0].type, SensorType::depth_camera);
+  EXPECT_EQ(scene.vehicles[0].sensors[0].range.kind, RangeSensorKind::depth_camera);
   EXPECT_EQ(scene.vehicles[0].sensors[0].range.cols, 64);
   EXPECT_THAT(error_of(R"({"objects": [{"alias": "d", "type": "quadrotor", "sensors": [
       {"alias": "cam", "type": "depth_camera", "preset": "planar180"}]}]})"),
@@ -567,6 +567,40 @@ TEST(SceneLoader, DepthCamerasTakeAGridWithoutNoise) {
   EXPECT_THAT(error_of(R"({"objects": [{"alias": "d", "type": "quadrotor", "sensors": [
       {"alias": "cam", "type": "depth_camera", "noise_stddev_m": 0.01}]}]})"),
               HasSubstr("expected a depth camera without \"noise_stddev_m\""));
+}
+
+// The kind is the sensor's configuration's: a preset gives the other fields, not the kind, and what a
+// depth camera cannot have is judged on the values (from the block or its preset), once they read cleanly.
+TEST(SceneLoader, ADepthCamerasRequirementsAreOnItsValues) {
+  const auto sensor = [](const std::string& block) {
+    return R"({"objects": [{"alias": "d", "type": "quadrotor", "sensors": [{"alias": "cam", )" + block + "}]}]}";
+  };
+  const Scene camera = parse(sensor(R"("type": "depth_camera", "preset": "leddar_vu8", "resolution": [8, 8],
+      "fov_deg": [48, 48], "noise_stddev_m": 0, "dropout_probability": 0)"));
+  const RangeSensorConfig& c = camera.vehicles[0].sensors[0].range;
+  EXPECT_EQ(c.kind, RangeSensorKind::depth_camera);
+  EXPECT_EQ(c.preset, "leddar_vu8");
+  EXPECT_TRUE(c.beams.empty());
+  EXPECT_EQ(c.max_range_m, 100.0);  // the preset's
+  // The same values a LIDAR may have.
+  const Scene lidar = parse(sensor(R"("type": "lidar", "preset": "planar180", "noise_stddev_m": 0.01,
+      "dropout_probability": 0.1)"));
+  EXPECT_EQ(lidar.vehicles[0].sensors[0].range.kind, RangeSensorKind::lidar);
+  EXPECT_EQ(lidar.vehicles[0].sensors[0].range.beams.size(), 181u);
+  EXPECT_THAT(error_of(sensor(R"("type": "depth_camera", "dropout_probability": 0.1)")),
+              HasSubstr("/objects/0/sensors/0 (d/cam): expected a depth camera without \"noise_stddev_m\" or "
+                        "\"dropout_probability\" (only the LIDAR models them)"));
+  EXPECT_THAT(error_of(sensor(R"("type": "depth_camera", "beams": [[0, 0]])")),
+              HasSubstr("/objects/0/sensors/0 (d/cam): expected a depth camera with a beam grid"));
+  EXPECT_THAT(error_of(sensor(R"("type": "depth_camera", "preset": "scanner3d", "fov_deg": [90, 150.5])")),
+              HasSubstr("/objects/0/sensors/0 (d/cam): expected a depth camera field of view of at most 150 deg "
+                        "each way"));
+  EXPECT_EQ(parse(sensor(R"("type": "depth_camera", "fov_deg": [150, 150])")).vehicles[0].sensors[0].range.fov_h_deg,
+            150.0);
+  // A field in error: the requirements would judge a value the file did not give, so they are not checked.
+  const std::string bad_range = error_of(sensor(R"("type": "depth_camera", "fov_deg": [170, 90], "range_m": [5, 1])"));
+  EXPECT_THAT(bad_range, HasSubstr("/objects/0/sensors/0/range_m"));
+  EXPECT_THAT(bad_range, ::testing::Not(HasSubstr("depth camera")));
 }
 
 }  // namespace

@@ -14,7 +14,9 @@
 
 #include "campo/pose.hpp"
 #include "campo/scene_loader.hpp"
+#include "campo/sensor_factory.hpp"
 #include "sensors/lidar.hpp"
+#include "sensors/scan_io.hpp"
 
 namespace campo {
 namespace {
@@ -25,8 +27,8 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 SensorDef camera_def(int cols, int rows, double fov_h = 90.0, double fov_v = 90.0) {
   SensorDef def;
   def.alias = "camera";
-  def.type = SensorType::depth_camera;
   def.range = *sensor_preset("scanner3d");
+  def.range.kind = RangeSensorKind::depth_camera;
   def.range.cols = cols;
   def.range.rows = rows;
   def.range.fov_h_deg = fov_h;
@@ -35,7 +37,7 @@ SensorDef camera_def(int cols, int rows, double fov_h = 90.0, double fov_v = 90.
 }
 
 SensorDef as_lidar(SensorDef def) {
-  def.type = SensorType::lidar;
+  def.range.kind = RangeSensorKind::lidar;
   return def;
 }
 
@@ -361,6 +363,28 @@ TEST(DepthCamera, RejectsWhatItCannotRender) {
   RangeScan scan;
   make_depth_camera(scene, camera_def(16, 16))->scan(Eigen::Isometry3d::Identity(), 0.0, scripted_poses(scene, 0.0), scan);
   EXPECT_EQ(std::count(scan.hits.begin(), scan.hits.end(), 0), 256);
+}
+
+// The kind travels with the configuration: written as the block's "type" (run.json, campo scan) and read
+// back into the same configuration; make_range_sensor builds what the kind says.
+TEST(DepthCamera, TheKindIsTheConfigurations) {
+  SensorDef def = camera_def(24, 12, 60.0, 30.0);
+  def.range.mount.rpy_deg = {0.0, 10.0, 0.0};
+  const nlohmann::json block = sensor_json(def);
+  EXPECT_EQ(block.at("type"), "depth_camera");
+  EXPECT_EQ(block.at("alias"), "camera");
+  const SensorDef back = parse_sensor(JsonNode(block, "block", ""));
+  EXPECT_EQ(back.range.kind, RangeSensorKind::depth_camera);
+  EXPECT_EQ(sensor_json(back), block);
+  EXPECT_EQ(sensor_json(as_lidar(def)).at("type"), "lidar");
+  EXPECT_EQ(parse_sensor(JsonNode(sensor_json(as_lidar(def)), "block", "")).range.kind, RangeSensorKind::lidar);
+
+  // Each maker refuses the other kind, so the factory gave each to its own.
+  const Scene scene;
+  EXPECT_THROW(make_lidar_sensor(scene, def, 0), std::invalid_argument);
+  EXPECT_THROW(make_depth_camera(scene, as_lidar(def)), std::invalid_argument);
+  EXPECT_NE(make_range_sensor(scene, def, 0), nullptr);
+  EXPECT_NE(make_range_sensor(scene, as_lidar(def), 0), nullptr);
 }
 
 TEST(DepthCamera, AgreesWithLidarOnTreesRollingTerrain256) { expect_agreement("trees_rolling_terrain", 256); }
