@@ -148,6 +148,7 @@ class WallLimitedPlanner final : public Planner {
 // `pointers`, as apply_override resolved them) have already set up as the scene's.
 // The effective document (scene.json) then names the planner that runs, with its parameters.
 void choose_planner_with_overrides(VehicleDef& def, const RunRequest& request,
+                                   const std::vector<SceneOverride>& overrides,
                                    const std::vector<std::string>& pointers, nlohmann::json& document) {
   const std::string& params = def.planner.params.pointer;  // "/objects/<i>/planner/params"
   const std::string planner = params.substr(0, params.rfind('/'));
@@ -155,7 +156,7 @@ void choose_planner_with_overrides(VehicleDef& def, const RunRequest& request,
   for (std::size_t i = 0; i < pointers.size(); ++i) {
     const std::string& p = pointers[i];
     if (another && (p == planner || p == planner + "/name")) {
-      throw InputError("command line", "--set " + request.overrides[i].text,
+      throw InputError("command line", "--set " + overrides[i].text,
                        "chooses the planner of vehicle " + def.alias + " (\"" + def.planner.name + "\") while --planner " +
                            request.planner + " chooses another: give the planner one way");
     }
@@ -165,7 +166,7 @@ void choose_planner_with_overrides(VehicleDef& def, const RunRequest& request,
   for (std::size_t i = 0; i < pointers.size(); ++i) {
     const std::string& p = pointers[i];
     if (p != params && !p.starts_with(params + "/")) continue;
-    const nlohmann::json& value = request.overrides[i].value;
+    const nlohmann::json& value = overrides[i].value;
     if (p == params) {
       def.planner.params.values = value;
     } else {
@@ -175,6 +176,13 @@ void choose_planner_with_overrides(VehicleDef& def, const RunRequest& request,
   // Checked by the planner as the scene's own would be, at the block's place.
   def.planner.params.file = "command line (--planner " + request.planner + " with --set)";
   document[nlohmann::json::json_pointer(planner)] = {{"name", request.planner}, {"params", def.planner.params.values}};
+}
+
+// The request's overrides, then its seed's: what is applied, in order, and recorded.
+std::vector<SceneOverride> applied_overrides(const RunRequest& request) {
+  std::vector<SceneOverride> overrides = request.overrides;
+  if (request.seed) overrides.push_back(make_override("/world/seed", *request.seed));
+  return overrides;
 }
 
 }  // namespace
@@ -214,7 +222,8 @@ namespace {
 PreparedRun prepare_checked_run(const RunRequest& request, bool validate_planner, const std::string& bytes,
                                 PreparedRun& run) {
   const std::string scene_file = request.scene.string();
-  for (const SceneOverride& assignment : request.overrides) {
+  const std::vector<SceneOverride> overrides = applied_overrides(request);
+  for (const SceneOverride& assignment : overrides) {
     run.override_pointers.push_back(apply_override(run.document, assignment));
   }
   // A scene without a planner block gets one from overrides of its
@@ -258,7 +267,7 @@ PreparedRun prepare_checked_run(const RunRequest& request, bool validate_planner
   // Another planner than the scene's starts from its defaults, and takes the
   // overrides of the vehicle's planner parameters: they were given for the
   // planner that runs, and a --set recorded must be a --set applied.
-  if (!request.planner.empty()) choose_planner_with_overrides(def, request, run.override_pointers, run.document);
+  if (!request.planner.empty()) choose_planner_with_overrides(def, request, overrides, run.override_pointers, run.document);
   if (def.planner.name.empty()) def.planner.name = std::string(kDefaultPlanner);
   check_runnable(scene, options.vehicle_index);
   // Validate every parameter before anything runs.
@@ -334,7 +343,7 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   // Ended by the limit, not by the planner: the reason says so.
   if (limit && limit->tripped && run.result.metrics.outcome == Outcome::failed) run.result.metrics.reason = limit->reason();
   limit.reset();
-  run.record = run_json(scene, run.result, options, override_texts(request.overrides));
+  run.record = run_json(scene, run.result, options, override_texts(applied_overrides(request)));
   if (!run.document.contains("name")) run.document["name"] = scene.name;
   return run;
 }

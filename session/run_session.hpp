@@ -3,7 +3,9 @@
 /// `campo sweep`: overrides applied and validated, the episode run, the files
 /// written all-or-nothing.
 #include <filesystem>
+#include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,9 @@ using FigureWriter = std::function<void(const RecordedRun& run, FigureKind kind,
 struct RunRequest {
   std::filesystem::path scene;          ///< scene file
   std::vector<SceneOverride> overrides; ///< applied in order; run.json records their texts
+  /// The world's seed (/world/seed), applied after the overrides; recorded
+  /// among them as "/world/seed=N". Empty: the scene's.
+  std::optional<std::uint64_t> seed;
   std::string planner;                  ///< empty: the scene's, else the default planner
   std::string vehicle;                  ///< empty: the first vehicle
   std::filesystem::path out;            ///< run directory (created)

@@ -46,7 +46,7 @@ int run_run(const RunOptions& o) {
   RunRequest request;
   request.scene = file_or_bundled(o.scene, &bundled_scene).string();
   for (const std::string& set : o.sets) request.overrides.push_back(parse_override(set));
-  if (o.seed_set) request.overrides.push_back(make_override("/world/seed", parse_seed(o.seed, "command line", "--seed")));
+  if (o.seed_set) request.seed = parse_seed(o.seed, "command line", "--seed");
   request.planner = o.planner;
   request.vehicle = o.vehicle;
   request.out = o.out;

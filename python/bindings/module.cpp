@@ -52,7 +52,7 @@ RunRequest run_request(const std::string& scene, std::optional<std::uint64_t> se
       request.overrides.push_back(make_override(py::str(pointer).cast<std::string>(), to_json(value)));
     }
   }
-  if (seed) request.overrides.push_back(make_override("/world/seed", *seed));
+  request.seed = seed;
   return request;
 }
 
