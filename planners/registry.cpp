@@ -293,14 +293,6 @@ nlohmann::json planner_provenance(std::string_view name) {
   return {{"name", name}, {"source", nullptr}};
 }
 
-const PlannerRecord* planner_record(std::string_view name) {
-  if (name.empty()) name = kDefaultPlanner;
-  for (const PlannerEntry& entry : planner_registry()) {
-    if (entry.name == name) return entry.record;
-  }
-  return nullptr;
-}
-
 void choose_planner(PlannerSpec& spec, std::string_view name, const std::string& origin) {
   if (name != spec.name) spec.params.values = nlohmann::json::object();
   spec.name = std::string(name);
