@@ -2,17 +2,12 @@
 
 #include <algorithm>
 #include <array>
-#include <fstream>
 #include <iterator>
 #include <map>
-#include <sstream>
 
 #include <dlfcn.h>
-#include <link.h>
 
 #include "campo/json_reader.hpp"
-#include "campo/scene_loader.hpp"
-#include "campo/version.hpp"
 #include "planners/depth_reactive.hpp"
 #include "planners/dstar_lite_3d.hpp"
 #include "planners/rover_route.hpp"
@@ -41,22 +36,9 @@ std::vector<PlannerRegistration> built_in_planners() {
   };
 }
 
-// Collects what a plugin's entry point adds.
-class CollectingRegistrar final : public PlannerRegistrar {
- public:
-  void add(PlannerRegistration planner) override { added.push_back(std::move(planner)); }
-  std::vector<PlannerRegistration> added;
-};
-
-struct LoadedHandle {
-  LoadedPlugin plugin;
-  void* handle = nullptr;
-};
-
 /// The registry's state: the planners of plugins and of programs embedding campo, in order.
 struct Registry {
   std::vector<PlannerEntry> added;
-  std::vector<LoadedHandle> plugins;
   std::map<std::string, PlannerScheme, std::less<>> schemes;
 };
 
@@ -78,12 +60,6 @@ bool valid_planner_name(const std::string& name) {
   return !name.empty() && name.size() <= 64 && std::all_of(name.begin(), name.end(), [](char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
   });
-}
-
-std::string abi_mismatch(int built_for) {
-  return "built against campo plugin ABI version " + std::to_string(built_for) + ", but this campo (" +
-         std::string(library_version()) + ") loads plugin ABI version " + std::to_string(library_plugin_abi_version()) +
-         ": rebuild it against this campo";
 }
 
 // Checks the registrations of one source against each other and the planners
@@ -114,113 +90,21 @@ std::string registration_problem(const std::vector<PlannerRegistration>& registr
   return "";
 }
 
-void admit(const std::vector<PlannerRegistration>& registrations, const std::string& source,
-           const std::string& sha256) {
-  for (const PlannerRegistration& r : registrations) registry().added.push_back({r, source, sha256});
-}
-
-// The address of `symbol` in the plugin `handle` itself, or null: dlsym also searches the
-// libraries a plugin depends on, whose symbols are not the plugin's.
-void* own_symbol(void* handle, const char* symbol) {
-  dlerror();
-  void* address = dlsym(handle, symbol);
-  link_map* map = nullptr;
-  Dl_info where{};
-  const bool own = address != nullptr && dlinfo(handle, RTLD_DI_LINKMAP, &map) == 0 && map != nullptr &&
-                   dladdr(address, &where) != 0 && where.dli_fname != nullptr &&
-                   std::string(where.dli_fname) == map->l_name;
-  return own ? address : nullptr;
-}
-
-std::string file_sha256(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return sha256_hex(bytes.str());
-}
-
 }  // namespace
 
 std::vector<PlannerEntry> planner_registry() { return admitted_entries(); }
 
+std::string admit_planners(const std::vector<PlannerRegistration>& planners, const std::string& source,
+                           const std::string& sha256) {
+  std::string problem = registration_problem(planners);
+  if (!problem.empty()) return problem;
+  for (const PlannerRegistration& r : planners) registry().added.push_back({r, source, sha256});
+  return "";
+}
+
 void add_linked_planners(const std::vector<PlannerRegistration>& planners, const std::string& source) {
-  const std::string problem = registration_problem(planners);
+  const std::string problem = admit_planners(planners, source, "");
   if (!problem.empty()) throw InputError(source, "", problem);
-  admit(planners, source, "");
-}
-
-LoadedPlugin load_planner_plugin(const fs::path& path, const std::string& origin, const std::string& pointer) {
-  Registry& reg = registry();
-  if (path.empty()) throw InputError(origin, pointer, "expected the path of a plugin (a shared library), got an empty string");
-  const fs::path file = fs::absolute(path).lexically_normal();
-  const auto fail = [&](const std::string& problem) {
-    throw InputError(origin, pointer, "plugin " + file.string() + ": " + problem);
-  };
-  for (const LoadedHandle& loaded : reg.plugins) {
-    if (loaded.plugin.path == file.string()) return loaded.plugin;
-  }
-
-  dlerror();
-  void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
-  if (handle == nullptr) {
-    const char* error = dlerror();
-    fail("cannot load it (" + std::string(error ? error : "dlopen failed") +
-         "); expected a planner plugin: a shared library built against campo (docs/extending.md)");
-  }
-  // The same file under another path: dlopen returns the handle it loaded before and runs nothing again.
-  for (const LoadedHandle& loaded : reg.plugins) {
-    if (loaded.handle == handle) {
-      dlclose(handle);
-      return loaded.plugin;
-    }
-  }
-  const auto refuse = [&](const std::string& problem) {
-    dlclose(handle);
-    fail(problem);
-  };
-
-  using AbiVersion = int (*)() noexcept;
-  using Register = void (*)(PlannerRegistrar&);
-  const auto abi = reinterpret_cast<AbiVersion>(own_symbol(handle, "campo_plugin_abi_version"));
-  if (abi == nullptr) {
-    refuse("not a campo planner plugin: it does not define the symbol campo_plugin_abi_version; expected a shared "
-           "library with one CAMPO_REGISTER_PLANNERS(registrar) { ... } (campo/plugin.hpp) in its sources");
-  }
-  const int abi_version = abi();
-  if (abi_version != library_plugin_abi_version()) refuse(abi_mismatch(abi_version));
-  const auto register_planners = reinterpret_cast<Register>(own_symbol(handle, "campo_plugin_register_planners"));
-  if (register_planners == nullptr) {
-    refuse("defines campo_plugin_abi_version but not the symbol campo_plugin_register_planners; expected both from "
-           "CAMPO_REGISTER_PLANNERS(registrar) { ... } (campo/plugin.hpp)");
-  }
-  CollectingRegistrar registrar;
-  try {
-    register_planners(registrar);
-  } catch (const std::exception& e) {
-    refuse(std::string("threw while registering its planners: ") + e.what());
-  }
-  const std::vector<PlannerRegistration>& registrations = registrar.added;
-  if (registrations.empty()) {
-    refuse("registers no planner; expected at least one registrar.add({name, description, factory, vehicles}) in "
-           "its CAMPO_REGISTER_PLANNERS body");
-  }
-  const std::string problem = registration_problem(registrations);
-  if (!problem.empty()) refuse(problem);
-
-  LoadedHandle loaded;
-  loaded.plugin.path = file.string();
-  loaded.plugin.sha256 = file_sha256(file);
-  for (const PlannerRegistration& r : registrations) loaded.plugin.planners.push_back(r.name);
-  loaded.handle = handle;
-  admit(registrations, loaded.plugin.path, loaded.plugin.sha256);
-  reg.plugins.push_back(loaded);
-  return loaded.plugin;
-}
-
-std::vector<LoadedPlugin> loaded_plugins() {
-  std::vector<LoadedPlugin> plugins;
-  for (const LoadedHandle& loaded : registry().plugins) plugins.push_back(loaded.plugin);
-  return plugins;
 }
 
 void register_planner_scheme(const std::string& scheme, PlannerScheme handler) {

@@ -1,7 +1,7 @@
 #pragma once
 /// The one list of planners: name -> factory. The built-in planners are one
 /// file each plus one line in registry.cpp; planner plugins add theirs through
-/// their one entry point when loaded (load_planner_plugin, campo/plugin.hpp).
+/// their one entry point when loaded (load_planner_plugin, planners/plugin.cpp).
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -49,6 +49,13 @@ LoadedPlugin load_planner_plugin(const std::filesystem::path& path, const std::s
 
 /// The plugins loaded so far, in load order.
 std::vector<LoadedPlugin> loaded_plugins();
+
+/// Checks the planners of one source (a plugin's path with its SHA-256, or a
+/// program embedding campo with an empty one) against each other and every
+/// planner registered so far, and adds them: the problem ("" when they were
+/// added; none is added otherwise), to follow the source's name in a message.
+std::string admit_planners(const std::vector<PlannerRegistration>& planners, const std::string& source,
+                           const std::string& sha256);
 
 /// Adds planners compiled into a program that embeds campo (its own list, as
 /// registry.cpp's), checked as a plugin's are; `source` names them in
