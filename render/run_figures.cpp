@@ -192,7 +192,7 @@ std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::opt
   const std::string planner = run.record.value("/parameters/planner/name"_json_pointer, std::string());
   if (!run.planner || !run.planner->replan_overlays) {
     throw InputError(file, "/parameters/planner/name",
-                     "expected a planner whose replanning steps --step draws (depth_reactive), got \"" + planner + "\"");
+                     "expected \"depth_reactive\", whose replanning steps --step draws, got \"" + planner + "\"");
   }
   std::vector<ReplanStep> recorded;
   for (const PlannerEvent& event : run.events) {

@@ -22,6 +22,7 @@
 
 #include "campo/config_fields.hpp"
 #include "campo/plugin.hpp"
+#include "campo/record_fields.hpp"
 
 namespace lidar_steer {
 
@@ -67,6 +68,21 @@ const campo::ConfigFields<LidarSteerConfig>& lidar_steer_config_fields() {
   return fields;
 }
 
+// What the planner records beyond campo's generic decisions, each field declared once (name, type,
+// unit, meaning) and written through its typed handle: events.jsonl holds it under its name, and a
+// figure or a script reads it back through the same declaration (docs/extending.md, "Declaring a
+// planner's record"). Registered with the planner below.
+struct LidarSteerRecord {
+  campo::PlannerRecord description;
+  campo::RecordField<double> steer_deg = description.decisions.declare<double>(
+      "steer_deg", "deg", "the heading steered for, relative to the waypoint's, positive left; recorded when it changes");
+};
+
+const LidarSteerRecord& lidar_steer_record() {
+  static const LidarSteerRecord record;
+  return record;
+}
+
 class LidarSteerPlanner final : public campo::Planner {
  public:
   /// `scene`: the ground it knows (may be null: then every hit in the height band is an obstacle).
@@ -104,6 +120,8 @@ class LidarSteerPlanner final : public campo::Planner {
     }
     const bool avoiding = *step != 0;
     if (avoiding != avoiding_) result.decisions.avoiding = avoiding;
+    if (*step != last_step_) lidar_steer_record().steer_deg.set(result.decisions.own, *step * config_.heading_step_deg);
+    last_step_ = *step;
     avoiding_ = avoiding;
     if (avoiding) preferred_side_ = *step > 0 ? 1 : -1;
     if (!avoiding && distance <= config_.carrot_m) {
@@ -184,6 +202,7 @@ class LidarSteerPlanner final : public campo::Planner {
   std::size_t next_ = 0;
   bool avoiding_ = false;
   int preferred_side_ = 1;
+  int last_step_ = 0;         ///< the heading step recorded last (steer_deg), 0 before any
   std::unordered_map<std::int64_t, Eigen::Vector2d> cells_;
 };
 
@@ -212,5 +231,6 @@ std::unique_ptr<campo::Planner> make_lidar_steer_planner(const campo::ParamsBloc
 // The plugin's one entry point: campo calls it once when it loads the library.
 CAMPO_REGISTER_PLANNERS(registrar) {
   registrar.add({"lidar_steer", "example plugin: fly to each waypoint, steering around obstacles seen by LIDAR",
-                 &lidar_steer::make_lidar_steer_planner, {campo::VehicleType::quadrotor}});
+                 &lidar_steer::make_lidar_steer_planner, {campo::VehicleType::quadrotor},
+                 &lidar_steer::lidar_steer_record().description});
 }

@@ -18,6 +18,19 @@ TEST(ConfigDocs, PlannersTablesAreTheDeclaredFields) {
                                                       {"depth_reactive", depth_reactive_config_fields().markdown()},
                                                       {"dstar_lite_3d", dstar_lite_3d_config_fields().markdown()},
                                                       {"rover_route", rover_route_config_fields().markdown()},
+                                                      // What each planner records of its own, as it declares it.
+                                                      {"depth_reactive decisions",
+                                                       depth_reactive_record().description.decisions.markdown()},
+                                                      {"depth_reactive replan",
+                                                       depth_reactive_record().description.replan.markdown()},
+                                                      {"dstar_lite_3d decisions",
+                                                       dstar_lite_3d_record().description.decisions.markdown()},
+                                                      {"dstar_lite_3d replan",
+                                                       dstar_lite_3d_record().description.replan.markdown()},
+                                                      {"rover_route decisions",
+                                                       rover_route_record().description.decisions.markdown()},
+                                                      {"rover_route replan",
+                                                       rover_route_record().description.replan.markdown()},
                                                   });
 }
 
