@@ -83,8 +83,9 @@ void RecordFields::check(const nlohmann::json& record, const std::string& file, 
         std::string declared;
         for (std::size_t i = 0; i < fields_.size(); ++i) declared += (i == 0 ? "" : ", ") + fields_[i].name;
         throw InputError(file, node.pointer(),
-                         "a declared field (" + (declared.empty() ? std::string("none is declared") : declared) +
-                             "), not \"" + printable(key) + "\"");
+                         "expected a declared field (" +
+                             (declared.empty() ? std::string("none is declared") : declared) + "), got \"" +
+                             printable(key) + "\"");
       }
       if (!has_record_type(value, info->type)) {
         node.fail(std::string(to_string(info->type)) + " (" + info->meaning + ")");

@@ -62,7 +62,8 @@ void add_decisions(RunView& v, const std::vector<PlannerEvent>& events, const Pl
   CellsOverlay cells;
   bool avoiding = false;
   double avoiding_since = 0.0;
-  for (const PlannerEvent& event : events) {
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const PlannerEvent& event = events[i];
     if (event.time_s > until_s) break;  // events are in time order
     const Decisions& typed = event.decisions;
     if (typed.avoiding) {
@@ -81,7 +82,7 @@ void add_decisions(RunView& v, const std::vector<PlannerEvent>& events, const Pl
       try {
         planner->cells(typed, cells);
       } catch (const InputError& e) {
-        throw InputError(record_file, "/events" + e.pointer(), e.message());
+        throw InputError(record_file, "/events/" + std::to_string(i) + e.pointer(), e.message());
       }
     }
   }

@@ -81,7 +81,7 @@ TEST(RecordFields, RefusesAKeyNotDeclared) {
   nlohmann::json record = nlohmann::json::object();
   EXPECT_THAT([&] { r.fields.set(record, "counts", 3, "f", "/d"); },
               testing::ThrowsMessage<InputError>(
-                  HasSubstr("/d/counts: a declared field (count, range_m, marginal, action, point_m), not \"counts\"")));
+                  HasSubstr("/d/counts: expected a declared field (count, range_m, marginal, action, point_m), got \"counts\"")));
   r.fields.set(record, "count", 3, "f", "/d");
   EXPECT_EQ(r.count.get(record), 3);
 }
