@@ -66,7 +66,9 @@ RecordedMission record(const std::string& scene_name) {
     }
     if (!e.decisions.replan) continue;
     const nlohmann::json& r = e.decisions.replan->details;
-    Moment m{cell(r["start_cell"]), cell(r["goal_cell"]), std::move(pending), false};
+    const DStarLite3dRecord& declared = dstar_lite_3d_record();
+    Moment m{cell(declared.start_cell.get(r).value()), cell(declared.goal_cell.get(r).value()), std::move(pending),
+             false};
     pending.clear();
     m.new_leg = !goal || !(*goal == m.goal);
     goal = m.goal;
