@@ -45,7 +45,8 @@ std::vector<FigureKind> run_directory_figures(const RecordedRun& run);
 std::vector<std::filesystem::path> write_figure(const RecordedRun& run, FigureKind kind,
                                                 const std::filesystem::path& out_dir,
                                                 const FigureFormats& formats = kPngOnly);
-/// One replanning step of a depth_reactive run (Decisions::replan, docs/planners.md).
+/// One replanning step of a run (Decisions::replan, docs/planners.md) whose planner draws its steps
+/// (PlannerRecord::replan_overlays: depth_reactive).
 struct ReplanStep {
   double time_s = 0.0;                  ///< when the planner decided, simulated seconds
   ReplanDecision decision;              ///< the step as recorded (its index, sensor and the planner's details)
@@ -54,16 +55,18 @@ struct ReplanStep {
 
 /// The replanning steps `indices` of a run, in the order given (every
 /// recorded step when nullopt), checked before anything is drawn: the
-/// planner must be depth_reactive and each step and its depth map must have
-/// been recorded; InputError naming the file and what was expected otherwise.
+/// recorded planner's description must draw replanning steps (depth_reactive)
+/// and each step and its depth map must have been recorded; InputError naming
+/// the file and what was expected otherwise.
 std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::optional<std::vector<int>>& indices);
 
 /// For each step, the depth map it read with the planner's overlays,
-/// recomputed from the recorded files alone (DilataMappa with the recorded
-/// planner parameters and sensor grid, TrovaWP's thresholded map, W' with its
-/// safety ellipse, chosen pixel, scan line to the obstacle edge, new
-/// waypoint), written to out_dir/depth_figures/replan_KKKK_grey.png and
-/// _colour.png; returns the files written.
+/// recomputed by the planner's code (PlannerRecord::replan_overlays) from the
+/// recorded files alone (depth_reactive: DilataMappa with the recorded planner
+/// parameters and sensor grid, TrovaWP's thresholded map, W' with its safety
+/// ellipse, chosen pixel, scan line to the obstacle edge, new waypoint),
+/// written to out_dir/depth_figures/replan_KKKK_grey.png and _colour.png;
+/// returns the files written.
 std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, const std::vector<ReplanStep>& steps,
                                                         const std::filesystem::path& out_dir,
                                                         const FigureFormats& formats = kPngOnly);
@@ -72,16 +75,17 @@ std::vector<std::filesystem::path> write_replan_figures(const RecordedRun& run, 
 /// or colour-mapped), for a video's sensor panel.
 cv::Mat draw_replan_figure(const RecordedRun& run, const ReplanStep& step, bool colour);
 
-/// The instants of a sequence figure picked from a rover_route run's
-/// follow-the-gap decisions ("gap" events): (a) the first chosen gap, (c) the
-/// first one whose centre lies on the other side of the route, (b) half way
-/// between, (d) 2 s after that avoidance ended (or the last gap decision);
-/// InputError when the chosen gap never changed sides.
+/// The instants of a sequence figure picked from the planner's heading marks
+/// (PlannerRecord::heading: rover_route's follow-the-gap decisions): (a) the
+/// first mark on a side, (c) the first one on the other side of the route,
+/// (b) half way between, (d) 2 s after that avoidance ended (or the last
+/// mark); InputError when the choice never changed sides.
 std::vector<double> gap_switch_instants(const RecordedRun& run);
 
 /// The map of a run at `times_s` (2 x 2 for four; gap_switch_instants when
-/// empty), each panel captioned with its letter, time and the gap chosen
-/// then, written to out_dir/sequence.png (and .pdf, .svg as asked).
+/// empty), each panel captioned with its letter, time and the planner's mark
+/// then (the gap chosen, its heading an arrow), written to out_dir/sequence.png
+/// (and .pdf, .svg as asked).
 std::vector<std::filesystem::path> write_sequence(const RecordedRun& run, std::vector<double> times_s,
                                                   const std::filesystem::path& out_dir,
                                                   const FigureFormats& formats = kPngOnly);
