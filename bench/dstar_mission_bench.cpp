@@ -16,7 +16,7 @@
 #include "grid/astar.hpp"
 #include "grid/dstar_lite.hpp"
 #include "planners/dstar_lite_3d.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/vehicle_factory.hpp"
 
 namespace campo {

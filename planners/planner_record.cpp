@@ -2,7 +2,7 @@
 // record, found in the registry by the planner's name.
 #include "campo/planner_record.hpp"
 
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 
 namespace campo {
 

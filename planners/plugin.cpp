@@ -1,6 +1,6 @@
 // Planner plugins (campo/plugin.hpp): loading a plugin's shared library,
 // checking its ABI version and asking its one entry point for its planners,
-// which the registry (planners/registry.hpp) then admits.
+// which the registry (campo/planner_registry.hpp) then admits.
 #include "campo/plugin.hpp"
 
 #include <exception>
@@ -16,7 +16,8 @@
 #include "campo/json_reader.hpp"
 #include "campo/scene_loader.hpp"
 #include "campo/version.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
+#include "planners/planner_admission.hpp"
 
 namespace campo {
 

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "run/event_log.hpp"
 #include "run/provenance.hpp"
 #include "scene/sensor_fields.hpp"

@@ -20,7 +20,7 @@
 #include "campo/run_record.hpp"
 #include "campo/scene_loader.hpp"
 #include "core/output_dir.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "render/run_files.hpp"
 #include "run/event_log.hpp"
 #include "scene/scene_overrides.hpp"

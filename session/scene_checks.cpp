@@ -1,7 +1,7 @@
 #include "session/scene_checks.hpp"
 
 #include "campo/json_reader.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/vehicle_factory.hpp"
 
 namespace campo {

@@ -22,7 +22,7 @@
 #include "campo/scene_loader.hpp"
 #include "campo/version.hpp"
 #include "core/output_dir.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "run/provenance.hpp"
 #include "sensors/lidar.hpp"
 #include "campo/sensor_factory.hpp"

@@ -1,6 +1,6 @@
 #include "tools/plugin_options.hpp"
 
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "tools/path_options.hpp"
 
 namespace campo::cli {

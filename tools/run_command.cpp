@@ -6,7 +6,7 @@
 
 #include "campo/json_reader.hpp"
 #include "core/output_dir.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "run/event_log.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"

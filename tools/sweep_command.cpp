@@ -15,7 +15,7 @@
 #include "campo/json_reader.hpp"
 #include "campo/scene_loader.hpp"
 #include "core/output_dir.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/process_pool.hpp"
 #include "sweep/progress.hpp"

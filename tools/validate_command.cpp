@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "campo/scene_loader.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/sweep_spec.hpp"
 #include "tools/commands.hpp"

@@ -130,7 +130,7 @@ class Planner {
 /// Builds a planner from its parameters (the scene's planner "params" block:
 /// `params.values`, at `params.file` and `params.pointer`); throws InputError
 /// (naming that file and a pointer under that block) for bad parameters.
-/// Registered with its name in planners/registry.cpp, or by a plugin with
+/// Registered with its name in planners/planner_registry.cpp, or by a plugin with
 /// CAMPO_REGISTER_PLANNERS (campo/plugin.hpp).
 using PlannerFactory = std::unique_ptr<Planner> (*)(const ParamsBlock& params, const PlannerContext& context);
 

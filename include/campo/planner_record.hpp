@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -43,9 +44,9 @@ struct HeadingMark {
   double reference_deg = 0.0;
   std::optional<double> nearest_m{};   ///< the nearest reading of the scan, m
   std::optional<double> heading_deg{};  ///< the heading steered for, relative to reference_deg, positive left
-  std::string side;                     ///< which side the choice was on ("left", "right"), "" for none
-  std::string caption;                  ///< e.g. "gap on the left, heading +12 deg (arrow)"
-  std::string status;                   ///< the panel's status line while avoiding, e.g. "avoiding: gap on the left"
+  std::string side{};                   ///< which side the choice was on ("left", "right"), "" for none
+  std::string caption{};                ///< e.g. "gap on the left, heading +12 deg (arrow)"
+  std::string status{};                 ///< the panel's status line while avoiding, e.g. "avoiding: gap on the left"
 };
 
 /// An image a planner's replanning step read (a depth map, values in [0, 1])
@@ -56,7 +57,7 @@ struct RecordedImage {
   double fov_h_deg = 0.0;
   double fov_v_deg = 0.0;
   double max_range_m = 0.0;
-  std::vector<float> values;  ///< row-major, cols * rows
+  std::vector<float> values{};  ///< row-major, cols * rows
 };
 
 /// What a replanning step's figure draws over the image it read: images of
@@ -72,14 +73,36 @@ struct ImageOverlays {
   std::optional<Eigen::Vector2i> placed_px{};  ///< where something was placed (a diamond)
 };
 
+/// A planner's decisions with the time it took them (events.jsonl, run/event_log.hpp).
+struct PlannerEvent {
+  double time_s = 0.0;
+  Decisions decisions;
+
+  bool operator==(const PlannerEvent&) const = default;
+};
+
+/// What a run recorded that a planner's own metrics are measured on (PlannerRecord::measure).
+struct PlannerRun {
+  std::span<const PlannerEvent> events;  ///< every decision, in order (as events.jsonl holds them)
+  double end_time_s = 0.0;               ///< simulated time when the run ended (run.json's sim_time_s), s
+};
+
 /// A planner's description of its record.
 struct PlannerRecord {
   /// The fields it adds to Decisions::own; none when empty.
   RecordFields decisions;
   /// The fields of its replanning steps' details (ReplanDecision::details).
   RecordFields replan;
-  /// Its own metrics, if any (beside the generic ones in run.json's metrics).
+  /// Its own metrics, if any, written by `measure` into run.json's metrics
+  /// beside the generic ones and the mission's; a name that is one of theirs
+  /// refuses the run before it starts (InputError naming the planner).
   RecordFields metrics;
+  /// Measures its metrics at the end of a run from what the run recorded,
+  /// writing each through its `metrics` declaration into `out` (an empty
+  /// object). A key it writes that is not declared there, or not of its
+  /// declared type, is an InputError naming the planner. Called only when
+  /// `metrics` declares a field.
+  std::function<void(const PlannerRun& run, nlohmann::json& out)> measure;
 
   /// Overlays, each optional. `cells`: folds one event's decisions into the
   /// grid (its first call sees an empty one); InputError (file "", the

@@ -1,7 +1,7 @@
 // libcampo_python: starts a Python interpreter inside a program that is not
 // Python (campo run --planner python:..., a sweep's runs) and imports the
 // campo package, whose native module registers the "python" planner scheme.
-// Loaded on demand by planners/registry.cpp (load_python_support).
+// Loaded on demand by planners/planner_registry.cpp (load_python_support).
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>

@@ -18,7 +18,7 @@
 #include "campo/run_record.hpp"
 #include "campo/version.hpp"
 #include "core/output_dir.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "python/bindings/observation.hpp"
 #include "python/bindings/planner_limits.hpp"
 #include "python/bindings/python_planner.hpp"
@@ -210,6 +210,11 @@ py::object run(const std::string& scene, const py::object& planner, const std::o
       throw InputError("planner", "", "a planner name or an object with a plan(self, obs) method");
     }
     request.planner = python_planner_name(planner);
+    try {
+      declared_decision_fields(planner, request.planner);  // a malformed declaration is bad input, before the run
+    } catch (const std::invalid_argument& e) {
+      throw InputError("planner", "", std::string("a Python planner's declaration: ") + e.what());
+    }
     request.make_planner = [planner](const PlannerSpec& spec, const PlannerContext&) {
       // The object was built by the caller: overrides of the vehicle's planner parameters would be dropped.
       if (!spec.params.values.empty()) {
@@ -232,6 +237,45 @@ py::object run(const std::string& scene, const py::object& planner, const std::o
     record = simulate_run(request, {}).record;
   }
   return from_json(record);
+}
+
+// The description of the planner `name` as campo.planner_record reads it
+// (planner_record_of); "external" (campo.Episode's runs) has none.
+std::shared_ptr<const PlannerRecord> record_of(const std::string& name) {
+  return name == kExternalPlanner ? nullptr : planner_record_of(name);
+}
+
+// The fields of one part ("decisions", "replan", "metrics") of a planner's record.
+const RecordFields& record_part(const PlannerRecord& record, const std::string& part) {
+  if (part == "decisions") return record.decisions;
+  if (part == "replan") return record.replan;
+  if (part == "metrics") return record.metrics;
+  throw std::invalid_argument("a part of a planner's record: decisions, replan or metrics; got \"" + part + "\"");
+}
+
+// campo.planner_record's native half: None, or each part's fields as (name, type, unit, meaning).
+py::object planner_fields(const std::string& name) {
+  const std::shared_ptr<const PlannerRecord> record = record_of(name);
+  if (!record) return py::none();
+  py::dict parts;
+  for (const char* part : {"decisions", "replan", "metrics"}) {
+    py::list fields;
+    for (const RecordFieldInfo& f : record_part(*record, part).fields()) {
+      fields.append(py::make_tuple(f.name, std::string(to_string(f.type)), f.unit, f.meaning));
+    }
+    parts[part] = fields;
+  }
+  return parts;
+}
+
+// A recorded part of the planner's record checked against its declarations
+// (RecordFields::check): InputError at `file` and `pointer` for an undeclared
+// key or a value not what its field holds.
+void check_record(const std::string& name, const std::string& part, const py::handle& record, const std::string& file,
+                  const std::string& pointer) {
+  const std::shared_ptr<const PlannerRecord> description = record_of(name);
+  static const PlannerRecord kNone;  // a planner without a description declares no field
+  record_part(description ? *description : kNone, part).check(to_json(record), file, pointer);
 }
 
 }  // namespace
@@ -282,6 +326,11 @@ PYBIND11_MODULE(_campo, m) {
     for (const PlannerEntry& entry : planner_registry()) names.push_back(entry.name);
     return names;
   }, "the registered planners' names");
+  m.def("_planner_fields", &planner_fields, py::arg("name"),
+        "the declared fields of planner name's record, {part: [(name, type, unit, meaning)]}, or None "
+        "(campo.planner_record)");
+  m.def("_check_record", &check_record, py::arg("planner"), py::arg("part"), py::arg("record"), py::arg("file"),
+        py::arg("pointer"), "checks a recorded part of planner's record against its declarations (InputError)");
 }
 
 }  // namespace campo::python

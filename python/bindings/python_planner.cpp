@@ -13,7 +13,7 @@
 
 #include "campo/json_reader.hpp"
 #include "campo/scene_loader.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "python/bindings/observation.hpp"
 #include "python/bindings/planner_limits.hpp"
 #include "run/event_log.hpp"
@@ -188,7 +188,53 @@ nlohmann::json bounded_decisions_json(const py::dict& decisions) {
 
 }  // namespace
 
-PlanResult plan_result(const PlanResultBox& box) {
+namespace {
+
+// A field's type by its name in a declaration ("integer"); nullopt when no type has it.
+std::optional<RecordType> record_type(const std::string& name) {
+  for (RecordType t : {RecordType::flag, RecordType::integer, RecordType::number, RecordType::text, RecordType::array,
+                       RecordType::object}) {
+    if (to_string(t) == name) return t;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::shared_ptr<const RecordFields> declared_decision_fields(const py::handle& planner, const std::string& who) {
+  if (!py::hasattr(planner, "decision_fields")) return nullptr;
+  const py::object declared = planner.attr("decision_fields");
+  if (declared.is_none()) return nullptr;
+  const std::string at = who + ".decision_fields";
+  constexpr const char* kEntry = "(name, type, unit, meaning), four strings";
+  if (py::isinstance<py::str>(declared) || !py::isinstance<py::sequence>(declared)) {
+    throw std::invalid_argument(at + ": expected a list of " + std::string(kEntry) + ", got " +
+                                py::repr(declared).cast<std::string>());
+  }
+  auto fields = std::make_shared<RecordFields>();
+  const py::sequence entries = py::reinterpret_borrow<py::sequence>(declared);
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const py::object entry = entries[i];
+    const std::string where = at + "[" + std::to_string(i) + "]";
+    const auto refuse = [&](const std::string& expected) {
+      throw std::invalid_argument(where + ": expected " + expected + ", got " + py::repr(entry).cast<std::string>());
+    };
+    if (py::isinstance<py::str>(entry) || !py::isinstance<py::sequence>(entry) || py::len(entry) != 4) refuse(kEntry);
+    std::vector<std::string> parts;
+    for (const py::handle part : py::reinterpret_borrow<py::sequence>(entry)) {
+      if (!py::isinstance<py::str>(part)) refuse(kEntry);
+      parts.push_back(part.cast<std::string>());
+    }
+    if (parts[0].empty()) refuse("a field with a name");
+    const std::optional<RecordType> type = record_type(parts[1]);
+    if (!type) refuse("a type of flag, integer, number, text, array or object");
+    if (fields->find(parts[0])) refuse("a field declared once (\"" + parts[0] + "\" is declared before)");
+    fields->declare_json({parts[0], *type, parts[2], parts[3]});
+  }
+  return fields;
+}
+
+PlanResult plan_result(const PlanResultBox& box, const RecordFields* fields) {
   PlanResult result;
   result.command = box.command.value;
   result.status = box.status;
@@ -197,6 +243,17 @@ PlanResult plan_result(const PlanResultBox& box) {
     if (!py::isinstance<py::dict>(box.decisions)) throw std::runtime_error("PlanResult.decisions: expected a dict or None");
     try {
       result.decisions = decisions_from_json(bounded_decisions_json(box.decisions), "PlanResult", "/decisions");
+      if (fields) {
+        // Its own keys through its declarations; the record's notes of what was bounded stay as they are.
+        nlohmann::json own = std::exchange(result.decisions.own, nlohmann::json::object());
+        for (auto& [key, value] : own.items()) {
+          if (key == "thinned" || key == "omitted") {
+            result.decisions.own[key] = std::move(value);
+          } else {
+            fields->set(result.decisions.own, key, std::move(value), "PlanResult", "/decisions");
+          }
+        }
+      }
     } catch (const InputError& e) {
       throw std::runtime_error(std::string("the planner's decisions: ") + e.what());
     }
@@ -208,11 +265,13 @@ namespace {
 
 class PythonPlanner final : public Planner {
  public:
-  PythonPlanner(py::object planner, nlohmann::json parameters, std::unique_ptr<PlannerGuard> guard)
+  PythonPlanner(py::object planner, nlohmann::json parameters, std::unique_ptr<PlannerGuard> guard,
+                std::shared_ptr<const RecordFields> fields)
       : planner_(std::move(planner)),
         plan_(planner_.attr("plan")),
         parameters_(std::move(parameters)),
-        guard_(std::move(guard)) {}
+        guard_(std::move(guard)),
+        fields_(std::move(fields)) {}
 
   ~PythonPlanner() override {
     // Python objects die with the interpreter's lock held.
@@ -242,7 +301,7 @@ class PythonPlanner final : public Planner {
         throw std::runtime_error("plan() returned " + py::repr(returned).cast<std::string>() +
                                  "; expected a campo.PlanResult");
       }
-      return plan_result(returned.cast<const PlanResultBox&>());
+      return plan_result(returned.cast<const PlanResultBox&>(), fields_.get());
     } catch (py::error_already_set& e) {
       throw std::runtime_error("Python exception converting what plan() returned:\n" + traceback_text(e));
     }
@@ -277,6 +336,7 @@ class PythonPlanner final : public Planner {
   py::object plan_;
   nlohmann::json parameters_;
   std::unique_ptr<PlannerGuard> guard_;
+  std::shared_ptr<const RecordFields> fields_;  ///< its declared decision fields; null: its own keys are free
   mutable std::optional<std::string> parameters_error_;
   std::shared_ptr<const std::vector<Eigen::Vector3d>> mission_;
 };
@@ -330,6 +390,11 @@ std::unique_ptr<Planner> create_python_planner(const PlannerSpec& spec, const Pl
     throw InputError(spec.params.file, spec.name_pointer,
                      "a Python planner class with a plan(self, obs) method; " + module_name + ":" + class_name +
                          " has none");
+  }
+  try {
+    declared_decision_fields(cls, module_name + ":" + class_name);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(spec.params.file, spec.name_pointer, std::string("a Python planner's declaration: ") + e.what());
   }
   // The vehicle types it declares (class attribute `vehicles`), both by default.
   std::vector<std::string> vehicles{"quadrotor", "rover"};
@@ -393,8 +458,45 @@ nlohmann::json python_planner_provenance(std::string_view name) {
 std::unique_ptr<Planner> wrap_python_planner(py::object planner, nlohmann::json parameters,
                                              std::unique_ptr<PlannerGuard> guard) {
   if (!py::hasattr(planner, "plan")) throw std::invalid_argument("a planner needs a plan(self, obs) method");
-  if (!guard) guard = std::make_unique<PlannerGuard>(python_planner_name(planner), current_limits());
-  return std::make_unique<PythonPlanner>(std::move(planner), std::move(parameters), std::move(guard));
+  const std::string name = python_planner_name(planner);
+  if (!guard) guard = std::make_unique<PlannerGuard>(name, current_limits());
+  std::shared_ptr<const RecordFields> fields = declared_decision_fields(planner, name);
+  return std::make_unique<PythonPlanner>(std::move(planner), std::move(parameters), std::move(guard),
+                                         std::move(fields));
+}
+
+std::shared_ptr<const PlannerRecord> planner_record_of(std::string_view name) {
+  if (const auto parts = split_python_name(name)) {
+    const auto& [module_name, class_name] = *parts;
+    py::object cls;
+    try {
+      cls = python_class(module_name, class_name);
+    } catch (py::error_already_set& e) {
+      throw InputError("planner", "", "an importable Python class " + module_name + ":" + class_name +
+                                          "; importing it failed:\n" + traceback_text(e));
+    }
+    std::shared_ptr<const RecordFields> fields;
+    try {
+      fields = declared_decision_fields(cls, module_name + ":" + class_name);
+    } catch (const std::invalid_argument& e) {
+      throw InputError("planner", "", std::string("a Python planner's declaration: ") + e.what());
+    }
+    if (!fields) return nullptr;
+    auto record = std::make_shared<PlannerRecord>();
+    record->decisions = *fields;
+    return record;
+  }
+  const std::string_view wanted = name.empty() ? kDefaultPlanner : name;
+  std::string known;
+  for (const PlannerEntry& entry : planner_registry()) {
+    if (entry.name == wanted) {
+      if (!entry.record) return nullptr;
+      return std::shared_ptr<const PlannerRecord>(entry.record, [](const PlannerRecord*) {});  // the registry's own
+    }
+    known += (known.empty() ? "" : ", ") + entry.name;
+  }
+  throw InputError("planner", "", "a registered planner (" + known + ") or \"python:module:Class\", got \"" +
+                                      std::string(name) + "\"");
 }
 
 std::string python_planner_name(const py::handle& planner) {

@@ -2,14 +2,16 @@
 /// Planners written in Python, in campo's C++ closed loop: the adapter that
 /// makes a Python object with plan(obs) a campo::Planner, the conversions of
 /// commands and plan results, and the "python:package.module:ClassName"
-/// planner scheme (planners/registry.hpp).
+/// planner scheme (campo/planner_registry.hpp).
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 #include <pybind11/pybind11.h>
 
 #include "campo/planner.hpp"
+#include "campo/planner_record.hpp"
 #include "python/bindings/planner_limits.hpp"
 
 namespace campo::python {
@@ -31,9 +33,27 @@ struct PlanResultBox {
 nlohmann::json to_json(const pybind11::handle& value);
 pybind11::object from_json(const nlohmann::json& value);
 
+/// The decision fields a Python planner declares: its `decision_fields`
+/// attribute (of the object, or of the class), a list of (name, type, unit,
+/// meaning), type one of "flag", "integer", "number", "text", "array",
+/// "object" (campo/record_fields.hpp). Null when it has none (or None): its
+/// own keys are then free, as before declarations existed.
+/// std::invalid_argument naming `who`, the entry and what was expected when
+/// the declaration is malformed.
+std::shared_ptr<const RecordFields> declared_decision_fields(const pybind11::handle& planner, const std::string& who);
+
 /// The PlanResult of a PlanResultBox; its decisions dict read as events.jsonl's
-/// (run/event_log.hpp). Throws std::runtime_error naming what is wrong.
-PlanResult plan_result(const PlanResultBox& box);
+/// (run/event_log.hpp), and, when the planner declares its decision fields,
+/// each of its own keys written through `fields` (RecordFields::set: an
+/// undeclared key or a value not of its type refused). Throws
+/// std::runtime_error naming what is wrong.
+PlanResult plan_result(const PlanResultBox& box, const RecordFields* fields = nullptr);
+
+/// The description of the planner `name` as Python sees it (campo.planner_record):
+/// a built-in's or a loaded plugin's PlannerRecord, or for "python:module:Class"
+/// the class's declared decision fields (imported); null when it has none.
+/// InputError (file "planner") when `name` names no planner.
+std::shared_ptr<const PlannerRecord> planner_record_of(std::string_view name);
 
 /// The planner the Python object `planner` is: plan() called with a
 /// campo.Observation at every control tick. A Python exception ends the run

@@ -14,7 +14,7 @@
 #include "campo/episode.hpp"
 #include "campo/json_reader.hpp"
 #include "campo/scene_loader.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/sensor_factory.hpp"
 #include "campo/vehicle_factory.hpp"
 

@@ -14,7 +14,7 @@
 #include "campo/plugin.hpp"
 #include "campo/scene_loader.hpp"
 #include "campo/version.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 
 namespace campo {
 namespace {

@@ -11,7 +11,7 @@
 #include "campo/json_reader.hpp"
 #include "campo/scene_loader.hpp"
 #include "closed_loop_support.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 
 namespace campo {
 namespace {

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "campo/json_reader.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 
 namespace campo {
 namespace {

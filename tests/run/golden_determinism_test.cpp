@@ -19,7 +19,7 @@
 
 #include "campo/episode.hpp"
 #include "campo/scene_loader.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "sensors/fan_kernels.hpp"
 #include "campo/sensor_factory.hpp"
 #include "campo/vehicle_factory.hpp"

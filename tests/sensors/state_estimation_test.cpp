@@ -8,7 +8,7 @@
 
 #include "campo/episode.hpp"
 #include "campo/scene_loader.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/vehicle_factory.hpp"
 
 namespace campo {

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/sweep_spec.hpp"
 #include "campo/vehicle_factory.hpp"

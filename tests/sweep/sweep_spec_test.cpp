@@ -13,7 +13,7 @@
 #include "campo/random.hpp"
 #include "campo/scene_loader.hpp"
 #include "campo/version.hpp"
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 #include "scene/scene_overrides.hpp"
 #include "sweep/expansion.hpp"
 #include "campo/vehicle_factory.hpp"

@@ -1,4 +1,4 @@
-#include "planners/registry.hpp"
+#include "campo/planner_registry.hpp"
 
 #include <algorithm>
 #include <array>
@@ -10,6 +10,7 @@
 #include "campo/json_reader.hpp"
 #include "planners/depth_reactive.hpp"
 #include "planners/dstar_lite_3d.hpp"
+#include "planners/planner_admission.hpp"
 #include "planners/rover_route.hpp"
 #include "planners/straight.hpp"
 

@@ -1,7 +1,10 @@
 #pragma once
 /// The one list of planners: name -> factory. The built-in planners are one
-/// file each plus one line in registry.cpp; planner plugins add theirs through
-/// their one entry point when loaded (load_planner_plugin, planners/plugin.cpp).
+/// file each plus one line in planners/planner_registry.cpp; planner plugins
+/// add theirs through their one entry point when loaded (load_planner_plugin,
+/// planners/plugin.cpp), and a program embedding campo its own
+/// (add_linked_planners). Public, so an embedding program creates planners by
+/// name exactly as `campo run` does (create_planner).
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -50,15 +53,8 @@ LoadedPlugin load_planner_plugin(const std::filesystem::path& path, const std::s
 /// The plugins loaded so far, in load order.
 std::vector<LoadedPlugin> loaded_plugins();
 
-/// Checks the planners of one source (a plugin's path with its SHA-256, or a
-/// program embedding campo with an empty one) against each other and every
-/// planner registered so far, and adds them: the problem ("" when they were
-/// added; none is added otherwise), to follow the source's name in a message.
-std::string admit_planners(const std::vector<PlannerRegistration>& planners, const std::string& source,
-                           const std::string& sha256);
-
 /// Adds planners compiled into a program that embeds campo (its own list, as
-/// registry.cpp's), checked as a plugin's are; `source` names them in
+/// planners/planner_registry.cpp's), checked as a plugin's are; `source` names them in
 /// --list-planners and provenance. Throws InputError at `source` on a problem.
 void add_linked_planners(const std::vector<PlannerRegistration>& planners, const std::string& source);
 
