@@ -392,7 +392,7 @@ std::unique_ptr<Planner> create_python_planner(const PlannerSpec& spec, const Pl
                          " has none");
   }
   try {
-    declared_decision_fields(cls, module_name + ":" + class_name);
+    declared_decision_fields(cls, spec.name);
   } catch (const std::invalid_argument& e) {
     throw InputError(spec.params.file, spec.name_pointer, std::string("a Python planner's declaration: ") + e.what());
   }
@@ -477,7 +477,7 @@ std::shared_ptr<const PlannerRecord> planner_record_of(std::string_view name) {
     }
     std::shared_ptr<const RecordFields> fields;
     try {
-      fields = declared_decision_fields(cls, module_name + ":" + class_name);
+      fields = declared_decision_fields(cls, std::string(name));
     } catch (const std::invalid_argument& e) {
       throw InputError("planner", "", std::string("a Python planner's declaration: ") + e.what());
     }

@@ -28,6 +28,7 @@ from ._campo import (  # noqa: F401 (re-exported)
     planners,
     run,
 )
+from .records import PlannerRecord, RecordField, planner_record  # noqa: F401
 from .results import ResultsError, ResultsWarning, Run, read_results, read_run  # noqa: F401
 
 
@@ -39,11 +40,16 @@ class Planner:
     by name: `campo run --planner python:package.module:ClassName`, or a sweep
     spec's planner of that form, whose params become the constructor's keyword
     arguments. An exception in plan() ends the run as failed, its traceback
-    the run's reason.
+    the run's reason, as does a decision its `decision_fields` do not declare.
     """
 
     #: The vehicle types the planner drives.
     vehicles = ("quadrotor", "rover")
+
+    #: Its own decision fields, declared: a list of campo.RecordField(name, type, unit, meaning) (or 4-tuples).
+    #: When declared, every key of its decisions other than the typed ones must be one of them, of its type;
+    #: None (the default): its own keys are free.
+    decision_fields = None
 
     def plan(self, obs):
         raise NotImplementedError("a campo.Planner defines plan(self, obs)")

@@ -19,6 +19,9 @@ from typing import Any, Callable, Iterator, Optional, Union
 import numpy as np
 import pandas as pd
 
+from . import _campo
+from .records import PlannerRecord, _undeclared, planner_record
+
 __all__ = ["ResultsError", "ResultsWarning", "Run", "read_results", "read_run"]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -348,6 +351,55 @@ class Run:
     def metrics(self) -> dict[str, Any]:
         """run.json's `metrics`."""
         return self.record["metrics"]
+
+    @property
+    def planner(self) -> str:
+        """The name of the run's planner, as run.json's `parameters.planner.name` records it ("" when absent)."""
+        parameters = self.record.get("parameters")
+        planner = parameters.get("planner") if isinstance(parameters, dict) else None
+        name = planner.get("name") if isinstance(planner, dict) else None
+        return name if isinstance(name, str) else ""
+
+    @property
+    def planner_record(self) -> Optional[PlannerRecord]:
+        """The declared fields of the run's planner (campo.planner_record), None when it declares none."""
+        return planner_record(self.planner)
+
+    def decision(self, name: str) -> pd.Series:
+        """The values of the planner's declared decision field `name` over the run: a Series indexed by `time_s`,
+        one entry per event that holds the field, named `name`, its dtype as read_results' columns.
+
+        The field is looked up by the planner's declaration (campo.planner_record); an undeclared name, or a
+        planner that declares nothing, raises ResultsError listing what it declares. Each value is checked against
+        its declaration: one that is not of its type raises ResultsError naming the file and its JSON pointer.
+        """
+        record = self.planner_record
+        label = self.planner or "straight"
+        fields = record.decisions if record else ()
+        if not any(field.name == name for field in fields):
+            raise ResultsError(f"{self.directory}: {_undeclared(label, name, fields)}")
+        if self.events is None:
+            raise ResultsError(f"{self.directory}: expected the planner's decisions (events.jsonl), but the run "
+                               "directory holds none")
+        # Where each event was read: a line of events.jsonl (campo writes no blank lines), else run.json's array.
+        in_lines = (self.directory / "events.jsonl").exists()
+        times, values = [], []
+        for i, event in enumerate(self.events):
+            decisions = event["decisions"]
+            if name not in decisions:
+                continue
+            source, pointer = ((f"{self.directory / 'events.jsonl'} line {i + 1}", "/decisions") if in_lines
+                               else (str(self.directory / "run.json"), f"/events/{i}/decisions"))
+            try:
+                _campo._check_record(self.planner, "decisions", {name: decisions[name]}, source, pointer)
+            except _campo.InputError as error:
+                raise ResultsError(str(error)) from None
+            times.append(event["time_s"])
+            values.append(decisions[name])
+        series = _column(values)
+        series.index = pd.Index(times, name="time_s", dtype="float64")
+        series.name = name
+        return series
 
 
 def read_run(path: PathLike) -> Run:

@@ -9,6 +9,7 @@ CAMPO_BIN names the program (default: build/campo of this source tree).
 import json
 import os
 import pathlib
+import re
 import stat
 import subprocess
 import sys
@@ -229,6 +230,117 @@ class PythonPlannerTest(unittest.TestCase):
     def test_vehicle_types_are_declared(self):
         with self.assertRaisesRegex(campo.InputError, "drives a rover only, not a quadrotor"):
             campo.run(OPEN_FIELD, planner="python:python_planners:RoverOnly")
+
+
+def documented_fields():
+    """Each planner's declared fields as docs/planners.md shows them, {(planner, part): [RecordField]}: tables
+    generated from the C++ declarations (RecordFields::markdown) and kept equal to them by
+    tests/planners/config_docs_test, read here as text, independently of the module."""
+    text = (SOURCE_DIR / "docs" / "planners.md").read_text(encoding="utf-8")
+    tables = {}
+    for planner, part, table in re.findall(r"<!-- fields (\S+) (\S+) -->\n(.*?)<!-- end fields -->", text, re.S):
+        fields = []
+        for row in table.strip().split("\n")[2:]:  # after the header and its rule
+            cells = [cell.strip().replace("\\|", "|") for cell in re.split(r"(?<!\\)\|", row)[1:-1]]
+            fields.append(campo.RecordField(cells[0].strip("`"), *cells[1:]))
+        tables[(planner, part)] = fields
+    return tables
+
+
+class PlannerRecordTest(unittest.TestCase):
+    """Planners' declared record fields seen from Python (issue 32 point 2)."""
+
+    def test_built_in_declarations_are_the_cpp_ones(self):
+        documented = documented_fields()
+        self.assertIn(("rover_route", "decisions"), documented)  # the docs were read
+        seen = {}
+        for name in campo.planners():
+            record = campo.planner_record(name)
+            if record is None:
+                continue
+            self.assertEqual(record.name, name)
+            for part in ("decisions", "replan", "metrics"):
+                if getattr(record, part):
+                    seen[(name, part)] = list(getattr(record, part))
+        self.assertEqual(seen, documented)
+        gap = campo.planner_record("rover_route").decision("gap")
+        self.assertEqual((gap.name, gap.type, gap.unit), ("gap", "object", ""))
+        self.assertIsNone(campo.planner_record("straight"))  # declares nothing
+        self.assertIsNone(campo.planner_record("external"))  # campo.Episode's runs
+        with self.assertRaisesRegex(KeyError, 'rover_route declares no decision field "gaps" \\(it declares: gap\\)'):
+            campo.planner_record("rover_route").decision("gaps")
+        with self.assertRaisesRegex(campo.InputError, 'a registered planner \\(straight, .*rover_route.*\\) or '
+                                                      '"python:module:Class", got "rover"'):
+            campo.planner_record("rover")
+
+    def test_a_python_planner_declares_its_decision_fields(self):
+        record = campo.planner_record("python:python_planners:Declares")
+        self.assertEqual(record.decisions, (campo.RecordField("distance_m", "number", "m", "distance to the goal"),
+                                            campo.RecordField("leg", "integer", "", "the mission leg flown")))
+        self.assertEqual((record.replan, record.metrics), ((), ()))
+        self.assertIsNone(campo.planner_record("python:python_planners:FreeKeys"))
+
+    def test_declared_decisions_are_checked(self):
+        m = campo.run(OPEN_FIELD, planner=python_planners.Declares("undeclared"))["metrics"]
+        self.assertEqual(m["outcome"], "failed")
+        self.assertIn('the planner\'s decisions: PlanResult: /decisions/speed: expected a declared field '
+                      '(distance_m, leg), got "speed"', m["reason"])
+        self.assertEqual(m["planner_calls"], 0)  # its first call broke the declaration
+        m = campo.run(OPEN_FIELD, planner=python_planners.Declares("type"))["metrics"]
+        self.assertEqual(m["outcome"], "failed")
+        self.assertIn('/decisions/leg: expected integer (the mission leg flown), got "first"', m["reason"])
+        # A malformed declaration is bad input, by object and by name.
+        expected = (r"python:python_planners:BadDeclaration.decision_fields\[0\]: expected a type of flag, integer, "
+                    r"number, text, array or object, got \('distance_m', 'real'")
+        with self.assertRaisesRegex(campo.InputError, expected):
+            campo.run(OPEN_FIELD, planner=python_planners.BadDeclaration())
+        with self.assertRaisesRegex(campo.InputError, expected):
+            campo.run(OPEN_FIELD, planner="python:python_planners:BadDeclaration")
+        with self.assertRaisesRegex(campo.InputError, expected):
+            campo.planner_record("python:python_planners:BadDeclaration")
+
+    def test_a_declaring_planners_run_records_and_reads_its_fields(self):
+        with tempfile.TemporaryDirectory() as out:
+            record = campo.run(OPEN_FIELD, planner=python_planners.Declares(), out=os.path.join(out, "r"))
+            self.assertEqual(record["metrics"]["outcome"], "reached")
+            run = campo.read_run(os.path.join(out, "r"))
+            self.assertEqual(run.planner, "python:python_planners:Declares")
+            self.assertEqual(run.planner_record, campo.planner_record("python:python_planners:Declares"))
+            distance = run.decision("distance_m")
+            # Every call recorded it: one value per event, the distance from the recorded trajectory's position.
+            self.assertEqual(len(distance), len(run.events))
+            self.assertEqual(list(distance.index), [event["time_s"] for event in run.events])
+            self.assertEqual(distance.index.name, "time_s")
+            self.assertEqual(distance.iloc[0], 6.0)  # from the start (0, 0, 1.5) to the goal (6, 0, 1.5)
+            position = run.trajectory[["x_m", "y_m", "z_m"]].to_numpy()
+            expected = np.linalg.norm(position - GOAL, axis=1)[: len(distance)]
+            np.testing.assert_allclose(distance.to_numpy(), expected, atol=1e-6)
+            self.assertEqual(run.decision("leg").dtype, np.int64)
+            with self.assertRaisesRegex(campo.ResultsError, 'planner python:python_planners:Declares declares no '
+                                                            'decision field "speed" \\(it declares: distance_m, leg\\)'):
+                run.decision("speed")
+            # A recorded value not of its declared type is refused, naming the line and the pointer.
+            events = pathlib.Path(out, "r", "events.jsonl")
+            lines = events.read_text().split("\n")
+            line = json.loads(lines[2])
+            line["decisions"]["leg"] = "first"
+            lines[2] = json.dumps(line)
+            events.write_text("\n".join(lines))
+            with self.assertRaisesRegex(campo.ResultsError, r"events.jsonl line 3: /decisions/leg: expected integer "
+                                                            r"\(the mission leg flown\)"):
+                campo.read_run(os.path.join(out, "r")).decision("leg")
+
+    def test_a_planner_that_declares_nothing_keeps_free_keys(self):
+        with tempfile.TemporaryDirectory() as out:
+            record = campo.run(OPEN_FIELD, planner=python_planners.FreeKeys(), out=os.path.join(out, "r"),
+                               overrides={"/world/time_limit_s": 0.5}, figures=False)
+            self.assertEqual(record["metrics"]["outcome"], "timeout")
+            run = campo.read_run(os.path.join(out, "r"))
+            self.assertEqual(run.events[0]["decisions"], {"anything": {"at": "all"}})
+            self.assertIsNone(run.planner_record)
+            with self.assertRaisesRegex(campo.ResultsError, 'declares no decision field "anything" \\(it declares: '
+                                                            'none\\)'):
+                run.decision("anything")
 
 
 class ErrorsTest(unittest.TestCase):
