@@ -13,8 +13,10 @@
 #include <Eigen/Geometry>
 
 #include "campo/json_reader.hpp"
+#include "campo/planner_record.hpp"
 #include "metrics/episode_metrics.hpp"
 #include "metrics/mission_metrics.hpp"
+#include "metrics/planner_metrics.hpp"
 #include "run/event_log.hpp"
 
 namespace campo {
@@ -68,7 +70,10 @@ struct Episode::Loop {
         start(vehicle->state().position_m),
         previous(start),
         reached_at(def.mission.size()),
-        reached_sample(def.mission.size()) {
+        reached_sample(def.mission.size()),
+        record(planner_record(def.planner.name)) {
+    // A planner's own metric that would overwrite another metric of run.json refuses the run before it starts.
+    if (record) check_planner_metric_names(def.planner.name, *record, def);
     sensors.reserve(def.sensors.size());
     for (const SensorDef& s : def.sensors) {
       const double rate = s.range.rate_hz > 0.0 ? s.range.rate_hz : scene.world.sensor_rate_hz;
@@ -211,6 +216,7 @@ struct Episode::Loop {
     m.cross_track_max_m = cross_track.max_m;
     m.avoiding_time_s = avoiding_time(result.events, m.sim_time_s);
     write_mission_metrics(def, start, result.trajectory, reached_sample, m.declared);
+    if (record) write_planner_metrics(def.planner.name, *record, {result.events, m.sim_time_s}, m.declared);
     m.planner_time_ms_mean = m.planner_calls > 0 ? planner_ms_total / m.planner_calls : 0.0;
     m.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
     result.final_state_hash = world.state_hash();
@@ -236,6 +242,8 @@ struct Episode::Loop {
   // and the index of the trajectory sample of that planner call.
   std::vector<std::optional<Eigen::Vector3d>> reached_at;
   std::vector<std::optional<std::size_t>> reached_sample;
+  // The description of the vehicle's planner's record, for its own metrics; null: none.
+  const PlannerRecord* const record;
   ClearanceMinima minima;
   double planner_ms_total = 0.0;
   bool was_colliding = false;

@@ -71,11 +71,29 @@ const campo::ConfigFields<LidarSteerConfig>& lidar_steer_config_fields() {
 // What the planner records beyond campo's generic decisions, each field declared once (name, type,
 // unit, meaning) and written through its typed handle: events.jsonl holds it under its name, and a
 // figure or a script reads it back through the same declaration (docs/extending.md, "Declaring a
-// planner's record"). Registered with the planner below.
+// planner's record"). Its own metric is declared the same way and measured at the end of a run from
+// the decisions recorded: run.json's metrics hold it beside the generic ones. Registered with the
+// planner below.
 struct LidarSteerRecord {
   campo::PlannerRecord description;
   campo::RecordField<double> steer_deg = description.decisions.declare<double>(
       "steer_deg", "deg", "the heading steered for, relative to the waypoint's, positive left; recorded when it changes");
+  campo::RecordField<double> steer_deg_max = description.metrics.declare<double>(
+      "steer_deg_max", "deg",
+      "the largest steering angle commanded, either side (|steer_deg|); 0 when it never steered");
+
+  LidarSteerRecord() {
+    description.measure = [this](const campo::PlannerRun& run, nlohmann::json& out) {
+      double largest = 0.0;
+      for (const campo::PlannerEvent& e : run.events) {
+        const std::optional<double> steer = steer_deg.get(e.decisions.own);
+        if (steer) largest = std::max(largest, std::abs(*steer));
+      }
+      steer_deg_max.set(out, largest);
+    };
+  }
+  LidarSteerRecord(const LidarSteerRecord&) = delete;  // `measure` reads this object's handles
+  LidarSteerRecord& operator=(const LidarSteerRecord&) = delete;
 };
 
 const LidarSteerRecord& lidar_steer_record() {

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "campo/planner.hpp"
+#include "campo/planner_record.hpp"  // PlannerEvent
 #include "campo/vehicle.hpp"
 
 namespace campo {
@@ -84,7 +85,8 @@ struct EpisodeMetrics {
   double avoiding_time_s = 0.0;
   /// Metrics that the room measuring them declares as record fields
   /// (campo/record_fields.hpp), written through their declarations, e.g. the
-  /// mission's per-leg and per-gate measures (metrics/mission_metrics.hpp):
+  /// mission's per-leg and per-gate measures (metrics/mission_metrics.hpp)
+  /// and the planner's own (PlannerRecord::metrics, metrics/planner_metrics.hpp):
   /// an object (null: none), written into run.json's metrics beside the
   /// fields above. Read them back through the same declarations.
   nlohmann::json declared;
@@ -102,14 +104,6 @@ struct TrajectorySample {
   /// (the highest plane or heightfield there); NaN where there is none.
   double height_above_ground_m = 0.0;
   nlohmann::json actuators;
-};
-
-/// A planner's decisions with the time it took them (events.jsonl, run/event_log.hpp).
-struct PlannerEvent {
-  double time_s = 0.0;
-  Decisions decisions;
-
-  bool operator==(const PlannerEvent&) const = default;
 };
 
 /// Cross-track error of a trajectory against the routes its planner recorded.

@@ -56,6 +56,15 @@ outcome=$(jq -r .metrics.outcome run/run.json)
 [ "$(jq -r .provenance.scene.file run/run.json)" = "$prefix/share/campo/scenes/two_barriers.json" ] ||
   fail "the scene was not the installed one: $(jq -r .provenance.scene.file run/run.json)"
 [ "$(jq -r .provenance.planner.source run/run.json)" = "$plugin" ] || fail "provenance.planner.source is not $plugin"
+# The plugin's own metric, declared by its record and measured on its decisions: the largest
+# |steer_deg| it recorded in events.jsonl (0 if it never steered), in run.json's metrics.
+steer_max=$(jq -r .metrics.steer_deg_max run/run.json)
+steer_events=$(jq -s '[.[].decisions.steer_deg | select(. != null) | if . < 0 then -. else . end] | max // 0' run/events.jsonl)
+[ "$steer_max" != null ] || fail "run.json's metrics have no steer_deg_max: $(jq -c .metrics run/run.json)"
+jq -en --argjson a "$steer_max" --argjson b "$steer_events" '$a == $b' >/dev/null ||
+  fail "steer_deg_max is $steer_max, the events' largest |steer_deg| is $steer_events"
+[ "$(jq -s '[.[].decisions.steer_deg | select(. != null)] | length' run/events.jsonl)" -gt 0 ] ||
+  fail "lidar_steer recorded no steer_deg on two_barriers: the metric would be checked against nothing"
 [ "$(jq -r .provenance.planner.sha256 run/run.json)" = "$(sha256sum "$plugin" | cut -d' ' -f1)" ] ||
   fail "provenance.planner.sha256 is not the plugin's"
 
