@@ -75,7 +75,10 @@ void RecordFields::check(const nlohmann::json& record, const std::string& file, 
   if (record.is_null()) return;
   if (!record.is_object()) JsonNode(record, file, pointer).fail("an object of declared fields");
   InputErrors errors;
-  for (const auto& [key, value] : record.items()) {
+  for (const auto& item : record.items()) {
+    // Named, not a structured binding: clang (the fuzz build) cannot capture one in a lambda.
+    const std::string& key = item.key();
+    const nlohmann::json& value = item.value();
     const JsonNode node(value, file, child_pointer(pointer, key));
     errors.check([&] {
       const RecordFieldInfo* info = find(key);

@@ -233,7 +233,10 @@ class SpecParser {
           set->fail("at most " + std::to_string(limits_.max_pointers) + " overrides");
         }
         // Keys come sorted, so a pointer is applied before the pointers below it.
-        for (const auto& [key, value] : set->value().items()) {
+        for (const auto& item : set->value().items()) {
+          // Named, not a structured binding: clang (the fuzz build) cannot capture one in a lambda.
+          const std::string& key = item.key();
+          const nlohmann::json& value = item.value();
           r.check([&] {
             const JsonNode node = *s.optional(key);
             read_pointer(JsonNode(nlohmann::json(key), node.file(), node.pointer()));
