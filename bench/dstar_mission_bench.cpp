@@ -12,12 +12,12 @@
 #include <vector>
 
 #include "campo/episode.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/scene_loader.hpp"
+#include "campo/vehicle_factory.hpp"
 #include "grid/astar.hpp"
 #include "grid/dstar_lite.hpp"
 #include "planners/dstar_lite_3d.hpp"
-#include "campo/planner_registry.hpp"
-#include "campo/vehicle_factory.hpp"
 
 namespace campo {
 namespace {

@@ -14,9 +14,9 @@
 #include <link.h>
 
 #include "campo/json_reader.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/scene_loader.hpp"
 #include "campo/version.hpp"
-#include "campo/planner_registry.hpp"
 #include "planners/planner_admission.hpp"
 
 namespace campo {

@@ -16,20 +16,20 @@
 
 #include "campo/episode.hpp"
 #include "campo/json_reader.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/pose.hpp"
 #include "campo/run_record.hpp"
 #include "campo/scene_loader.hpp"
+#include "campo/sensor_factory.hpp"
+#include "campo/vehicle_factory.hpp"
 #include "core/output_dir.hpp"
-#include "campo/planner_registry.hpp"
+#include "render/run_figures.hpp"
 #include "render/run_files.hpp"
 #include "run/event_log.hpp"
 #include "scene/scene_overrides.hpp"
 #include "sensors/depth_image.hpp"
 #include "sensors/lidar.hpp"
-#include "campo/sensor_factory.hpp"
-#include "render/run_figures.hpp"
 #include "session/scene_checks.hpp"
-#include "campo/vehicle_factory.hpp"
 
 #include <pthread.h>
 #include <signal.h>

@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "campo/json_reader.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/run_record.hpp"
 #include "campo/scene_loader.hpp"
 #include "core/output_dir.hpp"
-#include "campo/planner_registry.hpp"
 #include "render/run_files.hpp"
 #include "render/run_video.hpp"
 #include "session/run_session.hpp"

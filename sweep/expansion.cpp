@@ -10,10 +10,10 @@
 #include <string_view>
 
 #include "campo/json_reader.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/random.hpp"
 #include "campo/scene_loader.hpp"
 #include "campo/version.hpp"
-#include "campo/planner_registry.hpp"
 #include "scene/scene_overrides.hpp"
 
 namespace campo {

@@ -19,17 +19,17 @@
 
 #include "campo/episode.hpp"
 #include "campo/json_reader.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/scene_loader.hpp"
+#include "campo/sensor_factory.hpp"
+#include "campo/vehicle_factory.hpp"
 #include "campo/version.hpp"
 #include "core/output_dir.hpp"
-#include "campo/planner_registry.hpp"
 #include "run/provenance.hpp"
 #include "sensors/lidar.hpp"
-#include "campo/sensor_factory.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
 #include "tools/path_options.hpp"
-#include "campo/vehicle_factory.hpp"
 
 namespace campo::cli {
 

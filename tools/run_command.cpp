@@ -5,14 +5,14 @@
 #include <vector>
 
 #include "campo/json_reader.hpp"
-#include "core/output_dir.hpp"
 #include "campo/planner_registry.hpp"
+#include "core/output_dir.hpp"
+#include "render/run_figures.hpp"
 #include "run/event_log.hpp"
+#include "session/run_session.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
 #include "tools/plugin_options.hpp"
-#include "session/run_session.hpp"
-#include "render/run_figures.hpp"
 
 namespace campo::cli {
 

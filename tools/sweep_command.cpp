@@ -13,9 +13,11 @@
 #include <unistd.h>
 
 #include "campo/json_reader.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/scene_loader.hpp"
 #include "core/output_dir.hpp"
-#include "campo/planner_registry.hpp"
+#include "session/scene_checks.hpp"
+#include "session/sweep_item.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/process_pool.hpp"
 #include "sweep/progress.hpp"
@@ -24,8 +26,6 @@
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
 #include "tools/plugin_options.hpp"
-#include "session/scene_checks.hpp"
-#include "session/sweep_item.hpp"
 
 namespace campo::cli {
 

@@ -2,13 +2,13 @@
 #include <string>
 #include <vector>
 
-#include "campo/scene_loader.hpp"
 #include "campo/planner_registry.hpp"
+#include "campo/scene_loader.hpp"
+#include "session/scene_checks.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/sweep_spec.hpp"
 #include "tools/commands.hpp"
 #include "tools/plugin_options.hpp"
-#include "session/scene_checks.hpp"
 
 namespace campo::cli {
 

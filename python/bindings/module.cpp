@@ -15,17 +15,17 @@
 
 #include "campo/episode.hpp"
 #include "campo/json_reader.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/run_record.hpp"
+#include "campo/vehicle_factory.hpp"
 #include "campo/version.hpp"
 #include "core/output_dir.hpp"
-#include "campo/planner_registry.hpp"
 #include "python/bindings/observation.hpp"
 #include "python/bindings/planner_limits.hpp"
 #include "python/bindings/python_planner.hpp"
 #include "scene/scene_overrides.hpp"
-#include "sweep/bundled.hpp"
 #include "session/run_session.hpp"
-#include "campo/vehicle_factory.hpp"
+#include "sweep/bundled.hpp"
 
 namespace campo::python {
 

@@ -12,8 +12,8 @@
 #include <pybind11/stl.h>
 
 #include "campo/json_reader.hpp"
-#include "campo/scene_loader.hpp"
 #include "campo/planner_registry.hpp"
+#include "campo/scene_loader.hpp"
 #include "python/bindings/observation.hpp"
 #include "python/bindings/planner_limits.hpp"
 #include "run/event_log.hpp"

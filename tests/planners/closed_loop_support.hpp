@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "campo/episode.hpp"
-#include "campo/scene_loader.hpp"
 #include "campo/planner_registry.hpp"
-#include "scene/scene_overrides.hpp"
+#include "campo/scene_loader.hpp"
 #include "campo/vehicle_factory.hpp"
+#include "scene/scene_overrides.hpp"
 
 namespace campo::testing {
 

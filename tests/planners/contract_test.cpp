@@ -13,8 +13,8 @@
 
 #include "campo/episode.hpp"
 #include "campo/json_reader.hpp"
-#include "campo/scene_loader.hpp"
 #include "campo/planner_registry.hpp"
+#include "campo/scene_loader.hpp"
 #include "campo/sensor_factory.hpp"
 #include "campo/vehicle_factory.hpp"
 

@@ -7,11 +7,11 @@
 
 #include "campo/episode.hpp"
 #include "campo/json_reader.hpp"
-#include "campo/scene_loader.hpp"
 #include "campo/planner_registry.hpp"
-#include "sensors/lidar.hpp"
+#include "campo/scene_loader.hpp"
 #include "campo/sensor_factory.hpp"
 #include "campo/vehicle_factory.hpp"
+#include "sensors/lidar.hpp"
 #include "tests/scan_support.hpp"
 
 namespace campo {

@@ -11,10 +11,10 @@
 #include <gtest/gtest.h>
 
 #include "campo/json_reader.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/plugin.hpp"
 #include "campo/scene_loader.hpp"
 #include "campo/version.hpp"
-#include "campo/planner_registry.hpp"
 
 namespace campo {
 namespace {

@@ -9,9 +9,9 @@
 #include <gtest/gtest.h>
 
 #include "campo/json_reader.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/scene_loader.hpp"
 #include "closed_loop_support.hpp"
-#include "campo/planner_registry.hpp"
 
 namespace campo {
 namespace {

@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "campo/episode.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/run_record.hpp"
 #include "campo/scene_loader.hpp"
-#include "campo/planner_registry.hpp"
 #include "campo/sensor_factory.hpp"
 #include "campo/vehicle_factory.hpp"
 

@@ -18,11 +18,11 @@
 #include <nlohmann/json.hpp>
 
 #include "campo/episode.hpp"
-#include "campo/scene_loader.hpp"
 #include "campo/planner_registry.hpp"
-#include "sensors/fan_kernels.hpp"
+#include "campo/scene_loader.hpp"
 #include "campo/sensor_factory.hpp"
 #include "campo/vehicle_factory.hpp"
+#include "sensors/fan_kernels.hpp"
 
 namespace campo {
 namespace {

@@ -7,11 +7,11 @@
 #include <filesystem>
 
 #include "campo/episode.hpp"
-#include "campo/scene_loader.hpp"
 #include "campo/planner_registry.hpp"
-#include "sensors/raycaster.hpp"
+#include "campo/scene_loader.hpp"
 #include "campo/sensor_factory.hpp"
 #include "campo/vehicle_factory.hpp"
+#include "sensors/raycaster.hpp"
 
 namespace campo {
 namespace {

@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "campo/episode.hpp"
-#include "campo/scene_loader.hpp"
 #include "campo/planner_registry.hpp"
+#include "campo/scene_loader.hpp"
 #include "campo/vehicle_factory.hpp"
 
 namespace campo {

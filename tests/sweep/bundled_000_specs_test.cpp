@@ -8,9 +8,9 @@
 
 #include "campo/json_reader.hpp"
 #include "campo/planner_registry.hpp"
+#include "campo/vehicle_factory.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/sweep_spec.hpp"
-#include "campo/vehicle_factory.hpp"
 
 namespace campo {
 namespace {

@@ -6,9 +6,9 @@
 #include <gtest/gtest.h>
 
 #include "campo/planner_registry.hpp"
+#include "campo/vehicle_factory.hpp"
 #include "sweep/expansion.hpp"
 #include "sweep/sweep_spec.hpp"
-#include "campo/vehicle_factory.hpp"
 
 namespace campo {
 namespace {

@@ -10,13 +10,13 @@
 #include <gtest/gtest.h>
 
 #include "campo/json_reader.hpp"
+#include "campo/planner_registry.hpp"
 #include "campo/random.hpp"
 #include "campo/scene_loader.hpp"
+#include "campo/vehicle_factory.hpp"
 #include "campo/version.hpp"
-#include "campo/planner_registry.hpp"
 #include "scene/scene_overrides.hpp"
 #include "sweep/expansion.hpp"
-#include "campo/vehicle_factory.hpp"
 
 namespace campo {
 namespace {
