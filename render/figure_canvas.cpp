@@ -9,12 +9,9 @@
 #include <stdexcept>
 #include <utility>
 
-#include <cairo-pdf.h>
-#include <cairo-svg.h>
-#include <cairo.h>
-
 #include "core/image_io.hpp"
 #include "core/output_dir.hpp"
+#include "render/cairo_api.hpp"
 
 namespace campo::figure {
 
@@ -83,36 +80,36 @@ constexpr double kPointsPerPx = 0.75;
 double font_size_px(const Font& font) { return font.scale * kCapPxPerScale / kCapHeightEm; }
 
 void select_font(cairo_t* cr, const Font& font) {
-  cairo_select_font_face(cr, kFontFamily, CAIRO_FONT_SLANT_NORMAL,
+  cairo().select_font_face(cr, kFontFamily, CAIRO_FONT_SLANT_NORMAL,
                          font.bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_font_size(cr, font_size_px(font));
+  cairo().set_font_size(cr, font_size_px(font));
 }
 
 void set_color(cairo_t* cr, const cv::Scalar& bgr) {
-  cairo_set_source_rgb(cr, bgr[2] / 255.0, bgr[1] / 255.0, bgr[0] / 255.0);
+  cairo().set_source_rgb(cr, bgr[2] / 255.0, bgr[1] / 255.0, bgr[0] / 255.0);
 }
 
 void trace(cairo_t* cr, const std::vector<cv::Point2d>& points, bool closed) {
-  cairo_new_path(cr);
-  for (const auto& p : points) cairo_line_to(cr, p.x, p.y);
-  if (closed) cairo_close_path(cr);
+  cairo().new_path(cr);
+  for (const auto& p : points) cairo().line_to(cr, p.x, p.y);
+  if (closed) cairo().close_path(cr);
 }
 
 void stroke(cairo_t* cr, const cv::Scalar& color, double width_px) {
   set_color(cr, color);
-  cairo_set_line_width(cr, width_px);
-  cairo_stroke(cr);
+  cairo().set_line_width(cr, width_px);
+  cairo().stroke(cr);
 }
 
 // A context on a 1x1 surface for measuring text (one per thread: cairo
 // contexts are not shared between threads).
 cairo_t* measuring_context() {
   struct Holder {
-    cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
-    cairo_t* cr = cairo_create(surface);
+    cairo_surface_t* surface = cairo().image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
+    cairo_t* cr = cairo().create(surface);
     ~Holder() {
-      cairo_destroy(cr);
-      cairo_surface_destroy(surface);
+      cairo().destroy(cr);
+      cairo().surface_destroy(surface);
     }
   };
   thread_local Holder holder;
@@ -121,12 +118,12 @@ cairo_t* measuring_context() {
 
 // Replays `recording` onto `target`, scaled by `scale`.
 void replay(cairo_surface_t* recording, cairo_surface_t* target, double scale) {
-  cairo_t* cr = cairo_create(target);
-  cairo_scale(cr, scale, scale);
-  cairo_set_source_surface(cr, recording, 0.0, 0.0);
-  cairo_paint(cr);
-  cairo_destroy(cr);
-  cairo_surface_flush(target);
+  cairo_t* cr = cairo().create(target);
+  cairo().scale(cr, scale, scale);
+  cairo().set_source_surface(cr, recording, 0.0, 0.0);
+  cairo().paint(cr);
+  cairo().destroy(cr);
+  cairo().surface_flush(target);
 }
 
 // cairo names an SVG's groups after its surfaces' process-wide serial numbers
@@ -167,19 +164,19 @@ Canvas::Canvas(cv::Size size_px) : size_(size_px) {
                                 std::to_string(size_px.height) + " px: each side must be in [1, 32768]");
   }
   const cairo_rectangle_t extents{0.0, 0.0, double(size_px.width), double(size_px.height)};
-  recording_ = cairo_recording_surface_create(CAIRO_CONTENT_COLOR, &extents);
-  cr_ = cairo_create(recording_);
-  cairo_set_source_rgb(cr_, 1.0, 1.0, 1.0);
-  cairo_paint(cr_);
+  recording_ = cairo().recording_surface_create(CAIRO_CONTENT_COLOR, &extents);
+  cr_ = cairo().create(recording_);
+  cairo().set_source_rgb(cr_, 1.0, 1.0, 1.0);
+  cairo().paint(cr_);
   // Pixel centres at integer drawing coordinates, as pixel indices.
-  cairo_translate(cr_, 0.5, 0.5);
-  cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
-  cairo_set_line_cap(cr_, CAIRO_LINE_CAP_ROUND);
+  cairo().translate(cr_, 0.5, 0.5);
+  cairo().set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
+  cairo().set_line_cap(cr_, CAIRO_LINE_CAP_ROUND);
 }
 
 Canvas::~Canvas() {
-  if (cr_) cairo_destroy(cr_);
-  if (recording_) cairo_surface_destroy(recording_);
+  if (cr_) cairo().destroy(cr_);
+  if (recording_) cairo().surface_destroy(recording_);
 }
 
 Canvas::Canvas(Canvas&& other) noexcept
@@ -195,13 +192,13 @@ Canvas& Canvas::operator=(Canvas&& other) noexcept {
   return *this;
 }
 
-Canvas::Region::~Region() { cairo_restore(cr_); }
+Canvas::Region::~Region() { cairo().restore(cr_); }
 
 Canvas::Region Canvas::region(const cv::Rect& rect) {
-  cairo_save(cr_);
-  cairo_rectangle(cr_, rect.x - 0.5, rect.y - 0.5, rect.width, rect.height);
-  cairo_clip(cr_);
-  cairo_translate(cr_, rect.x, rect.y);
+  cairo().save(cr_);
+  cairo().rectangle(cr_, rect.x - 0.5, rect.y - 0.5, rect.width, rect.height);
+  cairo().clip(cr_);
+  cairo().translate(cr_, rect.x, rect.y);
   return Region(cr_);
 }
 
@@ -219,43 +216,43 @@ void Canvas::polyline(const std::vector<cv::Point2d>& points, const cv::Scalar& 
 void Canvas::dashed_polyline(const std::vector<cv::Point2d>& points, const cv::Scalar& color, double width_px,
                              double dash_px, double gap_px) {
   if (points.size() < 2) return;
-  cairo_save(cr_);
+  cairo().save(cr_);
   // Butt caps: round ones would lengthen each dash by the line's width.
-  cairo_set_line_cap(cr_, CAIRO_LINE_CAP_BUTT);
+  cairo().set_line_cap(cr_, CAIRO_LINE_CAP_BUTT);
   const double pattern[] = {dash_px, gap_px};
-  cairo_set_dash(cr_, pattern, 2, 0.0);
+  cairo().set_dash(cr_, pattern, 2, 0.0);
   trace(cr_, points, false);
   stroke(cr_, color, width_px);
-  cairo_restore(cr_);
+  cairo().restore(cr_);
 }
 
 void Canvas::fill_polygon(const std::vector<cv::Point2d>& points, const cv::Scalar& color) {
   if (points.size() < 3) return;
   trace(cr_, points, true);
   set_color(cr_, color);
-  cairo_fill(cr_);
+  cairo().fill(cr_);
 }
 
 void Canvas::circle(cv::Point2d centre, double radius_px, const cv::Scalar& color, double width_px) {
-  cairo_new_path(cr_);
-  cairo_arc(cr_, centre.x, centre.y, radius_px, 0.0, 2.0 * CV_PI);
+  cairo().new_path(cr_);
+  cairo().arc(cr_, centre.x, centre.y, radius_px, 0.0, 2.0 * CV_PI);
   stroke(cr_, color, width_px);
 }
 
 void Canvas::fill_circle(cv::Point2d centre, double radius_px, const cv::Scalar& color) {
-  cairo_new_path(cr_);
-  cairo_arc(cr_, centre.x, centre.y, radius_px, 0.0, 2.0 * CV_PI);
+  cairo().new_path(cr_);
+  cairo().arc(cr_, centre.x, centre.y, radius_px, 0.0, 2.0 * CV_PI);
   set_color(cr_, color);
-  cairo_fill(cr_);
+  cairo().fill(cr_);
 }
 
 void Canvas::rectangle(const cv::Rect& rect, const cv::Scalar& color, double width_px) {
-  cairo_new_path(cr_);
-  cairo_rectangle(cr_, rect.x, rect.y, rect.width - 1, rect.height - 1);
-  cairo_save(cr_);
-  cairo_set_line_join(cr_, CAIRO_LINE_JOIN_MITER);
+  cairo().new_path(cr_);
+  cairo().rectangle(cr_, rect.x, rect.y, rect.width - 1, rect.height - 1);
+  cairo().save(cr_);
+  cairo().set_line_join(cr_, CAIRO_LINE_JOIN_MITER);
   stroke(cr_, color, width_px);
-  cairo_restore(cr_);
+  cairo().restore(cr_);
 }
 
 void Canvas::fill_rectangle(const cv::Rect& rect, const cv::Scalar& color) {
@@ -263,22 +260,22 @@ void Canvas::fill_rectangle(const cv::Rect& rect, const cv::Scalar& color) {
 }
 
 void Canvas::fill_box(cv::Point2d a, cv::Point2d b, const cv::Scalar& color) {
-  cairo_new_path(cr_);
-  cairo_rectangle(cr_, std::min(a.x, b.x), std::min(a.y, b.y), std::abs(b.x - a.x), std::abs(b.y - a.y));
+  cairo().new_path(cr_);
+  cairo().rectangle(cr_, std::min(a.x, b.x), std::min(a.y, b.y), std::abs(b.x - a.x), std::abs(b.y - a.y));
   set_color(cr_, color);
-  cairo_fill(cr_);
+  cairo().fill(cr_);
 }
 
 void Canvas::arrow(cv::Point2d tail, cv::Point2d tip, const cv::Scalar& color, double width_px, double head_fraction) {
   const cv::Point2d d = tip - tail;
   const double head = head_fraction * std::hypot(d.x, d.y), angle = std::atan2(d.y, d.x);
-  cairo_new_path(cr_);
-  cairo_move_to(cr_, tail.x, tail.y);
-  cairo_line_to(cr_, tip.x, tip.y);
+  cairo().new_path(cr_);
+  cairo().move_to(cr_, tail.x, tail.y);
+  cairo().line_to(cr_, tip.x, tip.y);
   for (const double side : {1.0, -1.0}) {
     const double a = angle + CV_PI + side * CV_PI / 4.0;
-    cairo_move_to(cr_, tip.x + head * std::cos(a), tip.y + head * std::sin(a));
-    cairo_line_to(cr_, tip.x, tip.y);
+    cairo().move_to(cr_, tip.x + head * std::cos(a), tip.y + head * std::sin(a));
+    cairo().line_to(cr_, tip.x, tip.y);
   }
   stroke(cr_, color, width_px);
 }
@@ -286,21 +283,21 @@ void Canvas::arrow(cv::Point2d tail, cv::Point2d tip, const cv::Scalar& color, d
 void Canvas::text(const std::string& text, cv::Point2d origin, const Font& font, const cv::Scalar& color, bool halo,
                   double angle_deg) {
   if (text.empty()) return;
-  cairo_save(cr_);
+  cairo().save(cr_);
   select_font(cr_, font);
-  cairo_translate(cr_, origin.x, origin.y);
-  cairo_rotate(cr_, -angle_deg * CV_PI / 180.0);
+  cairo().translate(cr_, origin.x, origin.y);
+  cairo().rotate(cr_, -angle_deg * CV_PI / 180.0);
   if (halo) {
-    cairo_new_path(cr_);
-    cairo_move_to(cr_, 0.0, 0.0);
-    cairo_text_path(cr_, text.c_str());
+    cairo().new_path(cr_);
+    cairo().move_to(cr_, 0.0, 0.0);
+    cairo().text_path(cr_, text.c_str());
     stroke(cr_, kWhite, 3.0);
   }
-  cairo_new_path(cr_);
-  cairo_move_to(cr_, 0.0, 0.0);
+  cairo().new_path(cr_);
+  cairo().move_to(cr_, 0.0, 0.0);
   set_color(cr_, color);
-  cairo_show_text(cr_, text.c_str());
-  cairo_restore(cr_);
+  cairo().show_text(cr_, text.c_str());
+  cairo().restore(cr_);
 }
 
 void Canvas::image(const cv::Mat& bgr, const cv::Rect& where, bool smooth) {
@@ -310,10 +307,10 @@ void Canvas::image(const cv::Mat& bgr, const cv::Rect& where, bool smooth) {
   }
   const bool alpha = bgr.channels() == 4;
   cairo_surface_t* surface =
-      cairo_image_surface_create(alpha ? CAIRO_FORMAT_ARGB32 : CAIRO_FORMAT_RGB24, bgr.cols, bgr.rows);
-  cairo_surface_flush(surface);
-  unsigned char* data = cairo_image_surface_get_data(surface);
-  const int stride = cairo_image_surface_get_stride(surface);
+      cairo().image_surface_create(alpha ? CAIRO_FORMAT_ARGB32 : CAIRO_FORMAT_RGB24, bgr.cols, bgr.rows);
+  cairo().surface_flush(surface);
+  unsigned char* data = cairo().image_surface_get_data(surface);
+  const int stride = cairo().image_surface_get_stride(surface);
   for (int r = 0; r < bgr.rows; ++r) {
     auto* out = reinterpret_cast<std::uint32_t*>(data + std::ptrdiff_t(r) * stride);
     const uchar* in = bgr.ptr<uchar>(r);
@@ -324,26 +321,26 @@ void Canvas::image(const cv::Mat& bgr, const cv::Rect& where, bool smooth) {
       out[c] = (a << 24) | (pre(in[2]) << 16) | (pre(in[1]) << 8) | pre(in[0]);
     }
   }
-  cairo_surface_mark_dirty(surface);
-  cairo_save(cr_);
-  cairo_translate(cr_, where.x - 0.5, where.y - 0.5);
-  cairo_scale(cr_, double(where.width) / bgr.cols, double(where.height) / bgr.rows);
-  cairo_set_source_surface(cr_, surface, 0.0, 0.0);
-  cairo_pattern_t* pattern = cairo_get_source(cr_);
-  cairo_pattern_set_filter(pattern, smooth ? CAIRO_FILTER_GOOD : CAIRO_FILTER_NEAREST);
-  cairo_pattern_set_extend(pattern, CAIRO_EXTEND_PAD);
-  cairo_new_path(cr_);
-  cairo_rectangle(cr_, 0.0, 0.0, bgr.cols, bgr.rows);
-  cairo_fill(cr_);
-  cairo_restore(cr_);
-  cairo_surface_destroy(surface);
+  cairo().surface_mark_dirty(surface);
+  cairo().save(cr_);
+  cairo().translate(cr_, where.x - 0.5, where.y - 0.5);
+  cairo().scale(cr_, double(where.width) / bgr.cols, double(where.height) / bgr.rows);
+  cairo().set_source_surface(cr_, surface, 0.0, 0.0);
+  cairo_pattern_t* pattern = cairo().get_source(cr_);
+  cairo().pattern_set_filter(pattern, smooth ? CAIRO_FILTER_GOOD : CAIRO_FILTER_NEAREST);
+  cairo().pattern_set_extend(pattern, CAIRO_EXTEND_PAD);
+  cairo().new_path(cr_);
+  cairo().rectangle(cr_, 0.0, 0.0, bgr.cols, bgr.rows);
+  cairo().fill(cr_);
+  cairo().restore(cr_);
+  cairo().surface_destroy(surface);
 }
 
 cv::Mat Canvas::raster() const {
-  cairo_surface_t* target = cairo_image_surface_create(CAIRO_FORMAT_RGB24, size_.width, size_.height);
+  cairo_surface_t* target = cairo().image_surface_create(CAIRO_FORMAT_RGB24, size_.width, size_.height);
   replay(recording_, target, 1.0);
-  const unsigned char* data = cairo_image_surface_get_data(target);
-  const int stride = cairo_image_surface_get_stride(target);
+  const unsigned char* data = cairo().image_surface_get_data(target);
+  const int stride = cairo().image_surface_get_stride(target);
   cv::Mat out(size_, CV_8UC3);
   for (int r = 0; r < size_.height; ++r) {
     const auto* in = reinterpret_cast<const std::uint32_t*>(data + std::ptrdiff_t(r) * stride);
@@ -352,7 +349,7 @@ cv::Mat Canvas::raster() const {
       px[c] = cv::Vec3b(uchar(in[c] & 0xff), uchar((in[c] >> 8) & 0xff), uchar((in[c] >> 16) & 0xff));
     }
   }
-  cairo_surface_destroy(target);
+  cairo().surface_destroy(target);
   return out;
 }
 
@@ -362,21 +359,21 @@ std::string Canvas::encode(FigureFormat format) const {
   const double w_pt = size_.width * kPointsPerPx, h_pt = size_.height * kPointsPerPx;
   cairo_surface_t* target = nullptr;
   if (format == FigureFormat::pdf) {
-    target = cairo_pdf_surface_create_for_stream(append_to_string, &bytes, w_pt, h_pt);
+    target = cairo().pdf_surface_create_for_stream(append_to_string, &bytes, w_pt, h_pt);
     // A fixed creation date: the same figure gives the same bytes.
-    cairo_pdf_surface_set_metadata(target, CAIRO_PDF_METADATA_CREATE_DATE, "2000-01-01T00:00:00Z");
-    cairo_pdf_surface_set_metadata(target, CAIRO_PDF_METADATA_CREATOR, "campo");
+    cairo().pdf_surface_set_metadata(target, CAIRO_PDF_METADATA_CREATE_DATE, "2000-01-01T00:00:00Z");
+    cairo().pdf_surface_set_metadata(target, CAIRO_PDF_METADATA_CREATOR, "campo");
   } else {
-    target = cairo_svg_surface_create_for_stream(append_to_string, &bytes, w_pt, h_pt);
-    cairo_svg_surface_restrict_to_version(target, CAIRO_SVG_VERSION_1_1);
+    target = cairo().svg_surface_create_for_stream(append_to_string, &bytes, w_pt, h_pt);
+    cairo().svg_surface_restrict_to_version(target, CAIRO_SVG_VERSION_1_1);
   }
   replay(recording_, target, kPointsPerPx);
-  cairo_surface_finish(target);
-  const cairo_status_t status = cairo_surface_status(target);
-  cairo_surface_destroy(target);
+  cairo().surface_finish(target);
+  const cairo_status_t status = cairo().surface_status(target);
+  cairo().surface_destroy(target);
   if (status != CAIRO_STATUS_SUCCESS) {
     throw std::runtime_error(std::string("cannot encode the figure as ") + extension(format) + ": " +
-                             cairo_status_to_string(status));
+                             cairo().status_to_string(status));
   }
   return format == FigureFormat::svg ? renumber_svg_surfaces(bytes) : bytes;
 }
@@ -412,7 +409,7 @@ cv::Size text_size(const std::string& text, const Font& font) {
   cairo_t* cr = measuring_context();
   select_font(cr, font);
   cairo_text_extents_t extents;
-  cairo_text_extents(cr, text.c_str(), &extents);
+  cairo().text_extents(cr, text.c_str(), &extents);
   return {static_cast<int>(std::lround(extents.x_advance)),
           static_cast<int>(std::lround(font.scale * kCapPxPerScale))};
 }

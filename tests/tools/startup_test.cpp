@@ -1,6 +1,7 @@
 // What the program loads: OSMesa (and LLVM behind it) only when a run renders
-// depth, OpenCV's image codecs (GDAL, ...) never; the dynamic loader's own
-// report (LD_DEBUG=libs) says which libraries a process initialised.
+// depth, cairo only when it draws a figure, OpenCV's image codecs (GDAL, ...)
+// never; the dynamic loader's own report (LD_DEBUG=libs) says which libraries
+// a process initialised.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -33,11 +34,13 @@ std::string loaded_by(const std::string& arguments) {
   return text;
 }
 
-TEST(Startup, HelpLoadsNeitherOsmesaNorImageCodecs) {
+TEST(Startup, HelpLoadsNoOsmesaCairoOrImageCodecs) {
   const std::string loaded = loaded_by("--help");
   EXPECT_NE(loaded.find("calling init"), std::string::npos) << "no loader report";
   EXPECT_EQ(loaded.find("libOSMesa"), std::string::npos);
   EXPECT_EQ(loaded.find("libLLVM"), std::string::npos);
+  EXPECT_EQ(loaded.find("libcairo"), std::string::npos);
+  EXPECT_EQ(loaded.find("libfontconfig"), std::string::npos);
   EXPECT_EQ(loaded.find("libopencv_imgcodecs"), std::string::npos);
   EXPECT_EQ(loaded.find("libgdal"), std::string::npos);
 }
@@ -52,6 +55,19 @@ TEST(Startup, OsmesaIsLoadedOnlyForADepthCamera) {
                                       "/objects/drone/sensors/scanner/type=\\\"depth_camera\\\" --out " +
                                       (out / "depth").string());
   EXPECT_NE(depth.find("libOSMesa"), std::string::npos);
+  fs::remove_all(out);
+}
+
+TEST(Startup, CairoIsLoadedOnlyToDrawAFigure) {
+  const fs::path out = fs::temp_directory_path() / ("campo_startup_figures_" + std::to_string(::getpid()));
+  const std::string run = "run zigzag --set /world/time_limit_s=1 --out ";
+  const std::string without = loaded_by(run + (out / "without").string() + " --no-figures");
+  EXPECT_FALSE(fs::exists(out / "without" / "map.png"));
+  EXPECT_EQ(without.find("libcairo"), std::string::npos);
+  // A run draws map.png and side.png by default.
+  const std::string with = loaded_by(run + (out / "with").string());
+  EXPECT_TRUE(fs::exists(out / "with" / "map.png"));
+  EXPECT_NE(with.find("libcairo.so.2"), std::string::npos);
   fs::remove_all(out);
 }
 
