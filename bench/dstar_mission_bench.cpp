@@ -47,13 +47,13 @@ RecordedMission record(const std::string& scene_name) {
   // Every hit of every scan, as the planner got them (the run's record keeps a bounded sample, run/event_log.hpp).
   std::vector<PlannerEvent> events;
   EpisodeOptions options;
-  options.on_plan = [&events](const Observation& o, const PlanResult& plan) {
+  options.on_plan = [&events](std::size_t, const Observation& o, const PlanResult& plan) {
     if (!plan.decisions.empty()) events.push_back({o.time_s, plan.decisions});
   };
   const EpisodeResult flown = run_episode(scene, &make_vehicle, &create_planner, options);
   const DStarLite3dConfig config = parse_dstar_lite_3d_config(scene.vehicles.front().planner.params);
   RecordedMission mission;
-  mission.map = grid_map_config(config, flown.trajectory.front().state.position_m.z());
+  mission.map = grid_map_config(config, flown.only().trajectory.front().state.position_m.z());
   mission.level_step_cells = climb_cost_cells(config);  // as the planner searches
   mission.connectivity = config.connectivity;
   GridMap3d map(mission.map);

@@ -50,6 +50,7 @@ double path_ratio(double path_length_m, double nominal_route_m) {
 }
 
 std::string body_name(const Scene& scene, int id) {
+  if (is_vehicle_tag(id)) return scene.vehicles.at(vehicle_of_tag(id)).alias;
   if (id >= 0) return scene.shapes.at(static_cast<std::size_t>(id)).alias;
   return scene.movers.at(static_cast<std::size_t>(-1 - id)).shape.alias;
 }

@@ -181,7 +181,7 @@ nlohmann::json collision_events_json(const std::vector<CollisionEvent>& events) 
 }  // namespace
 
 std::string_view to_string(Outcome outcome) {
-  static constexpr std::string_view kNames[] = {"reached", "collision", "timeout", "aborted", "failed"};
+  static constexpr std::string_view kNames[] = {"reached", "collision", "timeout", "aborted", "failed", "stopped"};
   return kNames[static_cast<int>(outcome)];
 }
 
@@ -217,7 +217,31 @@ nlohmann::json to_json(const EpisodeMetrics& m) {
   };
   // The fields other rooms declare (metrics/mission_metrics.hpp), beside these; json sorts the keys.
   if (m.declared.is_object()) j.update(m.declared);
+  for (const VehicleSeparation& s : m.separations) {
+    const bool measured = std::isfinite(s.min_distance_m);
+    j["min_distance_to_" + s.other + "_m"] = measured ? nlohmann::json(s.min_distance_m) : nlohmann::json();
+    j["min_distance_to_" + s.other + "_time_s"] = measured ? nlohmann::json(s.min_distance_time_s) : nlohmann::json();
+  }
   return j;
+}
+
+nlohmann::json to_json(const FleetMetrics& m) {
+  const bool measured = std::isfinite(m.min_vehicle_distance_m);
+  return {
+      {"outcome", to_string(m.outcome)},
+      {"reason", m.reason},
+      {"vehicles", m.vehicles},
+      {"vehicles_reached", m.vehicles_reached},
+      {"all_reached", m.all_reached},
+      {"any_collision", m.any_collision},
+      {"collisions", m.collisions},
+      {"makespan_s", std::isnan(m.makespan_s) ? nlohmann::json() : nlohmann::json(m.makespan_s)},
+      {"min_vehicle_distance_m", measured ? nlohmann::json(m.min_vehicle_distance_m) : nlohmann::json()},
+      {"min_vehicle_distance_pair", measured ? nlohmann::json(m.min_vehicle_distance_pair) : nlohmann::json()},
+      {"min_vehicle_distance_time_s", measured ? nlohmann::json(m.min_vehicle_distance_time_s) : nlohmann::json()},
+      {"sim_time_s", m.sim_time_s},
+      {"wall_time_s", m.wall_time_s},
+  };
 }
 
 }  // namespace campo

@@ -137,21 +137,31 @@ void ClearanceQuery::add_ground(const btCollisionObject& body, const HeightGrid*
   ground_.push_back(std::move(ground));
 }
 
-void ClearanceQuery::find_vehicle(const btCollisionWorld& world) {
+void ClearanceQuery::find_vehicle(const btCollisionWorld& world, std::size_t vehicle) {
+  if (searches_.size() <= vehicle) searches_.resize(vehicle + 1);
+  search_ = &searches_[vehicle];
+  vehicle_ = &search_->parts;
   const btCollisionObjectArray& objects = world.getCollisionObjectArray();
-  if (objects.size() == objects_seen_) return;
-  objects_seen_ = objects.size();
-  vehicle_.clear();
+  if (objects.size() == search_->objects_seen) return;
+  search_->objects_seen = objects.size();
+  search_->parts.clear();
+  search_->others.clear();
   for (int i = 0; i < objects.size(); ++i) {
     const int tag = objects[i]->getUserIndex();
-    if (tag == kVehicleBodyTag || tag == kVehicleWheelTag) vehicle_.push_back({objects[i], tag == kVehicleBodyTag});
+    if (!is_vehicle_tag(tag)) continue;
+    if (vehicle_of_tag(tag) == vehicle) {
+      search_->parts.push_back({objects[i], !is_wheel_tag(tag)});
+    } else {
+      search_->others.push_back({objects[i], vehicle_tag(vehicle_of_tag(tag), false)});
+    }
   }
 }
 
-Clearance ClearanceQuery::measure(const btCollisionWorld& world, double obstacle_cutoff_m, double ground_cutoff_m) {
-  find_vehicle(world);
+Clearance ClearanceQuery::measure(const btCollisionWorld& world, std::size_t vehicle, double obstacle_cutoff_m,
+                                  double ground_cutoff_m) {
+  find_vehicle(world, vehicle);
   Clearance out;
-  if (vehicle_.empty()) return out;
+  if (vehicle_->empty()) return out;
   ContactSeen seen;
   out.contact = in_contact(world, seen);
   nearest_moving(obstacle_cutoff_m, out);
@@ -159,11 +169,11 @@ Clearance ClearanceQuery::measure(const btCollisionWorld& world, double obstacle
   // moved far enough since their last exact answer to come within the
   // cutoff, it cannot have. Each is measured a little beyond its cutoff, so
   // that the answer bounds the next steps.
-  if (static_floor_.floor_m - travel_since(static_floor_) < obstacle_cutoff_m) {
+  if (search_->static_floor.floor_m - travel_since(search_->static_floor) < obstacle_cutoff_m) {
     Clearance statics;
     const double reach = obstacle_cutoff_m + kSlack_m;
     nearest_static(reach, statics);
-    remember(static_floor_, std::min(statics.obstacle_m, reach));
+    remember(search_->static_floor, std::min(statics.obstacle_m, reach));
     if (statics.obstacle_m < out.obstacle_m) {
       out.obstacle_m = statics.obstacle_m;
       out.obstacle = statics.obstacle;
@@ -173,10 +183,10 @@ Clearance ClearanceQuery::measure(const btCollisionWorld& world, double obstacle
     out.obstacle_m = kInfinity;
     out.obstacle = -1;
   }
-  if (ground_floor_.floor_m - travel_since(ground_floor_) < ground_cutoff_m) {
+  if (search_->ground_floor.floor_m - travel_since(search_->ground_floor) < ground_cutoff_m) {
     const double reach = ground_cutoff_m + kSlack_m;
     nearest_ground(reach, out);
-    remember(ground_floor_, std::min(out.ground_m, reach));
+    remember(search_->ground_floor, std::min(out.ground_m, reach));
   }
   if (out.ground_m >= ground_cutoff_m) out.ground_m = kInfinity;
   if (out.touching()) out.touch = touch(out, seen);
@@ -192,8 +202,11 @@ Touch ClearanceQuery::touch(const Clearance& c, const ContactSeen& seen) {
   for (const Ground& g : ground_) {
     if (g.body == seen.other) return touch_ground(&g);
   }
-  for (const MovingObstacle& m : moving_) {
-    if (m.body == seen.other) return touch_obstacle(m.id);
+  const std::vector<MovingObstacle>* lists[] = {&moving_, &search_->others};
+  for (const std::vector<MovingObstacle>* list : lists) {
+    for (const MovingObstacle& m : *list) {
+      if (m.body == seen.other) return touch_obstacle(m.id);
+    }
   }
   for (const StaticCompound& compound : compounds_) {
     if (compound.body != seen.other) continue;
@@ -216,25 +229,31 @@ Touch ClearanceQuery::touch_obstacle(int id) const {
       pose = o.pose;
     }
   }
+  Touch t;
+  t.body = id;
+  double best = kInfinity;
+  const auto nearest_on = [&](const btConvexShape& other, const btTransform& other_pose) {
+    for (const VehiclePart& part : *vehicle_) {
+      btVector3 point;
+      const double d = signed_distance(*static_cast<const btConvexShape*>(part.body->getCollisionShape()),
+                                       part.body->getWorldTransform(), other, other_pose, &point);
+      if (d < best) {
+        best = d;
+        t.point_m = Eigen::Vector3d(point.x(), point.y(), point.z());
+      }
+    }
+  };
+  // Another vehicle is all its bodies (a rover's chassis and wheels).
+  for (const MovingObstacle& m : search_->others) {
+    if (m.id == id) nearest_on(*static_cast<const btConvexShape*>(m.body->getCollisionShape()), m.body->getWorldTransform());
+  }
   for (const MovingObstacle& m : moving_) {
     if (m.id == id) {
       shape = static_cast<const btConvexShape*>(m.body->getCollisionShape());
       pose = m.body->getWorldTransform();
     }
   }
-  Touch t;
-  t.body = id;
-  if (!shape) return t;
-  double best = kInfinity;
-  for (const VehiclePart& part : vehicle_) {
-    btVector3 point;
-    const double d = signed_distance(*static_cast<const btConvexShape*>(part.body->getCollisionShape()),
-                                     part.body->getWorldTransform(), *shape, pose, &point);
-    if (d < best) {
-      best = d;
-      t.point_m = Eigen::Vector3d(point.x(), point.y(), point.z());
-    }
-  }
+  if (shape) nearest_on(*shape, pose);
   return t;
 }
 
@@ -245,7 +264,7 @@ Touch ClearanceQuery::touch_ground(const Ground* only) {
   bool found = false;
   for (const Ground& g : ground_) {
     if (only && &g != only) continue;
-    for (const VehiclePart& part : vehicle_) {
+    for (const VehiclePart& part : *vehicle_) {
       if (!part.ground_counts) continue;
       btVector3 point;
       const double d = ground_distance(g, part, kInfinity, &point);
@@ -261,7 +280,7 @@ Touch ClearanceQuery::touch_ground(const Ground* only) {
 }
 
 const ClearanceQuery::VehiclePart* ClearanceQuery::part_of(const btCollisionObject* object) const {
-  for (const VehiclePart& part : vehicle_) {
+  for (const VehiclePart& part : *vehicle_) {
     if (part.body == object) return &part;
   }
   return nullptr;
@@ -298,20 +317,20 @@ bool ClearanceQuery::in_contact(const btCollisionWorld& world, ContactSeen& seen
 void ClearanceQuery::remember(Floor& floor, double floor_m) const {
   floor.floor_m = floor_m;
   floor.poses.clear();
-  for (const VehiclePart& part : vehicle_) floor.poses.push_back(part.body->getWorldTransform());
+  for (const VehiclePart& part : *vehicle_) floor.poses.push_back(part.body->getWorldTransform());
 }
 
 double ClearanceQuery::travel_since(const Floor& floor) const {
-  if (floor.poses.size() != vehicle_.size()) return kInfinity;
+  if (floor.poses.size() != vehicle_->size()) return kInfinity;
   // No point of a body moves farther than its origin's displacement plus the
   // arc its farthest point turns through.
   double travel = 0.0;
-  for (std::size_t i = 0; i < vehicle_.size(); ++i) {
-    const btTransform& now = vehicle_[i].body->getWorldTransform();
+  for (std::size_t i = 0; i < vehicle_->size(); ++i) {
+    const btTransform& now = (*vehicle_)[i].body->getWorldTransform();
     const btTransform& then = floor.poses[i];
     btVector3 centre;
     btScalar radius;
-    vehicle_[i].body->getCollisionShape()->getBoundingSphere(centre, radius);
+    (*vehicle_)[i].body->getCollisionShape()->getBoundingSphere(centre, radius);
     const btScalar angle = (now.getRotation() * then.getRotation().inverse()).getAngleShortestPath();
     travel = std::max(travel, static_cast<double>((now.getOrigin() - then.getOrigin()).length() +
                                                   (centre.length() + radius) * angle));
@@ -322,7 +341,7 @@ double ClearanceQuery::travel_since(const Floor& floor) const {
 void ClearanceQuery::vehicle_box(btVector3& lo, btVector3& hi) const {
   lo.setValue(BT_LARGE_FLOAT, BT_LARGE_FLOAT, BT_LARGE_FLOAT);
   hi = -lo;
-  for (const VehiclePart& part : vehicle_) {
+  for (const VehiclePart& part : *vehicle_) {
     btVector3 a, b;
     part.body->getCollisionShape()->getAabb(part.body->getWorldTransform(), a, b);
     lo.setMin(a);
@@ -335,9 +354,9 @@ void ClearanceQuery::measure_obstacle(const btVector3& lo, const btVector3& hi, 
   btVector3 a, b;
   shape.getAabb(pose, a, b);
   if (box_distance(lo, hi, a, b) >= std::min(out.obstacle_m, bound)) return;
-  for (const VehiclePart& part : vehicle_) {
+  for (const VehiclePart& part : *vehicle_) {
     const auto* mine = static_cast<const btConvexShape*>(part.body->getCollisionShape());
-    if (vehicle_.size() > 1) {  // each part's own box first (a rover's wheels)
+    if (vehicle_->size() > 1) {  // each part's own box first (a rover's wheels)
       btVector3 part_lo, part_hi;
       mine->getAabb(part.body->getWorldTransform(), part_lo, part_hi);
       if (box_distance(part_lo, part_hi, a, b) >= std::min(out.obstacle_m, bound)) continue;
@@ -350,13 +369,16 @@ void ClearanceQuery::measure_obstacle(const btVector3& lo, const btVector3& hi, 
   }
 }
 
-// Moving obstacles are few: each is measured exactly (within the cutoff).
+// Moving obstacles (and the other vehicles' bodies) are few: each is measured exactly (within the cutoff).
 void ClearanceQuery::nearest_moving(double cutoff_m, Clearance& out) const {
   btVector3 lo, hi;
   vehicle_box(lo, hi);
-  for (const MovingObstacle& m : moving_) {
-    measure_obstacle(lo, hi, *static_cast<const btConvexShape*>(m.body->getCollisionShape()), m.body->getWorldTransform(),
-                     m.id, cutoff_m, out);
+  const std::vector<MovingObstacle>* lists[] = {&moving_, &search_->others};
+  for (const std::vector<MovingObstacle>* list : lists) {
+    for (const MovingObstacle& m : *list) {
+      measure_obstacle(lo, hi, *static_cast<const btConvexShape*>(m.body->getCollisionShape()),
+                       m.body->getWorldTransform(), m.id, cutoff_m, out);
+    }
   }
 }
 
@@ -374,7 +396,7 @@ void ClearanceQuery::nearest_static(double cutoff_m, Clearance& out) {
     }
   };
   std::vector<int>& candidates = candidates_;
-  double radius = std::min(cutoff_m, std::max(kMinSearch_m, 2.0 * obstacle_hint_m_));
+  double radius = std::min(cutoff_m, std::max(kMinSearch_m, 2.0 * search_->obstacle_hint_m));
   for (;;) {
     const btVector3 pad(radius, radius, radius);
     const bool everything = statics_.empty() || covers(lo - pad, hi + pad, statics_min_, statics_max_, 3);
@@ -395,19 +417,19 @@ void ClearanceQuery::nearest_static(double cutoff_m, Clearance& out) {
     out.obstacle_m = kInfinity;
     out.obstacle = -1;
   }
-  if (std::isfinite(out.obstacle_m)) obstacle_hint_m_ = std::max(0.0, out.obstacle_m);
+  if (std::isfinite(out.obstacle_m)) search_->obstacle_hint_m = std::max(0.0, out.obstacle_m);
 }
 
 // Planes exactly from each body's support point; heightfields triangle by
 // triangle within a box that grows as in nearest_obstacle.
 void ClearanceQuery::nearest_ground(double cutoff_m, Clearance& out) {
   for (const Ground& g : ground_) {
-    for (const VehiclePart& part : vehicle_) {
+    for (const VehiclePart& part : *vehicle_) {
       if (part.ground_counts) out.ground_m = std::min(out.ground_m, ground_distance(g, part, cutoff_m, nullptr));
     }
   }
   if (out.ground_m >= cutoff_m) out.ground_m = kInfinity;
-  if (std::isfinite(out.ground_m)) ground_hint_m_ = std::max(0.0, out.ground_m);
+  if (std::isfinite(out.ground_m)) search_->ground_hint_m = std::max(0.0, out.ground_m);
 }
 
 double ClearanceQuery::ground_distance(const Ground& g, const VehiclePart& part, double cutoff_m, btVector3* point) {
@@ -439,7 +461,7 @@ double ClearanceQuery::ground_distance(const Ground& g, const VehiclePart& part,
     const double top = g.blocks.highest(lo.x() - cutoff_m, hi.x() + cutoff_m, lo.y() - cutoff_m, hi.y() + cutoff_m);
     if (lo.z() - top >= cutoff_m) return kInfinity;
   }
-  double radius = std::min(cutoff_m, std::max(kMinSearch_m, 2.0 * ground_hint_m_));
+  double radius = std::min(cutoff_m, std::max(kMinSearch_m, 2.0 * search_->ground_hint_m));
   for (;;) {
     triangles.cutoff = radius;
     const btVector3 pad(radius, radius, radius);

@@ -35,8 +35,9 @@ struct TriangleCandidate {
 };
 
 /// The obstacles and the ground of a world, and the search for the nearest
-/// of each from the vehicle's bodies (found by their user index when asked,
-/// since vehicles join the world after it is built).
+/// of each from one vehicle's bodies (found by their user index when asked,
+/// since vehicles join the world after it is built). Each vehicle has its
+/// own search state; the other vehicles' bodies are moving obstacles to it.
 class ClearanceQuery {
  public:
   ClearanceQuery();
@@ -55,11 +56,12 @@ class ClearanceQuery {
   /// was given) lets the search skip terrain that is out of reach.
   void add_ground(const btCollisionObject& body, const HeightGrid* grid = nullptr);
 
-  /// Clearance of the bodies tagged kVehicleBodyTag or kVehicleWheelTag in
-  /// `world`: exact below each cutoff, +infinity when nothing is nearer;
-  /// whether Bullet's narrow phase has them in contact; and when they touch,
-  /// what and where (Clearance::touch).
-  Clearance measure(const btCollisionWorld& world, double obstacle_cutoff_m, double ground_cutoff_m);
+  /// Clearance of the bodies tagged vehicle_tag(vehicle, ...) in `world`:
+  /// exact below each cutoff, +infinity when nothing is nearer; whether
+  /// Bullet's narrow phase has them in contact; and when they touch, what and
+  /// where (Clearance::touch).
+  Clearance measure(const btCollisionWorld& world, std::size_t vehicle, double obstacle_cutoff_m,
+                    double ground_cutoff_m);
 
  private:
   struct StaticObstacle {
@@ -89,13 +91,23 @@ class ClearanceQuery {
     const btCollisionObject* body;
     bool ground_counts;  // kVehicleBodyTag: touching the ground is a collision
   };
-  void find_vehicle(const btCollisionWorld& world);
   // A lower bound of a distance to things that do not move, valid with the
   // vehicle's bodies at `poses`.
   struct Floor {
     double floor_m = -std::numeric_limits<double>::infinity();
     std::vector<btTransform> poses;
   };
+  // What one vehicle's searches keep from one query to the next.
+  struct Search {
+    std::vector<VehiclePart> parts;       // its bodies
+    std::vector<MovingObstacle> others;   // the other vehicles' bodies, id their vehicle_tag
+    int objects_seen = -1;                // collision objects in the world when parts were found
+    double obstacle_hint_m = 1.0;         // the last nearest obstacle distance: where the search starts
+    double ground_hint_m = 1.0;
+    Floor static_floor;
+    Floor ground_floor;
+  };
+  void find_vehicle(const btCollisionWorld& world, std::size_t vehicle);
   void vehicle_box(btVector3& lo, btVector3& hi) const;
   void measure_obstacle(const btVector3& lo, const btVector3& hi, const btConvexShape& shape, const btTransform& pose,
                         int id, double bound, Clearance& out) const;
@@ -121,15 +133,13 @@ class ClearanceQuery {
   std::vector<StaticCompound> compounds_;
   std::vector<MovingObstacle> moving_;
   std::vector<Ground> ground_;
-  std::vector<VehiclePart> vehicle_;
+  std::vector<Search> searches_;  // by vehicle number
+  // The search of the vehicle measure() is measuring; its parts.
+  Search* search_ = nullptr;
+  const std::vector<VehiclePart>* vehicle_ = nullptr;
   std::vector<int> candidates_;  // scratch of nearest_obstacle, reused
   std::vector<TriangleCandidate> triangle_scratch_;  // scratch of nearest_ground, reused
-  int objects_seen_ = -1;      // collision objects in the world when vehicle_ was found
-  double obstacle_hint_m_ = 1.0;  // the last nearest obstacle distance: where the search starts
-  double ground_hint_m_ = 1.0;
   static constexpr double kSlack_m = 0.5;  // measured beyond a cutoff, to skip the next steps
-  Floor static_floor_;
-  Floor ground_floor_;
 };
 
 }  // namespace campo

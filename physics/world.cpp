@@ -66,6 +66,17 @@ struct World::Impl {
   ClearanceQuery clearance;
   std::unique_ptr<btDiscreteDynamicsWorld> dynamics;
   std::int64_t steps = 0;
+  std::size_t vehicles_joined = 0;
+
+  // The bodies of vehicle `vehicle`, in the order they joined the world.
+  template <typename F>
+  void for_each_vehicle_body(std::size_t vehicle, F&& f) const {
+    const btCollisionObjectArray& objects = dynamics->getCollisionObjectArray();
+    for (int i = 0; i < objects.size(); ++i) {
+      const int tag = objects[i]->getUserIndex();
+      if (is_vehicle_tag(tag) && vehicle_of_tag(tag) == vehicle) f(*objects[i], is_wheel_tag(tag));
+    }
+  }
 
   Impl() {
     dynamics = std::make_unique<btDiscreteDynamicsWorld>(&dispatcher, &broadphase, &solver,
@@ -261,8 +272,78 @@ void World::moving_body_poses(std::vector<Eigen::Isometry3d>& out) const {
   }
 }
 
-Clearance World::vehicle_clearance(double obstacle_cutoff_m, double ground_cutoff_m) const {
-  return impl_->clearance.measure(*impl_->dynamics, obstacle_cutoff_m, ground_cutoff_m);
+std::size_t World::join_vehicle() {
+  if (impl_->vehicles_joined >= kMaxVehicles) {
+    throw std::invalid_argument("a world holds at most " + std::to_string(kMaxVehicles) + " vehicles");
+  }
+  return impl_->vehicles_joined++;
+}
+
+Clearance World::vehicle_clearance(std::size_t vehicle, double obstacle_cutoff_m, double ground_cutoff_m) const {
+  return impl_->clearance.measure(*impl_->dynamics, vehicle, obstacle_cutoff_m, ground_cutoff_m);
+}
+
+double World::vehicle_distance(std::size_t a, std::size_t b, double cutoff_m) const {
+  double best = std::numeric_limits<double>::infinity();
+  impl_->for_each_vehicle_body(a, [&](const btCollisionObject& body_a, bool) {
+    btVector3 centre_a;
+    btScalar radius_a;
+    body_a.getCollisionShape()->getBoundingSphere(centre_a, radius_a);
+    const btVector3 world_a = body_a.getWorldTransform() * centre_a;
+    impl_->for_each_vehicle_body(b, [&](const btCollisionObject& body_b, bool) {
+      btVector3 centre_b;
+      btScalar radius_b;
+      body_b.getCollisionShape()->getBoundingSphere(centre_b, radius_b);
+      // The bounding spheres' gap bounds the shapes' distance from below.
+      const double bound = (world_a - body_b.getWorldTransform() * centre_b).length() - radius_a - radius_b;
+      if (bound >= std::min(best, cutoff_m)) return;
+      best = std::min(best, signed_distance(*static_cast<const btConvexShape*>(body_a.getCollisionShape()),
+                                            body_a.getWorldTransform(),
+                                            *static_cast<const btConvexShape*>(body_b.getCollisionShape()),
+                                            body_b.getWorldTransform()));
+    });
+  });
+  return best < cutoff_m ? best : std::numeric_limits<double>::infinity();
+}
+
+std::vector<Shape> World::vehicle_shapes(std::size_t vehicle, const std::string& alias) const {
+  std::vector<Shape> shapes;
+  int wheels = 0;
+  impl_->for_each_vehicle_body(vehicle, [&](const btCollisionObject& body, bool wheel) {
+    Shape s;
+    s.alias = alias + (wheel ? "/wheel" + std::to_string(wheels++) : "/body");
+    s.color = {0.85, 0.45, 0.1};
+    const btCollisionShape& shape = *body.getCollisionShape();
+    if (shape.getShapeType() == SPHERE_SHAPE_PROXYTYPE) {
+      s.type = ShapeType::sphere;
+      s.radius_m = static_cast<const btSphereShape&>(shape).getRadius();
+    } else if (shape.getShapeType() == BOX_SHAPE_PROXYTYPE) {
+      s.type = ShapeType::cuboid;
+      s.size_m = 2.0 * from_bt(static_cast<const btBoxShape&>(shape).getHalfExtentsWithMargin());
+    } else {  // any other convex shape: its bounding box
+      btVector3 lo, hi;
+      shape.getAabb(btTransform::getIdentity(), lo, hi);
+      s.type = ShapeType::cuboid;
+      s.size_m = from_bt(hi - lo);
+    }
+    s.is_static = false;
+    shapes.push_back(std::move(s));
+  });
+  std::vector<Eigen::Isometry3d> poses;
+  append_vehicle_poses(vehicle, poses);
+  for (std::size_t i = 0; i < shapes.size(); ++i) shapes[i].pose = poses[i];
+  return shapes;
+}
+
+void World::append_vehicle_poses(std::size_t vehicle, std::vector<Eigen::Isometry3d>& out) const {
+  impl_->for_each_vehicle_body(vehicle, [&out](const btCollisionObject& body, bool) {
+    const btTransform& t = body.getWorldTransform();
+    const btMatrix3x3& b = t.getBasis();
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    for (int row = 0; row < 3; ++row) pose.linear().row(row) << b[row].x(), b[row].y(), b[row].z();
+    pose.translation() = from_bt(t.getOrigin());
+    out.push_back(pose);
+  });
 }
 
 BodyState World::shape_state(int shape_index) const {

@@ -76,7 +76,15 @@ nlohmann::json with_data_dir(nlohmann::json provenance, const Scene& scene) {
 
 }  // namespace
 
-std::string trajectory_csv(const EpisodeResult& result) {
+std::string trajectory_file(const EpisodeResult& result, std::size_t vehicle) {
+  return result.vehicles.size() == 1 ? "trajectory.csv" : "trajectory_" + result.vehicles.at(vehicle).alias + ".csv";
+}
+
+std::string events_file(const EpisodeResult& result, std::size_t vehicle) {
+  return result.vehicles.size() == 1 ? kEventsFile : "events_" + result.vehicles.at(vehicle).alias + ".jsonl";
+}
+
+std::string trajectory_csv(const VehicleResult& result) {
   std::vector<std::string> actuator_names;
   if (!result.trajectory.empty()) flatten(result.trajectory.front().actuators, "", &actuator_names, nullptr);
   std::string out =
@@ -112,6 +120,38 @@ std::string trajectory_csv(const EpisodeResult& result) {
   return out;
 }
 
+namespace {
+
+// What one vehicle ran with: its definition and effective parameters.
+nlohmann::json vehicle_parameters(const VehicleDef& def, const VehicleResult& result) {
+  nlohmann::json sensors = nlohmann::json::array();
+  for (const SensorDef& s : def.sensors) sensors.push_back(sensor_json(s));
+  nlohmann::json mission = nlohmann::json::array();
+  for (const Waypoint& wp : def.mission) {
+    nlohmann::json j = {{"position_m", vector_json(wp.position_m)}};
+    if (wp.heading_deg) j["heading_deg"] = *wp.heading_deg;
+    mission.push_back(j);
+  }
+  return {{"vehicle",
+           {{"alias", def.alias},
+            {"type", to_string(def.type)},
+            {"start_position_m", vector_json(def.pose.translation())},
+            {"start_rpy_deg", vector_json(rpy_deg_from_rotation(def.pose.linear()))},
+            {"parameters", result.vehicle_parameters},
+            {"state_noise", state_noise_fields().write(def.state_noise)}}},
+          {"planner", {{"name", def.planner.name}, {"parameters", result.planner_parameters}}},
+          {"sensors", sensors},
+          {"mission", mission}};
+}
+
+nlohmann::json event_log_json(const std::string& file, const std::vector<PlannerEvent>& events) {
+  std::size_t bounded = 0;
+  for (const PlannerEvent& e : events) bounded += was_bounded(e.decisions);
+  return {{"file", file}, {"count", events.size()}, {"bounded", bounded}};
+}
+
+}  // namespace
+
 nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const EpisodeOptions& options,
                         const std::vector<std::string>& overrides) {
   nlohmann::json final_body_poses = nlohmann::json::array();
@@ -122,46 +162,49 @@ nlohmann::json run_json(const Scene& scene, const EpisodeResult& result, const E
                                 {"position_m", vector_json(pose.translation())},
                                 {"rpy_deg", vector_json(rpy_deg_from_rotation(pose.linear()))}});
   }
-  const VehicleDef& def = scene.vehicles.at(options.vehicle_index);
-  nlohmann::json sensors = nlohmann::json::array();
-  for (const SensorDef& s : def.sensors) {
-    sensors.push_back(sensor_json(s));
-  }
-  nlohmann::json mission = nlohmann::json::array();
-  for (const Waypoint& wp : def.mission) {
-    nlohmann::json j = {{"position_m", vector_json(wp.position_m)}};
-    if (wp.heading_deg) j["heading_deg"] = *wp.heading_deg;
-    mission.push_back(j);
-  }
-  const WorldConfig& w = scene.world;
-  std::size_t bounded = 0;
-  for (const PlannerEvent& e : result.events) {
-    bounded += was_bounded(e.decisions);
-  }
-  // The planner's code is part of what produced the run: built in, or which plugin file.
   nlohmann::json run_provenance = with_data_dir(provenance(scene), scene);
-  run_provenance["planner"] = planner_provenance(def.planner.name);
+  if (result.vehicles.size() == 1) {
+    const VehicleDef& def = scene.vehicles.at(0);
+    const VehicleResult& vehicle = result.vehicles.front();
+    // The planner's code is part of what produced the run: built in, or which plugin file.
+    run_provenance["planner"] = planner_provenance(def.planner.name);
+    nlohmann::json parameters = {{"world", world_config_fields().write(scene.world)}};
+    parameters.update(vehicle_parameters(def, vehicle));
+    parameters["stop_on_collision"] = options.stop_on_collision;
+    return {
+        {"metrics", to_json(vehicle.metrics)},
+        {"provenance", run_provenance},
+        {"overrides", overrides},
+        {"parameters", parameters},
+        {"final_state_hash", result.final_state_hash},
+        {"final_body_poses", final_body_poses},
+        // The decisions themselves are in events.jsonl, so this file does not grow with the run.
+        {"event_log", event_log_json(kEventsFile, vehicle.events)},
+    };
+  }
+  // Several vehicles: the run's metrics at the top, each vehicle's record under "vehicles".
+  nlohmann::json vehicles = nlohmann::json::array();
+  for (std::size_t i = 0; i < result.vehicles.size(); ++i) {
+    const VehicleDef& def = scene.vehicles.at(i);
+    const VehicleResult& vehicle = result.vehicles[i];
+    vehicles.push_back({{"alias", def.alias},
+                        {"metrics", to_json(vehicle.metrics)},
+                        {"parameters", vehicle_parameters(def, vehicle)},
+                        {"planner_provenance", planner_provenance(def.planner.name)},
+                        {"trajectory_file", trajectory_file(result, i)},
+                        {"event_log", event_log_json(events_file(result, i), vehicle.events)}});
+  }
   return {
-      {"metrics", to_json(result.metrics)},
+      {"metrics", to_json(result.fleet)},
+      {"vehicles", vehicles},
       {"provenance", run_provenance},
       {"overrides", overrides},
       {"parameters",
-       {{"world", world_config_fields().write(w)},
-        {"vehicle",
-         {{"alias", def.alias},
-          {"type", to_string(def.type)},
-          {"start_position_m", vector_json(def.pose.translation())},
-          {"start_rpy_deg", vector_json(rpy_deg_from_rotation(def.pose.linear()))},
-          {"parameters", result.vehicle_parameters},
-          {"state_noise", state_noise_fields().write(def.state_noise)}}},
-        {"planner", {{"name", def.planner.name}, {"parameters", result.planner_parameters}}},
-        {"sensors", sensors},
-        {"mission", mission},
+       {{"world", world_config_fields().write(scene.world)},
+        {"end", to_string(scene.end)},
         {"stop_on_collision", options.stop_on_collision}}},
       {"final_state_hash", result.final_state_hash},
       {"final_body_poses", final_body_poses},
-      // The decisions themselves are in events.jsonl, so this file does not grow with the run.
-      {"event_log", {{"file", kEventsFile}, {"count", result.events.size()}, {"bounded", bounded}}},
   };
 }
 

@@ -56,6 +56,7 @@ std::optional<ShapeType> shape_type_from_string(std::string_view name) {
   return value_of(kShapeNames, name);
 }
 std::string_view to_string(VehicleType type) { return name_of(kVehicleNames, type); }
+std::string_view to_string(EndRule rule) { return rule == EndRule::first_failure ? "first_failure" : "all"; }
 std::optional<VehicleType> vehicle_type_from_string(std::string_view name) {
   return value_of(kVehicleNames, name);
 }

@@ -103,6 +103,9 @@ class Loader {
     std::string description;
     r.read("description", description);
     if (auto world = r.optional("world")) r.check([&] { read_world(*world); });
+    if (auto end = r.optional("end")) {
+      r.check([&] { scene_.end = end->as_choice({"all", "first_failure"}) == 0 ? EndRule::all : EndRule::first_failure; });
+    }
     r.check([&] { read_objects(r.required("objects"), Eigen::Isometry3d::Identity(), 0); });
     r.finish();
     // Missions last: they may name frames and grids declared anywhere.

@@ -256,20 +256,20 @@ PreparedRun prepare_checked_run(const RunRequest& request, bool validate_planner
   EpisodeOptions& options = run.options;
   options.stop_on_collision = !request.continue_after_collision;
   options.make_sensor = range_sensor_factory();
-  check_runnable(scene);  // a vehicle at all
+  check_runnable(scene);  // a vehicle at all, each with a mission
   if (!request.vehicle.empty()) {
     const VehicleDef* v = scene.find_vehicle(request.vehicle);
     if (!v) throw InputError("command line", "--vehicle", "no vehicle \"" + request.vehicle + "\" in " + scene_file);
-    options.vehicle_index = static_cast<std::size_t>(v - scene.vehicles.data());
+    run.vehicle_index = static_cast<std::size_t>(v - scene.vehicles.data());
   }
-  run.vehicle_index = options.vehicle_index;
-  VehicleDef& def = scene.vehicles[options.vehicle_index];
+  VehicleDef& def = scene.vehicles[run.vehicle_index];
   // Another planner than the scene's starts from its defaults, and takes the
   // overrides of the vehicle's planner parameters: they were given for the
   // planner that runs, and a --set recorded must be a --set applied.
   if (!request.planner.empty()) choose_planner_with_overrides(def, request, overrides, run.override_pointers, run.document);
-  if (def.planner.name.empty()) def.planner.name = std::string(kDefaultPlanner);
-  check_runnable(scene, options.vehicle_index);
+  for (VehicleDef& vehicle : scene.vehicles) {
+    if (vehicle.planner.name.empty()) vehicle.planner.name = std::string(kDefaultPlanner);
+  }
   // Validate every parameter before anything runs.
   validate_vehicle_params(def);
   if (validate_planner) {
@@ -277,7 +277,7 @@ PreparedRun prepare_checked_run(const RunRequest& request, bool validate_planner
     make_planner(def.planner, {def.type, &scene, &def});
   }
   // The other vehicles' too, as `campo validate` checks them: a file is valid or not whichever vehicle runs.
-  check_vehicles_and_planners(scene, options.vehicle_index);
+  check_vehicles_and_planners(scene, run.vehicle_index);
   return std::move(run);
 }
 
@@ -300,12 +300,12 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   if ((request.record_depth_every > 0 || request.record_replans) && !output) {
     throw std::logic_error("simulate_run: depth maps asked for without an output directory");
   }
-  // Depth maps of every n-th scan, for `campo render --kind depth`.
+  // Depth maps of every n-th scan of the chosen vehicle (--vehicle), for `campo render --kind depth`.
   std::vector<int> scans_seen(def.sensors.size(), 0);
   if (request.record_depth_every > 0) {
     create_output_directories(output().path("depth"));
-    options.on_scan = [&](std::size_t i, const RangeScan& scan) {
-      if (scans_seen[i]++ % request.record_depth_every != 0) return;
+    options.on_scan = [&](std::size_t vehicle, std::size_t i, const RangeScan& scan) {
+      if (vehicle != run.vehicle_index || scans_seen[i]++ % request.record_depth_every != 0) return;
       char name[96];
       std::snprintf(name, sizeof name, "%s_%08.3f.png", def.sensors[i].alias.c_str(), scan.time_s);
       write_depth_png(depth_map(scan, def.sensors[i].range), output().path("depth") / name);
@@ -313,9 +313,9 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   }
   // The depth map each replanning used, for `campo render --kind depth --step K`.
   if (request.record_replans) {
-    options.on_plan = [&](const Observation& observation, const PlanResult& plan) {
+    options.on_plan = [&](std::size_t vehicle, const Observation& observation, const PlanResult& plan) {
       const std::optional<ReplanDecision>& replan = plan.decisions.replan;
-      if (!replan || !replan->sensor) return;
+      if (vehicle != run.vehicle_index || !replan || !replan->sensor) return;
       for (const SensorReading& reading : observation.sensors) {
         // Only image sensors give a depth map worth drawing (not a leddar's single row).
         if (reading.alias != *replan->sensor || !reading.scan || !is_image(*reading.config)) continue;
@@ -341,7 +341,12 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   }
   run.result = run_episode(scene, &make_vehicle, make_planner, options);
   // Ended by the limit, not by the planner: the reason says so.
-  if (limit && limit->tripped && run.result.metrics.outcome == Outcome::failed) run.result.metrics.reason = limit->reason();
+  if (limit && limit->tripped) {
+    for (VehicleResult& vehicle : run.result.vehicles) {
+      if (vehicle.metrics.outcome == Outcome::failed) vehicle.metrics.reason = limit->reason();
+    }
+    if (run.result.fleet.outcome == Outcome::failed) run.result.fleet.reason = limit->reason();
+  }
   limit.reset();
   run.record = run_json(scene, run.result, options, override_texts(applied_overrides(request)));
   if (!run.document.contains("name")) run.document["name"] = scene.name;
@@ -350,8 +355,10 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
 
 std::vector<FigureFailure> write_run_files(const SimulatedRun& run, const RunRequest& request,
                                            const StagedOutput& out) {
-  write_file_atomically(out.path("trajectory.csv"), trajectory_csv(run.result));
-  write_file_atomically(out.path(kEventsFile), events_jsonl(run.result.events));
+  for (std::size_t v = 0; v < run.result.vehicles.size(); ++v) {
+    write_file_atomically(out.path(trajectory_file(run.result, v)), trajectory_csv(run.result.vehicles[v]));
+    write_file_atomically(out.path(events_file(run.result, v)), events_jsonl(run.result.vehicles[v].events));
+  }
   write_file_atomically(out.path("run.json"), run.record.dump(2) + "\n");
   write_file_atomically(out.path("scene.json"), run.document.dump(2) + "\n");
   std::vector<FigureFailure> failures;
@@ -421,7 +428,8 @@ ExecutedRun execute_run(const RunRequest& request) {
 
 void write_final_depth(const SimulatedRun& run, const std::filesystem::path& png) {
   const VehicleDef& vehicle = run.scene.vehicles[run.vehicle_index];
-  if (run.result.trajectory.empty()) throw std::runtime_error("no recorded pose to draw a depth map from");
+  const std::vector<TrajectorySample>& trajectory = run.result.vehicles.at(run.vehicle_index).trajectory;
+  if (trajectory.empty()) throw std::runtime_error("no recorded pose to draw a depth map from");
   const auto image = std::find_if(vehicle.sensors.begin(), vehicle.sensors.end(), [](const SensorDef& s) {
     return is_image(s.range);
   });
@@ -432,7 +440,7 @@ void write_final_depth(const SimulatedRun& run, const std::filesystem::path& png
     sensor = parse_sensor(JsonNode(nlohmann::json{{"type", "depth_camera"}, {"preset", "scanner3d"}}, "triage", ""));
     if (!vehicle.sensors.empty()) sensor.range.mount = vehicle.sensors.front().range.mount;
   }
-  const TrajectorySample& last = run.result.trajectory.back();
+  const TrajectorySample& last = trajectory.back();
   const std::unique_ptr<RangeSensor> ranger = make_range_sensor(run.scene, sensor, run.scene.world.seed);
   RangeScan scan;
   // The bodies where the run left them.
@@ -445,8 +453,15 @@ std::string run_summary_line(const nlohmann::json& record) {
   std::ostringstream line;
   line << record.at("provenance").at("scene").value("name", "scene") << ": " << m.at("outcome").get<std::string>()
        << " (" << m.at("reason").get<std::string>() << ") after " << m.at("sim_time_s").get<double>()
-       << " s simulated, path " << m.at("path_length_m").get<double>() << " m (ratio "
-       << m.at("path_ratio").get<double>() << "), " << m.at("wall_time_s").get<double>() << " s wall";
+       << " s simulated, ";
+  if (record.contains("vehicles")) {  // several vehicles: the run as a whole
+    line << m.at("vehicles_reached").get<int>() << " of " << m.at("vehicles").get<int>() << " vehicles reached, "
+         << m.at("collisions").get<int>() << " collisions, ";
+  } else {
+    line << "path " << m.at("path_length_m").get<double>() << " m (ratio " << m.at("path_ratio").get<double>()
+         << "), ";
+  }
+  line << m.at("wall_time_s").get<double>() << " s wall";
   return line.str();
 }
 

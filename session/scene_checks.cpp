@@ -23,26 +23,15 @@ SceneChecks parameter_checks() {
   return checks;
 }
 
-void check_runnable(const Scene& scene, std::size_t vehicle_index) {
+void check_runnable(const Scene& scene) {
   if (scene.vehicles.empty()) throw InputError(scene.source_path, "/objects", "expected a scene with a vehicle to run");
-  // One vehicle is simulated: another would be in the file, validated and
-  // drawn, yet absent from the physics, and a run would go on as if it were not there.
-  if (scene.vehicles.size() > 1) {
-    const auto object_of = [](const VehicleDef& v) {
+  // Every vehicle runs, each on its own mission.
+  for (const VehicleDef& v : scene.vehicles) {
+    if (v.mission.empty()) {
       const std::string& params = v.params.pointer;  // "<object>/params"
-      return params.substr(0, params.rfind('/'));
-    };
-    std::string names;
-    for (const VehicleDef& v : scene.vehicles) {
-      names += (names.empty() ? "" : ", ") + ("\"" + v.alias + "\" (" + object_of(v) + ")");
+      throw InputError(scene.source_path, params.substr(0, params.rfind('/')),
+                       "expected vehicle \"" + v.alias + "\" to have a mission");
     }
-    throw InputError(scene.source_path, object_of(scene.vehicles[1]),
-                     "expected one vehicle: campo simulates one vehicle per scene, and this scene has " +
-                         std::to_string(scene.vehicles.size()) + ": " + names + "; keep the one to run");
-  }
-  if (vehicle_index < scene.vehicles.size() && scene.vehicles[vehicle_index].mission.empty()) {
-    throw InputError(scene.source_path, "/objects",
-                     "expected vehicle \"" + scene.vehicles[vehicle_index].alias + "\" to have a mission");
   }
 }
 

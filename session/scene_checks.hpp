@@ -23,10 +23,9 @@ void check_vehicles_and_planners(const Scene& scene, std::size_t skip = std::num
 /// once the scene loads.
 SceneChecks parameter_checks();
 
-/// Checks that a run of the scene can start: the scene has exactly one
-/// vehicle (one is simulated; a second would be ignored, so it is refused,
-/// naming them all) and vehicle `vehicle_index` has a mission; throws
-/// InputError with `campo run`'s message.
-void check_runnable(const Scene& scene, std::size_t vehicle_index = 0);
+/// Checks that a run of the scene can start: it has a vehicle, and every
+/// vehicle (all run together) has a mission; throws InputError with `campo
+/// run`'s message.
+void check_runnable(const Scene& scene);
 
 }  // namespace campo

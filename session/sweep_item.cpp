@@ -41,6 +41,16 @@ void write_failure_video(const fs::path& run_dir) {
   write_video(run, video, run_dir / "video.mp4");
 }
 
+// Every vehicle's trajectory: the one file of a single vehicle, each of several headed by its file's name.
+std::string trajectories_text(const EpisodeResult& result) {
+  if (result.vehicles.size() == 1) return trajectory_csv(result.vehicles.front());
+  std::string text;
+  for (std::size_t v = 0; v < result.vehicles.size(); ++v) {
+    text += "# " + trajectory_file(result, v) + "\n" + trajectory_csv(result.vehicles[v]);
+  }
+  return text;
+}
+
 // Appends one part to a "; "-separated list of what was not written.
 void add_error(std::string& errors, const std::string& part) { errors += (errors.empty() ? "" : "; ") + part; }
 
@@ -70,7 +80,7 @@ SweepItemResult run_sweep_item(const SweepRun& run, const fs::path& dir, const S
     return failed_item(e.what());
   }
   // The trajectory's digest tells `campo table` whether seeds changed anything.
-  SweepItemResult result = completed_item(simulated->record, sha256_hex(trajectory_csv(simulated->result)));
+  SweepItemResult result = completed_item(simulated->record, sha256_hex(trajectories_text(simulated->result)));
   // The run's own files, asked for and not written (a full disk), make it a failed run with the reason,
   // which a resumed sweep runs again; a figure that fails is reported, the run and its files kept.
   std::vector<FigureFailure> figure_failures;

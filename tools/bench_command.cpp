@@ -287,19 +287,19 @@ void bench_episodes(const BenchOptions& o, std::vector<Figure>& figures) {
         continue;
       }
       const EpisodeResult r = run_episode(scene, &make_vehicle, &create_planner, options);
-      const double steps = r.metrics.sim_time_s / scene.world.physics_step_s;
-      const double rtf = r.metrics.sim_time_s / r.metrics.wall_time_s;
+      const double steps = r.only().metrics.sim_time_s / scene.world.physics_step_s;
+      const double rtf = r.only().metrics.sim_time_s / r.only().metrics.wall_time_s;
       const std::string sensors = resolution > 0 ? "scanner3d " + std::to_string(resolution) + "x" +
                                                        std::to_string(resolution) + " @10Hz"
                                                  : "no sensor";
       std::ostringstream line;
       line << "episode " << std::left << std::setw(9) << vehicle << " " << std::setw(22) << name << std::setw(24)
-           << sensors << std::right << std::fixed << std::setprecision(0) << std::setw(9) << steps / r.metrics.wall_time_s
+           << sensors << std::right << std::fixed << std::setprecision(0) << std::setw(9) << steps / r.only().metrics.wall_time_s
            << " steps/s  " << std::setprecision(1) << std::setw(7) << rtf << "x real time";
       std::cout << line.str() << "\n";
-      figures.push_back({id, steps / r.metrics.wall_time_s, "physics steps/s",
+      figures.push_back({id, steps / r.only().metrics.wall_time_s, "physics steps/s",
                          {{"scene", name}, {"vehicle", vehicle}, {"sensor_resolution", resolution},
-                          {"sim_time_s", r.metrics.sim_time_s}, {"wall_time_s", r.metrics.wall_time_s},
+                          {"sim_time_s", r.only().metrics.sim_time_s}, {"wall_time_s", r.only().metrics.wall_time_s},
                           {"real_time_factor", rtf}}});
     }
   }

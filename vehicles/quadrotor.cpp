@@ -155,7 +155,7 @@ Quadrotor::Quadrotor(World& world, const QuadrotorConfig& config, const Eigen::I
   btRigidBody::btRigidBodyConstructionInfo info(config.mass_kg, nullptr, shape_.get(), to_bt(config.inertia_kgm2));
   info.m_startWorldTransform = to_bt(start_pose);
   body_ = std::make_unique<btRigidBody>(info);
-  body_->setUserIndex(kVehicleBodyTag);
+  body_->setUserIndex(vehicle_tag(world.join_vehicle(), false));
   body_->setActivationState(DISABLE_DEACTIVATION);
   bullet_.addRigidBody(body_.get());
 

@@ -122,14 +122,14 @@ struct Rover::Bodies {
 namespace {
 
 std::unique_ptr<btRigidBody> make_body(btCollisionShape& shape, double mass, double friction,
-                                       const btTransform& pose) {
+                                       const btTransform& pose, int tag) {
   btVector3 inertia(0, 0, 0);
   shape.calculateLocalInertia(mass, inertia);
   btRigidBody::btRigidBodyConstructionInfo info(mass, nullptr, &shape, inertia);
   info.m_startWorldTransform = pose;
   info.m_friction = friction;
   auto body = std::make_unique<btRigidBody>(info);
-  body->setUserIndex(kVehicleBodyTag);
+  body->setUserIndex(tag);
   body->setActivationState(DISABLE_DEACTIVATION);
   return body;
 }
@@ -185,15 +185,18 @@ Rover::Rover(World& world, const RoverConfig& config, const Eigen::Isometry3d& s
   b.wheel_shape = std::make_unique<btSphereShape>(config.wheel_radius_m);
   const auto mounts = wheel_mounts(config);
   const btTransform chassis_pose = to_bt(lifted_start(world, config, mounts, start_pose));
-  b.chassis = make_body(*b.chassis_shape, config.chassis_mass_kg, config.chassis_friction, chassis_pose);
+  const std::size_t number = world.join_vehicle();
+  b.chassis = make_body(*b.chassis_shape, config.chassis_mass_kg, config.chassis_friction, chassis_pose,
+                        vehicle_tag(number, false));
   b.world.addRigidBody(b.chassis.get());
 
   const btVector3 axle(0, 1, 0);  // wheels spin about the chassis y axis
   for (int i = 0; i < kWheels; ++i) {
     btTransform wheel_pose = chassis_pose;
     wheel_pose.setOrigin(chassis_pose * to_bt(mounts[i]));
-    b.wheels[i] = make_body(*b.wheel_shape, config.wheel_mass_kg, config.wheel_friction, wheel_pose);
-    b.wheels[i]->setUserIndex(kVehicleWheelTag);  // may roll on the ground
+    // A wheel may roll on the ground.
+    b.wheels[i] = make_body(*b.wheel_shape, config.wheel_mass_kg, config.wheel_friction, wheel_pose,
+                            vehicle_tag(number, true));
     // A sphere's inertia is isotropic, so its gyroscopic torque is zero.
     b.wheels[i]->setFlags(b.wheels[i]->getFlags() & ~BT_ENABLE_GYROSCOPIC_FORCE_IMPLICIT_BODY);
     b.world.addRigidBody(b.wheels[i].get());

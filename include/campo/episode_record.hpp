@@ -5,6 +5,7 @@
 /// one floor below the loop itself (episode.hpp, run/), which fills an
 /// EpisodeResult of them.
 #include <cstddef>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -21,8 +22,10 @@ namespace campo {
 
 /// How a run ended: the planner reported the mission complete (reached) or
 /// gave up (aborted), the vehicle collided, the time limit passed, or the
-/// planner failed (threw: a bug, or a Python planner's exception).
-enum class Outcome { reached, collision, timeout, aborted, failed };
+/// planner failed (threw: a bug, or a Python planner's exception). In a run
+/// of several vehicles ended by the first failure (EndRule::first_failure),
+/// the vehicles still on their missions then were stopped.
+enum class Outcome { reached, collision, timeout, aborted, failed, stopped };
 std::string_view to_string(Outcome outcome);
 
 /// A collision: when the vehicle began to touch something, what, and where.
@@ -33,7 +36,16 @@ struct CollisionEvent {
   Eigen::Vector3d point_m = Eigen::Vector3d::Zero();  ///< on the touched body's surface (Touch::point_m), world frame
 };
 
-/// Metrics of one run, named as in run.json.
+/// How near one vehicle came to another during its run.
+struct VehicleSeparation {
+  std::string other;  ///< the other vehicle's alias
+  /// Signed distance between their collision shapes (negative: overlapping),
+  /// the least over every physics step while this vehicle was on its mission.
+  double min_distance_m = std::numeric_limits<double>::infinity();
+  double min_distance_time_s = 0.0;  ///< when it was measured
+};
+
+/// Metrics of one vehicle's run, named as in run.json.
 struct EpisodeMetrics {
   Outcome outcome = Outcome::aborted;
   std::string reason;
@@ -90,8 +102,36 @@ struct EpisodeMetrics {
   /// an object (null: none), written into run.json's metrics beside the
   /// fields above. Read them back through the same declarations.
   nlohmann::json declared;
+  /// In a run of several vehicles, one per other vehicle in scene order,
+  /// written as min_distance_to_<alias>_m and min_distance_to_<alias>_time_s.
+  std::vector<VehicleSeparation> separations;
 };
 nlohmann::json to_json(const EpisodeMetrics& metrics);
+
+/// The metrics of a run of several vehicles as a whole (run.json's
+/// "metrics" then; each vehicle's are under "vehicles").
+struct FleetMetrics {
+  /// reached when every vehicle reached its goal; else the outcome of the
+  /// vehicle whose end decided it: the first (in time, then scene order)
+  /// that did not reach.
+  Outcome outcome = Outcome::aborted;
+  std::string reason;              ///< "<alias>: <its reason>" unless all reached
+  int vehicles = 0;
+  int vehicles_reached = 0;
+  bool all_reached = false;
+  bool any_collision = false;      ///< some vehicle collided (collisions > 0)
+  int collisions = 0;              ///< the vehicles' collisions summed (one between two vehicles counts for both)
+  /// When the last vehicle reached its goal; only when all reached (else null in run.json).
+  double makespan_s = std::numeric_limits<double>::quiet_NaN();
+  /// The least distance between any two vehicles over the run, which pair and when.
+  double min_vehicle_distance_m = std::numeric_limits<double>::infinity();
+  std::string min_vehicle_distance_pair;  ///< "<alias>|<alias>"
+  double min_vehicle_distance_time_s = 0.0;
+  double sim_time_s = 0.0;
+  double wall_time_s = 0.0;        ///< measured
+};
+nlohmann::json to_json(const FleetMetrics& metrics);
+
 
 /// One row of trajectory.csv, taken at every planner call.
 struct TrajectorySample {

@@ -183,6 +183,13 @@ std::int64_t steps_per_period(double rate_hz, double physics_step_s);
 /// (for 100 Hz at 1/240 s and 2 each side: 240, 120, 80, 60).
 std::vector<double> dividing_rates_near(double rate_hz, double physics_step_s, int each_side = 2);
 
+/// How a run of several vehicles ends (a scene's "end").
+enum class EndRule {
+  all,            ///< when every vehicle's mission has ended (default)
+  first_failure,  ///< at the first vehicle's end other than reached; the others are stopped
+};
+std::string_view to_string(EndRule rule);
+
 struct Scene {
   std::string name;            ///< file stem, or "name" from the file
   std::string source_path;     ///< file it was loaded from
@@ -191,7 +198,8 @@ struct Scene {
   std::vector<Shape> shapes;
   std::vector<Frame> frames;
   std::vector<Mover> movers;
-  std::vector<VehicleDef> vehicles;
+  std::vector<VehicleDef> vehicles;  ///< all simulated together, in this order
+  EndRule end = EndRule::all;
 
   const Shape* find_shape(std::string_view alias) const;
   const Frame* find_frame(std::string_view alias) const;

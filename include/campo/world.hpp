@@ -6,6 +6,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -17,17 +18,33 @@ class btDiscreteDynamicsWorld;
 
 namespace campo {
 
-/// Bullet user index of bodies that belong to vehicles (scene shapes carry
+/// Bullet user index of the bodies of the first vehicle (scene shapes carry
 /// their index in Scene::shapes, movers -(1 + mover index)): a vehicle body
 /// that must touch nothing, ground included (a quadrotor, a rover's chassis)...
 inline constexpr int kVehicleBodyTag = -2000000000;
 /// ... and one that may rest on the ground but touch nothing else (a wheel).
 inline constexpr int kVehicleWheelTag = -2000000001;
+/// Vehicles a world may hold: their tags stay within an int below every other tag.
+inline constexpr std::size_t kMaxVehicles = 1000000;
+
+/// The user index of a body of vehicle `vehicle` (the order it joined the
+/// world, World::join_vehicle): kVehicleBodyTag and kVehicleWheelTag for the
+/// first, two lower for each next. Also how a vehicle is named as an obstacle
+/// (Clearance::obstacle, Touch::body) to the others: its body tag.
+constexpr int vehicle_tag(std::size_t vehicle, bool wheel) {
+  return kVehicleBodyTag - 2 * static_cast<int>(vehicle) - (wheel ? 1 : 0);
+}
+/// Whether a user index or obstacle id is a vehicle's (vehicle_tag).
+constexpr bool is_vehicle_tag(int tag) { return tag <= kVehicleBodyTag; }
+/// The vehicle a vehicle tag belongs to.
+constexpr std::size_t vehicle_of_tag(int tag) { return static_cast<std::size_t>((kVehicleBodyTag - tag) / 2); }
+/// Whether a vehicle tag is a wheel's (may rest on the ground).
+constexpr bool is_wheel_tag(int tag) { return (kVehicleBodyTag - tag) % 2 == 1; }
 
 /// What a vehicle's collision shapes touch, and where.
 struct Touch {
-  /// Index into Scene::shapes (a plane or heightfield when `ground`), or
-  /// -(1 + mover index), as Clearance::obstacle.
+  /// Index into Scene::shapes (a plane or heightfield when `ground`),
+  /// -(1 + mover index), or another vehicle's vehicle_tag, as Clearance::obstacle.
   int body = 0;
   bool ground = false;  ///< a plane or heightfield
   /// The point of the touched body's surface nearest the vehicle (the
@@ -39,10 +56,13 @@ struct Touch {
 /// Signed distances from a vehicle's collision shapes to the other collision
 /// shapes of the world (Bullet GJK, EPA when penetrating): negative when
 /// they overlap, 0 when they touch. Ground (planes, heightfields) is kept
-/// apart from obstacles (every other shape: static, dynamic, movers).
+/// apart from obstacles (every other shape: static, dynamic, movers, and the
+/// other vehicles' bodies).
 struct Clearance {
   double obstacle_m = std::numeric_limits<double>::infinity();  ///< to the nearest obstacle
-  int obstacle = -1;  ///< which: index into Scene::shapes or -(1 + mover index); valid when finite
+  /// Which: index into Scene::shapes, -(1 + mover index) or another
+  /// vehicle's vehicle_tag; valid when finite.
+  int obstacle = -1;
   /// From the bodies that may not touch the ground (kVehicleBodyTag) to the ground.
   double ground_m = std::numeric_limits<double>::infinity();
   /// Bullet's narrow phase reported a contact point within kContact_m
@@ -102,11 +122,38 @@ class World {
   /// then movers) where the physics has them now, world frame; `out` reused.
   void moving_body_poses(std::vector<Eigen::Isometry3d>& out) const;
 
-  /// Clearance of the vehicle bodies (kVehicleBodyTag, kVehicleWheelTag) now.
-  /// A distance at or beyond its cutoff is reported as +infinity (the
-  /// nearest is at least that far); by default both are exact at any distance.
-  Clearance vehicle_clearance(double obstacle_cutoff_m = std::numeric_limits<double>::infinity(),
+  /// The number of the next vehicle to join the world (0, 1, ...), which
+  /// tags its bodies with vehicle_tag(number, ...). Called by each vehicle as
+  /// it is built; the closed loop builds the scene's vehicles in scene
+  /// order, so a vehicle's number is its index in Scene::vehicles.
+  std::size_t join_vehicle();
+
+  /// Clearance of vehicle `vehicle`'s bodies now; the other vehicles are
+  /// moving obstacles to it. A distance at or beyond its cutoff is reported
+  /// as +infinity (the nearest is at least that far); by default both are
+  /// exact at any distance.
+  Clearance vehicle_clearance(std::size_t vehicle,
+                              double obstacle_cutoff_m = std::numeric_limits<double>::infinity(),
                               double ground_cutoff_m = std::numeric_limits<double>::infinity()) const;
+  /// The same for the first vehicle (a world of one vehicle).
+  Clearance vehicle_clearance(double obstacle_cutoff_m = std::numeric_limits<double>::infinity(),
+                              double ground_cutoff_m = std::numeric_limits<double>::infinity()) const {
+    return vehicle_clearance(0, obstacle_cutoff_m, ground_cutoff_m);
+  }
+
+  /// Signed distance between the collision shapes of vehicles `a` and `b`
+  /// now (negative when they overlap); +infinity when it is at least
+  /// `cutoff_m` (a bound from their bounding spheres skips the exact query).
+  double vehicle_distance(std::size_t a, std::size_t b,
+                          double cutoff_m = std::numeric_limits<double>::infinity()) const;
+
+  /// The collision shapes of vehicle `vehicle` as scene shapes (boxes as
+  /// cuboids, spheres as spheres), posed where the physics has them now,
+  /// named "<alias>/body" and "<alias>/wheel<i>": what the other vehicles'
+  /// sensors see of it.
+  std::vector<Shape> vehicle_shapes(std::size_t vehicle, const std::string& alias) const;
+  /// Appends the poses of those shapes now, in the same order; `out` reused.
+  void append_vehicle_poses(std::size_t vehicle, std::vector<Eigen::Isometry3d>& out) const;
 
   /// State of scene shape `shape_index` (static shapes: their scene pose, at rest).
   BodyState shape_state(int shape_index) const;

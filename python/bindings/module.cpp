@@ -101,7 +101,7 @@ class PythonEpisode {
   py::dict info() const {
     const Episode& e = episode();
     // Once done, the finished metrics (the loop's counters move into them).
-    const EpisodeMetrics& m = e.done() ? finished().metrics : e.metrics_so_far();
+    const EpisodeMetrics& m = e.done() ? finished().only().metrics : e.metrics_so_far();
     py::dict info;
     info["time_s"] = e.done() ? m.sim_time_s : e.world().time_s();
     info["collisions"] = m.collisions;
@@ -111,7 +111,7 @@ class PythonEpisode {
     return info;
   }
 
-  py::object metrics() const { return from_json(campo::to_json(finished().metrics)); }
+  py::object metrics() const { return from_json(campo::to_json(finished().only().metrics)); }
 
   py::object write(const std::filesystem::path& out, bool figures) const {
     check_output_directory(out, "out");
@@ -151,7 +151,7 @@ class PythonEpisode {
     if (!e.done()) throw std::logic_error("the episode is still running: its metrics are measured over a whole run");
     if (!run_->result) {
       run_->result = e.finish();
-      run_->result->planner_parameters = nlohmann::json::object();  // no planner: the caller's commands
+      run_->result->only().planner_parameters = nlohmann::json::object();  // no planner: the caller's commands
     }
     return *run_->result;
   }

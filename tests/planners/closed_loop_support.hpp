@@ -30,7 +30,7 @@ inline EpisodeResult run_bundled(const std::string& name, const std::string& pla
 /// Mission waypoints the planner reported reached (Decisions::reached_waypoints).
 inline int waypoints_reached(const EpisodeResult& r) {
   int reached = 0;
-  for (const PlannerEvent& e : r.events) reached += static_cast<int>(e.decisions.reached_waypoints.size());
+  for (const PlannerEvent& e : r.only().events) reached += static_cast<int>(e.decisions.reached_waypoints.size());
   return reached;
 }
 

@@ -162,22 +162,22 @@ TEST_P(PlannerContract, ReachesATrivialMissionDeterministicallyWithTypedStatuses
     EpisodeOptions options;
     options.make_sensor = range_sensor_factory();
     int calls = 0;
-    options.on_plan = [&](const Observation&, const PlanResult& r) {
+    options.on_plan = [&](std::size_t, const Observation&, const PlanResult& r) {
       ++calls;
       expect_typed(r, "closed loop");
     };
     const EpisodeResult a = run_episode(scene, &make_vehicle, &create_planner, options);
-    EXPECT_EQ(a.metrics.outcome, Outcome::reached) << to_string(v) << ": " << a.metrics.reason;
+    EXPECT_EQ(a.only().metrics.outcome, Outcome::reached) << to_string(v) << ": " << a.only().metrics.reason;
     EXPECT_GT(calls, 0);
     // 6 m (rover) or 9.2 m (quadrotor) away: a path more than twice that long is no "trivial" success.
-    EXPECT_LT(a.metrics.path_length_m,
+    EXPECT_LT(a.only().metrics.path_length_m,
               2.0 * (scene.vehicles[0].mission[0].position_m - scene.vehicles[0].pose.translation()).norm())
         << to_string(v);
 
     options.on_plan = nullptr;
     const EpisodeResult b = run_episode(scene, &make_vehicle, &create_planner, options);
     EXPECT_EQ(a.final_state_hash, b.final_state_hash) << to_string(v);
-    EXPECT_EQ(a.metrics.path_length_m, b.metrics.path_length_m) << to_string(v);
+    EXPECT_EQ(a.only().metrics.path_length_m, b.only().metrics.path_length_m) << to_string(v);
   }
 }
 

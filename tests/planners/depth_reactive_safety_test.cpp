@@ -52,13 +52,13 @@ TEST(DepthReactiveSafety, FormerlyCollidingSeedsAt32KeepTheMargin) {
         {"/objects/drone/sensors/scanner/noise_stddev_m=0.01", "/objects/drone/sensors/scanner/resolution=[32,32]",
          "/world/seed=" + std::to_string(s.seed),
          "/objects/drone/pose/position_m=[" + std::to_string(s.x) + "," + std::to_string(s.y) + ",1.5]"});
-    EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
-    EXPECT_EQ(r.metrics.collisions, 0);
-    EXPECT_GE(r.metrics.min_clearance_m, margin - bounding_radius);
+    EXPECT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
+    EXPECT_EQ(r.only().metrics.collisions, 0);
+    EXPECT_GE(r.only().metrics.min_clearance_m, margin - bounding_radius);
     // Every waypoint the drone flew to keeps the margin from the barriers (up
     // to 5 cm: the range noise is 1 cm), pixel errors included by DilataMappa.
     int reached = 0;
-    for (const PlannerEvent& e : r.events) {
+    for (const PlannerEvent& e : r.only().events) {
       if (!e.decisions.reached_intermediate) continue;
       ++reached;
       EXPECT_GE(distance_to_cuboids(scene, *e.decisions.reached_intermediate), margin - 0.05)

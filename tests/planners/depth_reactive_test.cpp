@@ -172,18 +172,18 @@ EpisodeResult fly(const std::string& name, int resolution, RangeSensorKind sourc
 
 void expect_solved(const EpisodeResult& r, const char* what) {
   SCOPED_TRACE(what);
-  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
-  EXPECT_EQ(r.metrics.collisions, 0);
-  EXPECT_GE(r.metrics.waypoints_planned, 1);  // the straight line is blocked
-  EXPECT_LT(r.metrics.path_ratio, 1.25);  // a sanity bound; the 1.10 target is the sweep table's
-  EXPECT_GT(r.metrics.min_clearance_m, 0.0);
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
+  EXPECT_EQ(r.only().metrics.collisions, 0);
+  EXPECT_GE(r.only().metrics.waypoints_planned, 1);  // the straight line is blocked
+  EXPECT_LT(r.only().metrics.path_ratio, 1.25);  // a sanity bound; the 1.10 target is the sweep table's
+  EXPECT_GT(r.only().metrics.min_clearance_m, 0.0);
 }
 
 TEST(DepthReactiveClosedLoop, TwoBarriersThroughTheGap) {
   const EpisodeResult r = fly("two_barriers", 64);
   expect_solved(r, "64 x 64");
   // Through the gap (y in 0.5..2.5 at the barriers' x = 6), not around either barrier.
-  for (const TrajectorySample& s : r.trajectory) {
+  for (const TrajectorySample& s : r.only().trajectory) {
     if (std::abs(s.state.position_m.x() - 6.0) < 0.2) {
       EXPECT_GT(s.state.position_m.y(), 0.5);
       EXPECT_LT(s.state.position_m.y(), 2.5);
@@ -198,9 +198,9 @@ TEST(DepthReactiveClosedLoop, TwoBarriersAtCoarseResolutions) {
   for (const int resolution : {16, 32}) {
     const EpisodeResult r = fly("two_barriers", resolution);
     SCOPED_TRACE(std::to_string(resolution) + " px");
-    EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
-    EXPECT_EQ(r.metrics.collisions, 0);
-    EXPECT_GT(r.metrics.min_clearance_m, 0.07);  // the margin less the drone's bounding radius
+    EXPECT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
+    EXPECT_EQ(r.only().metrics.collisions, 0);
+    EXPECT_GT(r.only().metrics.min_clearance_m, 0.07);  // the margin less the drone's bounding radius
   }
 }
 
@@ -211,9 +211,9 @@ TEST(DepthReactiveClosedLoop, TreesOnRollingTerrain) { expect_solved(fly("trees_
 // and 2.5 m above the ground beneath it (it starts and ends 1.6 m above it).
 TEST(DepthReactiveClosedLoop, TreesFollowTheTerrainWithinAHeightBand) {
   const EpisodeResult r = fly("trees_rolling_terrain", 64);
-  ASSERT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+  ASSERT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
   double z_min = INFINITY, z_max = -INFINITY, agl_min = INFINITY, agl_max = -INFINITY;
-  for (const TrajectorySample& s : r.trajectory) {
+  for (const TrajectorySample& s : r.only().trajectory) {
     z_min = std::min(z_min, s.state.position_m.z());
     z_max = std::max(z_max, s.state.position_m.z());
     agl_min = std::min(agl_min, s.height_above_ground_m);
@@ -232,10 +232,10 @@ TEST(DepthReactiveClosedLoop, ReducedTable5_1OnTheTrees) {
     for (const std::uint64_t seed : {1u, 2u}) {
       const EpisodeResult r = fly("trees_rolling_terrain", resolution, RangeSensorKind::lidar, seed, 0.01);
       SCOPED_TRACE(std::to_string(resolution) + " px, seed " + std::to_string(seed));
-      EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
-      EXPECT_EQ(r.metrics.collisions, 0);
-      EXPECT_LE(r.metrics.path_ratio, 1.15);
-      EXPECT_GE(r.metrics.min_clearance_m, 0.05);
+      EXPECT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
+      EXPECT_EQ(r.only().metrics.collisions, 0);
+      EXPECT_LE(r.only().metrics.path_ratio, 1.15);
+      EXPECT_GE(r.only().metrics.min_clearance_m, 0.05);
     }
   }
 }
@@ -243,10 +243,10 @@ TEST(DepthReactiveClosedLoop, ReducedTable5_1OnTheTrees) {
 TEST(DepthReactiveClosedLoop, TwoBarriersWithTheDepthCamera) {
   // At 32 x 32 over a barrier, not through the gap (TwoBarriersAtCoarseResolutions).
   const EpisodeResult r = fly("two_barriers", 32, RangeSensorKind::depth_camera);
-  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
-  EXPECT_EQ(r.metrics.collisions, 0);
-  EXPECT_GE(r.metrics.waypoints_planned, 1);
-  EXPECT_GT(r.metrics.min_clearance_m, 0.07);
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
+  EXPECT_EQ(r.only().metrics.collisions, 0);
+  EXPECT_GE(r.only().metrics.waypoints_planned, 1);
+  EXPECT_GT(r.only().metrics.min_clearance_m, 0.07);
 }
 
 }  // namespace

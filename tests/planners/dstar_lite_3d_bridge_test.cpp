@@ -138,7 +138,7 @@ struct Crossing {
 // Heights of the track while it is over or under the deck's span.
 Crossing crossing(const EpisodeResult& r) {
   Crossing c;
-  for (const TrajectorySample& s : r.trajectory) {
+  for (const TrajectorySample& s : r.only().trajectory) {
     const Eigen::Vector3d& p = s.state.position_m;
     if (p.y() < kDeckSouthM || p.y() > kDeckNorthM) continue;
     c.crossed = true;
@@ -149,10 +149,10 @@ Crossing crossing(const EpisodeResult& r) {
 }
 
 void expect_reached(const EpisodeResult& r) {
-  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
-  EXPECT_EQ(r.metrics.collisions, 0);
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
+  EXPECT_EQ(r.only().metrics.collisions, 0);
   EXPECT_EQ(testing::waypoints_reached(r), 2);
-  EXPECT_GT(r.metrics.min_clearance_m, 0.2);
+  EXPECT_GT(r.only().metrics.min_clearance_m, 0.2);
 }
 
 // Columns (001): the underside's hits block every level below them, so the
@@ -175,7 +175,7 @@ TEST(DStarLite3dBridge, OctomapFliesUnderTheDeck) {
   EXPECT_LT(c.highest_m, kDeckBottomM);
   // It mapped with the octree: planning cells were blocked (the deck's level, the piers).
   int blocked_events = 0;
-  for (const PlannerEvent& e : r.events) blocked_events += dstar_lite_3d_record().blocked_cells.in(e.decisions.own) ? 1 : 0;
+  for (const PlannerEvent& e : r.only().events) blocked_events += dstar_lite_3d_record().blocked_cells.in(e.decisions.own) ? 1 : 0;
   EXPECT_GT(blocked_events, 0);
 }
 

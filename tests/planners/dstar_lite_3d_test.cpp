@@ -185,18 +185,18 @@ using testing::waypoints_reached;
 void expect_solved(const EpisodeResult& r, int waypoints, const char* what, double max_path_ratio = 1.25,
                    double min_clearance_m = 0.2) {
   SCOPED_TRACE(what);
-  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
-  EXPECT_EQ(r.metrics.collisions, 0);
-  EXPECT_GT(r.metrics.min_clearance_m, min_clearance_m);
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
+  EXPECT_EQ(r.only().metrics.collisions, 0);
+  EXPECT_GT(r.only().metrics.min_clearance_m, min_clearance_m);
   EXPECT_EQ(waypoints_reached(r), waypoints);
-  EXPECT_LT(r.metrics.path_ratio, max_path_ratio);
-  EXPECT_GT(r.metrics.replans, 0);
+  EXPECT_LT(r.only().metrics.path_ratio, max_path_ratio);
+  EXPECT_GT(r.only().metrics.replans, 0);
 }
 
 // Whether the track passes a box of the scene's 1-based cell table (rows
 // northward, columns eastward, 1.5 m cells) between heights z0 and z1.
 bool passes(const EpisodeResult& r, int row0, int row1, int col0, int col1, double z0_m, double z1_m) {
-  for (const TrajectorySample& s : r.trajectory) {
+  for (const TrajectorySample& s : r.only().trajectory) {
     const Eigen::Vector3d& p = s.state.position_m;
     if (p.y() >= 1.5 * (row0 - 1) && p.y() <= 1.5 * row1 && p.x() >= 1.5 * (col0 - 1) && p.x() <= 1.5 * col1 &&
         p.z() >= z0_m && p.z() <= z1_m) {
@@ -213,7 +213,7 @@ struct GateMeasure {
 };
 GateMeasure gate(const EpisodeResult& r, const std::string& name) {
   const GateMetricFields fields(name);
-  return {fields.passed.in(r.metrics.declared), get_unless_null(r.metrics.declared, fields.time_s)};
+  return {fields.passed.in(r.only().metrics.declared), get_unless_null(r.only().metrics.declared, fields.time_s)};
 }
 
 // The metrics of mission leg k of a run, through their declarations (metrics/mission_metrics.hpp).
@@ -224,8 +224,8 @@ struct LegMeasure {
 };
 LegMeasure leg(const EpisodeResult& r, std::size_t k) {
   const LegMetricFields fields(k);
-  return {fields.path_length_m.in(r.metrics.declared), get_unless_null(r.metrics.declared, fields.path_length_m),
-          get_unless_null(r.metrics.declared, fields.lateral_before_climb_m)};
+  return {fields.path_length_m.in(r.only().metrics.declared), get_unless_null(r.only().metrics.declared, fields.path_length_m),
+          get_unless_null(r.only().metrics.declared, fields.lateral_before_climb_m)};
 }
 
 TEST(DStarLite3dClosedLoop, ObstacleField) {
@@ -233,7 +233,7 @@ TEST(DStarLite3dClosedLoop, ObstacleField) {
   expect_solved(r, 9, "obstacle_field");
   // At 28 m above ground the tall blocks on the route were mapped and avoided: the path changed on the way.
   int changed_paths = 0;
-  for (const PlannerEvent& e : r.events) changed_paths += e.decisions.planned_path.has_value() ? 1 : 0;
+  for (const PlannerEvent& e : r.only().events) changed_paths += e.decisions.planned_path.has_value() ? 1 : 0;
   EXPECT_GT(changed_paths, 9);
   // Not 001 §5.1's slot (a deviation the scene states): the last leg comes south along column 46, where
   // passing west of the block at rows 49-50, columns 46-49 (column 45) is 6 cells shorter than the slot
@@ -292,7 +292,7 @@ TEST(DStarLite3dClosedLoop, Zigzag) {
   EXPECT_GT(*leg(r, 3).path_length_m, 112.5);
   double low_leg_top_m = 0.0;
   bool low_leg = false;
-  for (const TrajectorySample& s : r.trajectory) {
+  for (const TrajectorySample& s : r.only().trajectory) {
     const Eigen::Vector3d& p = s.state.position_m;
     low_leg = low_leg || (p.y() > 100.0 && p.z() < 30.0);  // waypoint 3 reached at (76, 16, 28 m)
     if (low_leg) low_leg_top_m = std::max(low_leg_top_m, p.z());
@@ -329,7 +329,7 @@ TEST(DStarLite3dClosedLoop, WallClimbedOver) {
   // (rows 20-22: y 28.5..33) above its top: 30 m (Tabella 5.5) above the
   // highest ground under it, sin(x/5) <= 1.
   bool crossed = false;
-  for (const TrajectorySample& s : r.trajectory) {
+  for (const TrajectorySample& s : r.only().trajectory) {
     if (s.state.position_m.y() > 28.5 && s.state.position_m.y() < 33.0) {
       crossed = true;
       EXPECT_GT(s.state.position_m.z(), 31.0);

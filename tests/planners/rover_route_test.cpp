@@ -160,13 +160,13 @@ EpisodeResult drive(const std::vector<std::string>& overrides) {
 void expect_route_driven(const EpisodeResult& r, const char* what, double min_clearance_m = 0.1,
                          double max_path_ratio = 1.05) {
   SCOPED_TRACE(what);
-  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
-  EXPECT_EQ(r.metrics.collisions, 0);
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
+  EXPECT_EQ(r.only().metrics.collisions, 0);
   EXPECT_EQ(testing::waypoints_reached(r), 6);
   // Row by row: three 89 m rows and two 4 m row switches, about 272 m.
-  EXPECT_GT(r.metrics.path_length_m, 260.0);
-  EXPECT_LT(r.metrics.path_ratio, max_path_ratio);
-  EXPECT_GE(r.metrics.min_clearance_m, min_clearance_m);
+  EXPECT_GT(r.only().metrics.path_length_m, 260.0);
+  EXPECT_LT(r.only().metrics.path_ratio, max_path_ratio);
+  EXPECT_GE(r.only().metrics.min_clearance_m, min_clearance_m);
 }
 
 const char* kNoStaticObstacles = "/objects/field/obstacle_count=0";
@@ -178,8 +178,8 @@ const char* kWalkerAway = R"(/objects/walker/path_m=[[-30, -60, 0.85], [-31, -60
 TEST(RoverRouteClosedLoop, FollowsTheDubinsRouteRowByRow) {
   const EpisodeResult r = drive({kNoStaticObstacles, kWalkerAway, kFollowTheGap});
   expect_route_driven(r, "no obstacles");
-  EXPECT_LT(r.metrics.cross_track_rms_m, 0.1);
-  EXPECT_LT(r.metrics.cross_track_max_m, 0.4);
+  EXPECT_LT(r.only().metrics.cross_track_rms_m, 0.1);
+  EXPECT_LT(r.only().metrics.cross_track_max_m, 0.4);
 }
 
 // Seed 003 Fig. 46: a walker crosses the first inter-row left to right in
@@ -187,7 +187,7 @@ TEST(RoverRouteClosedLoop, FollowsTheDubinsRouteRowByRow) {
 // Whether an avoidance episode started between t0 and t1 (s) and ended.
 bool avoided_between(const EpisodeResult& r, double t0, double t1) {
   double t_on = -1.0;
-  for (const PlannerEvent& e : r.events) {
+  for (const PlannerEvent& e : r.only().events) {
     if (!e.decisions.avoiding) continue;
     if (*e.decisions.avoiding) {
       t_on = e.time_s;
@@ -201,7 +201,7 @@ bool avoided_between(const EpisodeResult& r, double t0, double t1) {
 TEST(RoverRouteClosedLoop, AvoidsTheWalkerCrossingItsPath) {
   const EpisodeResult r = drive({kNoStaticObstacles, kFollowTheGap});
   expect_route_driven(r, "walker");
-  EXPECT_GT(r.metrics.avoiding_time_s, 1.0);
+  EXPECT_GT(r.only().metrics.avoiding_time_s, 1.0);
   EXPECT_TRUE(avoided_between(r, 55.0, 75.0));  // the walker crosses y = 20 from t = 58 s
 }
 
@@ -211,7 +211,7 @@ TEST(RoverRouteClosedLoop, AvoidsTheWalkerCrossingItsPath) {
 TEST(RoverRouteClosedLoop, VfhPlusGetsPastTheStaticObstaclesAndTheWalker) {
   const EpisodeResult r = drive({});
   expect_route_driven(r, "bundled vineyard", 0.0, 1.25);
-  EXPECT_GT(r.metrics.avoiding_time_s, 10.0);
+  EXPECT_GT(r.only().metrics.avoiding_time_s, 10.0);
 }
 
 // Slowed by the first box, the rover reaches the walker's crossing (y = 20)
@@ -239,8 +239,8 @@ TEST(RoverRouteClosedLoop, VfhPlusAvoidsTheWalkerWithoutBoxes) {
 // minutes (343 s avoiding in all).
 void expect_boxes_passed_by_follow_the_gap(const EpisodeResult& r, const char* what) {
   expect_route_driven(r, what, 0.0, 1.25);
-  EXPECT_GT(r.metrics.avoiding_time_s, 10.0);
-  EXPECT_LT(r.metrics.avoiding_time_s, 100.0);
+  EXPECT_GT(r.only().metrics.avoiding_time_s, 10.0);
+  EXPECT_LT(r.only().metrics.avoiding_time_s, 100.0);
 }
 
 TEST(RoverRouteClosedLoop, FollowTheGapGetsPastTheStaticObstaclesAndTheWalker) {
@@ -256,7 +256,7 @@ TEST(RoverRouteClosedLoop, FollowTheGapGetsPastTheStaticObstacles) {
 TEST(RoverRouteClosedLoop, RrtStarAsTheGlobalPlanner) {
   const EpisodeResult r = drive({kNoStaticObstacles, kWalkerAway, kFollowTheGap, "/objects/rover/planner/params/global=rrt_star"});
   expect_route_driven(r, "rrt_star", 0.0);  // its route keeps clearance_m = 0.8 m from the rows
-  EXPECT_EQ(rover_route_record().global.get(r.events.front().decisions.replan.value().details), "rrt_star");
+  EXPECT_EQ(rover_route_record().global.get(r.only().events.front().decisions.replan.value().details), "rrt_star");
 }
 
 // Each A* leg leaves its waypoint and reaches the next straight along their
@@ -266,9 +266,9 @@ TEST(RoverRouteClosedLoop, RrtStarAsTheGlobalPlanner) {
 TEST(RoverRouteClosedLoop, AStarAsTheGlobalPlanner) {
   const EpisodeResult r = drive({kNoStaticObstacles, kWalkerAway, kFollowTheGap, "/objects/rover/planner/params/global=astar"});
   expect_route_driven(r, "astar", 0.5);
-  EXPECT_LT(r.metrics.cross_track_rms_m, 0.1);
-  EXPECT_LT(r.metrics.cross_track_max_m, 0.4);
-  EXPECT_EQ(rover_route_record().global.get(r.events.front().decisions.replan.value().details), "astar");
+  EXPECT_LT(r.only().metrics.cross_track_rms_m, 0.1);
+  EXPECT_LT(r.only().metrics.cross_track_max_m, 0.4);
+  EXPECT_EQ(rover_route_record().global.get(r.only().events.front().decisions.replan.value().details), "astar");
 }
 
 // ---------------------------------------------------------------- seed 003 Fig. 45 and Fig. 46
@@ -277,7 +277,7 @@ TEST(RoverRouteClosedLoop, AStarAsTheGlobalPlanner) {
 std::vector<std::pair<double, double>> avoidance_episodes(const EpisodeResult& r) {
   std::vector<std::pair<double, double>> out;
   double on = -1.0;
-  for (const PlannerEvent& e : r.events) {
+  for (const PlannerEvent& e : r.only().events) {
     if (!e.decisions.avoiding) continue;
     if (*e.decisions.avoiding) {
       on = e.time_s;
@@ -286,23 +286,23 @@ std::vector<std::pair<double, double>> avoidance_episodes(const EpisodeResult& r
       on = -1.0;
     }
   }
-  if (on >= 0.0) out.emplace_back(on, r.metrics.sim_time_s);
+  if (on >= 0.0) out.emplace_back(on, r.only().metrics.sim_time_s);
   return out;
 }
 
 // Cross-track error (against the route the planner recorded) of the samples between t0 and t1.
 CrossTrack cross_track_between(const EpisodeResult& r, double t0, double t1) {
   const auto from =
-      std::find_if(r.trajectory.begin(), r.trajectory.end(), [&](const auto& s) { return s.time_s >= t0; });
-  const auto to = std::find_if(from, r.trajectory.end(), [&](const auto& s) { return s.time_s > t1; });
-  return cross_track_error({&*from, static_cast<std::size_t>(to - from)}, r.events);
+      std::find_if(r.only().trajectory.begin(), r.only().trajectory.end(), [&](const auto& s) { return s.time_s >= t0; });
+  const auto to = std::find_if(from, r.only().trajectory.end(), [&](const auto& s) { return s.time_s > t1; });
+  return cross_track_error({&*from, static_cast<std::size_t>(to - from)}, r.only().events);
 }
 
 // Closest approach (x, y) of the rover's centre to a point while avoiding, m.
 double nearest_while_avoiding(const EpisodeResult& r, const Eigen::Vector2d& point) {
   double best = std::numeric_limits<double>::infinity();
   for (const auto& [on, off] : avoidance_episodes(r)) {
-    for (const TrajectorySample& s : r.trajectory) {
+    for (const TrajectorySample& s : r.only().trajectory) {
       if (s.time_s >= on && s.time_s <= off) best = std::min(best, (s.state.position_m.head<2>() - point).norm());
     }
   }
@@ -314,11 +314,11 @@ double nearest_while_avoiding(const EpisodeResult& r, const Eigen::Vector2d& poi
 // inter-row, all in the route's way; follow-the-gap steers round each and
 // pure pursuit brings the rover back onto the route after each.
 void expect_fig45_obstacles_avoided(const EpisodeResult& r, double max_avoiding_s) {
-  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
   EXPECT_EQ(testing::waypoints_reached(r), 4);
-  EXPECT_EQ(r.metrics.collisions, 0);
-  EXPECT_GT(r.metrics.min_clearance_m, 0.05);  // true clearance of chassis and wheels
-  EXPECT_LT(r.metrics.avoiding_time_s, max_avoiding_s);
+  EXPECT_EQ(r.only().metrics.collisions, 0);
+  EXPECT_GT(r.only().metrics.min_clearance_m, 0.05);  // true clearance of chassis and wheels
+  EXPECT_LT(r.only().metrics.avoiding_time_s, max_avoiding_s);
   // Each obstacle was avoided: the rover came within 3 m of it while the local planner steered.
   for (const auto& [name, at] : {std::pair{"box_row", Eigen::Vector2d(-0.5, -6.0)},
                                  std::pair{"box_turn", Eigen::Vector2d(2.5, 19.0)},
@@ -330,7 +330,7 @@ void expect_fig45_obstacles_avoided(const EpisodeResult& r, double max_avoiding_
   const auto episodes = avoidance_episodes(r);
   ASSERT_GE(episodes.size(), 3u);
   for (std::size_t i = 0; i < episodes.size(); ++i) {
-    const double next = i + 1 < episodes.size() ? episodes[i + 1].first : r.metrics.sim_time_s;
+    const double next = i + 1 < episodes.size() ? episodes[i + 1].first : r.only().metrics.sim_time_s;
     if (next - episodes[i].second < 2.0) continue;  // a flicker of the corridor test, the same obstacle
     const CrossTrack after = cross_track_between(r, next - 1.0, next);
     EXPECT_LT(after.max_m, 0.1) << "before " << next << " s";
@@ -340,7 +340,7 @@ void expect_fig45_obstacles_avoided(const EpisodeResult& r, double max_avoiding_
 TEST(RoverRouteClosedLoop, Fig45ObstaclesOnTheRouteAreAvoidedAndTheRouteRejoined) {
   const EpisodeResult r = testing::run_bundled("vineyard_obstacles", "rover_route");
   expect_fig45_obstacles_avoided(r, 60.0);
-  EXPECT_LT(r.metrics.cross_track_max_m, 1.6);  // the widest detour: round the cluster
+  EXPECT_LT(r.only().metrics.cross_track_max_m, 1.6);  // the widest detour: round the cluster
 }
 
 // 003's own gaps (range steps, free_range_m 0): the rover headed for the
@@ -360,7 +360,7 @@ TEST(RoverRouteClosedLoop, FollowTheGapWith003GapsGetsPastTheBundledBoxes) {
   const EpisodeResult r =
       drive({kFollowTheGap, kWalkerAway, "/objects/rover/planner/params/follow_the_gap/free_range_m=0"});
   expect_route_driven(r, "boxes, 003's gaps", 0.0, 1.25);
-  EXPECT_LT(r.metrics.avoiding_time_s, 100.0);
+  EXPECT_LT(r.only().metrics.avoiding_time_s, 100.0);
 }
 
 // Seed 003 Fig. 46 (scenes/vineyard_gap.json): a person on the left of the
@@ -369,15 +369,15 @@ TEST(RoverRouteClosedLoop, FollowTheGapWith003GapsGetsPastTheBundledBoxes) {
 // the opening on the left (c), passes behind the person and rejoins the route (d).
 TEST(RoverRouteClosedLoop, Fig46SwitchesToTheLeftGapWhenTheWalkerCutsOffTheRight) {
   const EpisodeResult r = testing::run_bundled("vineyard_gap", "rover_route");
-  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
-  EXPECT_EQ(r.metrics.collisions, 0);
-  EXPECT_GT(r.metrics.min_clearance_m, 0.3);
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
+  EXPECT_EQ(r.only().metrics.collisions, 0);
+  EXPECT_GT(r.only().metrics.min_clearance_m, 0.3);
   // The chosen gaps, their centres and headings relative to the route (positive left).
   struct Choice {
     double t, center_deg, heading_deg;
   };
   std::vector<Choice> choices;
-  for (const PlannerEvent& e : r.events) {
+  for (const PlannerEvent& e : r.only().events) {
     const std::optional<GapDecision> gap = rover_route_record().gap.get(e.decisions.own);
     if (!gap || !gap->chosen) continue;
     const ChosenGap& g = *gap->chosen;
@@ -401,12 +401,12 @@ TEST(RoverRouteClosedLoop, Fig46SwitchesToTheLeftGapWhenTheWalkerCutsOffTheRight
     return parse_scene(nlohmann::json::parse(std::ifstream(file)), file, CAMPO_SOURCE_DIR);
   }();
   const Mover& walker = scene.movers.front();
-  const auto passing = std::find_if(r.trajectory.begin(), r.trajectory.end(), [&](const TrajectorySample& s) {
+  const auto passing = std::find_if(r.only().trajectory.begin(), r.only().trajectory.end(), [&](const TrajectorySample& s) {
     return s.state.position_m.x() >= walker.path_m.front().x();
   });
-  ASSERT_NE(passing, r.trajectory.end());
+  ASSERT_NE(passing, r.only().trajectory.end());
   EXPECT_GT(passing->state.position_m.y(), walker.position_at(passing->time_s).y() + 0.8);
-  EXPECT_LT(cross_track_between(r, r.metrics.sim_time_s - 3.0, r.metrics.sim_time_s).max_m, 0.1);
+  EXPECT_LT(cross_track_between(r, r.only().metrics.sim_time_s - 3.0, r.only().metrics.sim_time_s).max_m, 0.1);
 }
 
 }  // namespace

@@ -33,14 +33,14 @@ bool same_bits(const VehicleState& a, const VehicleState& b) {
 void expect_repeatable(const Scene& scene) {
   const EpisodeResult a = run_episode(scene, &make_vehicle, &create_planner);
   const EpisodeResult b = run_episode(scene, &make_vehicle, &create_planner);
-  ASSERT_EQ(a.trajectory.size(), b.trajectory.size());
-  for (std::size_t i = 0; i < a.trajectory.size(); ++i) {
-    ASSERT_TRUE(same_bits(a.trajectory[i].state, b.trajectory[i].state)) << "sample " << i;
+  ASSERT_EQ(a.only().trajectory.size(), b.only().trajectory.size());
+  for (std::size_t i = 0; i < a.only().trajectory.size(); ++i) {
+    ASSERT_TRUE(same_bits(a.only().trajectory[i].state, b.only().trajectory[i].state)) << "sample " << i;
   }
   EXPECT_EQ(a.final_state_hash, b.final_state_hash);
-  EXPECT_EQ(a.metrics.path_length_m, b.metrics.path_length_m);
-  EXPECT_EQ(a.metrics.min_clearance_m, b.metrics.min_clearance_m);
-  EXPECT_EQ(a.metrics.outcome, b.metrics.outcome);
+  EXPECT_EQ(a.only().metrics.path_length_m, b.only().metrics.path_length_m);
+  EXPECT_EQ(a.only().metrics.min_clearance_m, b.only().metrics.min_clearance_m);
+  EXPECT_EQ(a.only().metrics.outcome, b.only().metrics.outcome);
 }
 
 TEST(ClosedLoop, QuadrotorEpisodeWithSensorIsBitIdenticalWhenRepeated) {
@@ -56,40 +56,40 @@ TEST(ClosedLoop, StraightQuadrotorReachesAnOpenGoalAtTheSpeedLimit) {
   Scene scene = bundled("two_barriers", 60.0);
   std::erase_if(scene.shapes, [](const Shape& s) { return s.type == ShapeType::cuboid; });
   const EpisodeResult r = run_episode(scene, &make_vehicle, &create_planner);
-  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
   // Reached on entering the 0.3 m tolerance: 11.7 m of the 12 m line, flown
   // straight. The ratio measures against the line to where it arrived: 1.
-  EXPECT_NEAR(r.metrics.path_length_m, 12.0 - 0.3, 0.05);
-  EXPECT_GE(r.metrics.path_ratio, 1.0);
-  EXPECT_NEAR(r.metrics.path_ratio, 1.0, 0.002);
+  EXPECT_NEAR(r.only().metrics.path_length_m, 12.0 - 0.3, 0.05);
+  EXPECT_GE(r.only().metrics.path_ratio, 1.0);
+  EXPECT_NEAR(r.only().metrics.path_ratio, 1.0, 0.002);
   // 12 m at 0.6 m/s is 20 s, plus acceleration and braking.
-  EXPECT_GT(r.metrics.sim_time_s, 20.0);
-  EXPECT_LT(r.metrics.sim_time_s, 26.0);
-  for (const auto& s : r.trajectory) EXPECT_LE(s.state.linear_velocity_mps.norm(), 0.6 + 0.02);
+  EXPECT_GT(r.only().metrics.sim_time_s, 20.0);
+  EXPECT_LT(r.only().metrics.sim_time_s, 26.0);
+  for (const auto& s : r.only().trajectory) EXPECT_LE(s.state.linear_velocity_mps.norm(), 0.6 + 0.02);
 }
 
 TEST(ClosedLoop, StraightQuadrotorCollidesWithTheBarrier) {
   const EpisodeResult r = run_episode(bundled("two_barriers", 60.0), &make_vehicle, &create_planner);
-  EXPECT_EQ(r.metrics.outcome, Outcome::collision);
-  EXPECT_EQ(r.metrics.collisions, 1);
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::collision);
+  EXPECT_EQ(r.only().metrics.collisions, 1);
   // The barrier face is at x = 5.85; the body's half length 0.3 m touches it near x = 5.55.
-  EXPECT_NEAR(r.trajectory.back().state.position_m.x(), 5.55, 0.05);
+  EXPECT_NEAR(r.only().trajectory.back().state.position_m.x(), 5.55, 0.05);
   // Stopped at the first touch: within one physics step's travel (0.6 m/s / 240 Hz) of it.
-  EXPECT_LE(r.metrics.min_clearance_m, 0.0);
-  EXPECT_GT(r.metrics.min_clearance_m, -0.6 / 240.0 - 1e-6);
-  EXPECT_EQ(r.metrics.nearest_obstacle, "barrier_left");
+  EXPECT_LE(r.only().metrics.min_clearance_m, 0.0);
+  EXPECT_GT(r.only().metrics.min_clearance_m, -0.6 / 240.0 - 1e-6);
+  EXPECT_EQ(r.only().metrics.nearest_obstacle, "barrier_left");
 }
 
 TEST(ClosedLoop, StraightRoverDrivesUpItsInterRow) {
   Scene scene = bundled("vineyard", 40.0);
   scene.movers.clear();
   const EpisodeResult r = run_episode(scene, &make_vehicle, &create_planner);
-  EXPECT_EQ(r.metrics.outcome, Outcome::timeout);
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::timeout);
   // 0.5 m/s for 40 s, straight north along x = 0, between the canopies.
-  const VehicleState end = r.trajectory.back().state;
+  const VehicleState end = r.only().trajectory.back().state;
   EXPECT_NEAR(end.position_m.y() - (-46.0), 20.0, 1.5);
   EXPECT_NEAR(end.position_m.x(), 0.0, 0.1);
-  EXPECT_GT(r.metrics.min_clearance_m, 0.0);
+  EXPECT_GT(r.only().metrics.min_clearance_m, 0.0);
 }
 
 TEST(ClosedLoop, DepthCameraAndLidarGiveTheSameEpisode) {
@@ -102,9 +102,9 @@ TEST(ClosedLoop, DepthCameraAndLidarGiveTheSameEpisode) {
   std::vector<RangeScan> lidar_scans, camera_scans;
   EpisodeOptions options;
   options.make_sensor = range_sensor_factory();
-  options.on_scan = [&](std::size_t, const RangeScan& s) { lidar_scans.push_back(s); };
+  options.on_scan = [&](std::size_t, std::size_t, const RangeScan& s) { lidar_scans.push_back(s); };
   const EpisodeResult a = run_episode(scene, &make_vehicle, &create_planner, options);
-  options.on_scan = [&](std::size_t, const RangeScan& s) { camera_scans.push_back(s); };
+  options.on_scan = [&](std::size_t, std::size_t, const RangeScan& s) { camera_scans.push_back(s); };
   const EpisodeResult b = run_episode(camera_scene, &make_vehicle, &create_planner, options);
   EXPECT_EQ(a.final_state_hash, b.final_state_hash);
   ASSERT_EQ(lidar_scans.size(), camera_scans.size());
@@ -132,12 +132,12 @@ TEST(ClosedLoop, RecordsTheHeightAboveTheGroundBelow) {
      "mission": {"waypoints": [{"position_m": [8, 0, 2.5]}]}, "planner": {"name": "straight"}}]})j"),
                                   "inline.json", std::filesystem::temp_directory_path());
   const EpisodeResult r = run_episode(scene, &make_vehicle, &create_planner);
-  ASSERT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
-  for (const TrajectorySample& s : r.trajectory) {
+  ASSERT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
+  for (const TrajectorySample& s : r.only().trajectory) {
     EXPECT_NEAR(s.height_above_ground_m, s.state.position_m.z() - 0.1 * s.state.position_m.x(), 1e-9);
   }
-  EXPECT_NEAR(r.trajectory.back().height_above_ground_m, 2.5 - 0.8, 0.1);  // level flight, rising ground
-  const std::string csv = trajectory_csv(r);
+  EXPECT_NEAR(r.only().trajectory.back().height_above_ground_m, 2.5 - 0.8, 0.1);  // level flight, rising ground
+  const std::string csv = trajectory_csv(r.only());
   EXPECT_NE(csv.substr(0, csv.find('\n')).find(",height_above_ground_m"), std::string::npos);
 }
 

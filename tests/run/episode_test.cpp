@@ -113,7 +113,7 @@ class EpisodeTest : public ::testing::Test {
 TEST_F(EpisodeTest, ReachesTheGoalWithExactMetrics) {
   const Scene scene = scene_with();
   const EpisodeResult r = run_episode(scene, &make_point, &make_follower);
-  const EpisodeMetrics& m = r.metrics;
+  const EpisodeMetrics& m = r.only().metrics;
   EXPECT_EQ(m.outcome, Outcome::reached);
   EXPECT_EQ(m.reason, "done");
   // 7 m at 1 m/s, planner at 20 Hz: the arrival is noticed at the next tick.
@@ -128,12 +128,12 @@ TEST_F(EpisodeTest, ReachesTheGoalWithExactMetrics) {
   // No ground in this scene.
   EXPECT_TRUE(std::isinf(m.min_ground_clearance_m));
   EXPECT_EQ(m.collisions, 0);
-  EXPECT_EQ(m.planner_calls, static_cast<int>(r.trajectory.size()));
+  EXPECT_EQ(m.planner_calls, static_cast<int>(r.only().trajectory.size()));
   EXPECT_NEAR(m.planner_calls, 7.0 * 20 + 1, 2);
   // Sensors at 5 Hz: one fresh scan per 4 planner calls.
   EXPECT_NEAR(Follower::fresh_scans, 7.0 * 5 + 1, 2);
-  EXPECT_EQ(r.trajectory.front().time_s, 0.0);
-  EXPECT_NEAR(r.trajectory[1].time_s, 0.05, 1e-12);
+  EXPECT_EQ(r.only().trajectory.front().time_s, 0.0);
+  EXPECT_NEAR(r.only().trajectory[1].time_s, 0.05, 1e-12);
 }
 
 TEST_F(EpisodeTest, TimesOut) {
@@ -141,9 +141,9 @@ TEST_F(EpisodeTest, TimesOut) {
   Scene slow = scene;
   slow.world.time_limit_s = 2.0;
   const EpisodeResult r = run_episode(slow, &make_point, &make_follower);
-  EXPECT_EQ(r.metrics.outcome, Outcome::timeout);
-  EXPECT_NEAR(r.metrics.sim_time_s, 2.0, 1e-9);
-  EXPECT_NEAR(r.metrics.path_length_m, 2.0, 1e-9);
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::timeout);
+  EXPECT_NEAR(r.only().metrics.sim_time_s, 2.0, 1e-9);
+  EXPECT_NEAR(r.only().metrics.path_length_m, 2.0, 1e-9);
 }
 
 TEST_F(EpisodeTest, StopsAtTheFirstCollisionOrCountsThem) {
@@ -153,21 +153,21 @@ TEST_F(EpisodeTest, StopsAtTheFirstCollisionOrCountsThem) {
   const Scene scene = scene_with("", R"j({"alias": "wall", "type": "cuboid", "size_m": [0.095, 0.8, 2],
     "pose": {"position_m": [2.0525, 0, 1]}},)j");
   EpisodeResult r = run_episode(scene, &make_point, &make_follower);
-  EXPECT_EQ(r.metrics.outcome, Outcome::collision);
-  EXPECT_EQ(r.metrics.collisions, 1);
-  EXPECT_NEAR(r.metrics.sim_time_s, 1.51, 1e-9);
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::collision);
+  EXPECT_EQ(r.only().metrics.collisions, 1);
+  EXPECT_NEAR(r.only().metrics.sim_time_s, 1.51, 1e-9);
   // The wall's face x = 2.005, straight ahead of the sphere's centre (0, 1).
-  EXPECT_EQ(r.metrics.reason, "collision with wall at t = 1.510000 s, at (2.005, 0.000, 1.000) m");
+  EXPECT_EQ(r.only().metrics.reason, "collision with wall at t = 1.510000 s, at (2.005, 0.000, 1.000) m");
   // Touching is clearance <= 0: the two always agree.
-  EXPECT_LE(r.metrics.min_clearance_m, 0.0);
-  EXPECT_NEAR(r.metrics.min_clearance_m, -0.005, 1e-6);
+  EXPECT_LE(r.only().metrics.min_clearance_m, 0.0);
+  EXPECT_NEAR(r.only().metrics.min_clearance_m, -0.005, 1e-6);
   EpisodeOptions keep_going;
   keep_going.stop_on_collision = false;
   r = run_episode(scene, &make_point, &make_follower, keep_going);
-  EXPECT_EQ(r.metrics.outcome, Outcome::reached);
-  EXPECT_EQ(r.metrics.collisions, 1);  // one contact episode, however long
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::reached);
+  EXPECT_EQ(r.only().metrics.collisions, 1);  // one contact episode, however long
   // Passing through, the sphere's centre crosses the wall: overlap of its radius plus half the wall.
-  EXPECT_NEAR(r.metrics.min_clearance_m, -(0.5 + 0.0475), 3e-3);
+  EXPECT_NEAR(r.only().metrics.min_clearance_m, -(0.5 + 0.0475), 3e-3);
 }
 
 // Signed distances to solids, for checking that a contact point lies on the surface touched.
@@ -236,21 +236,21 @@ TEST_F(EpisodeTest, ACollisionNamesTheBodyTouchedAndWhere) {
     SCOPED_TRACE(c.kind);
     const Scene scene = scene_with("", c.objects);
     const EpisodeResult r = run_episode(scene, &make_point, &make_follower);
-    ASSERT_EQ(r.metrics.outcome, Outcome::collision);
-    ASSERT_EQ(r.metrics.collision_events.size(), 1u);
-    const CollisionEvent& e = r.metrics.collision_events.front();
+    ASSERT_EQ(r.only().metrics.outcome, Outcome::collision);
+    ASSERT_EQ(r.only().metrics.collision_events.size(), 1u);
+    const CollisionEvent& e = r.only().metrics.collision_events.front();
     EXPECT_EQ(e.body, c.alias);
     EXPECT_EQ(e.ground, c.ground);
-    EXPECT_DOUBLE_EQ(e.time_s, r.metrics.sim_time_s);
+    EXPECT_DOUBLE_EQ(e.time_s, r.only().metrics.sim_time_s);
     // On the surface touched: the point's distance to it is GJK/EPA's precision
     // (double precision, relative to the scene's metres), far below the depth
     // the sphere can reach in one step (1 m/s x 0.01 s).
     EXPECT_NEAR(c.surface(scene, e), 0.0, 1e-6);
     const std::string with = c.ground ? "the ground (" + c.alias + ")" : c.alias;
-    EXPECT_EQ(r.metrics.reason.rfind("collision with " + with + " at t = ", 0), 0u) << r.metrics.reason;
-    EXPECT_NE(r.metrics.reason.find(" m"), std::string::npos);
+    EXPECT_EQ(r.only().metrics.reason.rfind("collision with " + with + " at t = ", 0), 0u) << r.only().metrics.reason;
+    EXPECT_NE(r.only().metrics.reason.find(" m"), std::string::npos);
     // run.json's list, as documented (docs/running.md).
-    const nlohmann::json j = to_json(r.metrics).at("collision_events");
+    const nlohmann::json j = to_json(r.only().metrics).at("collision_events");
     ASSERT_EQ(j.size(), 1u);
     EXPECT_EQ(j[0].at("body"), c.alias);
     EXPECT_EQ(j[0].at("ground"), c.ground);
@@ -276,24 +276,24 @@ TEST_F(EpisodeTest, CollisionEventsAreBoundedButAllCounted) {
   EpisodeOptions keep_going;
   keep_going.stop_on_collision = false;
   const EpisodeResult r = run_episode(scene, &make_point, &make_follower, keep_going);
-  EXPECT_EQ(r.metrics.outcome, Outcome::reached);
-  EXPECT_EQ(r.metrics.collisions, n);
-  ASSERT_EQ(r.metrics.collision_events.size(), EpisodeMetrics::kMaxCollisionEvents);
-  for (std::size_t i = 0; i < r.metrics.collision_events.size(); ++i) {
-    EXPECT_EQ(r.metrics.collision_events[i].body, "w" + std::to_string(i));
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::reached);
+  EXPECT_EQ(r.only().metrics.collisions, n);
+  ASSERT_EQ(r.only().metrics.collision_events.size(), EpisodeMetrics::kMaxCollisionEvents);
+  for (std::size_t i = 0; i < r.only().metrics.collision_events.size(); ++i) {
+    EXPECT_EQ(r.only().metrics.collision_events[i].body, "w" + std::to_string(i));
   }
 }
 
 TEST_F(EpisodeTest, PlannerGivingUpAbortsWithItsReason) {
   Follower::give_up_at = 1.0;
   const EpisodeResult r = run_episode(scene_with(), &make_point, &make_follower);
-  EXPECT_EQ(r.metrics.outcome, Outcome::aborted);
-  EXPECT_EQ(r.metrics.reason, "no_path: walled in");
-  EXPECT_NEAR(r.metrics.sim_time_s, 1.0, 1e-9);
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::aborted);
+  EXPECT_EQ(r.only().metrics.reason, "no_path: walled in");
+  EXPECT_NEAR(r.only().metrics.sim_time_s, 1.0, 1e-9);
 }
 
 TEST_F(EpisodeTest, MetricsJsonUsesTheDocumentedNames) {
-  const nlohmann::json j = to_json(run_episode(scene_with(), &make_point, &make_follower).metrics);
+  const nlohmann::json j = to_json(run_episode(scene_with(), &make_point, &make_follower).only().metrics);
   for (const char* key : {"outcome", "reason", "sim_time_s", "wall_time_s", "path_length_m", "path_ratio",
                           "min_clearance_m", "collisions", "planner_time_ms_mean", "planner_time_ms_max",
                           "cross_track_rms_m", "cross_track_mean_m", "cross_track_max_m", "avoiding_time_s"}) {
@@ -316,13 +316,13 @@ TEST_F(EpisodeTest, SteppedFromOutsideIsTheSameRun) {
     EXPECT_EQ(episode.metrics_so_far().planner_calls, calls);
   }
   EXPECT_LT((episode.observation().state.position_m - Eigen::Vector3d(3, 4, 1)).norm(), 1e-9);  // where it ended
-  EXPECT_THROW(episode.step({}), std::logic_error);
+  EXPECT_THROW(episode.step(PlanResult{}), std::logic_error);
   const EpisodeResult stepped = episode.finish();
   EXPECT_EQ(stepped.final_state_hash, looped.final_state_hash);
-  EXPECT_EQ(stepped.metrics.outcome, Outcome::reached);
-  EXPECT_EQ(stepped.metrics.planner_calls, looped.metrics.planner_calls);
-  EXPECT_EQ(stepped.metrics.path_length_m, looped.metrics.path_length_m);
-  EXPECT_EQ(stepped.trajectory.size(), looped.trajectory.size());
+  EXPECT_EQ(stepped.only().metrics.outcome, Outcome::reached);
+  EXPECT_EQ(stepped.only().metrics.planner_calls, looped.only().metrics.planner_calls);
+  EXPECT_EQ(stepped.only().metrics.path_length_m, looped.only().metrics.path_length_m);
+  EXPECT_EQ(stepped.only().trajectory.size(), looped.only().trajectory.size());
   EXPECT_THROW(episode.finish(), std::logic_error);
 }
 
@@ -342,13 +342,13 @@ TEST_F(EpisodeTest, APlannerThatThrowsEndsTheRunAsFailed) {
   const EpisodeResult r = run_episode(scene, &make_point, [](const PlannerSpec&, const PlannerContext&) {
     return std::unique_ptr<Planner>(std::make_unique<Thrower>(false));
   });
-  EXPECT_EQ(r.metrics.outcome, Outcome::failed);
-  EXPECT_EQ(to_string(r.metrics.outcome), "failed");
-  EXPECT_EQ(r.metrics.reason, "the planner raised an error: division by zero in the gain schedule");
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::failed);
+  EXPECT_EQ(to_string(r.only().metrics.outcome), "failed");
+  EXPECT_EQ(r.only().metrics.reason, "the planner raised an error: division by zero in the gain schedule");
   // Everything up to the failure is kept: 20 calls in the first second, then the one that threw (not counted).
-  EXPECT_EQ(r.metrics.planner_calls, 20);
-  EXPECT_NEAR(r.metrics.path_length_m, 1.0, 0.02);
-  EXPECT_EQ(r.planner_parameters["thrower"], true);
+  EXPECT_EQ(r.only().metrics.planner_calls, 20);
+  EXPECT_NEAR(r.only().metrics.path_length_m, 1.0, 0.02);
+  EXPECT_EQ(r.only().planner_parameters["thrower"], true);
   EXPECT_THROW(run_episode(scene, &make_point,
                            [](const PlannerSpec&, const PlannerContext&) {
                              return std::unique_ptr<Planner>(std::make_unique<Thrower>(true));
@@ -359,14 +359,14 @@ TEST_F(EpisodeTest, APlannerThatThrowsEndsTheRunAsFailed) {
 TEST_F(EpisodeTest, RecordsTrajectoryAndRunFile) {
   const Scene scene = scene_with();
   const EpisodeResult r = run_episode(scene, &make_point, &make_follower);
-  const std::string csv = trajectory_csv(r);
+  const std::string csv = trajectory_csv(r.only());
   const auto header_end = csv.find('\n');
   const std::string header = csv.substr(0, header_end);
   EXPECT_EQ(header.rfind("time_s,x_m,y_m,z_m,roll_deg,pitch_deg,yaw_deg,", 0), 0u);
   EXPECT_NE(header.find(",command,"), std::string::npos);
   EXPECT_EQ(header.substr(header.rfind(',') + 1), "speed");  // actuator columns come last
   const auto rows = static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')) - 1;
-  EXPECT_EQ(rows, r.trajectory.size());
+  EXPECT_EQ(rows, r.only().trajectory.size());
   // Every row has as many fields as the header.
   const auto fields = std::count(header.begin(), header.end(), ',');
   std::size_t start = header_end + 1;
@@ -412,7 +412,7 @@ TEST_F(EpisodeTest, MeasuresCrossTrackAndAvoidingFromTheDecisions) {
   const EpisodeResult r = run_episode(scene_with(), &make_point, [](const PlannerSpec&, const PlannerContext&) {
     return std::unique_ptr<Planner>(std::make_unique<RouteRecorder>());
   });
-  const EpisodeMetrics& m = r.metrics;
+  const EpisodeMetrics& m = r.only().metrics;
   ASSERT_EQ(m.outcome, Outcome::reached);
   // Both legs run 0.5 m beside the route, except near the corner, where the route is nearer.
   EXPECT_NEAR(m.cross_track_max_m, 0.5, 1e-9);
@@ -423,7 +423,7 @@ TEST_F(EpisodeTest, MeasuresCrossTrackAndAvoidingFromTheDecisions) {
   EXPECT_EQ(j["cross_track_max_m"], m.cross_track_max_m);
   EXPECT_EQ(j["avoiding_time_s"], m.avoiding_time_s);
   // The plain follower records neither.
-  const EpisodeMetrics plain = run_episode(scene_with(), &make_point, &make_follower).metrics;
+  const EpisodeMetrics plain = run_episode(scene_with(), &make_point, &make_follower).only().metrics;
   EXPECT_EQ(plain.cross_track_rms_m, 0.0);
   EXPECT_EQ(plain.cross_track_max_m, 0.0);
   EXPECT_EQ(plain.avoiding_time_s, 0.0);

@@ -34,7 +34,7 @@ Scene flight_among(const std::string& objects, double goal_x_m = 12.0, const std
 
 double max_lateral_m(const EpisodeResult& r) {
   double y = 0.0;
-  for (const TrajectorySample& s : r.trajectory) y = std::max(y, std::abs(s.state.position_m.y()));
+  for (const TrajectorySample& s : r.only().trajectory) y = std::max(y, std::abs(s.state.position_m.y()));
   return y;
 }
 
@@ -48,8 +48,8 @@ EpisodeOptions with_sensors() {
 EpisodeResult fly_to_goal(const std::string& objects, double goal_x_m, const std::string& sensor) {
   EpisodeResult r =
       run_episode(flight_among(objects, goal_x_m, sensor), &make_vehicle, &create_planner, with_sensors());
-  EXPECT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
-  EXPECT_EQ(r.metrics.collisions, 0);
+  EXPECT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
+  EXPECT_EQ(r.only().metrics.collisions, 0);
   return r;
 }
 
@@ -87,11 +87,11 @@ TEST(LiveWorld, ABoxThatFellOffTheRouteIsFlownStraightOver) {
     const EpisodeResult r = fly_to_goal(R"j({"alias": "box", "type": "cuboid", "size_m": [0.4, 0.4, 0.4],
       "static": false, "mass_kg": 1, "pose": {"position_m": [11, 0, 1.5]}},)j",
                                         18.0, sensor);
-    EXPECT_EQ(r.metrics.waypoints_planned, 0);
+    EXPECT_EQ(r.only().metrics.waypoints_planned, 0);
     EXPECT_LT(max_lateral_m(r), 0.3);
     // Its nearest approach is to the box on the ground, below: about 1.44 - 0.4.
-    EXPECT_EQ(r.metrics.nearest_obstacle, "box");
-    EXPECT_NEAR(r.metrics.min_clearance_m, 1.5 - 0.06 - 0.4, 0.05);
+    EXPECT_EQ(r.only().metrics.nearest_obstacle, "box");
+    EXPECT_NEAR(r.only().metrics.min_clearance_m, 1.5 - 0.06 - 0.4, 0.05);
   }
 }
 
@@ -105,9 +105,9 @@ TEST(LiveWorld, ABoxPushedIntoTheRouteByAMoverIsAvoided) {
       {"alias": "pusher", "type": "mover", "shape": {"type": "cuboid", "size_m": [1.5, 0.5, 2]},
        "path_m": [[6, 4.25, 1], [6, 0.75, 1]], "speed_mps": 0.6},)j",
                                         12.0, sensor);
-    EXPECT_GT(r.metrics.min_clearance_m, 0.0);
+    EXPECT_GT(r.only().metrics.min_clearance_m, 0.0);
     // The crate now covers the route: the drone went around it.
-    EXPECT_GE(r.metrics.waypoints_planned, 1);
+    EXPECT_GE(r.only().metrics.waypoints_planned, 1);
     EXPECT_GT(max_lateral_m(r), 0.5);
   }
 }

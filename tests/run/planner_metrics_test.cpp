@@ -119,13 +119,13 @@ TEST(PlannerMetrics, AreMeasuredFromTheRecordedEventsIntoRunJson) {
   register_test_planners();
   const Scene scene = one_waypoint_scene("counting");
   const EpisodeResult result = run_episode(scene, &make_vehicle, &create_planner);
-  ASSERT_EQ(result.metrics.outcome, Outcome::reached) << result.metrics.reason;
+  ASSERT_EQ(result.only().metrics.outcome, Outcome::reached) << result.only().metrics.reason;
   const nlohmann::json metrics = run_json(scene, result, {}, {}).at("metrics");
 
   // Every call was recorded (its own field is never empty), numbered 1..n: the sum is n (n + 1) / 2.
   const std::int64_t n = metrics.at("planner_calls").get<std::int64_t>();
   ASSERT_GT(n, 1);
-  ASSERT_EQ(static_cast<std::int64_t>(result.events.size()), n);
+  ASSERT_EQ(static_cast<std::int64_t>(result.only().events.size()), n);
   EXPECT_EQ(counting_record().call_sum.get(metrics), n * (n + 1) / 2);
   EXPECT_EQ(counting_record().end_s.get(metrics), metrics.at("sim_time_s").get<double>());
   // Read back through the declarations, as a reader of run.json would.
@@ -144,7 +144,7 @@ TEST(PlannerMetrics, AStraightRunGainsNoKey) {
   const RecordFields mission = mission_metric_fields(scene.vehicles.front());
   for (const RecordFieldInfo& f : mission.fields()) expected[f.name] = true;
   nlohmann::json keys = nlohmann::json::object();
-  for (const auto& [key, value] : result.metrics.declared.items()) keys[key] = true;
+  for (const auto& [key, value] : result.only().metrics.declared.items()) keys[key] = true;
   EXPECT_EQ(keys, expected);
 }
 

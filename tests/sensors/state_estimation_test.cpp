@@ -83,20 +83,20 @@ Scene open_flight(const std::string& noise) {
 
 TEST(StateEstimation, ThePlannerAndControllerActOnTheEstimate) {
   const EpisodeResult truth = run_episode(open_flight(""), &make_vehicle, &create_planner);
-  ASSERT_EQ(truth.metrics.outcome, Outcome::reached);
-  for (const TrajectorySample& s : truth.trajectory) EXPECT_EQ(s.estimated_position_m, s.state.position_m);
+  ASSERT_EQ(truth.only().metrics.outcome, Outcome::reached);
+  for (const TrajectorySample& s : truth.only().trajectory) EXPECT_EQ(s.estimated_position_m, s.state.position_m);
 
   // A constant error: one draw (rate 0.001 Hz) of 1 m horizontal noise.
   const Scene noisy = open_flight(R"j("state_noise": {"position_stddev_m": 1.0, "rate_hz": 0.001},)j");
   const EpisodeResult r = run_episode(noisy, &make_vehicle, &create_planner);
-  ASSERT_EQ(r.metrics.outcome, Outcome::reached) << r.metrics.reason;
-  const Eigen::Vector3d offset = r.trajectory.front().estimated_position_m - r.trajectory.front().state.position_m;
+  ASSERT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
+  const Eigen::Vector3d offset = r.only().trajectory.front().estimated_position_m - r.only().trajectory.front().state.position_m;
   EXPECT_GT(offset.head<2>().norm(), 0.05);
-  for (const TrajectorySample& s : r.trajectory) {
+  for (const TrajectorySample& s : r.only().trajectory) {
     EXPECT_NEAR((s.estimated_position_m - s.state.position_m - offset).norm(), 0.0, 1e-9);
   }
   // The drone stops where it believes the goal is: off the true goal by the error.
-  const Eigen::Vector3d end = r.trajectory.back().state.position_m;
+  const Eigen::Vector3d end = r.only().trajectory.back().state.position_m;
   EXPECT_NEAR((end + offset - Eigen::Vector3d(8, 0, 1.5)).head<2>().norm(), 0.0, 0.1 + 1e-6);
   // Seeded: the same run again is identical.
   const EpisodeResult again = run_episode(noisy, &make_vehicle, &create_planner);
