@@ -1,8 +1,10 @@
 // campo._campo: the native part of the Python package `campo` (docs/python.md).
 // Episodes stepped from Python, Python planners in the C++ closed loop, and
 // runs written exactly as `campo run` writes them.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -56,15 +58,55 @@ RunRequest run_request(const std::string& scene, std::optional<std::uint64_t> se
   return request;
 }
 
+// How a vehicle's mission ended while the others' went on (the end of the
+// run gives every outcome, from its record).
+struct Ending {
+  Outcome outcome = Outcome::reached;
+  double time_s = 0.0;
+};
+
 // One run of an Episode (a reset): its scene, the loop, and its result once it ended.
 struct EpisodeRun {
   PreparedRun prepared;
   std::optional<Episode> episode;
-  std::shared_ptr<const std::vector<Eigen::Vector3d>> mission_m;
+  std::vector<std::shared_ptr<const std::vector<Eigen::Vector3d>>> missions_m;  // each vehicle's, scene order
+  std::vector<std::optional<Ending>> endings;                                  // each vehicle's, scene order
   std::optional<EpisodeResult> result;
 };
 
-// campo.Episode.
+// "a", "b", "c" for the messages that list the scene's vehicles.
+std::string alias_list(const std::vector<std::string>& aliases) {
+  std::string list;
+  for (const std::string& a : aliases) list += (list.empty() ? "\"" : ", \"") + a + "\"";
+  return list;
+}
+
+// A decision given to Episode.step: a campo.Command (the mission goes on) or
+// a campo.PlanResult (its status may end the mission, its decisions are
+// recorded). `who` prefixes the messages ("" or "vehicle \"a\": ").
+PlanResult decision_of(const py::handle& value, const std::string& who) {
+  if (py::isinstance<CommandBox>(value)) {
+    PlanResult plan;
+    plan.command = value.cast<const CommandBox&>().value;
+    return plan;
+  }
+  if (py::isinstance<PlanResultBox>(value)) {
+    try {
+      return plan_result(value.cast<const PlanResultBox&>());
+    } catch (const std::runtime_error& e) {
+      throw std::invalid_argument(who + e.what());
+    }
+  }
+  throw py::type_error(who + "expected a campo.Command or a campo.PlanResult, got " +
+                       py::str(py::type::of(value).attr("__name__")).cast<std::string>());
+}
+
+// campo.Episode. A scene of one vehicle: reset() gives its observation,
+// step(command) (observation, done, info). A scene of several, the shape of
+// PettingZoo's parallel API keyed by alias: reset() gives {alias:
+// observation}, step({alias: command}) ({alias: observation}, {alias: done,
+// "__all__": done}, {alias: info}) for the vehicles that acted; `agents`
+// shrinks as missions end (docs/python.md).
 class PythonEpisode {
  public:
   PythonEpisode(const std::string& scene, std::optional<std::uint64_t> seed, const py::object& overrides,
@@ -72,31 +114,90 @@ class PythonEpisode {
       : request_(run_request(scene, seed, overrides, vehicle, continue_after_collision)) {
     // Read and check everything now, so bad input fails at construction.
     refuse_planner_overrides();
-    prepare_run(request_, false);
+    const PreparedRun prepared = prepare_run(request_, false);
+    for (const VehicleDef& v : prepared.scene.vehicles) aliases_.push_back(v.alias);
+    if (several() && !request_.vehicle.empty()) {
+      throw InputError("vehicle", "", "no vehicle to choose: campo.Episode steps every vehicle of a scene of several (" +
+                                          alias_list(aliases_) + "), step() taking {alias: command}");
+    }
   }
 
-  ObservationView reset() {
+  py::object reset() {
     run_ = std::make_shared<EpisodeRun>();
     run_->prepared = prepare_run(request_, false);
-    VehicleDef& def = run_->prepared.scene.vehicles[run_->prepared.vehicle_index];
-    def.planner.name = std::string(kExternalPlanner);
-    def.planner.params.values = nlohmann::json::object();
+    for (VehicleDef& def : run_->prepared.scene.vehicles) {
+      def.planner.name = std::string(kExternalPlanner);
+      def.planner.params.values = nlohmann::json::object();
+      run_->missions_m.push_back(mission_positions(def.mission));
+    }
+    run_->endings.assign(aliases_.size(), std::nullopt);
     run_->episode.emplace(run_->prepared.scene, &make_vehicle, run_->prepared.options);
-    run_->mission_m = mission_positions(def.mission);
     return observation();
   }
 
-  py::tuple step(const CommandBox& command) {
+  py::tuple step(const py::object& commands) {
     Episode& e = episode();
     if (e.done()) throw std::logic_error("the episode has ended: call reset() for a new one");
-    PlanResult plan;
-    plan.command = command.value;
-    e.step(std::move(plan));  // std::invalid_argument (ValueError) for a command the vehicle cannot follow
-    return py::make_tuple(observation(), e.done(), info());
+    if (!several()) {
+      e.step(decision_of(commands, ""));  // std::invalid_argument (ValueError) for a command the vehicle cannot follow
+      return py::make_tuple(observation(), e.done(), info());
+    }
+    const std::vector<std::size_t> acting = live();
+    const std::vector<PlanResult> plans = decisions(commands);
+    // What the loop does not tell until its end: how a mission that ends now ended, and when.
+    const double decided_at_s = e.world().time_s();
+    std::vector<int> collisions;
+    for (std::size_t v = 0; v < aliases_.size(); ++v) collisions.push_back(e.metrics_so_far(v).collisions);
+    std::vector<PlanResult> given = plans;
+    e.step(std::move(given));  // VehicleCommandError (ValueError) naming the vehicle; nothing changed
+    if (!e.done()) {
+      for (const std::size_t v : acting) {
+        if (!e.done(v)) continue;
+        // The run goes on, so no time limit or end rule ended it: the vehicle's status, or a collision.
+        Ending ending;
+        const EpisodeMetrics& m = e.metrics_so_far(v);
+        if (plans[v].status == PlanStatus::reached) {
+          ending = {Outcome::reached, decided_at_s};
+        } else if (plans[v].status != PlanStatus::running) {
+          ending = {Outcome::aborted, decided_at_s};
+        } else if (m.collisions > collisions[v] && !m.collision_events.empty()) {
+          ending = {Outcome::collision, m.collision_events.back().time_s};
+        } else {
+          continue;  // none other ends one vehicle alone
+        }
+        run_->endings[v] = ending;
+      }
+    }
+    py::dict observations;
+    py::dict dones;
+    py::dict infos;
+    for (const std::size_t v : acting) {
+      const py::str alias(aliases_[v]);
+      observations[alias] = view(v);
+      dones[alias] = e.done() || e.done(v);
+      infos[alias] = agent_info(v);
+    }
+    dones["__all__"] = e.done();
+    return py::make_tuple(observations, dones, infos);
   }
 
-  ObservationView observation() const { return view_of(episode().observation(), run_->mission_m); }
+  py::object observation() const {
+    if (!several()) return py::cast(view(0));
+    py::dict observations;
+    for (const std::size_t v : live()) observations[py::str(aliases_[v])] = view(v);
+    return observations;
+  }
+
   bool done() const { return run_ && run_->episode && run_->episode->done(); }
+
+  // The vehicles still on their missions (none before reset() or once the run has ended).
+  std::vector<std::string> agents() const {
+    std::vector<std::string> names;
+    if (!run_) return names;
+    for (const std::size_t v : live()) names.push_back(aliases_[v]);
+    return names;
+  }
+  const std::vector<std::string>& possible_agents() const { return aliases_; }
 
   py::dict info() const {
     const Episode& e = episode();
@@ -111,7 +212,13 @@ class PythonEpisode {
     return info;
   }
 
-  py::object metrics() const { return from_json(campo::to_json(finished().only().metrics)); }
+  py::object metrics() const {
+    const EpisodeResult& result = finished();
+    if (!several()) return from_json(campo::to_json(result.only().metrics));
+    nlohmann::json vehicles = nlohmann::json::object();
+    for (const VehicleResult& v : result.vehicles) vehicles[v.alias] = campo::to_json(v.metrics);
+    return from_json({{"fleet", campo::to_json(result.fleet)}, {"vehicles", vehicles}});
+  }
 
   py::object write(const std::filesystem::path& out, bool figures) const {
     check_output_directory(out, "out");
@@ -125,8 +232,13 @@ class PythonEpisode {
     run.vehicle_index = run_->prepared.vehicle_index;
     run.result = result;
     run.record = run_json(run.scene, run.result, run_->prepared.options, override_texts(request.overrides));
-    run.record["provenance"]["planner"] = {{"name", kExternalPlanner},
-                                           {"source", "commands given to campo.Episode.step from Python"}};
+    const nlohmann::json provenance = {{"name", kExternalPlanner},
+                                       {"source", "commands given to campo.Episode.step from Python"}};
+    if (several()) {
+      for (nlohmann::json& vehicle : run.record["vehicles"]) vehicle["planner_provenance"] = provenance;
+    } else {
+      run.record["provenance"]["planner"] = provenance;
+    }
     if (!run.document.contains("name")) run.document["name"] = run.scene.name;
     StagedOutput staged(out);
     const std::vector<FigureFailure> failures = write_run_files(run, request, staged);
@@ -142,6 +254,8 @@ class PythonEpisode {
   }
 
  private:
+  bool several() const { return aliases_.size() > 1; }
+
   Episode& episode() const {
     if (!run_) throw std::logic_error("call reset() first");
     return *run_->episode;
@@ -151,9 +265,85 @@ class PythonEpisode {
     if (!e.done()) throw std::logic_error("the episode is still running: its metrics are measured over a whole run");
     if (!run_->result) {
       run_->result = e.finish();
-      run_->result->only().planner_parameters = nlohmann::json::object();  // no planner: the caller's commands
+      // No planner: the caller's commands.
+      for (VehicleResult& v : run_->result->vehicles) v.planner_parameters = nlohmann::json::object();
     }
     return *run_->result;
+  }
+
+  ObservationView view(std::size_t v) const { return view_of(episode().observation(v), run_->missions_m.at(v)); }
+
+  // The vehicles still on their missions, in scene order.
+  std::vector<std::size_t> live() const {
+    std::vector<std::size_t> indices;
+    const Episode& e = episode();
+    if (e.done()) return indices;
+    for (std::size_t v = 0; v < aliases_.size(); ++v) {
+      if (!e.done(v)) indices.push_back(v);
+    }
+    return indices;
+  }
+
+  // step()'s {alias: command}: one for every vehicle still on its mission, none for another.
+  std::vector<PlanResult> decisions(const py::object& commands) const {
+    if (!py::isinstance<py::dict>(commands)) {
+      throw py::type_error("a scene of several vehicles is stepped with a dict {alias: campo.Command or "
+                           "campo.PlanResult}, one for each of episode.agents (" + alias_list(agents()) + ")");
+    }
+    const Episode& e = episode();
+    std::vector<PlanResult> plans(aliases_.size());
+    std::vector<bool> given(aliases_.size(), false);
+    for (const auto& item : commands.cast<py::dict>()) {
+      if (!py::isinstance<py::str>(item.first)) {
+        throw std::invalid_argument("step()'s keys are vehicle aliases (" + alias_list(aliases_) + "), got " +
+                                    py::repr(item.first).cast<std::string>());
+      }
+      const std::string alias = item.first.cast<std::string>();
+      const auto found = std::find(aliases_.begin(), aliases_.end(), alias);
+      if (found == aliases_.end()) {
+        throw std::invalid_argument("no vehicle \"" + alias + "\" in the scene: its vehicles are " + alias_list(aliases_));
+      }
+      const auto v = static_cast<std::size_t>(found - aliases_.begin());
+      if (e.done(v)) {
+        throw std::invalid_argument("vehicle \"" + alias + "\" has ended its mission: it is no longer among "
+                                    "episode.agents (" + alias_list(agents()) + ")");
+      }
+      plans[v] = decision_of(item.second, "vehicle \"" + alias + "\": ");
+      given[v] = true;
+    }
+    std::vector<std::string> missing;
+    for (const std::size_t v : live()) {
+      if (!given[v]) missing.push_back(aliases_[v]);
+    }
+    if (!missing.empty()) {
+      throw std::invalid_argument("no command for " + std::string(missing.size() > 1 ? "vehicles " : "vehicle ") +
+                                  alias_list(missing) + ": step() takes one for each of episode.agents (" +
+                                  alias_list(agents()) + ")");
+    }
+    return plans;
+  }
+
+  // Vehicle v's info, as step()'s single-vehicle info: its outcome once its mission has ended.
+  py::dict agent_info(std::size_t v) const {
+    const Episode& e = episode();
+    const EpisodeMetrics& m = e.done() ? finished().vehicles.at(v).metrics : e.metrics_so_far(v);
+    const std::optional<Ending>& ending = run_->endings.at(v);
+    py::dict info;
+    py::object outcome = py::none();
+    if (e.done()) {
+      info["time_s"] = m.sim_time_s;
+      outcome = py::str(std::string(to_string(m.outcome)));
+    } else if (ending) {
+      info["time_s"] = ending->time_s;
+      outcome = py::str(std::string(to_string(ending->outcome)));
+    } else {
+      info["time_s"] = e.world().time_s();
+    }
+    info["collisions"] = m.collisions;
+    info["path_length_m"] = m.path_length_m;
+    info["outcome"] = outcome;
+    info["reason"] = m.reason;
+    return info;
   }
 
   // The caller's commands drive the vehicle: an override of a vehicle's
@@ -176,8 +366,71 @@ class PythonEpisode {
   }
 
   RunRequest request_;
+  std::vector<std::string> aliases_;  // the scene's vehicles, in scene order
   std::shared_ptr<EpisodeRun> run_;
 };
+
+// A planner object campo.run is given: one with plan(obs) whose declaration
+// (decision_fields) is well formed; InputError at `where` else.
+void check_planner_object(const py::handle& planner, const std::string& where) {
+  if (!py::hasattr(planner, "plan")) {
+    throw InputError("planner", where == "planner" ? "" : where,
+                     "a planner name or an object with a plan(self, obs) method");
+  }
+  try {
+    declared_decision_fields(planner, python_planner_name(planner));  // a malformed declaration is bad input
+  } catch (const std::invalid_argument& e) {
+    throw InputError("planner", where == "planner" ? "" : where,
+                     std::string("a Python planner's declaration: ") + e.what());
+  }
+}
+
+// campo.run's planner={alias: object}: each object drives its vehicle, the
+// others keep the scene's planners. The chosen vehicle's (request.vehicle,
+// else the first) is given as `--planner` gives one; each other's planner
+// block is replaced by one naming the object's class (an override,
+// recorded), which the "python" scheme makes from the object. An override
+// of such a vehicle's planner is refused: it would be ignored.
+std::map<std::string, py::object> planners_by_alias(const py::dict& planners, RunRequest& request) {
+  const PreparedRun prepared = prepare_run(request, false);
+  const Scene& scene = prepared.scene;
+  std::vector<std::string> aliases;
+  for (const VehicleDef& v : scene.vehicles) aliases.push_back(v.alias);
+  std::map<std::string, py::object> given;
+  for (const auto& item : planners) {
+    const std::string alias = py::str(item.first).cast<std::string>();
+    if (!py::isinstance<py::str>(item.first) || !scene.find_vehicle(alias)) {
+      throw InputError("planner", alias, "a vehicle of " + request.scene.string() + " (" + alias_list(aliases) +
+                                             ") as the key of a planner object");
+    }
+    const py::object object = py::reinterpret_borrow<py::object>(item.second);
+    check_planner_object(object, alias);
+    given.emplace(alias, object);
+  }
+  const std::string& chosen = scene.vehicles.at(prepared.vehicle_index).alias;
+  std::vector<SceneOverride> replaced;
+  for (const auto& [alias, object] : given) {
+    const std::string name = python_planner_name(object);
+    if (alias == chosen) {
+      request.planner = name;
+      continue;
+    }
+    const VehicleDef& def = *scene.find_vehicle(alias);
+    const std::string& params = def.params.pointer;  // "<object>/params"
+    const std::string block = params.substr(0, params.rfind('/')) + "/planner";
+    for (std::size_t i = 0; i < request.overrides.size() && i < prepared.override_pointers.size(); ++i) {
+      const std::string& p = prepared.override_pointers[i];
+      if (p != block && !p.starts_with(block + "/")) continue;
+      throw InputError("overrides", request.overrides[i].pointer,
+                       "vehicle " + alias + "'s planner is the object given for it (" + name +
+                           "), which takes its parameters from its own constructor: an override of its planner "
+                           "would be ignored");
+    }
+    replaced.push_back(make_override("/objects/" + alias + "/planner", nlohmann::json{{"name", name}}));
+  }
+  request.overrides.insert(request.overrides.end(), replaced.begin(), replaced.end());
+  return given;
+}
 
 // campo.run: one run in the closed loop, with a planner named (built in, a
 // plugin's, "python:...") or given as a Python object.
@@ -203,28 +456,24 @@ py::object run(const std::string& scene, const py::object& planner, const std::o
     request.time_limit_name = "time_limit_s";
   }
   const ScopedLimits scoped(limits);
+  // Objects given for vehicles by alias, made by the "python" scheme while the run lasts (GivenPlanners).
+  std::map<std::string, py::object> given;
   if (py::isinstance<py::str>(planner)) {
     request.planner = planner.cast<std::string>();
+  } else if (py::isinstance<py::dict>(planner)) {
+    given = planners_by_alias(planner.cast<py::dict>(), request);
   } else if (!planner.is_none()) {
-    if (!py::hasattr(planner, "plan")) {
-      throw InputError("planner", "", "a planner name or an object with a plan(self, obs) method");
-    }
+    check_planner_object(planner, "planner");
     request.planner = python_planner_name(planner);
-    try {
-      declared_decision_fields(planner, request.planner);  // a malformed declaration is bad input, before the run
-    } catch (const std::invalid_argument& e) {
-      throw InputError("planner", "", std::string("a Python planner's declaration: ") + e.what());
-    }
-    request.make_planner = [planner](const PlannerSpec& spec, const PlannerContext&) {
-      // The object was built by the caller: overrides of the vehicle's planner parameters would be dropped.
-      if (!spec.params.values.empty()) {
-        throw InputError(spec.params.file, spec.params.pointer,
-                         "a planner given as a Python object takes its parameters from its own constructor, not "
-                         "from overrides (they would be ignored): got " + spec.params.values.dump());
-      }
-      return wrap_python_planner(planner, nlohmann::json::object());
+    // The chosen vehicle's (--vehicle, else the first): the others keep the scene's.
+    request.make_planner = [planner, chosen = request.vehicle](const PlannerSpec& spec, const PlannerContext& context) {
+      const bool is_chosen =
+          !context.vehicle_def || !context.scene ||
+          context.vehicle_def->alias == (chosen.empty() ? context.scene->vehicles.front().alias : chosen);
+      return is_chosen ? given_python_planner(planner, spec) : create_planner(spec, context);
     };
   }
+  const GivenPlanners scope(given);
   nlohmann::json record;
   if (out) {
     check_output_directory(*out, "out");  // before the episode is simulated
@@ -294,16 +543,31 @@ PYBIND11_MODULE(_campo, m) {
 
   py::class_<PythonEpisode>(m, "Episode",
                             "One run of the closed loop stepped from Python, Gymnasium-style: reset(), then "
-                            "step(command) at every control tick until done.")
+                            "step(command) at every control tick until done. A scene of several vehicles takes "
+                            "the shape of PettingZoo's parallel API: reset() -> {alias: observation}, "
+                            "step({alias: command}) -> (observations, dones, infos), keyed by alias, dones with "
+                            "\"__all__\"; agents lists the vehicles still on their missions.")
       .def(py::init<const std::string&, std::optional<std::uint64_t>, const py::object&, const std::string&, bool>(),
            py::arg("scene"), py::arg("seed") = py::none(), py::arg("overrides") = py::none(), py::arg("vehicle") = "",
            py::arg("continue_after_collision") = false)
-      .def("reset", &PythonEpisode::reset, "start (again) from the scene's start; returns the first Observation")
+      .def("reset", &PythonEpisode::reset,
+           "start (again) from the scene's start; returns the first Observation ({alias: Observation} with several "
+           "vehicles)")
       .def("step", &PythonEpisode::step, py::arg("command"),
-           "apply command until the next control tick; returns (observation, done, info)")
-      .def_property_readonly("observation", &PythonEpisode::observation)
-      .def_property_readonly("done", &PythonEpisode::done)
-      .def("metrics", &PythonEpisode::metrics, "the run's metrics, as run.json's (once done)")
+           "apply command (a Command, or a PlanResult whose status may end the mission) until the next control "
+           "tick; returns (observation, done, info). With several vehicles: {alias: command} for each of agents; "
+           "returns ({alias: observation}, {alias: done, \"__all__\": run done}, {alias: info}) for the vehicles "
+           "that acted")
+      .def_property_readonly("observation", &PythonEpisode::observation,
+                             "the current Observation ({alias: Observation} of agents with several vehicles)")
+      .def_property_readonly("done", &PythonEpisode::done, "whether the run has ended")
+      .def_property_readonly("agents", &PythonEpisode::agents,
+                             "aliases of the vehicles still on their missions, in scene order (empty once done)")
+      .def_property_readonly("possible_agents", &PythonEpisode::possible_agents,
+                             "aliases of every vehicle of the scene, in scene order")
+      .def("metrics", &PythonEpisode::metrics,
+           "the run's metrics, as run.json's (once done); with several vehicles {\"fleet\": run.json's metrics, "
+           "\"vehicles\": {alias: that vehicle's}}")
       .def("write", &PythonEpisode::write, py::arg("out"), py::arg("figures") = true,
            "write the run directory as campo run does (once done); returns run.json's content");
 
@@ -311,7 +575,8 @@ PYBIND11_MODULE(_campo, m) {
         py::arg("seed") = py::none(), py::arg("overrides") = py::none(), py::arg("vehicle") = "",
         py::arg("figures") = true, py::arg("continue_after_collision") = false, py::arg("time_limit_s") = py::none(),
         py::arg("call_limit_s") = py::none(),
-        "run scene to its end with planner (a name, \"python:module:Class\", or an object with plan(obs)); "
+        "run scene to its end with planner (a name, \"python:module:Class\", or an object with plan(obs), for "
+        "the vehicle chosen by vehicle, else the first; or {alias: object}, the scene's planners for the rest); "
         "writes the run directory to out when given; returns run.json's content. time_limit_s: wall clock the "
         "whole run may take; call_limit_s: wall clock of one call into a Python planner (default "
         "$CAMPO_PYTHON_CALL_LIMIT_S, else 60); past either the run ends as failed");

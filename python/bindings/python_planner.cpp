@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <iterator>
 #include <optional>
 #include <stdexcept>
@@ -370,7 +371,24 @@ py::object python_class(const std::string& module_name, const std::string& class
   return found;
 }
 
+// The objects the campo.run in progress gives its vehicles (GivenPlanners), or null.
+const std::map<std::string, py::object>* given_planners = nullptr;
+
+// The object given for the planner `spec` names in `context`, or null.
+const py::object* given_planner(const PlannerSpec& spec, const PlannerContext& context) {
+  if (!given_planners) return nullptr;
+  for (const auto& entry : *given_planners) {
+    if (context.vehicle_def && entry.first != context.vehicle_def->alias) continue;
+    if (python_planner_name(entry.second) == spec.name) return &entry.second;
+  }
+  return nullptr;
+}
+
 std::unique_ptr<Planner> create_python_planner(const PlannerSpec& spec, const PlannerContext& context) {
+  {
+    py::gil_scoped_acquire gil;
+    if (const py::object* given = given_planner(spec, context)) return given_python_planner(*given, spec);
+  }
   const auto parts = split_python_name(spec.name);
   if (!parts) {
     throw InputError(spec.params.file, spec.name_pointer,
@@ -497,6 +515,22 @@ std::shared_ptr<const PlannerRecord> planner_record_of(std::string_view name) {
   }
   throw InputError("planner", "", "a registered planner (" + known + ") or \"python:module:Class\", got \"" +
                                       std::string(name) + "\"");
+}
+
+GivenPlanners::GivenPlanners(const std::map<std::string, py::object>& by_alias) : previous_(given_planners) {
+  given_planners = &by_alias;
+}
+
+GivenPlanners::~GivenPlanners() { given_planners = previous_; }
+
+std::unique_ptr<Planner> given_python_planner(const py::object& planner, const PlannerSpec& spec) {
+  // The object was built by the caller: overrides of the vehicle's planner parameters would be dropped.
+  if (!spec.params.values.empty()) {
+    throw InputError(spec.params.file, spec.params.pointer,
+                     "a planner given as a Python object takes its parameters from its own constructor, not "
+                     "from overrides (they would be ignored): got " + spec.params.values.dump());
+  }
+  return wrap_python_planner(planner, nlohmann::json::object());
 }
 
 std::string python_planner_name(const py::handle& planner) {

@@ -3,6 +3,7 @@
 /// makes a Python object with plan(obs) a campo::Planner, the conversions of
 /// commands and plan results, and the "python:package.module:ClassName"
 /// planner scheme (campo/planner_registry.hpp).
+#include <map>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -69,6 +70,28 @@ std::string python_planner_name(const pybind11::handle& planner);
 
 /// The Python traceback of the exception being handled, as Python prints it.
 std::string traceback_text(pybind11::error_already_set& error);
+
+/// Python planner objects a campo.run call gives its vehicles, by alias
+/// (python:module:Class names the class of each in the scene the run reads).
+/// While one lives, the "python" scheme makes the planner of a vehicle named
+/// here from its object, when the spec names the object's class, instead of
+/// importing the class and constructing it: a check of a planner block with
+/// no vehicle in its context takes any object of that class. Its parameters
+/// come from the object's constructor: a spec with parameters is refused.
+class GivenPlanners {
+ public:
+  explicit GivenPlanners(const std::map<std::string, pybind11::object>& by_alias);
+  ~GivenPlanners();
+  GivenPlanners(const GivenPlanners&) = delete;
+  GivenPlanners& operator=(const GivenPlanners&) = delete;
+
+ private:
+  const std::map<std::string, pybind11::object>* previous_;
+};
+
+/// The planner `planner` (a Python object) for `spec`, as campo.run gives it:
+/// InputError when `spec` carries parameters (an override would be ignored).
+std::unique_ptr<Planner> given_python_planner(const pybind11::object& planner, const PlannerSpec& spec);
 
 /// Registers the "python" planner scheme: "python:package.module:ClassName"
 /// imports the module, checks the class, and constructs it with the
