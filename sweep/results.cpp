@@ -20,11 +20,18 @@ namespace campo {
 
 namespace {
 
-RunMetrics read_metrics(const JsonNode& node) {
+RunMetrics read_metrics(const JsonNode& node, bool fleet) {
   // Only the keys the table uses: run.json's metrics are defined (and grow) in run/, so no finish().
   ObjectReader r(node);
   RunMetrics m;
   m.outcome = r.required("outcome").as_string();
+  if (fleet) {
+    // A run of several vehicles: the fleet's outcome, time and collisions; paths are each vehicle's.
+    m.fleet = true;
+    m.time_s = r.required("sim_time_s").as_number(Range::non_negative());
+    m.collisions = static_cast<int>(r.required("collisions").as_int(0, 1 << 30));
+    return m;
+  }
   r.read("waypoints_reached", m.waypoints_reached, Range::non_negative());
   r.read("waypoints_discarded", m.waypoints_discarded, Range::non_negative());
   m.path_length_m = r.required("path_length_m").as_number(Range::non_negative());
@@ -53,9 +60,28 @@ RunResult read_result(const JsonNode& node) {
   result.completed = r.required("status").as_choice({"failed", "completed"}) == 1;
   for (const JsonNode& o : r.required("overrides").as_array(0, 100000)) result.overrides.push_back(o.as_string());
   const JsonNode metrics = r.required("metrics");
+  // A run of several vehicles: each one's metrics beside the fleet's (absent for one vehicle and in older results).
+  if (auto vehicles = r.optional("vehicles"); vehicles && result.completed) {
+    for (const JsonNode& vehicle : vehicles->as_array(2, 100000)) {
+      ObjectReader v(vehicle);
+      VehicleMetrics entry;
+      entry.alias = v.required("alias").as_string();
+      const JsonNode vehicle_metrics = v.required("metrics");
+      if (!vehicle_metrics.value().is_object()) vehicle_metrics.fail("the vehicle's metrics object");
+      read_metrics(vehicle_metrics, false);
+      entry.metrics = vehicle_metrics.value();
+      v.finish();
+      for (const VehicleMetrics& other : result.vehicles) {
+        if (other.alias == entry.alias) vehicle.fail("a vehicle alias once (\"" + entry.alias + "\" appears twice)");
+      }
+      result.vehicles.push_back(std::move(entry));
+    }
+  } else if (vehicles) {
+    vehicles->fail("no vehicles for a failed run");
+  }
   if (result.completed) {
     if (!metrics.value().is_object()) metrics.fail("the metrics object of a completed run");
-    result.metrics = read_metrics(metrics);
+    result.metrics = read_metrics(metrics, !result.vehicles.empty());
     result.metrics_json = metrics.value();
   } else {
     result.reason = r.required("reason").as_string();
@@ -110,18 +136,24 @@ struct RowFold {
       return;
     }
     const RunMetrics& m = r.metrics;
+    if (m.outcome == "reached") ++reached;
+    collisions += m.collisions;
+    if (m.fleet) {
+      // Several vehicles: the path metrics are each vehicle's (campo table --vehicle, or ALIAS.METRIC).
+      time_s.add(m.time_s);
+      if (m.outcome == "reached") time_s_reached.add(m.time_s);
+      return;
+    }
     waypoints_reached.add(m.waypoints_reached);
     waypoints_discarded.add(m.waypoints_discarded);
     path_length_m.add(m.path_length_m);
     path_ratio.add(m.path_ratio);
     time_s.add(m.time_s);
     if (m.outcome == "reached") {
-      ++reached;
       path_length_m_reached.add(m.path_length_m);
       path_ratio_reached.add(m.path_ratio);
       time_s_reached.add(m.time_s);
     }
-    collisions += m.collisions;
     if (const auto& c = m.min_clearance_m) min_clearance_m = std::min(min_clearance_m.value_or(*c), *c);
     if (m.replans > 0) {
       replan_medians.add(m.replan_ms_median);
@@ -184,6 +216,12 @@ SweepItemResult completed_item(const nlohmann::json& run_record, const std::stri
   SweepItemResult result;
   result.completed = true;
   result.metrics = run_record.at("metrics");
+  if (const auto vehicles = run_record.find("vehicles"); vehicles != run_record.end()) {
+    result.vehicles = nlohmann::json::array();
+    for (const nlohmann::json& vehicle : *vehicles) {
+      result.vehicles.push_back({{"alias", vehicle.at("alias")}, {"metrics", vehicle.at("metrics")}});
+    }
+  }
   result.campo_version = provenance.at("campo_version");
   result.git_rev = provenance.at("git_revision");
   result.scene_sha256 = provenance.at("scene").at("sha256");
@@ -202,7 +240,8 @@ nlohmann::json to_json(const SweepItemResult& r) {
           {"files_failed", r.files_failed},   {"files_error", r.files_error},
           {"metrics", r.metrics},             {"campo_version", r.campo_version},
           {"git_rev", r.git_rev},             {"scene_sha256", r.scene_sha256},
-          {"trajectory_sha256", r.trajectory_sha256}, {"kept_run_dir", r.kept_run_dir}};
+          {"trajectory_sha256", r.trajectory_sha256}, {"kept_run_dir", r.kept_run_dir},
+          {"vehicles", r.vehicles}};
 }
 
 SweepItemResult sweep_item_result_from_json(const nlohmann::json& json) {
@@ -217,6 +256,7 @@ SweepItemResult sweep_item_result_from_json(const nlohmann::json& json) {
   r.scene_sha256 = json.at("scene_sha256");
   r.trajectory_sha256 = json.at("trajectory_sha256").get<std::string>();
   r.kept_run_dir = json.at("kept_run_dir").get<bool>();
+  r.vehicles = json.at("vehicles");
   return r;
 }
 
@@ -236,6 +276,7 @@ nlohmann::json result_line(const SweepRun& run, const SweepItemResult& result, c
     line["git_rev"] = result.git_rev;
     line["scene_sha256"] = result.scene_sha256;
     line["trajectory_sha256"] = result.trajectory_sha256;
+    if (!result.vehicles.is_null()) line["vehicles"] = result.vehicles;
   } else {
     line["reason"] = result.reason;
     line["metrics"] = nullptr;
@@ -486,6 +527,63 @@ MetricName split_metric(const std::string& metric) {
   return {metric.substr(0, at), metric.substr(at) == kReachedSuffix};
 }
 
+VehicleMetricName split_vehicle_metric(const std::string& metric) {
+  const std::size_t dot = metric.rfind('.', metric.find('@'));
+  if (dot == std::string::npos) return {"", metric};
+  return {metric.substr(0, dot), metric.substr(dot + 1)};
+}
+
+std::string vehicle_metric_name(const std::string& metric, const std::string& alias) {
+  return split_vehicle_metric(metric).vehicle.empty() ? alias + "." + metric : metric;
+}
+
+namespace {
+
+// A list of names for an error: "a, b, c".
+std::string name_list(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) (text += text.empty() ? "" : ", ") += name;
+  return text;
+}
+
+// The vehicle `alias` of a run, or null.
+const VehicleMetrics* find_vehicle(const RunResult& run, const std::string& alias) {
+  for (const VehicleMetrics& vehicle : run.vehicles) {
+    if (vehicle.alias == alias) return &vehicle;
+  }
+  return nullptr;
+}
+
+// Whether `metric` names a vehicle's metric rather than one of the run's (whose names hold no dot,
+// but a run's metric of that exact name would win).
+std::optional<VehicleMetricName> vehicle_part(const std::string& metric, const nlohmann::json& run_metrics) {
+  const VehicleMetricName name = split_vehicle_metric(metric);
+  if (name.vehicle.empty()) return std::nullopt;
+  if (run_metrics.is_object() && run_metrics.contains(split_metric(metric).base)) return std::nullopt;
+  return name;
+}
+
+}  // namespace
+
+RunResult vehicle_run(const RunResult& run, const std::string& alias, const std::string& file,
+                      const std::string& where) {
+  if (!run.completed) return run;
+  const VehicleMetrics* vehicle = find_vehicle(run, alias);
+  if (vehicle == nullptr) {
+    std::vector<std::string> aliases;
+    for (const VehicleMetrics& v : run.vehicles) aliases.push_back(v.alias);
+    throw InputError(file, where,
+                     "expected a vehicle of run " + run.name +
+                         (aliases.empty() ? " (it has one vehicle: its metrics are the plain names, no --vehicle)"
+                                          : " (" + name_list(aliases) + ")") +
+                         ", got \"" + alias + "\"");
+  }
+  RunResult seen = run;
+  seen.metrics_json = vehicle->metrics;
+  seen.metrics = read_metrics(JsonNode(vehicle->metrics, file, "/vehicles/" + alias + "/metrics"), false);
+  return seen;
+}
+
 bool measured_metric(std::string_view key) {
   return key == "wall_time_s" || key.starts_with("planner_time_ms_") || key.starts_with("replan_time_ms_");
 }
@@ -498,7 +596,17 @@ nlohmann::json deterministic_metrics(const RunResult& run) {
   for (const auto& [key, value] : run.metrics_json.items()) {
     if (!measured_metric(key)) metrics[key] = value;
   }
-  return metrics;
+  if (run.vehicles.empty()) return metrics;
+  // Several vehicles: each one's too (the fleet's own "vehicles" is their number).
+  nlohmann::json all = {{"run", std::move(metrics)}, {"vehicles", nlohmann::json::array()}};
+  for (const VehicleMetrics& vehicle : run.vehicles) {
+    nlohmann::json own = {{"alias", vehicle.alias}};
+    for (const auto& [key, value] : vehicle.metrics.items()) {
+      if (!measured_metric(key)) own[key] = value;
+    }
+    all["vehicles"].push_back(std::move(own));
+  }
+  return all;
 }
 
 }  // namespace
@@ -529,11 +637,23 @@ void MetricCatalog::add(const RunResult& run) {
     if (value.is_number()) kinds_[key] |= 1;
     if (value.is_boolean()) kinds_[key] |= 2;
   }
+  for (const VehicleMetrics& vehicle : run.vehicles) {
+    if (std::find(aliases_.begin(), aliases_.end(), vehicle.alias) == aliases_.end()) aliases_.push_back(vehicle.alias);
+    auto& kinds = vehicle_kinds_[vehicle.alias];
+    for (const auto& [key, value] : vehicle.metrics.items()) {
+      if (value.is_number()) kinds[key] |= 1;
+      if (value.is_boolean()) kinds[key] |= 2;
+    }
+  }
 }
 
 std::vector<std::string> MetricCatalog::available() const {
   std::vector<std::string> metrics{"success"};
   for (const auto& [name, kinds] : kinds_) metrics.push_back(name);
+  for (const std::string& alias : aliases_) {
+    metrics.push_back(alias + ".success");
+    for (const auto& [name, kinds] : vehicle_kinds_.at(alias)) metrics.push_back(alias + "." + name);
+  }
   return metrics;
 }
 
@@ -543,19 +663,49 @@ MetricKind MetricCatalog::check(const std::string& metric, const std::string& fi
     throw InputError(file, where, "expected a metric, or a metric over the runs that reached their goal as \"" +
                                       name.base + std::string(kReachedSuffix) + "\", got \"" + metric + "\"");
   }
-  const bool success = name.base == "success" || name.base == "outcome";
+  // A vehicle's metric, "ALIAS.METRIC", unless the runs have a metric of that whole name.
+  std::optional<VehicleMetricName> vehicle;
+  if (kinds_.find(name.base) == kinds_.end()) {
+    if (VehicleMetricName v = split_vehicle_metric(metric); !v.vehicle.empty()) vehicle = v;
+  }
+  const std::string base = vehicle ? split_metric(vehicle->metric).base : name.base;
+  const bool success = base == "success" || base == "outcome";
   if (success && name.reached_only) {
     throw InputError(file, where, "expected \"success\" without \"@reached\" (over the runs that reached their "
                                   "goal it is 100 % by definition), got \"" + metric + "\"");
   }
+  if (vehicle && completed_) {
+    const auto own = vehicle_kinds_.find(vehicle->vehicle);
+    if (own == vehicle_kinds_.end()) {
+      throw InputError(file, where,
+                       aliases_.empty()
+                           ? "expected a metric of the runs (" + name_list(available()) +
+                                 "): their runs have one vehicle each, no ALIAS.METRIC; got \"" + metric + "\""
+                           : "expected ALIAS.METRIC with a vehicle of the runs (" + name_list(aliases_) +
+                                 "), got \"" + vehicle->vehicle + "\" in \"" + metric + "\"");
+    }
+    if (success) return MetricKind::rate;
+    const auto it = own->second.find(base);
+    if (it == own->second.end()) {
+      std::vector<std::string> known{vehicle->vehicle + ".success"};
+      for (const auto& [key, kinds] : own->second) known.push_back(vehicle->vehicle + "." + key);
+      throw InputError(file, where, "expected a metric of vehicle " + vehicle->vehicle + " (" + name_list(known) +
+                                        "), got \"" + metric + "\"");
+    }
+    return (it->second & 2) != 0 && (it->second & 1) == 0 ? MetricKind::rate : MetricKind::number;
+  }
   if (success) return MetricKind::rate;
+  if (vehicle) return MetricKind::number;  // no run yet to check it against
   const auto it = kinds_.find(name.base);
   const bool number = it != kinds_.end() && (it->second & 1) != 0;
   const bool boolean = it != kinds_.end() && (it->second & 2) != 0;
   if (completed_ && !number && !boolean) {
-    std::string known;
-    for (const std::string& m : available()) (known += known.empty() ? "" : ", ") += m;
-    throw InputError(file, where, "expected a metric of the runs (" + known + "), got \"" + metric + "\"");
+    std::vector<std::string> known{"success"};
+    for (const auto& [key, kinds] : kinds_) known.push_back(key);
+    const std::string vehicles =
+        aliases_.empty() ? "" : ", or ALIAS.METRIC of a vehicle (" + name_list(aliases_) + ")";
+    throw InputError(file, where,
+                     "expected a metric of the runs (" + name_list(known) + vehicles + "), got \"" + metric + "\"");
   }
   return boolean && !number ? MetricKind::rate : MetricKind::number;
 }
@@ -574,7 +724,8 @@ MetricKind check_metric(const std::string& metric, const std::vector<RunResult>&
 }
 
 bool non_negative_metric(const std::string& metric) {
-  const std::string base = split_metric(metric).base;
+  // A vehicle's metric is what the same metric of a run of one vehicle is.
+  const std::string base = split_metric(split_vehicle_metric(metric).metric).base;
   if (base.find("clearance") != std::string::npos) return false;  // signed distances
   static constexpr std::array<std::string_view, 7> kNonNegative{
       "path_ratio", "collisions", "replans", "planner_calls", "waypoints_planned", "waypoints_reached",
@@ -596,6 +747,21 @@ Support metric_support(const std::string& metric) {
 }
 
 std::optional<double> metric_value(const RunResult& run, const std::string& metric) {
+  if (const auto vehicle = vehicle_part(metric, run.metrics_json)) {
+    const VehicleMetrics* own = find_vehicle(run, vehicle->vehicle);
+    const MetricName name = split_metric(vehicle->metric);
+    if (!run.completed) {
+      return name.base == "success" || name.base == "outcome" ? std::optional<double>(0.0) : std::nullopt;
+    }
+    if (own == nullptr) return std::nullopt;
+    const bool reached = own->metrics.value("outcome", "") == "reached";
+    if (name.base == "success" || name.base == "outcome") return reached ? 1.0 : 0.0;
+    if (name.reached_only && !reached) return std::nullopt;
+    const nlohmann::json value = own->metrics.value(name.base, nlohmann::json());
+    if (value.is_boolean()) return value.get<bool>() ? 1.0 : 0.0;
+    if (value.is_number()) return value.get<double>();
+    return std::nullopt;
+  }
   const MetricName name = split_metric(metric);
   const bool reached = run.completed && run.metrics.outcome == "reached";
   if (name.base == "success" || name.base == "outcome") return reached ? 1.0 : 0.0;

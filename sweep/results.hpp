@@ -38,7 +38,9 @@ struct SweepItemResult {
   /// files that failed ("map: ...; video: ..."); empty when everything was written.
   std::string files_error;
   // A completed run's, from its run.json:
-  nlohmann::json metrics;             ///< run.json's metrics
+  nlohmann::json metrics;             ///< run.json's metrics (with several vehicles: the fleet's)
+  /// With several vehicles, each one's {alias, metrics} from run.json's "vehicles", in scene order; null with one.
+  nlohmann::json vehicles;
   nlohmann::json campo_version;       ///< its provenance's
   nlohmann::json git_rev;
   nlohmann::json scene_sha256;
@@ -49,7 +51,8 @@ struct SweepItemResult {
   bool reached() const;
 };
 
-/// A completed run's result from its run.json and the SHA-256 of its trajectory.csv text.
+/// A completed run's result from its run.json and the SHA-256 of its trajectory.csv text; with several
+/// vehicles, each vehicle's alias and metrics too.
 SweepItemResult completed_item(const nlohmann::json& run_record, const std::string& trajectory_sha256);
 /// A run that failed (threw, crashed, was killed) before writing its record.
 SweepItemResult failed_item(const std::string& reason);
@@ -75,6 +78,9 @@ struct ResultLineContext {
 /// failed run), campo_version, git_rev, scene_sha256, wall_time_s,
 /// spec_sha256}; a completed run's trajectory_sha256, a failed one's
 /// reason, files_error when something was not written, triage {dir, repro}.
+/// A completed run of several vehicles also has "vehicles": [{alias,
+/// metrics}] in scene order ("metrics" is then the fleet's); a run of one
+/// vehicle has no such key, so its line is as before.
 nlohmann::json result_line(const SweepRun& run, const SweepItemResult& result, const ResultLineContext& context);
 
 /// results.jsonl opened for appending. A partial last line (a sweep killed
@@ -100,8 +106,11 @@ class ResultsLog {
 };
 
 /// What the table needs from a run's metrics (run.json, docs/running.md).
+/// A run of several vehicles has the fleet's (fleet): outcome, time and
+/// collisions; its path metrics are each vehicle's (RunResult::vehicles).
 struct RunMetrics {
   std::string outcome;             ///< reached, collision, timeout or aborted
+  bool fleet = false;              ///< the metrics of a run of several vehicles: no waypoint or path metrics
   double waypoints_reached = 0.0;
   double waypoints_discarded = 0.0;
   double path_length_m = 0.0;
@@ -112,6 +121,12 @@ struct RunMetrics {
   int replans = 0;
   double replan_ms_median = 0.0;
   double replan_ms_max = 0.0;
+};
+
+/// One vehicle's metrics in a run of several (a results line's "vehicles").
+struct VehicleMetrics {
+  std::string alias;
+  nlohmann::json metrics;  ///< as run.json records them
 };
 
 /// One line of results.jsonl, read back.
@@ -129,6 +144,9 @@ struct RunResult {
   std::vector<std::string> overrides;
   RunMetrics metrics;                  ///< completed runs only
   nlohmann::json metrics_json;         ///< the run's metrics object as recorded; null for a failed run
+  /// A completed run of several vehicles: each one's metrics, in scene order
+  /// (metrics are then the fleet's); empty for a run of one vehicle.
+  std::vector<VehicleMetrics> vehicles;
   std::string trajectory_sha256;       ///< of its trajectory.csv; empty for failed runs and older results
 };
 
@@ -244,6 +262,32 @@ struct MetricName {
 };
 MetricName split_metric(const std::string& metric);
 
+/// A metric name as tables and plots take it, split into the vehicle it is
+/// of and the metric: "ALIAS.METRIC" names vehicle ALIAS's metric in a run
+/// of several vehicles ("drone.path_ratio", "rover.success",
+/// "drone.path_ratio@reached": over the runs in which that vehicle reached
+/// its goal); a name without a dot is the run's (the fleet's with several
+/// vehicles). Split at the last dot before any "@": aliases may hold dots,
+/// metric names do not. Not checked (check_metric does that).
+struct VehicleMetricName {
+  std::string vehicle;  ///< empty: the run's metric
+  std::string metric;   ///< the metric, with its "@reached" if any
+};
+VehicleMetricName split_vehicle_metric(const std::string& metric);
+
+/// `run` seen from one of its vehicles (`campo table --vehicle`, `campo plot
+/// --vehicle`): that vehicle's metrics in place of the fleet's, so plain
+/// metric names, "success" and the summary table mean that vehicle's;
+/// "ALIAS.METRIC" still names any vehicle's. A failed run is unchanged. A
+/// completed run without that vehicle is an InputError(file, where) naming
+/// the run and listing its vehicles (or saying it has one).
+RunResult vehicle_run(const RunResult& run, const std::string& alias, const std::string& file,
+                      const std::string& where);
+
+/// A metric name as `--vehicle ALIAS` reads it: a plain name becomes
+/// "ALIAS.name"; a name with a vehicle stays as it is.
+std::string vehicle_metric_name(const std::string& metric, const std::string& alias);
+
 /// Whether a run.json metric is measured wall-clock time, which differs
 /// between identical runs: wall_time_s, planner_time_ms_*, replan_time_ms_*.
 bool measured_metric(std::string_view key);
@@ -271,27 +315,37 @@ class IdenticalRuns {
 };
 
 /// The metrics of the completed runs, gathered a run at a time: what
-/// check_metric and available_metrics need (memory: one entry per metric name).
+/// check_metric and available_metrics need (memory: one entry per metric
+/// name and vehicle alias).
 class MetricCatalog {
  public:
   void add(const RunResult& run);
   /// available_metrics() of the runs added.
   std::vector<std::string> available() const;
+  /// The vehicles' aliases of the runs of several vehicles added, in order of first appearance.
+  const std::vector<std::string>& vehicles() const { return aliases_; }
   /// check_metric() against the runs added.
   MetricKind check(const std::string& metric, const std::string& file, const std::string& where) const;
 
  private:
   bool completed_ = false;
   std::map<std::string, unsigned char> kinds_;  ///< metric -> 1: some number, 2: some boolean (bits)
+  std::vector<std::string> aliases_;
+  std::map<std::string, std::map<std::string, unsigned char>> vehicle_kinds_;  ///< alias -> its metrics' kinds
 };
 
-/// "success", then every metric with a number or boolean value in some completed run, sorted.
+/// "success", then every metric with a number or boolean value in some
+/// completed run, sorted; then, for runs of several vehicles, each vehicle's
+/// as "ALIAS.success" and "ALIAS.METRIC" (vehicles in order of appearance).
 std::vector<std::string> available_metrics(const std::vector<RunResult>& runs);
 
 /// The kind of `metric`; throws InputError(file, where, ...) listing the
 /// available metrics when no completed run has it as a number or boolean
 /// (any name passes while no run has completed), and for a suffix other
 /// than "@reached" or "success@reached" (always 100 %). "outcome" is "success".
+/// "ALIAS.METRIC" (split_vehicle_metric) is checked against vehicle ALIAS's
+/// metrics: an alias no run has is an error listing the vehicles, a metric
+/// that vehicle lacks one listing its metrics.
 MetricKind check_metric(const std::string& metric, const std::vector<RunResult>& runs, const std::string& file,
                         const std::string& where);
 
@@ -311,6 +365,8 @@ Support metric_support(const std::string& metric);
 /// completed with outcome "reached", else 0 (failed runs included); otherwise
 /// the completed run's number, or 1/0 for a boolean; empty when it has none,
 /// and for "<metric>@reached" when the run did not reach its goal.
+/// "ALIAS.METRIC" the same of vehicle ALIAS's metrics and outcome (empty
+/// for a completed run without that vehicle; "ALIAS.success" is 0 for a failed run).
 std::optional<double> metric_value(const RunResult& run, const std::string& metric);
 
 /// The metric over `runs`, over those that have a value (the Summary's n);

@@ -525,6 +525,15 @@ std::string quantity_label(const std::string& name) {
 }
 
 std::string metric_label(const std::string& metric_text) {
+  // A vehicle's metric: the metric's label naming the vehicle, before the unit ("Path length of drone (m)").
+  if (const VehicleMetricName v = split_vehicle_metric(metric_text); !v.vehicle.empty()) {
+    const MetricName name = split_metric(v.metric);
+    if (name.reached_only) return metric_label(v.vehicle + "." + name.base) + ", reached runs";
+    std::string label = metric_label(name.base);
+    const std::size_t unit = label.size() > 1 && label.back() == ')' ? label.rfind(" (") : std::string::npos;
+    if (unit == std::string::npos) return label + " of " + v.vehicle;
+    return label.substr(0, unit) + " of " + v.vehicle + label.substr(unit);
+  }
   const MetricName name = split_metric(metric_text);
   if (name.reached_only) return metric_label(name.base) + ", reached runs";
   const std::string& metric = name.base;
@@ -534,7 +543,7 @@ std::string metric_label(const std::string& metric_text) {
 }
 
 std::string metric_heading(const std::string& metric) {
-  const MetricName name = split_metric(metric);
+  const MetricName name = split_metric(split_vehicle_metric(metric).metric);
   if (name.reached_only || name.base == "success" || name.base == "outcome") return metric_label(metric);
   return metric_label(metric) + ", all runs";
 }

@@ -22,6 +22,7 @@ namespace fs = std::filesystem;
 struct PlotOptions {
   std::string dir;
   PlotRequest request;
+  std::string vehicle;  ///< empty: the runs' own metrics (the fleet's with several vehicles)
   std::string out;
   std::vector<figure::FigureFormat> formats{figure::FigureFormat::png};
 };
@@ -31,6 +32,9 @@ int run_plot(const PlotOptions& o) {
   for (const fs::path& file : figure::figure_files(o.out, o.formats)) check_output_file(file, "--out");
   const fs::path dir = o.dir;
   TableLayout layout = table_layout(dir);
+  // --vehicle: a plain metric name is that vehicle's, each run seen from it.
+  PlotRequest request = o.request;
+  if (!o.vehicle.empty()) request.y = vehicle_metric_name(request.y, o.vehicle);
   // The results a line at a time, each run folded into its point or box: memory grows with the plot.
   const bool axes_from_runs = layout.axes_from_runs;
   std::optional<PlotBuilder> plot;
@@ -39,11 +43,15 @@ int run_plot(const PlotOptions& o) {
       dir / "results.jsonl", warnings,
       [&] {
         if (axes_from_runs) layout.axes.clear();
-        plot.emplace(layout, o.request);
+        plot.emplace(layout, request);
       },
       [&](const RunResult& run, std::size_t index) {
         add_axes(layout, run);
-        plot->add(run, index);
+        if (o.vehicle.empty()) {
+          plot->add(run, index);
+        } else {
+          plot->add(vehicle_run(run, o.vehicle, "command line", "--vehicle"), index);
+        }
       });
   for (const std::string& warning : warnings) std::cerr << "warning: " << warning << "\n";
   for (const fs::path& file : plot->draw().write(o.out, o.formats)) {
@@ -61,8 +69,14 @@ Command add_plot(CLI::App& app) {
       ->check(input_path());
   app.add_option("--x", o->request.x, "Field on the x axis: scene, planner, seed or an axis name")->required();
   app.add_option("--y", o->request.y,
-                 "Metric on the y axis: success (rate of outcome reached) or a key of run.json's metrics")
+                 "Metric on the y axis: success (rate of outcome reached) or a key of run.json's metrics; with "
+                 "several vehicles a plain name is the run's (all_reached, makespan_s ...) and ALIAS.METRIC a "
+                 "vehicle's (drone.path_ratio, rover.success)")
       ->required();
+  app.add_option("--vehicle", o->vehicle,
+                 "In runs of several vehicles, the vehicle whose metric a plain --y names (ALIAS.METRIC still "
+                 "names any vehicle's); each completed run must have it")
+      ->type_name("ALIAS");
   app.add_option("--group", o->request.group, "Field whose values are drawn as separate coloured series");
   app.add_option("--kind", o->request.kind,
                  "line (numeric x: mean and 95% interval), box (x as categories: quartiles, whiskers, outliers) "

@@ -65,8 +65,17 @@ int run_run(const RunOptions& o) {
       if (o.figures && std::filesystem::exists(out / file)) figures += ", " + file;
     }
   }
-  std::cout << run_summary_line(run.record) << "; wrote run.json, " << kEventsFile << ", trajectory.csv, scene.json"
-            << figures << " to " << o.out << "\n";
+  // The run's files as run.json names them: one vehicle's events.jsonl and trajectory.csv, or each vehicle's.
+  std::string files = std::string(kEventsFile) + ", trajectory.csv";
+  if (const auto vehicles = run.record.find("vehicles"); vehicles != run.record.end()) {
+    files.clear();
+    for (const nlohmann::json& vehicle : *vehicles) {
+      (files += files.empty() ? "" : ", ") += vehicle.at("event_log").at("file").get<std::string>();
+      files += ", " + vehicle.at("trajectory_file").get<std::string>();
+    }
+  }
+  std::cout << run_summary_line(run.record) << "; wrote run.json, " << files << ", scene.json" << figures << " to "
+            << o.out << "\n";
   if (!run.figure_failures.empty()) {
     // The run is kept: only the figures that failed are missing.
     const FigureFailureReport report = figure_failure_report(run.figure_failures, o.out);
@@ -101,7 +110,10 @@ Command add_run(CLI::App& app) {
                  "Repeatable; validated like the file");
   app.add_option("--seed", o->seed, "World seed, an integer in [0, 2^64-1] (same as --set /world/seed=N)")
       ->each([o](const std::string&) { o->seed_set = true; });
-  app.add_option("--vehicle", o->vehicle, "Vehicle to run, by alias (a scene has one: campo simulates one vehicle per scene)");
+  app.add_option("--vehicle", o->vehicle,
+                 "In a scene of several vehicles, the one --planner applies to and whose sensors the figures' panel "
+                 "shows, by alias (default: the first); every vehicle runs")
+      ->type_name("ALIAS");
   app.add_flag("--continue-after-collision", o->continue_after_collision,
                "Count collisions but keep going until the mission ends or times out");
   app.add_flag("!--no-figures", o->figures, "Do not draw map.png and side.png (for sweeps)");
@@ -130,6 +142,8 @@ Command add_run(CLI::App& app) {
       "parameter), DIR/events.jsonl (the planner's decisions, one line each), DIR/trajectory.csv (one\n"
       "row per planner call), DIR/scene.json (the effective scene) and the figures DIR/map.png and\n"
       "DIR/side.png, plus DIR/heightmap.png for mapping planners (redraw with campo render).\n"
+      "A scene of several vehicles runs them all in one world: run.json holds the run's metrics and\n"
+      "each vehicle's, and each vehicle has its DIR/events_ALIAS.jsonl and DIR/trajectory_ALIAS.csv.\n"
       "Exit 0 when the run completed, whatever its outcome; 2 on bad input or an output that cannot be\n"
       "written (nothing is written); 1 on internal failure. A completed run whose figure fails keeps\n"
       "its files and exits 2 (or 1 for an internal failure) naming the figure.");

@@ -26,11 +26,24 @@ struct TableOptions {
   CellFormat cell;
   std::string rows, cols;            ///< fields; empty: the spec's table, else the summary
   std::vector<std::string> metrics;
+  std::string vehicle;               ///< empty: the runs' own metrics (the fleet's with several vehicles)
   bool summary = false;              ///< the summary table even when the spec has a table
   std::string chart;                 ///< empty: DIR/chart.png
   bool no_chart = false;
   std::vector<figure::FigureFormat> formats{figure::FigureFormat::png};  ///< of the chart
 };
+
+// The default table of runs of several vehicles: the fleet's success (every vehicle reached), makespan,
+// collisions and least distance between vehicles, and each vehicle's path ratio, per scene (and per
+// value of the sweep's axis when it has one).
+TableRequest fleet_request(const TableLayout& layout, const std::vector<std::string>& vehicles) {
+  TableRequest request{.rows = "scene",
+                       .cols = layout.axes.size() == 1 ? layout.axes.front() : std::string(),
+                       .metrics = {"success", "makespan_s", "collisions", "min_vehicle_distance_m"}};
+  for (const std::string& alias : vehicles) request.metrics.push_back(alias + ".path_ratio");
+  request.file = "the default table of several vehicles";
+  return request;
+}
 
 int run_table(const TableOptions& o) {
   const fs::path dir = o.dir;
@@ -46,6 +59,11 @@ int run_table(const TableOptions& o) {
   } else if (!o.summary) {
     request = layout.table;
   }
+  // --vehicle: plain metric names are that vehicle's (each run is seen from it: vehicle_run).
+  if (request && !o.vehicle.empty()) {
+    for (std::string& metric : request->metrics) metric = vehicle_metric_name(metric, o.vehicle);
+  }
+  MetricCatalog catalog;  // which vehicles the runs have
   // The results a line at a time, each run folded into its row and cell: memory grows with the table.
   const bool axes_from_runs = layout.axes_from_runs;
   std::optional<SummaryBuilder> summary_rows;
@@ -57,26 +75,48 @@ int run_table(const TableOptions& o) {
         if (axes_from_runs) layout.axes.clear();
         summary_rows.emplace(layout);
         if (request) metric_cells.emplace(layout, *request);
+        catalog = {};
       },
       [&](const RunResult& run, std::size_t index) {
         add_axes(layout, run);
-        summary_rows->add(run, index);
-        if (metric_cells) metric_cells->add(run, index);
+        // --vehicle: each run seen from that vehicle (plain names are its metrics).
+        std::optional<RunResult> seen;
+        if (!o.vehicle.empty()) seen = vehicle_run(run, o.vehicle, "command line", "--vehicle");
+        const RunResult& r = seen ? *seen : run;
+        summary_rows->add(r, index);
+        if (metric_cells) metric_cells->add(r, index);
+        catalog.add(run);
       });
   for (const std::string& warning : warnings) std::cerr << "warning: " << warning << "\n";
   const SweepTable summary = summary_rows->finish();
+  // Runs of several vehicles and no table asked for: the fleet's table, from a second reading.
+  const bool fleet = !catalog.vehicles().empty() && o.vehicle.empty();
+  if (fleet && !request && !o.summary) {
+    request = fleet_request(layout, catalog.vehicles());
+    std::vector<std::string> ignored;  // the first reading reported them
+    for_each_result(
+        dir / "results.jsonl", ignored, [&] { metric_cells.emplace(layout, *request); },
+        [&](const RunResult& run, std::size_t index) { metric_cells->add(run, index); });
+    if (layout.axes.size() > 1) {
+      std::cerr << "note: each scene's runs over every value of the axes; choose rows and columns with --rows and "
+                   "--cols\n";
+    }
+  }
   const std::string table = request ? format_metric_table(metric_cells->finish(), o.format, o.cell)
                                     : format_table(summary, o.format, o.cell);
   // The chart first: a chart that cannot be written is an error (exit 2) with nothing printed before it.
   std::vector<fs::path> charts;
-  if (!o.no_chart && chartable(summary)) {
+  // The summary chart is of one vehicle's path ratio: with several vehicles, of --vehicle's only.
+  if (!o.no_chart && chartable(summary) && !fleet) {
     charts = draw_sweep_chart(summary).write(o.chart.empty() ? dir / "chart.png" : fs::path(o.chart),
                           o.formats);
   }
   std::cout << table << std::flush;
   for (const fs::path& chart : charts) std::cerr << "wrote " << chart.string() << "\n";
   if (charts.empty() && !o.no_chart) {
-    std::cerr << "no chart: it needs exactly one axis with numeric values (campo plot draws any)\n";
+    std::cerr << (fleet ? "no chart: the runs have several vehicles; chart one with --vehicle ALIAS (campo plot draws "
+                          "any metric, e.g. --y ALIAS.path_ratio)\n"
+                        : "no chart: it needs exactly one axis with numeric values (campo plot draws any)\n");
   }
   return kOk;
 }
@@ -110,10 +150,16 @@ Command add_table(CLI::App& app) {
   auto* metrics = app.add_option("--metrics", o->metrics,
                                  "Metrics, comma-separated: success (rate of outcome reached) or keys of run.json's "
                                  "metrics (path_ratio, sim_time_s ...), over all completed runs, or with @reached "
-                                 "over the runs that reached their goal (path_ratio@reached)")
+                                 "over the runs that reached their goal (path_ratio@reached); with several vehicles "
+                                 "the plain names are the run's (all_reached, makespan_s, collisions ...) and "
+                                 "ALIAS.METRIC a vehicle's (drone.path_ratio, rover.success, drone.path_ratio@reached)")
                       ->delimiter(',')
                       ->needs(rows);
   rows->needs(metrics);
+  app.add_option("--vehicle", o->vehicle,
+                 "In runs of several vehicles, the vehicle whose metrics the plain metric names, success and the "
+                 "summary table mean (ALIAS.METRIC still names any vehicle's); each completed run must have it")
+      ->type_name("ALIAS");
   app.add_flag("--summary", o->summary, "The summary table, even when the sweep's spec has a \"table\"")
       ->excludes(rows)
       ->excludes(cols);
@@ -143,6 +189,9 @@ Command add_table(CLI::App& app) {
       "simulated time (mean and sd over the completed runs, and the last three over the reached runs),\n"
       "total collisions, the median of the runs' median replanning times, the runs that failed, and\n"
       "whether the runs are identical.\n"
+      "Runs of several vehicles (docs/sweeps.md): without --rows, a spec table or --vehicle, the table\n"
+      "is the fleet's, per scene (and value of the sweep's one axis): success (every vehicle reached),\n"
+      "makespan_s, collisions, min_vehicle_distance_m and each vehicle's ALIAS.path_ratio.\n"
       "Rows follow the sweep's expansion order. With exactly one numeric axis, also draws\n"
       "DIR/chart.png: normalized path length of the reached runs (mean and 95% confidence interval,\n"
       "as campo plot draws it) and success rate (with its Wilson interval) against the axis; with\n"
