@@ -83,17 +83,16 @@ TEST_F(Cli, ValidateRefusesExactlyWhatRunRefuses) {
            Case{write("no_vehicle.json", R"({"objects": [{"alias": "ground", "type": "plane"}]})"),
                 "no_vehicle.json:1:2: /objects: expected a scene with a vehicle to run"},
            Case{write("no_mission.json", R"({"objects": [{"alias": "drone", "type": "quadrotor"}]})"),
-                "no_mission.json:1:2: /objects: expected vehicle \"drone\" to have a mission"},
+                "no_mission.json:1:14: /objects/0 (drone): expected vehicle \"drone\" to have a mission"},
            Case{write("slow_sensor.json", R"({"objects": [{"alias": "drone", "type": "quadrotor",
                 "sensors": [{"alias": "s", "type": "lidar", "preset": "leddar_vu8", "rate_hz": 1e-14}],
                 "mission": {"waypoints": [{"position_m": [5, 0, 1.5]}]}}]})"),
                 "slow_sensor.json:2:85: /objects/0/sensors/0/rate_hz (drone/s): expected 0 (world.sensor_rate_hz) or a number in "
                 "[0.01, 10000], got 1e-14"},
-           // One vehicle is simulated: a second would be ignored, so it is refused, naming both (issue 31).
+           // Every vehicle runs (issue 33): a second one without a mission is refused, named.
            Case{write("second.json", R"({"objects": [{"alias": "ground", "type": "plane"}, )" + drone +
                 R"(, {"alias": "other", "type": "quadrotor", "pose": {"position_m": [3, 0, 1.5]}}]})"),
-                "second.json:2:65: /objects/2 (other): expected one vehicle: campo simulates one vehicle per scene, and this "
-                "scene has 2: \"drone\" (/objects/1), \"other\" (/objects/2); keep the one to run"},
+                "second.json:2:65: /objects/2 (other): expected vehicle \"other\" to have a mission"},
        }) {
     const Result validate = campo("validate " + c.file);
     EXPECT_EQ(validate.exit_code, 2) << c.file;
@@ -103,11 +102,11 @@ TEST_F(Cli, ValidateRefusesExactlyWhatRunRefuses) {
     EXPECT_THAT(run.err, HasSubstr("error: " + (dir_ / c.message).string())) << c.file;
     EXPECT_FALSE(fs::exists(dir_ / "run")) << c.file;
   }
-  // However idle the second vehicle, and whichever --vehicle would run.
+  // Whichever vehicle --vehicle chooses.
   const std::string two = write("two.json", R"({"objects": [)" + drone + R"(, {"alias": "idle", "type": "rover"}]})");
   const Result validate = campo("validate " + two);
   EXPECT_EQ(validate.exit_code, 2);
-  EXPECT_THAT(validate.err, HasSubstr("\"drone\" (/objects/0), \"idle\" (/objects/1)"));
+  EXPECT_THAT(validate.err, HasSubstr("/objects/1 (idle): expected vehicle \"idle\" to have a mission"));
   EXPECT_EQ(campo("run " + two + " --vehicle drone --out " + (dir_ / "run").string()).exit_code, 2);
   EXPECT_FALSE(fs::exists(dir_ / "run"));
 }
