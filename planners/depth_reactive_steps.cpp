@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <tuple>
+#include <vector>
 
 #include <opencv2/imgproc.hpp>
 
@@ -286,12 +287,33 @@ double nearest_hit_m(const cv::Mat& depth, const DepthGrid& grid, const Eigen::V
   const int y1 = std::min(depth.rows - 1, static_cast<int>(std::floor(centre.y() + ry + 0.5)));
   const int x0 = std::max(0, static_cast<int>(std::ceil(centre.x() - rx - 0.5)));
   const int x1 = std::min(depth.cols - 1, static_cast<int>(std::floor(centre.x() + rx + 0.5)));
+  if (y1 < y0 || x1 < x0) return nearest;
+  // DepthGrid::direction's angles once per column and row of the window, not
+  // per pixel: a point within radius_m of the sensor spans the whole image,
+  // and the waypoint search asks for many (the products are direction's own).
+  thread_local std::vector<double> cos_az, sin_az;
+  cos_az.resize(static_cast<std::size_t>(x1 - x0 + 1));
+  sin_az.resize(cos_az.size());
+  for (int x = x0; x <= x1; ++x) {
+    const double az = (0.5 * grid.fov_h_deg - (x + 0.5) * grid.deg_per_col()) * kDegToRad;
+    cos_az[static_cast<std::size_t>(x - x0)] = std::cos(az);
+    sin_az[static_cast<std::size_t>(x - x0)] = std::sin(az);
+  }
+  // Rounding allowance of the bound below, so that no pixel it skips could have lowered the result.
+  const double slack = 1e-9 * std::max(1.0, range);
   for (int y = y0; y <= y1; ++y) {
     const float* row = depth.ptr<float>(y);
+    const double el = (0.5 * grid.fov_v_deg - (y + 0.5) * grid.deg_per_row()) * kDegToRad;
+    const double cos_el = std::cos(el);
+    const double sin_el = std::sin(el);
     for (int x = x0; x <= x1; ++x) {
       if (row[x] >= 1.0f) continue;
       const double d = row[x] * grid.max_range_m;
-      const double gap = (grid.direction({x, y}) * d - point).norm() - half_diagonal * d;
+      // A hit at range d is at least |d - range| from the point (triangle inequality).
+      if (std::abs(d - range) - half_diagonal * d - slack >= std::min(nearest, radius_m)) continue;
+      const std::size_t i = static_cast<std::size_t>(x - x0);
+      const Eigen::Vector3d direction(cos_el * cos_az[i], cos_el * sin_az[i], sin_el);
+      const double gap = (direction * d - point).norm() - half_diagonal * d;
       if (gap < radius_m) nearest = std::min(nearest, gap);
     }
   }
