@@ -28,6 +28,7 @@ import python_planners  # noqa: E402 (the fixtures folder is on the path just ab
 
 CAMPO = pathlib.Path(os.environ.get("CAMPO_BIN", SOURCE_DIR / "build" / "campo"))
 OPEN_FIELD = str(FIXTURES / "open_field.json")
+TWO_DRONES = str(FIXTURES / "two_drones.json")  # near: 2 m to fly, far: 5 m, 8 m apart
 GOAL = np.array([6.0, 0.0, 1.5])
 
 
@@ -162,6 +163,200 @@ def python_env():
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join([str(FIXTURES), env.get("PYTHONPATH", "")])
     return env
+
+
+# Timings differ between any two runs; every other metric is the decisions' and the physics'.
+TIMING_METRICS = {"planner_time_ms_max", "planner_time_ms_mean", "wall_time_s"}
+
+
+def step_with_planners(episode, planners):
+    """Steps a scene of several vehicles with each live vehicle's planner's whole PlanResult (so its status
+    ends its mission as the loop would) until the run ends; returns every step's (observations, dones, infos,
+    agents after it)."""
+    obs = episode.observation
+    steps = []
+    while not episode.done:
+        obs, dones, infos = episode.step({alias: planners[alias].plan(obs[alias]) for alias in episode.agents})
+        steps.append((obs, dones, infos, episode.agents))
+    return steps
+
+
+class SeveralVehiclesEpisodeTest(unittest.TestCase):
+    """campo.Episode over a scene of several vehicles: dicts keyed by alias (PettingZoo's parallel API)."""
+
+    def test_dict_in_dict_out_and_agents_shrink_as_missions_end(self):
+        episode = campo.Episode(TWO_DRONES, seed=4)
+        self.assertEqual(episode.possible_agents, ["near", "far"])
+        self.assertEqual(episode.agents, [])  # before reset()
+        obs = episode.reset()
+        self.assertEqual(sorted(obs), ["far", "near"])
+        self.assertEqual(episode.agents, ["near", "far"])
+        np.testing.assert_allclose(obs["near"].state.position_m, [0, 0, 1.5], atol=1e-9)
+        np.testing.assert_allclose(obs["far"].state.position_m, [0, 8, 1.5], atol=1e-9)
+        np.testing.assert_allclose(obs["near"].mission_m, [[2, 0, 1.5]])
+        np.testing.assert_allclose(obs["far"].mission_m, [[5, 8, 1.5]])
+        self.assertEqual(sorted(episode.observation), ["far", "near"])
+
+        planners = {alias: python_planners.GoStraight() for alias in episode.possible_agents}
+        steps = step_with_planners(episode, planners)
+        # The near drone (2 m) ends first: in the step it ends it is in the dicts, done, with its outcome...
+        ended = next(i for i, (_, dones, _, _) in enumerate(steps) if dones.get("near"))
+        obs, dones, infos, agents = steps[ended]
+        self.assertEqual(sorted(obs), ["far", "near"])
+        self.assertEqual(dones, {"near": True, "far": False, "__all__": False})
+        self.assertEqual(infos["near"]["outcome"], "reached")
+        self.assertEqual(infos["near"]["reason"], "at the goal")
+        self.assertIsNone(infos["far"]["outcome"])
+        self.assertEqual(agents, ["far"])
+        # ...and absent from every step after it.
+        for obs, dones, infos, agents in steps[ended + 1:]:
+            self.assertEqual(list(obs), ["far"])
+            self.assertEqual(list(infos), ["far"])
+            self.assertEqual(sorted(dones), ["__all__", "far"])
+        obs, dones, infos, agents = steps[-1]
+        self.assertEqual(dones, {"far": True, "__all__": True})
+        self.assertEqual(infos["far"]["outcome"], "reached")
+        self.assertEqual(agents, [])
+        self.assertEqual(episode.observation, {})
+        self.assertTrue(episode.done)
+
+        metrics = episode.metrics()
+        self.assertEqual(sorted(metrics), ["fleet", "vehicles"])
+        self.assertEqual(sorted(metrics["vehicles"]), ["far", "near"])
+        fleet = metrics["fleet"]
+        self.assertTrue(fleet["all_reached"])
+        self.assertEqual((fleet["vehicles"], fleet["vehicles_reached"], fleet["collisions"]), (2, 2, 0))
+        near, far = metrics["vehicles"]["near"], metrics["vehicles"]["far"]
+        # What the step a mission ended in said is what the run's record says.
+        self.assertEqual(steps[ended][2]["near"]["time_s"], near["sim_time_s"])
+        self.assertEqual(steps[-1][2]["far"]["time_s"], far["sim_time_s"])
+        self.assertEqual(fleet["makespan_s"], far["sim_time_s"])
+        self.assertLess(near["sim_time_s"], far["sim_time_s"])
+        # One control tick at 60 Hz per step while the vehicle flew, and one planner call per tick.
+        self.assertEqual(far["planner_calls"], len(steps))
+        self.assertEqual(near["planner_calls"], ended + 1)
+        self.assertEqual(planners["near"].calls, ended + 1)
+        self.assertAlmostEqual(far["sim_time_s"], (len(steps) - 1) / 60, places=9)
+        # The two never came nearer than the 8 m between their straight lines, less two rotor radii at most.
+        self.assertLessEqual(fleet["min_vehicle_distance_m"], 8.0)
+        self.assertGreater(fleet["min_vehicle_distance_m"], 7.0)
+
+    def test_same_decisions_as_campo_run_same_run_bit_for_bit(self):
+        episode = campo.Episode(TWO_DRONES, seed=4)
+        episode.reset()
+        step_with_planners(episode, {alias: python_planners.GoStraight() for alias in episode.possible_agents})
+        metrics = episode.metrics()
+        with tempfile.TemporaryDirectory() as out:
+            record = episode.write(os.path.join(out, "ep"), figures=False)
+            self.assertEqual(record, json.loads(pathlib.Path(out, "ep", "run.json").read_text()))
+            self.assertEqual(record["metrics"], metrics["fleet"])
+            for vehicle in record["vehicles"]:
+                self.assertEqual(vehicle["metrics"], metrics["vehicles"][vehicle["alias"]])
+                self.assertEqual(vehicle["parameters"]["planner"]["name"], "external")
+                self.assertEqual(vehicle["planner_provenance"]["name"], "external")
+            # campo's program, each vehicle with the same planner in its closed loop.
+            planner = '={"name": "python:python_planners:GoStraight"}'
+            cli, _ = run_campo("run", TWO_DRONES, "--seed", "4", "--set", "/objects/near/planner" + planner,
+                               "--set", "/objects/far/planner" + planner, "--out", os.path.join(out, "cli"),
+                               "--no-figures", cwd=FIXTURES, timeout=300)
+            self.assertEqual(cli.returncode, 0, cli.stderr)
+            by_cli = json.loads(pathlib.Path(out, "cli", "run.json").read_text())
+            self.assertEqual(by_cli["final_state_hash"], record["final_state_hash"])
+            for stepped, looped in zip(record["vehicles"], by_cli["vehicles"]):
+                self.assertEqual(stepped["alias"], looped["alias"])
+                self.assertEqual(stepped["trajectory_file"], "trajectory_%s.csv" % stepped["alias"])
+                self.assertEqual(pathlib.Path(out, "ep", stepped["trajectory_file"]).read_bytes(),
+                                 pathlib.Path(out, "cli", looped["trajectory_file"]).read_bytes())
+                for key, value in looped["metrics"].items():
+                    if key not in TIMING_METRICS:
+                        self.assertEqual(stepped["metrics"][key], value, key)
+            for key, value in by_cli["metrics"].items():
+                if key not in TIMING_METRICS:
+                    self.assertEqual(record["metrics"][key], value, key)
+            # And from Python, an object per vehicle: the same run, each vehicle's record naming its planner.
+            by_run = campo.run(TWO_DRONES, planner={"near": python_planners.GoStraight(),
+                                                    "far": python_planners.GoStraight()},
+                               seed=4, out=os.path.join(out, "py"), figures=False)
+            self.assertEqual(by_run["final_state_hash"], record["final_state_hash"])
+            for vehicle in by_run["vehicles"]:
+                self.assertEqual(vehicle["parameters"]["planner"]["name"], "python:python_planners:GoStraight")
+                self.assertEqual(vehicle["parameters"]["planner"]["parameters"], {"speed_mps": 0.8, "arrival_m": 0.3})
+                self.assertEqual(vehicle["planner_provenance"]["source"],
+                                 str(FIXTURES / "python_planners.py"))
+                self.assertEqual(pathlib.Path(out, "py", vehicle["trajectory_file"]).read_bytes(),
+                                 pathlib.Path(out, "cli", vehicle["trajectory_file"]).read_bytes())
+
+    def test_wrong_missing_and_ended_aliases_are_value_errors_naming_them(self):
+        episode = campo.Episode(TWO_DRONES)
+        obs = episode.reset()
+        hold = {alias: campo.Command.hold(obs[alias].state.position_m) for alias in obs}
+        with self.assertRaisesRegex(ValueError, 'no command for vehicle "far"'):
+            episode.step({"near": hold["near"]})
+        with self.assertRaisesRegex(ValueError, 'no vehicle "wingman" in the scene: its vehicles are "near", "far"'):
+            episode.step({**hold, "wingman": hold["near"]})
+        with self.assertRaisesRegex(TypeError, 'vehicle "far": expected a campo.Command or a campo.PlanResult'):
+            episode.step({"near": hold["near"], "far": [5, 8, 1.5]})
+        with self.assertRaisesRegex(TypeError, "dict"):
+            episode.step(hold["near"])
+        with self.assertRaisesRegex(ValueError, 'vehicle "near": the planner\'s decisions: .*reached_waypoints'):
+            episode.step({"near": campo.PlanResult(hold["near"], decisions={"reached_waypoints": "all"}),
+                          "far": hold["far"]})
+        # A command the vehicle cannot follow (a rover's, to a quadrotor) names it and changes nothing.
+        with self.assertRaisesRegex(ValueError, "far: "):
+            episode.step({"near": hold["near"], "far": campo.Command.twist(0.5, 0.0)})
+        self.assertEqual(episode.observation["near"].time_s, 0.0)
+        obs, dones, infos = episode.step({"near": campo.PlanResult(hold["near"], status="reached"),
+                                          "far": hold["far"]})
+        self.assertEqual(infos["near"]["outcome"], "reached")
+        self.assertEqual(infos["near"]["time_s"], 0.0)
+        with self.assertRaisesRegex(ValueError, 'vehicle "near" has ended its mission'):
+            episode.step(hold)
+        with self.assertRaisesRegex(campo.InputError, "no vehicle to choose"):
+            campo.Episode(TWO_DRONES, vehicle="far")
+
+    def test_a_collision_ends_one_mission_and_the_run_goes_on(self):
+        episode = campo.Episode(TWO_DRONES, overrides={"/world/time_limit_s": 4})
+        obs = episode.reset()
+        far_hold = campo.Command.hold(obs["far"].state.position_m)
+        # The near drone dives into the ground; the far one hovers.
+        while "near" in episode.agents:
+            obs, dones, infos = episode.step({"near": campo.Command.go_to([1, 0, -2], speed_mps=3.0), "far": far_hold})
+        self.assertEqual(infos["near"]["outcome"], "collision")
+        self.assertFalse(dones["__all__"])
+        ended_at = infos["near"]["time_s"]
+        while not episode.done:
+            obs, dones, infos = episode.step({"far": far_hold})
+        self.assertEqual(infos["far"]["outcome"], "timeout")
+        metrics = episode.metrics()
+        self.assertEqual(metrics["vehicles"]["near"]["outcome"], "collision")
+        self.assertEqual(metrics["vehicles"]["near"]["sim_time_s"], ended_at)
+        self.assertEqual(metrics["fleet"]["outcome"], "collision")
+
+    def test_python_planners_per_vehicle_and_the_scenes_for_the_rest(self):
+        with tempfile.TemporaryDirectory() as out:
+            # One object for the far drone: the near one keeps the scene's planner (straight).
+            record = campo.run(TWO_DRONES, planner={"far": python_planners.GoStraight(speed_mps=1.0)},
+                               out=os.path.join(out, "far"), figures=False)
+            planners = {v["alias"]: v["parameters"]["planner"] for v in record["vehicles"]}
+            self.assertEqual(planners["near"]["name"], "straight")
+            self.assertEqual(planners["far"], {"name": "python:python_planners:GoStraight",
+                                               "parameters": {"speed_mps": 1.0, "arrival_m": 0.3}})
+            self.assertTrue(record["metrics"]["all_reached"])
+            scene = json.loads(pathlib.Path(out, "far", "scene.json").read_text())
+            self.assertEqual(scene["objects"][2]["planner"]["name"], "python:python_planners:GoStraight")
+            # One object: the chosen vehicle's (vehicle=, else the first), as --planner.
+            for vehicle, chosen in (("", "near"), ("far", "far")):
+                record = campo.run(TWO_DRONES, planner=python_planners.GoStraight(), vehicle=vehicle, figures=False)
+                names = {v["alias"]: v["parameters"]["planner"]["name"] for v in record["vehicles"]}
+                other = "far" if chosen == "near" else "near"
+                self.assertEqual(names, {chosen: "python:python_planners:GoStraight", other: "straight"})
+        with self.assertRaisesRegex(campo.InputError, 'planner: wingman: a vehicle of .*two_drones.json \\("near", "far"\\)'):
+            campo.run(TWO_DRONES, planner={"wingman": python_planners.GoStraight()})
+        with self.assertRaisesRegex(campo.InputError, "planner: far: a planner name or an object with a plan"):
+            campo.run(TWO_DRONES, planner={"far": object()})
+        with self.assertRaisesRegex(campo.InputError, "overrides: /objects/far/planner/params/speed_mps: .*own constructor"):
+            campo.run(TWO_DRONES, planner={"far": python_planners.GoStraight()},
+                      overrides={"/objects/far/planner/params/speed_mps": 2.0})
 
 
 class PythonPlannerTest(unittest.TestCase):
@@ -358,20 +553,6 @@ class ErrorsTest(unittest.TestCase):
                       overrides={"/objects/drone/planner": {"name": "python:python_planners:GoStraight",
                                                             "params": {"gain": 2}}})
         self.assertTrue(issubclass(campo.InputError, ValueError))
-
-    def test_a_scene_with_two_vehicles_is_refused_naming_them(self):
-        # One vehicle is simulated; a second would silently be absent from the physics (issue 31).
-        scene = json.loads(pathlib.Path(OPEN_FIELD).read_text())
-        scene["objects"].append({"alias": "wingman", "type": "quadrotor", "pose": {"position_m": [0, 3, 1.5]}})
-        with tempfile.TemporaryDirectory() as tmp:
-            path = os.path.join(tmp, "two.json")
-            pathlib.Path(path).write_text(json.dumps(scene))
-            message = ('/objects/3 \\(wingman\\): expected one vehicle: campo simulates one vehicle per scene, and this scene has 2: '
-                       '"drone" \\(/objects/2\\), "wingman" \\(/objects/3\\)')
-            with self.assertRaisesRegex(campo.InputError, message):
-                campo.Episode(path)
-            with self.assertRaisesRegex(campo.InputError, message):
-                campo.run(path, planner="straight")
 
     def test_outputs_that_cannot_be_written_are_output_errors_and_leave_nothing(self):
         with tempfile.TemporaryDirectory() as tmp:
