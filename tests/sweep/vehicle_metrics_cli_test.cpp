@@ -216,6 +216,30 @@ TEST_F(VehicleMetricsCli, TheDefaultTableOfSeveralVehiclesIsTheFleets) {
   EXPECT_DOUBLE_EQ(rows[4].mean, ratio);
 }
 
+// A spec's "table" names vehicle metrics as the options do; --vehicle reads its plain names as that vehicle's.
+TEST_F(VehicleMetricsCli, TheSpecsTableTakesVehicleMetrics) {
+  const fs::path copy = dir_ / "copy";
+  fs::copy(sweep(), copy, fs::copy_options::recursive);
+  nlohmann::json manifest = nlohmann::json::parse(slurp(copy / "sweep.json"));
+  manifest["spec"]["table"] = {{"rows", "seed"}, {"metrics", {"b.path_length_m", "path_length_m@reached"}}};
+  write("copy/sweep.json", manifest.dump());
+  // Without --vehicle the plain name is the run's, which has no path length: the error names the spec.
+  const Result fleet = campo("table " + copy.string() + " --no-chart");
+  EXPECT_EQ(fleet.exit_code, 2);
+  EXPECT_THAT(fleet.err, HasSubstr("sweep.json: /spec/table/metrics: expected a metric of the runs ("));
+  const Result a = campo("table " + copy.string() + " --vehicle a --format csv --no-chart");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  const auto records = run_records();
+  const auto rows = read_csv(a.out);
+  ASSERT_EQ(rows.size(), 4u);
+  for (const CsvLine& row : rows) {
+    const bool own = row.metric == "a.path_length_m";
+    EXPECT_TRUE(own || row.metric == "b.path_length_m") << row.metric;
+    EXPECT_EQ(row.over, own ? "reached" : "all");
+    EXPECT_EQ(row.mean, vehicle_metric(records.at(std::stoull(row.row)), own ? "a" : "b", "path_length_m"));
+  }
+}
+
 TEST_F(VehicleMetricsCli, UnknownVehiclesAndMetricsAreErrorsListingWhatExists) {
   const Result alias = campo("table " + sweep() + " --rows seed --metrics c.path_ratio --no-chart");
   EXPECT_EQ(alias.exit_code, 2);
