@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -272,6 +273,59 @@ TEST_F(VehicleMetricsCli, PlotsDrawAVehiclesMetric) {
   const Result v = campo("plot " + sweep() + " --vehicle a --x seed --y path_ratio --out " + (dir_ / "v.png").string());
   ASSERT_EQ(v.exit_code, 0) << v.err;
   EXPECT_EQ(slurp(dir_ / "a.png"), slurp(dir_ / "v.png"));
+}
+
+// A results line of several vehicles, read strictly: each vehicle's metrics kept beside the fleet's,
+// which hold no path metrics; a line of one vehicle reads as before.
+TEST(VehicleResultsLines, AreReadStrictly) {
+  const fs::path file = fs::temp_directory_path() / ("campo_vehicle_lines_" + std::to_string(::getpid()) + ".jsonl");
+  const nlohmann::json vehicle = {{"outcome", "reached"}, {"path_length_m", 3.0}, {"path_ratio", 1.0},
+                                  {"sim_time_s", 4.0}, {"collisions", 0}};
+  nlohmann::json line = {{"id", "x"}, {"scene", "s"}, {"params", nlohmann::json::object()}, {"seed", 1},
+                         {"status", "completed"}, {"overrides", nlohmann::json::array()},
+                         {"metrics", {{"outcome", "timeout"}, {"sim_time_s", 5.0}, {"collisions", 1},
+                                      {"all_reached", false}}},
+                         {"vehicles", {{{"alias", "a"}, {"metrics", vehicle}},
+                                       {{"alias", "b"}, {"metrics", vehicle}}}}};
+  line["vehicles"][1]["metrics"]["outcome"] = "timeout";
+  const auto read = [&](const nlohmann::json& text) {
+    std::ofstream(file) << text.dump() << "\n";
+    return campo::read_results(file);
+  };
+  const campo::RunResult run = read(line).runs.at(0);
+  ASSERT_EQ(run.vehicles.size(), 2u);
+  EXPECT_EQ(run.vehicles[1].alias, "b");
+  EXPECT_TRUE(run.metrics.fleet);
+  EXPECT_EQ(run.metrics.collisions, 1);
+  EXPECT_EQ(campo::metric_value(run, "a.success"), 1.0);
+  EXPECT_EQ(campo::metric_value(run, "b.success"), 0.0);
+  EXPECT_EQ(campo::metric_value(run, "b.path_ratio@reached"), std::nullopt);  // b did not reach its goal
+  EXPECT_EQ(campo::metric_value(run, "a.path_ratio@reached"), 1.0);
+  EXPECT_EQ(campo::metric_value(run, "c.path_ratio"), std::nullopt);          // no such vehicle in this run
+  EXPECT_EQ(campo::metric_value(run, "success"), 0.0);
+  // Seen from b: its metrics are the plain names.
+  const campo::RunResult b = campo::vehicle_run(run, "b", "f", "--vehicle");
+  EXPECT_EQ(b.metrics.outcome, "timeout");
+  EXPECT_EQ(b.metrics.path_length_m, 3.0);
+  EXPECT_FALSE(b.metrics.fleet);
+  // Each vehicle needs its metrics, with what a table reads; an alias appears once; a failed run has none.
+  nlohmann::json bad = line;
+  bad["vehicles"][0]["metrics"].erase("path_ratio");
+  EXPECT_THROW(read(bad), campo::InputError);
+  bad = line;
+  bad["vehicles"][1]["alias"] = "a";
+  try {
+    read(bad);
+    ADD_FAILURE() << "a repeated alias was read";
+  } catch (const campo::InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("/vehicles/1: expected a vehicle alias once (\"a\" appears twice)"));
+  }
+  bad = line;
+  bad["status"] = "failed";
+  bad["reason"] = "r";
+  bad["metrics"] = nullptr;
+  EXPECT_THROW(read(bad), campo::InputError);
+  fs::remove(file);
 }
 
 // The names tables and plots take apart.
