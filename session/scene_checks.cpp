@@ -27,10 +27,14 @@ void check_runnable(const Scene& scene) {
   if (scene.vehicles.empty()) throw InputError(scene.source_path, "/objects", "expected a scene with a vehicle to run");
   // Every vehicle runs, each on its own mission.
   for (const VehicleDef& v : scene.vehicles) {
-    if (v.mission.empty()) {
-      const std::string& params = v.params.pointer;  // "<object>/params"
-      throw InputError(scene.source_path, params.substr(0, params.rfind('/')),
-                       "expected vehicle \"" + v.alias + "\" to have a mission");
+    const std::string& params = v.params.pointer;  // "<object>/params"
+    const std::string object = params.substr(0, params.rfind('/'));
+    if (v.mission.empty()) throw InputError(scene.source_path, object, "expected vehicle \"" + v.alias + "\" to have a mission");
+    // Sweeps and tables name a vehicle's metrics "<alias>.<metric>".
+    if (scene.vehicles.size() > 1 && v.alias.find('.') != std::string::npos) {
+      throw InputError(scene.source_path, object + "/alias",
+                       "expected a vehicle alias without '.' in a scene of several vehicles (their metrics are "
+                       "named <alias>.<metric>), got \"" + v.alias + "\"");
     }
   }
 }

@@ -45,12 +45,14 @@ struct Golden {
 // One scene per family of planner and way of sensing: depth camera + depth_reactive
 // (quadrotor), rover_route (rover, planar LIDAR cast ray by ray), dstar_lite_3d (quadrotor,
 // LIDAR mapping), depth_reactive over terrain and trees (a 256 x 256 LIDAR cast as a fan on
-// an AVX2 CPU). Seed 0, the scenes' own settings.
+// an AVX2 CPU), and four quadrotors with depth_reactive in one world, each sensing the
+// others (several vehicles, issue 33). Seed 0, the scenes' own settings.
 constexpr Golden kGolden[] = {
     {"two_barriers", 13199764301223187531ULL},
     {"vineyard", 9546240697463451486ULL},
     {"zigzag", 16317398135073404678ULL},
     {"trees_rolling_terrain", 17313695312406008818ULL, 15540033448196965860ULL},
+    {"four_drones_crossing", 9328167319752546133ULL},
 };
 
 std::uint64_t hash_in(const fs::path& run_json) {
@@ -67,7 +69,8 @@ class GoldenDeterminism : public ::testing::Test {
     fs::create_directories(dir_);
     spec_ = dir_ / "golden.json";
     std::ofstream(spec_) << R"({"campo_sweep": 1, "name": "golden",
-                                "scenes": ["two_barriers", "vineyard", "zigzag", "trees_rolling_terrain"],
+                                "scenes": ["two_barriers", "vineyard", "zigzag", "trees_rolling_terrain",
+                                           "four_drones_crossing"],
                                 "seeds": {"first": 0, "count": 1}})";
   }
   void TearDown() override { fs::remove_all(dir_); }
