@@ -345,7 +345,14 @@ class Run:
     """trajectory.csv, one row per planner call: every column numeric (NaN where empty) but `command`."""
     events: Optional[list[dict[str, Any]]] = dataclasses.field(repr=False)
     """The planner decisions, one {"time_s", "decisions"} per line of events.jsonl (or run.json's `events` array
-    of older records); None where the directory holds neither (a sweep's triage directory)."""
+    of older records); None where the directory holds neither (a sweep's triage directory), and for a run of
+    several vehicles (each vehicle's are in `vehicles`)."""
+    vehicles: dict[str, "Run"] = dataclasses.field(default_factory=dict, repr=False)
+    """A run of several vehicles: each vehicle's own, by alias in scene order, its `record` the vehicle's entry
+    of run.json's `vehicles` (alias, metrics, parameters, ...), its trajectory and events its own files.
+    Empty for a run of one vehicle."""
+    events_file: str = dataclasses.field(default="events.jsonl", repr=False)
+    """The file of the directory `events` were read from (events_<alias>.jsonl for a vehicle of several)."""
 
     @property
     def metrics(self) -> dict[str, Any]:
@@ -373,6 +380,9 @@ class Run:
         planner that declares nothing, raises ResultsError listing what it declares. Each value is checked against
         its declaration: one that is not of its type raises ResultsError naming the file and its JSON pointer.
         """
+        if self.vehicles:
+            raise ResultsError(f"{self.directory}: a run of several vehicles ({', '.join(self.vehicles)}), each "
+                               f"with its own planner: read one's with run.vehicles[alias].decision({name!r})")
         record = self.planner_record
         label = self.planner or "straight"
         fields = record.decisions if record else ()
@@ -382,13 +392,13 @@ class Run:
             raise ResultsError(f"{self.directory}: expected the planner's decisions (events.jsonl), but the run "
                                "directory holds none")
         # Where each event was read: a line of events.jsonl (campo writes no blank lines), else run.json's array.
-        in_lines = (self.directory / "events.jsonl").exists()
+        in_lines = (self.directory / self.events_file).exists()
         times, values = [], []
         for i, event in enumerate(self.events):
             decisions = event["decisions"]
             if name not in decisions:
                 continue
-            source, pointer = ((f"{self.directory / 'events.jsonl'} line {i + 1}", "/decisions") if in_lines
+            source, pointer = ((f"{self.directory / self.events_file} line {i + 1}", "/decisions") if in_lines
                                else (str(self.directory / "run.json"), f"/events/{i}/decisions"))
             try:
                 _campo._check_record(self.planner, "decisions", {name: decisions[name]}, source, pointer)
@@ -403,7 +413,8 @@ class Run:
 
 
 def read_run(path: PathLike) -> Run:
-    """Reads a run's directory (or its run.json): run.json, trajectory.csv and events.jsonl (docs/python.md).
+    """Reads a run's directory (or its run.json): run.json, trajectory.csv and events.jsonl (docs/python.md);
+    for a run of several vehicles each one's trajectory_<alias>.csv and events_<alias>.jsonl (Run.vehicles).
 
     Raises ResultsError naming the file (and line) that is missing or not what campo writes.
     """
@@ -414,9 +425,37 @@ def read_run(path: PathLike) -> Run:
                            "but there is no such directory")
     record_file = directory / "run.json"
     record = _Reader(_parse_json(_read_text(record_file), str(record_file)), str(record_file)).value
-    _Reader(record, str(record_file)).get("metrics", "the run's metrics, an object", lambda v: isinstance(v, dict))
-    return Run(directory=directory, record=record, trajectory=_read_trajectory(directory / "trajectory.csv"),
-               events=_read_events(directory / "events.jsonl", record, str(record_file)))
+    reader = _Reader(record, str(record_file))
+    reader.get("metrics", "the run's metrics, an object", lambda v: isinstance(v, dict))
+    if "vehicles" not in record:
+        return Run(directory=directory, record=record, trajectory=_read_trajectory(directory / "trajectory.csv"),
+                   events=_read_events(directory / "events.jsonl", record, str(record_file)))
+    # Several vehicles (docs/running.md): the run's metrics at the top, each vehicle's record and files its own.
+    entries = reader.get("vehicles", "an array of the vehicles' records", lambda v: isinstance(v, list) and v)
+    vehicles = {}
+    for i, value in enumerate(entries):
+        entry = _Reader(value, str(record_file), f"/vehicles/{i}")
+        if not isinstance(value, dict):
+            entry.fail(f"/vehicles/{i}", "a vehicle's record, an object", value)
+        alias = entry.get("alias", "the vehicle's alias, a string", _is_string)
+        entry.get("metrics", "the vehicle's metrics, an object", lambda v: isinstance(v, dict))
+        trajectory_file = entry.get("trajectory_file", "the name of its trajectory file", _is_file_name)
+        log = entry.get("event_log", "its event log, an object", lambda v: isinstance(v, dict))
+        events_file = _Reader(log, str(record_file), f"/vehicles/{i}/event_log").get(
+            "file", "the name of its events file", _is_file_name)
+        vehicles[alias] = Run(directory=directory, record=value,
+                              trajectory=_read_trajectory(directory / trajectory_file),
+                              events=_read_events(directory / events_file, {}, str(record_file)),
+                              events_file=events_file)
+    trajectory = pd.concat([run.trajectory.assign(vehicle=alias) for alias, run in vehicles.items()],
+                           ignore_index=True)
+    trajectory = trajectory[["vehicle"] + [c for c in trajectory.columns if c != "vehicle"]]
+    return Run(directory=directory, record=record, trajectory=trajectory, events=None, vehicles=vehicles)
+
+
+def _is_file_name(value: Any) -> bool:
+    """A file of the run's own directory, not a path elsewhere."""
+    return isinstance(value, str) and value not in ("", ".", "..") and "/" not in value and "\\" not in value
 
 
 def _read_trajectory(path: pathlib.Path) -> pd.DataFrame:

@@ -359,6 +359,30 @@ class SeveralVehiclesEpisodeTest(unittest.TestCase):
                       overrides={"/objects/far/planner/params/speed_mps": 2.0})
 
 
+    def test_a_vehicles_declared_decisions_read_back_from_its_own_events_file(self):
+        with tempfile.TemporaryDirectory() as out:
+            campo.run(TWO_DRONES, planner={"far": python_planners.Declares()}, out=os.path.join(out, "r"),
+                      figures=False)
+            run = campo.read_run(os.path.join(out, "r"))
+            far = run.vehicles["far"]
+            self.assertEqual(far.planner, "python:python_planners:Declares")
+            self.assertEqual(run.vehicles["near"].planner, "straight")
+            distance = far.decision("distance_m")
+            self.assertEqual(len(distance), len(far.events))
+            self.assertEqual(distance.iloc[0], 5.0)  # from the start (0, 8, 1.5) to the goal (5, 8, 1.5)
+            position = far.trajectory[["x_m", "y_m", "z_m"]].to_numpy()
+            expected = np.linalg.norm(position - [5.0, 8.0, 1.5], axis=1)[: len(distance)]
+            np.testing.assert_allclose(distance.to_numpy(), expected, atol=1e-6)
+            events = pathlib.Path(out, "r", "events_far.jsonl")
+            lines = events.read_text().split("\n")
+            line = json.loads(lines[2])
+            line["decisions"]["leg"] = "first"
+            lines[2] = json.dumps(line)
+            events.write_text("\n".join(lines))
+            with self.assertRaisesRegex(campo.ResultsError, r"events_far.jsonl line 3: /decisions/leg: expected integer"):
+                campo.read_run(os.path.join(out, "r")).vehicles["far"].decision("leg")
+
+
 class PythonPlannerTest(unittest.TestCase):
     def test_runs_to_the_goal_in_the_closed_loop(self):
         planner = python_planners.GoStraight(speed_mps=1.0)

@@ -441,6 +441,72 @@ class ReadRunTest(unittest.TestCase):
             results.read_run(directory)
 
 
+class ReadSeveralVehiclesRunTest(unittest.TestCase):
+    """A run of several vehicles: run.json with the run's metrics and a record per vehicle, each vehicle's own
+    trajectory_<alias>.csv and events_<alias>.jsonl (docs/running.md)."""
+
+    @classmethod
+    def setUpClass(cls) -> None:
+        cls.directory = SCRATCH / "two_drones"
+        run = campo("run", str(SOURCE_DIR / "tests" / "python" / "fixtures" / "two_drones.json"), "--no-figures",
+                    "--set", "/objects/far/planner/name=\"depth_reactive\"", "--out", str(cls.directory))
+        if run.returncode != 0:
+            raise RuntimeError(f"campo run: exit {run.returncode}\n{run.stderr}")
+        cls.recorded = results.read_run(cls.directory)
+
+    def test_the_runs_record_and_each_vehicles(self) -> None:
+        record = json.loads((self.directory / "run.json").read_text())
+        self.assertEqual(self.recorded.record, record)
+        self.assertEqual(self.recorded.metrics, record["metrics"])
+        self.assertEqual(self.recorded.metrics["vehicles"], 2)
+        self.assertEqual(list(self.recorded.vehicles), ["near", "far"])  # scene order
+        self.assertIsNone(self.recorded.events)
+        for entry in record["vehicles"]:
+            alias = entry["alias"]
+            vehicle = self.recorded.vehicles[alias]
+            self.assertEqual(vehicle.record, entry)
+            self.assertEqual(vehicle.metrics, entry["metrics"])
+            self.assertEqual(vehicle.planner, {"near": "straight", "far": "depth_reactive"}[alias])
+            self.assertEqual(vehicle.vehicles, {})
+            self.assertEqual(vehicle.events_file, f"events_{alias}.jsonl")
+            self.assertEqual(len(vehicle.trajectory), entry["metrics"]["planner_calls"])
+            with open(self.directory / f"trajectory_{alias}.csv", newline="") as file:
+                table = list(csv.reader(file))
+            self.assertEqual(list(vehicle.trajectory.columns), table[0])
+            self.assertEqual(list(vehicle.trajectory["time_s"]), [float(row[0]) for row in table[1:]])
+            lines = (self.directory / f"events_{alias}.jsonl").read_text().splitlines()
+            self.assertEqual(len(lines), entry["event_log"]["count"])
+            self.assertEqual(vehicle.events, [json.loads(line) for line in lines])
+            # The run's trajectory holds every vehicle's rows, named in its first column.
+            # (A column of integers in one vehicle's file and not in another's holds floats there.)
+            rows = self.recorded.trajectory[self.recorded.trajectory["vehicle"] == alias].drop(columns="vehicle")
+            pd.testing.assert_frame_equal(rows.reset_index(drop=True), vehicle.trajectory, check_dtype=False)
+        self.assertEqual(self.recorded.trajectory.columns[0], "vehicle")
+        self.assertEqual(len(self.recorded.trajectory), sum(len(v.trajectory) for v in self.recorded.vehicles.values()))
+        # A decision belongs to one vehicle's planner.
+        with self.assertRaisesRegex(results.ResultsError, r"several vehicles \(near, far\).*run.vehicles\[alias\]"):
+            self.recorded.decision("planned_waypoint")
+        far = self.recorded.vehicles["far"]
+        following = far.decision("wall_following")
+        held = [event for event in far.events if "wall_following" in event["decisions"]]
+        self.assertEqual(list(following.index), [event["time_s"] for event in held])
+        self.assertEqual(list(following), [event["decisions"]["wall_following"] for event in held])
+
+    def test_errors_name_the_file_and_pointer(self) -> None:
+        directory = SCRATCH / "two_drones_missing"
+        shutil.copytree(self.directory, directory)
+        (directory / "trajectory_far.csv").unlink()
+        with self.assertRaisesRegex(results.ResultsError, re.escape(f"{directory / 'trajectory_far.csv'}: cannot read")):
+            results.read_run(directory)
+        record = json.loads((directory / "run.json").read_text())
+        record["vehicles"][1]["trajectory_file"] = "../elsewhere.csv"
+        (directory / "run.json").write_text(json.dumps(record))
+        with self.assertRaisesRegex(results.ResultsError,
+                                    re.escape(f"{directory / 'run.json'}: /vehicles/1/trajectory_file: expected the "
+                                              "name of its trajectory file, got")):
+            results.read_run(directory)
+
+
 class AnalyseSweepExampleTest(unittest.TestCase):
     def analyse(self, *args: str) -> subprocess.CompletedProcess:
         # The example imports the package these tests import, wherever the current folder is.
