@@ -34,11 +34,12 @@ struct TableOptions {
 };
 
 // The default table of runs of several vehicles: the fleet's success (every vehicle reached), makespan,
-// collisions and least distance between vehicles, and each vehicle's path ratio, per scene (and per
-// value of the sweep's axis when it has one).
-TableRequest fleet_request(const TableLayout& layout, const std::vector<std::string>& vehicles) {
-  TableRequest request{.rows = "scene",
-                       .cols = layout.axes.size() == 1 ? layout.axes.front() : std::string(),
+// collisions and least distance between vehicles, and each vehicle's path ratio: a row per value of the
+// sweep's one axis (a column group per scene when there are several), else a row per scene.
+TableRequest fleet_request(const TableLayout& layout, const std::vector<std::string>& vehicles, bool scenes) {
+  const bool one_axis = layout.axes.size() == 1;
+  TableRequest request{.rows = one_axis ? layout.axes.front() : std::string("scene"),
+                       .cols = one_axis && scenes ? std::string("scene") : std::string(),
                        .metrics = {"success", "makespan_s", "collisions", "min_vehicle_distance_m"}};
   for (const std::string& alias : vehicles) request.metrics.push_back(alias + ".path_ratio");
   request.file = "the default table of several vehicles";
@@ -92,7 +93,9 @@ int run_table(const TableOptions& o) {
   // Runs of several vehicles and no table asked for: the fleet's table, from a second reading.
   const bool fleet = !catalog.vehicles().empty() && o.vehicle.empty();
   if (fleet && !request && !o.summary) {
-    request = fleet_request(layout, catalog.vehicles());
+    bool scenes = false;  // several scenes
+    for (const TableRow& row : summary.rows) scenes = scenes || row.scene != summary.rows.front().scene;
+    request = fleet_request(layout, catalog.vehicles(), scenes);
     std::vector<std::string> ignored;  // the first reading reported them
     for_each_result(
         dir / "results.jsonl", ignored, [&] { metric_cells.emplace(layout, *request); },
@@ -190,8 +193,8 @@ Command add_table(CLI::App& app) {
       "total collisions, the median of the runs' median replanning times, the runs that failed, and\n"
       "whether the runs are identical.\n"
       "Runs of several vehicles (docs/sweeps.md): without --rows, a spec table or --vehicle, the table\n"
-      "is the fleet's, per scene (and value of the sweep's one axis): success (every vehicle reached),\n"
-      "makespan_s, collisions, min_vehicle_distance_m and each vehicle's ALIAS.path_ratio.\n"
+      "is the fleet's, a row per value of the sweep's one axis (else per scene): success (every vehicle\n"
+      "reached), makespan_s, collisions, min_vehicle_distance_m and each vehicle's ALIAS.path_ratio.\n"
       "Rows follow the sweep's expansion order. With exactly one numeric axis, also draws\n"
       "DIR/chart.png: normalized path length of the reached runs (mean and 95% confidence interval,\n"
       "as campo plot draws it) and success rate (with its Wilson interval) against the axis; with\n"

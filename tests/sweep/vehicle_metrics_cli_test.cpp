@@ -217,6 +217,27 @@ TEST_F(VehicleMetricsCli, TheDefaultTableOfSeveralVehiclesIsTheFleets) {
   EXPECT_DOUBLE_EQ(rows[4].mean, ratio);
 }
 
+// With one axis, the fleet's table has a row per axis value; --vehicle charts that vehicle against it.
+TEST_F(VehicleMetricsCli, OneAxisGivesTheFleetsRowsAndAVehiclesChart) {
+  write("two_drones.json", kTwoDrones);
+  write("axis.json", R"({"campo_sweep": 1, "name": "axis", "scenes": ["two_drones.json"],
+    "axes": [{"name": "goal_x_m", "values": [3, 5], "set": ["/objects/a/mission/waypoints/0/position_m/0"]}],
+    "seeds": {"first": 1, "count": 1}})");
+  const std::string out = (dir_ / "axis").string();
+  const Result sweep = campo("sweep " + (dir_ / "axis.json").string() + " --out " + out + " --jobs 2");
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  const Result r = campo("table " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("| Goal x (m) | Success rate (%) | Makespan (s), all runs |"));
+  EXPECT_THAT(r.out, HasSubstr("\n| 3 | 100% | "));
+  EXPECT_THAT(r.out, HasSubstr("\n| 5 | 100% | "));
+  EXPECT_FALSE(fs::exists(dir_ / "axis" / "chart.png"));
+  const Result a = campo("table " + out + " --vehicle a");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_THAT(a.out, HasSubstr("| Scene | Goal x (m) | Runs | Success |"));  // the summary table, of a
+  EXPECT_TRUE(fs::exists(dir_ / "axis" / "chart.png"));
+}
+
 // A spec's "table" names vehicle metrics as the options do; --vehicle reads its plain names as that vehicle's.
 TEST_F(VehicleMetricsCli, TheSpecsTableTakesVehicleMetrics) {
   const fs::path copy = dir_ / "copy";
