@@ -38,4 +38,12 @@ cv::Scalar run_color(std::size_t index) {
   return palette[index % palette.size()];
 }
 
+cv::Scalar vehicle_color(std::size_t index) {
+  // Okabe & Ito (2008), "Color Universal Design": told apart with any of the common colour vision deficiencies.
+  static const std::array<cv::Scalar, kVehicleColors> palette{
+      rgb(0, 114, 178), rgb(230, 159, 0), rgb(204, 121, 167), rgb(86, 180, 233),
+      rgb(0, 0, 0),     rgb(240, 228, 66), rgb(0, 158, 115),  rgb(213, 94, 0)};
+  return palette[index % palette.size()];
+}
+
 }  // namespace campo

@@ -53,6 +53,9 @@ struct RunView {
   /// Each collision recorded (run.json's collision_events): when, s, and the
   /// point of the body touched, world frame; marked on maps, side views and videos.
   std::vector<std::pair<double, Eigen::Vector3d>> collisions;
+  /// The vehicle's length and width, m: maps of several vehicles of one run
+  /// draw it at the track's end, at its heading (zero: not drawn).
+  Eigen::Vector2d footprint_m = Eigen::Vector2d::Zero();
 };
 
 enum class TrackColoring { time, speed };
@@ -104,6 +107,13 @@ struct FigureLayout {
 inline constexpr std::size_t kRunColors = 12;
 /// Colour of a run in overlays: a fixed qualitative palette of kRunColors, cycled (BGR).
 cv::Scalar run_color(std::size_t index);
+/// Colours of vehicle_color before it repeats.
+inline constexpr std::size_t kVehicleColors = 8;
+/// Colour of a vehicle of a run of several (its track, its footprint, its
+/// legend entry): Okabe and Ito's colour-blind-safe palette of kVehicleColors,
+/// in scene order, cycled (BGR); its green and vermilion last, as start and
+/// goal markers are green and red.
+cv::Scalar vehicle_color(std::size_t index);
 /// Sequential colour map of tracks (time, speed) and depth values (viridis,
 /// BGR); `fraction` is clamped to [0, 1]. Tracks map [first time, last time]
 /// or [0, top speed] onto it.

@@ -43,4 +43,14 @@ figure::Canvas draw_overlay(const Scene& scene, const std::vector<RunView>& runs
   return draw_map_figure(scene, plan, layout_map(plan, style), title);
 }
 
+FigureLayout fleet_map_layout(const Scene& scene, const std::vector<RunView>& vehicles, const FigureStyle& style) {
+  return layout_map(plan_map(scene, pointers(vehicles), style, true, true), style);
+}
+
+figure::Canvas draw_fleet_map(const Scene& scene, const std::vector<RunView>& vehicles, const FigureStyle& style) {
+  const MapPlan plan = plan_map(scene, pointers(vehicles), style, true, true);
+  const std::string title = !style.title.empty() ? style.title : std::to_string(vehicles.size()) + " vehicles";
+  return draw_map_figure(scene, plan, layout_map(plan, style), title);
+}
+
 }  // namespace campo

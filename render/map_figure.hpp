@@ -25,4 +25,13 @@ FigureLayout map_layout(const Scene& scene, const RunView& run, const FigureStyl
 figure::Canvas draw_overlay(const Scene& scene, const std::vector<RunView>& runs, const FigureStyle& style = {});
 FigureLayout overlay_layout(const Scene& scene, const std::vector<RunView>& runs, const FigureStyle& style = {});
 
+/// The vehicles of one run on one map, one colour each in scene order
+/// (vehicle_color, a colour-blind-safe palette), legend entries "alias
+/// (outcome)" from each view's label and outcome; each vehicle's mission with
+/// its goal (filled when reached), its start and goal ringed in its colour,
+/// its planner's waypoints in its colour, and its footprint
+/// (RunView::footprint_m) at its track's end, at its heading.
+figure::Canvas draw_fleet_map(const Scene& scene, const std::vector<RunView>& vehicles, const FigureStyle& style = {});
+FigureLayout fleet_map_layout(const Scene& scene, const std::vector<RunView>& vehicles, const FigureStyle& style = {});
+
 }  // namespace campo

@@ -220,13 +220,17 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
   const std::size_t intermediate = plan.mission.empty() ? 0 : plan.mission.size() - 1;
   const auto count_reached = [&](bool reached) {
     std::size_t n = 0;
-    for (std::size_t i = 0; i < intermediate; ++i) n += plan.mission_reached[i] == reached;
+    for (std::size_t i = 0; i < plan.mission.size(); ++i) {
+      const bool goal = plan.fleet ? i + 1 == plan.mission.size() || plan.mission_owner[i + 1] != plan.mission_owner[i]
+                                   : i >= intermediate;
+      if (!goal) n += plan.mission_reached[i] == reached;
+    }
     return n;
   };
-  if (overlay && intermediate > 0) {
+  if (overlay && !plan.fleet && intermediate > 0) {
     legend.push_back(marker_entry([](Canvas& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, false); },
                                   "mission waypoint"));
-  } else if (!overlay) {
+  } else if (!overlay || plan.fleet) {
     if (count_reached(true) > 0) {
       legend.push_back(marker_entry([](Canvas& m, cv::Point2d c) { figure::waypoint_marker(m, c, 0, true); },
                                     "waypoint, reached"));
@@ -236,7 +240,18 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
                                     "waypoint, not reached"));
     }
   }
-  if (!plan.mission.empty()) {
+  if (plan.fleet) {
+    // Each vehicle's goal is the last waypoint it owns.
+    bool reached = false, missed = false;
+    for (std::size_t i = 0; i < plan.mission.size(); ++i) {
+      const bool goal = i + 1 == plan.mission.size() || plan.mission_owner[i + 1] != plan.mission_owner[i];
+      if (goal) (plan.mission_reached[i] ? reached : missed) = true;
+    }
+    if (reached) legend.push_back(marker_entry([](Canvas& m, cv::Point2d c) { figure::goal_marker(m, c, true); }, "goal"));
+    if (missed) {
+      legend.push_back(marker_entry([](Canvas& m, cv::Point2d c) { figure::goal_marker(m, c, false); }, "goal, not reached"));
+    }
+  } else if (!plan.mission.empty()) {
     const bool reached = overlay || plan.mission_reached.back();
     legend.push_back(marker_entry([reached](Canvas& m, cv::Point2d c) { figure::goal_marker(m, c, reached); },
                                   reached ? "goal" : "goal, not reached"));
@@ -256,11 +271,18 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
   }
 }
 
-MapPlan plan_map(const Scene& scene, std::vector<const RunView*> runs, const FigureStyle& style, bool overlay) {
+cv::Scalar plan_color(const MapPlan& plan, std::size_t index) {
+  return plan.fleet ? vehicle_color(index) : run_color(index);
+}
+
+MapPlan plan_map(const Scene& scene, std::vector<const RunView*> runs, const FigureStyle& style, bool overlay,
+                 bool fleet) {
   check_style(style);
   MapPlan plan(scene);
   plan.runs = std::move(runs);
-  plan.overlay = overlay;
+  plan.overlay = overlay || fleet;
+  plan.fleet = fleet;
+  overlay = plan.overlay;
   std::vector<Footprint> solids = figure::solid_footprints(scene);
   plan.bounds = style.bounds_m ? *style.bounds_m : map_bounds(scene, plan.runs, solids, style.margin_m);
   for (auto& f : solids) {
@@ -277,18 +299,20 @@ MapPlan plan_map(const Scene& scene, std::vector<const RunView*> runs, const Fig
   }
   plan.contour_interval_m = plan.ground.contour_interval(plan.bounds);
 
-  for (const RunView* run : plan.runs) {
+  for (std::size_t r = 0; r < plan.runs.size(); ++r) {
+    const RunView* run = plan.runs[r];
     if (!run->track.empty() && !contains_near(plan.starts, run->track.front().position_m)) {
       plan.starts.push_back(run->track.front().position_m);
     }
     for (std::size_t i = 0; i < run->mission.size(); ++i) {
-      // Runs of one scene share their mission: list each waypoint once.
-      const bool known = overlay && std::any_of(plan.mission.begin(), plan.mission.end(), [&](const Waypoint& w) {
+      // Runs of one scene share their mission: list each waypoint once. Vehicles each have their own.
+      const bool known = overlay && !fleet && std::any_of(plan.mission.begin(), plan.mission.end(), [&](const Waypoint& w) {
         return (w.position_m - run->mission[i].position_m).norm() < kSameSpotM;
       });
       if (known) continue;
       plan.mission.push_back(run->mission[i]);
       plan.mission_reached.push_back(is_reached(*run, i));
+      if (fleet) plan.mission_owner.push_back(r);
     }
   }
 
@@ -310,7 +334,20 @@ MapPlan plan_map(const Scene& scene, std::vector<const RunView*> runs, const Fig
     plan.legend.push_back(gradient_entry(style.coloring == TrackColoring::time ? "track, by time" : "track, by speed"));
     if (!plan.runs.front()->avoiding_s.empty()) plan.legend.push_back(line_entry(kAvoiding, 11, "avoiding obstacle"));
   }
-  if (overlay) {
+  if (fleet) {
+    // One entry per vehicle, named by its alias; its footprint where it ended.
+    for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+      const RunView& r = *plan.runs[i];
+      std::string text = r.label.empty() ? "vehicle " + std::to_string(i + 1) : r.label;
+      if (!r.outcome.empty()) text += " (" + r.outcome + ")";
+      plan.legend.push_back(line_entry(vehicle_color(i), 3, text));
+    }
+    if (std::any_of(plan.runs.begin(), plan.runs.end(), [](const RunView* r) {
+          return !r->track.empty() && r->footprint_m.minCoeff() > 0.0;
+        })) {
+      plan.legend.push_back(patch_entry(figure::lighten(kNeutralMarker, 0.55), kNeutralMarker, "vehicle, at its end"));
+    }
+  } else if (overlay) {
     std::vector<std::string> labels;
     for (const RunView* r : plan.runs) labels.push_back(r->label);
     labels = distinct_parts(labels);
@@ -387,10 +424,26 @@ void draw_footprint(Canvas& plot, const PlotMapper& to, const Footprint& f, cons
   plot.polyline(outline, figure::shade(fill, 0.6), 1, /*closed=*/true);
 }
 
+void draw_vehicle_footprint(Canvas& plot, const PlotMapper& to, const TrackPoint& at, const Eigen::Vector2d& footprint_m,
+                            const cv::Scalar& colour) {
+  const double yaw = at.yaw_deg * M_PI / 180.0;
+  const Eigen::Vector2d ahead(std::cos(yaw), std::sin(yaw)), left(-ahead.y(), ahead.x());
+  const Eigen::Vector2d centre = xy(at.position_m);
+  const Eigen::Vector2d half = 0.5 * footprint_m;
+  const std::vector<Eigen::Vector2d> corners{centre + half.x() * ahead + half.y() * left,
+                                             centre - half.x() * ahead + half.y() * left,
+                                             centre - half.x() * ahead - half.y() * left,
+                                             centre + half.x() * ahead - half.y() * left};
+  const std::vector<cv::Point2d> outline = to.all(corners);
+  plot.fill_polygon(outline, figure::lighten(colour, 0.55));
+  plot.polyline(outline, colour, 2, /*closed=*/true);
+  plot.line(to(centre), to(Eigen::Vector2d(centre + half.x() * ahead)), colour, 2);
+}
+
 void draw_run_marks(Canvas& plot, const PlotMapper& to, const MapPlan& plan) {
   for (std::size_t i = 0; i < plan.runs.size(); ++i) {
     const RunView& run = *plan.runs[i];
-    const cv::Scalar own = run_color(i);
+    const cv::Scalar own = plan_color(plan, i);
     if (!plan.overlay && !plan.height_map) {
       // Under everything else of the run, so the planned path and the track stay visible.
       for (const auto& [from, until] : run.avoiding_s) {
@@ -446,10 +499,17 @@ void draw_run_marks(Canvas& plot, const PlotMapper& to, const MapPlan& plan) {
     const RunView& run = *plan.runs[i];
     if (plan.height_map) break;  // the height map shows what was mapped, not the planner's steps
     for (const auto& p : run.planned) {
-      figure::diamond_marker(plot, to(p), plan.overlay ? run_color(i) : kPlannedWaypoint);
+      figure::diamond_marker(plot, to(p), plan.overlay ? plan_color(plan, i) : kPlannedWaypoint);
     }
     for (const auto& p : run.discarded) {
-      figure::cross_marker(plot, to(p), plan.overlay ? run_color(i) : kDiscardedWaypoint);
+      figure::cross_marker(plot, to(p), plan.overlay ? plan_color(plan, i) : kDiscardedWaypoint);
+    }
+  }
+  // Each vehicle of a fleet where its track ends (a video: where it is), over the tracks.
+  for (std::size_t i = 0; plan.fleet && i < plan.runs.size(); ++i) {
+    const RunView& run = *plan.runs[i];
+    if (!run.track.empty() && run.footprint_m.minCoeff() > 0.0) {
+      draw_vehicle_footprint(plot, to, run.track.back(), run.footprint_m, plan_color(plan, i));
     }
   }
   // Last, over everything of the runs: where each hit something.
@@ -487,22 +547,28 @@ void draw_scale_bar(Canvas& image, const cv::Rect& box, double px_per_m) {
 // Numbered operator waypoints, the goal last. Waypoints on the same spot
 // (e.g. at two altitudes) share one marker labelled with all their numbers;
 // so does one under a start marker, which is drawn over it.
-void draw_mission(Canvas& plot, int plot_width_px, const PlotMapper& to, const MapPlan& plan) {
-  const std::size_t n = plan.mission.size();
+// On fleet maps each vehicle's mission on its own (`from` to `to` of plan.mission), its goal ringed in its colour.
+void draw_mission(Canvas& plot, int plot_width_px, const PlotMapper& to, const MapPlan& plan, std::size_t from,
+                  std::size_t until) {
+  const std::size_t n = until - from;
+  const auto mission = [&](std::size_t i) -> const Waypoint& { return plan.mission[from + i]; };
+  const auto reached = [&](std::size_t i) { return plan.mission_reached[from + i]; };
+  const bool own_marks = !plan.overlay || plan.fleet;  // filled when reached
   std::vector<std::vector<std::size_t>> groups;
   for (std::size_t i = 0; i < n; ++i) {
-    const cv::Point2d p = to(plan.mission[i].position_m);
+    const cv::Point2d p = to(mission(i).position_m);
     const auto same = std::find_if(groups.begin(), groups.end(), [&](const auto& g) {
-      return cv::norm(to(plan.mission[g.front()].position_m) - p) < 4.0;
+      return cv::norm(to(mission(g.front()).position_m) - p) < 4.0;
     });
     if (same != groups.end()) same->push_back(i);
     else groups.push_back({i});
   }
   for (const auto& group : groups) {
-    const cv::Point2d p = to(plan.mission[group.front()].position_m);
+    const cv::Point2d p = to(mission(group.front()).position_m);
     const bool has_goal = group.back() + 1 == n;
-    if (has_goal) figure::goal_marker(plot, p, plan.overlay || plan.mission_reached.back());
-    else figure::waypoint_marker(plot, p, static_cast<int>(group.front() + 1), !plan.overlay && plan.mission_reached[group.front()]);
+    if (has_goal && plan.fleet) plot.circle(p, 16.0, plan_color(plan, plan.mission_owner[from]), 3.0);
+    if (has_goal) figure::goal_marker(plot, p, !own_marks || reached(n - 1));
+    else figure::waypoint_marker(plot, p, static_cast<int>(group.front() + 1), own_marks && reached(group.front()));
     const bool under_start = std::any_of(plan.starts.begin(), plan.starts.end(),
                                          [&](const Eigen::Vector3d& s) { return cv::norm(to(s) - p) < 12.0; });
     if (group.size() == 1 && !under_start && (!has_goal || n == 1)) continue;
@@ -577,7 +643,18 @@ void draw_map_figure(Canvas& image, const Scene& scene, const MapPlan& plan, con
     if (!plan.overlay && !plan.height_map && has_nominal_route(*plan.runs.front())) {
       plot.dashed_polyline(to.all(nominal_route(*plan.runs.front())), kNominalRoute, 2, 9.0, 6.0);
     }
-    draw_mission(plot, layout.plot_px.width, to, plan);
+    if (plan.fleet) {
+      for (std::size_t from = 0, until = 0; from < plan.mission.size(); from = until) {
+        while (until < plan.mission.size() && plan.mission_owner[until] == plan.mission_owner[from]) ++until;
+        draw_mission(plot, layout.plot_px.width, to, plan, from, until);
+      }
+      // Each vehicle's start ringed in its colour.
+      for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+        if (!plan.runs[i]->track.empty()) plot.circle(to(plan.runs[i]->track.front().position_m), 12.0, plan_color(plan, i), 3.0);
+      }
+    } else {
+      draw_mission(plot, layout.plot_px.width, to, plan, 0, plan.mission.size());
+    }
     for (const auto& s : plan.starts) figure::start_marker(plot, to(s));
   }
 

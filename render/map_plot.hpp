@@ -27,6 +27,9 @@ struct MapPlan {
   explicit MapPlan(const Scene& scene) : ground(scene) {}
   std::vector<const RunView*> runs;
   bool overlay = false;
+  /// The runs are the vehicles of one run (an overlay of them): each in vehicle_color, its own mission and goal,
+  /// its start and goal ringed in its colour, its footprint at its track's end (RunView::footprint_m).
+  bool fleet = false;
   Eigen::AlignedBox2d bounds;
   Ground ground;
   double contour_interval_m = 0.0;
@@ -41,7 +44,8 @@ struct MapPlan {
   bool movers_at_start = true;              // false: their paths alone (a video draws them where they are)
   std::vector<Eigen::Vector3d> starts;      // distinct
   std::vector<Waypoint> mission;            // distinct operator waypoints; the last is the goal
-  std::vector<bool> mission_reached;        // single-run maps only
+  std::vector<bool> mission_reached;        // single-run and fleet maps only
+  std::vector<std::size_t> mission_owner;   // fleet maps: the run (vehicle) of each of `mission`; its last is its goal
   bool colorbar = false;
   TrackColoring coloring = TrackColoring::time;
   double value_lo = 0.0, value_hi = 1.0;    // range of the track colouring
@@ -52,8 +56,12 @@ struct MapPlan {
 
 /// The plan of a map of one run (`overlay` false: the track coloured as
 /// style.coloring says, with a colour bar) or of several runs overlaid, one
-/// colour each; std::invalid_argument for a bad style.
-MapPlan plan_map(const Scene& scene, std::vector<const RunView*> runs, const FigureStyle& style, bool overlay);
+/// colour each, or (`fleet`) of the vehicles of one run (MapPlan::fleet);
+/// std::invalid_argument for a bad style.
+MapPlan plan_map(const Scene& scene, std::vector<const RunView*> runs, const FigureStyle& style, bool overlay,
+                 bool fleet = false);
+/// The colour of run `index` of the plan: vehicle_color on fleet maps, else run_color.
+cv::Scalar plan_color(const MapPlan& plan, std::size_t index);
 /// Appends to plan.legend an entry for every kind of symbol the plan shows.
 void add_symbol_entries(MapPlan& plan, const Scene& scene);
 /// Where the parts of the planned map go (FigureLayout, figure_style.hpp).
@@ -82,6 +90,10 @@ inline constexpr double kAboveBandLighten = 0.65;
 /// recorded sensor hits, planned and discarded waypoints; draw_map_figure draws them over the
 /// scene and under the mission's markers (a video draws them frame by frame).
 void draw_run_marks(Canvas& plot, const PlotMapper& to, const MapPlan& plan);
+/// A vehicle's footprint (length, width) at `at`'s position and heading, filled pale in `colour` with an edge and
+/// a line to its front in it.
+void draw_vehicle_footprint(Canvas& plot, const PlotMapper& to, const TrackPoint& at, const Eigen::Vector2d& footprint_m,
+                            const cv::Scalar& colour);
 
 // Drawing coordinates relative to the plot area: draw in canvas.region(layout.plot_px), which clips what lies outside.
 struct PlotMapper {

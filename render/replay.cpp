@@ -178,13 +178,13 @@ struct RecordedPoses {
   const std::vector<double>& yaw;
 };
 
-// The returns of the run's first sensor with recorded depth maps, in the world frame, from
-// the vehicle's recorded pose at each scan.
-json scans_json(const RecordedRun& run, const RecordedPoses& poses, const RunBudget& budget) {
+// The returns of the first sensor of `vehicle` (null: the run's, recorded_vehicle) with recorded depth maps, in
+// the world frame, from the vehicle's recorded pose at each scan.
+json scans_json(const RecordedRun& run, const VehicleDef* def, const RecordedPoses& poses, const RunBudget& budget) {
   json scans = json::array();
   const std::vector<RecordedDepthMap> maps = recorded_depth_maps(run);
   if (maps.empty()) return scans;
-  const VehicleDef& vehicle = recorded_vehicle(run);
+  const VehicleDef& vehicle = def ? *def : recorded_vehicle(run);
   const SensorDef* sensor = nullptr;
   for (const SensorDef& s : vehicle.sensors) {
     if (std::any_of(maps.begin(), maps.end(), [&](const auto& m) { return m.sensor == s.alias; })) {
@@ -215,8 +215,11 @@ json scans_json(const RecordedRun& run, const RecordedPoses& poses, const RunBud
   return scans;
 }
 
-json run_json(const RecordedRun& run, std::size_t index, const RunBudget& budget, Eigen::AlignedBox3d& bounds) {
-  const TrajectoryTable table = read_trajectory_table(run.dir / "trajectory.csv");
+// One vehicle of a run (RecordedRun::vehicles[`vehicle`]) as an entry of the page's runs, labelled `label` in `colour`.
+json run_json(const RecordedRun& run, std::size_t vehicle, const std::string& label, const cv::Scalar& bgr,
+              const RunBudget& budget, Eigen::AlignedBox3d& bounds) {
+  const RecordedVehicle& recorded = run.vehicles.at(vehicle);
+  const TrajectoryTable table = read_trajectory_table(run.dir / recorded.trajectory_file);
   const RecordedPoses poses(table);
   if (poses.time.empty()) throw InputError(table.file, "", "no samples; expected a track");
   json times = json::array(), positions = json::array(), attitudes = json::array();
@@ -227,17 +230,23 @@ json run_json(const RecordedRun& run, std::size_t index, const RunBudget& budget
     attitudes.push_back(xyz(pose.rpy_deg));
     bounds.extend(pose.position_m);
   }
-  const cv::Scalar bgr = run_color(index);
-  const std::string vehicle = run.record.value("/parameters/vehicle/type"_json_pointer, std::string("quadrotor"));
-  return {{"label", run.view.label},
+  const std::string type = recorded.parameters.value("/vehicle/type"_json_pointer, std::string("quadrotor"));
+  // The recorded depth maps are one vehicle's (campo run --vehicle), found in scene.json by its alias.
+  json scans = json::array();
+  if (!run.several()) {
+    scans = scans_json(run, nullptr, poses, budget);
+  } else if (recorded.alias == sensor_records_vehicle(run)) {
+    if (const VehicleDef* def = run.scene.find_vehicle(recorded.alias)) scans = scans_json(run, def, poses, budget);
+  }
+  return {{"label", label},
           {"color", {rounded(bgr[2] / 255.0), rounded(bgr[1] / 255.0), rounded(bgr[0] / 255.0)}},
-          {"vehicle", vehicle},
-          {"size_m", xyz(vehicle_size_m(run))},
-          {"outcome", run.view.outcome},
+          {"vehicle", type},
+          {"size_m", xyz(vehicle_size_m(recorded))},
+          {"outcome", recorded.view.outcome},
           {"times_s", std::move(times)},
           {"positions_m", std::move(positions)},
           {"rpy_deg", std::move(attitudes)},
-          {"scans", scans_json(run, poses, budget)}};
+          {"scans", std::move(scans)}};
 }
 
 // The page: each line of the template that is one marker alone becomes that content; the
@@ -305,13 +314,30 @@ json replay_json(std::size_t count, const std::function<const RecordedRun&(std::
     const RecordedRun& r = run(i);
     if (i == 0) first = r;
     check_same_scene(r, *first);
-    run_list.push_back(run_json(r, i, budget, bounds));
-    duration_s = std::max(duration_s, run_list.back()["times_s"].back().get<double>());
+    if (!r.several()) {
+      run_list.push_back(run_json(r, 0, r.view.label, run_color(run_list.size()), budget, bounds));
+      duration_s = std::max(duration_s, run_list.back()["times_s"].back().get<double>());
+      continue;
+    }
+    // Every vehicle of a run of several, sharing the run's track samples; in the maps' colours when the replay
+    // shows this run alone.
+    RunBudget shared = budget;
+    shared.track_samples = std::max<std::size_t>(2, budget.track_samples / r.vehicles.size());
+    for (std::size_t v = 0; v < r.vehicles.size(); ++v) {
+      const std::string label = count == 1 ? r.vehicles[v].alias : r.view.label + ": " + r.vehicles[v].alias;
+      run_list.push_back(
+          run_json(r, v, label, count == 1 ? vehicle_color(v) : run_color(run_list.size()), shared, bounds));
+      duration_s = std::max(duration_s, run_list.back()["times_s"].back().get<double>());
+    }
   }
   json scene = scene_json(first->scene, duration_s, limits, bounds);
   scene["bounds_m"] = {{"min", xyz(bounds.min())}, {"max", xyz(bounds.max())}};
   std::string title = first->scene.name;
-  if (count == 1) {
+  if (count == 1 && first->several()) {  // the fleet's outcome
+    const std::string outcome = first->record.value("/metrics/outcome"_json_pointer, std::string());
+    title += ": " + first->view.label + ", " + std::to_string(first->vehicles.size()) + " vehicles" +
+             (outcome.empty() ? "" : " (" + outcome + ")");
+  } else if (count == 1) {
     title += ": " + first->view.label + (first->view.outcome.empty() ? "" : " (" + first->view.outcome + ")");
   } else {
     title += ": " + std::to_string(count) + " runs";

@@ -27,9 +27,28 @@ void append(std::vector<std::filesystem::path>& to, std::vector<std::filesystem:
 }
 
 std::string title_of(const RecordedRun& run, const std::string& what) {
-  const auto& p = run.record.at("parameters");
+  if (run.several()) {  // the run as a whole: its vehicles and the fleet's outcome
+    return run.scene.name + " - " + std::to_string(run.vehicles.size()) + " vehicles - " +
+           run.record.value("/metrics/outcome"_json_pointer, std::string()) + " - " + what;
+  }
+  const auto& p = run.parameters();
   return run.scene.name + " - " + p.at("vehicle").at("type").get<std::string>() + " - " +
          p.at("planner").at("name").get<std::string>() + " - " + run.view.outcome + " - " + what;
+}
+
+// Where the chosen vehicle's parameters are in run.json, for messages.
+std::string parameters_pointer(const RecordedRun& run) {
+  return run.several() ? "/vehicles/" + std::to_string(run.chosen) + "/parameters" : "/parameters";
+}
+
+// Every vehicle's view, in scene order, each with its footprint (length and width) for the map.
+std::vector<RunView> fleet_views(const RecordedRun& run) {
+  std::vector<RunView> views;
+  for (const RecordedVehicle& v : run.vehicles) {
+    views.push_back(v.view);
+    views.back().footprint_m = vehicle_size_m(v).head<2>();
+  }
+  return views;
 }
 
 std::string record_file(const RecordedRun& run) { return (run.dir / "run.json").string(); }
@@ -48,14 +67,14 @@ std::vector<std::filesystem::path> write_depth_pair(const cv::Mat& depth, const 
 
 // The angular grid of sensor `alias` as run.json's parameters.sensors recorded it.
 RecordedImage recorded_grid(const RecordedRun& run, const std::string& alias) {
-  for (const auto& s : run.record.at("parameters").at("sensors")) {
+  for (const auto& s : run.parameters().at("sensors")) {
     if (s.value("alias", "") != alias) continue;
     const auto& resolution = s.at("resolution");
     const auto& fov = s.at("fov_deg");
     return {resolution.at(0).get<int>(), resolution.at(1).get<int>(), fov.at(0).get<double>(), fov.at(1).get<double>(),
             s.at("range_m").at(1).get<double>()};
   }
-  throw InputError(record_file(run), "/parameters/sensors", "no sensor \"" + alias + "\", which replanning read");
+  throw InputError(record_file(run), parameters_pointer(run) + "/sensors", "no sensor \"" + alias + "\", which replanning read");
 }
 
 // The planner's overlays of one replanning step as the depth figure draws them.
@@ -135,9 +154,13 @@ std::vector<std::filesystem::path> write_figure(const RecordedRun& run, FigureKi
   switch (kind) {
     case FigureKind::map:
       style.title = title_of(run, "map");
+      if (run.several()) return draw_fleet_map(run.scene, fleet_views(run), style).write(figure_file(out_dir, kind), formats);
       return draw_map(run.scene, run.view, style).write(figure_file(out_dir, kind), formats);
     case FigureKind::side:
       style.title = title_of(run, "side view");
+      if (run.several()) {
+        return draw_fleet_side_view(run.scene, fleet_views(run), style).write(figure_file(out_dir, kind), formats);
+      }
       return draw_side_view(run.scene, run.view, style).write(figure_file(out_dir, kind), formats);
     case FigureKind::heightmap:
       if (run.view.height_map.empty()) {
@@ -154,8 +177,7 @@ std::vector<std::filesystem::path> write_figure(const RecordedRun& run, FigureKi
       const SnapshotCamera camera = default_snapshot_camera(run.scene, path);
       std::optional<Eigen::Isometry3d> pose;
       if (!path.empty()) pose = Eigen::Isometry3d(Eigen::Translation3d(path.back()));
-      const auto type =
-          vehicle_type_from_string(run.record.at("parameters").at("vehicle").at("type").get<std::string>());
+      const auto type = vehicle_type_from_string(run.parameters().at("vehicle").at("type").get<std::string>());
       return raster_figure(render_snapshot(run.scene, mesh, camera, path, pose, type.value_or(VehicleType::quadrotor)))
           .write(figure_file(out_dir, kind), formats);
     }
@@ -189,10 +211,17 @@ std::vector<std::filesystem::path> write_figure(const RecordedRun& run, FigureKi
 
 std::vector<ReplanStep> find_replan_steps(const RecordedRun& run, const std::optional<std::vector<int>>& indices) {
   const std::string file = record_file(run);
-  const std::string planner = run.record.value("/parameters/planner/name"_json_pointer, std::string());
+  const std::string planner = run.parameters().value("/planner/name"_json_pointer, std::string());
   if (!run.planner || !run.planner->replan_overlays) {
-    throw InputError(file, "/parameters/planner/name",
+    throw InputError(file, parameters_pointer(run) + "/planner/name",
                      "expected \"depth_reactive\", whose replanning steps --step draws, got \"" + planner + "\"");
+  }
+  // replans/ holds the depth maps of one vehicle's replanning steps: those of another are not there.
+  const std::string recorded_alias = sensor_records_vehicle(run);
+  if (run.several() && run.vehicles[run.chosen].alias != recorded_alias) {
+    throw InputError("command line", "--vehicle",
+                     "the run recorded the replanning depth maps of vehicle \"" + recorded_alias + "\", not of \"" +
+                         run.vehicles[run.chosen].alias + "\" (campo run --vehicle chooses whose)");
   }
   std::vector<ReplanStep> recorded;
   for (const PlannerEvent& event : run.events) {
@@ -245,13 +274,11 @@ std::pair<cv::Mat, DepthOverlays> replan_depth(const RecordedRun& run, const Rep
     }
     RecordedImage image = grid;
     image.values.assign(depth.ptr<float>(), depth.ptr<float>() + depth.total());
-    const auto params = "/parameters/planner/parameters"_json_pointer;
-    if (!run.record.contains(params)) {
-      throw InputError(file, params.to_string(), "missing; expected the planner's parameters");
-    }
-    DepthOverlays overlays =
-        depth_overlays(run.planner->replan_overlays(step.decision, image, run.record.at(params), file, params.to_string()),
-                       depth.size());
+    const auto params = "/planner/parameters"_json_pointer;
+    const std::string params_at = parameters_pointer(run) + params.to_string();
+    if (!run.parameters().contains(params)) throw InputError(file, params_at, "missing; expected the planner's parameters");
+    DepthOverlays overlays = depth_overlays(
+        run.planner->replan_overlays(step.decision, image, run.parameters().at(params), file, params_at), depth.size());
     return {std::move(depth), std::move(overlays)};
   } catch (const nlohmann::json::exception& e) {
     throw InputError(file, "/events", "malformed replanning step " + std::to_string(step.decision.index) + ": " + e.what());

@@ -147,12 +147,69 @@ TrajectoryTable read_trajectory_table(const std::filesystem::path& path) {
   return table;
 }
 
-RecordedRun load_run_dir(const std::filesystem::path& dir) {
+namespace {
+
+// A file name run.json gives for a file beside it: only a file there, a record names no other place to read.
+std::filesystem::path file_beside(const std::filesystem::path& dir, const std::string& name, const std::string& pointer) {
+  const std::filesystem::path file = name;
+  if (file.has_parent_path() || file.empty() || file == "." || file == "..") {
+    throw InputError((dir / "run.json").string(), pointer, "expected a file name, got " + file.string());
+  }
+  return dir / file;
+}
+
+// The events of the object holding an "event_log" (a vehicle's entry, or run.json itself), or its "events" array
+// (runs recorded before events.jsonl); none when it has neither.
+std::vector<PlannerEvent> read_events(const std::filesystem::path& dir, const nlohmann::json& holder,
+                                      const std::string& pointer) {
+  const std::string record_file = (dir / "run.json").string();
+  try {
+    if (const auto log = holder.find("event_log"); log != holder.end()) {
+      return read_events_jsonl(file_beside(dir, log->at("file").get<std::string>(), pointer + "/event_log/file"));
+    }
+    if (const auto events = holder.find("events"); events != holder.end()) {
+      return events_from_json(*events, record_file, pointer + "/events");
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(record_file, pointer + "/event_log", std::string("malformed run record: ") + e.what());
+  }
+  return {};
+}
+
+// A vehicle's view: its track, mission, planner decisions and collisions.
+RunView vehicle_view(const std::filesystem::path& dir, const RecordedVehicle& vehicle, const std::string& pointer) {
+  const std::string record_file = (dir / "run.json").string();
+  RunView v;
+  v.label = vehicle.alias;
+  v.outcome = vehicle.metrics.value("outcome", std::string());
+  v.track = read_track(dir / vehicle.trajectory_file);
+  try {
+    for (const auto& wp : vehicle.parameters.at("mission")) {
+      Waypoint w;
+      w.position_m = vector3(wp.at("position_m"));
+      if (wp.contains("heading_deg")) w.heading_deg = wp["heading_deg"].get<double>();
+      v.mission.push_back(w);
+    }
+    add_decisions(v, vehicle.events, vehicle.planner, std::numeric_limits<double>::infinity(), record_file);
+    // Runs recorded before collisions were listed have none to mark.
+    if (const auto events = vehicle.metrics.find("collision_events"); events != vehicle.metrics.end()) {
+      for (const auto& e : *events) v.collisions.emplace_back(e.at("time_s").get<double>(), vector3(e.at("point_m")));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(record_file, pointer, std::string("malformed run record: ") + e.what());
+  }
+  return v;
+}
+
+}  // namespace
+
+RecordedRun load_run_dir(const std::filesystem::path& dir, const std::string& vehicle) {
   // An empty path would read run.json from the working directory.
   if (dir.empty()) throw InputError("", "", "expected the path of a run directory, got an empty string");
   RecordedRun run;
   run.dir = dir;
   run.record = read_json_file(dir / "run.json", {64u << 20, 64});
+  const std::string record_file = (dir / "run.json").string();
   const auto scene_path = dir / "scene.json";
   const std::filesystem::path data_dir = run.record.value("/provenance/scene/data_dir"_json_pointer, std::string("."));
   run.scene = parse_scene(read_json_file(scene_path), scene_path.string(), data_dir);
@@ -164,64 +221,107 @@ RecordedRun load_run_dir(const std::filesystem::path& dir) {
       shape.pose = to_isometry(Pose{vector3(body.at("position_m")), vector3(body.at("rpy_deg"))});
     }
   }
+  // Each vehicle's record: run.json's "vehicles" with several, run.json itself with one.
+  std::vector<std::string> pointers;
   try {
-    if (const auto log = run.record.find("event_log"); log != run.record.end()) {
-      const std::filesystem::path name = log->at("file").get<std::string>();
-      // Only a file beside run.json: a record names no other place to read.
-      if (name.has_parent_path() || name.empty() || name == "." || name == "..") {
-        throw InputError((dir / "run.json").string(), "/event_log/file", "expected a file name, got " + name.string());
+    if (const auto list = run.record.find("vehicles"); list != run.record.end()) {
+      if (!list->is_array() || list->empty()) {
+        throw InputError(record_file, "/vehicles", "expected an array of one record per vehicle");
       }
-      run.events = read_events_jsonl(dir / name);
-    } else if (const auto events = run.record.find("events"); events != run.record.end()) {
-      run.events = events_from_json(*events, (dir / "run.json").string(), "/events");
+      for (std::size_t i = 0; i < list->size(); ++i) {
+        const nlohmann::json& entry = (*list)[i];
+        const std::string pointer = "/vehicles/" + std::to_string(i);
+        RecordedVehicle v;
+        v.alias = entry.at("alias").get<std::string>();
+        v.parameters = entry.at("parameters");
+        v.metrics = entry.at("metrics");
+        v.trajectory_file = file_beside(dir, entry.at("trajectory_file").get<std::string>(), pointer + "/trajectory_file")
+                                .filename()
+                                .string();
+        v.events = read_events(dir, entry, pointer);
+        run.vehicles.push_back(std::move(v));
+        pointers.push_back(pointer);
+      }
+    } else {
+      RecordedVehicle v;
+      v.alias = run.record.value("/parameters/vehicle/alias"_json_pointer, std::string());
+      v.parameters = run.record.value("parameters", nlohmann::json::object());
+      v.metrics = run.record.at("metrics");
+      v.trajectory_file = "trajectory.csv";
+      v.events = read_events(dir, run.record, "");
+      run.vehicles.push_back(std::move(v));
+      pointers.push_back("");
     }
   } catch (const nlohmann::json::exception& e) {
-    throw InputError((dir / "run.json").string(), "/event_log", std::string("malformed run record: ") + e.what());
+    throw InputError(record_file, "", std::string("malformed run record: ") + e.what());
   }
-  run.planner = planner_record(run.record.value("/parameters/planner/name"_json_pointer, std::string()));
-  if (run.planner) check_own_decisions(*run.planner, run.events, (dir / "run.json").string());
-  RunView& v = run.view;
-  v.label = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
-  v.outcome = run.record.value("/metrics/outcome"_json_pointer, std::string());
-  v.track = read_track(dir / "trajectory.csv");
-  try {
-    for (const auto& wp : run.record.at("parameters").at("mission")) {
-      Waypoint w;
-      w.position_m = vector3(wp.at("position_m"));
-      if (wp.contains("heading_deg")) w.heading_deg = wp["heading_deg"].get<double>();
-      v.mission.push_back(w);
+  if (!vehicle.empty()) {
+    const auto it = std::find_if(run.vehicles.begin(), run.vehicles.end(),
+                                 [&](const RecordedVehicle& v) { return v.alias == vehicle; });
+    if (it == run.vehicles.end()) {
+      std::string known;
+      for (const RecordedVehicle& v : run.vehicles) known += (known.empty() ? "\"" : ", \"") + v.alias + "\"";
+      throw InputError("command line", "--vehicle",
+                       "no vehicle \"" + vehicle + "\" in the run " + dir.string() + " (its vehicles: " + known + ")");
     }
-    add_decisions(v, run.events, run.planner, std::numeric_limits<double>::infinity(), (dir / "run.json").string());
-    // Runs recorded before collisions were listed have none to mark.
-    const nlohmann::json& metrics = run.record.at("metrics");
-    if (const auto events = metrics.find("collision_events"); events != metrics.end()) {
-      for (const auto& e : *events) v.collisions.emplace_back(e.at("time_s").get<double>(), vector3(e.at("point_m")));
-    }
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError((dir / "run.json").string(), "", std::string("malformed run record: ") + e.what());
+    run.chosen = static_cast<std::size_t>(it - run.vehicles.begin());
   }
+  for (std::size_t i = 0; i < run.vehicles.size(); ++i) {
+    RecordedVehicle& v = run.vehicles[i];
+    v.planner = planner_record(v.parameters.value("/planner/name"_json_pointer, std::string()));
+    if (v.planner) check_own_decisions(*v.planner, v.events, record_file);
+    v.view = vehicle_view(dir, v, pointers[i]);
+  }
+  const RecordedVehicle& chosen = run.vehicles[run.chosen];
+  run.events = chosen.events;
+  run.planner = chosen.planner;
+  run.view = chosen.view;
+  run.view.label = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
   return run;
 }
 
-RunView run_view_at(const RecordedRun& run, double time_s) {
+std::string sensor_records_vehicle(const RecordedRun& run) {
+  const auto named = run.record.find("recorded_vehicle");
+  if (named != run.record.end() && named->is_string()) return named->get<std::string>();
+  return run.vehicles.empty() ? std::string() : run.vehicles.front().alias;
+}
+
+namespace {
+
+// `whole` as it was at `time_s`, from its planner's `events`.
+RunView view_at(const RunView& whole, const std::vector<PlannerEvent>& events, const PlannerRecord* planner,
+                const std::string& record_file, double time_s) {
   RunView v;
-  v.label = run.view.label;
-  v.outcome = run.view.outcome;
-  v.mission = run.view.mission;
-  for (const TrackPoint& p : run.view.track) {
+  v.label = whole.label;
+  v.outcome = whole.outcome;
+  v.mission = whole.mission;
+  for (const TrackPoint& p : whole.track) {
     if (p.time_s > time_s) break;
     v.track.push_back(p);
   }
-  if (v.track.empty() && !run.view.track.empty()) v.track.push_back(run.view.track.front());
-  add_decisions(v, run.events, run.planner, time_s, (run.dir / "run.json").string());
-  for (const auto& c : run.view.collisions) {
+  if (v.track.empty() && !whole.track.empty()) v.track.push_back(whole.track.front());
+  add_decisions(v, events, planner, time_s, record_file);
+  for (const auto& c : whole.collisions) {
     if (c.first <= time_s) v.collisions.push_back(c);
   }
   return v;
 }
 
-Eigen::Vector3d vehicle_size_m(const RecordedRun& run) {
-  const nlohmann::json& vehicle = run.record.value("/parameters/vehicle"_json_pointer, nlohmann::json::object());
+}  // namespace
+
+RunView run_view_at(const RecordedRun& run, double time_s) {
+  return view_at(run.view, run.events, run.planner, (run.dir / "run.json").string(), time_s);
+}
+
+RunView run_view_at(const RecordedRun& run, std::size_t index, double time_s) {
+  const RecordedVehicle& vehicle = run.vehicles.at(index);
+  return view_at(vehicle.view, vehicle.events, vehicle.planner, (run.dir / "run.json").string(), time_s);
+}
+
+Eigen::Vector3d vehicle_size_m(const RecordedRun& run) { return vehicle_size_m(run.vehicles.at(run.chosen)); }
+
+Eigen::Vector3d vehicle_size_m(const RecordedVehicle& recorded) {
+  const nlohmann::json& vehicle = recorded.parameters.value("vehicle", nlohmann::json::object());
   const nlohmann::json params = vehicle.value("parameters", nlohmann::json::object());
   const auto triple = [](const nlohmann::json& j) {
     return j.is_array() && j.size() == 3 && std::all_of(j.begin(), j.end(), [](const auto& v) { return v.is_number(); });
@@ -280,11 +380,12 @@ std::vector<Eigen::Vector3d> depth_map_returns(const cv::Mat& depth, const Senso
 }
 
 const VehicleDef& recorded_vehicle(const RecordedRun& run) {
-  const std::string alias = run.record.value("/parameters/vehicle/alias"_json_pointer, std::string());
+  const std::string alias = run.parameters().value("/vehicle/alias"_json_pointer, std::string());
   for (const VehicleDef& v : run.scene.vehicles) {
     if (v.alias == alias) return v;
   }
-  throw InputError((run.dir / "run.json").string(), "/parameters/vehicle/alias",
+  throw InputError((run.dir / "run.json").string(),
+                   (run.several() ? "/vehicles/" + std::to_string(run.chosen) : std::string()) + "/parameters/vehicle/alias",
                    "expected a vehicle of scene.json, got \"" + alias + "\"");
 }
 

@@ -57,11 +57,13 @@ class SensorPanel {
  public:
   SensorPanel(const RecordedRun& run, const VehicleDef& vehicle, const Eigen::Vector3d& size_m)
       : run_(run), footprint_m_(size_m.head<2>()) {
-    if (run.planner && run.planner->replan_overlays && std::filesystem::is_directory(run.dir / "replans")) {
+    // The recorded depth maps are one vehicle's (campo run --vehicle): another's panel shows its decisions alone.
+    const bool recorded = !run.several() || run.vehicles[run.chosen].alias == sensor_records_vehicle(run);
+    if (recorded && run.planner && run.planner->replan_overlays && std::filesystem::is_directory(run.dir / "replans")) {
       replans_ = find_replan_steps(run, std::nullopt);
       std::sort(replans_.begin(), replans_.end(), [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
     }
-    std::tie(sensor_, depths_) = recorded_depths(run, vehicle);
+    if (recorded) std::tie(sensor_, depths_) = recorded_depths(run, vehicle);
     if (run.planner && run.planner->heading) {
       for (const PlannerEvent& e : run.events) {
         if (auto mark = run.planner->heading(e.decisions)) marks_.push_back({e.time_s, std::move(*mark)});
@@ -135,7 +137,8 @@ class SensorPanel {
 // The measured values of the strip, from trajectory.csv's row at a time.
 class StripValues {
  public:
-  explicit StripValues(const RecordedRun& run) : table_(read_trajectory_table(run.dir / "trajectory.csv")) {
+  explicit StripValues(const RecordedRun& run)
+      : table_(read_trajectory_table(run.dir / run.vehicles.at(run.chosen).trajectory_file)) {
     time_ = &table_.column("time_s");
     const auto optional = [&](const char* name) -> const std::vector<double>* {
       const auto& h = table_.header;
@@ -182,9 +185,11 @@ class StripValues {
 // The planner's state at the end of `so_far`, one line.
 std::string planner_state(const RecordedRun& run, const RunView& so_far, double time_s, double duration_s,
                           bool avoiding) {
-  if (time_s >= duration_s) {
+  if (time_s >= duration_s) {  // the run's end: with several vehicles, the fleet's outcome
     const std::string reason = run.record.value("/metrics/reason"_json_pointer, std::string());
-    return "end: " + run.view.outcome + (reason.empty() ? "" : " (" + reason + ")");
+    const std::string outcome =
+        run.several() ? run.record.value("/metrics/outcome"_json_pointer, std::string()) : run.view.outcome;
+    return "end: " + outcome + (reason.empty() ? "" : " (" + reason + ")");
   }
   std::string state = avoiding ? "avoiding an obstacle" : "";
   for (const PlannerEvent& e : run.events) {
@@ -218,22 +223,36 @@ void write_video(const RecordedRun& recorded, const VideoOptions& options, const
   // Every frame draws the track so far: a longer track is thinned evenly (the last sample kept),
   // so the work is frames x max_track_samples at most.
   std::optional<RecordedRun> thinned;
-  if (recorded.view.track.size() > options.max_track_samples && options.max_track_samples >= 2) {
-    thinned = recorded;
-    std::vector<TrackPoint>& track = thinned->view.track;
+  const auto thin = [&](std::vector<TrackPoint>& track) {
     const std::size_t n = track.size(), keep = options.max_track_samples;
     std::vector<TrackPoint> kept;
     for (std::size_t k = 0; k < keep; ++k) kept.push_back(track[k * (n - 1) / (keep - 1)]);
     track = std::move(kept);
+  };
+  const auto too_long = [&](const RunView& view) { return view.track.size() > options.max_track_samples; };
+  if (options.max_track_samples >= 2 &&
+      (too_long(recorded.view) ||
+       std::any_of(recorded.vehicles.begin(), recorded.vehicles.end(), [&](const auto& v) { return too_long(v.view); }))) {
+    thinned = recorded;
+    if (too_long(thinned->view)) thin(thinned->view.track);
+    for (RecordedVehicle& v : thinned->vehicles) {
+      if (too_long(v.view)) thin(v.view.track);
+    }
   }
   const RecordedRun& run = thinned ? *thinned : recorded;
+  const std::string trajectory = (run.dir / run.vehicles.at(run.chosen).trajectory_file).string();
   const std::optional<VideoFormat> format = video_format_of(out);
   if (!format) throw InputError("command line", "--out", "expected a video file ending in .mp4 or .gif, got " + out.string());
-  if (run.view.track.empty()) throw InputError((run.dir / "trajectory.csv").string(), "", "no samples; expected a track");
+  for (const RecordedVehicle& v : run.vehicles) {
+    if (v.view.track.empty()) throw InputError((run.dir / v.trajectory_file).string(), "", "no samples; expected a track");
+  }
+  if (run.view.track.empty()) throw InputError(trajectory, "", "no samples; expected a track");
   const VehicleDef& vehicle = recorded_vehicle(run);
-  const double duration_s = run.view.track.back().time_s;
+  // Until the last vehicle's end.
+  double duration_s = run.view.track.back().time_s;
+  for (const RecordedVehicle& v : run.vehicles) duration_s = std::max(duration_s, v.view.track.back().time_s);
   if (!std::isfinite(duration_s) || duration_s < 0.0) {
-    throw InputError((run.dir / "trajectory.csv").string(), "",
+    throw InputError(trajectory, "",
                      "expected a last time_s >= 0, got " + std::to_string(duration_s));
   }
   const double step_s = options.speed / options.fps;
@@ -258,7 +277,19 @@ void write_video(const RecordedRun& recorded, const VideoOptions& options, const
                          std::to_string(total) + "; raise --speed, lower --fps or write an .mp4");
   }
   const Eigen::Vector3d size_m = vehicle_size_m(run);
-  VideoFrames frames(run.scene, run.view, size_m, options.frame_px);
+  // With several vehicles, every one on the map in its colour; the sensor panel and the strip the chosen one's.
+  std::vector<RunView> whole;
+  for (const RecordedVehicle& v : run.vehicles) {
+    whole.push_back(v.view);
+    whole.back().footprint_m = vehicle_size_m(v).head<2>();
+  }
+  std::optional<VideoFrames> single, fleet;
+  if (run.several()) {
+    const std::string outcome = run.record.value("/metrics/outcome"_json_pointer, std::string());
+    fleet.emplace(run.scene, whole, options.frame_px,
+                  run.view.label + " - " + std::to_string(whole.size()) + " vehicles" + (outcome.empty() ? "" : " - " + outcome));
+  }
+  else single.emplace(run.scene, run.view, size_m, options.frame_px);
   SensorPanel sensor(run, vehicle, size_m);
   const StripValues values(run);
   VideoEncoder encoder(out, *format, options.frame_px, options.fps);
@@ -274,13 +305,25 @@ void write_video(const RecordedRun& recorded, const VideoOptions& options, const
     const double last_s = so_far.track.back().time_s;
     const bool avoiding = !so_far.avoiding_s.empty() && so_far.avoiding_s.back().second >= last_s &&
                           so_far.avoiding_s.back().first <= last_s;
-    const auto [panel, caption] = sensor.at(t, so_far.track.back(), avoiding);
+    auto [panel, caption] = sensor.at(t, so_far.track.back(), avoiding);
     VideoStrip strip;
     strip.time_s = t;
     strip.duration_s = duration_s;
     strip.values = values.at(t);
     strip.state = planner_state(run, so_far, t, duration_s, avoiding);
-    frame = frames.draw(so_far, t, panel, caption, strip);
+    if (fleet) {
+      const std::string& alias = run.vehicles[run.chosen].alias;
+      caption = alias + ": " + caption;
+      if (t < duration_s) strip.state = alias + ": " + strip.state;
+      std::vector<RunView> now;
+      for (std::size_t i = 0; i < run.vehicles.size(); ++i) {
+        now.push_back(run_view_at(run, i, t));
+        now.back().footprint_m = whole[i].footprint_m;
+      }
+      frame = fleet->draw(now, t, panel, caption, strip);
+    } else {
+      frame = single->draw(so_far, t, panel, caption, strip);
+    }
     encoder.add(frame);
     if (progress) progress(k + 1, total);
   }

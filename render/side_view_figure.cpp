@@ -288,6 +288,76 @@ void draw_height_above_ground(figure::Canvas& canvas, const Profile& p, const cv
   figure::put_text(canvas, "lowest " + low + " m", {label_x, at_lo}, figure::kLabelFont, figure::kInk);
 }
 
+// Drawing coordinates of (distance, altitude) relative to the plot area, which the canvas's region clips to.
+struct ProfileMapper {
+  const figure::PlotFrame& frame;
+  cv::Point2d origin;
+  cv::Point2d operator()(double s, double z) const { return frame.to_px(s, z) - origin; }
+};
+
+// The obstacles a profile's track passed over, under or through, over their vertical extent, and the ground
+// beneath it, which hides what is buried.
+void draw_profile_ground(figure::Canvas& canvas, const ProfileMapper& to, const Profile& p, const FigureLayout& layout,
+                         double y0) {
+  const std::size_t n = p.distance_m.size();
+  // Half-way to the neighbouring samples, so that a run of one sample still has a width.
+  const auto left_edge = [&](std::size_t i) { return i == 0 ? p.distance_m[0] : 0.5 * (p.distance_m[i - 1] + p.distance_m[i]); };
+  const auto right_edge = [&](std::size_t i) {
+    return i + 1 == n ? p.distance_m[i] : 0.5 * (p.distance_m[i] + p.distance_m[i + 1]);
+  };
+  for (const auto& c : p.crossings) {
+    const Footprint& f = p.solids[c.solid];
+    const double top = f.top_m, bottom = std::max(f.bottom_m, y0 - 2.0 / layout.px_per_unit.y());
+    const std::vector<cv::Point2d> block{to(left_edge(c.first), bottom), to(left_edge(c.first), top),
+                                         to(right_edge(c.last), top), to(right_edge(c.last), bottom)};
+    const cv::Scalar colour = to_bgr(f.shape->color);
+    canvas.fill_polygon(block, colour);
+    canvas.polyline(block, figure::shade(colour, 0.6), 1, true);
+  }
+  const cv::Scalar fill = figure::lighten(p.ground_color, 0.45), edge = figure::shade(p.ground_color, 0.6);
+  for (const auto& [a, b] : runs_where(n, [&](std::size_t i) { return !std::isnan(p.ground_m[i]); })) {
+    std::vector<cv::Point2d> surface;
+    for (std::size_t i = a; i <= b; ++i) surface.push_back(to(p.distance_m[i], p.ground_m[i]));
+    std::vector<cv::Point2d> area = surface;
+    area.push_back(to(p.distance_m[b], y0) + cv::Point2d(0, 2));
+    area.push_back(to(p.distance_m[a], y0) + cv::Point2d(0, 2));
+    canvas.fill_polygon(area, fill);
+    canvas.polyline(surface, edge, 2);
+  }
+}
+
+// A profile's run: the mission's altitude dashed in `mission_colour`, the altitude in `colour`, its waypoints and
+// goal, its start and its collisions.
+void draw_profile_run(figure::Canvas& canvas, const ProfileMapper& to, const RunView& run, const Profile& p,
+                      const cv::Scalar& colour, const cv::Scalar& mission_colour) {
+  const std::size_t n = p.distance_m.size();
+  for (const auto& [a, b] : runs_where(p.mission_m.size(), [&](std::size_t i) { return !std::isnan(p.mission_m[i]); })) {
+    std::vector<cv::Point2d> nominal;
+    for (std::size_t i = a; i <= b; ++i) nominal.push_back(to(p.distance_m[i], p.mission_m[i]));
+    std::vector<cv::Point2d> thin;
+    for (std::size_t k : thin_out(nominal)) thin.push_back(nominal[k]);
+    canvas.dashed_polyline(thin, mission_colour, 1, 8.0, 5.0);
+  }
+  std::vector<cv::Point2d> curve;
+  for (std::size_t i = 0; i < n; ++i) curve.push_back(to(p.distance_m[i], p.altitude_m[i]));
+  std::vector<cv::Point2d> line;
+  for (std::size_t k : thin_out(curve)) line.push_back(curve[k]);
+  canvas.polyline(line, colour, 2);
+  for (const auto& [d, w] : p.waypoints) {
+    const cv::Point2d at = to(d, run.mission[w].position_m.z());
+    if (w + 1 == run.mission.size()) {
+      if (p.goal_beyond) {  // the goal not reached: the straight line still to go, from the track's end
+        canvas.dashed_polyline({to(p.goal_beyond->first, p.goal_beyond->second), at}, kToGoalLine, 1, 4.0, 4.0);
+      }
+      figure::goal_marker(canvas, at, is_reached(run, w));
+    } else {
+      figure::waypoint_marker(canvas, at, static_cast<int>(w + 1), is_reached(run, w));
+    }
+  }
+  if (n > 0) figure::start_marker(canvas, curve.front());
+  for (const auto& [d, z] : p.collisions) figure::collision_marker(canvas, to(d, z));
+}
+
 figure::Canvas draw_side_figure(const RunView& run, const Profile& p, const FigureLayout& layout,
                                 const std::string& title) {
   figure::Canvas canvas(layout.image_px);
@@ -295,60 +365,9 @@ figure::Canvas draw_side_figure(const RunView& run, const Profile& p, const Figu
   figure::draw_grid(canvas, frame);
   {
     const auto clip = canvas.region(layout.plot_px);
-    const cv::Point2d origin(layout.plot_px.x, layout.plot_px.y);
-    const auto to = [&](double s, double z) { return frame.to_px(s, z) - origin; };
-    const std::size_t n = p.distance_m.size();
-    // Half-way to the neighbouring samples, so that a run of one sample still has a width.
-    const auto left_edge = [&](std::size_t i) { return i == 0 ? p.distance_m[0] : 0.5 * (p.distance_m[i - 1] + p.distance_m[i]); };
-    const auto right_edge = [&](std::size_t i) {
-      return i + 1 == n ? p.distance_m[i] : 0.5 * (p.distance_m[i] + p.distance_m[i + 1]);
-    };
-
-    // Obstacles over their vertical extent; the ground drawn next hides what is buried.
-    for (const auto& c : p.crossings) {
-      const Footprint& f = p.solids[c.solid];
-      const double top = f.top_m, bottom = std::max(f.bottom_m, p.y0 - 2.0 / layout.px_per_unit.y());
-      const std::vector<cv::Point2d> block{to(left_edge(c.first), bottom), to(left_edge(c.first), top),
-                                           to(right_edge(c.last), top), to(right_edge(c.last), bottom)};
-      const cv::Scalar colour = to_bgr(f.shape->color);
-      canvas.fill_polygon(block, colour);
-      canvas.polyline(block, figure::shade(colour, 0.6), 1, true);
-    }
-    const cv::Scalar fill = figure::lighten(p.ground_color, 0.45), edge = figure::shade(p.ground_color, 0.6);
-    for (const auto& [a, b] : runs_where(n, [&](std::size_t i) { return !std::isnan(p.ground_m[i]); })) {
-      std::vector<cv::Point2d> surface;
-      for (std::size_t i = a; i <= b; ++i) surface.push_back(to(p.distance_m[i], p.ground_m[i]));
-      std::vector<cv::Point2d> area = surface;
-      area.push_back(to(p.distance_m[b], p.y0) + cv::Point2d(0, 2));
-      area.push_back(to(p.distance_m[a], p.y0) + cv::Point2d(0, 2));
-      canvas.fill_polygon(area, fill);
-      canvas.polyline(surface, edge, 2);
-    }
-    for (const auto& [a, b] : runs_where(p.mission_m.size(), [&](std::size_t i) { return !std::isnan(p.mission_m[i]); })) {
-      std::vector<cv::Point2d> nominal;
-      for (std::size_t i = a; i <= b; ++i) nominal.push_back(to(p.distance_m[i], p.mission_m[i]));
-      std::vector<cv::Point2d> thin;
-      for (std::size_t k : thin_out(nominal)) thin.push_back(nominal[k]);
-      canvas.dashed_polyline(thin, kMissionLine, 1, 8.0, 5.0);
-    }
-    std::vector<cv::Point2d> curve;
-    for (std::size_t i = 0; i < n; ++i) curve.push_back(to(p.distance_m[i], p.altitude_m[i]));
-    std::vector<cv::Point2d> line;
-    for (std::size_t k : thin_out(curve)) line.push_back(curve[k]);
-    canvas.polyline(line, kVehicleLine, 2);
-    for (const auto& [d, w] : p.waypoints) {
-      const cv::Point2d at = to(d, run.mission[w].position_m.z());
-      if (w + 1 == run.mission.size()) {
-        if (p.goal_beyond) {  // the goal not reached: the straight line still to go, from the track's end
-          canvas.dashed_polyline({to(p.goal_beyond->first, p.goal_beyond->second), at}, kToGoalLine, 1, 4.0, 4.0);
-        }
-        figure::goal_marker(canvas, at, is_reached(run, w));
-      } else {
-        figure::waypoint_marker(canvas, at, static_cast<int>(w + 1), is_reached(run, w));
-      }
-    }
-    if (n > 0) figure::start_marker(canvas, curve.front());
-    for (const auto& [d, z] : p.collisions) figure::collision_marker(canvas, to(d, z));
+    const ProfileMapper to{frame, cv::Point2d(layout.plot_px.x, layout.plot_px.y)};
+    draw_profile_ground(canvas, to, p, layout, p.y0);
+    draw_profile_run(canvas, to, run, p, kVehicleLine, kMissionLine);
   }
 
   figure::draw_axes(canvas, frame, "distance along track, horizontal (m)", "altitude (m)");
@@ -358,7 +377,61 @@ figure::Canvas draw_side_figure(const RunView& run, const Profile& p, const Figu
   return canvas;
 }
 
+// The vehicles' profiles on shared axes, with the legend of them all: one entry per vehicle in its colour, then
+// the symbols any of them shows, once each (the vehicle altitude entry of each profile left out).
+Profile fleet_frame(const std::vector<RunView>& vehicles, const std::vector<Profile>& profiles) {
+  Profile all;
+  all.x0 = all.y0 = std::numeric_limits<double>::infinity();
+  all.x1 = all.y1 = -all.x0;
+  for (std::size_t i = 0; i < profiles.size(); ++i) {
+    const Profile& p = profiles[i];
+    all.x0 = std::min(all.x0, p.x0);
+    all.x1 = std::max(all.x1, p.x1);
+    all.y0 = std::min(all.y0, p.y0);
+    all.y1 = std::max(all.y1, p.y1);
+    const RunView& v = vehicles[i];
+    std::string text = v.label.empty() ? "vehicle " + std::to_string(i + 1) : v.label;
+    if (!v.outcome.empty()) text += " (" + v.outcome + ")";
+    all.legend.push_back(line_entry(vehicle_color(i), 2, text));
+  }
+  if (profiles.empty()) all.x0 = all.y0 = 0.0, all.x1 = all.y1 = 1.0;
+  std::vector<std::string> texts;
+  for (const Profile& p : profiles) {
+    for (const LegendEntry& e : p.legend) {
+      if (e.text == "vehicle altitude" || std::find(texts.begin(), texts.end(), e.text) != texts.end()) continue;
+      texts.push_back(e.text);
+      all.legend.push_back(e);
+    }
+  }
+  return all;
+}
+
 }  // namespace
+
+figure::Canvas draw_fleet_side_view(const Scene& scene, const std::vector<RunView>& vehicles, const FigureStyle& style) {
+  check_style(style);
+  std::vector<Profile> profiles;
+  for (const RunView& v : vehicles) profiles.push_back(profile_of(scene, v));
+  const Profile all = fleet_frame(vehicles, profiles);
+  const FigureLayout layout = layout_side_view(all, style);
+  figure::Canvas canvas(layout.image_px);
+  const figure::PlotFrame frame{layout.plot_px, all.x0, all.x1, all.y0, all.y1};
+  figure::draw_grid(canvas, frame);
+  {
+    const auto clip = canvas.region(layout.plot_px);
+    const ProfileMapper to{frame, cv::Point2d(layout.plot_px.x, layout.plot_px.y)};
+    for (const Profile& p : profiles) draw_profile_ground(canvas, to, p, layout, all.y0);
+    for (std::size_t i = 0; i < profiles.size(); ++i) {
+      const cv::Scalar colour = vehicle_color(i);
+      draw_profile_run(canvas, to, vehicles[i], profiles[i], colour, figure::lighten(colour, 0.35));
+    }
+  }
+  figure::draw_axes(canvas, frame, "distance along each track, horizontal (m)", "altitude (m)");
+  if (!all.legend.empty()) figure::draw_legend(canvas, layout.legend_px, all.legend);
+  figure::put_title(canvas, !style.title.empty() ? style.title : std::to_string(vehicles.size()) + " vehicles - altitude profiles",
+                    layout.title_px);
+  return canvas;
+}
 
 std::vector<double> mission_altitude_m(const std::vector<double>& distance_m,
                                        const std::vector<std::pair<double, double>>& knots) {

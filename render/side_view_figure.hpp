@@ -31,6 +31,15 @@ namespace campo {
 figure::Canvas draw_side_view(const Scene& scene, const RunView& run, const FigureStyle& style = {});
 FigureLayout side_view_layout(const Scene& scene, const RunView& run, const FigureStyle& style = {});
 
+/// The side views of the vehicles of one run on shared axes: each vehicle's
+/// altitude along the distance travelled on its own track, in its colour
+/// (vehicle_color, the map's), with the obstacles and ground beneath each
+/// track, each one's mission altitude dashed in a paler shade, its waypoints,
+/// goal, start and collisions; legend entries "alias (outcome)". No
+/// height-above-ground panel (one per vehicle would not share the axes).
+figure::Canvas draw_fleet_side_view(const Scene& scene, const std::vector<RunView>& vehicles,
+                                    const FigureStyle& style = {});
+
 /// The altitude the mission asks for at each distance of `distance_m`:
 /// linear between consecutive `knots` (distance along the track, altitude),
 /// which are in the order flown (distances not decreasing); NaN before the

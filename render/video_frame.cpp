@@ -141,17 +141,43 @@ VideoFrames::VideoFrames(const Scene& scene, const RunView& run, const Eigen::Ve
       vehicle_size_m_(vehicle_size_m),
       layout_(video_layout(frame_px)) {
   if (run.track.empty()) throw std::invalid_argument("VideoFrames: the run has no track");
-  const FigureStyle style = map_style(run);
+  RunView bare;
+  bare.label = run.label;
+  bare.mission = run.mission;
+  draw_background({bare}, map_style(run).title, map_style(run));
+}
+
+VideoFrames::VideoFrames(const Scene& scene, const std::vector<RunView>& vehicles, cv::Size frame_px,
+                         const std::string& title)
+    : scene_(scene),
+      plan_(scene),
+      vehicle_size_m_(Eigen::Vector3d::Zero()),
+      layout_(video_layout(frame_px)) {
+  std::vector<const RunView*> runs;
+  for (const RunView& v : vehicles) {
+    if (v.track.empty()) throw std::invalid_argument("VideoFrames: vehicle " + v.label + " has no track");
+    runs.push_back(&v);
+  }
+  FigureStyle style = map_style(RunView{});
+  style.title = title.empty() ? std::to_string(vehicles.size()) + " vehicles" : title;
+  plan_ = figure::plan_map(scene, runs, style, true, true);
+  std::vector<RunView> bare(vehicles.size());
+  for (std::size_t i = 0; i < vehicles.size(); ++i) {
+    bare[i].label = vehicles[i].label;
+    bare[i].mission = vehicles[i].mission;
+  }
+  draw_background(bare, style.title, style);
+}
+
+void VideoFrames::draw_background(const std::vector<RunView>& bare, const std::string& title, const FigureStyle& style) {
   // The whole run fixes the frame, the legend and the time scale; the background shows none of
   // its progress: movers only by their paths, mission waypoints not yet reached.
   plan_.movers_at_start = false;
   plan_.mission_reached.assign(plan_.mission_reached.size(), false);
   map_layout_ = figure::layout_map(plan_, style);
-  RunView bare;
-  bare.label = run.label;
-  bare.mission = run.mission;
-  plan_.runs = {&bare};
-  const cv::Mat map = figure::draw_map_figure(scene, plan_, map_layout_, style.title).raster();
+  plan_.runs.clear();
+  for (const RunView& v : bare) plan_.runs.push_back(&v);
+  const cv::Mat map = figure::draw_map_figure(scene_, plan_, map_layout_, title).raster();
   plan_.runs.clear();
   map_paste_px_ = fitted(layout_.map_px, map.size());
   map_background_ = scaled(map, map_paste_px_.size());
@@ -165,13 +191,29 @@ cv::Point2d VideoFrames::to_frame_px(const Eigen::Vector2d& world_m) const {
 cv::Mat VideoFrames::draw(const RunView& so_far, double time_s, const cv::Mat& sensor_panel,
                           const std::string& sensor_caption, const VideoStrip& strip) {
   if (so_far.track.empty()) throw std::invalid_argument("VideoFrames::draw: the run has no track");
+  return draw_frame({&so_far}, &so_far.track.back(), time_s, sensor_panel, sensor_caption, strip);
+}
+
+cv::Mat VideoFrames::draw(const std::vector<RunView>& so_far, double time_s, const cv::Mat& sensor_panel,
+                          const std::string& sensor_caption, const VideoStrip& strip) {
+  std::vector<const RunView*> runs;
+  for (const RunView& v : so_far) {
+    if (v.track.empty()) throw std::invalid_argument("VideoFrames::draw: vehicle " + v.label + " has no track");
+    runs.push_back(&v);
+  }
+  // Each vehicle's footprint is one of its marks on a fleet map (draw_run_marks).
+  return draw_frame(runs, nullptr, time_s, sensor_panel, sensor_caption, strip);
+}
+
+cv::Mat VideoFrames::draw_frame(const std::vector<const RunView*>& so_far, const TrackPoint* vehicle, double time_s,
+                                const cv::Mat& sensor_panel, const std::string& sensor_caption, const VideoStrip& strip) {
   figure::Canvas frame(layout_.frame_px);
   frame.image(map_background_, map_paste_px_);
   {
     // The run in frame pixels over the scaled map: lines and markers at their own widths, sharp at any frame size.
     const auto clip = frame.region(frame_map_layout_.plot_px);
     const PlotMapper to{frame_map_layout_};
-    plan_.runs = {&so_far};
+    plan_.runs = so_far;
     figure::draw_run_marks(frame, to, plan_);
     plan_.runs.clear();
     for (const Mover& m : scene_.movers) {
@@ -179,7 +221,7 @@ cv::Mat VideoFrames::draw(const RunView& so_far, double time_s, const cv::Mat& s
       then.pose.translation() = m.position_at(time_s);
       figure::draw_footprint(frame, to, figure::footprint(then), figure::lighten(figure::to_bgr(m.shape.color), 0.3));
     }
-    draw_vehicle(frame, to, so_far.track.back(), vehicle_size_m_.head<2>());
+    if (vehicle) draw_vehicle(frame, to, *vehicle, vehicle_size_m_.head<2>());
   }
   const cv::Rect& s = layout_.sensor_px;
   figure::put_text(frame, sensor_caption, cv::Point2d(s.x + 12, s.y + kVideoCaptionPx / 2 + 4), figure::kLabelFont,

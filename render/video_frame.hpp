@@ -49,6 +49,10 @@ class VideoFrames {
   /// `run` is the whole run (its track fixes the map's frame and time scale);
   /// `vehicle_size_m` is the vehicle's length, width and height.
   VideoFrames(const Scene& scene, const RunView& run, const Eigen::Vector3d& vehicle_size_m, cv::Size frame_px);
+  /// The frames of the vehicles of one run (a fleet map, draw_fleet_map): `vehicles` whole, in scene order, each
+  /// with its footprint (RunView::footprint_m), drawn each frame where it is, in its colour; the map titled
+  /// `title` (empty: "N vehicles").
+  VideoFrames(const Scene& scene, const std::vector<RunView>& vehicles, cv::Size frame_px, const std::string& title = "");
 
   const VideoLayout& layout() const { return layout_; }
   /// Where world point (x, y) is drawn on a frame, pixels (centres at integers).
@@ -61,8 +65,17 @@ class VideoFrames {
   /// vectors) and returned as its BGR raster, for the encoder.
   cv::Mat draw(const RunView& so_far, double time_s, const cv::Mat& sensor_panel, const std::string& sensor_caption,
                const VideoStrip& strip);
+  /// The same for the vehicles of one run (the second constructor): `so_far` one view per vehicle, in its order.
+  cv::Mat draw(const std::vector<RunView>& so_far, double time_s, const cv::Mat& sensor_panel,
+               const std::string& sensor_caption, const VideoStrip& strip);
 
  private:
+  // The map's background and the layouts, from plan_ (its runs the whole runs), titled `title`.
+  void draw_background(const std::vector<RunView>& whole, const std::string& title, const FigureStyle& style);
+  // The frame: the runs (plan_.runs) over the background, then the vehicle, the sensor panel and the strip.
+  cv::Mat draw_frame(const std::vector<const RunView*>& so_far, const TrackPoint* vehicle, double time_s,
+                     const cv::Mat& sensor_panel, const std::string& sensor_caption, const VideoStrip& strip);
+
   const Scene& scene_;
   figure::MapPlan plan_;
   FigureLayout map_layout_;

@@ -29,6 +29,7 @@ struct RenderOptions {
   std::vector<std::string> steps;  // --step: replanning step numbers or "all"
   std::vector<double> at_s;        // --at: instants of --kind sequence
   std::string out;
+  std::string vehicle;             // --vehicle: whose sensor panel, depth figures and sequence (default: the first)
   VideoOptions video;
   std::string size = "1600x900";   // --size of video frames
   FigureFormats formats = kPngOnly;  // --figure-format
@@ -154,7 +155,9 @@ int run_render(const RenderOptions& o) {
   const bool replay_only = std::all_of(kinds.begin(), kinds.end(), [](FigureKind k) { return k == FigureKind::replay; });
   std::vector<RecordedRun> runs;
   if (!replay_only) {
-    for (const auto& dir : o.runs) runs.push_back(load_run_dir(dir));
+    for (const auto& dir : o.runs) runs.push_back(load_run_dir(dir, o.vehicle));
+  } else if (!o.vehicle.empty()) {
+    for (const auto& dir : o.runs) load_run_dir(dir, o.vehicle);  // an unknown --vehicle stops before anything is written
   }
   std::vector<std::vector<ReplanStep>> steps;
   if (replan_steps) {
@@ -244,6 +247,9 @@ Command add_render(CLI::App& app) {
       ->capture_default_str();
   app.add_option("--size", o->size, "With --kind video: frame size in pixels, WIDTHxHEIGHT (even sides)")
       ->capture_default_str();
+  app.add_option("--vehicle", o->vehicle,
+                 "In a run of several vehicles, the one whose sensor panel (video), replanning steps (--step) and "
+                 "sequence are drawn (default: the first); maps, side views, videos and replays show them all");
   add_figure_format_option(app, &o->formats);
   app.footer(
       "Draws figures from recorded run files alone (run.json, trajectory.csv, scene.json), without\n"
@@ -263,6 +269,9 @@ Command add_render(CLI::App& app) {
       "replay: one self-contained HTML page (three.js inside; opens offline) with every run given in 3D:\n"
       "terrain, obstacles, movers, vehicles, tracks and the returns recorded with --record-depth N, a time\n"
       "slider, play/pause, speed, camera orbit and a legend (default: replay.html beside the one run).\n"
+      "A run of several vehicles: map, side view, video and replay show every vehicle, each in its own colour\n"
+      "(a colour-blind-safe palette) named in the legend, its start, goal and footprint; the sensor panel,\n"
+      "--step and sequence are those of --vehicle (default the first).\n"
       "Every figure but video and replay can be written as PNG, PDF and SVG (--figure-format png,pdf,svg):\n"
       "the same drawing in each; PDF and SVG are vector files (lines, markers and text stay sharp at any\n"
       "zoom; text is text in the PDF), with the terrain shading, depth maps and snapshots embedded as images.\n"
