@@ -2,6 +2,7 @@
 // Episodes stepped from Python, Python planners in the C++ closed loop, and
 // runs written exactly as `campo run` writes them.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -71,6 +72,12 @@ struct EpisodeRun {
   std::optional<Episode> episode;
   std::vector<std::shared_ptr<const std::vector<Eigen::Vector3d>>> missions_m;  // each vehicle's, scene order
   std::vector<std::optional<Ending>> endings;                                  // each vehicle's, scene order
+  // The planners of the vehicles that are not agents (null for an agent), and what they decided at the
+  // current tick once asked (kept when step() refuses the agents' commands, so none is asked twice).
+  std::vector<std::unique_ptr<Planner>> planners;
+  std::vector<nlohmann::json> planner_parameters;
+  std::optional<std::vector<PlanResult>> planned;
+  std::vector<double> planned_ms;
   std::optional<EpisodeResult> result;
 };
 
@@ -110,28 +117,41 @@ PlanResult decision_of(const py::handle& value, const std::string& who) {
 class PythonEpisode {
  public:
   PythonEpisode(const std::string& scene, std::optional<std::uint64_t> seed, const py::object& overrides,
-                const std::string& vehicle, bool continue_after_collision)
+                const std::string& vehicle, bool continue_after_collision, const py::object& agents)
       : request_(run_request(scene, seed, overrides, vehicle, continue_after_collision)) {
     // Read and check everything now, so bad input fails at construction.
-    refuse_planner_overrides();
+    const std::optional<std::vector<std::string>> named = agent_names(agents);
+    refuse_planner_overrides(named);
     const PreparedRun prepared = prepare_run(request_, false);
     for (const VehicleDef& v : prepared.scene.vehicles) aliases_.push_back(v.alias);
     if (several() && !request_.vehicle.empty()) {
       throw InputError("vehicle", "", "no vehicle to choose: campo.Episode steps every vehicle of a scene of several (" +
-                                          alias_list(aliases_) + "), step() taking {alias: command}");
+                                          alias_list(aliases_) + "), step() taking {alias: command}; agents= names "
+                                          "those stepped from Python");
     }
+    choose_agents(named);
   }
 
   py::object reset() {
     run_ = std::make_shared<EpisodeRun>();
     run_->prepared = prepare_run(request_, false);
-    for (VehicleDef& def : run_->prepared.scene.vehicles) {
-      def.planner.name = std::string(kExternalPlanner);
-      def.planner.params.values = nlohmann::json::object();
+    const Scene& scene = run_->prepared.scene;
+    for (std::size_t v = 0; v < aliases_.size(); ++v) {
+      VehicleDef& def = run_->prepared.scene.vehicles[v];
+      if (agent_[v]) {
+        def.planner.name = std::string(kExternalPlanner);
+        def.planner.params.values = nlohmann::json::object();
+      }
       run_->missions_m.push_back(mission_positions(def.mission));
     }
     run_->endings.assign(aliases_.size(), std::nullopt);
-    run_->episode.emplace(run_->prepared.scene, &make_vehicle, run_->prepared.options);
+    run_->episode.emplace(scene, &make_vehicle, run_->prepared.options);
+    // The others' planners, made as run_episode makes them (after the world).
+    for (std::size_t v = 0; v < aliases_.size(); ++v) {
+      const VehicleDef& def = scene.vehicles[v];
+      run_->planners.push_back(agent_[v] ? nullptr : create_planner(def.planner, {def.type, &scene, &def}));
+      run_->planner_parameters.push_back(agent_[v] ? nlohmann::json::object() : run_->planners.back()->parameters());
+    }
     return observation();
   }
 
@@ -143,13 +163,12 @@ class PythonEpisode {
       return py::make_tuple(observation(), e.done(), info());
     }
     const std::vector<std::size_t> acting = live();
-    const std::vector<PlanResult> plans = decisions(commands);
+    std::vector<PlanResult> plans = decisions(commands);
     // What the loop does not tell until its end: how a mission that ends now ended, and when.
     const double decided_at_s = e.world().time_s();
     std::vector<int> collisions;
     for (std::size_t v = 0; v < aliases_.size(); ++v) collisions.push_back(e.metrics_so_far(v).collisions);
-    std::vector<PlanResult> given = plans;
-    e.step(std::move(given));  // VehicleCommandError (ValueError) naming the vehicle; nothing changed
+    step_with_planners(plans);
     if (!e.done()) {
       for (const std::size_t v : acting) {
         if (!e.done(v)) continue;
@@ -197,7 +216,7 @@ class PythonEpisode {
     for (const std::size_t v : live()) names.push_back(aliases_[v]);
     return names;
   }
-  const std::vector<std::string>& possible_agents() const { return aliases_; }
+  const std::vector<std::string>& possible_agents() const { return several() ? agent_aliases_ : aliases_; }
 
   py::dict info() const {
     const Episode& e = episode();
@@ -235,7 +254,9 @@ class PythonEpisode {
     const nlohmann::json provenance = {{"name", kExternalPlanner},
                                        {"source", "commands given to campo.Episode.step from Python"}};
     if (several()) {
-      for (nlohmann::json& vehicle : run.record["vehicles"]) vehicle["planner_provenance"] = provenance;
+      for (std::size_t v = 0; v < aliases_.size(); ++v) {
+        if (agent_[v]) run.record["vehicles"][v]["planner_provenance"] = provenance;
+      }
     } else {
       run.record["provenance"]["planner"] = provenance;
     }
@@ -256,6 +277,82 @@ class PythonEpisode {
  private:
   bool several() const { return aliases_.size() > 1; }
 
+  // agents=: the aliases of the vehicles stepped from Python; none: every one.
+  static std::optional<std::vector<std::string>> agent_names(const py::object& agents) {
+    if (agents.is_none()) return std::nullopt;
+    if (py::isinstance<py::str>(agents) || !py::isinstance<py::iterable>(agents)) {
+      throw InputError("agents", "", "a list of vehicle aliases, got " + py::repr(agents).cast<std::string>());
+    }
+    std::vector<std::string> names;
+    for (const py::handle& item : agents) {
+      if (!py::isinstance<py::str>(item)) {
+        throw InputError("agents", "", "a list of vehicle aliases, got " + py::repr(item).cast<std::string>() +
+                                           " in it");
+      }
+      names.push_back(item.cast<std::string>());
+    }
+    return names;
+  }
+
+  // The agents among the scene's vehicles (`named`, else every one); the others' planners run in the loop.
+  void choose_agents(const std::optional<std::vector<std::string>>& named) {
+    agent_.assign(aliases_.size(), !named);
+    for (const std::string& alias : named.value_or(std::vector<std::string>{})) {
+      const auto found = std::find(aliases_.begin(), aliases_.end(), alias);
+      if (found == aliases_.end()) {
+        throw InputError("agents", alias, "a vehicle of " + request_.scene.string() + " (" + alias_list(aliases_) + ")");
+      }
+      agent_[static_cast<std::size_t>(found - aliases_.begin())] = true;
+    }
+    if (std::find(agent_.begin(), agent_.end(), true) == agent_.end()) {
+      throw InputError("agents", "", "at least one vehicle to step from Python (" + alias_list(aliases_) + ")");
+    }
+    if (!several()) return;
+    for (std::size_t v = 0; v < aliases_.size(); ++v) {
+      if (agent_[v]) agent_aliases_.push_back(aliases_[v]);
+    }
+  }
+
+  // Steps the run with the agents' `plans` and the others' planners' decisions, as run_episode steps it: a
+  // planner that raises, or gives a command its vehicle cannot follow, ends its vehicle's mission as failed.
+  // A command an agent's vehicle cannot follow: VehicleCommandError (ValueError) naming it, nothing changed.
+  void step_with_planners(std::vector<PlanResult>& plans) {
+    using Clock = std::chrono::steady_clock;
+    Episode& e = episode();
+    const std::size_t n = aliases_.size();
+    if (!run_->planned) {
+      run_->planned.emplace(n);
+      run_->planned_ms.assign(n, 0.0);
+      for (std::size_t v = 0; v < n; ++v) {
+        if (agent_[v] || e.done(v)) continue;
+        const auto start = Clock::now();
+        try {
+          (*run_->planned)[v] = run_->planners[v]->plan(e.observation(v));
+        } catch (const InputError&) {
+          throw;  // bad input stays bad input
+        } catch (const std::exception& error) {
+          e.fail(v, std::string("the planner raised an error: ") + error.what());
+          continue;
+        }
+        run_->planned_ms[v] = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+      }
+    }
+    for (std::size_t v = 0; v < n; ++v) {
+      if (!agent_[v]) plans[v] = (*run_->planned)[v];
+    }
+    while (!e.done()) {
+      std::vector<PlanResult> given = plans;
+      try {
+        e.step(std::move(given), run_->planned_ms);
+        break;
+      } catch (const VehicleCommandError& error) {
+        if (agent_[error.vehicle()]) throw;
+        e.fail(error.vehicle(), std::string("the planner gave a command the vehicle cannot follow: ") + error.what());
+      }
+    }
+    run_->planned.reset();
+  }
+
   Episode& episode() const {
     if (!run_) throw std::logic_error("call reset() first");
     return *run_->episode;
@@ -265,8 +362,10 @@ class PythonEpisode {
     if (!e.done()) throw std::logic_error("the episode is still running: its metrics are measured over a whole run");
     if (!run_->result) {
       run_->result = e.finish();
-      // No planner: the caller's commands.
-      for (VehicleResult& v : run_->result->vehicles) v.planner_parameters = nlohmann::json::object();
+      // The agents' are the caller's commands, without a planner.
+      for (std::size_t v = 0; v < aliases_.size(); ++v) {
+        run_->result->vehicles[v].planner_parameters = run_->planner_parameters[v];
+      }
     }
     return *run_->result;
   }
@@ -279,7 +378,7 @@ class PythonEpisode {
     const Episode& e = episode();
     if (e.done()) return indices;
     for (std::size_t v = 0; v < aliases_.size(); ++v) {
-      if (!e.done(v)) indices.push_back(v);
+      if (agent_[v] && !e.done(v)) indices.push_back(v);
     }
     return indices;
   }
@@ -304,6 +403,11 @@ class PythonEpisode {
         throw std::invalid_argument("no vehicle \"" + alias + "\" in the scene: its vehicles are " + alias_list(aliases_));
       }
       const auto v = static_cast<std::size_t>(found - aliases_.begin());
+      if (!agent_[v]) {
+        throw std::invalid_argument("vehicle \"" + alias + "\" is driven by its planner (" +
+                                    run_->prepared.scene.vehicles[v].planner.name + "), not from Python: the agents "
+                                    "are " + alias_list(agent_aliases_));
+      }
       if (e.done(v)) {
         throw std::invalid_argument("vehicle \"" + alias + "\" has ended its mission: it is no longer among "
                                     "episode.agents (" + alias_list(agents()) + ")");
@@ -346,11 +450,12 @@ class PythonEpisode {
     return info;
   }
 
-  // The caller's commands drive the vehicle: an override of a vehicle's
-  // planner (/objects/<vehicle>/planner...) would be recorded (run.json's
-  // overrides) and never applied. Checked on the document before the scene
-  // is read, which would judge a planner block the override made first.
-  void refuse_planner_overrides() const {
+  // The caller's commands drive an agent (`named`, else every vehicle): an
+  // override of its planner (/objects/<vehicle>/planner...) would be
+  // recorded (run.json's overrides) and never applied; the other vehicles'
+  // planners run, overrides and all. Checked on the document before the
+  // scene is read, which would judge a planner block the override made first.
+  void refuse_planner_overrides(const std::optional<std::vector<std::string>>& named) const {
     const std::string file = request_.scene.string();
     nlohmann::json document = parse_json_text(read_text_file(file), file);
     for (const SceneOverride& assignment : request_.overrides) {
@@ -359,14 +464,23 @@ class PythonEpisode {
       if (!p.starts_with("/objects/") || index_end == std::string::npos) continue;
       const std::string rest = p.substr(index_end);
       if (rest != "/planner" && !rest.starts_with("/planner/")) continue;
+      const nlohmann::json::json_pointer object(p.substr(0, index_end));
+      const nlohmann::json alias = document.contains(object) && document[object].is_object()
+                                       ? document[object].value("alias", nlohmann::json())
+                                       : nlohmann::json();
+      if (named && !(alias.is_string() && std::find(named->begin(), named->end(), alias.get<std::string>()) != named->end())) {
+        continue;  // a vehicle its planner drives
+      }
       throw InputError("overrides", assignment.pointer,
-                       "campo.Episode runs no planner (step()'s commands drive the vehicle), so an override of a "
-                       "planner would be ignored; pass planner parameters to campo.run");
+                       "campo.Episode runs no planner for the vehicles it steps (step()'s commands drive them), so "
+                       "an override of a planner would be ignored; pass planner parameters to campo.run");
     }
   }
 
   RunRequest request_;
-  std::vector<std::string> aliases_;  // the scene's vehicles, in scene order
+  std::vector<std::string> aliases_;        // the scene's vehicles, in scene order
+  std::vector<bool> agent_;                 // each one stepped from Python, else by its planner
+  std::vector<std::string> agent_aliases_;  // with several vehicles, the agents' aliases in scene order
   std::shared_ptr<EpisodeRun> run_;
 };
 
@@ -547,9 +661,10 @@ PYBIND11_MODULE(_campo, m) {
                             "the shape of PettingZoo's parallel API: reset() -> {alias: observation}, "
                             "step({alias: command}) -> (observations, dones, infos), keyed by alias, dones with "
                             "\"__all__\"; agents lists the vehicles still on their missions.")
-      .def(py::init<const std::string&, std::optional<std::uint64_t>, const py::object&, const std::string&, bool>(),
+      .def(py::init<const std::string&, std::optional<std::uint64_t>, const py::object&, const std::string&, bool,
+                    const py::object&>(),
            py::arg("scene"), py::arg("seed") = py::none(), py::arg("overrides") = py::none(), py::arg("vehicle") = "",
-           py::arg("continue_after_collision") = false)
+           py::arg("continue_after_collision") = false, py::arg("agents") = py::none())
       .def("reset", &PythonEpisode::reset,
            "start (again) from the scene's start; returns the first Observation ({alias: Observation} with several "
            "vehicles)")

@@ -359,6 +359,55 @@ class SeveralVehiclesEpisodeTest(unittest.TestCase):
                       overrides={"/objects/far/planner/params/speed_mps": 2.0})
 
 
+    def test_some_vehicles_from_python_the_rest_by_their_planners(self):
+        episode = campo.Episode(TWO_DRONES, seed=4, agents=["far"])
+        self.assertEqual(episode.possible_agents, ["far"])
+        obs = episode.reset()
+        self.assertEqual(list(obs), ["far"])
+        with self.assertRaisesRegex(ValueError, 'vehicle "near" is driven by its planner \\(straight\\), not from '
+                                                'Python: the agents are "far"'):
+            episode.step({"near": campo.Command.hold([0, 0, 1.5]), "far": campo.Command.hold([0, 8, 1.5])})
+        step_with_planners(episode, {"far": python_planners.GoStraight()})
+        metrics = episode.metrics()
+        self.assertEqual(sorted(metrics["vehicles"]), ["far", "near"])  # the run's record holds every vehicle
+        with tempfile.TemporaryDirectory() as out:
+            record = episode.write(os.path.join(out, "ep"), figures=False)
+            planners = {v["alias"]: (v["parameters"]["planner"]["name"], v["planner_provenance"]["name"])
+                        for v in record["vehicles"]}
+            self.assertEqual(planners, {"near": ("straight", "straight"), "far": ("external", "external")})
+            # The same as campo.run with that planner for the far drone and the scene's for the near one.
+            by_run = campo.run(TWO_DRONES, seed=4, planner={"far": python_planners.GoStraight()},
+                               out=os.path.join(out, "run"), figures=False)
+            self.assertEqual(by_run["final_state_hash"], record["final_state_hash"])
+            for stepped, looped in zip(record["vehicles"], by_run["vehicles"]):
+                self.assertEqual(pathlib.Path(out, "ep", stepped["trajectory_file"]).read_bytes(),
+                                 pathlib.Path(out, "run", looped["trajectory_file"]).read_bytes())
+                for key, value in looped["metrics"].items():
+                    if key not in TIMING_METRICS:
+                        self.assertEqual(stepped["metrics"][key], value, key)
+            self.assertEqual(record["vehicles"][0]["parameters"]["planner"]["parameters"],
+                             by_run["vehicles"][0]["parameters"]["planner"]["parameters"])
+        # Overrides reach the planners that run, and are refused for the vehicles stepped from Python.
+        speed = {"/objects/near/planner/params/speed_mps": 1.0}
+        episode = campo.Episode(TWO_DRONES, agents=["far"], overrides={**speed, "/world/time_limit_s": 8})
+        episode.reset()
+        while not episode.done:
+            episode.step({alias: campo.Command.hold([0, 8, 1.5]) for alias in episode.agents})
+        outcomes = {alias: m["outcome"] for alias, m in episode.metrics()["vehicles"].items()}
+        self.assertEqual(outcomes, {"near": "reached", "far": "timeout"})  # the far drone hovers
+        with tempfile.TemporaryDirectory() as out:
+            record = episode.write(out + "/ep", figures=False)
+        self.assertEqual(record["vehicles"][0]["parameters"]["planner"]["parameters"]["speed_mps"], 1.0)
+        with self.assertRaisesRegex(campo.InputError, "overrides: /objects/near/planner/params/speed_mps: "
+                                                      "campo.Episode runs no planner for the vehicles it steps"):
+            campo.Episode(TWO_DRONES, agents=["near"], overrides=speed)
+        with self.assertRaisesRegex(campo.InputError, 'agents: wingman: a vehicle of .*two_drones.json'):
+            campo.Episode(TWO_DRONES, agents=["wingman"])
+        with self.assertRaisesRegex(campo.InputError, "agents: at least one vehicle"):
+            campo.Episode(TWO_DRONES, agents=[])
+        with self.assertRaisesRegex(campo.InputError, "agents: a list of vehicle aliases, got 'far'"):
+            campo.Episode(TWO_DRONES, agents="far")
+
     def test_a_vehicles_declared_decisions_read_back_from_its_own_events_file(self):
         with tempfile.TemporaryDirectory() as out:
             campo.run(TWO_DRONES, planner={"far": python_planners.Declares()}, out=os.path.join(out, "r"),
