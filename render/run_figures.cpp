@@ -171,6 +171,30 @@ std::vector<std::filesystem::path> write_figure(const RecordedRun& run, FigureKi
       style.title = title_of(run, "reconstructed height map");
       return draw_height_map(run.scene, run.view, style).write(figure_file(out_dir, kind), formats);
     case FigureKind::snapshot: {
+      if (run.several()) {  // every vehicle in its map colour, framed all together
+        std::vector<SnapshotVehicle> vehicles;
+        std::vector<Eigen::Vector3d> all;
+        for (std::size_t i = 0; i < run.vehicles.size(); ++i) {
+          const RecordedVehicle& v = run.vehicles[i];
+          SnapshotVehicle s;
+          for (const TrackPoint& p : v.view.track) s.trajectory_m.push_back(p.position_m);
+          if (!s.trajectory_m.empty()) s.pose = Eigen::Isometry3d(Eigen::Translation3d(s.trajectory_m.back()));
+          s.type = vehicle_type_from_string(v.parameters.value("/vehicle/type"_json_pointer, std::string()))
+                       .value_or(VehicleType::quadrotor);
+          const cv::Scalar c = vehicle_color(i);
+          s.color = Color{c[2] / 255.0, c[1] / 255.0, c[0] / 255.0};
+          all.insert(all.end(), s.trajectory_m.begin(), s.trajectory_m.end());
+          vehicles.push_back(std::move(s));
+        }
+        // Framed around every track, seen from behind the chosen vehicle's way.
+        SnapshotCamera camera = default_snapshot_camera(run.scene, vehicles[run.chosen].trajectory_m);
+        const SnapshotCamera around = default_snapshot_camera(run.scene, all);
+        const Eigen::Vector3d back = (camera.eye_m - camera.target_m).normalized();
+        camera.target_m = around.target_m;
+        camera.eye_m = around.target_m + (around.eye_m - around.target_m).norm() * back;
+        return raster_figure(render_snapshot(run.scene, build_scene_mesh(run.scene), camera, vehicles))
+            .write(figure_file(out_dir, kind), formats);
+      }
       std::vector<Eigen::Vector3d> path;
       for (const TrackPoint& p : run.view.track) path.push_back(p.position_m);
       const SceneMesh mesh = build_scene_mesh(run.scene);

@@ -59,6 +59,10 @@ class SensorPanel {
       : run_(run), footprint_m_(size_m.head<2>()) {
     // The recorded depth maps are one vehicle's (campo run --vehicle): another's panel shows its decisions alone.
     const bool recorded = !run.several() || run.vehicles[run.chosen].alias == sensor_records_vehicle(run);
+    if (!recorded) {
+      none_ = "No sensor data of " + run.vehicles[run.chosen].alias + " recorded: the run recorded " +
+              sensor_records_vehicle(run) + "'s (campo run --vehicle)";
+    }
     if (recorded && run.planner && run.planner->replan_overlays && std::filesystem::is_directory(run.dir / "replans")) {
       replans_ = find_replan_steps(run, std::nullopt);
       std::sort(replans_.begin(), replans_.end(), [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
@@ -91,7 +95,7 @@ class SensorPanel {
       return {image_, "Depth map of " + sensor_->alias + " at " + fixed(scan->time_s, 1, "s")};
     }
     if (!planar && marks_.empty()) {
-      return {cv::Mat(), "No sensor data recorded: campo run --record-depth 1 saves every scan"};
+      return {cv::Mat(), none_};
     }
     // A planar scan around the vehicle, redrawn each frame (the vehicle turns under it), read once.
     ScanView view;
@@ -124,6 +128,7 @@ class SensorPanel {
 
  private:
   const RecordedRun& run_;
+  std::string none_ = "No sensor data recorded: campo run --record-depth 1 saves every scan";  // the caption then
   Eigen::Vector2d footprint_m_;
   std::vector<ReplanStep> replans_;
   const SensorDef* sensor_ = nullptr;

@@ -147,19 +147,26 @@ void validate(const SnapshotCamera& c) {
 cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const SnapshotCamera& camera,
                         const std::vector<Eigen::Vector3d>& trajectory_m,
                         const std::optional<Eigen::Isometry3d>& vehicle_pose, VehicleType vehicle_type) {
+  return render_snapshot(scene, mesh, camera, {SnapshotVehicle{trajectory_m, vehicle_pose, vehicle_type, std::nullopt}});
+}
+
+cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const SnapshotCamera& camera,
+                        const std::vector<SnapshotVehicle>& vehicles) {
   validate(camera);
   const double distance = (camera.target_m - camera.eye_m).norm();
 
-  // Everything drawn besides the scene: the trajectory tube and the vehicle box.
-  const SceneMesh tube = trajectory_tube(trajectory_m, std::clamp(0.004 * distance, 0.03, 0.5));
+  // Everything drawn besides the scene: the trajectory tubes and the vehicle boxes.
+  std::vector<SceneMesh> tubes;
   Scene marker_scene;
-  if (vehicle_pose) {
+  for (const SnapshotVehicle& vehicle : vehicles) {
+    tubes.push_back(trajectory_tube(vehicle.trajectory_m, std::clamp(0.004 * distance, 0.03, 0.5)));
+    if (!vehicle.pose) continue;
     Shape box;
     box.type = ShapeType::cuboid;
-    box.pose = *vehicle_pose;
-    const bool quadrotor = vehicle_type == VehicleType::quadrotor;
+    box.pose = *vehicle.pose;
+    const bool quadrotor = vehicle.type == VehicleType::quadrotor;
     box.size_m = quadrotor ? Eigen::Vector3d(0.6, 0.6, 0.12) : Eigen::Vector3d(1.5, 1.0, 0.35);
-    box.color = quadrotor ? kQuadrotor : kRover;
+    box.color = vehicle.color.value_or(quadrotor ? kQuadrotor : kRover);
     marker_scene.shapes.push_back(box);
   }
   const SceneMesh marker = build_scene_mesh(marker_scene);
@@ -173,7 +180,8 @@ cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const Snapsho
   }
   const GlProgram program = make_program(kVertexShader, kFragmentShader);
   const GpuMesh scene_gpu = upload_mesh(mesh, true);
-  const GpuMesh tube_gpu = upload_mesh(tube, true);
+  std::vector<GpuMesh> tube_gpus;
+  for (const SceneMesh& tube : tubes) tube_gpus.push_back(upload_mesh(tube, true));
   const GpuMesh marker_gpu = upload_mesh(marker, true);
   const Framebuffer multisampled =
       make_framebuffer(camera.width_px, camera.height_px, GL_RGBA8, GL_DEPTH_COMPONENT32F, kSamples);
@@ -237,9 +245,10 @@ cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const Snapsho
   for (std::size_t i = 0; i < mesh.moving_parts.size(); ++i) {
     draw(mesh.moving_parts[i], body_poses[i], kAmbient, no_tint);
   }
-  if (!tube.indices.empty()) {
-    gl().BindVertexArray(tube_gpu.vao.id());
-    const MeshPart part{0, static_cast<std::uint32_t>(tube.indices.size()), kTrajectory, 0};
+  for (std::size_t i = 0; i < tubes.size(); ++i) {
+    if (tubes[i].indices.empty()) continue;
+    gl().BindVertexArray(tube_gpus[i].vao.id());
+    const MeshPart part{0, static_cast<std::uint32_t>(tubes[i].indices.size()), vehicles[i].color.value_or(kTrajectory), 0};
     draw(part, Eigen::Isometry3d::Identity(), 0.6f, no_tint);
   }
   gl().BindVertexArray(marker_gpu.vao.id());

@@ -33,6 +33,20 @@ cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const Snapsho
                         const std::vector<Eigen::Vector3d>& trajectory_m,
                         const std::optional<Eigen::Isometry3d>& vehicle_pose, VehicleType vehicle_type);
 
+/// One vehicle of a snapshot of several: its trajectory, the box of its type's
+/// preset size at `pose` if given, both in `color` when given (else the
+/// trajectory red and the box blue for a quadrotor, amber for a rover).
+struct SnapshotVehicle {
+  std::vector<Eigen::Vector3d> trajectory_m;
+  std::optional<Eigen::Isometry3d> pose;
+  VehicleType type = VehicleType::quadrotor;
+  std::optional<Color> color;
+};
+/// The snapshot of several vehicles, as render_snapshot above draws one: each
+/// trajectory a tube and each vehicle a box, in its colour.
+cv::Mat render_snapshot(const Scene& scene, const SceneMesh& mesh, const SnapshotCamera& camera,
+                        const std::vector<SnapshotVehicle>& vehicles);
+
 /// A camera that frames the trajectory (or, without one, the scene's objects
 /// and vehicles) from above and behind its direction of travel, about 35 deg
 /// above the horizontal.
