@@ -158,7 +158,7 @@ class PythonEpisode {
   py::tuple step(const py::object& commands) {
     Episode& e = episode();
     if (e.done()) throw std::logic_error("the episode has ended: call reset() for a new one");
-    if (!several()) {
+    if (!keyed()) {
       e.step(decision_of(commands, ""));  // std::invalid_argument (ValueError) for a command the vehicle cannot follow
       return py::make_tuple(observation(), e.done(), info());
     }
@@ -201,7 +201,7 @@ class PythonEpisode {
   }
 
   py::object observation() const {
-    if (!several()) return py::cast(view(0));
+    if (!keyed()) return py::cast(view(0));
     py::dict observations;
     for (const std::size_t v : live()) observations[py::str(aliases_[v])] = view(v);
     return observations;
@@ -216,7 +216,7 @@ class PythonEpisode {
     for (const std::size_t v : live()) names.push_back(aliases_[v]);
     return names;
   }
-  const std::vector<std::string>& possible_agents() const { return several() ? agent_aliases_ : aliases_; }
+  const std::vector<std::string>& possible_agents() const { return keyed() ? agent_aliases_ : aliases_; }
 
   py::dict info() const {
     const Episode& e = episode();
@@ -233,7 +233,7 @@ class PythonEpisode {
 
   py::object metrics() const {
     const EpisodeResult& result = finished();
-    if (!several()) return from_json(campo::to_json(result.only().metrics));
+    if (!keyed()) return from_json(campo::to_json(result.only().metrics));
     nlohmann::json vehicles = nlohmann::json::object();
     for (const VehicleResult& v : result.vehicles) vehicles[v.alias] = campo::to_json(v.metrics);
     return from_json({{"fleet", campo::to_json(result.fleet)}, {"vehicles", vehicles}});
@@ -276,6 +276,8 @@ class PythonEpisode {
 
  private:
   bool several() const { return aliases_.size() > 1; }
+  // Whether reset() and step() take and give dicts keyed by alias: with several vehicles, or agents named.
+  bool keyed() const { return several() || named_agents_; }
 
   // agents=: the aliases of the vehicles stepped from Python; none: every one.
   static std::optional<std::vector<std::string>> agent_names(const py::object& agents) {
@@ -297,6 +299,7 @@ class PythonEpisode {
   // The agents among the scene's vehicles (`named`, else every one); the others' planners run in the loop.
   void choose_agents(const std::optional<std::vector<std::string>>& named) {
     agent_.assign(aliases_.size(), !named);
+    named_agents_ = named.has_value();
     for (const std::string& alias : named.value_or(std::vector<std::string>{})) {
       const auto found = std::find(aliases_.begin(), aliases_.end(), alias);
       if (found == aliases_.end()) {
@@ -307,7 +310,7 @@ class PythonEpisode {
     if (std::find(agent_.begin(), agent_.end(), true) == agent_.end()) {
       throw InputError("agents", "", "at least one vehicle to step from Python (" + alias_list(aliases_) + ")");
     }
-    if (!several()) return;
+    if (!keyed()) return;
     for (std::size_t v = 0; v < aliases_.size(); ++v) {
       if (agent_[v]) agent_aliases_.push_back(aliases_[v]);
     }
@@ -480,7 +483,8 @@ class PythonEpisode {
   RunRequest request_;
   std::vector<std::string> aliases_;        // the scene's vehicles, in scene order
   std::vector<bool> agent_;                 // each one stepped from Python, else by its planner
-  std::vector<std::string> agent_aliases_;  // with several vehicles, the agents' aliases in scene order
+  std::vector<std::string> agent_aliases_;  // when keyed(), the agents' aliases in scene order
+  bool named_agents_ = false;               // agents= given
   std::shared_ptr<EpisodeRun> run_;
 };
 

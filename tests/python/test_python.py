@@ -408,6 +408,24 @@ class SeveralVehiclesEpisodeTest(unittest.TestCase):
         with self.assertRaisesRegex(campo.InputError, "agents: a list of vehicle aliases, got 'far'"):
             campo.Episode(TWO_DRONES, agents="far")
 
+    def test_one_vehicle_named_as_an_agent_is_keyed_too(self):
+        # Code written for several vehicles runs a scene of one when it names its agents.
+        episode = campo.Episode(OPEN_FIELD, seed=2, agents=["drone"])
+        self.assertEqual(episode.possible_agents, ["drone"])
+        self.assertEqual(list(episode.reset()), ["drone"])
+        steps = step_with_planners(episode, {"drone": python_planners.GoStraight()})
+        self.assertEqual(steps[-1][1], {"drone": True, "__all__": True})
+        metrics = episode.metrics()
+        self.assertTrue(metrics["fleet"]["all_reached"])
+        record = campo.run(OPEN_FIELD, seed=2, planner=python_planners.GoStraight(), figures=False)
+        for key, value in record["metrics"].items():
+            if key not in TIMING_METRICS:
+                self.assertEqual(metrics["vehicles"]["drone"][key], value, key)
+        with tempfile.TemporaryDirectory() as out:
+            written = episode.write(os.path.join(out, "ep"), figures=False)
+            self.assertEqual(written["final_state_hash"], record["final_state_hash"])
+            self.assertNotIn("vehicles", written)  # a scene of one vehicle's files, as ever
+
     def test_a_vehicles_declared_decisions_read_back_from_its_own_events_file(self):
         with tempfile.TemporaryDirectory() as out:
             campo.run(TWO_DRONES, planner={"far": python_planners.Declares()}, out=os.path.join(out, "r"),
