@@ -644,18 +644,20 @@ void draw_map_figure(Canvas& image, const Scene& scene, const MapPlan& plan, con
       plot.dashed_polyline(to.all(nominal_route(*plan.runs.front())), kNominalRoute, 2, 9.0, 6.0);
     }
     if (plan.fleet) {
+      // Each vehicle's start ringed in its colour, under the goals: vehicles crossing or swapping places have
+      // their goals on each other's starts, and a star shows the start between its arms.
+      for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+        if (!plan.runs[i]->track.empty()) plot.circle(to(plan.runs[i]->track.front().position_m), 12.0, plan_color(plan, i), 3.0);
+      }
+      for (const auto& s : plan.starts) figure::start_marker(plot, to(s));
       for (std::size_t from = 0, until = 0; from < plan.mission.size(); from = until) {
         while (until < plan.mission.size() && plan.mission_owner[until] == plan.mission_owner[from]) ++until;
         draw_mission(plot, layout.plot_px.width, to, plan, from, until);
       }
-      // Each vehicle's start ringed in its colour.
-      for (std::size_t i = 0; i < plan.runs.size(); ++i) {
-        if (!plan.runs[i]->track.empty()) plot.circle(to(plan.runs[i]->track.front().position_m), 12.0, plan_color(plan, i), 3.0);
-      }
     } else {
       draw_mission(plot, layout.plot_px.width, to, plan, 0, plan.mission.size());
+      for (const auto& s : plan.starts) figure::start_marker(plot, to(s));
     }
-    for (const auto& s : plan.starts) figure::start_marker(plot, to(s));
   }
 
   const figure::PlotFrame frame{layout.plot_px, layout.min.x(), layout.min.x() + layout.plot_px.width / px_per_m,
