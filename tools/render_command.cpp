@@ -249,12 +249,13 @@ Command add_render(CLI::App& app) {
       ->capture_default_str();
   app.add_option("--vehicle", o->vehicle,
                  "In a run of several vehicles, the one whose sensor panel (video), replanning steps (--step) and "
-                 "sequence are drawn (default: the first); maps, side views, videos and replays show them all");
+                 "sequence are drawn (default: the first); maps, side views, snapshots, videos and replays show them all");
   add_figure_format_option(app, &o->formats);
   app.footer(
-      "Draws figures from recorded run files alone (run.json, trajectory.csv, scene.json), without\n"
-      "simulating again. map: top-down map with terrain contours, obstacles, the path coloured by time,\n"
-      "waypoints reached and discarded. side: altitude over the terrain profile. depth: the depth maps\n"
+      "Draws figures from recorded run files alone (run.json, trajectory.csv or trajectory_<alias>.csv,\n"
+      "scene.json), without simulating again. map: top-down map with terrain contours, obstacles, the\n"
+      "path coloured by time, waypoints reached and discarded. side: altitude over the terrain profile.\n"
+      "depth: the depth maps\n"
       "recorded with campo run --record-depth N, grey and colour-mapped; with --step K, the depth map\n"
       "replanning step K read (replans/), next to the dilated and thresholded maps recomputed from the\n"
       "recorded planner parameters, with W', its safety sphere, the chosen pixel, the scan line and the\n"
@@ -269,7 +270,7 @@ Command add_render(CLI::App& app) {
       "replay: one self-contained HTML page (three.js inside; opens offline) with every run given in 3D:\n"
       "terrain, obstacles, movers, vehicles, tracks and the returns recorded with --record-depth N, a time\n"
       "slider, play/pause, speed, camera orbit and a legend (default: replay.html beside the one run).\n"
-      "A run of several vehicles: map, side view, video and replay show every vehicle, each in its own colour\n"
+      "A run of several vehicles: map, side, snapshot, video and replay show every vehicle, each in its colour\n"
       "(a colour-blind-safe palette) named in the legend, its start, goal and footprint; the sensor panel,\n"
       "--step and sequence are those of --vehicle (default the first).\n"
       "Every figure but video and replay can be written as PNG, PDF and SVG (--figure-format png,pdf,svg):\n"
