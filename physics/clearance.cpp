@@ -158,13 +158,13 @@ void ClearanceQuery::find_vehicle(const btCollisionWorld& world, std::size_t veh
 }
 
 Clearance ClearanceQuery::measure(const btCollisionWorld& world, std::size_t vehicle, double obstacle_cutoff_m,
-                                  double ground_cutoff_m) {
+                                  double ground_cutoff_m, bool other_vehicles) {
   find_vehicle(world, vehicle);
   Clearance out;
   if (vehicle_->empty()) return out;
   ContactSeen seen;
   out.contact = in_contact(world, seen);
-  nearest_moving(obstacle_cutoff_m, out);
+  nearest_moving(obstacle_cutoff_m, other_vehicles, out);
   // Static obstacles and the ground do not move: while the vehicle has not
   // moved far enough since their last exact answer to come within the
   // cutoff, it cannot have. Each is measured a little beyond its cutoff, so
@@ -370,11 +370,12 @@ void ClearanceQuery::measure_obstacle(const btVector3& lo, const btVector3& hi, 
 }
 
 // Moving obstacles (and the other vehicles' bodies) are few: each is measured exactly (within the cutoff).
-void ClearanceQuery::nearest_moving(double cutoff_m, Clearance& out) const {
+void ClearanceQuery::nearest_moving(double cutoff_m, bool other_vehicles, Clearance& out) const {
   btVector3 lo, hi;
   vehicle_box(lo, hi);
-  const std::vector<MovingObstacle>* lists[] = {&moving_, &search_->others};
+  const std::vector<MovingObstacle>* lists[] = {&moving_, other_vehicles ? &search_->others : nullptr};
   for (const std::vector<MovingObstacle>* list : lists) {
+    if (!list) continue;
     for (const MovingObstacle& m : *list) {
       measure_obstacle(lo, hi, *static_cast<const btConvexShape*>(m.body->getCollisionShape()),
                        m.body->getWorldTransform(), m.id, cutoff_m, out);

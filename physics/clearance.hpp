@@ -60,8 +60,10 @@ class ClearanceQuery {
   /// exact below each cutoff, +infinity when nothing is nearer; whether
   /// Bullet's narrow phase has them in contact; and when they touch, what and
   /// where (Clearance::touch).
+  /// Without `other_vehicles` their distances are left to the caller (who
+  /// measures each pair once); a contact with one still counts and is named.
   Clearance measure(const btCollisionWorld& world, std::size_t vehicle, double obstacle_cutoff_m,
-                    double ground_cutoff_m);
+                    double ground_cutoff_m, bool other_vehicles = true);
 
  private:
   struct StaticObstacle {
@@ -111,7 +113,7 @@ class ClearanceQuery {
   void vehicle_box(btVector3& lo, btVector3& hi) const;
   void measure_obstacle(const btVector3& lo, const btVector3& hi, const btConvexShape& shape, const btTransform& pose,
                         int id, double bound, Clearance& out) const;
-  void nearest_moving(double cutoff_m, Clearance& out) const;
+  void nearest_moving(double cutoff_m, bool other_vehicles, Clearance& out) const;
   void nearest_static(double cutoff_m, Clearance& out);
   void nearest_ground(double cutoff_m, Clearance& out);
   // Distance from one vehicle part to one ground body, exact below the

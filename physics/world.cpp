@@ -68,14 +68,39 @@ struct World::Impl {
   std::int64_t steps = 0;
   std::size_t vehicles_joined = 0;
 
-  // The bodies of vehicle `vehicle`, in the order they joined the world.
+  // Each vehicle's bodies, in the order they joined the world, with their
+  // bounding spheres (local centre, radius); found again when bodies join or leave.
+  struct VehicleBody {
+    const btCollisionObject* body;
+    bool wheel;
+    btVector3 centre;
+    btScalar radius;
+  };
+  mutable std::vector<std::vector<VehicleBody>> vehicle_bodies;
+  mutable int objects_seen = -1;
+
+  const std::vector<VehicleBody>& bodies_of(std::size_t vehicle) const {
+    const btCollisionObjectArray& objects = dynamics->getCollisionObjectArray();
+    if (objects.size() != objects_seen) {
+      objects_seen = objects.size();
+      vehicle_bodies.clear();
+      for (int i = 0; i < objects.size(); ++i) {
+        const int tag = objects[i]->getUserIndex();
+        if (!is_vehicle_tag(tag)) continue;
+        const std::size_t v = vehicle_of_tag(tag);
+        if (vehicle_bodies.size() <= v) vehicle_bodies.resize(v + 1);
+        VehicleBody body{objects[i], is_wheel_tag(tag), {}, 0};
+        objects[i]->getCollisionShape()->getBoundingSphere(body.centre, body.radius);
+        vehicle_bodies[v].push_back(body);
+      }
+    }
+    static const std::vector<VehicleBody> kNone;
+    return vehicle < vehicle_bodies.size() ? vehicle_bodies[vehicle] : kNone;
+  }
+
   template <typename F>
   void for_each_vehicle_body(std::size_t vehicle, F&& f) const {
-    const btCollisionObjectArray& objects = dynamics->getCollisionObjectArray();
-    for (int i = 0; i < objects.size(); ++i) {
-      const int tag = objects[i]->getUserIndex();
-      if (is_vehicle_tag(tag) && vehicle_of_tag(tag) == vehicle) f(*objects[i], is_wheel_tag(tag));
-    }
+    for (const VehicleBody& b : bodies_of(vehicle)) f(*b.body, b.wheel);
   }
 
   Impl() {
@@ -279,30 +304,32 @@ std::size_t World::join_vehicle() {
   return impl_->vehicles_joined++;
 }
 
-Clearance World::vehicle_clearance(std::size_t vehicle, double obstacle_cutoff_m, double ground_cutoff_m) const {
-  return impl_->clearance.measure(*impl_->dynamics, vehicle, obstacle_cutoff_m, ground_cutoff_m);
+Clearance World::vehicle_clearance(std::size_t vehicle, double obstacle_cutoff_m, double ground_cutoff_m,
+                                  bool other_vehicles) const {
+  return impl_->clearance.measure(*impl_->dynamics, vehicle, obstacle_cutoff_m, ground_cutoff_m, other_vehicles);
 }
 
-double World::vehicle_distance(std::size_t a, std::size_t b, double cutoff_m) const {
+double World::vehicle_distance(std::size_t a, std::size_t b, double cutoff_m, Eigen::Vector3d* point_on_b) const {
   double best = std::numeric_limits<double>::infinity();
-  impl_->for_each_vehicle_body(a, [&](const btCollisionObject& body_a, bool) {
-    btVector3 centre_a;
-    btScalar radius_a;
-    body_a.getCollisionShape()->getBoundingSphere(centre_a, radius_a);
-    const btVector3 world_a = body_a.getWorldTransform() * centre_a;
-    impl_->for_each_vehicle_body(b, [&](const btCollisionObject& body_b, bool) {
-      btVector3 centre_b;
-      btScalar radius_b;
-      body_b.getCollisionShape()->getBoundingSphere(centre_b, radius_b);
+  const auto& bodies_b = impl_->bodies_of(b);
+  for (const Impl::VehicleBody& body_a : impl_->bodies_of(a)) {
+    const btVector3 world_a = body_a.body->getWorldTransform() * body_a.centre;
+    for (const Impl::VehicleBody& body_b : bodies_b) {
       // The bounding spheres' gap bounds the shapes' distance from below.
-      const double bound = (world_a - body_b.getWorldTransform() * centre_b).length() - radius_a - radius_b;
-      if (bound >= std::min(best, cutoff_m)) return;
-      best = std::min(best, signed_distance(*static_cast<const btConvexShape*>(body_a.getCollisionShape()),
-                                            body_a.getWorldTransform(),
-                                            *static_cast<const btConvexShape*>(body_b.getCollisionShape()),
-                                            body_b.getWorldTransform()));
-    });
-  });
+      const double bound =
+          (world_a - body_b.body->getWorldTransform() * body_b.centre).length() - body_a.radius - body_b.radius;
+      if (bound >= std::min(best, cutoff_m)) continue;
+      btVector3 point;
+      const double d = signed_distance(*static_cast<const btConvexShape*>(body_a.body->getCollisionShape()),
+                                       body_a.body->getWorldTransform(),
+                                       *static_cast<const btConvexShape*>(body_b.body->getCollisionShape()),
+                                       body_b.body->getWorldTransform(), point_on_b ? &point : nullptr);
+      if (d < best) {
+        best = d;
+        if (point_on_b) *point_on_b = from_bt(point);
+      }
+    }
+  }
   return best < cutoff_m ? best : std::numeric_limits<double>::infinity();
 }
 

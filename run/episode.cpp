@@ -144,6 +144,8 @@ struct Episode::Loop {
     if (vehicles.size() > 1) {
       seen_scene = std::make_unique<Scene>(sensor_scene(scene, world, proxy_first, proxy_count));
       separations.assign(vehicles.size() * vehicles.size(), VehicleSeparation{});
+      pair_m.assign(vehicles.size() * vehicles.size(), kExact);
+      pair_point.assign(vehicles.size() * vehicles.size(), Eigen::Vector3d::Zero());
     }
     const Scene& sensed = seen_scene ? *seen_scene : scene;
     for (auto& v : vehicles) {
@@ -229,7 +231,21 @@ struct Episode::Loop {
     if (!plan.decisions.empty()) v.result.events.push_back({t, bounded_decisions(std::move(plan.decisions))});
     // Exact obstacle clearance for the record; the ground only as far as
     // it could lower its minimum (far terrain costs many triangles).
-    const Clearance clearance = world.vehicle_clearance(v.index, kExact, v.minima.ground_cutoff());
+    Clearance clearance = world.vehicle_clearance(v.index, kExact, v.minima.ground_cutoff(), !seen_scene);
+    if (seen_scene) {
+      // The pairs the last physics step measured exactly (the world has not moved since), then the rest
+      // only where nearer than those.
+      const std::size_t n = vehicles.size();
+      if (k > 0) add_vehicle_pairs(v.index, clearance);
+      for (std::size_t other = 0; other < n; ++other) {
+        if (other == v.index || (k > 0 && pair_m[v.index * n + other] < kExact)) continue;
+        const double d = world.vehicle_distance(v.index, other, clearance.obstacle_m);
+        if (d < clearance.obstacle_m) {
+          clearance.obstacle_m = d;
+          clearance.obstacle = vehicle_tag(other, false);
+        }
+      }
+    }
     v.minima.update(clearance, t);
     const std::optional<double> ground = scene.ground_height(v.truth.position_m.x(), v.truth.position_m.y());
     const double above_ground = ground ? v.truth.position_m.z() - *ground : std::numeric_limits<double>::quiet_NaN();
@@ -247,6 +263,10 @@ struct Episode::Loop {
     // Vehicles whose missions ended still hold where they are.
     for (auto& v : vehicles) v->vehicle->pre_step(dt);
     world.step();
+    if (seen_scene) {
+      measure_vehicle_pairs();
+      keep_separations();
+    }
     for (auto& vp : vehicles) {
       VehicleLoop& v = *vp;
       if (!v.running()) continue;
@@ -256,8 +276,9 @@ struct Episode::Loop {
       v.previous = position;
       // A collision is the collision shapes touching, from the same query as
       // the clearance metrics, so an overlap is always a collision.
-      const Clearance clearance =
-          world.vehicle_clearance(v.index, v.minima.obstacle_cutoff(), v.minima.ground_cutoff());
+      Clearance clearance =
+          world.vehicle_clearance(v.index, v.minima.obstacle_cutoff(), v.minima.ground_cutoff(), !seen_scene);
+      if (seen_scene) add_vehicle_pairs(v.index, clearance);
       v.minima.update(clearance, world.time_s());
       const bool colliding = clearance.touching();
       if (colliding && !v.was_colliding) {
@@ -275,7 +296,6 @@ struct Episode::Loop {
       }
       v.was_colliding = colliding;
     }
-    measure_separations();
     if (!all_ended() && world.time_s() >= scene.world.time_limit_s) {
       for (auto& v : vehicles) {
         if (v->running()) {
@@ -286,35 +306,59 @@ struct Episode::Loop {
     ++k;
   }
 
-  // The least distance between each pair of vehicles, kept for each one still on its mission.
-  void measure_separations() {
-    if (!seen_scene) return;
+  // The distance between each pair of vehicles, measured once for both
+  // vehicles' clearance and least distances: exact below what either still
+  // keeps (its least distance to the other, its clearance cutoff), +infinity beyond.
+  void measure_vehicle_pairs() {
     const std::size_t n = vehicles.size();
     for (std::size_t a = 0; a < n; ++a) {
       for (std::size_t b = a + 1; b < n; ++b) {
-        VehicleSeparation& ab = separations[a * n + b];
-        VehicleSeparation& ba = separations[b * n + a];
-        const bool keep_a = vehicles[a]->running() || ended_this_step(a);
-        const bool keep_b = vehicles[b]->running() || ended_this_step(b);
-        if (!keep_a && !keep_b) continue;
-        // Exact only where it could lower a minimum still kept.
-        const double cutoff = std::max(keep_a ? ab.min_distance_m : -kExact, keep_b ? ba.min_distance_m : -kExact);
-        const double d = world.vehicle_distance(a, b, cutoff);
-        if (keep_a && d < ab.min_distance_m) {
-          ab.min_distance_m = d;
-          ab.min_distance_time_s = world.time_s();
+        double cutoff = -kExact;
+        for (const auto& [self, other] : {std::pair{a, b}, std::pair{b, a}}) {
+          const VehicleLoop& v = *vehicles[self];
+          if (!v.running()) continue;
+          cutoff = std::max({cutoff, separations[self * n + other].min_distance_m, v.minima.obstacle_cutoff()});
         }
-        if (keep_b && d < ba.min_distance_m) {
-          ba.min_distance_m = d;
-          ba.min_distance_time_s = world.time_s();
+        pair_m[a * n + b] = pair_m[b * n + a] =
+            cutoff == -kExact ? kExact : world.vehicle_distance(a, b, cutoff, &pair_point[a * n + b]);
+      }
+    }
+  }
+
+  // The least distance to each other vehicle, kept while a vehicle is on its mission.
+  void keep_separations() {
+    const std::size_t n = vehicles.size();
+    for (std::size_t a = 0; a < n; ++a) {
+      if (!vehicles[a]->running()) continue;
+      for (std::size_t b = 0; b < n; ++b) {
+        VehicleSeparation& s = separations[a * n + b];
+        if (b != a && pair_m[a * n + b] < s.min_distance_m) {
+          s.min_distance_m = pair_m[a * n + b];
+          s.min_distance_time_s = world.time_s();
         }
       }
     }
   }
 
-  // A vehicle whose mission ended in this physics step (a collision) still had this step's distance.
-  bool ended_this_step(std::size_t v) const {
-    return vehicles[v]->outcome && vehicles[v]->end_time_s == world.time_s();
+  // The other vehicles into vehicle `self`'s clearance, from this step's pairs.
+  void add_vehicle_pairs(std::size_t self, Clearance& c) const {
+    const std::size_t n = vehicles.size();
+    for (std::size_t other = 0; other < n; ++other) {
+      const double d = pair_m[self * n + other];
+      if (other == self || !(d < c.obstacle_m)) continue;
+      c.obstacle_m = d;
+      c.obstacle = vehicle_tag(other, false);
+      if (d <= 0.0 && !c.touch) {  // overlapping without a contact Bullet reported: where, on the other
+        Touch t;
+        t.body = c.obstacle;
+        if (self < other) {
+          t.point_m = pair_point[self * n + other];
+        } else {
+          world.vehicle_distance(self, other, kExact, &t.point_m);
+        }
+        c.touch = t;
+      }
+    }
   }
 
   void end(VehicleLoop& v, Outcome o, std::string reason) {
@@ -412,7 +456,10 @@ struct Episode::Loop {
     }
     r.all_reached = r.vehicles_reached == r.vehicles;
     r.any_collision = r.collisions > 0;
-    if (r.all_reached) r.makespan_s = last_reached;
+    if (r.all_reached) {
+      r.makespan_s = last_reached;
+      r.reason = "all " + std::to_string(r.vehicles) + " vehicles reached their goals";
+    }
     r.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
     return r;
   }
@@ -437,11 +484,14 @@ struct Episode::Loop {
   std::vector<std::unique_ptr<VehicleLoop>> vehicles;  // scene order; destroyed before the world
   // With several vehicles: the scene the sensors see (the vehicles' bodies
   // added as movers), where each vehicle's bodies start among its moving
-  // bodies and how many; the least distance of each ordered pair (a * n + b).
+  // bodies and how many; the least distance of each ordered pair (a * n +
+  // b); this step's distance of each pair and the point of b nearest a (a < b).
   std::unique_ptr<Scene> seen_scene;
   std::vector<std::size_t> proxy_first;
   std::vector<std::size_t> proxy_count;
   std::vector<VehicleSeparation> separations;
+  std::vector<double> pair_m;
+  std::vector<Eigen::Vector3d> pair_point;
   std::vector<Eigen::Isometry3d> body_poses;  // of the moving bodies, refreshed before each scan
   std::vector<Eigen::Isometry3d> parked;      // kParked, swapped in for a vehicle's own bodies
   const std::int64_t control_period;

@@ -115,7 +115,7 @@ struct FleetMetrics {
   /// vehicle whose end decided it: the first (in time, then scene order)
   /// that did not reach.
   Outcome outcome = Outcome::aborted;
-  std::string reason;              ///< "<alias>: <its reason>" unless all reached
+  std::string reason;              ///< "<alias>: <its reason>", or that all reached
   int vehicles = 0;
   int vehicles_reached = 0;
   bool all_reached = false;

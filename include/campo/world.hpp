@@ -132,9 +132,13 @@ class World {
   /// moving obstacles to it. A distance at or beyond its cutoff is reported
   /// as +infinity (the nearest is at least that far); by default both are
   /// exact at any distance.
+  /// Without `other_vehicles` the distances to the other vehicles are left
+  /// out (the closed loop measures each pair once, vehicle_distance); a
+  /// contact with one still makes it touching, naming it.
   Clearance vehicle_clearance(std::size_t vehicle,
                               double obstacle_cutoff_m = std::numeric_limits<double>::infinity(),
-                              double ground_cutoff_m = std::numeric_limits<double>::infinity()) const;
+                              double ground_cutoff_m = std::numeric_limits<double>::infinity(),
+                              bool other_vehicles = true) const;
   /// The same for the first vehicle (a world of one vehicle).
   Clearance vehicle_clearance(double obstacle_cutoff_m = std::numeric_limits<double>::infinity(),
                               double ground_cutoff_m = std::numeric_limits<double>::infinity()) const {
@@ -144,8 +148,10 @@ class World {
   /// Signed distance between the collision shapes of vehicles `a` and `b`
   /// now (negative when they overlap); +infinity when it is at least
   /// `cutoff_m` (a bound from their bounding spheres skips the exact query).
-  double vehicle_distance(std::size_t a, std::size_t b,
-                          double cutoff_m = std::numeric_limits<double>::infinity()) const;
+  /// `point_on_b`, when given and the distance is below the cutoff, is set to
+  /// the point of b's shapes nearest a's (the deepest when they overlap).
+  double vehicle_distance(std::size_t a, std::size_t b, double cutoff_m = std::numeric_limits<double>::infinity(),
+                          Eigen::Vector3d* point_on_b = nullptr) const;
 
   /// The collision shapes of vehicle `vehicle` as scene shapes (boxes as
   /// cuboids, spheres as spheres), posed where the physics has them now,
