@@ -425,7 +425,7 @@ void draw_footprint(Canvas& plot, const PlotMapper& to, const Footprint& f, cons
 }
 
 void draw_vehicle_footprint(Canvas& plot, const PlotMapper& to, const TrackPoint& at, const Eigen::Vector2d& footprint_m,
-                            const cv::Scalar& colour) {
+                            const cv::Scalar& colour, bool fill) {
   const double yaw = at.yaw_deg * M_PI / 180.0;
   const Eigen::Vector2d ahead(std::cos(yaw), std::sin(yaw)), left(-ahead.y(), ahead.x());
   const Eigen::Vector2d centre = xy(at.position_m);
@@ -435,7 +435,7 @@ void draw_vehicle_footprint(Canvas& plot, const PlotMapper& to, const TrackPoint
                                              centre - half.x() * ahead - half.y() * left,
                                              centre + half.x() * ahead - half.y() * left};
   const std::vector<cv::Point2d> outline = to.all(corners);
-  plot.fill_polygon(outline, figure::lighten(colour, 0.55));
+  if (fill) plot.fill_polygon(outline, figure::lighten(colour, 0.55));
   plot.polyline(outline, colour, 2, /*closed=*/true);
   plot.line(to(centre), to(Eigen::Vector2d(centre + half.x() * ahead)), colour, 2);
 }
@@ -653,6 +653,13 @@ void draw_map_figure(Canvas& image, const Scene& scene, const MapPlan& plan, con
       for (std::size_t from = 0, until = 0; from < plan.mission.size(); from = until) {
         while (until < plan.mission.size() && plan.mission_owner[until] == plan.mission_owner[from]) ++until;
         draw_mission(plot, layout.plot_px.width, to, plan, from, until);
+      }
+      // Each footprint's edge again over the markers, which would hide a small vehicle that ended at its goal.
+      for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+        const RunView& run = *plan.runs[i];
+        if (!run.track.empty() && run.footprint_m.minCoeff() > 0.0) {
+          draw_vehicle_footprint(plot, to, run.track.back(), run.footprint_m, plan_color(plan, i), false);
+        }
       }
     } else {
       draw_mission(plot, layout.plot_px.width, to, plan, 0, plan.mission.size());

@@ -90,10 +90,10 @@ inline constexpr double kAboveBandLighten = 0.65;
 /// recorded sensor hits, planned and discarded waypoints; draw_map_figure draws them over the
 /// scene and under the mission's markers (a video draws them frame by frame).
 void draw_run_marks(Canvas& plot, const PlotMapper& to, const MapPlan& plan);
-/// A vehicle's footprint (length, width) at `at`'s position and heading, filled pale in `colour` with an edge and
-/// a line to its front in it.
+/// A vehicle's footprint (length, width) at `at`'s position and heading, filled pale in `colour` (unless `fill` is
+/// false) with an edge and a line to its front in it.
 void draw_vehicle_footprint(Canvas& plot, const PlotMapper& to, const TrackPoint& at, const Eigen::Vector2d& footprint_m,
-                            const cv::Scalar& colour);
+                            const cv::Scalar& colour, bool fill = true);
 
 // Drawing coordinates relative to the plot area: draw in canvas.region(layout.plot_px), which clips what lies outside.
 struct PlotMapper {
