@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "campo/json_reader.hpp"
 #include "render/map_figure.hpp"
 #include "render/replay.hpp"
+#include "render/run_figures.hpp"
 #include "render/run_files.hpp"
 #include "render/side_view_figure.hpp"
 #include "render/video_frame.hpp"
@@ -194,6 +196,31 @@ TEST_F(FleetFigures, VideoFramesShowEveryVehicle) {
                                   (dir_ / "pair.gif").string());
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(dir_ / "pair.gif"));
+}
+
+// The replanning depth maps (replans/) are one vehicle's: run.json's recorded_vehicle, else the first.
+TEST_F(FleetFigures, ReplanningStepsAreTheRecordedVehiclesOnly) {
+  const fs::path out = record();
+  nlohmann::json record = read_json_file(out / "run.json");
+  record["vehicles"][1]["parameters"]["planner"]["name"] = "depth_reactive";  // a planner that draws its steps
+  std::ofstream(out / "run.json") << record.dump();
+  EXPECT_EQ(sensor_records_vehicle(load_run_dir(out)), "alpha");
+  try {
+    find_replan_steps(load_run_dir(out, "bravo"), std::nullopt);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.pointer(), "--vehicle");
+    EXPECT_THAT(e.message(), HasSubstr("of vehicle \"alpha\", not of \"bravo\""));
+  }
+  record["recorded_vehicle"] = "bravo";
+  std::ofstream(out / "run.json") << record.dump();
+  EXPECT_EQ(sensor_records_vehicle(load_run_dir(out)), "bravo");
+  try {
+    find_replan_steps(load_run_dir(out, "bravo"), std::nullopt);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {  // bravo's own: it recorded none
+    EXPECT_EQ(e.message(), "no replanning steps recorded");
+  }
 }
 
 TEST_F(FleetFigures, ReplayShowsEveryVehicle) {
