@@ -113,7 +113,8 @@ PlanResult decision_of(const py::handle& value, const std::string& who) {
 // PettingZoo's parallel API keyed by alias: reset() gives {alias:
 // observation}, step({alias: command}) ({alias: observation}, {alias: done,
 // "__all__": done}, {alias: info}) for the vehicles that acted; `agents`
-// shrinks as missions end (docs/python.md).
+// shrinks as missions end (docs/python.md). agents= names the vehicles
+// stepped from Python (keyed even when one); the others' planners run in the loop.
 class PythonEpisode {
  public:
   PythonEpisode(const std::string& scene, std::optional<std::uint64_t> seed, const py::object& overrides,
@@ -130,6 +131,9 @@ class PythonEpisode {
                                           "those stepped from Python");
     }
     choose_agents(named);
+    // prepare_run left the first vehicle's planner unchecked, as an episode's; one that runs is checked now.
+    const VehicleDef& first = prepared.scene.vehicles.at(prepared.vehicle_index);
+    if (!agent_[prepared.vehicle_index]) create_planner(first.planner, {first.type, &prepared.scene, &first});
   }
 
   py::object reset() {

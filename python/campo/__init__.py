@@ -10,6 +10,13 @@ results as pandas data frames. See docs/python.md.
     while not ep.done:
         obs, done, info = ep.step(campo.Command.go_to([16, 0, 3], speed_mps=0.6))
     print(ep.metrics()["outcome"])
+
+A scene of several vehicles is stepped with dicts keyed by alias (PettingZoo's parallel API):
+
+    ep = campo.Episode("two_drones_head_on")
+    obs = ep.reset()
+    while not ep.done:
+        obs, dones, infos = ep.step({a: campo.Command.go_to(obs[a].mission_m[-1]) for a in ep.agents})
 """
 
 from ._campo import (  # noqa: F401 (re-exported)
