@@ -408,6 +408,14 @@ class SeveralVehiclesEpisodeTest(unittest.TestCase):
         with self.assertRaisesRegex(campo.InputError, "agents: a list of vehicle aliases, got 'far'"):
             campo.Episode(TWO_DRONES, agents="far")
 
+    def test_a_vehicles_python_planner_past_its_call_limit_fails_that_vehicle_alone(self):
+        record = campo.run(TWO_DRONES, planner={"far": python_planners.Sleeper(after_s=0.2)}, call_limit_s=0.5,
+                           figures=False)
+        outcomes = {v["alias"]: v["metrics"]["outcome"] for v in record["vehicles"]}
+        self.assertEqual(outcomes, {"near": "reached", "far": "failed"})
+        self.assertIn("python:python_planners:Sleeper did not return within", record["vehicles"][1]["metrics"]["reason"])
+        self.assertEqual(record["metrics"]["outcome"], "failed")
+
     def test_one_vehicle_named_as_an_agent_is_keyed_too(self):
         # Code written for several vehicles runs a scene of one when it names its agents.
         episode = campo.Episode(OPEN_FIELD, seed=2, agents=["drone"])
