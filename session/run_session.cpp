@@ -349,6 +349,8 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   }
   limit.reset();
   run.record = run_json(scene, run.result, options, override_texts(applied_overrides(request)));
+  // Whose sensors the depth maps under depth/ and replans/ are, when there are several to choose from.
+  if (scene.vehicles.size() > 1) run.record["recorded_vehicle"] = def.alias;
   if (!run.document.contains("name")) run.document["name"] = scene.name;
   return run;
 }
@@ -377,7 +379,7 @@ std::vector<FigureFailure> write_run_files(const SimulatedRun& run, const RunReq
   const std::filesystem::path staged = out.path("");
   std::optional<RecordedRun> recorded;
   attempt("run directory", [&] {
-    recorded = load_run_dir(staged);
+    recorded = load_run_dir(staged, request.vehicle);
     recorded->view.label = request.label.empty() ? request.out.filename().string() : request.label;
   });
   if (!recorded) return failures;  // no figure could be drawn from it

@@ -24,9 +24,12 @@ TEST_F(BenchCli, WritesFiguresWithProvenanceAndComparesThem) {
     EXPECT_TRUE(base["provenance"].contains(key)) << key;
   }
   EXPECT_THAT(base["provenance"]["command"].get<std::string>(), HasSubstr("campo bench episodes"));
-  ASSERT_EQ(base["figures"].size(), 6u);  // two scenes x no sensor, 64 and 256 beams a side
+  // Two scenes x no sensor, 64 and 256 beams a side; then fleets of 1, 2, 4 and 8 drones.
+  ASSERT_EQ(base["figures"].size(), 10u);
   EXPECT_EQ(base["figures"][0]["id"], "episode/trees_rolling_terrain/0");
   EXPECT_EQ(base["figures"][0]["unit"], "physics steps/s");
+  EXPECT_EQ(base["figures"][9]["id"], "episode/fleet/8");
+  EXPECT_EQ(base["figures"][9]["vehicles"], 8);
 
   // A baseline twenty times slower: nothing regressed. (The margins are wide because these
   // are wall times of one-second episodes, measured again while other tests load the machine.)
