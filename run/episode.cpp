@@ -525,6 +525,10 @@ bool Episode::done() const { return loop_->all_ended(); }
 
 bool Episode::done(std::size_t vehicle) const { return !loop_->vehicles.at(vehicle)->running(); }
 
+std::optional<Outcome> Episode::outcome(std::size_t vehicle) const { return loop_->vehicles.at(vehicle)->outcome; }
+
+double Episode::end_time_s(std::size_t vehicle) const { return loop_->vehicles.at(vehicle)->end_time_s; }
+
 const Observation& Episode::observation(std::size_t vehicle) const { return loop_->vehicles.at(vehicle)->observation; }
 
 void Episode::step(std::vector<PlanResult>&& plans, const std::vector<double>& planner_time_ms) {

@@ -98,6 +98,10 @@ class Episode {
   bool done() const;
   /// Whether vehicle `vehicle`'s mission has ended.
   bool done(std::size_t vehicle) const;
+  /// How vehicle `vehicle`'s mission ended, once it has, and when (simulated
+  /// seconds; its metrics' outcome and sim_time_s once finished).
+  std::optional<Outcome> outcome(std::size_t vehicle) const;
+  double end_time_s(std::size_t vehicle) const;
   /// What vehicle `vehicle`'s planner sees at the current control tick (the
   /// estimated state, the latest readings); valid until the next step. Once
   /// its mission has ended, the state it ended in.

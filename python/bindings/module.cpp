@@ -168,27 +168,11 @@ class PythonEpisode {
     }
     const std::vector<std::size_t> acting = live();
     std::vector<PlanResult> plans = decisions(commands);
-    // What the loop does not tell until its end: how a mission that ends now ended, and when.
-    const double decided_at_s = e.world().time_s();
-    std::vector<int> collisions;
-    for (std::size_t v = 0; v < aliases_.size(); ++v) collisions.push_back(e.metrics_so_far(v).collisions);
     step_with_planners(plans);
+    // How a mission that ended now, while the run goes on, ended and when (the run's end gives every one).
     if (!e.done()) {
       for (const std::size_t v : acting) {
-        if (!e.done(v)) continue;
-        // The run goes on, so no time limit or end rule ended it: the vehicle's status, or a collision.
-        Ending ending;
-        const EpisodeMetrics& m = e.metrics_so_far(v);
-        if (plans[v].status == PlanStatus::reached) {
-          ending = {Outcome::reached, decided_at_s};
-        } else if (plans[v].status != PlanStatus::running) {
-          ending = {Outcome::aborted, decided_at_s};
-        } else if (m.collisions > collisions[v] && !m.collision_events.empty()) {
-          ending = {Outcome::collision, m.collision_events.back().time_s};
-        } else {
-          continue;  // none other ends one vehicle alone
-        }
-        run_->endings[v] = ending;
+        if (e.done(v)) run_->endings[v] = Ending{*e.outcome(v), e.end_time_s(v)};
       }
     }
     py::dict observations;
