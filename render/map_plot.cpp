@@ -424,20 +424,25 @@ void draw_footprint(Canvas& plot, const PlotMapper& to, const Footprint& f, cons
   plot.polyline(outline, figure::shade(fill, 0.6), 1, /*closed=*/true);
 }
 
+VehicleOutline vehicle_outline(const TrackPoint& at, const Eigen::Vector2d& footprint_m) {
+  VehicleOutline o;
+  const double yaw = at.yaw_deg * M_PI / 180.0;
+  o.ahead = Eigen::Vector2d(std::cos(yaw), std::sin(yaw));
+  o.left = Eigen::Vector2d(-o.ahead.y(), o.ahead.x());
+  o.centre = xy(at.position_m);
+  o.half = 0.5 * footprint_m;
+  o.corners = {o.centre + o.half.x() * o.ahead + o.half.y() * o.left, o.centre - o.half.x() * o.ahead + o.half.y() * o.left,
+               o.centre - o.half.x() * o.ahead - o.half.y() * o.left, o.centre + o.half.x() * o.ahead - o.half.y() * o.left};
+  return o;
+}
+
 void draw_vehicle_footprint(Canvas& plot, const PlotMapper& to, const TrackPoint& at, const Eigen::Vector2d& footprint_m,
                             const cv::Scalar& colour, bool fill) {
-  const double yaw = at.yaw_deg * M_PI / 180.0;
-  const Eigen::Vector2d ahead(std::cos(yaw), std::sin(yaw)), left(-ahead.y(), ahead.x());
-  const Eigen::Vector2d centre = xy(at.position_m);
-  const Eigen::Vector2d half = 0.5 * footprint_m;
-  const std::vector<Eigen::Vector2d> corners{centre + half.x() * ahead + half.y() * left,
-                                             centre - half.x() * ahead + half.y() * left,
-                                             centre - half.x() * ahead - half.y() * left,
-                                             centre + half.x() * ahead - half.y() * left};
-  const std::vector<cv::Point2d> outline = to.all(corners);
+  const VehicleOutline o = vehicle_outline(at, footprint_m);
+  const std::vector<cv::Point2d> outline = to.all(o.corners);
   if (fill) plot.fill_polygon(outline, figure::lighten(colour, 0.55));
   plot.polyline(outline, colour, 2, /*closed=*/true);
-  plot.line(to(centre), to(Eigen::Vector2d(centre + half.x() * ahead)), colour, 2);
+  plot.line(to(o.centre), to(Eigen::Vector2d(o.centre + o.half.x() * o.ahead)), colour, 2);
 }
 
 void draw_run_marks(Canvas& plot, const PlotMapper& to, const MapPlan& plan) {

@@ -79,6 +79,15 @@ std::optional<double> flight_band_top_agl(const std::vector<const RunView*>& run
 /// Whether a solid's bottom lies above `band_top_agl_m` over the ground beneath its centre; false without a band.
 bool above_flight_band(const Footprint& f, const Ground& ground, std::optional<double> band_top_agl_m);
 
+/// A vehicle's footprint (length along its heading, width across) at a
+/// track point: its centre, unit heading and left, half extents, and the
+/// four corners (front left, rear left, rear right, front right), world x, y.
+struct VehicleOutline {
+  Eigen::Vector2d centre, ahead, left, half;
+  std::vector<Eigen::Vector2d> corners;
+};
+VehicleOutline vehicle_outline(const TrackPoint& at, const Eigen::Vector2d& footprint_m);
+
 struct PlotMapper;
 /// A solid's footprint filled with `fill` and outlined a shade darker.
 void draw_footprint(Canvas& plot, const PlotMapper& to, const Footprint& f, const cv::Scalar& fill);

@@ -86,16 +86,11 @@ figure::Canvas draw_sequence(const Scene& scene, const RunView& run, const std::
     auto plot = out.region(layout.plot_px);
     const PlotMapper to{layout};
     // The vehicle: its footprint at its recorded heading, and the chosen direction.
-    const TrackPoint& at = uptos[i].track.back();
-    const double yaw = at.yaw_deg * M_PI / 180.0;
-    const Eigen::Vector2d ahead(std::cos(yaw), std::sin(yaw)), left(-ahead.y(), ahead.x());
-    const Eigen::Vector2d centre = xy(at.position_m);
-    const Eigen::Vector2d half = 0.5 * footprint_m;
-    const std::vector<Eigen::Vector2d> corners{centre + half.x() * ahead + half.y() * left,
-                                               centre - half.x() * ahead + half.y() * left,
-                                               centre - half.x() * ahead - half.y() * left,
-                                               centre + half.x() * ahead - half.y() * left};
-    const std::vector<cv::Point2d> outline = to.all(corners);
+    const figure::VehicleOutline vehicle = figure::vehicle_outline(uptos[i].track.back(), footprint_m);
+    const Eigen::Vector2d& centre = vehicle.centre;
+    const Eigen::Vector2d& ahead = vehicle.ahead;
+    const Eigen::Vector2d& half = vehicle.half;
+    const std::vector<cv::Point2d> outline = to.all(vehicle.corners);
     out.fill_polygon(outline, figure::rgb(250, 250, 250));
     out.polyline(outline, figure::kInk, 2, /*closed=*/true);
     out.line(to(centre), to(Eigen::Vector2d(centre + half.x() * ahead)), figure::kInk, 2);

@@ -78,19 +78,13 @@ FigureLayout pasted_layout(const FigureLayout& map, const cv::Rect& at) {
 
 // The vehicle's footprint at its heading, with a line to its front and a ring that finds it at any scale.
 void draw_vehicle(figure::Canvas& plot, const PlotMapper& to, const TrackPoint& at, const Eigen::Vector2d& footprint_m) {
-  const double yaw = at.yaw_deg * M_PI / 180.0;
-  const Eigen::Vector2d ahead(std::cos(yaw), std::sin(yaw)), left(-ahead.y(), ahead.x());
-  const Eigen::Vector2d centre = xy(at.position_m);
-  const Eigen::Vector2d half = 0.5 * footprint_m;
-  const std::vector<Eigen::Vector2d> corners{centre + half.x() * ahead + half.y() * left,
-                                             centre - half.x() * ahead + half.y() * left,
-                                             centre - half.x() * ahead - half.y() * left,
-                                             centre + half.x() * ahead - half.y() * left};
-  const std::vector<cv::Point2d> outline = to.all(corners);
+  const figure::VehicleOutline vehicle = figure::vehicle_outline(at, footprint_m);
+  const Eigen::Vector2d& centre = vehicle.centre;
+  const std::vector<cv::Point2d> outline = to.all(vehicle.corners);
   plot.circle(to(centre), 14.0, figure::kInk, 2);
   plot.fill_polygon(outline, figure::rgb(250, 250, 250));
   plot.polyline(outline, figure::kInk, 2, true);
-  const Eigen::Vector2d nose = centre + std::max(half.x(), 0.6) * ahead;
+  const Eigen::Vector2d nose = centre + std::max(vehicle.half.x(), 0.6) * vehicle.ahead;
   plot.line(to(centre), to(nose), figure::kInk, 2);
 }
 
