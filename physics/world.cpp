@@ -315,10 +315,24 @@ double World::vehicle_distance(std::size_t a, std::size_t b, double cutoff_m, Ei
   for (const Impl::VehicleBody& body_a : impl_->bodies_of(a)) {
     const btVector3 world_a = body_a.body->getWorldTransform() * body_a.centre;
     for (const Impl::VehicleBody& body_b : bodies_b) {
-      // The bounding spheres' gap bounds the shapes' distance from below.
-      const double bound =
-          (world_a - body_b.body->getWorldTransform() * body_b.centre).length() - body_a.radius - body_b.radius;
-      if (bound >= std::min(best, cutoff_m)) continue;
+      // The bounding spheres' gap bounds the shapes' distance from below ...
+      const btVector3 between = body_b.body->getWorldTransform() * body_b.centre - world_a;
+      const double centres_m = between.length();
+      const double limit = std::min(best, cutoff_m);
+      if (centres_m - body_a.radius - body_b.radius >= limit) continue;
+      // ... and so does the gap between their projections on the line through the centres (a
+      // separating axis): exact for boxes face to face, as vehicles side by side in lanes are.
+      if (centres_m > 0.0) {
+        const btVector3 u = between / centres_m;
+        const auto reach = [](const Impl::VehicleBody& body, const btVector3& towards, const btVector3& centre) {
+          const btTransform& pose = body.body->getWorldTransform();
+          const auto* convex = static_cast<const btConvexShape*>(body.body->getCollisionShape());
+          const btVector3 far = pose * convex->localGetSupportingVertex(pose.getBasis().transpose() * towards);
+          return static_cast<double>(towards.dot(far - centre));
+        };
+        const btVector3 centre_b = body_b.body->getWorldTransform() * body_b.centre;
+        if (centres_m - reach(body_a, u, world_a) - reach(body_b, -u, centre_b) >= limit) continue;
+      }
       btVector3 point;
       const double d = signed_distance(*static_cast<const btConvexShape*>(body_a.body->getCollisionShape()),
                                        body_a.body->getWorldTransform(),
