@@ -4,6 +4,7 @@
 #include <unistd.h>
 #include <valgrind/callgrind.h>
 
+#include <array>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -305,67 +306,92 @@ void bench_episodes(const BenchOptions& o, std::vector<Figure>& figures) {
   }
 }
 
-// `count` quadrotors in one world, 5 m apart across a flat field, each with a
-// scanner3d of 64 x 64 at 10 Hz and the straight planner, flying parallel
-// lanes 1 km long (they do not end within the episode): what several vehicles
-// cost against one.
-Scene fleet_scene(int count, double time_limit_s) {
-  nlohmann::json objects = {{{"alias", "ground"}, {"type", "plane"}}};
-  for (int i = 0; i < count; ++i) {
-    const double y = 5.0 * i;
-    objects.push_back({{"alias", "drone" + std::to_string(i)},
-                       {"type", "quadrotor"},
-                       {"pose", {{"position_m", {0.0, y, 2.0}}}},
-                       {"sensors", {{{"alias", "scanner"}, {"type", "lidar"}, {"preset", "scanner3d"},
-                                     {"resolution", {64, 64}}, {"rate_hz", 10}}}},
-                       {"planner", {{"name", "straight"}}},
-                       {"mission", {{"waypoints", {{{"position_m", {1000.0, y, 2.0}}}}}}}});
+// Where a fleet flies: an empty flat field, the drones 5 m apart at 2 m on
+// lanes along x (a lone drone costs little there, so what several add shows
+// undiluted); or seed 003's vineyard without its rover, the drones over its
+// inter-rows (4 m apart) at 2.5 m, 0.7 m above the canopy, along the rows.
+struct FleetField {
+  const char* name;
+  double spacing_m;                  ///< between lanes
+  double height_m;
+  Eigen::Vector2d start_m, along;    ///< the first lane's start; the lanes' direction
+};
+const std::array<FleetField, 2> kFleetFields{{{"field", 5.0, 2.0, {0.0, 0.0}, {1.0, 0.0}},
+                                             {"vineyard", 4.0, 2.5, {0.0, -46.0}, {0.0, 1.0}}}};
+
+// `count` quadrotors in one world, each with a scanner3d of 64 x 64 at 10 Hz
+// and the straight planner, flying parallel lanes 1 km long (they do not end
+// within the episode): what several vehicles cost against one.
+Scene fleet_scene(const FleetField& field, int count, double time_limit_s) {
+  nlohmann::json document = {{"objects", {{{"alias", "ground"}, {"type", "plane"}}}}};
+  if (std::string(field.name) == "vineyard") {
+    document = nlohmann::json::parse(std::ifstream(bundled_scene("vineyard")));
+    nlohmann::json kept = nlohmann::json::array();
+    for (const auto& object : document.at("objects")) {
+      if (object.value("type", "") != "rover") kept.push_back(object);
+    }
+    document["objects"] = kept;
   }
-  const nlohmann::json document = {{"name", "fleet_" + std::to_string(count)},
-                                   {"world", {{"time_limit_s", time_limit_s}}},
-                                   {"objects", objects}};
+  const Eigen::Vector2d across(field.along.y(), -field.along.x());
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector2d start = field.start_m + field.spacing_m * i * (field.along.x() != 0.0 ? -across : across);
+    const Eigen::Vector2d goal = start + 1000.0 * field.along;
+    document["objects"].push_back(
+        {{"alias", "drone" + std::to_string(i)},
+         {"type", "quadrotor"},
+         {"pose", {{"position_m", {start.x(), start.y(), field.height_m}}}},
+         {"sensors", {{{"alias", "scanner"}, {"type", "lidar"}, {"preset", "scanner3d"}, {"resolution", {64, 64}},
+                       {"rate_hz", 10}}}},
+         {"planner", {{"name", "straight"}}},
+         {"mission", {{"waypoints", {{{"position_m", {goal.x(), goal.y(), field.height_m}}}}}}}});
+  }
+  document["name"] = std::string(field.name) + "_fleet_" + std::to_string(count);
+  document["world"]["time_limit_s"] = time_limit_s;
   return parse_scene(document, "campo bench", std::filesystem::current_path());
 }
 
 // Physics steps per second of a whole world of 1, 2, 4 and 8 vehicles, and
 // what each vehicle costs against a world of one (per vehicle-step).
 void bench_fleet(const BenchOptions& o, std::vector<Figure>& figures) {
-  double one_vehicle_step_s = 0.0;
-  for (const int count : {1, 2, 4, 8}) {
-    const Scene scene = fleet_scene(count, o.instructions ? kCountedEpisodeS : o.episode_time_s);
-    EpisodeOptions options;
-    options.stop_on_collision = false;
-    options.make_sensor = range_sensor_factory();
-    const std::string id = "episode/fleet/" + std::to_string(count);
-    if (o.instructions) {
-      // Built uncounted; then the loop to its time limit, planners included.
-      Episode episode(scene, &make_vehicle, options);
-      std::vector<std::unique_ptr<Planner>> planners;
-      for (const VehicleDef& def : scene.vehicles) planners.push_back(create_planner(def.planner, {def.type, &scene, &def}));
-      counted(id, [&] {
-        while (!episode.done()) {
-          std::vector<PlanResult> plans;
-          for (std::size_t v = 0; v < planners.size(); ++v) plans.push_back(planners[v]->plan(episode.observation(v)));
-          episode.step(std::move(plans));
-        }
-      });
-      const double steps = kCountedEpisodeS / scene.world.physics_step_s;
-      figures.push_back({id, steps * count, "instructions/vehicle-step", {{"vehicles", count}, {"sim_time_s", kCountedEpisodeS}}});
-      continue;
+  for (const FleetField& field : kFleetFields) {
+    double one_vehicle_step_s = 0.0;
+    for (const int count : {1, 2, 4, 8}) {
+      const Scene scene = fleet_scene(field, count, o.instructions ? kCountedEpisodeS : o.episode_time_s);
+      EpisodeOptions options;
+      options.stop_on_collision = false;
+      options.make_sensor = range_sensor_factory();
+      const std::string id = "episode/fleet/" + std::string(field.name) + "/" + std::to_string(count);
+      if (o.instructions) {
+        // Built uncounted; then the loop to its time limit, planners included.
+        Episode episode(scene, &make_vehicle, options);
+        std::vector<std::unique_ptr<Planner>> planners;
+        for (const VehicleDef& def : scene.vehicles) planners.push_back(create_planner(def.planner, {def.type, &scene, &def}));
+        counted(id, [&] {
+          while (!episode.done()) {
+            std::vector<PlanResult> plans;
+            for (std::size_t v = 0; v < planners.size(); ++v) plans.push_back(planners[v]->plan(episode.observation(v)));
+            episode.step(std::move(plans));
+          }
+        });
+        const double steps = kCountedEpisodeS / scene.world.physics_step_s;
+        figures.push_back({id, steps * count, "instructions/vehicle-step",
+                           {{"field", field.name}, {"vehicles", count}, {"sim_time_s", kCountedEpisodeS}}});
+        continue;
+      }
+      const EpisodeResult r = run_episode(scene, &make_vehicle, &create_planner, options);
+      const double steps = r.fleet.sim_time_s / scene.world.physics_step_s;
+      const double vehicle_step_s = r.fleet.wall_time_s / (steps * count);
+      if (count == 1) one_vehicle_step_s = vehicle_step_s;
+      const double ratio = vehicle_step_s / one_vehicle_step_s;
+      std::ostringstream line;
+      line << "episode fleet of " << count << " quadrotors over the " << std::left << std::setw(9) << field.name
+           << std::right << std::fixed << std::setprecision(0) << std::setw(9) << steps / r.fleet.wall_time_s
+           << " steps/s  " << std::setprecision(2) << ratio << "x one vehicle's cost per vehicle";
+      std::cout << line.str() << "\n";
+      figures.push_back({id, steps / r.fleet.wall_time_s, "physics steps/s",
+                         {{"field", field.name}, {"vehicles", count}, {"sim_time_s", r.fleet.sim_time_s},
+                          {"wall_time_s", r.fleet.wall_time_s}, {"cost_per_vehicle_vs_one", ratio}}});
     }
-    const EpisodeResult r = run_episode(scene, &make_vehicle, &create_planner, options);
-    const double steps = r.fleet.sim_time_s / scene.world.physics_step_s;
-    const double vehicle_step_s = r.fleet.wall_time_s / (steps * count);
-    if (count == 1) one_vehicle_step_s = vehicle_step_s;
-    const double ratio = vehicle_step_s / one_vehicle_step_s;
-    std::ostringstream line;
-    line << "episode fleet of " << count << " quadrotors, scanner3d 64x64 @10Hz " << std::fixed << std::setprecision(0)
-         << std::setw(9) << steps / r.fleet.wall_time_s << " steps/s  " << std::setprecision(2) << ratio
-         << "x one vehicle's cost per vehicle";
-    std::cout << line.str() << "\n";
-    figures.push_back({id, steps / r.fleet.wall_time_s, "physics steps/s",
-                       {{"vehicles", count}, {"sim_time_s", r.fleet.sim_time_s}, {"wall_time_s", r.fleet.wall_time_s},
-                        {"cost_per_vehicle_vs_one", ratio}}});
   }
 }
 

@@ -24,11 +24,11 @@ TEST_F(BenchCli, WritesFiguresWithProvenanceAndComparesThem) {
     EXPECT_TRUE(base["provenance"].contains(key)) << key;
   }
   EXPECT_THAT(base["provenance"]["command"].get<std::string>(), HasSubstr("campo bench episodes"));
-  // Two scenes x no sensor, 64 and 256 beams a side; then fleets of 1, 2, 4 and 8 drones.
-  ASSERT_EQ(base["figures"].size(), 10u);
+  // Two scenes x no sensor, 64 and 256 beams a side; then fleets of 1, 2, 4 and 8 drones over two fields.
+  ASSERT_EQ(base["figures"].size(), 14u);
   EXPECT_EQ(base["figures"][0]["id"], "episode/trees_rolling_terrain/0");
   EXPECT_EQ(base["figures"][0]["unit"], "physics steps/s");
-  EXPECT_EQ(base["figures"][9]["id"], "episode/fleet/8");
+  EXPECT_EQ(base["figures"][9]["id"], "episode/fleet/field/8");
   EXPECT_EQ(base["figures"][9]["vehicles"], 8);
 
   // A baseline twenty times slower: nothing regressed. (The margins are wide because these

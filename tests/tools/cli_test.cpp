@@ -383,13 +383,14 @@ TEST_F(Cli, BenchEpisodesRunsBothVehicles) {
   // A short episode per case: the rover in the vineyard runs `straight` without the scene's rover_route parameters.
   const Result r = campo("bench episodes --episode-time 1 --json " + (dir_ / "bench.json").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  // Six single-vehicle cases, then fleets of 1, 2, 4 and 8 quadrotors.
-  EXPECT_EQ(campo::testing::lines_of(r.out).size(), 10u) << r.out;
+  // Six single-vehicle cases, then fleets of 1, 2, 4 and 8 quadrotors over an empty field and the vineyard.
+  EXPECT_EQ(campo::testing::lines_of(r.out).size(), 14u) << r.out;
   const auto figures = nlohmann::json::parse(campo::testing::slurp(dir_ / "bench.json"))["figures"];
-  ASSERT_EQ(figures.size(), 10u);
+  ASSERT_EQ(figures.size(), 14u);
   const int resolutions[] = {0, 64, 256};
   for (std::size_t i = 6; i < figures.size(); ++i) {
-    EXPECT_EQ(figures[i]["vehicles"], 1 << (i - 6)) << figures[i];
+    EXPECT_EQ(figures[i]["vehicles"], 1 << ((i - 6) % 4)) << figures[i];
+    EXPECT_EQ(figures[i]["field"], i < 10 ? "field" : "vineyard") << figures[i];
     EXPECT_NEAR(figures[i]["sim_time_s"].get<double>(), 1.0, 1e-9) << figures[i];
     EXPECT_GT(figures[i]["cost_per_vehicle_vs_one"].get<double>(), 0.0) << figures[i];
   }
