@@ -537,14 +537,14 @@ void Episode::step(std::vector<PlanResult>&& plans, const std::vector<double>& p
   if (plans.size() != n || (!planner_time_ms.empty() && planner_time_ms.size() != n)) {
     throw std::invalid_argument("Episode::step: expected one decision (and time) per vehicle, " + std::to_string(n));
   }
-  // Every command first, so one a vehicle cannot follow leaves the run untouched.
-  std::vector<std::optional<Command>> taken(n);
+  // Every command first, so one a vehicle cannot follow leaves nothing recorded or stepped.
+  std::vector<bool> taken(n, false);
   for (std::size_t v = 0; v < n; ++v) {
     VehicleLoop& loop = *loop_->vehicles[v];
     if (!loop.running()) continue;
     try {
       loop.vehicle->command(plans[v].command);
-      taken[v] = plans[v].command;
+      taken[v] = true;
     } catch (const std::invalid_argument& e) {
       // The vehicles that took theirs go back to the one they had.
       for (std::size_t u = 0; u < v; ++u) {

@@ -111,8 +111,10 @@ class Episode {
   /// ignored; a status may end a mission) and advances to the next tick or
   /// the end; `planner_time_ms` (empty, or one per vehicle) is what deciding
   /// took, for the planner-time metrics. Not when done(). A command a vehicle
-  /// cannot follow throws VehicleCommandError naming it and changes nothing
-  /// (`plans` left as given).
+  /// cannot follow throws VehicleCommandError naming it before anything is
+  /// recorded or stepped (`plans` left as given); the vehicles before it in
+  /// scene order, which took theirs, are given back the command they had
+  /// (at the first tick there is none: they keep the new one until the next step).
   void step(std::vector<PlanResult>&& plans, const std::vector<double>& planner_time_ms = {});
   /// The same for a scene of one vehicle.
   void step(PlanResult plan, double planner_time_ms = 0.0);

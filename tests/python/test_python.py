@@ -159,6 +159,15 @@ class EpisodeTest(unittest.TestCase):
         self.assertFalse(episode.done)
 
 
+def corrupt_leg_of_third_event(events):
+    """Rewrites the third line of an events file with its "leg" decision a string, not the integer declared."""
+    lines = events.read_text().split("\n")
+    line = json.loads(lines[2])
+    line["decisions"]["leg"] = "first"
+    lines[2] = json.dumps(line)
+    events.write_text("\n".join(lines))
+
+
 def python_env():
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join([str(FIXTURES), env.get("PYTHONPATH", "")])
@@ -448,12 +457,7 @@ class SeveralVehiclesEpisodeTest(unittest.TestCase):
             position = far.trajectory[["x_m", "y_m", "z_m"]].to_numpy()
             expected = np.linalg.norm(position - [5.0, 8.0, 1.5], axis=1)[: len(distance)]
             np.testing.assert_allclose(distance.to_numpy(), expected, atol=1e-6)
-            events = pathlib.Path(out, "r", "events_far.jsonl")
-            lines = events.read_text().split("\n")
-            line = json.loads(lines[2])
-            line["decisions"]["leg"] = "first"
-            lines[2] = json.dumps(line)
-            events.write_text("\n".join(lines))
+            corrupt_leg_of_third_event(pathlib.Path(out, "r", "events_far.jsonl"))
             with self.assertRaisesRegex(campo.ResultsError, r"events_far.jsonl line 3: /decisions/leg: expected integer"):
                 campo.read_run(os.path.join(out, "r")).vehicles["far"].decision("leg")
 
@@ -614,12 +618,7 @@ class PlannerRecordTest(unittest.TestCase):
                                                             'decision field "speed" \\(it declares: distance_m, leg\\)'):
                 run.decision("speed")
             # A recorded value not of its declared type is refused, naming the line and the pointer.
-            events = pathlib.Path(out, "r", "events.jsonl")
-            lines = events.read_text().split("\n")
-            line = json.loads(lines[2])
-            line["decisions"]["leg"] = "first"
-            lines[2] = json.dumps(line)
-            events.write_text("\n".join(lines))
+            corrupt_leg_of_third_event(pathlib.Path(out, "r", "events.jsonl"))
             with self.assertRaisesRegex(campo.ResultsError, r"events.jsonl line 3: /decisions/leg: expected integer "
                                                             r"\(the mission leg flown\)"):
                 campo.read_run(os.path.join(out, "r")).decision("leg")
