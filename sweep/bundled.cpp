@@ -3,6 +3,8 @@
 #include <dlfcn.h>
 
 #include <algorithm>
+#include <mutex>
+#include <optional>
 
 #include "campo/json_reader.hpp"
 
@@ -17,6 +19,11 @@ namespace campo {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The pip-installed package's data folder (set_package_bundled_folder), set once on import and
+// read by every lookup, possibly from several threads.
+std::mutex package_folder_mutex;
+std::optional<fs::path> package_folder;
 
 // The file of the library holding this code (libcampo), symbolic links resolved; empty if unknown.
 // The program, its tests and the Python module all load libcampo, so bundled files are found from
@@ -53,8 +60,21 @@ fs::path bundled_file(const fs::path& relative, const std::string& what) {
 
 }  // namespace
 
+void set_package_bundled_folder(const fs::path& folder) {
+  const std::lock_guard<std::mutex> lock(package_folder_mutex);
+  package_folder = folder;
+}
+
 std::vector<fs::path> bundled_folders() {
   std::vector<fs::path> folders{"scenes"};
+  {
+    const std::lock_guard<std::mutex> lock(package_folder_mutex);
+    if (package_folder) {
+      // Beside the package's libcampo (site-packages/campo), the prefix and source-tree candidates name nothing.
+      folders.push_back(*package_folder);
+      return folders;
+    }
+  }
   const fs::path library = library_file();
   if (library.empty()) return folders;
   const fs::path library_dir = library.parent_path();

@@ -8,6 +8,11 @@
 ///      (the install layout, CMakeLists.txt);
 ///   3. the source tree's: libcampo in a build directory inside the source tree
 ///      (build/libcampo.so), the source tree's scenes/.
+/// A Python package installed by pip (pyproject.toml) carries its own copy
+/// (site-packages/campo/data/scenes, beside the libcampo it loads, where 2 and
+/// 3 name nothing): its campo/__init__.py names that folder through
+/// set_package_bundled_folder, which then replaces 2 and 3. The program never
+/// calls it, so its search is the one above.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -17,6 +22,12 @@ namespace campo {
 /// The folders searched for bundled files, in the order above; the first one
 /// relative to the working directory ("scenes"), the others absolute.
 std::vector<std::filesystem::path> bundled_folders();
+
+/// Makes `folder` (absolute) the one searched after the working directory's
+/// scenes/, instead of the installed prefix's and the source tree's: what the
+/// pip-installed Python package calls on import with its data folder. Only a
+/// process that loaded that package calls it.
+void set_package_bundled_folder(const std::filesystem::path& folder);
 
 /// The file of the bundled scene `name` (e.g. "two_barriers"), NAME.json in
 /// the first folder of bundled_folders() that holds it; none holding it, an

@@ -692,7 +692,11 @@ PYBIND11_MODULE(_campo, m) {
   m.def("bundled_scene", &bundled_scene, py::arg("name"),
         "the file of the bundled scene name, found as campo run finds it (scenes/ of the working directory, "
         "else the installed prefix's share/campo/scenes, else the source tree's scenes/ beside the build "
-        "directory); InputError listing the folders searched when none holds it");
+        "directory, or a pip-installed package's data/scenes); InputError listing the folders searched when none "
+        "holds it");
+  m.def("_set_package_bundled_folder", [](const std::string& scenes) { set_package_bundled_folder(scenes); },
+        py::arg("scenes"), "pip-installed, campo/__init__.py names its data/scenes: searched after the working "
+        "directory's scenes/, instead of the prefix's and the source tree's (sweep/bundled.hpp)");
   m.def("planners", [] {
     std::vector<std::string> names;
     for (const PlannerEntry& entry : planner_registry()) names.push_back(entry.name);

@@ -19,6 +19,9 @@ A scene of several vehicles is stepped with dicts keyed by alias (PettingZoo's p
         obs, dones, infos = ep.step({a: campo.Command.go_to(obs[a].mission_m[-1]) for a in ep.agents})
 """
 
+import os as _os
+
+from . import _campo
 from ._campo import (  # noqa: F401 (re-exported)
     Command,
     Episode,
@@ -37,6 +40,13 @@ from ._campo import (  # noqa: F401 (re-exported)
 )
 from .records import PlannerRecord, RecordField, planner_record  # noqa: F401
 from .results import ResultsError, ResultsWarning, Run, read_results, read_run  # noqa: F401
+
+# Installed by pip (pyproject.toml; docs/python.md, "Install with pip"), the package carries the bundled
+# scenes and sweep specs in data/scenes, searched after the working directory's scenes/; from build/python
+# or a cmake --install prefix it has none, and libcampo finds them from its own folder (sweep/bundled.cpp).
+_package_scenes = _os.path.join(_os.path.dirname(_os.path.abspath(__file__)), "data", "scenes")
+if _os.path.isdir(_package_scenes):
+    _campo._set_package_bundled_folder(_package_scenes)
 
 
 class Planner:
