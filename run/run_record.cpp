@@ -1,5 +1,7 @@
 #include "campo/run_record.hpp"
 
+#include <algorithm>
+#include <array>
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
@@ -58,6 +60,62 @@ CommandFields fields_of(const Command& c) {
   return f;
 }
 
+// The low-level commands' values, in columns after the actuators: a file has the columns of the kinds
+// its vehicle was given (none for the others, so their files stay as they were). `kinds`: a bit per Command index.
+struct LowLevelColumn {
+  const char* name;
+  unsigned kinds;
+};
+constexpr unsigned kind_bit(std::size_t index) { return 1u << index; }
+template <class T, std::size_t I = 0>
+constexpr unsigned bit_of() {
+  if constexpr (std::is_same_v<std::variant_alternative_t<I, Command>, T>) {
+    return kind_bit(I);
+  } else {
+    return bit_of<T, I + 1>();
+  }
+}
+constexpr unsigned kVelocityBit = bit_of<command::Velocity>(), kAttitudeBit = bit_of<command::AttitudeThrust>(),
+                   kRotorsBit = bit_of<command::Rotors>(), kWheelsBit = bit_of<command::Wheels>();
+constexpr LowLevelColumn kLowLevelColumns[] = {
+    {"cmd_forward_mps", kVelocityBit},  // Velocity in the heading frame
+    {"cmd_left_mps", kVelocityBit},
+    {"cmd_up_mps", kVelocityBit},
+    {"cmd_roll_rad", kAttitudeBit},
+    {"cmd_pitch_rad", kAttitudeBit},
+    {"cmd_yaw_rate_radps", kVelocityBit | kAttitudeBit},
+    {"cmd_thrust_n", kAttitudeBit},
+    {"cmd_rotor_0_radps", kRotorsBit},
+    {"cmd_rotor_1_radps", kRotorsBit},
+    {"cmd_rotor_2_radps", kRotorsBit},
+    {"cmd_rotor_3_radps", kRotorsBit},
+    {"cmd_front_left_radps", kWheelsBit},
+    {"cmd_front_right_radps", kWheelsBit},
+    {"cmd_rear_left_radps", kWheelsBit},
+    {"cmd_rear_right_radps", kWheelsBit},
+};
+constexpr std::size_t kLowLevelCount = std::size(kLowLevelColumns);
+
+// The values of kLowLevelColumns for `c`, NaN where they do not apply.
+std::array<double, kLowLevelCount> low_level_values(const Command& c) {
+  std::array<double, kLowLevelCount> v;
+  v.fill(std::nan(""));
+  if (const auto* cmd = std::get_if<command::Velocity>(&c)) {
+    for (int i = 0; i < 3; ++i) v[static_cast<std::size_t>(i)] = cmd->velocity_mps[i];
+    v[5] = cmd->yaw_rate_radps;
+  } else if (const auto* a = std::get_if<command::AttitudeThrust>(&c)) {
+    v[3] = a->roll_rad;
+    v[4] = a->pitch_rad;
+    v[5] = a->yaw_rate_radps;
+    v[6] = a->thrust_n;
+  } else if (const auto* r = std::get_if<command::Rotors>(&c)) {
+    std::copy(r->speeds_radps.begin(), r->speeds_radps.end(), v.begin() + 7);
+  } else if (const auto* w = std::get_if<command::Wheels>(&c)) {
+    std::copy(w->speeds_radps.begin(), w->speeds_radps.end(), v.begin() + 11);
+  }
+  return v;
+}
+
 // ",%.9g" (std::to_chars with a precision prints as printf would, several times faster); NaN as an empty field.
 void append(std::string& out, double v) {
   out += ',';
@@ -92,6 +150,16 @@ std::string trajectory_csv(const VehicleResult& result) {
       "command,cmd_x_m,cmd_y_m,cmd_z_m,cmd_speed_mps,cmd_v_mps,cmd_w_radps,clearance_m,"
       "est_x_m,est_y_m,est_z_m,height_above_ground_m";
   for (const auto& name : actuator_names) out += "," + name;
+  unsigned kinds = 0;
+  for (const TrajectorySample& s : result.trajectory) kinds |= kind_bit(s.command.index());
+  std::vector<std::size_t> low_level;  // the columns of kLowLevelColumns this file has
+  for (std::size_t i = 0; i < kLowLevelCount; ++i) {
+    if (kLowLevelColumns[i].kinds & kinds) {
+      low_level.push_back(i);
+      out += ",";
+      out += kLowLevelColumns[i].name;
+    }
+  }
   out += "\n";
   std::vector<double> actuators;
   for (const TrajectorySample& s : result.trajectory) {
@@ -115,6 +183,10 @@ std::string trajectory_csv(const VehicleResult& result) {
     actuators.clear();
     flatten(s.actuators, "", nullptr, &actuators);
     for (std::size_t i = 0; i < actuator_names.size(); ++i) append(out, i < actuators.size() ? actuators[i] : std::nan(""));
+    if (!low_level.empty()) {
+      const auto values = low_level_values(s.command);
+      for (const std::size_t i : low_level) append(out, values[i]);
+    }
     out += "\n";
   }
   return out;

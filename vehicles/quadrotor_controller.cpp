@@ -45,6 +45,21 @@ bool same_target(const Command& a, const Command& b) {
   return false;
 }
 
+// The values of a low-level command are finite (NaN would reach Bullet and ruin the whole world).
+bool all_finite(const Command& c) {
+  if (const auto* v = std::get_if<command::Velocity>(&c)) {
+    return v->velocity_mps.allFinite() && std::isfinite(v->yaw_rate_radps);
+  }
+  if (const auto* a = std::get_if<command::AttitudeThrust>(&c)) {
+    return std::isfinite(a->roll_rad) && std::isfinite(a->pitch_rad) && std::isfinite(a->yaw_rate_radps) &&
+           std::isfinite(a->thrust_n);
+  }
+  if (const auto* r = std::get_if<command::Rotors>(&c)) {
+    return std::all_of(r->speeds_radps.begin(), r->speeds_radps.end(), [](double w) { return std::isfinite(w); });
+  }
+  return true;
+}
+
 }  // namespace
 
 Eigen::Vector3d rotor_position(int i, double arm_length_m) {
@@ -145,6 +160,8 @@ QuadrotorController::QuadrotorController(const QuadrotorControllerConfig& config
       tan_max_tilt_(std::tan(config.max_tilt_deg * std::numbers::pi / 180.0)),
       position_error_cap_(error_cap(config.position)),
       velocity_error_cap_(error_cap(config.velocity_xy)),
+      yaw_error_cap_(error_cap(config.attitude_yaw)),
+      max_thrust_n_(4.0 * model.thrust_coefficient * model.max_rotor_speed_radps * model.max_rotor_speed_radps),
       position_{Pid(config.position), Pid(config.position), Pid(config.position)},
       velocity_{Pid(config.velocity_xy), Pid(config.velocity_xy), Pid(config.velocity_z)},
       attitude_{Pid(config.attitude_rp), Pid(config.attitude_rp), Pid(config.attitude_yaw)},
@@ -158,12 +175,38 @@ QuadrotorController::QuadrotorController(const QuadrotorControllerConfig& config
 }
 
 void QuadrotorController::command(const Command& c, const VehicleState& state) {
-  if (std::holds_alternative<command::Twist>(c)) {
-    throw std::invalid_argument("the quadrotor cannot follow a twist command");
+  if (std::holds_alternative<command::Twist>(c) || std::holds_alternative<command::Wheels>(c)) {
+    throw std::invalid_argument("the quadrotor cannot follow a " + std::string(command_name(c)) +
+                                " command (a rover's)");
   }
   if (const auto* go = std::get_if<command::GoTo>(&c); go && !(go->speed_mps > 0.0 && std::isfinite(go->speed_mps))) {
     throw std::invalid_argument("go_to needs a finite speed > 0, got " + std::to_string(go->speed_mps));
   }
+  if (!all_finite(c)) {
+    throw std::invalid_argument("quadrotor " + std::string(command_name(c)) + ": non-finite value");
+  }
+  const Mode mode = std::holds_alternative<command::Velocity>(c)         ? Mode::velocity
+                    : std::holds_alternative<command::AttitudeThrust>(c) ? Mode::attitude
+                    : std::holds_alternative<command::Rotors>(c)         ? Mode::rotors
+                                                                         : Mode::position;
+  if (mode != Mode::position) {
+    // A low-level command is re-sent with new values every control tick: the
+    // same kind keeps its heading reference (and every integrator).
+    const bool same_kind = c.index() == reference_.command.index();
+    if (!same_kind) {
+      Reference r;
+      r.mode = mode;
+      r.position_m = state.position_m;
+      r.yaw_rad = state.yaw_rad();
+      r.speed_mps = config_.speed_limit_mps;
+      restart_idle_loops(reference_.mode, mode);
+      reset_position_loop();
+      reference_ = r;
+    }
+    reference_.command = c;
+    return;
+  }
+  restart_idle_loops(reference_.mode, mode);
   const bool same = same_target(c, reference_.command);
   Reference r = same ? reference_ : Reference{};
   r.command = c;
@@ -204,11 +247,111 @@ void QuadrotorController::reset_position_loop() {
   for (Pid& pid : position_) pid.reset();
 }
 
+void QuadrotorController::restart_idle_loops(Mode from, Mode to) {
+  // A mode runs the loops from where it enters the cascade down (the enum's
+  // order); the position loop restarts with every new target anyway.
+  const auto runs = [](Mode mode, Mode entry) { return mode <= entry; };
+  if (runs(to, Mode::velocity) && !runs(from, Mode::velocity)) {
+    for (Pid& pid : velocity_) pid.reset();
+  }
+  if (runs(to, Mode::attitude) && !runs(from, Mode::attitude)) {
+    for (Pid& pid : attitude_) pid.reset();
+    for (Pid& pid : rate_) pid.reset();
+  }
+}
+
+void QuadrotorController::advance_yaw(double yaw_rad, double yaw_rate_radps, double dt_s) {
+  // The heading reference integrates the commanded rate and the yaw attitude
+  // loop tracks it as under the other commands (rather than the rate going
+  // straight to the yaw-rate loop): a zero rate holds the heading without
+  // drift, a disturbance turned away is turned back, and a constant rate is
+  // followed at that rate with the reference a constant rate/kp ahead. The
+  // rate is capped at the loop's output limit (the turn rate), and the
+  // reference never leads the heading by more than the error at which the
+  // loop saturates, so a vehicle that cannot turn as fast does not wind it up.
+  const double turn = config_.attitude_yaw.output_limit;
+  const double rate = std::clamp(yaw_rate_radps, -turn, turn);
+  const double lead = std::remainder(reference_.yaw_rad + rate * dt_s - yaw_rad, 2.0 * std::numbers::pi);
+  reference_.yaw_rad = std::remainder(yaw_rad + std::clamp(lead, -yaw_error_cap_, yaw_error_cap_), 2.0 * std::numbers::pi);
+}
+
 RotorSpeeds QuadrotorController::update(const VehicleState& state, double dt_s) {
-  const Eigen::Vector3d& p = state.position_m;
+  if (reference_.mode == Mode::rotors) {
+    RotorSpeeds speeds = std::get<command::Rotors>(reference_.command).speeds_radps;
+    for (double& w : speeds) w = std::clamp(w, model_.min_rotor_speed_radps, model_.max_rotor_speed_radps);
+    return speeds;
+  }
   const Eigen::Vector3d& v = state.linear_velocity_mps;
   const Eigen::Quaterniond& q = state.orientation;
   const Eigen::Vector3d body_rate = q.conjugate() * state.angular_velocity_radps;
+
+  double thrust = 0.0;
+  Eigen::Quaterniond q_des;
+  if (reference_.mode == Mode::attitude) {
+    // Desired attitude Rz(heading reference) Ry(pitch) Rx(roll): its body z
+    // in the heading frame, tilt-capped keeping its direction; the thrust as given.
+    const auto& cmd = std::get<command::AttitudeThrust>(reference_.command);
+    advance_yaw(state.yaw_rad(), cmd.yaw_rate_radps, dt_s);
+    const double max_tilt = config_.max_tilt_deg * std::numbers::pi / 180.0;
+    const double roll = std::clamp(cmd.roll_rad, -max_tilt, max_tilt);
+    const double pitch = std::clamp(cmd.pitch_rad, -max_tilt, max_tilt);
+    Eigen::Vector3d z_axis(std::cos(roll) * std::sin(pitch), -std::sin(roll), std::cos(roll) * std::cos(pitch));
+    const double horizontal = z_axis.head<2>().norm();
+    const double max_horizontal = z_axis.z() * tan_max_tilt_;
+    if (horizontal > max_horizontal) z_axis.head<2>() *= max_horizontal / horizontal;
+    const Eigen::Vector3d z_world = Eigen::AngleAxisd(reference_.yaw_rad, Eigen::Vector3d::UnitZ()) * z_axis;
+    q_des = attitude_from_thrust(z_world, reference_.yaw_rad);
+    thrust = std::clamp(cmd.thrust_n, 0.0, max_thrust_n_);
+  } else {
+    Eigen::Vector3d v_cmd;
+    if (reference_.mode == Mode::velocity) {
+      // The heading-frame velocity turned to world by the current heading, capped at the highest speed commanded.
+      const auto& cmd = std::get<command::Velocity>(reference_.command);
+      advance_yaw(state.yaw_rad(), cmd.yaw_rate_radps, dt_s);
+      v_cmd = Eigen::AngleAxisd(state.yaw_rad(), Eigen::Vector3d::UnitZ()) * cmd.velocity_mps;
+      const double speed = v_cmd.norm();
+      if (speed > config_.position.output_limit) v_cmd *= config_.position.output_limit / speed;
+    } else {
+      v_cmd = position_to_velocity(state, dt_s);
+    }
+
+    // Velocity -> acceleration (the horizontal error capped likewise) -> thrust
+    // vector with the gravity feed-forward, tilt-limited.
+    Eigen::Vector3d velocity_error = v_cmd - v;
+    const double horizontal_error = velocity_error.head<2>().norm();
+    if (horizontal_error > velocity_error_cap_) velocity_error.head<2>() *= velocity_error_cap_ / horizontal_error;
+    Eigen::Vector3d accel;
+    for (int i = 0; i < 3; ++i) accel(i) = velocity_[i].update(velocity_error(i), dt_s);
+    Eigen::Vector3d force = model_.mass_kg * (accel - model_.gravity_mps2);
+    force.z() = std::max(force.z(), kMinThrustFraction * model_.mass_kg * model_.gravity_mps2.norm() + kEpsilon);
+    const double horizontal = force.head<2>().norm();
+    const double max_horizontal = force.z() * tan_max_tilt_;
+    if (horizontal > max_horizontal) force.head<2>() *= max_horizontal / horizontal;
+    // Collective thrust: the part of the wanted force the current body z can give.
+    thrust = std::max(0.0, force.dot(q * Eigen::Vector3d::UnitZ()));
+    q_des = attitude_from_thrust(force, reference_.yaw_rad);
+  }
+
+  // Attitude -> body rate command.
+  const Eigen::Vector3d att_error = attitude_error(q, q_des);
+  Eigen::Vector3d rate_cmd;
+  for (int i = 0; i < 3; ++i) rate_cmd(i) = attitude_[i].update(att_error(i), dt_s, body_rate(i));
+
+  // Body rate -> angular acceleration -> torque (with the gyroscopic term).
+  const Eigen::Vector3d rate_error = rate_cmd - body_rate;
+  Eigen::Vector3d angular_accel;
+  for (int i = 0; i < 3; ++i) angular_accel(i) = rate_[i].update(rate_error(i), dt_s);
+  const Eigen::Vector3d j = model_.inertia_kgm2;
+  const Eigen::Vector3d torque =
+      j.cwiseProduct(angular_accel) + body_rate.cross(j.cwiseProduct(body_rate));
+
+  const Eigen::Vector4d squared = mix(allocation_inverse_, thrust, torque, min_sq_, max_sq_);
+  return {std::sqrt(squared(0)), std::sqrt(squared(1)), std::sqrt(squared(2)), std::sqrt(squared(3))};
+}
+
+Eigen::Vector3d QuadrotorController::position_to_velocity(const VehicleState& state, double dt_s) {
+  const Eigen::Vector3d& p = state.position_m;
+  const Eigen::Vector3d& v = state.linear_velocity_mps;
 
   // GoTo turns toward its target until close, then keeps that heading.
   if (reference_.face_target &&
@@ -230,39 +373,7 @@ RotorSpeeds QuadrotorController::update(const VehicleState& state, double dt_s) 
   Eigen::Vector3d v_cmd;
   for (int i = 0; i < 3; ++i) v_cmd(i) = position_[i].update(capped_error(i), dt_s, v(i));
   const double stopping_speed = std::sqrt(2.0 * config_.braking_decel_mps2 * std::abs(direction.dot(position_error)));
-  v_cmd = cap_cross_first(v_cmd, direction, reference_.speed_mps, stopping_speed);
-
-  // Velocity -> acceleration (the horizontal error capped likewise) -> thrust
-  // vector with the gravity feed-forward, tilt-limited.
-  Eigen::Vector3d velocity_error = v_cmd - v;
-  const double horizontal_error = velocity_error.head<2>().norm();
-  if (horizontal_error > velocity_error_cap_) velocity_error.head<2>() *= velocity_error_cap_ / horizontal_error;
-  Eigen::Vector3d accel;
-  for (int i = 0; i < 3; ++i) accel(i) = velocity_[i].update(velocity_error(i), dt_s);
-  Eigen::Vector3d force = model_.mass_kg * (accel - model_.gravity_mps2);
-  force.z() = std::max(force.z(), kMinThrustFraction * model_.mass_kg * model_.gravity_mps2.norm() + kEpsilon);
-  const double horizontal = force.head<2>().norm();
-  const double max_horizontal = force.z() * tan_max_tilt_;
-  if (horizontal > max_horizontal) force.head<2>() *= max_horizontal / horizontal;
-  // Collective thrust: the part of the wanted force the current body z can give.
-  const double thrust = std::max(0.0, force.dot(q * Eigen::Vector3d::UnitZ()));
-
-  // Attitude -> body rate command.
-  const Eigen::Quaterniond q_des = attitude_from_thrust(force, reference_.yaw_rad);
-  const Eigen::Vector3d att_error = attitude_error(q, q_des);
-  Eigen::Vector3d rate_cmd;
-  for (int i = 0; i < 3; ++i) rate_cmd(i) = attitude_[i].update(att_error(i), dt_s, body_rate(i));
-
-  // Body rate -> angular acceleration -> torque (with the gyroscopic term).
-  const Eigen::Vector3d rate_error = rate_cmd - body_rate;
-  Eigen::Vector3d angular_accel;
-  for (int i = 0; i < 3; ++i) angular_accel(i) = rate_[i].update(rate_error(i), dt_s);
-  const Eigen::Vector3d j = model_.inertia_kgm2;
-  const Eigen::Vector3d torque =
-      j.cwiseProduct(angular_accel) + body_rate.cross(j.cwiseProduct(body_rate));
-
-  const Eigen::Vector4d squared = mix(allocation_inverse_, thrust, torque, min_sq_, max_sq_);
-  return {std::sqrt(squared(0)), std::sqrt(squared(1)), std::sqrt(squared(2)), std::sqrt(squared(3))};
+  return cap_cross_first(v_cmd, direction, reference_.speed_mps, stopping_speed);
 }
 
 }  // namespace campo

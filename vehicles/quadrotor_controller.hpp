@@ -2,7 +2,9 @@
 /// Flight controller of the quadrotor (SPEC §5): the behaviours planners ask
 /// for (hover, go to a point in a straight line, face a point, change
 /// altitude) on top of a cascade position -> velocity -> attitude -> body
-/// rates -> mixer. Pure: no Bullet; it sees only VehicleState.
+/// rates -> mixer, and the low-level commands that enter it lower down
+/// (velocity, attitude and thrust, rotor speeds). Pure: no Bullet; it sees
+/// only VehicleState.
 #include <array>
 #include <limits>
 
@@ -104,11 +106,20 @@ class QuadrotorController {
                       const VehicleState& initial);
 
   /// Sets the behaviour from the vehicle's current `state`. Throws
-  /// std::invalid_argument for Twist. Re-sending the active command (same
-  /// kind and target) keeps the behaviour and every integrator, updating only
-  /// its secondary fields (GoTo speed and face_target, Hold yaw); a new target
-  /// restarts the behaviour and resets the position loop, while the inner
-  /// loops keep their trims, which do not depend on the target.
+  /// std::invalid_argument for Twist and Wheels (rover commands) and for
+  /// non-finite values of the low-level commands. Re-sending the active
+  /// command (same kind and target) keeps the behaviour and every integrator,
+  /// updating only its secondary fields (GoTo speed and face_target, Hold
+  /// yaw); a new target restarts the behaviour and resets the position loop,
+  /// while the inner loops keep their trims, which do not depend on the target.
+  ///
+  /// The low-level commands enter the cascade lower down: Velocity at the
+  /// velocity loop, AttitudeThrust at the attitude loop (its thrust straight
+  /// to the mixer), Rotors after the mixer (the controller returns the rotor
+  /// speeds given, clamped). Re-sending one of them with new values keeps
+  /// its heading reference and every integrator. Loops that did not run under
+  /// the previous command are reset when a command needs them again (Hold
+  /// after Rotors starts every loop afresh), so no stale integral kicks.
   void command(const Command& c, const VehicleState& state);
 
   /// One control step of `dt_s` seconds: rotor speed commands, rad/s.
@@ -117,9 +128,18 @@ class QuadrotorController {
   const QuadrotorControllerConfig& config() const { return config_; }
 
  private:
+  /// Where the active command enters the cascade.
+  enum class Mode {
+    position,  ///< Hold, GoTo, Face, Altitude: the whole cascade
+    velocity,  ///< Velocity: from the velocity loop down
+    attitude,  ///< AttitudeThrust: from the attitude loop down
+    rotors,    ///< Rotors: no loop
+  };
+
   /// The active behaviour reduced to references for the cascade.
   struct Reference {
     Command command;                                            ///< as given (for the same-target test)
+    Mode mode = Mode::position;
     Eigen::Vector3d position_m = Eigen::Vector3d::Zero();       ///< where to go or stay
     Eigen::Vector3d direction = Eigen::Vector3d::Zero();        ///< GoTo: unit line direction, else zero
     double yaw_rad = 0.0;
@@ -128,6 +148,12 @@ class QuadrotorController {
   };
 
   void reset_position_loop();
+  /// Hold, GoTo, Face, Altitude: the position loop's velocity command, m/s, world frame.
+  Eigen::Vector3d position_to_velocity(const VehicleState& state, double dt_s);
+  /// Resets the loops that mode `to` runs and mode `from` left idle.
+  void restart_idle_loops(Mode from, Mode to);
+  /// Velocity and AttitudeThrust: advances the heading reference by the yaw rate over `dt_s`.
+  void advance_yaw(double yaw_rad, double yaw_rate_radps, double dt_s);
 
   QuadrotorControllerConfig config_;
   QuadrotorModel model_;
@@ -137,6 +163,8 @@ class QuadrotorController {
   double tan_max_tilt_ = 0.0;
   double position_error_cap_ = 0.0;  ///< m, see update()
   double velocity_error_cap_ = 0.0;  ///< m/s, horizontal
+  double yaw_error_cap_ = 0.0;       ///< rad, where the yaw attitude loop saturates
+  double max_thrust_n_ = 0.0;        ///< all rotors at max_rotor_speed_radps
   Reference reference_;
   std::array<Pid, 3> position_;  ///< world x, y, z
   std::array<Pid, 3> velocity_;  ///< world x, y, z

@@ -168,7 +168,14 @@ bool is_finite(const command::Twist& t) { return std::isfinite(t.v_mps) && std::
 bool is_finite(const command::GoTo& g) { return g.target_m.allFinite() && std::isfinite(g.speed_mps); }
 bool is_finite(const command::Face& f) { return f.point_m.allFinite(); }
 bool is_finite(const command::Hold&) { return true; }
+bool is_finite(const command::Wheels& w) {
+  return std::all_of(w.speeds_radps.begin(), w.speeds_radps.end(), [](double x) { return std::isfinite(x); });
+}
+// Refused before their values matter.
 bool is_finite(const command::Altitude&) { return true; }
+bool is_finite(const command::Velocity&) { return true; }
+bool is_finite(const command::AttitudeThrust&) { return true; }
+bool is_finite(const command::Rotors&) { return true; }
 
 bool is_left(int wheel) { return wheel == Rover::front_left || wheel == Rover::rear_left; }
 
@@ -226,6 +233,11 @@ void Rover::command(const Command& c) {
   if (std::holds_alternative<command::Altitude>(c)) {
     throw std::invalid_argument("the rover cannot follow an altitude command");
   }
+  if (std::holds_alternative<command::Velocity>(c) || std::holds_alternative<command::AttitudeThrust>(c) ||
+      std::holds_alternative<command::Rotors>(c)) {
+    throw std::invalid_argument("the rover cannot follow a " + std::string(command_name(c)) +
+                                " command (a quadrotor's)");
+  }
   // NaN or infinity would reach Bullet and ruin the whole world.
   if (!std::visit([](const auto& x) { return is_finite(x); }, c)) {
     throw std::invalid_argument("rover " + std::string(command_name(c)) + ": non-finite value");
@@ -278,12 +290,42 @@ std::optional<BodyTwist> Rover::behaviour_twist(const VehicleState& s) {
     if (arrived_) return std::nullopt;
     return BodyTwist{0.0, turn_rate(error)};
   }
-  return std::nullopt;  // command::Hold (Altitude is never accepted)
+  return std::nullopt;  // command::Hold (Altitude is never accepted; Wheels does not get here)
+}
+
+void Rover::drive_wheels(const command::Wheels& wheels, double dt_s) {
+  // No body-rate loop: its integrals start afresh when a behaviour takes over.
+  speed_integral_mps_ = 0.0;
+  yaw_integral_radps_ = 0.0;
+  if (wheels_locked_) lock_wheels(false);
+  const double max_speed = config_.max_wheel_speed_radps;
+  const double max_impulse = config_.max_wheel_torque_nm * dt_s;
+  // The motor targets each move toward their command as the side targets of
+  // the behaviours do: at most max_wheel_accel_radps2 (when set) from the last ones.
+  for (int i = 0; i < kWheels; i += 2) {
+    const WheelSpeeds target{std::clamp(wheels.speeds_radps[i], -max_speed, max_speed),
+                             std::clamp(wheels.speeds_radps[i + 1], -max_speed, max_speed)};
+    const WheelSpeeds limited =
+        rate_limit({wheel_targets_[i], wheel_targets_[i + 1]}, target, config_.max_wheel_accel_radps2, dt_s);
+    wheel_targets_[i] = limited.left_radps;  // wheels i and i + 1: the left and right of an axle
+    wheel_targets_[i + 1] = limited.right_radps;
+  }
+  for (int i = 0; i < kWheels; ++i) {
+    // The hinge motor drives the chassis relative to the wheel: opposite sign.
+    bodies_->hinges[i]->enableAngularMotor(true, -wheel_targets_[i], max_impulse);
+  }
+  // A behaviour after this starts (and rate-limits) from the sides' mean targets.
+  side_targets_ = {0.5 * (wheel_targets_[front_left] + wheel_targets_[rear_left]),
+                   0.5 * (wheel_targets_[front_right] + wheel_targets_[rear_right])};
 }
 
 void Rover::pre_step(double dt_s) {
   odometry_ = integrate_odometry(odometry_, measured_side_speeds(), geometry_, dt_s);
 
+  if (const auto* wheels = std::get_if<command::Wheels>(&command_)) {
+    drive_wheels(*wheels, dt_s);
+    return;
+  }
   const VehicleState s = estimated_state();
   const std::optional<BodyTwist> reference = behaviour_twist(s);
   const bool hold = !reference;

@@ -105,11 +105,15 @@ class Rover final : public Vehicle {
   VehicleType type() const override { return VehicleType::rover; }
   /// Accepts Twist, Hold (brake and hold the wheels still; Hold's position
   /// and yaw are not used), GoTo (in the ground plane; target z and
-  /// face_target are not used) and Face; throws std::invalid_argument for
-  /// Altitude, non-finite values and a GoTo speed that is not > 0.
+  /// face_target are not used), Face and Wheels (the four motor targets as
+  /// given, clamped to +-max_wheel_speed_radps and rate-limited by
+  /// max_wheel_accel_radps2, no body-rate loop); throws std::invalid_argument
+  /// for Altitude and the quadrotor's Velocity, AttitudeThrust and Rotors,
+  /// non-finite values and a GoTo speed that is not > 0.
   void command(const Command& c) override;
   /// Integrates the odometry over the last step, runs the behaviour and
-  /// the body-rate loop and sets the four wheel motors. No heap allocation.
+  /// the body-rate loop (or takes the Wheels command's speeds) and sets the
+  /// four wheel motors. No heap allocation.
   void pre_step(double dt_s) override;
   /// Chassis state.
   VehicleState state() const override;
@@ -134,6 +138,8 @@ class Rover final : public Vehicle {
   /// The body twist the current command asks for; nullopt: brake and hold.
   std::optional<BodyTwist> behaviour_twist(const VehicleState& s);
   WheelSpeeds measured_side_speeds() const;
+  /// Sets the four motors to a Wheels command's speeds.
+  void drive_wheels(const command::Wheels& wheels, double dt_s);
   /// Locks the wheels at their current angles (servo, friction anchors, hold
   /// solver iterations) or releases them for driving (anchors would resist rolling).
   void lock_wheels(bool on);

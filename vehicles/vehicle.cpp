@@ -1,6 +1,7 @@
 #include "campo/vehicle.hpp"
 
 #include <cmath>
+#include <iterator>
 
 namespace campo {
 
@@ -27,7 +28,9 @@ Eigen::Isometry3d VehicleState::pose() const {
 }
 
 std::string_view command_name(const Command& c) {
-  static constexpr std::string_view kNames[] = {"hold", "go_to", "face", "altitude", "twist"};
+  static constexpr std::string_view kNames[] = {"hold",     "go_to",           "face",   "altitude", "twist",
+                                                "velocity", "attitude_thrust", "rotors", "wheels"};
+  static_assert(std::size(kNames) == std::variant_size_v<Command>);
   return kNames[c.index()];
 }
 

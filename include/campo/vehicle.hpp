@@ -3,6 +3,7 @@
 /// Implementations live in vehicles/; a vehicle owns its Bullet bodies inside
 /// a World (added on construction, removed on destruction, so it must be
 /// destroyed before the World).
+#include <array>
 #include <optional>
 #include <string_view>
 #include <variant>
@@ -57,10 +58,48 @@ struct Twist {
   double v_mps = 0.0;
   double w_radps = 0.0;
 };
+
+// Low-level commands, for learning-based control (docs/extending.md, "Commands").
+// The heading frame: x along the current heading projected on the ground, y to
+// its left, z up (world z).
+
+/// Quadrotor: fly at `velocity_mps` in the heading frame while turning at
+/// `yaw_rate_radps` (CCW positive). The speed is capped at the position loop's
+/// output limit, the turn rate at the yaw attitude loop's.
+struct Velocity {
+  Eigen::Vector3d velocity_mps = Eigen::Vector3d::Zero();
+  double yaw_rate_radps = 0.0;
+};
+/// Quadrotor: hold roll and pitch (radians, of the body relative to the
+/// heading frame: attitude = Rz(heading) Ry(pitch) Rx(roll)), turn at
+/// `yaw_rate_radps`, collective thrust `thrust_n` (N) along body z. Positive
+/// pitch tilts the nose down and accelerates forward (+x); positive roll tilts
+/// the right side down and accelerates to the right (-y). Tilt capped at
+/// max_tilt_deg, thrust at what the rotors give.
+struct AttitudeThrust {
+  double roll_rad = 0.0;
+  double pitch_rad = 0.0;
+  double yaw_rate_radps = 0.0;
+  double thrust_n = 0.0;
+};
+/// Quadrotor: rotor speed commands, rad/s, in rotor order (rotor_position()),
+/// clamped to [min_rotor_speed_radps, max_rotor_speed_radps]; they pass
+/// through the motor lag like the controller's.
+struct Rotors {
+  std::array<double, 4> speeds_radps{};
+};
+/// Rover: motor target speeds, rad/s, per wheel in Rover::Wheel order
+/// (front_left, front_right, rear_left, rear_right), positive rolling
+/// forward, clamped to +-max_wheel_speed_radps (and to max_wheel_accel_radps2).
+struct Wheels {
+  std::array<double, 4> speeds_radps{};
+};
 }  // namespace command
 
+/// New kinds go at the end, so that the index of every existing kind keeps its meaning.
 using Command = std::variant<command::Hold, command::GoTo, command::Face, command::Altitude,
-                             command::Twist>;
+                             command::Twist, command::Velocity, command::AttitudeThrust, command::Rotors,
+                             command::Wheels>;
 
 /// Name of a command kind, for records and error messages.
 std::string_view command_name(const Command& c);
