@@ -23,6 +23,7 @@
 #include "campo/vehicle_factory.hpp"
 #include "campo/version.hpp"
 #include "core/output_dir.hpp"
+#include "python/bindings/gym_bindings.hpp"
 #include "python/bindings/observation.hpp"
 #include "python/bindings/planner_limits.hpp"
 #include "python/bindings/python_planner.hpp"
@@ -645,6 +646,7 @@ PYBIND11_MODULE(_campo, m) {
   bind_observation(m);
   bind_plan_types(m);
   bind_limits(m);
+  bind_gym(m);
   register_python_scheme();
 
   py::class_<PythonEpisode>(m, "Episode",
