@@ -23,8 +23,10 @@ packages=(
   # pdftotext/pdftoppm and librsvg's rsvg-convert.
   libcairo2-dev fonts-dejavu-core poppler-utils librsvg2-bin
   # The Python module (python/): pybind11 against Debian's /usr/bin/python3 and its
-  # numpy and pandas; matplotlib for the example analysis script.
+  # numpy and pandas; matplotlib for the example analysis script. `pip install .` into a
+  # venv (pyproject.toml, setup.py; tests/python/test_pip_install.py): venv, setuptools, wheel.
   pybind11-dev python3-dev python3-numpy python3-pandas python3-matplotlib
+  python3-venv python3-setuptools python3-wheel
   slurm-wlm munge jq # tests/slurm: a local single-node Slurm cluster (tools/slurm/)
   # campo render --kind video encodes with the ffmpeg program; the replay's tests open
   # the page in headless Chromium.
