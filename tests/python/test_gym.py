@@ -320,6 +320,24 @@ class VectorEnvironment(unittest.TestCase):
                 ended = terminated or truncated
         self.assertTrue(saw_autoreset, "the 1.5 s time limit ends episodes within 40 steps of 0.1 s")
 
+    def test_depth_cameras_render_in_the_worker_threads_as_alone(self):
+        # Each camera's OSMesa context is made current in whichever worker steps its environment.
+        camera = {"/objects/drone/sensors/0": {"alias": "cam", "type": "depth_camera", "resolution": [40, 30],
+                                               "mount": {"position_m": [0.15, 0, 0]}}}
+        envs = campo.gym.NavigationVectorEnv("trees_rolling_terrain", num_envs=3, num_threads=2,
+                                             action_mode="velocity", overrides=camera)
+        self.assertEqual(envs.single_observation_space["cam_ranges_m"].shape, (30, 40))
+        actions = [np.random.default_rng(1).uniform(-1, 1, (3, 4)).astype(np.float32) for _ in range(6)]
+        envs.reset(seed=5)
+        last = [envs.step(a)[0]["cam_ranges_m"] for a in actions][-1]
+        single = campo.gym.NavigationEnv("trees_rolling_terrain", action_mode="velocity", overrides=camera)
+        for i in range(3):
+            single.reset(seed=5 + i)
+            for a in actions:
+                obs, *_ = single.step(a[i])
+            np.testing.assert_array_equal(obs["cam_ranges_m"], last[i])
+            self.assertLess(obs["cam_ranges_m"].min(), 10.0, "the forest is in view")
+
     def test_observations_are_new_arrays_each_step(self):
         envs = campo.gym.NavigationVectorEnv(OPEN_FIELD, num_envs=2, action_mode="velocity", overrides=self.OVERRIDES)
         first, _ = envs.reset(seed=0)
