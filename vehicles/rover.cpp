@@ -235,8 +235,7 @@ void Rover::command(const Command& c) {
   }
   if (std::holds_alternative<command::Velocity>(c) || std::holds_alternative<command::AttitudeThrust>(c) ||
       std::holds_alternative<command::Rotors>(c)) {
-    throw std::invalid_argument("the rover cannot follow a " + std::string(command_name(c)) +
-                                " command (a quadrotor's)");
+    throw std::invalid_argument("the rover cannot follow a quadrotor's " + std::string(command_name(c)) + " command");
   }
   // NaN or infinity would reach Bullet and ruin the whole world.
   if (!std::visit([](const auto& x) { return is_finite(x); }, c)) {

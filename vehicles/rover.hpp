@@ -124,6 +124,7 @@ class Rover final : public Vehicle {
   /// target speed and the measured speed relative to the chassis, rad/s.
   nlohmann::json actuators() const override;
   nlohmann::json parameters() const override { return to_json(config_); }
+  const RoverConfig& config() const { return config_; }
 
   /// Wheel-odometry pose estimate integrated from the measured wheel speeds
   /// since the start (starts at the start pose's x, y and heading).
