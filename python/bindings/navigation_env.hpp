@@ -61,7 +61,7 @@ double reward(const RewardWeights& weights, const RewardTerms& terms);
 
 /// Options of an environment; each keyword of campo.gym's constructors is a field.
 struct NavigationOptions {
-  std::string vehicle;  ///< alias of the vehicle driven; empty: the scene's only vehicle
+  std::string vehicle;  ///< alias of the vehicle driven; empty: the first, as campo run chooses
   ActionMode action_mode = ActionMode::waypoint;
   /// Control ticks one step lasts (the action held meanwhile); 0: one tick for
   /// the low-level modes, else the ticks of one sensor period, so that each

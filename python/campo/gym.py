@@ -7,7 +7,7 @@
 
     envs = campo.gym.make_vec("campo/Navigate-v0", num_envs=8)   # stepped in C++ threads
 
-One vehicle of a scene (its only one, or `vehicle=`) is driven by normalised
+One vehicle of a scene (its first, or `vehicle=`) is driven by normalised
 actions toward its mission's waypoints; any other vehicles fly their scene's
 planners. Only this module imports Gymnasium; the rest of campo does not need it.
 """

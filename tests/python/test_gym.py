@@ -338,6 +338,21 @@ class VectorEnvironment(unittest.TestCase):
             np.testing.assert_array_equal(obs["cam_ranges_m"], last[i])
             self.assertLess(obs["cam_ranges_m"].min(), 10.0, "the forest is in view")
 
+    def test_the_other_vehicles_fly_their_planners_in_the_workers(self):
+        # "west" hovers; "east" flies its depth_reactive planner toward it (a planner keeping its own state
+        # between calls), in each worker thread as alone.
+        envs = campo.gym.NavigationVectorEnv("two_drones_head_on", num_envs=2, vehicle="west", action_mode="velocity")
+        obs, _ = envs.reset(seed=0)
+        single = campo.gym.NavigationEnv("two_drones_head_on", vehicle="west", action_mode="velocity")
+        alone, _ = single.reset(seed=0)
+        for _ in range(30):
+            obs, *_ = envs.step(np.zeros((2, 4), np.float32))
+            alone, *_ = single.step(np.zeros(4, np.float32))
+        for key in alone:
+            np.testing.assert_array_equal(alone[key], obs[key][0])
+        with self.assertRaisesRegex(campo.InputError, "north"):
+            campo.gym.NavigationEnv("two_drones_head_on", vehicle="north")
+
     def test_observations_are_new_arrays_each_step(self):
         envs = campo.gym.NavigationVectorEnv(OPEN_FIELD, num_envs=2, action_mode="velocity", overrides=self.OVERRIDES)
         first, _ = envs.reset(seed=0)
