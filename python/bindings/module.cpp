@@ -137,7 +137,8 @@ class PythonEpisode {
     if (!agent_[prepared.vehicle_index]) create_planner(first.planner, {first.type, &prepared.scene, &first});
   }
 
-  py::object reset() {
+  py::object reset(std::optional<std::uint64_t> seed) {
+    if (seed) request_.seed = seed;  // this run's world seed and the next ones'
     run_ = std::make_shared<EpisodeRun>();
     run_->prepared = prepare_run(request_, false);
     const Scene& scene = run_->prepared.scene;
@@ -659,9 +660,9 @@ PYBIND11_MODULE(_campo, m) {
                     const py::object&>(),
            py::arg("scene"), py::arg("seed") = py::none(), py::arg("overrides") = py::none(), py::arg("vehicle") = "",
            py::arg("continue_after_collision") = false, py::arg("agents") = py::none())
-      .def("reset", &PythonEpisode::reset,
-           "start (again) from the scene's start; returns the first Observation ({alias: Observation} with several "
-           "vehicles)")
+      .def("reset", &PythonEpisode::reset, py::arg("seed") = py::none(),
+           "start (again) from the scene's start, with world.seed set to seed when given (for this run and the "
+           "next); returns the first Observation ({alias: Observation} with several vehicles)")
       .def("step", &PythonEpisode::step, py::arg("command"),
            "apply command (a Command, or a PlanResult whose status may end the mission) until the next control "
            "tick; returns (observation, done, info). With several vehicles: {alias: command} for each of agents; "
