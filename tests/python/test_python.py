@@ -1015,5 +1015,22 @@ class ExamplesTest(unittest.TestCase):
             self.assertLess(clearance[0.5], clearance[2.0])
 
 
+class EpisodeResetSeed(unittest.TestCase):
+    def test_reset_with_a_seed_is_the_episode_made_with_that_seed(self):
+        noisy = {"/objects/drone/sensors/0/noise_stddev_m": 0.05}
+
+        def ranges(obs):
+            return obs.sensors["scanner"].ranges_m
+
+        reseeded = campo.Episode(OPEN_FIELD, seed=1, overrides=noisy).reset(seed=2)
+        made_with = campo.Episode(OPEN_FIELD, seed=2, overrides=noisy).reset()
+        other = campo.Episode(OPEN_FIELD, seed=1, overrides=noisy).reset()
+        np.testing.assert_array_equal(ranges(reseeded), ranges(made_with))
+        self.assertFalse(np.array_equal(ranges(reseeded), ranges(other)), "seed 1 draws other range noise")
+        episode = campo.Episode(OPEN_FIELD, seed=1, overrides=noisy)
+        episode.reset(seed=2)
+        np.testing.assert_array_equal(ranges(episode.reset()), ranges(made_with), "the seed stays for the next runs")
+
+
 if __name__ == "__main__":
     unittest.main()
