@@ -1,5 +1,6 @@
 #include "python/bindings/python_planner.hpp"
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -577,7 +578,68 @@ double finite(double value, const char* name) {
   return value;
 }
 
+// Four finite numbers (rotor or wheel speeds), from a list or a numpy array.
+std::array<double, 4> four(const py::handle& value, const char* name) {
+  std::vector<double> v;
+  try {
+    v = py::cast<std::vector<double>>(py::module_::import("numpy").attr("asarray")(value, "float64").attr("ravel")());
+  } catch (const std::exception&) {
+    throw py::value_error(std::string(name) + ": expected 4 numbers (a list or a numpy array)");
+  }
+  if (v.size() != 4) throw py::value_error(std::string(name) + ": expected 4 numbers, got " + std::to_string(v.size()));
+  for (const double x : v) {
+    if (!std::isfinite(x)) throw py::value_error(std::string(name) + ": expected 4 finite numbers, got " + number_list(v));
+  }
+  return {v[0], v[1], v[2], v[3]};
+}
+
+// The low-level commands, built from Python's arguments.
+command::Velocity velocity_command(const py::handle& velocity_mps, double yaw_rate_radps) {
+  return {point(velocity_mps, "velocity_mps"), finite(yaw_rate_radps, "yaw_rate_radps")};
+}
+command::AttitudeThrust attitude_thrust_command(double roll_rad, double pitch_rad, double yaw_rate_radps,
+                                                double thrust_n) {
+  return {finite(roll_rad, "roll_rad"), finite(pitch_rad, "pitch_rad"), finite(yaw_rate_radps, "yaw_rate_radps"),
+          finite(thrust_n, "thrust_n")};
+}
+CommandBox attitude_thrust_command_box(double roll_rad, double pitch_rad, double yaw_rate_radps, double thrust_n) {
+  return CommandBox{attitude_thrust_command(roll_rad, pitch_rad, yaw_rate_radps, thrust_n)};
+}
+
+// campo.Velocity, campo.AttitudeThrust, campo.Rotors, campo.Wheels: campo.Command subclasses built
+// from their fields (so accepted wherever a Command is) whose fields read back.
+struct VelocityBox : CommandBox {};
+struct AttitudeThrustBox : CommandBox {};
+struct RotorsBox : CommandBox {};
+struct WheelsBox : CommandBox {};
+
+py::tuple tuple_of(const double* values, std::size_t n) {
+  py::tuple t(n);
+  for (std::size_t i = 0; i < n; ++i) t[i] = py::float_(values[i]);
+  return t;
+}
+
+std::string number_tuple(const double* values, std::size_t n) {
+  std::string text = "(";
+  for (std::size_t i = 0; i < n; ++i) text += (i ? ", " : "") + number_text(values[i]);
+  return text + ")";
+}
+
 std::string command_repr(const Command& c) {
+  if (const auto* v = std::get_if<command::Velocity>(&c)) {
+    return "Velocity(velocity_mps=" + number_tuple(v->velocity_mps.data(), 3) +
+           ", yaw_rate_radps=" + number_text(v->yaw_rate_radps) + ")";
+  }
+  if (const auto* a = std::get_if<command::AttitudeThrust>(&c)) {
+    return "AttitudeThrust(roll_rad=" + number_text(a->roll_rad) + ", pitch_rad=" + number_text(a->pitch_rad) +
+           ", yaw_rate_radps=" + number_text(a->yaw_rate_radps) + ", thrust_n=" + number_text(a->thrust_n) + ")";
+  }
+  if (const auto* r = std::get_if<command::Rotors>(&c)) {
+    return "Rotors(speeds_radps=" + number_tuple(r->speeds_radps.data(), 4) + ")";
+  }
+  if (const auto* w = std::get_if<command::Wheels>(&c)) {
+    return "Wheels(speeds_radps=" + number_tuple(w->speeds_radps.data(), 4) + ")";
+  }
   return "Command." + std::string(command_name(c)) + "(...)";
 }
 
@@ -615,8 +677,79 @@ void bind_plan_types(py::module_& m) {
                     return CommandBox{command::Twist{finite(v_mps, "v_mps"), finite(w_radps, "w_radps")}};
                   },
                   py::arg("v_mps"), py::arg("w_radps"), "forward speed and yaw rate (rover)")
+      .def_static("velocity",
+                  [](const py::handle& velocity_mps, double yaw_rate_radps) {
+                    return CommandBox{velocity_command(velocity_mps, yaw_rate_radps)};
+                  },
+                  py::arg("velocity_mps"), py::arg("yaw_rate_radps") = 0.0,
+                  "fly at velocity_mps in the heading frame (x forward, y left, z up) turning at yaw_rate_radps "
+                  "(quadrotor); as campo.Velocity")
+      .def_static("attitude_thrust", &attitude_thrust_command_box, py::arg("roll_rad") = 0.0,
+                  py::arg("pitch_rad") = 0.0, py::arg("yaw_rate_radps") = 0.0, py::arg("thrust_n") = 0.0,
+                  "hold roll and pitch, turn at yaw_rate_radps, collective thrust thrust_n (quadrotor); as "
+                  "campo.AttitudeThrust")
+      .def_static("rotors", [](const py::handle& speeds_radps) { return CommandBox{command::Rotors{four(speeds_radps, "speeds_radps")}}; },
+                  py::arg("speeds_radps"), "the four rotor speeds, rad/s (quadrotor); as campo.Rotors")
+      .def_static("wheels", [](const py::handle& speeds_radps) { return CommandBox{command::Wheels{four(speeds_radps, "speeds_radps")}}; },
+                  py::arg("speeds_radps"), "the four wheel motor speeds, rad/s (rover); as campo.Wheels")
       .def_property_readonly("kind", [](const CommandBox& c) { return std::string(command_name(c.value)); })
       .def("__repr__", [](const CommandBox& c) { return command_repr(c.value); });
+
+  py::class_<VelocityBox, CommandBox>(
+      m, "Velocity",
+      "Quadrotor: fly at velocity_mps (m/s) in the heading frame (x along the heading projected on the ground, y to "
+      "its left, z up) while turning at yaw_rate_radps (rad/s, counter-clockwise positive); capped at the "
+      "controller's limits (docs/python.md, Commands).")
+      .def(py::init([](const py::handle& velocity_mps, double yaw_rate_radps) {
+             return VelocityBox{{velocity_command(velocity_mps, yaw_rate_radps)}};
+           }),
+           py::arg("velocity_mps") = py::make_tuple(0.0, 0.0, 0.0), py::arg("yaw_rate_radps") = 0.0)
+      .def_property_readonly("velocity_mps", [](const VelocityBox& c) {
+        return tuple_of(std::get<command::Velocity>(c.value).velocity_mps.data(), 3);
+      })
+      .def_property_readonly("yaw_rate_radps",
+                             [](const VelocityBox& c) { return std::get<command::Velocity>(c.value).yaw_rate_radps; });
+
+  py::class_<AttitudeThrustBox, CommandBox>(
+      m, "AttitudeThrust",
+      "Quadrotor: hold roll_rad and pitch_rad (of the body relative to the heading frame, R = Rz(heading) Ry(pitch) "
+      "Rx(roll): positive pitch tilts the nose down and accelerates forward, positive roll the right side down and "
+      "accelerates to the right), turn at yaw_rate_radps, collective thrust thrust_n (N). Tilt capped at the "
+      "controller's max_tilt_deg, thrust at what the rotors give.")
+      .def(py::init([](double roll_rad, double pitch_rad, double yaw_rate_radps, double thrust_n) {
+             return AttitudeThrustBox{{attitude_thrust_command(roll_rad, pitch_rad, yaw_rate_radps, thrust_n)}};
+           }),
+           py::arg("roll_rad") = 0.0, py::arg("pitch_rad") = 0.0, py::arg("yaw_rate_radps") = 0.0,
+           py::arg("thrust_n") = 0.0)
+      .def_property_readonly("roll_rad", [](const AttitudeThrustBox& c) { return std::get<command::AttitudeThrust>(c.value).roll_rad; })
+      .def_property_readonly("pitch_rad", [](const AttitudeThrustBox& c) { return std::get<command::AttitudeThrust>(c.value).pitch_rad; })
+      .def_property_readonly("yaw_rate_radps",
+                             [](const AttitudeThrustBox& c) { return std::get<command::AttitudeThrust>(c.value).yaw_rate_radps; })
+      .def_property_readonly("thrust_n", [](const AttitudeThrustBox& c) { return std::get<command::AttitudeThrust>(c.value).thrust_n; });
+
+  py::class_<RotorsBox, CommandBox>(
+      m, "Rotors",
+      "Quadrotor: the four rotor speed commands, rad/s, in rotor order (front-left, rear-left, rear-right, "
+      "front-right), clamped to the motor range; they pass through the motor lag.")
+      .def(py::init([](const py::handle& speeds_radps) {
+             return RotorsBox{{command::Rotors{four(speeds_radps, "speeds_radps")}}};
+           }),
+           py::arg("speeds_radps"))
+      .def_property_readonly("speeds_radps", [](const RotorsBox& c) {
+        return tuple_of(std::get<command::Rotors>(c.value).speeds_radps.data(), 4);
+      });
+
+  py::class_<WheelsBox, CommandBox>(
+      m, "Wheels",
+      "Rover: the four wheel motor target speeds, rad/s, positive rolling forward, in the order front_left, "
+      "front_right, rear_left, rear_right; clamped to the rover's max_wheel_speed_radps.")
+      .def(py::init([](const py::handle& speeds_radps) {
+             return WheelsBox{{command::Wheels{four(speeds_radps, "speeds_radps")}}};
+           }),
+           py::arg("speeds_radps"))
+      .def_property_readonly("speeds_radps", [](const WheelsBox& c) {
+        return tuple_of(std::get<command::Wheels>(c.value).speeds_radps.data(), 4);
+      });
 
   py::class_<PlanResultBox>(m, "PlanResult", "What plan() returns: a command and a status, and optional decisions.")
       .def(py::init([](const CommandBox& command, const std::string& status, std::string reason, py::object decisions) {

@@ -23,6 +23,7 @@ import os as _os
 
 from . import _campo
 from ._campo import (  # noqa: F401 (re-exported)
+    AttitudeThrust,
     Command,
     Episode,
     InputError,
@@ -31,8 +32,11 @@ from ._campo import (  # noqa: F401 (re-exported)
     PlannerExit,
     PlannerInterrupted,
     PlanResult,
+    Rotors,
     SensorReading,
     State,
+    Velocity,
+    Wheels,
     __version__,
     bundled_scene,
     planners,

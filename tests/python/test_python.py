@@ -1032,5 +1032,128 @@ class EpisodeResetSeed(unittest.TestCase):
         np.testing.assert_array_equal(ranges(episode.reset()), ranges(made_with), "the seed stays for the next runs")
 
 
+class LowLevelCommandsTest(unittest.TestCase):
+    """campo.Velocity, campo.AttitudeThrust, campo.Rotors (quadrotor) and campo.Wheels (rover) stepped through
+    campo.Episode on the bundled scenes (docs/python.md, Commands)."""
+
+    @staticmethod
+    def hover_rotor_speed(scene):
+        # The scene's drone has the preset airframe (no params): its rotors carry the weight m g at
+        # 4 k_f w^2 = m g, with QuadrotorConfig's mass_kg 1.5 and thrust_coefficient 1e-5.
+        path = campo.bundled_scene(scene)
+        drone = next(o for o in json.loads(pathlib.Path(path).read_text())["objects"] if o["type"] == "quadrotor")
+        assert "params" not in drone, "the preset airframe is assumed"
+        return (1.5 * 9.81 / (4 * 1.0e-5)) ** 0.5
+
+    def step_for(self, episode, command, seconds):
+        obs = episode.observation
+        start = obs.time_s
+        while obs.time_s < start + seconds - 1e-9:
+            obs, done, info = episode.step(command)
+            self.assertFalse(done, info)
+        return obs
+
+    def test_commands_read_back_and_refuse_bad_values(self):
+        v = campo.Velocity(velocity_mps=(1.0, 0.5, -0.2), yaw_rate_radps=0.3)
+        self.assertIsInstance(v, campo.Command)
+        self.assertEqual(v.kind, "velocity")
+        self.assertEqual(v.velocity_mps, (1.0, 0.5, -0.2))
+        self.assertEqual(v.yaw_rate_radps, 0.3)
+        a = campo.AttitudeThrust(roll_rad=0.1, pitch_rad=-0.2, yaw_rate_radps=0.0, thrust_n=15.0)
+        self.assertEqual((a.kind, a.roll_rad, a.pitch_rad, a.thrust_n), ("attitude_thrust", 0.1, -0.2, 15.0))
+        self.assertEqual(campo.Rotors(np.full(4, 600.0)).speeds_radps, (600.0,) * 4)
+        self.assertEqual(campo.Wheels(speeds_radps=[1, 2, 3, 4]).kind, "wheels")
+        self.assertEqual(campo.Command.rotors([1, 2, 3, 4]).kind, "rotors")
+        self.assertEqual(repr(campo.Wheels([1, 2, 3, 4])), "Wheels(speeds_radps=(1.0, 2.0, 3.0, 4.0))")
+        with self.assertRaisesRegex(ValueError, r"^speeds_radps: expected 4 numbers, got 3$"):
+            campo.Rotors([600, 600, 600])
+        with self.assertRaisesRegex(ValueError, r"^speeds_radps: expected 4 finite numbers"):
+            campo.Wheels([1, float("nan"), 1, 1])
+        with self.assertRaisesRegex(ValueError, r"^thrust_n: expected a finite number, got inf$"):
+            campo.AttitudeThrust(thrust_n=float("inf"))
+        with self.assertRaisesRegex(ValueError, r"^velocity_mps: expected 3 finite numbers"):
+            campo.Velocity([0, 0, float("nan")])
+
+    def test_hover_rotor_speeds_hold_altitude_then_velocity_flies_forward(self):
+        episode = campo.Episode("two_barriers")
+        obs = episode.reset()
+        start = np.array(obs.state.position_m)
+        w = self.hover_rotor_speed("two_barriers")
+        obs = self.step_for(episode, campo.Rotors([w] * 4), 3.0)
+        # The rotors start at hover speed: thrust equals weight, it stays where it was.
+        np.testing.assert_allclose(obs.state.position_m, start, atol=0.01)
+        obs = self.step_for(episode, campo.Rotors([1.05 * w] * 4), 1.0)
+        self.assertGreater(obs.state.position_m[2], start[2] + 0.2)  # 10 % more thrust: it climbs
+        climbed = np.array(obs.state.position_m)
+        # 1 m/s forward (the heading is +x), level: it gets there and keeps its height.
+        obs = self.step_for(episode, campo.Velocity(velocity_mps=(1.0, 0.0, 0.0)), 4.0)
+        np.testing.assert_allclose(obs.state.velocity_mps, [1.0, 0.0, 0.0], atol=0.1)
+        self.assertGreater(obs.state.position_m[0], climbed[0] + 2.5)
+        self.assertAlmostEqual(obs.state.position_m[2], climbed[2], delta=0.3)
+        # Hold where it is afterwards: it stops.
+        obs = self.step_for(episode, campo.Command.hold(obs.state.position_m), 6.0)
+        self.assertLess(np.linalg.norm(obs.state.velocity_mps), 0.05)
+        obs, done, info = episode.step(campo.Command.hold(obs.state.position_m))
+        self.assertEqual(info["collisions"], 0)
+
+    def test_attitude_thrust_pitch_accelerates_forward(self):
+        episode = campo.Episode("two_barriers")
+        episode.reset()
+        pitch = 0.15
+        obs = self.step_for(episode, campo.AttitudeThrust(pitch_rad=pitch, thrust_n=1.5 * 9.81 / np.cos(pitch)), 1.0)
+        self.assertAlmostEqual(np.radians(obs.state.rpy_deg[1]), pitch, delta=0.01)
+        self.assertGreater(obs.state.velocity_mps[0], 0.5)  # g tan(0.15) = 1.5 m/s^2, tilting took some of the second
+        self.assertAlmostEqual(obs.state.velocity_mps[1], 0.0, delta=0.05)
+
+    def test_wheels_drive_the_rover_forward(self):
+        episode = campo.Episode("vineyard")
+        obs = episode.reset()
+        start = np.array(obs.state.position_m)
+        heading = np.array([np.cos(obs.state.yaw_rad), np.sin(obs.state.yaw_rad)])
+        # 3 rad/s on every wheel of radius 0.2 m (the preset): 0.6 m/s forward.
+        obs = self.step_for(episode, campo.Wheels([3.0] * 4), 3.0)
+        forward = np.dot(np.array(obs.state.velocity_mps[:2]), heading)
+        self.assertAlmostEqual(forward, 0.6, delta=0.05)
+        self.assertGreater(np.dot(np.array(obs.state.position_m[:2]) - start[:2], heading), 1.2)
+        # Left wheels slower than the right: it turns left (counter-clockwise).
+        obs = self.step_for(episode, campo.Wheels([2.0, 4.0, 2.0, 4.0]), 1.0)
+        self.assertGreater(obs.state.angular_velocity_radps[2], 0.05)
+
+    def test_each_vehicle_refuses_the_others_commands(self):
+        drone = campo.Episode("two_barriers")
+        drone.reset()
+        with self.assertRaisesRegex(ValueError, "wheels"):
+            drone.step(campo.Wheels([1.0] * 4))
+        rover = campo.Episode("vineyard")
+        rover.reset()
+        for command in (campo.Rotors([600.0] * 4), campo.Velocity((1.0, 0.0, 0.0)), campo.AttitudeThrust(thrust_n=10)):
+            with self.assertRaisesRegex(ValueError, command.kind):
+                rover.step(command)
+
+    def test_trajectory_records_the_command_values(self):
+        episode = campo.Episode("two_barriers")
+        episode.reset()
+        w = self.hover_rotor_speed("two_barriers")
+        self.step_for(episode, campo.Rotors([w] * 4), 0.1)
+        self.step_for(episode, campo.Velocity((0.5, 0.0, 0.0), yaw_rate_radps=0.1), 0.1)
+        # The run ends (a planner's "aborted") so that it can be written.
+        episode.step(campo.PlanResult(campo.Velocity((0.5, 0.0, 0.0), yaw_rate_radps=0.1), status="aborted",
+                                      reason="enough"))
+        self.assertTrue(episode.done)
+        with tempfile.TemporaryDirectory() as out:
+            episode.write(out, figures=False)
+            run = campo.read_run(out)
+            t = run.trajectory
+            rotors = t[t["command"] == "rotors"]
+            velocity = t[t["command"] == "velocity"]
+            self.assertGreater(len(rotors), 0)
+            self.assertGreater(len(velocity), 0)
+            np.testing.assert_allclose(rotors["cmd_rotor_2_radps"], w)
+            np.testing.assert_allclose(velocity["cmd_forward_mps"], 0.5)
+            np.testing.assert_allclose(velocity["cmd_yaw_rate_radps"], 0.1)
+            self.assertTrue(np.isnan(rotors["cmd_forward_mps"]).all())
+            self.assertNotIn("cmd_thrust_n", t.columns)  # no attitude_thrust in this run
+
+
 if __name__ == "__main__":
     unittest.main()
