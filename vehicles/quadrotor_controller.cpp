@@ -197,7 +197,10 @@ void QuadrotorController::command(const Command& c, const VehicleState& state) {
       Reference r;
       r.mode = mode;
       r.position_m = state.position_m;
-      r.yaw_rad = state.yaw_rad();
+      // Between Velocity and AttitudeThrust the turn goes on from the heading
+      // reference; after any other command it starts from the current heading.
+      const bool turning = reference_.mode == Mode::velocity || reference_.mode == Mode::attitude;
+      r.yaw_rad = turning && mode != Mode::rotors ? reference_.yaw_rad : state.yaw_rad();
       r.speed_mps = config_.speed_limit_mps;
       restart_idle_loops(reference_.mode, mode);
       reset_position_loop();

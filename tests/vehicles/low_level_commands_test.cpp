@@ -330,6 +330,24 @@ TEST(QuadrotorAttitudeThrust, TurnsAtTheYawRate) {
   EXPECT_NEAR(wrap(f.s().yaw_rad() - from) / 2.0, 0.4, 0.01);
 }
 
+TEST(LowLevelCommands, SwitchingBetweenAllTheQuadrotorsCommandsStaysInControl) {
+  Flight f;
+  const double w = f.hover();
+  const double weight = f.quad.config().mass_kg * f.g();
+  f.fly(command::Velocity{{1.0, 0.0, 0.2}, 0.3}, 2.0);
+  f.fly(command::AttitudeThrust{0.05, -0.1, 0.3, weight}, 0.5);
+  f.fly(command::Rotors{{w, w, w, w}}, 0.3);
+  f.fly(command::GoTo{{2.0, 2.0, 5.0}, 1.0, true}, 1.0);
+  f.fly(command::Velocity{{0.0, 0.0, 0.0}, 0.0}, 3.0);
+  // Velocity zero: it has stopped and holds its heading.
+  EXPECT_LT(f.s().linear_velocity_mps.norm(), 0.05);
+  const Eigen::Vector3d here = f.s().position_m;
+  f.fly(command::Hold{here, {}}, 5.0);
+  EXPECT_LT((f.s().position_m - here).norm(), 0.05);
+  EXPECT_TRUE(f.quad.stable());
+  EXPECT_FALSE(f.world.vehicle_clearance().touching());
+}
+
 // ---- Rejections ------------------------------------------------------------
 
 TEST(LowLevelCommands, QuadrotorRefusesTheRoversCommandsAndNonFiniteValues) {
