@@ -9,6 +9,7 @@ sweep specs in campo/data/scenes), which goes into the wheel as it is.
 CAMPO_BUILD_DIR names the CMake build directory: an existing one (tools/setup.sh's build/) is
 built as it is configured (up to date, nothing compiles) with the cmake that configured it; a
 folder without a CMakeCache.txt is configured there, Release. Unset, the build is build/pip/cmake.
+setuptools' own files go to pip/ in that build directory, else to build/pip: nothing in the source tree.
 CMAKE_BUILD_PARALLEL_LEVEL sets the parallel jobs (default: all cores).
 """
 
@@ -24,9 +25,12 @@ from setuptools import Extension, setup
 from setuptools.command.build_ext import build_ext
 
 SOURCE_DIR = Path(__file__).resolve().parent
-# setuptools' own folders (build/pip/lib..., build/pip/bdist...), apart from a CMake build in build/.
-BUILD_BASE = Path("build") / "pip"
 COMPONENT = "campo_python_package"
+# The CMake build directory named, if any.
+NAMED_BUILD_DIR = Path(os.environ["CAMPO_BUILD_DIR"]).resolve() if os.environ.get("CAMPO_BUILD_DIR") else None
+# setuptools' own folders (lib..., bdist..., temp..., campo.egg-info): in the named build directory's pip/,
+# else build/pip/ (ignored by git; a fresh CMake build goes to its cmake/).
+BUILD_BASE = (NAMED_BUILD_DIR or SOURCE_DIR / "build") / "pip"
 
 
 def cmake_version():
@@ -67,8 +71,7 @@ class CMakeBuild(build_ext):
 
     def configure(self):
         """The CMake build directory, configured, and the cmake to drive it with."""
-        named = os.environ.get("CAMPO_BUILD_DIR")
-        build_dir = Path(named).resolve() if named else (SOURCE_DIR / BUILD_BASE / "cmake")
+        build_dir = NAMED_BUILD_DIR or BUILD_BASE / "cmake"
         if (build_dir / "CMakeCache.txt").is_file():
             # The cmake that configured it: another one (e.g. a pip build environment's) would reconfigure it.
             cmake = cache_entry(build_dir, "CMAKE_COMMAND") or "cmake"
@@ -101,5 +104,5 @@ setup(
     # A placeholder: it makes the wheel a platform wheel; CMakeBuild builds the real module.
     ext_modules=[Extension("campo._campo", sources=[])],
     cmdclass={"build_ext": CMakeBuild},
-    options={"build": {"build_base": str(BUILD_BASE)}},
+    options={"build": {"build_base": str(BUILD_BASE)}, "egg_info": {"egg_base": str(BUILD_BASE)}},
 )
