@@ -31,6 +31,7 @@ NAMED_BUILD_DIR = Path(os.environ["CAMPO_BUILD_DIR"]).resolve() if os.environ.ge
 # setuptools' own folders (lib..., bdist..., temp..., campo.egg-info): in the named build directory's pip/,
 # else build/pip/ (ignored by git; a fresh CMake build goes to its cmake/).
 BUILD_BASE = (NAMED_BUILD_DIR or SOURCE_DIR / "build") / "pip"
+BUILD_BASE.mkdir(parents=True, exist_ok=True)  # setuptools refuses an egg_base that does not exist yet
 
 
 def cmake_version():
