@@ -196,7 +196,11 @@ def measure_reset_s(overrides, action_mode, count) -> float:
 
 
 def bench_case(resolution, num_envs, args, threads):
-    quiet = wait_quiet(args.quiet_cores, args.max_wait_s) if args.wait_quiet else None
+    """One resolution and N: the three variants built, reset and warmed up, then stepped round by round (a
+    round: each variant its block of steps, the same actions). With --wait-quiet, each round waits for the
+    machine to be idle first, and a round during which the rest of the machine used more than
+    --disturbed-cores is discarded and run again (at most --max-discards times in the case, then kept and
+    counted): the rows say how many were discarded and what the rest of the machine used in each kept one."""
     overrides = {RESOLUTION_POINTER: [resolution, resolution]}
     env_steps = args.env_steps[resolution] if isinstance(args.env_steps, dict) else args.env_steps
     steps = max(1, env_steps // num_envs)  # vector steps per repeat
@@ -207,40 +211,60 @@ def bench_case(resolution, num_envs, args, threads):
         "loop": Loop(num_envs, overrides, args.action_mode),
     }
     rng = np.random.default_rng(ACTION_SEED)
-    actions = rng.uniform(-1.0, 1.0, (warmup + args.repeats * steps, num_envs, 4)).astype(np.float32)
-    times = {name: [] for name in variants}
-    usage = {name: [] for name in variants}
-    for name, v in variants.items():
+
+    def draw(count):
+        return rng.uniform(-1.0, 1.0, (count, num_envs, 4)).astype(np.float32)
+
+    warmup_actions = draw(warmup)
+    for v in variants.values():
         v.reset(SEED)
-        for k in range(warmup):
-            v.step(actions[k])
+        for a in warmup_actions:
+            v.step(a)
     ends_before = {name: int(v.ends.sum()) for name, v in variants.items()}
-    for r in range(args.repeats):
-        block = actions[warmup + r * steps: warmup + (r + 1) * steps]
+    kept = {name: [] for name in variants}  # per kept round: (wall_s, own_cores, other_cores, steal_cores)
+    discarded = 0
+    waited_s = 0.0
+    while len(kept["vector"]) < args.repeats:
+        if args.wait_quiet:
+            start = time.monotonic()
+            wait_quiet(args.quiet_cores, args.max_wait_s, probe_s=1.0)
+            waited_s += time.monotonic() - start
+        block = draw(steps)  # every variant steps these, kept or not, so they stay in step with each other
+        round_usage = {}
         for name, v in variants.items():
             with Usage() as u:
                 for a in block:
                     v.step(a)
-            times[name].append(u.wall_s)
-            usage[name].append({"own_cores": u.own_cores, "other_cores": u.other_cores, "steal_cores": u.steal_cores})
+            round_usage[name] = (u.wall_s, u.own_cores, u.other_cores, u.steal_cores)
+        disturbed = max(x[2] for x in round_usage.values())
+        if args.wait_quiet and disturbed > args.disturbed_cores and discarded < args.max_discards:
+            discarded += 1
+            print(f"# {resolution} x {resolution}, N={num_envs}: round discarded (the rest of the machine used "
+                  f"{disturbed:.2f} cores)", file=sys.stderr, flush=True)
+            continue
+        for name in variants:
+            kept[name].append(round_usage[name])
     # The same work in every variant: each environment's summed reward and episode ends agree bit for bit.
     reference = variants["vector_1"]
     same_work = all(np.array_equal(v.totals, reference.totals) and np.array_equal(v.ends, reference.ends)
                     for v in variants.values())
     rows = []
     for name, v in variants.items():
-        rates = [steps * num_envs / t for t in times[name]]
+        rates = [steps * num_envs / x[0] for x in kept[name]]
         rows.append({
             "resolution": resolution, "num_envs": num_envs, "variant": name, "num_threads": v.threads,
             "vector_steps_per_repeat": steps, "env_steps_per_repeat": steps * num_envs, "warmup_vector_steps": warmup,
             "repeats": args.repeats, "rates_env_steps_per_s": rates, "median": statistics.median(rates),
             "min": min(rates), "max": max(rates),
+            # Over every round run, discarded ones included (their steps were taken too).
             "episode_ends_timed": int(v.ends.sum()) - ends_before[name],
-            "own_cores": [x["own_cores"] for x in usage[name]],
-            "other_cores": [x["other_cores"] for x in usage[name]],
-            "steal_cores": [x["steal_cores"] for x in usage[name]],
+            "env_steps_run": (len(kept[name]) + discarded) * steps * num_envs,
+            "own_cores": [x[1] for x in kept[name]],
+            "other_cores": [x[2] for x in kept[name]],
+            "steal_cores": [x[3] for x in kept[name]],
+            "rounds_discarded": discarded,
+            "waited_for_quiet_s": waited_s,
             "same_work_as_vector_1": same_work,
-            "other_cores_before": quiet,
         })
     return rows
 
@@ -281,7 +305,8 @@ def markdown(report) -> str:
             lines.append(f"| {resolution} x {resolution} | {n} | {fmt_rate(v)} | {fmt_rate(one)} | {fmt_rate(loop)} | "
                          f"{q['threads_over_1_thread']:.2f} | {q['vector_over_loop']:.2f} | "
                          + ", ".join(f"{statistics.median(x['own_cores']):.2f}" for x in (v, one, loop)) + " | "
-                         f"{max(max(x['other_cores']) for x in (v, one, loop)):.2f} | {v['episode_ends_timed']} |")
+                         f"{max(max(x['other_cores']) for x in (v, one, loop)):.2f}; {v['rounds_discarded']} | "
+                         f"{v['episode_ends_timed']} |")
     return "\n".join(lines)
 
 
@@ -297,9 +322,13 @@ def main(argv=None):
                         help="environment steps per repeat (default: 4096 at 64 x 64 and below, 1024 above)")
     parser.add_argument("--action-mode", default="velocity", help="a quadrotor action mode (default: velocity)")
     parser.add_argument("--wait-quiet", action="store_true",
-                        help="before each case, wait until the rest of the machine is (nearly) idle")
+                        help="before each round, wait until the rest of the machine is (nearly) idle, and run again "
+                             "a round it disturbed")
     parser.add_argument("--quiet-cores", type=float, default=0.05, help="--wait-quiet: idle means under this many cores")
     parser.add_argument("--max-wait-s", type=float, default=600.0, help="--wait-quiet: then measure anyway")
+    parser.add_argument("--disturbed-cores", type=float, default=0.25,
+                        help="--wait-quiet: a round is discarded when the rest of the machine used more cores than this")
+    parser.add_argument("--max-discards", type=int, default=50, help="--wait-quiet: rounds discarded per case at most")
     parser.add_argument("--quick", action="store_true",
                         help="a smoke test of seconds: 16 x 16, N = 1 and 2, 2 repeats of a few steps")
     args = parser.parse_args(argv)
