@@ -37,14 +37,27 @@ namespace {
 
 using FloatArray = py::array_t<float, py::array::c_style>;
 
-std::vector<SceneOverride> overrides_of(const py::object& overrides, const char* name) {
+// An override's value as JSON; numpy's scalars and arrays (a seed drawn by np.random) as the numbers and lists they hold.
+nlohmann::json override_value(const py::handle& value) {
+  const py::cpp_function numpy_values([](const py::handle& o) -> py::object {
+    if (py::hasattr(o, "tolist")) return o.attr("tolist")();
+    throw py::type_error("an override's value must be JSON: numbers, strings, booleans, lists or dicts, got " +
+                         py::repr(o).cast<std::string>());
+  });
+  const std::string text = py::module_::import("json")
+                               .attr("dumps")(value, py::arg("allow_nan") = false, py::arg("default") = numpy_values)
+                               .cast<std::string>();
+  return nlohmann::json::parse(text);
+}
+
+std::vector<SceneOverride> overrides_of(const py::handle& overrides, const std::string& name) {
   std::vector<SceneOverride> list;
   if (overrides.is_none()) return list;
   if (!py::isinstance<py::dict>(overrides)) {
     throw InputError(name, "", "a dict {JSON pointer: value}, e.g. {\"/world/time_limit_s\": 60}");
   }
   for (const auto& item : overrides.cast<py::dict>()) {
-    list.push_back(make_override(py::str(item.first).cast<std::string>(), to_json(item.second)));
+    list.push_back(make_override(py::str(item.first).cast<std::string>(), override_value(item.second)));
   }
   return list;
 }
@@ -176,8 +189,12 @@ class SingleEnv {
     return arrays.dict();
   }
 
-  // An RGB frame from behind and above the vehicle: the scene, the track so far and the vehicle.
-  py::array_t<std::uint8_t> render(int width_px, int height_px) {
+  // An RGB frame of the scene, the track so far and the vehicle: from behind and above it ("chase"), or
+  // straight down from `height_m` above it, its heading up the frame ("above", for forests whose crowns
+  // hide the vehicle from behind).
+  py::array_t<std::uint8_t> render(int width_px, int height_px, const std::string& view, double distance_m) {
+    if (view != "chase" && view != "above") throw InputError("render_camera", "", "\"chase\" or \"above\"");
+    if (!(distance_m > 0.0)) throw InputError("render_distance_m", "", "a distance > 0");
     const Scene& scene = env_.scene();
     cv::Mat bgr;
     {
@@ -185,10 +202,15 @@ class SingleEnv {
       if (!mesh_) mesh_ = std::make_shared<SceneMesh>(build_scene_mesh(scene));
       const Eigen::Isometry3d pose = env_.vehicle_pose();
       const Eigen::Vector3d heading(pose.linear()(0, 0), pose.linear()(1, 0), 0.0);
-      const Eigen::Vector3d back = heading.norm() > 1e-6 ? Eigen::Vector3d(heading.normalized()) : Eigen::Vector3d::UnitX();
+      const Eigen::Vector3d forward = heading.norm() > 1e-6 ? Eigen::Vector3d(heading.normalized()) : Eigen::Vector3d::UnitX();
       SnapshotCamera camera;
       camera.target_m = pose.translation();
-      camera.eye_m = pose.translation() - 6.0 * back + Eigen::Vector3d(0.0, 0.0, 3.0);
+      if (view == "chase") {
+        camera.eye_m = pose.translation() - distance_m * forward + Eigen::Vector3d(0.0, 0.0, 0.5 * distance_m);
+      } else {
+        camera.eye_m = pose.translation() + Eigen::Vector3d(0.0, 0.0, distance_m);
+        camera.up = forward;
+      }
       camera.width_px = width_px;
       camera.height_px = height_px;
       bgr = render_snapshot(scene, *mesh_, camera, env_.trajectory_m(), pose, env_.vehicle_type());
@@ -208,34 +230,54 @@ class SingleEnv {
 
 // N environments stepped together in worker threads (campo.gym.NavigationVectorEnv).
 // Autoreset as Gymnasium's next-step mode: the step after one that ended resets
-// that environment instead, its action ignored, reward 0, neither flag set.
+// that environment instead, its action ignored, reward 0, neither flag set. With
+// autoreset off (Gymnasium's disabled mode) an ended environment idles until
+// reset() names it in its mask: not stepped, its last observation, reward 0.
 class BatchEnv {
  public:
-  BatchEnv(const std::string& scene, std::size_t count, int threads, const py::object& overrides,
+  BatchEnv(const std::string& scene, std::size_t count, int threads, bool autoreset, const py::object& overrides,
            const py::kwargs& kwargs)
-      : pool_(threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))) {
+      : autoreset_(autoreset),
+        pool_(threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))) {
     if (count == 0) throw InputError("num_envs", "", "a number of environments >= 1");
     const std::vector<SceneOverride> list = overrides_of(overrides, "overrides");
     const NavigationOptions options = options_of(kwargs);
     envs_.reserve(count);
     for (std::size_t i = 0; i < count; ++i) envs_.emplace_back(scene, list, options);
-    ended_.assign(count, false);
+    ended_.assign(count, 0);
   }
 
-  py::tuple reset(const std::vector<std::optional<std::uint64_t>>& seeds, const py::object& overrides) {
-    if (seeds.size() != envs_.size()) throw std::invalid_argument("reset: one seed (or None) per environment");
-    const std::vector<SceneOverride> list = overrides_of(overrides, "options[\"overrides\"]");
-    ObservationArrays arrays(envs_.front(), envs_.size());
+  // Resets the environments `mask` names (every one without a mask), environment i with seeds[i] and
+  // overrides[i] (None, a dict for every environment, or a list of one per environment).
+  py::tuple reset(const std::vector<std::optional<std::uint64_t>>& seeds, const py::object& overrides,
+                  const std::optional<std::vector<bool>>& mask) {
+    const std::size_t n = envs_.size();
+    if (seeds.size() != n) throw std::invalid_argument("reset: one seed (or None) per environment");
+    if (mask && mask->size() != n) throw std::invalid_argument("reset: options[\"reset_mask\"] has one flag per environment");
+    std::vector<std::vector<SceneOverride>> lists(n);
+    if (py::isinstance<py::list>(overrides) || py::isinstance<py::tuple>(overrides)) {
+      const py::sequence each = overrides.cast<py::sequence>();
+      if (each.size() != n) throw InputError("options[\"overrides\"]", "", "one dict (or None) per environment");
+      for (std::size_t i = 0; i < n; ++i) {
+        lists[i] = overrides_of(each[i], "options[\"overrides\"][" + std::to_string(i) + "]");
+      }
+    } else {
+      const std::vector<SceneOverride> list = overrides_of(overrides, "options[\"overrides\"]");
+      std::fill(lists.begin(), lists.end(), list);
+    }
+    ObservationArrays arrays(envs_.front(), n);
     std::vector<ObservationBuffers> buffers;
-    for (std::size_t i = 0; i < envs_.size(); ++i) buffers.push_back(arrays.buffers(i));
+    for (std::size_t i = 0; i < n; ++i) buffers.push_back(arrays.buffers(i));
     {
       py::gil_scoped_release release;
-      pool_.run(envs_.size(), [&](std::size_t i) {
-        envs_[i].reset(seeds[i], list);
+      pool_.run(n, [&](std::size_t i) {
+        if (!mask || (*mask)[i]) {
+          envs_[i].reset(seeds[i], lists[i]);
+          ended_[i] = 0;
+        }
         envs_[i].write_observation(buffers[i]);
       });
     }
-    std::fill(ended_.begin(), ended_.end(), false);
     return py::make_tuple(arrays.dict(), py::dict());
   }
 
@@ -247,15 +289,16 @@ class BatchEnv {
     std::vector<ObservationBuffers> buffers;
     for (std::size_t i = 0; i < n; ++i) buffers.push_back(arrays.buffers(i));
     std::vector<StepOutcome> outcomes(n);
-    std::vector<bool> reset(n);
+    std::vector<std::uint8_t> stepped_now(n, 0);  // bytes, not vector<bool>: the workers write them at once
     {
       py::gil_scoped_release release;
       pool_.run(n, [&](std::size_t i) {
-        if (ended_[i]) {
-          envs_[i].reset(std::nullopt);
-          reset[i] = true;
-        } else {
+        if (!ended_[i]) {
           outcomes[i] = envs_[i].step(data + i * static_cast<std::size_t>(size));
+          stepped_now[i] = 1;
+        } else if (autoreset_) {
+          envs_[i].reset(std::nullopt);
+          ended_[i] = 0;
         }
         envs_[i].write_observation(buffers[i]);
       });
@@ -279,12 +322,12 @@ class BatchEnv {
       reached.mutable_at(k) = s.terms.reached;
       collided.mutable_at(k) = s.terms.collided;
       dt.mutable_at(k) = s.terms.dt_s;
-      time.mutable_at(k) = reset[i] ? 0.0 : s.time_s;
+      time.mutable_at(k) = stepped_now[i] ? s.time_s : envs_[i].episode().world().time_s();
       waypoint.mutable_at(k) = s.waypoint;
-      stepped.mutable_at(k) = !reset[i];
+      stepped.mutable_at(k) = stepped_now[i] != 0;
       ended.mutable_at(k) = s.outcome.has_value();
       outcome.append(s.outcome ? py::object(py::str(std::string(to_string(*s.outcome)))) : py::none());
-      ended_[i] = s.terminated || s.truncated;
+      if (stepped_now[i]) ended_[i] = s.terminated || s.truncated;
     }
     py::dict info;
     for (const auto& [key, array] : {std::pair<const char*, py::object>{"progress_m", progress}, {"reached", reached},
@@ -303,7 +346,8 @@ class BatchEnv {
 
  private:
   std::vector<NavigationEnv> envs_;
-  std::vector<bool> ended_;  // ended at the previous step: reset at the next
+  std::vector<std::uint8_t> ended_;  // ended and not reset since (bytes: the workers write them at once)
+  bool autoreset_;
   WorkerPool pool_;
 };
 
@@ -371,14 +415,17 @@ void bind_gym(py::module_& m) {
            py::arg("overrides") = py::none())
       .def("reset", &SingleEnv::reset, py::arg("seed") = py::none(), py::arg("overrides") = py::none())
       .def("step", &SingleEnv::step, py::arg("action"))
-      .def("render", &SingleEnv::render, py::arg("width_px") = 640, py::arg("height_px") = 480);
+      .def("render", &SingleEnv::render, py::arg("width_px") = 640, py::arg("height_px") = 480,
+           py::arg("camera") = "chase", py::arg("distance_m") = 6.0);
   describe<SingleEnv>(single, [](const SingleEnv& s) -> const NavigationEnv& { return s.env(); });
 
   py::class_<BatchEnv> batch(m, "_NavigationBatch", "campo.gym.NavigationVectorEnv's native half");
   batch
-      .def(py::init<const std::string&, std::size_t, int, const py::object&, const py::kwargs&>(), py::arg("scene"),
-           py::arg("num_envs"), py::arg("num_threads") = 0, py::arg("overrides") = py::none())
-      .def("reset", &BatchEnv::reset, py::arg("seeds"), py::arg("overrides") = py::none())
+      .def(py::init<const std::string&, std::size_t, int, bool, const py::object&, const py::kwargs&>(),
+           py::arg("scene"), py::arg("num_envs"), py::arg("num_threads") = 0, py::arg("autoreset") = true,
+           py::arg("overrides") = py::none())
+      .def("reset", &BatchEnv::reset, py::arg("seeds"), py::arg("overrides") = py::none(),
+           py::arg("mask") = py::none())
       .def("step", &BatchEnv::step, py::arg("actions"))
       .def_property_readonly("num_envs", &BatchEnv::size)
       .def_property_readonly("num_threads", &BatchEnv::threads);

@@ -75,13 +75,20 @@ class NavigationEnv(gymnasium.Env):
 
     def __init__(self, scene: str = "trees_rolling_terrain", *, action_mode: str = "waypoint",
                  render_mode: str | None = None, reward_fn=None, overrides: dict | None = None,
-                 render_size: tuple[int, int] = (640, 480), **options):
+                 render_size: tuple[int, int] = (640, 480), render_camera: str = "chase",
+                 render_distance_m: float = 6.0, **options):
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode: one of {self.metadata['render_modes']} or None, got {render_mode!r}")
+        if render_camera not in ("chase", "above"):
+            raise ValueError(f"render_camera: \"chase\" or \"above\", got {render_camera!r}")
+        if not render_distance_m > 0:
+            raise ValueError(f"render_distance_m: a distance > 0, got {render_distance_m!r}")
         self._native = _campo._NavigationEnv(scene, overrides, action_mode=action_mode, **_split_options(options))
         self.scene = scene
         self.render_mode = render_mode
         self.render_size = tuple(render_size)
+        self.render_camera = render_camera
+        self.render_distance_m = float(render_distance_m)
         self.reward_fn = reward_fn
         self.vehicle_type = self._native.vehicle_type
         self.action_mode = self._native.action_mode
@@ -112,33 +119,40 @@ class NavigationEnv(gymnasium.Env):
         return obs, float(reward), bool(terminated), bool(truncated), info
 
     def render(self):
-        """An RGB frame (H x W x 3 uint8) from behind and above the vehicle, with its track so far;
-        None unless render_mode is "rgb_array"."""
+        """An RGB frame (H x W x 3 uint8) of the vehicle and its track so far, from render_distance_m behind
+        and half that above it (render_camera "chase") or straight above it ("above"); None unless
+        render_mode is "rgb_array"."""
         if self.render_mode != "rgb_array":
             return None
         width, height = self.render_size
-        return self._native.render(width, height)
+        return self._native.render(width, height, self.render_camera, self.render_distance_m)
 
 
 class NavigationVectorEnv(VectorEnv):
     """num_envs NavigationEnvs stepped together in C++ worker threads, the interpreter released.
 
-    Takes NavigationEnv's keywords, plus num_threads (default: the machine's cores). Autoresets
-    as Gymnasium's next-step mode: the step after an episode ended resets it (its action ignored,
-    reward 0, info's masks False for it). reset(seed=s) seeds environment i with s + i, so it
-    reproduces NavigationEnv(...).reset(seed=s + i) exactly. Observations are new arrays every
-    step, written by the workers directly from the sensors' buffers.
+    Takes NavigationEnv's keywords, plus num_threads (default: the machine's cores) and
+    autoreset_mode: Gymnasium's next-step mode (the default: the step after an episode ended resets
+    it, its action ignored, reward 0, info's masks False for it) or its disabled mode (an ended
+    environment idles, not stepped, until reset(options={"reset_mask": mask}) resets it).
+    reset(seed=s) seeds environment i with s + i, so it reproduces NavigationEnv(...).reset(seed=s + i)
+    exactly; options={"overrides": ...} takes one dict for all or a list of one per environment.
+    Observations are new arrays every step, written by the workers directly from the sensors' buffers.
     """
 
     metadata = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
 
     def __init__(self, scene: str = "trees_rolling_terrain", num_envs: int = 1, *, num_threads: int = 0,
-                 action_mode: str = "waypoint", reward_fn=None, overrides: dict | None = None,
-                 render_mode: str | None = None, **options):
+                 autoreset_mode=AutoresetMode.NEXT_STEP, action_mode: str = "waypoint", reward_fn=None,
+                 overrides: dict | None = None, render_mode: str | None = None, **options):
         if render_mode is not None:
             raise ValueError("NavigationVectorEnv does not render: render one NavigationEnv instead")
-        self._native = _campo._NavigationBatch(scene, num_envs, num_threads, overrides, action_mode=action_mode,
-                                               **_split_options(options))
+        autoreset_mode = AutoresetMode(autoreset_mode) if isinstance(autoreset_mode, str) else autoreset_mode
+        if autoreset_mode not in (AutoresetMode.NEXT_STEP, AutoresetMode.DISABLED):
+            raise ValueError(f"autoreset_mode: AutoresetMode.NEXT_STEP or DISABLED, got {autoreset_mode!r}")
+        self._native = _campo._NavigationBatch(scene, num_envs, num_threads,
+                                               autoreset_mode == AutoresetMode.NEXT_STEP, overrides,
+                                               action_mode=action_mode, **_split_options(options))
         self.scene = scene
         self.num_envs = num_envs
         self.reward_fn = reward_fn
@@ -152,7 +166,7 @@ class NavigationVectorEnv(VectorEnv):
         self.action_space = batch_space(self.single_action_space, num_envs)
         self.step_s = self._native.step_s
         self.num_threads = self._native.num_threads
-        self.metadata = dict(self.metadata, render_fps=1.0 / self.step_s)
+        self.metadata = dict(self.metadata, render_fps=1.0 / self.step_s, autoreset_mode=autoreset_mode)
 
     def reset(self, *, seed: int | list | None = None, options: dict | None = None):
         if seed is None:
@@ -166,7 +180,11 @@ class NavigationVectorEnv(VectorEnv):
         if seed is not None:
             self._np_random, self._np_random_seed = gymnasium.utils.seeding.np_random(
                 seed if isinstance(seed, (int, np.integer)) else None)
-        return self._native.reset(seeds, (options or {}).get("overrides"))
+        options = options or {}
+        mask = options.get("reset_mask")
+        if mask is not None:
+            mask = [bool(m) for m in np.asarray(mask, dtype=bool).reshape(-1)]
+        return self._native.reset(seeds, options.get("overrides"), mask)
 
     def step(self, actions):
         actions = np.ascontiguousarray(actions, dtype=np.float32).reshape(self.action_space.shape)

@@ -211,6 +211,12 @@ class EnvironmentApi(unittest.TestCase):
             campo.gym.save_video(frames, path, fps=10)
             self.assertGreater(path.stat().st_size, 0)
         self.assertIsNone(campo.gym.NavigationEnv(OPEN_FIELD).render())
+        above = campo.gym.NavigationEnv(OPEN_FIELD, render_mode="rgb_array", render_size=(160, 120),
+                                        render_camera="above", render_distance_m=20.0)
+        above.reset(seed=0)
+        self.assertEqual(above.render().shape, (120, 160, 3))
+        with self.assertRaisesRegex(ValueError, "render_camera"):
+            campo.gym.NavigationEnv(OPEN_FIELD, render_mode="rgb_array", render_camera="side")
 
     def test_bad_options_are_refused_with_their_names(self):
         with self.assertRaisesRegex(campo.InputError, "waypoint, velocity, attitude_thrust, rotors"):
@@ -352,6 +358,32 @@ class VectorEnvironment(unittest.TestCase):
             np.testing.assert_array_equal(alone[key], obs[key][0])
         with self.assertRaisesRegex(campo.InputError, "north"):
             campo.gym.NavigationEnv("two_drones_head_on", vehicle="north")
+
+    def test_disabled_autoreset_idles_ended_environments_until_a_masked_reset(self):
+        # Environment 0's episode lasts 0.5 s, environment 1's 1.5 s (per-environment overrides, numpy values).
+        envs = campo.gym.NavigationVectorEnv(OPEN_FIELD, num_envs=2, action_mode="velocity",
+                                             autoreset_mode=gymnasium.vector.AutoresetMode.DISABLED,
+                                             overrides={"/objects/drone/sensors/0/resolution": [8, 8]})
+        self.assertEqual(envs.metadata["autoreset_mode"], gymnasium.vector.AutoresetMode.DISABLED)
+        limits = [{"/world/time_limit_s": np.float64(0.5)}, {"/world/time_limit_s": np.int64(1) + 0.5}]
+        envs.reset(seed=0, options={"overrides": limits})
+        hover = np.zeros((2, 4), np.float32)
+        ended_at = {}
+        for k in range(1, 16):
+            obs, rewards, terminated, truncated, info = envs.step(hover)
+            for i in range(2):
+                if truncated[i]:
+                    ended_at[i] = k
+                if i in ended_at and k > ended_at[i]:  # idle: not stepped, its time where it ended
+                    self.assertFalse(info["_progress_m"][i])
+                    self.assertEqual(rewards[i], 0.0)
+                    self.assertAlmostEqual(info["time_s"][i], 0.5 if i == 0 else 1.5, places=9)
+        self.assertEqual(ended_at, {0: 5, 1: 15})
+        obs, _ = envs.reset(options={"reset_mask": [True, False], "overrides": limits})
+        obs, rewards, terminated, truncated, info = envs.step(hover)
+        self.assertTrue(info["_progress_m"][0])
+        self.assertFalse(info["_progress_m"][1])
+        self.assertAlmostEqual(info["time_s"][0], 0.1, places=9)
 
     def test_observations_are_new_arrays_each_step(self):
         envs = campo.gym.NavigationVectorEnv(OPEN_FIELD, num_envs=2, action_mode="velocity", overrides=self.OVERRIDES)
