@@ -19,7 +19,7 @@ Training forests are drawn from generator seeds below HELD_OUT_SEED; the learned
 evaluated at the end on forests from HELD_OUT_SEED up, which it never saw, against a baseline
 that flies straight at the goal.
 
-    PYTHONPATH=/work/shared/vendor/python:build/python /usr/bin/python3 examples/python/learn_forest_flight.py --out out/learn
+    PYTHONPATH=build/python:../shared/vendor/python /usr/bin/python3 examples/python/learn_forest_flight.py --out out/learn
     ... learn_forest_flight.py --quick --out /tmp/learn_quick     # a smoke run: 2 generations, 4 candidates
 
 Writes into --out: learning_curve.png, flight.mp4 (the learned policy on a held-out forest),
