@@ -22,19 +22,14 @@ import campo
 FIXTURES = pathlib.Path(__file__).resolve().parent / "fixtures"
 OPEN_FIELD = str(FIXTURES / "open_field.json")
 
-if os.environ.get("CAMPO_GYMNASIUM_PATH"):
-    sys.path.append(os.environ["CAMPO_GYMNASIUM_PATH"])
-try:
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from gymnasium_support import GYMNASIUM_ERROR, REQUIRED, needs_gymnasium  # noqa: E402 (this folder, just above)
+
+if GYMNASIUM_ERROR is None:
     import gymnasium
     from gymnasium.utils.env_checker import check_env
 
     import campo.gym
-
-    GYMNASIUM_ERROR = None
-except ImportError as error:
-    GYMNASIUM_ERROR = f"Gymnasium cannot be imported ({error}); pip install 'gymnasium>=1.0' or set CAMPO_GYMNASIUM_PATH"
-
-REQUIRED = os.environ.get("CAMPO_REQUIRE_GYMNASIUM") == "1"
 
 
 class GymnasiumPresent(unittest.TestCase):
@@ -50,10 +45,6 @@ class GymnasiumPresent(unittest.TestCase):
         env = dict(os.environ)
         env["PYTHONPATH"] = os.pathsep.join(p for p in sys.path if p)
         subprocess.run([sys.executable, "-c", code], check=True, env=env)
-
-
-def needs_gymnasium(cls):
-    return unittest.skipIf(GYMNASIUM_ERROR is not None and not REQUIRED, GYMNASIUM_ERROR or "")(cls)
 
 
 def rollout(env, actions, seed):

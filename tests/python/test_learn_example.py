@@ -16,25 +16,12 @@ import unittest
 
 EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "python" / "learn_forest_flight.py"
 
-if os.environ.get("CAMPO_GYMNASIUM_PATH"):
-    sys.path.append(os.environ["CAMPO_GYMNASIUM_PATH"])
-try:
-    import gymnasium  # noqa: F401
-
-    GYMNASIUM_ERROR = None
-except ImportError as error:
-    GYMNASIUM_ERROR = f"Gymnasium cannot be imported ({error}); pip install 'gymnasium>=1.0' or set CAMPO_GYMNASIUM_PATH"
-
-REQUIRED = os.environ.get("CAMPO_REQUIRE_GYMNASIUM") == "1"
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from gymnasium_support import needs_gymnasium  # noqa: E402 (this folder, just above)
 
 
+@needs_gymnasium
 class LearnExampleQuick(unittest.TestCase):
-    def setUp(self):
-        if GYMNASIUM_ERROR is not None:
-            if REQUIRED:
-                self.fail(GYMNASIUM_ERROR + " (CAMPO_REQUIRE_GYMNASIUM=1)")
-            self.skipTest(GYMNASIUM_ERROR)
-
     def run_quick(self, out: pathlib.Path) -> subprocess.CompletedProcess:
         env = dict(os.environ)
         env["PYTHONPATH"] = os.pathsep.join(p for p in sys.path if p)
