@@ -126,7 +126,7 @@ def provenance(argv) -> dict:
                     "hostname": platform.node()},
         "date_utc": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
         "git": git_revision(),
-        "command": " ".join([os.path.basename(sys.executable)] + argv),
+        "command": " ".join([sys.executable, os.path.relpath(os.path.abspath(sys.argv[0]), SOURCE_DIR)] + argv),
         "python": platform.python_version(),
         "numpy": np.__version__,
         "campo_module": campo.__file__,
@@ -270,8 +270,15 @@ def bench_case(resolution, num_envs, args, threads):
 
 
 def ratio_rows(results):
+    """Per case: the ratios of the medians, and the median and range of the ratios round by round (the
+    variants of one round step the same environments through the same states: paired)."""
     by = {(r["resolution"], r["num_envs"], r["variant"]): r for r in results}
     out = []
+
+    def paired(a, b):
+        ratios = [x / y for x, y in zip(a["rates_env_steps_per_s"], b["rates_env_steps_per_s"])]
+        return {"median": statistics.median(ratios), "min": min(ratios), "max": max(ratios)}
+
     for (resolution, n, variant), r in by.items():
         if variant != "vector":
             continue
@@ -280,8 +287,14 @@ def ratio_rows(results):
         out.append({"resolution": resolution, "num_envs": n,
                     "threads_over_1_thread": r["median"] / one["median"],
                     "vector_over_loop": r["median"] / loop["median"],
-                    "vector_1_over_loop": one["median"] / loop["median"]})
+                    "vector_1_over_loop": one["median"] / loop["median"],
+                    "threads_over_1_thread_paired": paired(r, one),
+                    "vector_over_loop_paired": paired(r, loop)})
     return out
+
+
+def fmt_ratio(q):
+    return f"{q['median']:.2f} ({q['min']:.2f}-{q['max']:.2f})"
 
 
 def fmt_rate(r):
@@ -293,8 +306,8 @@ def markdown(report) -> str:
     by = {(r["resolution"], r["num_envs"], r["variant"]): r for r in report["results"]}
     ratios = {(q["resolution"], q["num_envs"]): q for q in report["ratios"]}
     lines = [
-        f"| LIDAR | N | vector, {threads} threads | vector, 1 thread | Python loop | {threads} threads / 1 | "
-        "vector / loop | cores used: vector, 1 thread, loop | rest of the machine, cores (max) | "
+        f"| LIDAR | N | vector, {threads} threads | vector, 1 thread | Python loop | {threads} threads / 1, round by round | "
+        "vector / loop, round by round | cores used: vector, 1 thread, loop | rest of the machine, cores (max); rounds discarded | "
         "episode ends (timed, per variant) |",
         "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |",
     ]
@@ -303,7 +316,7 @@ def markdown(report) -> str:
             v, one, loop = (by[(resolution, n, k)] for k in ("vector", "vector_1", "loop"))
             q = ratios[(resolution, n)]
             lines.append(f"| {resolution} x {resolution} | {n} | {fmt_rate(v)} | {fmt_rate(one)} | {fmt_rate(loop)} | "
-                         f"{q['threads_over_1_thread']:.2f} | {q['vector_over_loop']:.2f} | "
+                         f"{fmt_ratio(q['threads_over_1_thread_paired'])} | {fmt_ratio(q['vector_over_loop_paired'])} | "
                          + ", ".join(f"{statistics.median(x['own_cores']):.2f}" for x in (v, one, loop)) + " | "
                          f"{max(max(x['other_cores']) for x in (v, one, loop)):.2f}; {v['rounds_discarded']} | "
                          f"{v['episode_ends_timed']} |")
