@@ -44,6 +44,11 @@ WorkerPool::~WorkerPool() {
 
 void WorkerPool::run(std::size_t count, const std::function<void(std::size_t)>& task) {
   if (count == 0) return;
+  if (count == 1) {
+    // Nothing to share: run it here, and leave the workers alone (a spinning one would take a core for nothing).
+    task(0);
+    return;
+  }
   {
     const std::lock_guard lock(mutex_);
     task_ = &task;
@@ -53,8 +58,7 @@ void WorkerPool::run(std::size_t count, const std::function<void(std::size_t)>& 
     done_.store(0, std::memory_order_relaxed);
     generation_.fetch_add(1, std::memory_order_release);
   }
-  // One task (or no worker): nobody to share it with, and no worker woken for nothing.
-  if (count > 1 && !workers_.empty()) wake_.notify_all();
+  wake_.notify_all();
   drain();
   if (!spin_until([&] { return done_.load(std::memory_order_acquire) == count; })) {
     std::unique_lock lock(mutex_);

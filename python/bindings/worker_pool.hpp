@@ -4,12 +4,13 @@
 /// when every task has run. Tasks are handed out one by one from a shared
 /// counter, so a slow environment does not hold up the others' threads.
 ///
-/// Between calls a worker spins for a moment (kSpin) before it sleeps, and the
-/// caller spins as long for the last tasks before it sleeps: a sleeping thread
-/// takes tens to hundreds of microseconds to wake (60 us median, 150 us at the
-/// 90th percentile on the 2-vCPU KVM machine of docs/PERFORMANCE.md), as long as
-/// a whole environment step at 64 x 64, and a vector environment steps again
-/// within microseconds of the previous step's return.
+/// A call of one task runs in the caller alone. Between calls a worker spins
+/// for a moment (kSpin) before it sleeps, and the caller spins as long for the
+/// last tasks before it sleeps: a sleeping thread takes tens to hundreds of
+/// microseconds to wake (60 us median, 150 us at the 90th percentile on the
+/// 2-vCPU KVM machine of docs/PERFORMANCE.md), as long as a whole environment
+/// step at 64 x 64, and a vector environment steps again within microseconds
+/// of the previous step's return.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
