@@ -19,8 +19,9 @@ script checks that by comparing each environment's summed reward and episode
 ends across the variants (bit for bit: distinct environments share nothing).
 Episodes that end (a collision, the goal, the time limit) are reset at the next
 step, which counts as a step as in Gymnasium: resets are part of the cost and
-their number is reported. The variants are interleaved repeat by repeat, so a
-burst of load on the machine falls on all three rather than on one.
+their number is reported. The variants are interleaved round by round, each
+round starting with the next one, so a burst of load on the machine falls on
+all three rather than on one, and none always runs first after an idle wait.
 """
 from __future__ import annotations
 
@@ -224,6 +225,7 @@ def bench_case(resolution, num_envs, args, threads):
     kept = {name: [] for name in variants}  # per kept round: (wall_s, own_cores, other_cores, steal_cores)
     discarded = 0
     waited_s = 0.0
+    rounds_run = 0
     while len(kept["vector"]) < args.repeats:
         if args.wait_quiet:
             start = time.monotonic()
@@ -231,7 +233,12 @@ def bench_case(resolution, num_envs, args, threads):
             waited_s += time.monotonic() - start
         block = draw(steps)  # every variant steps these, kept or not, so they stay in step with each other
         round_usage = {}
-        for name, v in variants.items():
+        # Each round starts with the next variant: the first after an idle wait ran up to 10% slower.
+        names = list(variants)
+        shift = rounds_run % len(names)
+        rounds_run += 1
+        for name in names[shift:] + names[:shift]:
+            v = variants[name]
             with Usage() as u:
                 for a in block:
                     v.step(a)
