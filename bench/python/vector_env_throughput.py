@@ -233,7 +233,7 @@ def bench_case(resolution, num_envs, args, threads):
             waited_s += time.monotonic() - start
         block = draw(steps)  # every variant steps these, kept or not, so they stay in step with each other
         round_usage = {}
-        # Each round starts with the next variant: the first after an idle wait ran up to 10% slower.
+        # Each round starts with the next variant, so that none always runs first after the idle wait.
         names = list(variants)
         shift = rounds_run % len(names)
         rounds_run += 1
