@@ -2,8 +2,8 @@
 prints its table and writes its JSON with provenance, every case and variant measured with a rate > 0, and
 the three variants did the same simulated work. No timing targets: rates depend on the machine and its load.
 
-Gymnasium as tests/python/test_gym.py finds it: installed, else CAMPO_GYMNASIUM_PATH; without either the test
-is skipped with the reason, unless CAMPO_REQUIRE_GYMNASIUM=1 (.ci/run), where that is a failure."""
+Gymnasium as gymnasium_support finds it: installed, else CAMPO_GYMNASIUM_PATH; without either the test is
+skipped with the reason, unless CAMPO_REQUIRE_GYMNASIUM=1 (.ci/run), where that is a failure."""
 import json
 import os
 import pathlib
@@ -12,21 +12,13 @@ import sys
 import tempfile
 import unittest
 
-SCRIPT = pathlib.Path(__file__).resolve().parent / "vector_env_throughput.py"
+SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "bench" / "python" / "vector_env_throughput.py"
 
-if os.environ.get("CAMPO_GYMNASIUM_PATH"):
-    sys.path.append(os.environ["CAMPO_GYMNASIUM_PATH"])
-try:
-    import gymnasium  # noqa: F401
-
-    GYMNASIUM_ERROR = None
-except ImportError as error:
-    GYMNASIUM_ERROR = f"Gymnasium cannot be imported ({error}); pip install 'gymnasium>=1.0' or set CAMPO_GYMNASIUM_PATH"
-    if os.environ.get("CAMPO_REQUIRE_GYMNASIUM") == "1":
-        raise ImportError(GYMNASIUM_ERROR + " (CAMPO_REQUIRE_GYMNASIUM=1)") from error
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+from gymnasium_support import needs_gymnasium  # noqa: E402 (this folder, just above)
 
 
-@unittest.skipIf(GYMNASIUM_ERROR is not None, GYMNASIUM_ERROR)
+@needs_gymnasium
 class QuickRun(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
