@@ -19,9 +19,14 @@
 #include "campo/scene_loader.hpp"
 #include "vehicles/quadrotor.hpp"
 #include "vehicles/rover.hpp"
+#include "tests/vehicles/vehicle_test_support.hpp"
 
 namespace campo {
 namespace {
+
+using test::parse;
+using test::at;
+using test::wrap;
 
 using ::testing::HasSubstr;
 
@@ -30,19 +35,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 const char* kGround = R"j({"objects": [{"alias": "ground", "type": "plane"}]})j";
-
-Scene parse(const std::string& text) {
-  return parse_scene(nlohmann::json::parse(text), "inline.json", std::filesystem::temp_directory_path());
-}
-
-Eigen::Isometry3d at(const Eigen::Vector3d& p, double yaw = 0.0) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  t.translation() = p;
-  return t;
-}
-
-double wrap(double angle) { return std::remainder(angle, 2.0 * kPi); }
 
 // A quadrotor flown as the episode loop flies it: the command re-sent at the
 // control rate, pre_step and a world step every physics step.

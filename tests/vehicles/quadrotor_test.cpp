@@ -13,9 +13,14 @@
 
 #include "campo/json_reader.hpp"
 #include "campo/scene_loader.hpp"
+#include "tests/vehicles/vehicle_test_support.hpp"
 
 namespace campo {
 namespace {
+
+using test::parse;
+using test::at;
+using test::wrap;
 
 using ::testing::HasSubstr;
 
@@ -26,19 +31,6 @@ const char* kGround = R"j({"objects": [{"alias": "ground", "type": "plane"}]})j"
 // A ground plane and a 4 m wide wall whose near face is at x = 3.
 const char* kWall = R"j({"objects": [{"alias": "ground", "type": "plane"},
   {"alias": "wall", "type": "cuboid", "size_m": [0.2, 4, 4], "pose": {"position_m": [3.1, 0, 2]}}]})j";
-
-Scene parse(const std::string& text) {
-  return parse_scene(nlohmann::json::parse(text), "inline.json", std::filesystem::temp_directory_path());
-}
-
-Eigen::Isometry3d at(const Eigen::Vector3d& p, double yaw = 0.0) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  t.translation() = p;
-  return t;
-}
-
-double wrap(double angle) { return std::remainder(angle, 2.0 * kPi); }
 
 // A quadrotor in a small world, flown as the episode loop flies it: the
 // command re-sent at the control rate, pre_step and a world step every tick.

@@ -11,17 +11,16 @@
 #include <gtest/gtest.h>
 
 #include "campo/scene_loader.hpp"
+#include "tests/vehicles/vehicle_test_support.hpp"
 
 namespace campo {
 namespace {
 
+using test::parse;
+
 using ::testing::HasSubstr;
 
 constexpr double kDeg = std::numbers::pi / 180.0;
-
-Scene parse(const std::string& text) {
-  return parse_scene(nlohmann::json::parse(text), "inline.json", std::filesystem::temp_directory_path());
-}
 
 const char* kFlat = R"j({"objects": [{"alias": "ground", "type": "plane"}]})j";
 
