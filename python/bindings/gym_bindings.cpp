@@ -5,6 +5,7 @@
 #include "python/bindings/gym_bindings.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <optional>
@@ -69,8 +70,9 @@ NavigationOptions options_of(const py::dict& kwargs) {
     const std::string key = py::str(item.first).cast<std::string>();
     const py::handle value = item.second;
     auto number = [&]() {
-      if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value)) {
-        throw InputError(key, "", "a number, got " + py::repr(value).cast<std::string>());
+      if ((!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value)) ||
+          !std::isfinite(value.cast<double>())) {
+        throw InputError(key, "", "a finite number, got " + py::repr(value).cast<std::string>());
       }
       return value.cast<double>();
     };

@@ -216,6 +216,8 @@ class EnvironmentApi(unittest.TestCase):
             campo.gym.NavigationEnv(OPEN_FIELD, action_mode="fly")
         with self.assertRaisesRegex(campo.InputError, "goal_radius_m"):
             campo.gym.NavigationEnv(OPEN_FIELD, goal_radius_m=0)
+        with self.assertRaisesRegex(campo.InputError, "collision_penalty"):
+            campo.gym.NavigationEnv(OPEN_FIELD, collision_penalty=float("nan"))
         with self.assertRaisesRegex(campo.InputError, "speed_of_light"):
             campo.gym.NavigationEnv(OPEN_FIELD, speed_of_light=1)
         env = campo.gym.NavigationEnv(OPEN_FIELD, action_mode="velocity")
