@@ -207,7 +207,6 @@ void NavigationEnv::reset(std::optional<std::uint64_t> seed, const std::vector<S
     planners_.push_back(v == vehicle_index_ ? nullptr : create_planner(def.planner, {def.type, &run.scene, &def}));
   }
   waypoint_ = 0;
-  collisions_ = 0;
   trajectory_m_.assign(1, episode_->vehicle(vehicle_index_).state().position_m);
 }
 
@@ -246,7 +245,7 @@ double NavigationEnv::distance_to_waypoint() const {
   const std::vector<Waypoint>& mission = scene().vehicles.at(vehicle_index_).mission;
   const Eigen::Vector3d position = episode_->vehicle(vehicle_index_).state().position_m;
   if (waypoint_ >= mission.size()) return std::numeric_limits<double>::infinity();
-  Eigen::Vector3d d = mission.at(std::min(waypoint_, mission.size() - 1)).position_m - position;
+  Eigen::Vector3d d = mission[waypoint_].position_m - position;
   if (vehicle_type() == VehicleType::rover) d.z() = 0.0;  // a rover's waypoints are on the ground plane
   return d.norm();
 }

@@ -163,7 +163,6 @@ class NavigationEnv {
   std::optional<Episode> episode_;
   std::vector<std::unique_ptr<Planner>> planners_;  // the other vehicles', null for the driven one
   std::size_t waypoint_ = 0;
-  int collisions_ = 0;
   std::vector<Eigen::Vector3d> trajectory_m_;
   // Vehicle limits the actions scale to.
   std::array<double, 2> rotor_range_radps_{};
