@@ -18,6 +18,7 @@
 #include "metrics/mission_metrics.hpp"
 #include "metrics/planner_metrics.hpp"
 #include "run/event_log.hpp"
+#include "sensors/imu.hpp"
 
 namespace campo {
 
@@ -40,6 +41,20 @@ std::int64_t period_steps(double rate_hz, double dt) {
 struct MountedSensor {
   std::unique_ptr<RangeSensor> sensor;
   std::shared_ptr<RangeScan> scan;  // shared with the readings (SensorReading::scan)
+  std::int64_t period;
+};
+
+// An IMU: its error model, its period and the carrier's state at its previous sample.
+struct MountedImu {
+  ImuErrorModel errors;
+  std::int64_t period;
+  VehicleState before;
+  bool sampled = false;
+};
+
+struct MountedCamera {
+  std::unique_ptr<RgbCamera> camera;
+  std::shared_ptr<RgbImage> image;  // shared with the readings (ImageReading::image)
   std::int64_t period;
 };
 
@@ -108,6 +123,10 @@ struct VehicleLoop {
   StateEstimator estimator;
   std::vector<MountedSensor> sensors;
   std::vector<SensorReading> readings;
+  std::vector<MountedImu> imus;
+  std::vector<ImuReading> imu_readings;
+  std::vector<MountedCamera> cameras;
+  std::vector<ImageReading> image_readings;
   const Eigen::Vector3d start;
   Eigen::Vector3d previous;
   // Where the vehicle was when the planner reported each mission waypoint reached,
@@ -161,6 +180,23 @@ struct Episode::Loop {
       for (std::size_t i = 0; i < v->sensors.size(); ++i) {
         v->readings[i] = {v->def.sensors[i].alias, &v->def.sensors[i].range, nullptr, false};
       }
+      for (std::size_t i = 0; i < v->def.imus.size(); ++i) {
+        const ImuDef& imu = v->def.imus[i];
+        const std::int64_t period = period_steps(imu.imu.rate_hz > 0.0 ? imu.imu.rate_hz : scene.world.control_rate_hz, dt);
+        const std::uint64_t stream = Rng::derive_seed(Rng::derive_seed(seed, 0x1a0'0000ULL + i), imu.imu.seed);
+        v->imus.push_back({ImuErrorModel(imu.imu, static_cast<double>(period) * dt, stream), period, {}, false});
+        v->imu_readings.push_back({imu.alias, &imu.imu});
+      }
+      if (!v->def.rgb_cameras.empty() && !options.make_camera) {
+        throw std::invalid_argument("vehicle '" + v->def.alias + "' has a colour camera ('" +
+                                    v->def.rgb_cameras.front().alias +
+                                    "') but the episode has no camera factory (EpisodeOptions::make_camera)");
+      }
+      for (const RgbCameraDef& camera : v->def.rgb_cameras) {
+        const double rate = camera.camera.rate_hz > 0.0 ? camera.camera.rate_hz : scene.world.sensor_rate_hz;
+        v->cameras.push_back({options.make_camera(sensed, camera, seed), std::make_shared<RgbImage>(), period_steps(rate, dt)});
+        v->image_readings.push_back({camera.alias, &camera.camera, nullptr, false});
+      }
     }
   }
 
@@ -190,6 +226,38 @@ struct Episode::Loop {
         v.readings[i].fresh = true;
         if (options.on_scan) options.on_scan(v.index, i, *s.scan);
       }
+      for (std::size_t i = 0; i < v.imus.size(); ++i) {
+        MountedImu& imu = v.imus[i];
+        if (k % imu.period != 0) continue;
+        const VehicleState now = v.vehicle->state();
+        // The first sample has no previous state: the carrier counts as unaccelerated.
+        const VehicleState& before = imu.sampled ? imu.before : now;
+        const ImuSample sample = imu.errors.corrupt(ideal_imu_sample(
+            before, now, v.def.imus[i].imu.mount, static_cast<double>(imu.period) * dt, scene.world.gravity_mps2));
+        ImuReading& reading = v.imu_readings[i];
+        reading.time_s = t;
+        reading.specific_force_mps2 = sample.specific_force_mps2;
+        reading.angular_rate_radps = sample.angular_rate_radps;
+        reading.valid = true;
+        reading.fresh = true;
+        imu.before = now;
+        imu.sampled = true;
+      }
+      for (std::size_t i = 0; i < v.cameras.size(); ++i) {
+        MountedCamera& c = v.cameras[i];
+        if (k % c.period != 0) continue;
+        if (!poses_read) read_body_poses();
+        poses_read = true;
+        const std::size_t first = seen_scene ? proxy_first[v.index] : 0;
+        const std::size_t count = seen_scene ? proxy_count[v.index] : 0;
+        for (std::size_t b = 0; b < count; ++b) std::swap(body_poses[first + b], parked[b]);
+        c.camera->render(v.vehicle->state().pose() * to_isometry(v.def.rgb_cameras[i].camera.mount), t, body_poses,
+                         *c.image);
+        for (std::size_t b = 0; b < count; ++b) std::swap(body_poses[first + b], parked[b]);
+        v.image_readings[i].image = c.image;
+        v.image_readings[i].fresh = true;
+        if (options.on_image) options.on_image(v.index, i, *c.image);
+      }
     }
   }
 
@@ -208,7 +276,8 @@ struct Episode::Loop {
     v.truth = v.vehicle->state();
     const StateError& error = v.estimator.error_at(t);
     v.vehicle->set_estimation_error(error);
-    v.observation = Observation{t, v.def.type, estimated(v.truth, error), v.vehicle->stable(), v.readings, v.def.mission};
+    v.observation = Observation{t,          v.def.type,     estimated(v.truth, error), v.vehicle->stable(), v.readings,
+                                v.def.mission, v.imu_readings, v.image_readings};
   }
 
   // The rest of a control tick, after the decision (the vehicle has taken its command): records it.
@@ -216,6 +285,8 @@ struct Episode::Loop {
     const double t = v.observation.time_s;
     if (options.on_plan) options.on_plan(v.index, v.observation, plan);
     for (auto& r : v.readings) r.fresh = false;
+    for (auto& r : v.imu_readings) r.fresh = false;
+    for (auto& r : v.image_readings) r.fresh = false;
     EpisodeMetrics& m = v.result.metrics;
     ++m.planner_calls;
     v.planner_ms_total += planner_ms;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 #include "scene/geodesy.hpp"
 
@@ -10,13 +11,14 @@ namespace campo {
 
 namespace {
 
-constexpr std::array<std::pair<ShapeType, std::string_view>, 6> kShapeNames{{
+constexpr std::array<std::pair<ShapeType, std::string_view>, 7> kShapeNames{{
     {ShapeType::cuboid, "cuboid"},
     {ShapeType::cylinder, "cylinder"},
     {ShapeType::sphere, "sphere"},
     {ShapeType::cone, "cone"},
     {ShapeType::plane, "plane"},
     {ShapeType::heightfield, "heightfield"},
+    {ShapeType::mesh, "mesh"},
 }};
 
 constexpr std::array<std::pair<VehicleType, std::string_view>, 2> kVehicleNames{{
@@ -56,6 +58,18 @@ std::optional<ShapeType> shape_type_from_string(std::string_view name) {
   return value_of(kShapeNames, name);
 }
 std::string_view to_string(VehicleType type) { return name_of(kVehicleNames, type); }
+std::string_view to_string(GustModel model) {
+  switch (model) {
+    case GustModel::none: return "none";
+    case GustModel::one_minus_cos: return "one_minus_cos";
+    case GustModel::dryden: return "dryden";
+  }
+  return "?";
+}
+Eigen::Vector3d WindConfig::steady_velocity_mps() const {
+  const double a = direction_deg * (std::numbers::pi / 180.0);
+  return {speed_mps * std::cos(a), speed_mps * std::sin(a), vertical_mps};
+}
 std::string_view to_string(EndRule rule) { return rule == EndRule::first_failure ? "first_failure" : "all"; }
 std::optional<VehicleType> vehicle_type_from_string(std::string_view name) {
   return value_of(kVehicleNames, name);

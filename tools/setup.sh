@@ -18,6 +18,9 @@ packages=(
   libbullet-dev libeigen3-dev libopencv-dev libosmesa6-dev libcli11-dev
   nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev libembree-dev
   libmuparser-dev libssl-dev liboctomap-dev libnanoflann-dev libpng-dev
+  # Mesh obstacles (OBJ, STL, PLY, glTF) through assimp and DEM heightfields (GeoTIFF) through GDAL,
+  # both loaded only when a scene uses them; gdal-bin's tools make the tests' GeoTIFFs.
+  libassimp-dev libgdal-dev gdal-bin
   # Figures (render/, sweep/chart): cairo draws PNG, PDF and SVG from the same calls, with
   # DejaVu Sans as the figures' font; the tests read the PDF and SVG back with poppler's
   # pdftotext/pdftoppm and librsvg's rsvg-convert.

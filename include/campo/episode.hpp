@@ -17,6 +17,7 @@
 #include "campo/episode_record.hpp"
 #include "campo/planner.hpp"
 #include "campo/range_sensor.hpp"
+#include "campo/rgb_camera.hpp"
 #include "campo/scene.hpp"
 #include "campo/vehicle.hpp"
 #include "campo/world.hpp"
@@ -58,6 +59,11 @@ struct EpisodeOptions {
   /// Called after every scan with the vehicle's and the sensor's index and the fresh scan
   /// (e.g. to record depth maps).
   std::function<void(std::size_t vehicle, std::size_t sensor, const RangeScan& scan)> on_scan;
+  /// Builds the vehicles' colour cameras (sensor_factory.hpp's rgb_camera_factory); a scene
+  /// with an "rgb_camera" and no factory is refused with std::invalid_argument.
+  RgbCameraFactory make_camera;
+  /// Called after every image with the vehicle's and the camera's index (in VehicleDef::rgb_cameras).
+  std::function<void(std::size_t vehicle, std::size_t camera, const RgbImage& image)> on_image;
   /// Called after every planner call with the vehicle's index and what its
   /// planner saw and decided (e.g. to record the depth map a replanning used).
   std::function<void(std::size_t vehicle, const Observation& observation, const PlanResult& plan)> on_plan;

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "campo/range_scan.hpp"
+#include "campo/rgb_image.hpp"
 #include "campo/scene.hpp"
 #include "campo/vehicle.hpp"
 
@@ -32,6 +33,26 @@ struct SensorReading {
   bool fresh = false;               ///< taken since the previous observation
 };
 
+/// Latest sample of one IMU: what it measured at time_s, in its own frame.
+struct ImuReading {
+  std::string_view alias;
+  const ImuConfig* config = nullptr;
+  double time_s = 0.0;
+  Eigen::Vector3d specific_force_mps2 = Eigen::Vector3d::Zero();  ///< accelerometer: a - g (+g up at rest)
+  Eigen::Vector3d angular_rate_radps = Eigen::Vector3d::Zero();    ///< gyroscope
+  bool valid = false;  ///< false before the first sample
+  bool fresh = false;  ///< taken since the previous observation
+};
+
+/// Latest image of one colour camera.
+struct ImageReading {
+  std::string_view alias;
+  const RgbCameraConfig* config = nullptr;
+  /// Null before the first image; shared like SensorReading::scan.
+  std::shared_ptr<const RgbImage> image;
+  bool fresh = false;
+};
+
 struct Observation {
   double time_s = 0.0;
   VehicleType vehicle = VehicleType::quadrotor;
@@ -39,6 +60,8 @@ struct Observation {
   bool stable = false;                   ///< speeds below the vehicle's thresholds
   std::span<const SensorReading> sensors;
   std::span<const Waypoint> mission;
+  std::span<const ImuReading> imus;      ///< the vehicle's IMUs, in scene order
+  std::span<const ImageReading> images;  ///< its colour cameras, in scene order
 
   /// The reading of the sensor named `alias`, or the first one when `alias`
   /// is empty; null when there is none.

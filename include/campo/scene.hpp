@@ -2,6 +2,7 @@
 /// The validated, immutable description of a world: what a scene file says,
 /// with generators expanded and every pose resolved to the world frame.
 /// Plain data; no Bullet. Built by load_scene() (scene_loader.hpp).
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -26,7 +27,7 @@ struct Color {
   double b = 0.6;
 };
 
-enum class ShapeType { cuboid, cylinder, sphere, cone, plane, heightfield };
+enum class ShapeType { cuboid, cylinder, sphere, cone, plane, heightfield, mesh };
 
 /// One name table for both directions (parsing and printing).
 std::string_view to_string(ShapeType type);
@@ -53,11 +54,28 @@ struct HeightGrid {
   std::optional<double> height_at(double x, double y) const;
 };
 
+/// A triangle mesh read from a file (scene/mesh_sources.hpp), in its shape's
+/// local frame: the file's vertices times the object's scale, the file's
+/// origin at the shape's pose. Triangles are counter-clockwise seen from
+/// outside when the file says so; open or inconsistent meshes are kept (the
+/// ray caster and the depth camera see both sides of every triangle).
+struct TriangleMesh {
+  std::vector<Eigen::Vector3d> vertices_m;                ///< local frame, metres
+  std::vector<std::array<std::uint32_t, 3>> triangles;    ///< indices into vertices_m
+  Eigen::AlignedBox3d bounds_m;                           ///< of vertices_m
+  /// Every edge is shared by exactly two triangles (a closed surface): only
+  /// then has the mesh an inside (clearance may go negative, see docs).
+  bool closed = false;
+  std::string source_path;    ///< file it was read from
+  std::string source_sha256;  ///< hash of the file bytes, for provenance
+};
+
 /// A rigid shape in the world frame. Shapes are centred on their pose:
 /// cuboid (size_m = full extents), cylinder and cone (axis along local z,
 /// radius_m, height_m; the cone's apex at +z), sphere (radius_m), plane
 /// (local z = 0, normal +z, infinite), heightfield (terrain, see HeightGrid;
-/// its pose has no roll or pitch).
+/// its pose has no roll or pitch), mesh (triangles of a file, see
+/// TriangleMesh; a dynamic mesh collides as its convex hull).
 struct Shape {
   std::string alias;
   ShapeType type = ShapeType::cuboid;
@@ -66,6 +84,7 @@ struct Shape {
   double radius_m = 0.5;                                    ///< cylinder, cone, sphere
   double height_m = 1.0;                                    ///< cylinder, cone
   std::shared_ptr<const HeightGrid> terrain;                ///< heightfield only
+  std::shared_ptr<const TriangleMesh> mesh;                 ///< mesh only
   bool is_static = true;     ///< false: a dynamic body of mass_kg
   double mass_kg = 0.0;      ///< used when !is_static
   double friction = 0.8;     ///< Coulomb friction coefficient
@@ -101,6 +120,47 @@ struct SensorDef {
   RangeSensorConfig range;  ///< kind, angular grid, ranges, mount, rate
 };
 
+/// An inertial measurement unit (a sensor block of "type": "imu"): specific
+/// force and angular rate at its mount, in its frame, with the usual
+/// datasheet imperfections per axis (sensors/imu.hpp has the error model).
+struct ImuConfig {
+  double rate_hz = 0.0;  ///< samples per second; 0 = the world's control rate; divides the physics rate
+  Pose mount;            ///< relative to the carrier's body frame
+  // Accelerometer.
+  double accel_noise_density_mps2_per_sqrt_hz = 0.0;   ///< white noise (velocity random walk)
+  double accel_bias_instability_mps2 = 0.0;            ///< flicker floor of the Allan deviation
+  double accel_random_walk_mps3_per_sqrt_hz = 0.0;     ///< bias random walk
+  // Gyroscope.
+  double gyro_noise_density_radps_per_sqrt_hz = 0.0;   ///< white noise (angle random walk)
+  double gyro_bias_instability_radps = 0.0;            ///< flicker floor of the Allan deviation
+  double gyro_random_walk_radps2_per_sqrt_hz = 0.0;    ///< bias random walk
+  double bias_correlation_time_s = 100.0;              ///< of the bias-instability process (Gauss-Markov)
+  std::uint64_t seed = 0;  ///< noise stream, combined with the world seed
+};
+struct ImuDef {
+  std::string alias;
+  ImuConfig imu;
+};
+
+/// A colour camera (a sensor block of "type": "rgb_camera"), rendered
+/// off-screen like the depth camera: pinhole, rows x cols pixels, 8-bit RGB.
+struct RgbCameraConfig {
+  double fov_h_deg = 90.0;     ///< horizontal field of view, (0, 170]
+  int cols = 320;              ///< pixels across, [1, 4096]
+  int rows = 240;              ///< pixels down, [1, 4096]; the vertical field follows from the aspect
+  double min_range_m = 0.05;   ///< near clip plane
+  double max_range_m = 200.0;  ///< far clip plane; beyond it the sky
+  double rate_hz = 0.0;        ///< images per second; 0 = the world's sensor rate
+  Pose mount;                  ///< relative to the carrier's body frame (x forward, y left, z up)
+  Color sky{0.62, 0.75, 0.88}; ///< background colour
+  std::uint64_t seed = 0;      ///< pixel noise stream, combined with the world seed
+  double noise_stddev = 0.0;   ///< Gaussian pixel noise, in units of full scale [0, 1]
+};
+struct RgbCameraDef {
+  std::string alias;
+  RgbCameraConfig camera;
+};
+
 /// A mission waypoint, resolved to world coordinates at load time.
 struct Waypoint {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
@@ -125,7 +185,9 @@ struct VehicleDef {
   std::string alias;
   VehicleType type = VehicleType::quadrotor;
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< start pose, world frame
-  std::vector<SensorDef> sensors;
+  std::vector<SensorDef> sensors;  ///< range sensors (LIDARs, depth cameras), in scene order
+  std::vector<ImuDef> imus;        ///< "imu" sensor blocks, in scene order
+  std::vector<RgbCameraDef> rgb_cameras;  ///< "rgb_camera" sensor blocks, in scene order
   ParamsBlock params;  ///< overrides of the vehicle preset, checked by vehicles/
   PlannerSpec planner;
   std::vector<Waypoint> mission;  ///< ordered; the last one is the goal
@@ -158,6 +220,31 @@ struct GeoReference {
 Eigen::Vector3d geodetic_to_local(const GeoReference& reference, double latitude_deg, double longitude_deg,
                                   double altitude_m);
 
+/// Gust added to the steady wind (physics/wind.hpp computes the air's velocity).
+enum class GustModel : std::uint8_t {
+  none,
+  one_minus_cos,  ///< a discrete gust: amplitude * (1 - cos(2 pi (t - start) / duration)) / 2 within the gust
+  dryden,         ///< continuous turbulence: Dryden spectra (MIL-F-8785C), seeded
+};
+std::string_view to_string(GustModel model);
+
+/// The world's "wind" block: the velocity of the air, world frame. Vehicles
+/// feel it through their drag (docs/vehicles.md).
+struct WindConfig {
+  double speed_mps = 0.0;        ///< steady horizontal wind speed, [0, 100]
+  double direction_deg = 0.0;    ///< where the steady wind blows toward, CCW from +x (east), degrees
+  double vertical_mps = 0.0;     ///< steady vertical component (updraft > 0), [-20, 20]
+  GustModel gust = GustModel::none;
+  Eigen::Vector3d gust_amplitude_mps = Eigen::Vector3d::Zero();  ///< 1-cos: peak added velocity, world frame
+  double gust_start_s = 0.0;     ///< 1-cos: when the gust begins
+  double gust_duration_s = 2.0;  ///< 1-cos: how long it lasts, > 0
+  double turbulence_intensity_mps = 0.0;  ///< Dryden: standard deviation of each component, [0, 20]
+  double turbulence_length_m = 50.0;      ///< Dryden: length scale, > 0
+  std::uint64_t seed = 0;        ///< turbulence stream, combined with the world seed
+  /// The steady part as a vector, world frame.
+  Eigen::Vector3d steady_velocity_mps() const;
+};
+
 struct WorldConfig {
   Eigen::Vector3d gravity_mps2{0.0, 0.0, -9.81};
   double physics_step_s = 1.0 / 240.0;  ///< fixed Bullet step
@@ -165,6 +252,7 @@ struct WorldConfig {
   double sensor_rate_hz = 10.0;         ///< default rate of sensors that set none; divides 1/physics_step_s
   double time_limit_s = 600.0;          ///< an episode ends here with "timeout"
   GeoReference geo_reference;
+  WindConfig wind;                      ///< none by default
   std::uint64_t seed = 0;               ///< master seed of everything random in a run, [0, 2^64-1]
 };
 

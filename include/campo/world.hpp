@@ -112,6 +112,10 @@ class World {
   /// Advances by exactly one fixed physics step; movers follow their paths.
   void step();
 
+  /// The velocity of the air at `position_m` now, world frame: the scene's
+  /// steady wind plus its gusts (WorldConfig::wind, physics/wind.hpp).
+  Eigen::Vector3d wind_mps(const Eigen::Vector3d& position_m) const;
+
   /// Terrain height at world (x, y); nullopt where there is no ground.
   std::optional<double> terrain_height(double x_m, double y_m) const;
 
