@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 
 #include <Eigen/Geometry>
 
@@ -23,7 +24,60 @@ struct MeshSize {
   std::size_t triangles = 0;
 };
 
-MeshSize mesh_size(const Shape& shape, int n) {
+// How a TriangleMesh's triangles are drawn. A closed mesh whose every edge
+// runs once each way between its two triangles has an outside: its triangles
+// are drawn once, turned (per connected piece) so that they run
+// counter-clockwise seen from outside, and back faces may be culled. Any
+// other mesh (open, or wound inconsistently) is drawn from both sides, as
+// the ray caster sees it: each triangle twice, the second reversed.
+struct MeshFacing {
+  bool two_sided = true;
+  std::vector<bool> flip;  // per triangle, when one-sided: reverse its winding
+};
+
+// Union-find over vertex indices, for the connected pieces of a mesh.
+std::uint32_t root(std::vector<std::uint32_t>& parent, std::uint32_t i) {
+  while (parent[i] != i) i = parent[i] = parent[parent[i]];
+  return i;
+}
+
+MeshFacing mesh_facing(const TriangleMesh& mesh) {
+  MeshFacing facing;
+  const std::size_t count = mesh.triangles.size();
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * count);
+  const auto edge = [](std::uint32_t a, std::uint32_t b) { return (std::uint64_t{a} << 32) | b; };
+  for (const auto& t : mesh.triangles) {
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) return facing;
+    for (int k = 0; k < 3; ++k) edges.push_back(edge(t[k], t[(k + 1) % 3]));
+  }
+  std::sort(edges.begin(), edges.end());
+  // Closed and consistent: no directed edge twice, and every one has its reverse.
+  if (std::adjacent_find(edges.begin(), edges.end()) != edges.end()) return facing;
+  for (const std::uint64_t e : edges) {
+    if (!std::binary_search(edges.begin(), edges.end(), (e << 32) | (e >> 32))) return facing;
+  }
+  // Each piece faces out when its signed volume (about the bounds' centre, for precision) is positive.
+  std::vector<std::uint32_t> parent(mesh.vertices_m.size());
+  for (std::uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  for (const auto& t : mesh.triangles) {
+    parent[root(parent, t[1])] = root(parent, t[0]);
+    parent[root(parent, t[2])] = root(parent, t[0]);
+  }
+  const Eigen::Vector3d centre = mesh.bounds_m.center();
+  std::unordered_map<std::uint32_t, double> volume;
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d a = mesh.vertices_m[t[0]] - centre, b = mesh.vertices_m[t[1]] - centre,
+                          c = mesh.vertices_m[t[2]] - centre;
+    volume[root(parent, t[0])] += a.dot(b.cross(c));
+  }
+  facing.two_sided = false;
+  facing.flip.resize(count);
+  for (std::size_t i = 0; i < count; ++i) facing.flip[i] = volume[root(parent, mesh.triangles[i][0])] < 0.0;
+  return facing;
+}
+
+MeshSize mesh_size(const Shape& shape, int n, const MeshFacing* facing) {
   const auto segments = static_cast<std::size_t>(n);
   switch (shape.type) {
     case ShapeType::cuboid:
@@ -44,6 +98,11 @@ MeshSize mesh_size(const Shape& shape, int n) {
       const auto cols = static_cast<std::size_t>(shape.terrain->cols);
       const auto rows = static_cast<std::size_t>(shape.terrain->rows);
       return {cols * rows, 2 * (cols - 1) * (rows - 1)};
+    }
+    case ShapeType::mesh: {
+      // Flat shading: three vertices of its own per drawn triangle.
+      const std::size_t drawn = (facing->two_sided ? 2 : 1) * shape.mesh->triangles.size();
+      return {3 * drawn, drawn};
     }
   }
   return {};
@@ -224,8 +283,27 @@ void add_heightfield(PartWriter& w, const HeightGrid& g) {
   }
 }
 
+// A file's triangles with flat normals; degenerate ones (no area, no normal) are left out.
+void add_triangle_mesh(PartWriter& w, const TriangleMesh& mesh, const MeshFacing& facing) {
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    Eigen::Vector3d a = mesh.vertices_m[t[0]], b = mesh.vertices_m[t[1]], c = mesh.vertices_m[t[2]];
+    if (!facing.two_sided && facing.flip[i]) std::swap(b, c);
+    const Eigen::Vector3d cross = (b - a).cross(c - a);
+    const double norm = cross.norm();
+    if (!(norm > 0.0) || !std::isfinite(norm)) continue;
+    const Eigen::Vector3d n = cross / norm;
+    const std::uint32_t ia = w.vertex(a, n), ib = w.vertex(b, n), ic = w.vertex(c, n);
+    w.triangle(ia, ib, ic);
+    if (facing.two_sided) {
+      const std::uint32_t ja = w.vertex(a, -n), jb = w.vertex(b, -n), jc = w.vertex(c, -n);
+      w.triangle(ja, jc, jb);
+    }
+  }
+}
+
 void add_shape(SceneMesh& mesh, const Shape& shape, const Eigen::Isometry3d& placement,
-               const MeshOptions& options) {
+               const MeshOptions& options, const MeshFacing* facing) {
   PartWriter w(mesh, placement);
   const int n = options.round_segments;
   switch (shape.type) {
@@ -247,6 +325,9 @@ void add_shape(SceneMesh& mesh, const Shape& shape, const Eigen::Isometry3d& pla
     case ShapeType::heightfield:
       add_heightfield(w, *shape.terrain);
       break;
+    case ShapeType::mesh:
+      add_triangle_mesh(w, *shape.mesh, *facing);
+      break;
   }
 }
 
@@ -260,9 +341,17 @@ SceneMesh build_scene_mesh(const Scene& scene, const MeshOptions& options) {
   if (!(options.plane_half_extent_m > 0.0)) {
     throw std::invalid_argument("build_scene_mesh: plane_half_extent_m must be > 0");
   }
+  // How each distinct TriangleMesh is drawn, worked out once (shapes may share one).
+  std::unordered_map<const TriangleMesh*, MeshFacing> facings;
+  const auto facing_of = [&](const Shape& shape) -> const MeshFacing* {
+    if (shape.type != ShapeType::mesh) return nullptr;
+    auto it = facings.find(shape.mesh.get());
+    if (it == facings.end()) it = facings.emplace(shape.mesh.get(), mesh_facing(*shape.mesh)).first;
+    return &it->second;
+  };
   MeshSize total;
   const auto count = [&](const Shape& shape) {
-    const MeshSize s = mesh_size(shape, options.round_segments);
+    const MeshSize s = mesh_size(shape, options.round_segments, facing_of(shape));
     total.vertices += s.vertices;
     total.triangles += s.triangles;
   };
@@ -280,7 +369,7 @@ SceneMesh build_scene_mesh(const Scene& scene, const MeshOptions& options) {
   const auto add_part = [&](std::vector<MeshPart>& parts, const Shape& shape, int id,
                             const Eigen::Isometry3d& placement) {
     const auto first = static_cast<std::uint32_t>(mesh.indices.size());
-    add_shape(mesh, shape, placement, options);
+    add_shape(mesh, shape, placement, options, facing_of(shape));
     parts.push_back({first, static_cast<std::uint32_t>(mesh.indices.size()) - first, shape.color, id});
   };
   for (std::size_t i = 0; i < scene.shapes.size(); ++i) {

@@ -3,7 +3,9 @@
 /// that draws or renders it (the OSMesa depth camera, colour snapshots).
 /// Heightfields use exactly the triangles Bullet collides with; boxes are
 /// exact; round shapes are tessellated finely enough for centimetre agreement
-/// with the ray-cast LIDAR.
+/// with the ray-cast LIDAR; mesh shapes are their own triangles, flat-shaded,
+/// drawn once facing out when closed and consistently wound, else from both
+/// sides (as the ray caster sees them).
 #include <cstdint>
 #include <vector>
 
@@ -28,7 +30,7 @@ struct MeshPart {
 
 struct SceneMesh {
   std::vector<Eigen::Vector3f> positions;  ///< static shapes: world frame; moving bodies: their shape frame
-  std::vector<Eigen::Vector3f> normals;    ///< unit, per vertex (flat for boxes, smooth for round shapes)
+  std::vector<Eigen::Vector3f> normals;    ///< unit, per vertex (flat for boxes and meshes, smooth for round shapes)
   std::vector<std::uint32_t> indices;      ///< counter-clockwise triangles seen from outside
   std::vector<MeshPart> parts;             ///< static shapes, in scene order
   std::vector<MeshPart> moving_parts;      ///< one per moving_bodies(scene) entry, in that order

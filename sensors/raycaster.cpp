@@ -3,6 +3,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <deque>
@@ -10,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <unordered_map>
 #include <vector>
 
 #include "sensors/fan_kernels.hpp"
@@ -24,14 +26,32 @@ constexpr double kNoHit = std::numeric_limits<double>::infinity();
 // lost between the side test and the cap test through rounding.
 constexpr double kEdgeSlack_m = 1e-9;
 
+struct MeshModel;
+
 // An analytic shape (cuboid, cylinder, cone, sphere): centred on `center`,
-// axis along the local z of `rotation`.
+// axis along the local z of `rotation`; or a triangle mesh whose local frame
+// has its origin at `center` (its triangles in a MeshModel of their own).
 struct Primitive {
   Eigen::Matrix3d rotation;      // local -> world
   Eigen::Vector3d center;        // world frame, metres
-  Eigen::Vector3d half_extents;  // cuboid: size/2; cylinder, cone: (r, r, h/2); sphere: (r, r, r)
+  Eigen::Vector3d half_extents;  // cuboid: size/2; cylinder, cone: (r, r, h/2); sphere: (r, r, r); mesh: unused
   ShapeType type;
   std::int32_t shape;  // RayHit::shape
+  const MeshModel* mesh = nullptr;  // mesh only
+};
+
+// The triangles of one TriangleMesh (shared by every shape that uses it) in
+// an Embree scene of their own, in the mesh's local frame: one user primitive
+// per triangle, tested with the watertight double-precision test below. A
+// mesh shape is one Primitive of the scene it sits in, whose intersect turns
+// the ray into the local frame and traverses this scene (Embree's way of
+// instancing user geometry), so static and moving meshes share one path.
+struct MeshModel {
+  RTCScene scene = nullptr;
+  const TriangleMesh* mesh = nullptr;
+  Eigen::Vector3d centre;  // of the local bounds
+  Eigen::Vector3d half;    // half sizes of the local bounds
+  double radius = 0.0;     // of a sphere about `centre` holding every vertex
 };
 
 // An infinite plane, intersected outside Embree (it has no finite bounds).
@@ -68,6 +88,9 @@ Primitive make_primitive(const Shape& shape, std::int32_t id) {
     case ShapeType::sphere:
       p.half_extents = Eigen::Vector3d::Constant(shape.radius_m);
       break;
+    case ShapeType::mesh:
+      p.half_extents = 0.5 * shape.mesh->bounds_m.sizes();
+      break;  // the caller sets p.mesh
     case ShapeType::plane:
     case ShapeType::heightfield:
       throw std::logic_error("make_primitive: not an analytic primitive");
@@ -179,8 +202,12 @@ double intersect_cone(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double
 }
 
 // Nearest crossing of the world ray origin + t dir with `p` in [t0, t1].
+double intersect_mesh(const Primitive& p, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t0,
+                      double t1);
+
 double intersect_primitive(const Primitive& p, const Eigen::Vector3d& origin,
                            const Eigen::Vector3d& dir, double t0, double t1) {
+  if (p.type == ShapeType::mesh) return intersect_mesh(p, origin, dir, t0, t1);
   Eigen::Vector3d o = p.rotation.transpose() * (origin - p.center);
   const Eigen::Vector3d d = p.rotation.transpose() * dir;
   // Restart the ray at its closest approach to the centre so the solvers work
@@ -206,6 +233,7 @@ double intersect_primitive(const Primitive& p, const Eigen::Vector3d& origin,
       break;
     case ShapeType::plane:
     case ShapeType::heightfield:
+    case ShapeType::mesh:  // above
       break;
   }
   return t + shift;
@@ -249,6 +277,13 @@ void primitive_bounds(const RTCBoundsFunctionArguments* args) {
   const Eigen::Matrix3d& r = p.rotation;
   const Eigen::Vector3d& h = p.half_extents;
   Eigen::Vector3d extent;
+  if (p.type == ShapeType::mesh) {
+    // The local bounds turned into the world; their centre need not be the origin.
+    const Eigen::Vector3d centre = p.center + r * p.mesh->centre;
+    extent = r.cwiseAbs() * p.mesh->half;
+    write_bounds(Eigen::AlignedBox3d(centre - extent, centre + extent), args->bounds_o);
+    return;
+  }
   if (p.type == ShapeType::cuboid) {
     extent = r.cwiseAbs() * h;
   } else if (p.type == ShapeType::sphere) {
@@ -464,6 +499,77 @@ void terrain_intersect(const RTCIntersectFunctionNArguments* args) {
       });
 }
 
+// What a mesh's triangle callback sees: one ray in the mesh's local frame,
+// sheared once so that every triangle projects its shared vertices the same
+// way (no ray slips through an edge), and the nearest exact hit so far.
+struct MeshRayContext {
+  RTCIntersectContext base;
+  ShearedRay ray;
+  double best;
+};
+static_assert(std::is_standard_layout_v<MeshRayContext>);
+
+void mesh_triangle_bounds(const RTCBoundsFunctionArguments* args) {
+  const TriangleMesh& mesh = *static_cast<const MeshModel*>(args->geometryUserPtr)->mesh;
+  const std::array<std::uint32_t, 3>& tri = mesh.triangles[args->primID];
+  Eigen::AlignedBox3d box(mesh.vertices_m[tri[0]]);
+  box.extend(mesh.vertices_m[tri[1]]);
+  box.extend(mesh.vertices_m[tri[2]]);
+  write_bounds(box, args->bounds_o);
+}
+
+// Called by rtcIntersect1 in intersect_mesh: one ray (N = 1), the one in the context.
+void mesh_triangle_intersect(const RTCIntersectFunctionNArguments* args) {
+  auto& context = *reinterpret_cast<MeshRayContext*>(args->context);
+  const TriangleMesh& mesh = *static_cast<const MeshModel*>(args->geometryUserPtr)->mesh;
+  const std::array<std::uint32_t, 3>& tri = mesh.triangles[args->primID];
+  assert(args->N == 1);
+  if (args->valid[0] != -1) return;
+  RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, 1);
+  RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, 1);
+  const auto vertex = [&](std::uint32_t i) {
+    const Eigen::Vector3d& v = mesh.vertices_m[i];
+    return project(context.ray, v.x(), v.y(), v.z());
+  };
+  float& tfar = RTCRayN_tfar(rays, 1, 0);
+  const double t = intersect_triangle(vertex(tri[0]), vertex(tri[1]), vertex(tri[2]), RTCRayN_tnear(rays, 1, 0), tfar);
+  if (!(t < kNoHit)) return;
+  tfar = static_cast<float>(t);  // shortens the traversal; the exact t is kept in the context
+  context.best = std::min(context.best, t);
+  RTCHitN_geomID(hits, 1, 0) = args->geomID;
+  RTCHitN_primID(hits, 1, 0) = args->primID;
+}
+
+// Nearest hit in [t0, t1] of the world ray origin + t dir with mesh shape `p`.
+// The ray keeps its parameter in the local frame (a rotation keeps lengths).
+double intersect_mesh(const Primitive& p, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t0,
+                      double t1) {
+  const Eigen::Vector3d o = p.rotation.transpose() * (origin - p.center);
+  const Eigen::Vector3d d = p.rotation.transpose() * dir;
+  MeshRayContext context;
+  rtcInitIntersectContext(&context.base);
+  context.ray = shear(o, d);
+  context.best = kNoHit;
+  RTCRayHit query;
+  const Eigen::Vector3f of = o.cast<float>(), df = d.cast<float>();
+  query.ray.org_x = of.x();
+  query.ray.org_y = of.y();
+  query.ray.org_z = of.z();
+  query.ray.dir_x = df.x();
+  query.ray.dir_y = df.y();
+  query.ray.dir_z = df.z();
+  query.ray.tnear = static_cast<float>(t0);
+  query.ray.tfar = static_cast<float>(t1);
+  query.ray.time = 0.0f;
+  query.ray.mask = ~0u;
+  query.ray.id = 0;
+  query.ray.flags = 0;
+  query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  query.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(p.mesh->scene, &context.base, &query);
+  return context.best >= t0 && context.best <= t1 ? context.best : kNoHit;
+}
+
 }  // namespace
 
 // One Embree scene: a user geometry holding the analytic primitives, plus one
@@ -542,6 +648,7 @@ fan::Primitive fan_primitive(const Primitive& p, const Eigen::Matrix3d& sensor_t
     case ShapeType::sphere:
     case ShapeType::plane:  // never a Primitive (make_primitive)
     case ShapeType::heightfield:
+    case ShapeType::mesh:   // never projected (cast_fan casts meshes ray by ray)
       f.kind = fan::Kind::sphere;
       break;
   }
@@ -562,13 +669,51 @@ struct RayCaster::Impl {
   Layer fixed;   // static shapes, built once with high quality
   Layer moving;  // dynamic shapes and movers, moved by set_poses()
   std::vector<Plane> planes;
+  // One model per distinct TriangleMesh (shapes may share one); the deque keeps addresses.
+  std::deque<MeshModel> mesh_models;
+  std::unordered_map<const TriangleMesh*, const MeshModel*> mesh_model_of;
   CastMethod method = CastMethod::automatic;
   bool fan_kernels = false;
 
   ~Impl() {
     if (fixed.scene) rtcReleaseScene(fixed.scene);
     if (moving.scene) rtcReleaseScene(moving.scene);
+    for (const MeshModel& model : mesh_models) rtcReleaseScene(model.scene);
     if (device) rtcReleaseDevice(device);
+  }
+
+  // The model of `mesh`, built on first use: its triangles as user primitives
+  // in a scene of their own, high-quality BVH.
+  const MeshModel* mesh_model(const TriangleMesh& mesh) {
+    if (const auto it = mesh_model_of.find(&mesh); it != mesh_model_of.end()) return it->second;
+    MeshModel& model = mesh_models.emplace_back();
+    model.mesh = &mesh;
+    model.centre = mesh.bounds_m.center();
+    model.half = 0.5 * mesh.bounds_m.sizes();
+    for (const Eigen::Vector3d& v : mesh.vertices_m) model.radius = std::max(model.radius, (v - model.centre).norm());
+    model.scene = rtcNewScene(device);
+    rtcSetSceneBuildQuality(model.scene, RTC_BUILD_QUALITY_HIGH);
+    if (!mesh.triangles.empty()) {
+      RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+      rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
+      rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(mesh.triangles.size()));
+      rtcSetGeometryUserData(geom, &model);
+      rtcSetGeometryBoundsFunction(geom, &mesh_triangle_bounds, nullptr);
+      rtcSetGeometryIntersectFunction(geom, &mesh_triangle_intersect);
+      rtcCommitGeometry(geom);
+      rtcAttachGeometry(model.scene, geom);
+      rtcReleaseGeometry(geom);
+    }
+    rtcCommitScene(model.scene);
+    check("building a mesh's triangle scene");
+    mesh_model_of.emplace(&mesh, &model);
+    return &model;
+  }
+
+  Primitive primitive(const Shape& shape, std::int32_t id) {
+    Primitive p = make_primitive(shape, id);
+    if (shape.type == ShapeType::mesh) p.mesh = mesh_model(*shape.mesh);
+    return p;
   }
 
   void check(const char* what) const {
@@ -744,10 +889,34 @@ struct RayCaster::Impl {
 
     scratch.primitives.clear();
     for (const Layer* layer : {&fixed, &moving}) {
-      for (const Primitive& p : layer->primitives) scratch.primitives.push_back(fan_primitive(p, rotation, origin));
+      for (const Primitive& p : layer->primitives) {
+        if (p.type != ShapeType::mesh) scratch.primitives.push_back(fan_primitive(p, rotation, origin));
+      }
     }
     fan::cast_primitives(rays, scratch.primitives.data(), static_cast<int>(scratch.primitives.size()), min_range_m,
                          max_range_m, best);
+
+    // Meshes have no projection kernel: each ray that meets a mesh's bounding
+    // sphere short of its nearest hit so far traverses the mesh's triangles.
+    for (const Layer* layer : {&fixed, &moving}) {
+      for (const Primitive& p : layer->primitives) {
+        if (p.type != ShapeType::mesh) continue;
+        const Eigen::Vector3d centre = rotation.transpose() * (p.center + p.rotation * p.mesh->centre - origin);
+        const double radius = p.mesh->radius * (1.0 + 1e-9) + 1e-6;
+        if (centre.norm() - radius > max_range_m) continue;
+        for (std::size_t k = 0; k < rays.size; ++k) {
+          const Eigen::Vector3d d(rays.x[k], rays.y[k], rays.z[k]);
+          const double along = centre.dot(d);  // directions are unit vectors
+          if (along + radius < min_range_m || along - radius > scratch.best_t[k]) continue;
+          if ((centre - along * d).squaredNorm() > radius * radius) continue;
+          const double t = intersect_mesh(p, origin, rotation * d, min_range_m, scratch.best_t[k]);
+          if (t < kNoHit) {
+            scratch.best_t[k] = static_cast<float>(t);
+            scratch.best_shape[k] = p.shape;
+          }
+        }
+      }
+    }
 
     const std::span<const std::uint32_t> order = fan.order();
     for (std::size_t k = 0; k < order.size(); ++k) {
@@ -778,7 +947,7 @@ RayCaster::RayCaster(const Scene& scene, CastMethod method) : impl_(std::make_un
     } else if (shape.type == ShapeType::heightfield) {
       m.attach_terrain(m.fixed, shape, id);
     } else {
-      m.fixed.primitives.push_back(make_primitive(shape, id));
+      m.fixed.primitives.push_back(m.primitive(shape, id));
     }
   }
   m.attach_primitives(m.fixed, RTC_BUILD_QUALITY_HIGH);
@@ -795,9 +964,9 @@ RayCaster::RayCaster(const Scene& scene, CastMethod method) : impl_(std::make_un
       if (shape.type == ShapeType::plane || shape.type == ShapeType::heightfield) {
         throw std::invalid_argument("RayCaster: moving body '" + shape.alias + "' is a " +
                                     std::string(to_string(shape.type)) +
-                                    "; moving bodies must be cuboids, cylinders, cones or spheres");
+                                    "; moving bodies must be cuboids, cylinders, cones, spheres or meshes");
       }
-      m.moving.primitives.push_back(make_primitive(shape, body.id));
+      m.moving.primitives.push_back(m.primitive(shape, body.id));
     }
     m.attach_primitives(m.moving, RTC_BUILD_QUALITY_LOW);
     rtcCommitScene(m.moving.scene);
