@@ -18,6 +18,40 @@ const ConfigFields<GeoReference>& geo_reference_fields() {
   return fields;
 }
 
+const ConfigFields<WindConfig>& wind_config_fields() {
+  using W = WindConfig;
+  const auto gust_is = [](GustModel model) { return [model](const W& w) { return w.gust == model; }; };
+  static const ConfigFields<W> fields =
+      ConfigFields<W>()
+          .number("speed_mps", &W::speed_mps, Range::closed(0.0, 100.0), "m/s", "steady horizontal wind speed")
+          .number("direction_deg", &W::direction_deg, Range::closed(-360.0, 360.0), "deg",
+                  "where the steady wind blows toward, counter-clockwise from +x (east): 90 blows toward +y")
+          .number("vertical_mps", &W::vertical_mps, Range::closed(-20.0, 20.0), "m/s",
+                  "steady vertical component (an updraft > 0)")
+          .choice("gust", &W::gust,
+                  {{"none", GustModel::none},
+                   {"one_minus_cos", GustModel::one_minus_cos},
+                   {"dryden", GustModel::dryden}},
+                  "what is added to the steady wind: nothing, one discrete 1-cos gust, or Dryden turbulence (below)")
+          .vector("gust_amplitude_mps", &W::gust_amplitude_mps, Range::closed(-100.0, 100.0), "m/s",
+                  "`one_minus_cos`: the gust's peak velocity, world frame")
+          .only_when(gust_is(GustModel::one_minus_cos), "a field of \"gust\": \"one_minus_cos\" only")
+          .number("gust_start_s", &W::gust_start_s, Range::closed(0.0, 1e6), "s", "`one_minus_cos`: when it begins")
+          .only_when(gust_is(GustModel::one_minus_cos), "a field of \"gust\": \"one_minus_cos\" only")
+          .number("gust_duration_s", &W::gust_duration_s, Range::closed(0.01, 1e4), "s",
+                  "`one_minus_cos`: how long it lasts (peak at half of it)")
+          .only_when(gust_is(GustModel::one_minus_cos), "a field of \"gust\": \"one_minus_cos\" only")
+          .number("turbulence_intensity_mps", &W::turbulence_intensity_mps, Range::closed(0.0, 20.0), "m/s",
+                  "`dryden`: standard deviation of each component")
+          .only_when(gust_is(GustModel::dryden), "a field of \"gust\": \"dryden\" only")
+          .number("turbulence_length_m", &W::turbulence_length_m, Range::closed(1.0, 1e5), "m",
+                  "`dryden`: length scale L of the three components (MIL-F-8785C convention)")
+          .only_when(gust_is(GustModel::dryden), "a field of \"gust\": \"dryden\" only")
+          .seed("seed", &W::seed, "`dryden`: turbulence stream, combined with the world's seed")
+          .only_when(gust_is(GustModel::dryden), "a field of \"gust\": \"dryden\" only");
+  return fields;
+}
+
 const ConfigFields<WorldConfig>& world_config_fields() {
   using W = WorldConfig;
   static const ConfigFields<W> fields =
@@ -32,7 +66,9 @@ const ConfigFields<WorldConfig>& world_config_fields() {
                   "an episode ends here with \"timeout\"")
           .seed("seed", &W::seed, "master seed of a run (sensor noise, generators, planners)")
           .nested("geo_reference", &W::geo_reference, geo_reference_fields(),
-                  "geodetic reference point of the local frame (geodetic waypoints)");
+                  "geodetic reference point of the local frame (geodetic waypoints)")
+          .nested("wind", &W::wind, wind_config_fields(),
+                  "the velocity of the air, world frame, felt by the vehicles through their drag (below)");
   return fields;
 }
 

@@ -82,7 +82,11 @@ const ConfigFields<QuadrotorConfig>& quadrotor_config_fields() {
           .number("max_rotor_speed_radps", &C::max_rotor_speed_radps, Range::positive(), "rad/s",
                   "above `min_rotor_speed_radps`; thrust-to-weight 2.7")
           .number("linear_drag_n_per_mps", &C::linear_drag_n_per_mps, Range::non_negative(), "N/(m/s)",
-                  "drag force -c v")
+                  "rotor drag -c v_air, v_air = velocity - wind (below)")
+          .vector("drag_area_m2", &C::drag_area_m2, Range::closed(0.0, 10.0), "m²",
+                  "quadratic body drag C_d A per body axis x, y, z: -½ ρ (C_d A)_i \\|v_air\\| v_air,i")
+          .number("air_density_kgpm3", &C::air_density_kgpm3, Range::closed(0.01, 10.0), "kg/m³",
+                  "ρ of the quadratic drag (1.225: ISA sea level)")
           .number("angular_drag_nm_per_radps", &C::angular_drag_nm_per_radps, Range::non_negative(), "N m/(rad/s)",
                   "drag torque -c ω")
           .vector("collision_half_extents_m", &C::collision_half_extents_m, Range::positive(), "m",
@@ -143,7 +147,8 @@ VehicleState resting_at(const Eigen::Isometry3d& pose) {
 }  // namespace
 
 Quadrotor::Quadrotor(World& world, const QuadrotorConfig& config, const Eigen::Isometry3d& start_pose)
-    : bullet_(world.bullet()),
+    : world_(world),
+      bullet_(world.bullet()),
       config_(config),
       controller_(config.controller, model_of(config, world.scene().world.gravity_mps2),
                   resting_at(start_pose)) {
@@ -191,7 +196,17 @@ void Quadrotor::pre_step(double dt_s) {
     yaw_torque += kRotorTorqueSign[i] * config_.torque_coefficient * w2;
   }
   body_->applyTorque(up * yaw_torque - body_->getAngularVelocity() * config_.angular_drag_nm_per_radps);
-  body_->applyCentralForce(body_->getLinearVelocity() * -config_.linear_drag_n_per_mps);
+  // Drag on the airspeed, at the centre of mass. In still air the wind is exactly zero and
+  // v - 0 is v to the bit, so scenes without wind fly as before the wind existed.
+  const btTransform& pose = body_->getWorldTransform();
+  const btVector3 airspeed = body_->getLinearVelocity() - to_bt(world_.wind_mps(from_bt(pose.getOrigin())));
+  body_->applyCentralForce(airspeed * -config_.linear_drag_n_per_mps);
+  if (config_.drag_area_m2 != Eigen::Vector3d::Zero()) {
+    const Eigen::Vector3d air_body = from_bt(airspeed * basis);  // basis^T airspeed
+    const Eigen::Vector3d drag_body =
+        -0.5 * config_.air_density_kgpm3 * air_body.norm() * config_.drag_area_m2.cwiseProduct(air_body);
+    body_->applyCentralForce(basis * to_bt(drag_body));
+  }
 }
 
 VehicleState Quadrotor::state() const {

@@ -2,7 +2,9 @@
 /// The quadrotor (SPEC §5; 000, 001): one Bullet rigid body driven by four
 /// rotors in X configuration, each giving thrust k_f w^2 along body z at its
 /// position and drag torque k_m w^2 about body z, behind a first-order motor
-/// lag; linear and angular drag. Flown by QuadrotorController at the physics rate.
+/// lag; drag on the airspeed (the body's velocity relative to World::wind_mps:
+/// linear rotor drag, optional quadratic body drag) and angular drag. Flown by
+/// QuadrotorController at the physics rate, which is not told the wind.
 #include <array>
 #include <memory>
 
@@ -30,7 +32,11 @@ struct QuadrotorConfig {
   double motor_time_constant_s = 0.02;                        ///< first-order lag of rotor speed, > 0
   double min_rotor_speed_radps = 150.0;                       ///< idle speed in flight, rad/s, >= 0
   double max_rotor_speed_radps = 1000.0;                      ///< rad/s, > min_rotor_speed_radps
-  double linear_drag_n_per_mps = 0.3;                         ///< drag force -c v, N per m/s, >= 0
+  double linear_drag_n_per_mps = 0.3;                         ///< rotor drag -c v_air (v_air = v - wind), N per m/s, >= 0
+  /// Quadratic body drag: C_d A per body axis, m^2, >= 0; force per body axis
+  /// -0.5 rho (C_d A)_i |v_air| v_air_i. Zero in the preset (docs/vehicles.md).
+  Eigen::Vector3d drag_area_m2{0.0, 0.0, 0.0};
+  double air_density_kgpm3 = 1.225;                           ///< rho of the quadratic drag, kg/m^3, > 0 (ISA sea level)
   double angular_drag_nm_per_radps = 0.005;                   ///< drag torque -c w, N m per rad/s, >= 0
   Eigen::Vector3d collision_half_extents_m{0.3, 0.3, 0.06};   ///< collision box (frame and propellers), > 0
   double stable_linear_speed_mps = 0.05;                      ///< stable() below this speed (000 stabilize()), > 0
@@ -79,6 +85,7 @@ class Quadrotor final : public Vehicle {
   double thrust_n() const;
 
  private:
+  const World& world_;  ///< the wind
   btDiscreteDynamicsWorld& bullet_;
   QuadrotorConfig config_;
   std::unique_ptr<btCollisionShape> shape_;
