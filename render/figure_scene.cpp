@@ -48,6 +48,11 @@ Footprint footprint(const Shape& shape) {
       break;
     case ShapeType::sphere:
       break;  // a circle in the world frame, below
+    case ShapeType::mesh:
+      // Its vertices: the footprint is the convex hull of the mesh seen from
+      // above (an L-shaped building shows as its hull; Footprint is convex).
+      local = shape.mesh->vertices_m;
+      break;
     case ShapeType::plane:
     case ShapeType::heightfield:
       return {};

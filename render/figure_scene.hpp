@@ -23,7 +23,8 @@ struct Footprint {
   bool contains(const Eigen::Vector2d& p) const;
 };
 
-/// Footprint of a cuboid, cylinder, cone or sphere (any orientation).
+/// Footprint of a cuboid, cylinder, cone, sphere or mesh (any orientation;
+/// a mesh's is the convex hull of its vertices seen from above).
 Footprint footprint(const Shape& shape);
 /// Footprints of the scene's solid shapes (no planes or heightfields),
 /// lowest top first so that taller shapes are drawn over lower ones.

@@ -1,13 +1,16 @@
 #include "render/replay.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
+#include <unordered_map>
 
 #include "campo/json_reader.hpp"
 #include "render/figure_style.hpp"
@@ -43,7 +46,127 @@ std::vector<std::size_t> thinned(std::size_t n, std::size_t max) {
   return keep;
 }
 
-json solid_json(const Shape& s, int mover) {
+// A mesh's triangles after vertex clustering (Rossignac and Borrel): the
+// vertices in each cell of a grid `cell_m` wide merge into their mean, and
+// triangles that collapse (or repeat) drop out.
+struct ClusteredMesh {
+  std::vector<Eigen::Vector3d> vertices_m;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+ClusteredMesh clustered(const TriangleMesh& mesh, double cell_m) {
+  ClusteredMesh out;
+  std::unordered_map<std::uint64_t, std::uint32_t> cluster_of_cell;
+  std::vector<std::uint32_t> cluster(mesh.vertices_m.size());
+  std::vector<double> members;
+  const Eigen::Vector3d origin = mesh.bounds_m.min();
+  for (std::size_t i = 0; i < mesh.vertices_m.size(); ++i) {
+    // 21 bits a coordinate: the caller keeps cell_m at least the mesh's extent / 2^20.
+    const Eigen::Vector3d q = ((mesh.vertices_m[i] - origin) / cell_m).array().floor();
+    const std::uint64_t key = (static_cast<std::uint64_t>(q.x()) << 42) | (static_cast<std::uint64_t>(q.y()) << 21) |
+                              static_cast<std::uint64_t>(q.z());
+    const auto [it, added] = cluster_of_cell.emplace(key, static_cast<std::uint32_t>(out.vertices_m.size()));
+    if (added) {
+      out.vertices_m.push_back(Eigen::Vector3d::Zero());
+      members.push_back(0.0);
+    }
+    cluster[i] = it->second;
+    out.vertices_m[it->second] += mesh.vertices_m[i];
+    members[it->second] += 1.0;
+  }
+  for (std::size_t k = 0; k < out.vertices_m.size(); ++k) out.vertices_m[k] /= members[k];
+  for (const auto& t : mesh.triangles) {
+    const std::array<std::uint32_t, 3> c{cluster[t[0]], cluster[t[1]], cluster[t[2]]};
+    if (c[0] != c[1] && c[1] != c[2] && c[2] != c[0]) out.triangles.push_back(c);
+  }
+  // The same three clusters in the same turn are one triangle.
+  const auto canonical = [](std::array<std::uint32_t, 3> t) {
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    return t;
+  };
+  for (auto& t : out.triangles) t = canonical(t);
+  std::sort(out.triangles.begin(), out.triangles.end());
+  out.triangles.erase(std::unique(out.triangles.begin(), out.triangles.end()), out.triangles.end());
+  return out;
+}
+
+// The meshes of the replay's shapes, each sent once however many shapes use
+// it, vertices in the shape frame; over all of them at most
+// max_mesh_triangles: a mesh holds its share of that by triangle count, and
+// one with more is clustered on the finest grid that fits its share.
+class ReplayMeshes {
+ public:
+  ReplayMeshes(const Scene& scene, std::size_t max_triangles) {
+    std::unordered_map<const TriangleMesh*, bool> seen;
+    double total = 0.0;
+    const auto count = [&](const Shape& s) {
+      if (s.type == ShapeType::mesh && seen.emplace(s.mesh.get(), true).second)
+        total += static_cast<double>(s.mesh->triangles.size());
+    };
+    for (const Shape& s : scene.shapes) count(s);
+    for (const Mover& m : scene.movers) count(m.shape);
+    keep_ = total > static_cast<double>(max_triangles) ? static_cast<double>(max_triangles) / total : 1.0;
+  }
+
+  // Index of `mesh` in the "meshes" array, sending it the first time.
+  std::size_t index(const TriangleMesh& mesh) {
+    const auto [it, added] = index_.emplace(&mesh, meshes_.size());
+    if (!added) return it->second;
+    const std::size_t budget =
+        std::max<std::size_t>(12, static_cast<std::size_t>(std::floor(keep_ * static_cast<double>(mesh.triangles.size()))));
+    json vertices = json::array(), triangles = json::array();
+    const auto write = [&](const std::vector<Eigen::Vector3d>& vs, const std::vector<std::array<std::uint32_t, 3>>& ts) {
+      for (const Eigen::Vector3d& v : vs) {
+        for (int k = 0; k < 3; ++k) vertices.push_back(rounded(v[k]));
+      }
+      for (const auto& t : ts) {
+        for (int k = 0; k < 3; ++k) triangles.push_back(t[k]);
+      }
+    };
+    bool decimated = false;
+    if (mesh.triangles.size() <= budget) {
+      write(mesh.vertices_m, mesh.triangles);
+    } else {
+      // Bisection on the cell size, geometric: fine enough to keep shape, coarse enough to fit.
+      const double extent = std::max(mesh.bounds_m.sizes().maxCoeff(), 1e-6);
+      double fine = extent / (1 << 20), coarse = 2.0 * extent;
+      ClusteredMesh best = clustered(mesh, coarse);
+      for (int i = 0; i < 12; ++i) {
+        const double cell = std::sqrt(fine * coarse);
+        ClusteredMesh c = clustered(mesh, cell);
+        if (c.triangles.size() <= budget) {
+          coarse = cell;
+          best = std::move(c);
+        } else {
+          fine = cell;
+        }
+      }
+      write(best.vertices_m, best.triangles);
+      decimated = true;
+    }
+    meshes_.push_back({{"vertices_m", std::move(vertices)},
+                       {"triangles", std::move(triangles)},
+                       {"file_triangles", mesh.triangles.size()},
+                       {"decimated", decimated}});
+    return it->second;
+  }
+
+  json take() { return std::move(meshes_); }
+
+ private:
+  double keep_ = 1.0;  // fraction of its triangles a mesh may keep
+  std::unordered_map<const TriangleMesh*, std::size_t> index_;
+  json meshes_ = json::array();
+};
+
+// World-frame bounds of a mesh shape.
+void extend_by_mesh(const Shape& s, Eigen::AlignedBox3d& bounds) {
+  for (int corner = 0; corner < 8; ++corner) {
+    bounds.extend(s.pose * s.mesh->bounds_m.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
+  }
+}
+
+json solid_json(const Shape& s, int mover, ReplayMeshes& meshes) {
   json j{{"type", std::string(to_string(s.type))}, {"alias", s.alias}, {"position_m", xyz(s.pose.translation())},
          {"rotation", rotation(s.pose.linear())}, {"color", rgb(s.color)}, {"mover", mover}};
   switch (s.type) {
@@ -57,6 +180,9 @@ json solid_json(const Shape& s, int mover) {
       break;
     case ShapeType::sphere:
       j["radius_m"] = rounded(s.radius_m);
+      break;
+    case ShapeType::mesh:
+      j["mesh"] = meshes.index(*s.mesh);
       break;
     case ShapeType::plane:
     case ShapeType::heightfield:
@@ -92,6 +218,7 @@ HeightGrid resampled(const HeightGrid& g, int cols, int rows) {
 
 json scene_json(const Scene& scene, double duration_s, const ReplayLimits& limits, Eigen::AlignedBox3d& bounds) {
   json shapes = json::array(), planes = json::array(), terrains = json::array(), movers = json::array();
+  ReplayMeshes meshes(scene, limits.max_mesh_triangles);
   // Terrains share max_terrain_vertices: a finer set is resampled by one factor along both sides.
   double vertices = 0.0;
   for (const Shape& s : scene.shapes) {
@@ -120,8 +247,12 @@ json scene_json(const Scene& scene, double duration_s, const ReplayLimits& limit
         }
       }
     } else {
-      shapes.push_back(solid_json(s, -1));
-      bounds.extend(s.pose.translation());
+      shapes.push_back(solid_json(s, -1, meshes));
+      if (s.type == ShapeType::mesh) {
+        extend_by_mesh(s, bounds);
+      } else {
+        bounds.extend(s.pose.translation());
+      }
     }
   }
   // Bounded whatever the recorded duration claims, and shared by the movers.
@@ -139,10 +270,10 @@ json scene_json(const Scene& scene, double duration_s, const ReplayLimits& limit
       positions.push_back(xyz(m.position_at(t)));
     }
     movers.push_back({{"shape", shapes.size()}, {"times_s", std::move(times)}, {"positions_m", std::move(positions)}});
-    shapes.push_back(solid_json(m.shape, static_cast<int>(i)));
+    shapes.push_back(solid_json(m.shape, static_cast<int>(i), meshes));
   }
-  return {{"name", scene.name}, {"shapes", std::move(shapes)}, {"planes", std::move(planes)},
-          {"terrains", std::move(terrains)}, {"movers", std::move(movers)}};
+  return {{"name", scene.name},         {"shapes", std::move(shapes)},     {"planes", std::move(planes)},
+          {"terrains", std::move(terrains)}, {"movers", std::move(movers)}, {"meshes", meshes.take()}};
 }
 
 // What one of `runs` runs may put in the page: its share of the totals.

@@ -26,6 +26,7 @@ struct ReplayLimits {
   std::size_t max_mover_samples = 20000;        ///< ...or fewer, farther apart, over a long run
   std::size_t max_total_mover_samples = 200000; ///< over all movers: each keeps at most this / movers
   std::size_t max_terrain_vertices = 1000000;   ///< over all terrains: finer ones are resampled coarser
+  std::size_t max_mesh_triangles = 250000;      ///< over all distinct meshes: larger ones are clustered coarser
   std::size_t max_page_bytes = 128u << 20;      ///< the page; larger is refused (the limits above keep it far below)
 };
 

@@ -274,7 +274,14 @@ SnapshotCamera default_snapshot_camera(const Scene& scene, const std::vector<Eig
   for (const Eigen::Vector3d& p : trajectory_m) box.extend(p);
   if (box.isEmpty()) {
     for (const Shape& shape : scene.shapes) {
-      if (shape.type != ShapeType::plane && shape.type != ShapeType::heightfield) box.extend(shape.pose.translation());
+      if (shape.type == ShapeType::mesh) {
+        // Its vertices' bounds: a file's origin need not lie near its geometry.
+        for (int corner = 0; corner < 8; ++corner) {
+          box.extend(shape.pose * shape.mesh->bounds_m.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
+        }
+      } else if (shape.type != ShapeType::plane && shape.type != ShapeType::heightfield) {
+        box.extend(shape.pose.translation());
+      }
     }
     for (const VehicleDef& vehicle : scene.vehicles) box.extend(vehicle.pose.translation());
   }

@@ -19,6 +19,7 @@
 namespace campo::test_support {
 
 inline std::shared_ptr<TriangleMesh> finished(TriangleMesh mesh, bool closed) {
+  mesh.bounds_m.setEmpty();
   for (const Eigen::Vector3d& v : mesh.vertices_m) mesh.bounds_m.extend(v);
   mesh.closed = closed;
   mesh.source_path = "built in code";

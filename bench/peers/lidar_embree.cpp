@@ -4,7 +4,7 @@
 // the beams' RayFan cast from each scan's pose (analytic primitives, the heightfield's
 // triangles with watertight edge tests); the peer casts the same rays with rtcIntersect1M (coherent) against the same
 // scene as Embree triangles (build_scene_mesh: the heightfield exactly as Bullet
-// triangulates it, round shapes tessellated with 64 segments), robust and
+// triangulates it, round shapes tessellated with 64 segments, meshes as their triangles), robust and
 // high-quality BVH. Repetitions interleave in one process; the figure is rays per
 // second, median of the repetitions. Scenes: trees_rolling_terrain, vineyard, and
 // trees_rolling_terrain's terrain alone.
@@ -97,7 +97,12 @@ class EmbreeTriangles {
                                                                  RTC_FORMAT_FLOAT3, 3 * sizeof(float),
                                                                  mesh.positions.size()));
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) std::memcpy(vertices + 3 * i, mesh.positions[i].data(), 12);
-    // The static shapes only (the scenes here have no moving bodies).
+    // The static shapes only, mesh shapes as their own triangles (build_scene_mesh); the peer has no
+    // moving bodies, so a scene with some would not be the world campo casts against.
+    if (!mesh.moving_parts.empty()) {
+      throw std::invalid_argument("the Embree peer takes scenes without moving bodies ('" + scene.name + "' has " +
+                                  std::to_string(mesh.moving_parts.size()) + ")");
+    }
     std::size_t triangles = 0;
     for (const MeshPart& part : mesh.parts) triangles += part.index_count / 3;
     auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,

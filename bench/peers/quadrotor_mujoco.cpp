@@ -103,6 +103,10 @@ std::string mjcf(const Scene& scene, const HeightGrid*& terrain, Eigen::Vector3d
       case ShapeType::sphere:
         x << "<geom type=\"sphere\" size=\"" << s.radius_m << "\"" << pose.str() << "/>";
         break;
+      case ShapeType::mesh:
+        // MuJoCo collides meshes as convex hulls; campo's static meshes are their triangles.
+        throw std::runtime_error("the MuJoCo peer takes no mesh shapes ('" + s.alias + "'): MuJoCo would collide "
+                                 "it as its convex hull, campo as its triangles");
     }
   }
   const nlohmann::json params = drone_parameters(scene);

@@ -294,9 +294,47 @@
         if (!(radius > 0)) return null;
         g = new THREE.SphereGeometry(radius, 64, 32);
         break;
+      case 'mesh':
+        return meshGeometry(Number.isInteger(shape.mesh) ? meshesData[shape.mesh] : null);
       default:
         return null;
     }
+    return g;
+  }
+
+  // A mesh shape's triangles (scene.meshes, shared by the shapes that use
+  // them), flat-shaded and drawn from both sides: files may be open or wound
+  // either way. Built once per mesh.
+  var meshesData = Array.isArray(sceneData.meshes) ? sceneData.meshes : [];
+  var meshGeometries = [];
+  function meshGeometry(data) {
+    if (!data || typeof data !== 'object') return null;
+    var index = meshesData.indexOf(data);
+    if (meshGeometries[index]) return meshGeometries[index];
+    var v = Array.isArray(data.vertices_m) ? data.vertices_m : [];
+    var t = Array.isArray(data.triangles) ? data.triangles : [];
+    var count = Math.floor(v.length / 3);
+    var positions = new Float32Array(9 * Math.floor(t.length / 3));
+    var k = 0;
+    for (var i = 0; i + 2 < t.length; i += 3) {
+      var ok = true;
+      for (var j = 0; j < 3; ++j) {
+        var a = t[i + j];
+        if (!(Number.isInteger(a) && a >= 0 && a < count)) ok = false;
+      }
+      if (!ok) continue;
+      for (var c = 0; c < 3; ++c) {
+        var p = 3 * t[i + c];
+        positions[k++] = num(v[p], 0);
+        positions[k++] = num(v[p + 1], 0);
+        positions[k++] = num(v[p + 2], 0);
+      }
+    }
+    if (k === 0) return null;
+    var g = new THREE.BufferGeometry();
+    g.setAttribute('position', new THREE.BufferAttribute(positions.subarray(0, k), 3));
+    g.computeVertexNormals();   // unshared vertices: one normal per face
+    meshGeometries[index] = g;
     return g;
   }
 
@@ -313,6 +351,7 @@
     var geometry = shapeGeometry(shape);
     if (!geometry) return;
     var material = new THREE.MeshLambertMaterial({ color: colorOf(shape.color, [0.6, 0.6, 0.6]) });
+    if (shape.type === 'mesh') material.side = THREE.DoubleSide;
     var mesh = new THREE.Mesh(geometry, material);
     mesh.position.copy(vec3(shape.position_m));
     mesh.quaternion.copy(rotationQuaternion(shape.rotation));
