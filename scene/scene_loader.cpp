@@ -12,6 +12,7 @@
 #include <openssl/evp.h>
 
 #include "scene/generator_fields.hpp"
+#include "scene/dem_source.hpp"
 #include "scene/generators.hpp"
 #include "scene/geodesy.hpp"
 #include "scene/heightfield_sources.hpp"
@@ -122,6 +123,7 @@ class Loader {
   void read_world(const JsonNode& node) {
     WorldConfig& w = scene_.world;
     ObjectReader r(node, &errors_);
+    geo_reference_given_ = r.has("geo_reference");  // else a DEM may fill it (read_dem)
     world_config_fields().read_fields(r, w);
     r.finish();
     // The rates against the step, once both are known to be valid.
@@ -385,6 +387,7 @@ class Loader {
     const auto expression = r.optional("expression");
     const auto csv = r.optional("csv");
     const auto png = r.optional("png");
+    const auto dem = r.optional("dem");
     // After the sources are read, so that an error here does not leave them unread (reported as unknown).
     r.check([&] {
       const Eigen::Vector3d rpy = rpy_deg_from_rotation(shape.pose.linear());
@@ -393,17 +396,18 @@ class Loader {
                          "expected a heightfield pose without roll or pitch");
       }
     });
-    if (static_cast<int>(expression.has_value()) + csv.has_value() + png.has_value() != 1) {
+    if (static_cast<int>(expression.has_value()) + csv.has_value() + png.has_value() + dem.has_value() != 1) {
       // Which other keys belong depends on the source: none is reported unknown.
       for (const std::string_view key : {"size_m", "spacing_m", "height_scale_m", "min_height_m"}) r.accept(key);
+      for (const std::string& key : dem_fields().keys()) r.accept(key);
       throw InputError(node.file(), node.pointer(),
-                       "expected exactly one height source: \"expression\", \"csv\" or \"png\"");
+                       "expected exactly one height source: \"expression\", \"csv\", \"png\" or \"dem\"");
     }
     Eigen::Vector2d size_m(100.0, 100.0);
     double spacing_m = 1.0;
     double height_scale_m = 1.0;
     double min_height_m = 0.0;
-    const JsonNode& source = expression ? *expression : csv ? *csv : *png;
+    const JsonNode& source = expression ? *expression : csv ? *csv : png ? *png : *dem;
     if (expression) {
       r.read("size_m", size_m, kLength);
       r.read("spacing_m", spacing_m, kLength);
@@ -418,6 +422,9 @@ class Loader {
       if (!r.ok()) return;
       shape.terrain = std::make_shared<HeightGrid>(
           generated(source, [&] { return heightgrid_from_csv(path, spacing_m); }));
+    } else if (dem) {
+      read_dem(r, *dem, shape);
+      if (!shape.terrain) return;
     } else {
       r.read("size_m", size_m, kLength);
       r.read("height_scale_m", height_scale_m, kLength);
@@ -428,6 +435,59 @@ class Loader {
           source, [&] { return heightgrid_from_png(path, size_m, height_scale_m, min_height_m); }));
     }
     check_heights(source, *shape.terrain);
+  }
+
+  // A "dem" heightfield (docs/scene-format.md, "heightfield"): the grid from
+  // the file; one with a CRS is placed by the world's geo_reference, or,
+  // when the scene gives none, fills it with its centre at the pose, so
+  // geodetic waypoints (read after every object) land on the terrain.
+  void read_dem(ObjectReader& r, const JsonNode& source, Shape& shape) {
+    DemOptions options;
+    dem_fields().read_fields(r, options);
+    const auto path = resolve_path(source);
+    if (!r.ok()) return;
+    DemTerrain dem = generated(source, [&] { return heightgrid_from_dem(path, options); });
+    const JsonNode& node = r.node();
+    if (dem.centre_lat_lon_deg) {
+      const double latitude = dem.centre_lat_lon_deg->x(), longitude = dem.centre_lat_lon_deg->y();
+      GeoReference& reference = scene_.world.geo_reference;
+      const std::string by = geo_reference_filled_by_.empty()
+                                 ? std::string("the world's geo_reference")
+                                 : "the geo_reference filled from the DEM at " + geo_reference_filled_by_;
+      if (geo_reference_given_) {
+        if (r.has("pose")) {
+          throw InputError(node.file(), child_pointer(node.pointer(), "pose"),
+                           "expected no pose: " + by + " places a DEM with a coordinate reference system (its centre at its "
+                           "latitude and longitude)");
+        }
+        if (reference.projection != GeoProjection::wgs84_enu) {
+          source.fail("a geo_reference with projection \"wgs84_enu\" to place a DEM: \"sphere_no_coslat\" "
+                      "stretches east-west distances, so the terrain would not lie under geodetic waypoints");
+        }
+        const Eigen::Vector3d at = geodetic_to_local(reference, latitude, longitude, 0.0);
+        if (!(std::abs(at.x()) <= 1e6 && std::abs(at.y()) <= 1e6 && std::abs(at.z()) <= 1e6)) {
+          source.fail("a DEM within 1000 km of the geo_reference; its centre (" + format_rate(latitude) + ", " +
+                      format_rate(longitude) + ") lies at (" + format_rate(at.x()) + ", " + format_rate(at.y()) +
+                      ") m");
+        }
+        shape.pose = Eigen::Translation3d(at) * Eigen::Isometry3d::Identity();
+      } else {
+        const Eigen::Vector3d t = shape.pose.translation();
+        if (std::abs(rpy_deg_from_rotation(shape.pose.linear()).z()) > 1e-9) {
+          throw InputError(node.file(), child_pointer(node.pointer(), "pose"),
+                           "expected a pose without yaw: this DEM fills the world's geo_reference, whose x is east");
+        }
+        const double altitude = -t.z();
+        if (!Range::closed(-1e4, 1e5).contains(altitude)) {
+          throw InputError(node.file(), child_pointer(node.pointer(), "pose"),
+                           "expected a pose z in [-1e5, 1e4] m: this DEM fills the geo_reference with altitude_m = -z");
+        }
+        reference = GeoReference{latitude, longitude, altitude, GeoProjection::wgs84_enu, t.head<2>()};
+        geo_reference_given_ = true;
+        geo_reference_filled_by_ = node.pointer();
+      }
+    }
+    shape.terrain = std::make_shared<HeightGrid>(std::move(dem.grid));
   }
 
   // Heights far beyond any terrain would overflow sizes derived from them
@@ -762,6 +822,9 @@ class Loader {
   Scene scene_;
   std::map<std::string, std::string> alias_pointers_;
   std::map<std::string, GridObstaclesConfig> grids_;
+  // The world's geo_reference: given by the scene or filled by a DEM (read_dem), and which DEM filled it.
+  bool geo_reference_given_ = false;
+  std::string geo_reference_filled_by_;
   // ground(): shapes looked at so far, the non-level ground shapes among them, the highest level plane.
   std::size_t ground_scanned_ = 0;
   std::vector<std::size_t> ground_shapes_;
