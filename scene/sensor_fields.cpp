@@ -13,6 +13,15 @@ namespace {
 constexpr double kMinSensorRateHz = 0.01;
 constexpr double kMaxSensorRateHz = 10000.0;
 
+}  // namespace
+
+void read_range_m(const JsonNode& node, double& min_m, double& max_m) {
+  const Eigen::Vector2d mm = node.as_vector2(Range::non_negative());
+  if (!(mm.x() < mm.y()) || mm.y() > 1e5) node.fail("[min, max] with 0 <= min < max <= 100000");
+  min_m = mm.x();
+  max_m = mm.y();
+}
+
 const ConfigFields<Pose>& mount_fields() {
   static const ConfigFields<Pose> fields =
       ConfigFields<Pose>()
@@ -20,8 +29,6 @@ const ConfigFields<Pose>& mount_fields() {
           .vector("rpy_deg", &Pose::rpy_deg, Range::closed(-360.0, 360.0), "deg", "roll, pitch, yaw on the body");
   return fields;
 }
-
-}  // namespace
 
 ConfigFields<RangeSensorConfig> range_sensor_config_fields(const SceneLimits& limits) {
   using C = RangeSensorConfig;
@@ -82,12 +89,7 @@ ConfigFields<RangeSensorConfig> range_sensor_config_fields(const SceneLimits& li
               })
       .custom("range_m", "m", "[min, max] with 0 <= min < max <= 100000",
               "nearer returns read 0 in the depth map; farther: no return",
-              [](const JsonNode& n, C& c) {
-                const Eigen::Vector2d mm = n.as_vector2(Range::non_negative());
-                if (!(mm.x() < mm.y()) || mm.y() > 1e5) n.fail("[min, max] with 0 <= min < max <= 100000");
-                c.min_range_m = mm.x();
-                c.max_range_m = mm.y();
-              },
+              [](const JsonNode& n, C& c) { read_range_m(n, c.min_range_m, c.max_range_m); },
               [](const C& c, nlohmann::json& j) { j["range_m"] = {c.min_range_m, c.max_range_m}; })
       .number("noise_stddev_m", &C::noise_stddev_m, Range::closed(0.0, 100.0), "m", "Gaussian range noise")
       .number("dropout_probability", &C::dropout_probability, Range::closed(0.0, 1.0), "",

@@ -12,6 +12,7 @@
 #include "scene/scene_mesh.hpp"
 #include "sensors/lidar.hpp"
 #include "sensors/osmesa_gl.hpp"
+#include "sensors/view_culling.hpp"
 
 namespace campo {
 
@@ -38,10 +39,6 @@ constexpr float kStepTolerance = 1e-3f;
 constexpr float kMaxLoneStep = 0.05f;
 // Render pixels kept around the grid's rays on every side, for the 4 x 4 window.
 constexpr int kMarginPx = 2;
-
-// The camera looks along -z with x right and y up; the sensor frame has x
-// forward, y left and z up.
-const Eigen::Matrix3d kEyeFromSensor = (Eigen::Matrix3d() << 0, -1, 0, 0, 0, 1, -1, 0, 0).finished();
 
 // Range along the ray is z_eye * |(X, Y, 1)|; depth is kept as the reversed,
 // zero-to-one window depth d = near (far - z) / ((far - near) z), which is
@@ -101,19 +98,6 @@ Frustum make_frustum(const RangeSensorConfig& c) {
   f.near_m = std::max(c.min_range_m * cos_corner, kSmallestNear_m);
   f.far_m = c.max_range_m;
   return f;
-}
-
-// Reversed-depth projection with a zero-to-one clip range (glClipControl).
-Eigen::Matrix4f projection_matrix(const Frustum& f) {
-  const double n = f.near_m;
-  const double d = f.far_m;
-  Eigen::Matrix4d p = Eigen::Matrix4d::Zero();
-  p(0, 0) = 1.0 / f.half_width;
-  p(1, 1) = 1.0 / f.half_height;
-  p(2, 2) = n / (d - n);
-  p(2, 3) = n * d / (d - n);
-  p(3, 2) = -1.0;
-  return p.cast<float>();
 }
 
 // Where a grid ray samples the render (rows bottom-up, as GL reads them).
@@ -209,26 +193,6 @@ struct OpenSurface {
   double top_m;  // local z of its highest point: 0 for a plane
 };
 
-// A run of triangles with its bounds (mesh frame): a sphere to cull against
-// the frustum, a box to tell how near the eye it comes.
-struct Chunk {
-  std::uint32_t first_index = 0;
-  std::uint32_t index_count = 0;
-  Eigen::AlignedBox3f box;
-  Eigen::Vector3f centre = Eigen::Vector3f::Zero();
-  float radius = 0.0f;
-};
-
-Chunk bound(const SceneMesh& mesh, std::uint32_t first, std::uint32_t count) {
-  Eigen::AlignedBox3f box;
-  for (std::uint32_t i = first; i < first + count; ++i) box.extend(mesh.positions[mesh.indices[i]]);
-  Chunk chunk{first, count, box, box.center(), 0.0f};
-  for (std::uint32_t i = first; i < first + count; ++i) {
-    chunk.radius = std::max(chunk.radius, (mesh.positions[mesh.indices[i]] - chunk.centre).norm());
-  }
-  return chunk;
-}
-
 void validate(const SensorDef& def) {
   const RangeSensorConfig& c = def.range;
   const std::string name = "depth camera '" + def.alias + "': ";
@@ -282,7 +246,7 @@ class DepthCamera final : public RangeSensor {
   std::vector<Eigen::Isometry3d> mover_poses_;     // world from shape at the scan time
   std::vector<Eigen::Matrix4f> mover_model_views_; // eye from shape at the scan time
   std::vector<std::size_t> visible_movers_;
-  Eigen::Vector4f side_planes_[4];           // eye frame, unit normals pointing out
+  ViewVolume view_volume_;
   std::vector<GLsizei> draw_counts_;         // scratch for one multi-draw
   std::vector<const void*> draw_offsets_;
   std::vector<float> inverse_depth_;         // near * far / z per render pixel (0: none), rows bottom-up
@@ -302,12 +266,7 @@ DepthCamera::DepthCamera(const Scene& scene, const SceneMesh& mesh, const Sensor
   for (const Beam& beam : lidar_beams(c)) directions_.push_back(beam_direction(beam));
   inverse_depth_.resize(static_cast<std::size_t>(frustum_.width_px) * frustum_.height_px);
 
-  constexpr std::uint32_t kChunkIndices = 3 * kCullChunkTriangles;
-  for (const MeshPart& part : mesh.parts) {
-    for (std::uint32_t done = 0; done < part.index_count; done += kChunkIndices) {
-      chunks_.push_back(bound(mesh, part.first_index + done, std::min(kChunkIndices, part.index_count - done)));
-    }
-  }
+  chunks_ = cut_into_chunks(mesh, mesh.parts, kCullChunkTriangles);
   for (const MeshPart& part : mesh.moving_parts) {
     mover_chunks_.push_back(bound(mesh, part.first_index, part.index_count));
   }
@@ -324,36 +283,16 @@ DepthCamera::DepthCamera(const Scene& scene, const SceneMesh& mesh, const Sensor
   }
   draw_counts_.reserve(chunks_.size());
   draw_offsets_.reserve(chunks_.size());
-  const auto plane = [](double x, double y, double z) {
-    return Eigen::Vector4f(Eigen::Vector4d(x, y, z, 0.0).normalized().cast<float>());
-  };
-  side_planes_[0] = plane(1.0, 0.0, frustum_.half_width);
-  side_planes_[1] = plane(-1.0, 0.0, frustum_.half_width);
-  side_planes_[2] = plane(0.0, 1.0, frustum_.half_height);
-  side_planes_[3] = plane(0.0, -1.0, frustum_.half_height);
-
-  GLint max_size = 0;
-  gl().GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
-  if (frustum_.width_px > max_size || frustum_.height_px > max_size) {
-    throw std::invalid_argument("depth camera '" + def_.alias + "': its grid needs a render of " +
-                                std::to_string(frustum_.width_px) + " x " + std::to_string(frustum_.height_px) +
-                                " px, more than the " + std::to_string(max_size) +
-                                " px a side OpenGL allows; use fewer pixels or a narrower field of view");
-  }
+  view_volume_ = ViewVolume(frustum_.half_width, frustum_.half_height, frustum_.far_m);
+  check_render_size(frustum_.width_px, frustum_.height_px, "depth camera '" + def_.alias + "': its grid");
 
   // The context is this camera's alone, so its state is set once here.
   program_ = make_program(kVertexShader, kFragmentShader);
   mesh_ = upload_mesh(mesh, false);
   target_ = make_framebuffer(frustum_.width_px, frustum_.height_px, 0, GL_DEPTH_COMPONENT32F);
-  gl().ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
-  gl().Viewport(0, 0, frustum_.width_px, frustum_.height_px);
-  gl().Enable(GL_DEPTH_TEST);
-  gl().DepthFunc(GL_GREATER);
-  gl().ClearDepth(0.0);
-  gl().Disable(GL_DITHER);
-  gl().Disable(GL_MULTISAMPLE);
-  gl().PixelStorei(GL_PACK_ALIGNMENT, 1);
-  const Eigen::Matrix4f projection = projection_matrix(frustum_);
+  use_reversed_depth(frustum_.width_px, frustum_.height_px);
+  const Eigen::Matrix4f projection =
+      reversed_depth_projection(frustum_.half_width, frustum_.half_height, frustum_.near_m, frustum_.far_m);
   near_program_ = make_program(kVertexShader, kNearFragmentShader);
   gl().UseProgram(near_program_.id());
   gl().UniformMatrix4fv(1, 1, GL_FALSE, projection.data());
@@ -367,11 +306,7 @@ DepthCamera::DepthCamera(const Scene& scene, const SceneMesh& mesh, const Sensor
 // minimum range of the eye (`eye_in_mesh`: the eye in the mesh frame).
 bool DepthCamera::visible(const Eigen::Affine3f& eye_from_mesh, const Eigen::Vector3f& eye_in_mesh,
                           const Chunk& chunk, bool& close_by) const {
-  const Eigen::Vector3f centre = eye_from_mesh * chunk.centre;
-  if (centre.norm() - chunk.radius > static_cast<float>(frustum_.far_m)) return false;
-  for (const Eigen::Vector4f& plane : side_planes_) {
-    if (plane.head<3>().dot(centre) > chunk.radius) return false;
-  }
+  if (!view_volume_.may_see(eye_from_mesh * chunk.centre, chunk.radius)) return false;
   close_by = close_by || chunk.box.exteriorDistance(eye_in_mesh) < static_cast<float>(def_.range.min_range_m);
   return true;
 }
@@ -400,9 +335,7 @@ bool DepthCamera::back_faces_hidden(const Eigen::Vector3d& eye) const {
 }
 
 void DepthCamera::render(const Eigen::Isometry3d& sensor_pose, std::span<const Eigen::Isometry3d> body_poses) {
-  Eigen::Isometry3d eye_from_world = Eigen::Isometry3d::Identity();
-  eye_from_world.linear() = kEyeFromSensor;
-  eye_from_world = eye_from_world * sensor_pose.inverse();
+  const Eigen::Isometry3d eye_from_world = eye_from_world_at(sensor_pose);
 
   // Static geometry: the visible chunks, adjacent ones merged into runs.
   bool close_by = false;  // some visible surface may lie within the minimum range

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <Eigen/Core>
+
 namespace campo {
 
 OsmesaContext::OsmesaContext() {
@@ -120,6 +122,39 @@ Framebuffer make_framebuffer(int width_px, int height_px, GLenum colour_format, 
   }
   check_gl("making a frame buffer");
   return fb;
+}
+
+void check_render_size(int width_px, int height_px, const std::string& what) {
+  GLint max_size = 0;
+  gl().GetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+  if (width_px > max_size || height_px > max_size) {
+    throw std::invalid_argument(what + " needs a render of " + std::to_string(width_px) + " x " +
+                                std::to_string(height_px) + " px, more than the " + std::to_string(max_size) +
+                                " px a side OpenGL allows; use fewer pixels or a narrower field of view");
+  }
+}
+
+Eigen::Matrix4f reversed_depth_projection(double half_width, double half_height, double near_m, double far_m) {
+  const double n = near_m;
+  const double d = far_m;
+  Eigen::Matrix4d p = Eigen::Matrix4d::Zero();
+  p(0, 0) = 1.0 / half_width;
+  p(1, 1) = 1.0 / half_height;
+  p(2, 2) = n / (d - n);
+  p(2, 3) = n * d / (d - n);
+  p(3, 2) = -1.0;
+  return p.cast<float>();
+}
+
+void use_reversed_depth(int width_px, int height_px) {
+  gl().ClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  gl().Viewport(0, 0, width_px, height_px);
+  gl().Enable(GL_DEPTH_TEST);
+  gl().DepthFunc(GL_GREATER);
+  gl().ClearDepth(0.0);
+  gl().Disable(GL_DITHER);
+  gl().Disable(GL_MULTISAMPLE);
+  gl().PixelStorei(GL_PACK_ALIGNMENT, 1);
 }
 
 GpuMesh upload_mesh(const SceneMesh& mesh, bool with_normals) {

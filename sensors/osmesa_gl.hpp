@@ -7,7 +7,10 @@
 #include "sensors/gl_api.hpp"
 
 #include <cstdint>
+#include <string>
 #include <utility>
+
+#include <Eigen/Core>
 
 #include "scene/scene_mesh.hpp"
 
@@ -92,6 +95,24 @@ struct Framebuffer {
 /// that attachment out; samples > 1 makes it multisampled.
 Framebuffer make_framebuffer(int width_px, int height_px, GLenum colour_format, GLenum depth_format,
                              int samples = 1);
+
+/// Throws std::invalid_argument "<what> needs a render of W x H px, more
+/// than ... OpenGL allows" when either side exceeds GL_MAX_RENDERBUFFER_SIZE.
+void check_render_size(int width_px, int height_px, const std::string& what);
+
+/// The projection of a pinhole view (eye frame: looking along -z, x right, y
+/// up; the image plane at z = -1 reaching +-half_width, +-half_height) to
+/// reversed depth in [0, 1] (with use_reversed_depth): window depth
+/// d = near (far - z) / ((far - near) z), 1 at the near plane, 0 at the far
+/// one, affine in 1/z and so in screen position across any planar triangle;
+/// floats keep their precision where 1/z is small, far from the eye.
+Eigen::Matrix4f reversed_depth_projection(double half_width, double half_height, double near_m, double far_m);
+
+/// Sets the current context's state for reversed_depth_projection (zero-to-one
+/// clip depth, GL_GREATER, depth cleared to 0) over a viewport of width x
+/// height, without dithering or multisampling (sensor images are exact and
+/// deterministic) and with tightly packed rows for glReadPixels.
+void use_reversed_depth(int width_px, int height_px);
 
 /// A mesh in GPU buffers: attribute 0 = position, 1 = normal (when uploaded).
 struct GpuMesh {
