@@ -1,10 +1,13 @@
 #pragma once
 /// Batched ray casting against the scene geometry: exactly the shapes the
 /// Bullet world collides with (analytic primitives, and the heightfield
-/// triangulated the way Bullet triangulates it). Two methods, same answers:
-/// an Embree BVH traversed ray by ray, and for the many rays of a scan from
-/// one origin a RayFan (sensors/ray_fan.hpp), where each surface in range is
-/// projected onto the rays that may hit it.
+/// triangulated the way Bullet triangulates it), and mesh shapes as their
+/// triangles, two-sided and watertight (a dynamic mesh too, though Bullet
+/// collides it as its convex hull). Two methods, same answers: an Embree BVH
+/// traversed ray by ray, and for the many rays of a scan from one origin a
+/// RayFan (sensors/ray_fan.hpp), where each surface in range is projected
+/// onto the rays that may hit it; a mesh is not projected: the fan's rays
+/// that meet its bounding sphere go through its own BVH.
 #include <cstdint>
 #include <memory>
 #include <span>
