@@ -275,6 +275,7 @@ DepthCamera::DepthCamera(const Scene& scene, const SceneMesh& mesh, const Sensor
   visible_movers_.reserve(mover_chunks_.size());
   for (const MeshPart& part : mesh.parts) {
     const Shape& shape = scene.shapes[static_cast<std::size_t>(part.shape)];
+    // Mesh shapes are solids here: one that is open or wound either way is in the scene mesh from both sides.
     if (shape.type == ShapeType::plane || shape.type == ShapeType::heightfield) {
       open_surfaces_.push_back({&shape, shape.terrain ? shape.terrain->max_height_m() : 0.0});
     } else {

@@ -89,8 +89,8 @@ Primitive make_primitive(const Shape& shape, std::int32_t id) {
       p.half_extents = Eigen::Vector3d::Constant(shape.radius_m);
       break;
     case ShapeType::mesh:
-      p.half_extents = 0.5 * shape.mesh->bounds_m.sizes();
-      break;  // the caller sets p.mesh
+      p.half_extents.setZero();  // unused: the bounds come from the mesh's model, which the caller sets
+      break;
     case ShapeType::plane:
     case ShapeType::heightfield:
       throw std::logic_error("make_primitive: not an analytic primitive");
@@ -688,8 +688,13 @@ struct RayCaster::Impl {
     if (const auto it = mesh_model_of.find(&mesh); it != mesh_model_of.end()) return it->second;
     MeshModel& model = mesh_models.emplace_back();
     model.mesh = &mesh;
-    model.centre = mesh.bounds_m.center();
-    model.half = 0.5 * mesh.bounds_m.sizes();
+    // An empty mesh (refused by the loader) would have infinite bounds: a point at the origin instead.
+    model.centre.setZero();
+    model.half.setZero();
+    if (!mesh.bounds_m.isEmpty()) {
+      model.centre = mesh.bounds_m.center();
+      model.half = 0.5 * mesh.bounds_m.sizes();
+    }
     for (const Eigen::Vector3d& v : mesh.vertices_m) model.radius = std::max(model.radius, (v - model.centre).norm());
     model.scene = rtcNewScene(device);
     rtcSetSceneBuildQuality(model.scene, RTC_BUILD_QUALITY_HIGH);

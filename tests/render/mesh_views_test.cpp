@@ -5,9 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
-#include <set>
+#include <fstream>
 #include <string>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
 
 #include "campo/pose.hpp"
 #include "render/map_figure.hpp"
@@ -103,14 +107,23 @@ TEST(MeshViews, DefaultSnapshotFramesAMeshByItsVerticesNotItsOrigin) {
   EXPECT_NEAR(camera.target_m.x(), 50.0, 1e-9);
 }
 
-class MeshReplay : public testing::CliTest {};
+class MeshReplay : public testing::CliTest {
+ protected:
+  // A recorded run of a bundled scene, its shapes then replaced by the test's.
+  RecordedRun recorded(std::vector<Shape> shapes) {
+    const fs::path out = dir_ / "run";
+    const testing::Result r = campo("run " + std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json --out " +
+                                    out.string() + " --no-figures");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    RecordedRun run = load_run_dir(out);
+    run.scene.shapes = std::move(shapes);
+    return run;
+  }
+};
 
 TEST_F(MeshReplay, CarriesEachMeshsTrianglesOnceAndClustersLargeOnesWithinTheLimit) {
-  const fs::path out = dir_ / "run";
-  const testing::Result r = campo("run " + std::string(CAMPO_SOURCE_DIR) + "/scenes/two_barriers.json --out " +
-                                  out.string() + " --no-figures");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  RecordedRun run = load_run_dir(out);
+  RecordedRun run = recorded({});
+  ASSERT_FALSE(HasFailure());
   // Two shapes share the cube; a third is a finely subdivided sphere.
   const auto cube = test_support::cuboid_mesh(Eigen::Vector3d(1.0, 2.0, 3.0));
   const auto ball = test_support::icosphere_mesh(1.5, 4);  // 5120 triangles
@@ -167,6 +180,69 @@ TEST_F(MeshReplay, CarriesEachMeshsTrianglesOnceAndClustersLargeOnesWithinTheLim
   // The page's bounds take in the meshes' vertices.
   const nlohmann::json data = replay_data({run}, limits);
   EXPECT_LE(data["scene"]["bounds_m"]["min"][1].get<double>(), -7.5 + 1e-3);
+}
+
+// The page draws the meshes where campo's own render (the scene mesh through
+// OSMesa) has them: Chromium's silhouette of the replay against the snapshot.
+TEST_F(MeshReplay, PageDrawsTheMeshesWhereCamposRenderHasThem) {
+  std::vector<Shape> shapes;
+  shapes.push_back(test_support::mesh_shape(test_support::cuboid_mesh(Eigen::Vector3d(3.0, 2.0, 2.5)),
+                                            to_isometry(Pose{{-3.0, 2.0, 1.25}, {0, 0, 35}})));
+  shapes.push_back(test_support::mesh_shape(test_support::cylinder_mesh(1.0, 4.0, 64),
+                                            to_isometry(Pose{{3.0, 3.0, 2.0}, {20, 0, 0}})));
+  shapes.push_back(test_support::mesh_shape(test_support::icosphere_mesh(1.5, 3),
+                                            to_isometry(Pose{{1.0, -3.0, 1.5}, {0, 0, 0}})));
+  // An open mesh: a single wall, seen from its back.
+  TriangleMesh wall;
+  wall.vertices_m = {{0, -2, 0}, {0, 2, 0}, {0, 2, 3}, {0, -2, 3}};
+  wall.triangles = {{0, 1, 2}, {0, 2, 3}};
+  shapes.push_back(test_support::mesh_shape(test_support::finished(std::move(wall), false),
+                                            to_isometry(Pose{{-4.0, -4.0, 0.0}, {0, 0, 20}})));
+  const RecordedRun run = recorded(shapes);
+  ASSERT_FALSE(HasFailure());
+  const fs::path page_file = dir_ / "replay.html";
+  {
+    std::ofstream page(page_file);
+    page << replay_html(replay_data({run}));
+  }
+  const fs::path shot = dir_ / "shot.png";
+  const std::string command =
+      "chromium --headless=new --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader "
+      "--enable-logging=stderr --v=0 --virtual-time-budget=5000 --window-size=640,480 --screenshot=" + shot.string() +
+      " 'file://" + page_file.string() + "#view=silhouette&fov=50&camera=-8,-9,8,0,0,1' >" +
+      (dir_ / "chromium.out").string() + " 2>" + (dir_ / "chromium.err").string();
+  ASSERT_EQ(std::system(command.c_str()), 0) << testing::slurp(dir_ / "chromium.err");
+  for (const std::string& line : testing::lines_of(testing::slurp(dir_ / "chromium.err"))) {
+    EXPECT_EQ(line.find("CONSOLE"), std::string::npos) << line;
+    EXPECT_EQ(line.find("Uncaught"), std::string::npos) << line;
+  }
+  const cv::Mat page = cv::imread(shot.string(), cv::IMREAD_GRAYSCALE);
+  ASSERT_EQ(page.size(), cv::Size(640, 480));
+  SnapshotCamera camera;
+  camera.eye_m = {-8.0, -9.0, 8.0};
+  camera.target_m = {0.0, 0.0, 1.0};
+  camera.fov_deg = 50.0;
+  camera.width_px = 640;
+  camera.height_px = 480;
+  const cv::Mat own = render_snapshot(run.scene, build_scene_mesh(run.scene), camera, {}, std::nullopt,
+                                      VehicleType::quadrotor);
+  const cv::Vec3b sky(240, 199, 161);
+  int both = 0, either = 0, solid = 0;
+  for (int row = 0; row < 480; ++row) {
+    for (int col = 0; col < 640; ++col) {
+      const cv::Vec3b o = own.at<cv::Vec3b>(row, col);
+      const bool ours = std::abs(o[0] - sky[0]) + std::abs(o[1] - sky[1]) + std::abs(o[2] - sky[2]) > 6;
+      const bool theirs = page.at<uchar>(row, col) > 127;
+      both += ours && theirs;
+      either += ours || theirs;
+      solid += theirs;
+    }
+  }
+  EXPECT_GT(solid, 640 * 480 / 8);
+  // The silhouettes agree but for edge pixels (0.989 here).
+  const double overlap = static_cast<double>(both) / either;
+  EXPECT_GT(overlap, 0.98) << both << " / " << either;
+  RecordProperty("silhouette_overlap", std::to_string(overlap));
 }
 
 }  // namespace
