@@ -15,6 +15,7 @@
 #include "campo/episode.hpp"
 #include "campo/scene_loader.hpp"
 #include "campo/vehicle_factory.hpp"
+#include "session/imu_record.hpp"
 #include "session/run_session.hpp"
 
 namespace campo {
@@ -217,6 +218,23 @@ TEST(ImuEpisode, ARunRecordsEverySampleAndTheImus) {
   EXPECT_NEAR(slow, run_ticks / 2, 2);
   EXPECT_GT(fast, 0);
   std::filesystem::remove_all(dir);
+}
+
+TEST(ImuEpisode, TheFilesAreNamedAsTheTrajectoriesAndHoldEveryRow) {
+  EpisodeResult one, two;
+  one.vehicles.resize(1);
+  two.vehicles.resize(2);
+  one.vehicles[0].alias = two.vehicles[0].alias = "east";
+  two.vehicles[1].alias = "west";
+  EXPECT_EQ(imu_file(one, 0), "imu.csv");
+  EXPECT_EQ(imu_file(two, 1), "imu_west.csv");
+  VehicleDef def;
+  def.imus = {{"a", {}}, {"b", {}}};
+  const std::string csv = imu_csv(def, {{1, 0.25, {0.5, -1.0, 9.81}, {0.0, 0.125, -2.0}}, {0, 0.5, {}, {}}});
+  EXPECT_EQ(csv,
+            "time_s,alias,f_x_mps2,f_y_mps2,f_z_mps2,w_x_radps,w_y_radps,w_z_radps\n"
+            "0.250000,b,0.5,-1,9.81,0,0.125,-2\n"
+            "0.500000,a,0,0,0,0,0,0\n");
 }
 
 }  // namespace
