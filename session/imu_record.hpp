@@ -30,6 +30,8 @@ class ImuRecorder {
   /// called at each of the vehicle's planner calls (EpisodeOptions::on_plan), it sees every
   /// sample of an IMU no faster than the control rate, and the latest of a faster one.
   void observe(std::size_t vehicle, const Observation& observation);
+  /// Keeps one sample of IMU `imu` of vehicle `vehicle`.
+  void record(std::size_t vehicle, std::size_t imu, const ImuReading& reading);
   std::vector<std::vector<RecordedImuSample>>& samples() { return samples_; }
 
  private:
