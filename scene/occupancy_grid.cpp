@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
@@ -98,6 +99,7 @@ Interval vertical_extent(const Shape& shape, const Eigen::Vector3d& p, const Eig
     }
     case ShapeType::plane:
     case ShapeType::heightfield:
+    case ShapeType::mesh:  // mark_mesh
       break;
   }
   return kEmpty;
@@ -114,6 +116,14 @@ Eigen::AlignedBox3d world_box(const Shape& shape) {
     case ShapeType::sphere:
       half = Eigen::Vector3d::Constant(shape.radius_m);
       break;
+    case ShapeType::mesh: {
+      Eigen::AlignedBox3d box;
+      const Eigen::AlignedBox3d& local = shape.mesh->bounds_m;
+      for (int corner = 0; corner < 8; ++corner) {
+        box.extend(shape.pose * local.corner(static_cast<Eigen::AlignedBox3d::CornerType>(corner)));
+      }
+      return box;
+    }
     default: {
       // A disc of radius r at each end of the axis a spans r sqrt(1 - a_i^2) along axis i.
       const Eigen::Vector3d a = R.col(2);
@@ -124,6 +134,112 @@ Eigen::AlignedBox3d world_box(const Shape& shape) {
   }
   const Eigen::Vector3d c = shape.pose.translation();
   return {c - half, c + half};
+}
+
+// A static mesh on the grid's half-cell lattice (see build_occupancy_grid):
+// where the vertical line through a lattice point crosses the surface within
+// the height band, or (a closed mesh) runs inside the solid across the band.
+// Each triangle visits the lattice points under it (its edges included); a
+// vertical triangle of an open mesh, which no vertical line crosses, is walked
+// along its footprint.
+template <class Mark, class Ground>
+void mark_mesh(const Shape& shape, const Eigen::Vector2d& lo, double half, int lattice_cols, int lattice_rows,
+               const OccupancyConfig& config, Ground&& ground_at, Mark&& mark) {
+  const TriangleMesh& mesh = *shape.mesh;
+  std::vector<Eigen::Vector3d> world;
+  world.reserve(mesh.vertices_m.size());
+  for (const Eigen::Vector3d& v : mesh.vertices_m) world.push_back(shape.pose * v);
+  const auto in_band = [&](double z_lo, double z_hi, double ground) {
+    return z_hi > ground + config.ground_clearance_m && z_lo < ground + config.vehicle_height_m;
+  };
+  const auto lattice_index = [&](int j, int i) { return static_cast<std::int64_t>(i) * (lattice_cols + 1) + j; };
+  std::vector<std::pair<std::int64_t, double>> crossings;  // (lattice point, z) where a vertical line meets a face
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3d& a = world[t[0]];
+    const Eigen::Vector3d& b = world[t[1]];
+    const Eigen::Vector3d& c = world[t[2]];
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double x0 = std::min({a.x(), b.x(), c.x()}), x1 = std::max({a.x(), b.x(), c.x()});
+    const double y0 = std::min({a.y(), b.y(), c.y()}), y1 = std::max({a.y(), b.y(), c.y()});
+    const int j0 = std::max(0, static_cast<int>(std::ceil((x0 - lo.x()) / half)));
+    const int j1 = std::min(lattice_cols, static_cast<int>(std::floor((x1 - lo.x()) / half)));
+    const int i0 = std::max(0, static_cast<int>(std::ceil((y0 - lo.y()) / half)));
+    const int i1 = std::min(lattice_rows, static_cast<int>(std::floor((y1 - lo.y()) / half)));
+    if (std::abs(n.z()) > 1e-9 * n.norm()) {
+      // Lattice points inside the triangle's footprint (barycentric, edges included).
+      const double area = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
+      for (int i = i0; i <= i1; ++i) {
+        for (int j = j0; j <= j1; ++j) {
+          const Eigen::Vector2d p = lo + half * Eigen::Vector2d(j, i);
+          const double u = ((b.x() - p.x()) * (c.y() - p.y()) - (c.x() - p.x()) * (b.y() - p.y())) / area;
+          const double v = ((c.x() - p.x()) * (a.y() - p.y()) - (a.x() - p.x()) * (c.y() - p.y())) / area;
+          const double w = 1.0 - u - v;
+          if (u < 0.0 || v < 0.0 || w < 0.0) continue;
+          crossings.emplace_back(lattice_index(j, i), u * a.z() + v * b.z() + w * c.z());
+        }
+      }
+      continue;
+    }
+    // Vertical: in a closed mesh, the faces around it bound the solid already.
+    // In an open one, along its footprint (a segment), the z range of the
+    // triangle above each step, at the lattice point nearest the step (so a
+    // wall may cover the lattice points beside it: conservative).
+    if (mesh.closed) continue;
+    // The footprint is the longest of the edges' footprints.
+    const Eigen::Vector2d fa(a.x(), a.y()), fb(b.x(), b.y()), fc(c.x(), c.y());
+    Eigen::Vector2d from = fa, to = fb;
+    if ((fc - fa).norm() > (to - from).norm()) to = fc;
+    if ((fc - fb).norm() > (to - from).norm()) {
+      from = fb;
+      to = fc;
+    }
+    const double length = (to - from).norm();
+    const int steps = std::max(1, static_cast<int>(std::ceil(length / (0.5 * half))));
+    for (int k = 0; k <= steps; ++k) {
+      const Eigen::Vector2d q = from + (to - from) * (static_cast<double>(k) / steps);
+      double z_lo = kInf, z_hi = -kInf;
+      const Eigen::Vector3d* corners[3] = {&a, &b, &c};
+      for (int e = 0; e < 3; ++e) {
+        const Eigen::Vector3d& p0 = *corners[e];
+        const Eigen::Vector3d& p1 = *corners[(e + 1) % 3];
+        const Eigen::Vector2d d = p1.head<2>() - p0.head<2>();
+        // Where this edge is above q (its footprint through q), if anywhere.
+        const double dd = d.squaredNorm();
+        const double s = dd > 0.0 ? std::clamp((q - p0.head<2>()).dot(d) / dd, 0.0, 1.0) : 0.0;
+        if ((p0.head<2>() + s * d - q).norm() > 1e-9 + 1e-9 * length) continue;
+        const double z = dd > 0.0 ? p0.z() + s * (p1.z() - p0.z()) : std::min(p0.z(), p1.z());
+        z_lo = std::min({z_lo, z, dd > 0.0 ? z : std::min(p0.z(), p1.z())});
+        z_hi = std::max({z_hi, z, dd > 0.0 ? z : std::max(p0.z(), p1.z())});
+      }
+      if (z_lo > z_hi) continue;
+      const int j = static_cast<int>(std::lround((q.x() - lo.x()) / half));
+      const int i = static_cast<int>(std::lround((q.y() - lo.y()) / half));
+      if (j < 0 || i < 0 || j > lattice_cols || i > lattice_rows) continue;
+      if (in_band(z_lo, z_hi, ground_at(q.x(), q.y()))) mark(j, i);
+    }
+  }
+  // Per lattice point, its crossings in height order: each within the band
+  // marks it, and so does a stretch inside a closed mesh across the band.
+  std::sort(crossings.begin(), crossings.end());
+  // A line through an edge shared by two faces meets the surface once, not twice.
+  crossings.erase(std::unique(crossings.begin(), crossings.end(),
+                              [](const auto& x, const auto& y) { return x.first == y.first && std::abs(x.second - y.second) <= 1e-9; }),
+                  crossings.end());
+  for (std::size_t k = 0; k < crossings.size();) {
+    std::size_t end = k;
+    while (end < crossings.size() && crossings[end].first == crossings[k].first) ++end;
+    const int i = static_cast<int>(crossings[k].first / (lattice_cols + 1));
+    const int j = static_cast<int>(crossings[k].first % (lattice_cols + 1));
+    const Eigen::Vector2d p = lo + half * Eigen::Vector2d(j, i);
+    const double ground = ground_at(p.x(), p.y());
+    bool marked = false;
+    for (std::size_t m = k; m < end && !marked; ++m) marked = in_band(crossings[m].second, crossings[m].second, ground);
+    if (mesh.closed) {
+      for (std::size_t m = k; m + 1 < end && !marked; m += 2) marked = in_band(crossings[m].second, crossings[m + 1].second, ground);
+    }
+    if (marked) mark(j, i);
+    k = end;
+  }
 }
 
 bool is_obstacle_candidate(const Shape& shape) {
@@ -278,6 +394,11 @@ OccupancyGrid build_occupancy_grid(const Scene& scene, const OccupancyConfig& co
   };
   for (const Shape& shape : scene.shapes) {
     if (!is_obstacle_candidate(shape)) continue;
+    if (shape.type == ShapeType::mesh) {
+      mark_mesh(shape, lo, half, lattice_cols, lattice_rows, config,
+                [&terrain](double x, double y) { return terrain.ground_height(x, y).value_or(0.0); }, mark);
+      continue;
+    }
     const Eigen::AlignedBox3d box = world_box(shape);
     const Eigen::Isometry3d to_local = shape.pose.inverse();
     const Eigen::Vector3d up_local = shape.pose.linear().transpose() * Eigen::Vector3d::UnitZ();
