@@ -84,7 +84,7 @@ const ConfigFields<QuadrotorConfig>& quadrotor_config_fields() {
           .number("linear_drag_n_per_mps", &C::linear_drag_n_per_mps, Range::non_negative(), "N/(m/s)",
                   "rotor drag -c v_air, v_air = velocity - wind (below)")
           .vector("drag_area_m2", &C::drag_area_m2, Range::closed(0.0, 10.0), "m²",
-                  "quadratic body drag C_d A per body axis x, y, z: -½ ρ (C_d A)_i \\|v_air\\| v_air,i")
+                  "quadratic body drag C_d A per body axis x, y, z: -½ ρ (C_d A)_i ‖v_air‖ v_air,i")
           .number("air_density_kgpm3", &C::air_density_kgpm3, Range::closed(0.01, 10.0), "kg/m³",
                   "ρ of the quadratic drag (1.225: ISA sea level)")
           .number("angular_drag_nm_per_radps", &C::angular_drag_nm_per_radps, Range::non_negative(), "N m/(rad/s)",
