@@ -2,6 +2,7 @@
 #include "physics/bullet_convert.hpp"
 #include "physics/clearance.hpp"
 #include "physics/terrain_shape.hpp"
+#include "physics/wind.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -67,6 +68,7 @@ struct World::Impl {
   std::unique_ptr<btDiscreteDynamicsWorld> dynamics;
   std::int64_t steps = 0;
   std::size_t vehicles_joined = 0;
+  std::optional<WindField> wind;  // set by World::World; advanced once per step
 
   // Each vehicle's bodies, in the order they joined the world, with their
   // bounding spheres (local centre, radius); found again when bodies join or leave.
@@ -187,6 +189,7 @@ struct World::Impl {
 World::World(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()) {
   impl_->dynamics->setGravity(to_bt(scene.world.gravity_mps2));
   Impl& d = *impl_;
+  d.wind.emplace(scene.world.wind, scene.world.seed, scene.world.physics_step_s);
   d.shape_bodies.assign(scene.shapes.size(), nullptr);
   std::vector<double> compound_friction;
   std::vector<CompoundKey> compound_keys;
@@ -262,6 +265,12 @@ void World::step() {
   }
   impl_->dynamics->stepSimulation(dt, 1, dt);
   ++impl_->steps;
+  impl_->wind->advance();
+}
+
+Eigen::Vector3d World::wind_mps(const Eigen::Vector3d& /*position_m*/) const {
+  // Uniform in space (physics/wind.hpp): the same air everywhere at a given time.
+  return impl_->wind->velocity_mps(time_s());
 }
 
 std::optional<double> World::terrain_height(double x_m, double y_m) const {
