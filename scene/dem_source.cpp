@@ -97,8 +97,8 @@ const ConfigFields<DemOptions>& dem_fields() {
                   "a nodata cell among those read: refuse the file, or fill the cell from its valid neighbours (below)")
           .number("spacing_m", &D::spacing_m, Range{0.0, 1e6, false, true}, "m",
                   "vertex spacing; 0: the file's pixel size in metres (the smaller side of a pixel)")
-          .custom("crop", "", std::string("an object: ") + kCropForms,
-                  "the area that becomes the terrain (below); none: the whole raster",
+          .custom("crop", "", "an object of one of the three forms below",
+                  "the area that becomes the terrain; none: the whole raster",
                   [](const JsonNode& node, D& d) { d.crop = read_crop(node); },
                   [](const D& d, nlohmann::json& j) { write_crop(d.crop, j); });
   return fields;
@@ -183,7 +183,12 @@ class GdalSession {
 
   const GdalApi& api() const { return api_; }
 
+  /// Our own finding about the file.
   [[noreturn]] void fail(const std::string& what) const {
+    throw std::runtime_error("DEM '" + printable(path_) + "': " + what);
+  }
+  /// A GDAL call that failed, with GDAL's own last message.
+  [[noreturn]] void gdal_failed(const std::string& what) const {
     const char* message = api_.CPLGetLastErrorMsg();
     std::string text = "DEM '" + printable(path_) + "': " + what;
     if (message != nullptr && *message != '\0') text += " (GDAL: " + printable(message) + ")";
@@ -279,7 +284,7 @@ class DemReader {
     const std::string name = path.string();
     dataset_ = Dataset(api_.GDALOpenEx(name.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr),
                        DatasetCloser{&api_});
-    if (!dataset_) session_.fail("not a raster GDAL can read");
+    if (!dataset_) session_.gdal_failed("not a raster GDAL can read");
     pixels_.cols = api_.GDALGetRasterXSize(dataset_.get());
     pixels_.rows = api_.GDALGetRasterYSize(dataset_.get());
     terrain_.raster_cols = pixels_.cols;
@@ -291,7 +296,7 @@ class DemReader {
       session_.fail("no band " + std::to_string(options_.band) + ": the file has " + std::to_string(bands));
     }
     band_ = api_.GDALGetRasterBand(dataset_.get(), options_.band);
-    if (band_ == nullptr) session_.fail("cannot read band " + std::to_string(options_.band));
+    if (band_ == nullptr) session_.gdal_failed("cannot read band " + std::to_string(options_.band));
     data_type_ = api_.GDALGetRasterDataType(band_);
     if (data_type_ == GDT_Unknown || data_type_ == GDT_CInt16 || data_type_ == GDT_CInt32 ||
         data_type_ == GDT_CFloat32 || data_type_ == GDT_CFloat64) {
@@ -347,7 +352,7 @@ class DemReader {
     }
     terrain_.crs_wkt = wkt;
     file_srs_ = Srs(api_.OSRNewSpatialReference(wkt), SrsDestroyer{&api_});
-    if (!file_srs_) session_.fail("a coordinate reference system GDAL cannot read");
+    if (!file_srs_) session_.gdal_failed("a coordinate reference system GDAL cannot read");
     api_.OSRSetAxisMappingStrategy(file_srs_.get(), OAMS_TRADITIONAL_GIS_ORDER);
     if (api_.OSRIsGeographic(file_srs_.get()) != 0) {
       terrain_.crs = DemCrs::geographic;
@@ -376,11 +381,11 @@ class DemReader {
     const char* code = api_.OSRGetAuthorityCode(file_srs_.get(), nullptr);
     if (authority != nullptr && code != nullptr && std::strcmp(authority, "EPSG") == 0) terrain_.epsg = std::atoi(code);
     Srs wgs84(api_.OSRNewSpatialReference(nullptr), SrsDestroyer{&api_});
-    if (!wgs84 || api_.OSRImportFromEPSG(wgs84.get(), 4326) != OGRERR_NONE) session_.fail("no WGS84 (EPSG:4326) in PROJ");
+    if (!wgs84 || api_.OSRImportFromEPSG(wgs84.get(), 4326) != OGRERR_NONE) session_.gdal_failed("no WGS84 (EPSG:4326) in PROJ");
     api_.OSRSetAxisMappingStrategy(wgs84.get(), OAMS_TRADITIONAL_GIS_ORDER);
     to_wgs84_ = Transform(api_.OCTNewCoordinateTransformation(file_srs_.get(), wgs84.get()), TransformDestroyer{&api_});
     from_wgs84_ = Transform(api_.OCTNewCoordinateTransformation(wgs84.get(), file_srs_.get()), TransformDestroyer{&api_});
-    if (!to_wgs84_ || !from_wgs84_) session_.fail("no transformation between the file's CRS and WGS84");
+    if (!to_wgs84_ || !from_wgs84_) session_.gdal_failed("no transformation between the file's CRS and WGS84");
   }
 
   // File coordinates (x, y) -> WGS84 latitude, longitude (degrees).
@@ -630,7 +635,7 @@ class DemReader {
     std::vector<double> values(static_cast<std::size_t>(w.cols) * w.rows);
     if (api_.GDALRasterIO(band_, GF_Read, w.col0, w.row0, w.cols, w.rows, values.data(), w.cols, w.rows, GDT_Float64,
                           0, 0) != CE_None) {
-      session_.fail("cannot read pixels " + std::to_string(w.cols) + " x " + std::to_string(w.rows) + " at (" +
+      session_.gdal_failed("cannot read pixels " + std::to_string(w.cols) + " x " + std::to_string(w.rows) + " at (" +
                     std::to_string(w.col0) + ", " + std::to_string(w.row0) + ")");
     }
     std::vector<std::uint8_t> missing(values.size(), 0);

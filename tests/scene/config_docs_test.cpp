@@ -4,6 +4,7 @@
 // CAMPO_UPDATE_DOCS=1 build/tests/test_scene --gtest_filter='ConfigDocs.*').
 #include <gtest/gtest.h>
 
+#include "scene/dem_source.hpp"
 #include "scene/generator_fields.hpp"
 #include "scene/sensor_fields.hpp"
 #include "scene/world_config.hpp"
@@ -15,6 +16,7 @@ namespace {
 TEST(ConfigDocs, SceneTablesAreTheDeclaredFields) {
   test_support::expect_docs_tables("docs/scene-format.md",
                                    {{"world", world_config_fields().markdown()},
+                                    {"dem", dem_fields().markdown()},
                                     {"rolling_terrain", rolling_terrain_fields().markdown()},
                                     {"trees", trees_fields().markdown()},
                                     {"vineyard", vineyard_fields().markdown()},

@@ -489,6 +489,73 @@ TEST_F(DemSource, SceneErrorsNameTheFileAndPointer) {
               HasSubstr("/objects/0/pose (t): expected a pose without yaw: this DEM fills the world's geo_reference"));
 }
 
+// --- the bundled example ------------------------------------------------------------------
+
+const std::string kExampleDem = std::string(CAMPO_SOURCE_DIR) + "/scenes/dem/naples_synthetic_utm33n.tif";
+
+TEST(DemExample, TheBundledFileIsSmallSyntheticUtmWithAVoid) {
+  EXPECT_LE(fs::file_size(kExampleDem), 200u * 1024u);
+  EXPECT_THAT(error_of(kExampleDem), HasSubstr("nodata cells (value -32768)"));
+  DemOptions fill;
+  fill.nodata = DemNodata::fill;
+  const DemTerrain dem = heightgrid_from_dem(kExampleDem, fill);
+  EXPECT_EQ(dem.raster_cols, 256);
+  EXPECT_EQ(dem.raster_rows, 256);
+  EXPECT_EQ(dem.epsg, 32633);
+  EXPECT_EQ(dem.grid.spacing_x_m, 10.0);
+  // The void of tools/make_example_dem.py: pixel centres in an ellipse of 30 x 20 m semi-axes at (-420, 260) m.
+  // Grid row r is file row 255 - r, so y = (r + 0.5) 10 - 1280.
+  long void_cells = 0, odd_heights = 0;
+  for (int row = 0; row < 256; ++row) {
+    for (int col = 0; col < 256; ++col) {
+      const double x = (col + 0.5) * 10 - 1280, y = (row + 0.5) * 10 - 1280;
+      const bool in_void = std::pow((x + 420) / 30, 2) + std::pow((y - 260) / 20, 2) <= 1.0;
+      void_cells += in_void;
+      // Decimetres with band scale 0.1: every height read is a whole number of decimetres.
+      const double h = dem.grid.at(col, row);
+      odd_heights += !in_void && std::abs(h * 10 - std::round(h * 10)) > 1e-9;
+    }
+  }
+  EXPECT_GT(void_cells, 10);
+  EXPECT_EQ(dem.filled_cells, void_cells);
+  EXPECT_EQ(odd_heights, 0);
+}
+
+TEST(DemExample, TheBundledSceneFillsItsReferenceAndItsWaypointsStandAboveTheTerrain) {
+  const Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/dem_terrain.json");
+  EXPECT_NEAR(scene.world.geo_reference.latitude_deg, 40.8467, 1e-12);
+  EXPECT_NEAR(scene.world.geo_reference.longitude_deg, 14.2645, 1e-12);
+  const HeightGrid& grid = *scene.shapes.at(0).terrain;
+  EXPECT_EQ(grid.cols, 201);
+  EXPECT_EQ(grid.rows, 201);
+  EXPECT_EQ(grid.spacing_x_m, 8.0);
+  EXPECT_GE(grid.min_height_m(), -0.5);
+  EXPECT_LE(grid.max_height_m(), 189.4);
+  const auto& mission = scene.vehicles.at(0).mission;
+  ASSERT_EQ(mission.size(), 5u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Eigen::Vector3d& p = mission[i].position_m;
+    EXPECT_NEAR(p.z() - scene.ground_height(p.x(), p.y()).value(), 25.0, 1e-9) << i;
+  }
+  // The third waypoint is the summit of the main hill, about 500 m east and 400 m north of the centre.
+  EXPECT_NEAR(mission[2].position_m.x(), 500.0, 1.0);
+  EXPECT_NEAR(mission[2].position_m.y(), 400.0, 1.0);
+  EXPECT_GT(mission[2].position_m.z() - 25.0, 180.0);
+}
+
+TEST(DemExample, CampoRunCompletesTheBundledMission) {
+  const fs::path out = fs::temp_directory_path() / "campo_dem_example_run";
+  fs::remove_all(out);
+  const std::string command = std::string(CAMPO_BINARY) + " run " + CAMPO_SOURCE_DIR + "/scenes/dem_terrain.json --out " +
+                              out.string() + " > /dev/null 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  std::ifstream in(out / "run.json");
+  const nlohmann::json run = nlohmann::json::parse(in);
+  EXPECT_EQ(run["metrics"]["outcome"], "reached");
+  EXPECT_EQ(run["metrics"]["collisions"], 0);
+  fs::remove_all(out);
+}
+
 TEST(DemFields, CropRoundTripsThroughWrite) {
   DemOptions options;
   options.crop = {DemCropForm::lat_long_centre, 0, 0, 0, 0, 40.85, 14.27, {800.0, 600.0}};
