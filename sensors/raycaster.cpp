@@ -663,6 +663,10 @@ fan::Primitive fan_primitive(const Primitive& p, const Eigen::Matrix3d& sensor_t
 // ray.
 constexpr std::size_t kMinFanRays = 256;
 constexpr double kFanRaysPerSurface = 2.0;
+// A fan casts each of its rays that meets a mesh's bounding sphere through the
+// mesh's BVH, after testing every ray against every mesh's sphere: with more
+// meshes than this within range, ray by ray through Embree's BVH is cheaper.
+constexpr std::size_t kMaxFanMeshes = 16;
 
 struct RayCaster::Impl {
   RTCDevice device = nullptr;
@@ -674,6 +678,7 @@ struct RayCaster::Impl {
   std::unordered_map<const TriangleMesh*, const MeshModel*> mesh_model_of;
   CastMethod method = CastMethod::automatic;
   bool fan_kernels = false;
+  std::size_t mesh_shapes = 0;  // static and moving
 
   ~Impl() {
     if (fixed.scene) rtcReleaseScene(fixed.scene);
@@ -717,7 +722,10 @@ struct RayCaster::Impl {
 
   Primitive primitive(const Shape& shape, std::int32_t id) {
     Primitive p = make_primitive(shape, id);
-    if (shape.type == ShapeType::mesh) p.mesh = mesh_model(*shape.mesh);
+    if (shape.type == ShapeType::mesh) {
+      p.mesh = mesh_model(*shape.mesh);
+      ++mesh_shapes;
+    }
     return p;
   }
 
@@ -845,6 +853,17 @@ struct RayCaster::Impl {
         surfaces += (c1 - c0 + 1.0) * (r1 - r0 + 1.0);
       }
     }
+    if (mesh_shapes > kMaxFanMeshes) {
+      // A fan tests every ray against every mesh's bounding sphere; the BVH culls them instead.
+      std::size_t near = 0;
+      for (const Layer* layer : {&fixed, &moving}) {
+        for (const Primitive& p : layer->primitives) {
+          if (p.type != ShapeType::mesh) continue;
+          near += (p.center + p.rotation * p.mesh->centre - origin).norm() - p.mesh->radius <= max_range_m;
+        }
+      }
+      if (near > kMaxFanMeshes) return false;
+    }
     return surfaces <= kFanRaysPerSurface * static_cast<double>(fan.size());
   }
 
@@ -902,7 +921,9 @@ struct RayCaster::Impl {
                          max_range_m, best);
 
     // Meshes have no projection kernel: each ray that meets a mesh's bounding
-    // sphere short of its nearest hit so far traverses the mesh's triangles.
+    // sphere short of its nearest hit so far traverses the mesh's triangles,
+    // turned into the world in float as a cast through Embree turns it (same answers).
+    const Eigen::Matrix3f rotation_f = rotation.cast<float>();
     for (const Layer* layer : {&fixed, &moving}) {
       for (const Primitive& p : layer->primitives) {
         if (p.type != ShapeType::mesh) continue;
@@ -914,7 +935,8 @@ struct RayCaster::Impl {
           const double along = centre.dot(d);  // directions are unit vectors
           if (along + radius < min_range_m || along - radius > scratch.best_t[k]) continue;
           if ((centre - along * d).squaredNorm() > radius * radius) continue;
-          const double t = intersect_mesh(p, origin, rotation * d, min_range_m, scratch.best_t[k]);
+          const Eigen::Vector3d world = (rotation_f * Eigen::Vector3f(rays.x[k], rays.y[k], rays.z[k])).cast<double>();
+          const double t = intersect_mesh(p, origin, world, min_range_m, scratch.best_t[k]);
           if (t < kNoHit) {
             scratch.best_t[k] = static_cast<float>(t);
             scratch.best_shape[k] = p.shape;

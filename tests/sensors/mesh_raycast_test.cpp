@@ -318,6 +318,31 @@ TEST(MeshRaycast, ClosedIcosphereLetsNoRayOutEvenThroughSharedEdgesAndVertices) 
   }
 }
 
+TEST(MeshRaycast, ManyMeshesAroundTheSensorGiveThePrimitivesRanges) {
+  // 36 cubes sharing one mesh on a ring and a grid around the sensors: more
+  // than a fan takes (automatic goes ray by ray), and the forced fan still agrees.
+  std::vector<Shape> meshes, boxes;
+  const auto cube = cuboid_mesh(Eigen::Vector3d(0.8, 0.6, 1.4));
+  for (int i = 0; i < 36; ++i) {
+    const double a = 2.0 * std::numbers::pi * i / 36.0;
+    const Eigen::Isometry3d at = pose({(3.0 + 0.1 * (i % 5)) * std::cos(a), (3.0 + 0.1 * (i % 5)) * std::sin(a),
+                                       0.3 * (i % 3) - 0.3},
+                                      {5.0 * i, 0.0, 10.0 * i});
+    meshes.push_back(mesh_shape(cube, at));
+    boxes.push_back(cuboid(at, Eigen::Vector3d(0.8, 0.6, 1.4)));
+  }
+  const Scene mesh_scene = scene_of(meshes), box_scene = scene_of(boxes);
+  std::vector<Eigen::Isometry3d> poses;
+  for (int k = 0; k < 6; ++k) poses.push_back(pose({0.2 * k - 0.5, 0.1 * k, 0.1}, {0.0, 10.0 * k - 20.0, 60.0 * k}));
+  for (const CastMethod method : methods()) {
+    SCOPED_TRACE(name(method));
+    const Agreement r = compare_scans(mesh_scene, box_scene, method, poses, kNoExcuse);
+    EXPECT_EQ(r.disagreeing, 0);
+    EXPECT_GT(r.compared, 20000);
+    EXPECT_LT(r.worst_m, 1e-5);
+  }
+}
+
 TEST(MeshRaycast, OpenMeshIsSeenFromBothSides) {
   // One square of two triangles, normal +z: rays from above and below both hit.
   TriangleMesh square;
