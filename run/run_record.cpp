@@ -198,22 +198,33 @@ namespace {
 nlohmann::json vehicle_parameters(const VehicleDef& def, const VehicleResult& result) {
   nlohmann::json sensors = nlohmann::json::array();
   for (const SensorDef& s : def.sensors) sensors.push_back(sensor_json(s));
+  // The IMUs (listed only where there are some, so the records of scenes without them are as before).
+  nlohmann::json imus = nlohmann::json::array();
+  for (const ImuDef& imu : def.imus) {
+    nlohmann::json j = imu_config_fields().write(imu.imu);
+    j["type"] = "imu";
+    j["alias"] = imu.alias;
+    imus.push_back(j);
+  }
   nlohmann::json mission = nlohmann::json::array();
   for (const Waypoint& wp : def.mission) {
     nlohmann::json j = {{"position_m", vector_json(wp.position_m)}};
     if (wp.heading_deg) j["heading_deg"] = *wp.heading_deg;
     mission.push_back(j);
   }
-  return {{"vehicle",
-           {{"alias", def.alias},
-            {"type", to_string(def.type)},
-            {"start_position_m", vector_json(def.pose.translation())},
-            {"start_rpy_deg", vector_json(rpy_deg_from_rotation(def.pose.linear()))},
-            {"parameters", result.vehicle_parameters},
-            {"state_noise", state_noise_fields().write(def.state_noise)}}},
-          {"planner", {{"name", def.planner.name}, {"parameters", result.planner_parameters}}},
-          {"sensors", sensors},
-          {"mission", mission}};
+  nlohmann::json parameters = {
+      {"vehicle",
+       {{"alias", def.alias},
+        {"type", to_string(def.type)},
+        {"start_position_m", vector_json(def.pose.translation())},
+        {"start_rpy_deg", vector_json(rpy_deg_from_rotation(def.pose.linear()))},
+        {"parameters", result.vehicle_parameters},
+        {"state_noise", state_noise_fields().write(def.state_noise)}}},
+      {"planner", {{"name", def.planner.name}, {"parameters", result.planner_parameters}}},
+      {"sensors", sensors},
+      {"mission", mission}};
+  if (!imus.empty()) parameters["imus"] = imus;
+  return parameters;
 }
 
 nlohmann::json event_log_json(const std::string& file, const std::vector<PlannerEvent>& events) {
