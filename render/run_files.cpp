@@ -333,10 +333,19 @@ Eigen::Vector3d vehicle_size_m(const RecordedVehicle& recorded) {
   return vehicle.value("type", "") == "rover" ? Eigen::Vector3d(1.5, 1.0, 0.35) : Eigen::Vector3d(0.6, 0.6, 0.12);
 }
 
-std::vector<RecordedDepthMap> recorded_depth_maps(const RecordedRun& run) {
+std::string recorded_file_name(const std::string& alias, double time_s) {
+  char time[32];
+  std::snprintf(time, sizeof time, "%08.3f", time_s);
+  return alias + "_" + time + ".png";
+}
+
+namespace {
+
+// The files recorded_file_name names in `dir`, in time order.
+std::vector<RecordedDepthMap> recorded_files(const std::filesystem::path& dir) {
   std::vector<RecordedDepthMap> maps;
-  std::error_code error;  // no depth/ directory: nothing recorded
-  for (const auto& entry : std::filesystem::directory_iterator(run.dir / "depth", error)) {
+  std::error_code error;  // no such directory: nothing recorded
+  for (const auto& entry : std::filesystem::directory_iterator(dir, error)) {
     const std::string stem = entry.path().stem().string();
     const std::size_t cut = stem.rfind('_');
     if (entry.path().extension() != ".png" || cut == std::string::npos) continue;
@@ -352,6 +361,12 @@ std::vector<RecordedDepthMap> recorded_depth_maps(const RecordedRun& run) {
   });
   return maps;
 }
+
+}  // namespace
+
+std::vector<RecordedDepthMap> recorded_depth_maps(const RecordedRun& run) { return recorded_files(run.dir / "depth"); }
+
+std::vector<RecordedDepthMap> recorded_images(const RecordedRun& run) { return recorded_files(run.dir / "images"); }
 
 cv::Mat read_depth_map(const std::filesystem::path& file) {
   const cv::Mat gray16 = read_png_file(file);

@@ -102,6 +102,11 @@ struct RecordedDepthMap {
 };
 /// The run's recorded depth maps in time order (none when it recorded none).
 std::vector<RecordedDepthMap> recorded_depth_maps(const RecordedRun& run);
+/// The colour images `campo run --record-images N` saved, images/<camera>_<time>.png
+/// (8-bit RGB), in time order; `sensor` is the camera's alias.
+std::vector<RecordedDepthMap> recorded_images(const RecordedRun& run);
+/// The name of a recorded depth map or image: <alias>_<time, %08.3f s>.png.
+std::string recorded_file_name(const std::string& alias, double time_s);
 /// A recorded depth map (16-bit PNG, sensors/depth_image.hpp) back as CV_32F
 /// in [0, 1]; InputError naming the file when it is not one.
 cv::Mat read_depth_map(const std::filesystem::path& file);

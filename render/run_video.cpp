@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "campo/json_reader.hpp"
+#include "core/image_io.hpp"
 #include "render/scan_view.hpp"
 #include "render/video_encoder.hpp"
 #include "render/video_frame.hpp"
@@ -52,6 +53,17 @@ std::pair<const SensorDef*, std::vector<RecordedDepthMap>> recorded_depths(const
   return {nullptr, {}};
 }
 
+// The recorded colour images of the vehicle's first camera that has any, in time order.
+std::vector<RecordedDepthMap> recorded_camera_images(const RecordedRun& run, const VehicleDef& vehicle) {
+  const std::vector<RecordedDepthMap> all = recorded_images(run);
+  for (const RgbCameraDef& camera : vehicle.rgb_cameras) {
+    std::vector<RecordedDepthMap> own;
+    std::copy_if(all.begin(), all.end(), std::back_inserter(own), [&](const auto& m) { return m.sensor == camera.alias; });
+    if (!own.empty()) return own;
+  }
+  return {};
+}
+
 // What the sensor panel shows at each instant, drawn once per recorded map or scan.
 class SensorPanel {
  public:
@@ -68,6 +80,7 @@ class SensorPanel {
       std::sort(replans_.begin(), replans_.end(), [](const auto& a, const auto& b) { return a.time_s < b.time_s; });
     }
     if (recorded) std::tie(sensor_, depths_) = recorded_depths(run, vehicle);
+    if (recorded) images_ = recorded_camera_images(run, vehicle);
     if (run.planner && run.planner->heading) {
       for (const PlannerEvent& e : run.events) {
         if (auto mark = run.planner->heading(e.decisions)) marks_.push_back({e.time_s, std::move(*mark)});
@@ -84,6 +97,14 @@ class SensorPanel {
       }
       return {image_, "What the planner saw: replanning " + std::to_string(step->decision.index) + " at " +
                           fixed(step->time_s, 1, "s")};
+    }
+    // A recorded colour image (campo run --record-images) before the depth maps: what a person would see.
+    if (const RecordedDepthMap* image = latest(images_, time_s)) {
+      if (shown_ != image) {
+        image_ = read_png_file(image->file);
+        shown_ = image;
+      }
+      return {image_, "Camera " + image->sensor + " at " + fixed(image->time_s, 1, "s")};
     }
     const bool planar = sensor_ && sensor_->range.rows <= 1;
     const RecordedDepthMap* scan = latest(depths_, time_s);
@@ -133,6 +154,7 @@ class SensorPanel {
   std::vector<ReplanStep> replans_;
   const SensorDef* sensor_ = nullptr;
   std::vector<RecordedDepthMap> depths_;
+  std::vector<RecordedDepthMap> images_;  // the first camera's colour images
   std::vector<TimedMark> marks_;
   const void* shown_ = nullptr;          // the replanning or recorded map image_ or points_ hold
   cv::Mat image_;

@@ -29,6 +29,7 @@
 #include "scene/scene_overrides.hpp"
 #include "sensors/depth_image.hpp"
 #include "sensors/lidar.hpp"
+#include "sensors/rgb_image_io.hpp"
 #include "session/scene_checks.hpp"
 
 #include <pthread.h>
@@ -256,6 +257,7 @@ PreparedRun prepare_checked_run(const RunRequest& request, bool validate_planner
   EpisodeOptions& options = run.options;
   options.stop_on_collision = !request.continue_after_collision;
   options.make_sensor = range_sensor_factory();
+  options.make_camera = rgb_camera_factory();
   check_runnable(scene);  // a vehicle at all, each with a mission
   if (!request.vehicle.empty()) {
     const VehicleDef* v = scene.find_vehicle(request.vehicle);
@@ -297,7 +299,7 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
   EpisodeOptions& options = prepared.options;
   const VehicleDef& def = scene.vehicles[run.vehicle_index];
 
-  if ((request.record_depth_every > 0 || request.record_replans) && !output) {
+  if ((request.record_depth_every > 0 || request.record_images_every > 0 || request.record_replans) && !output) {
     throw std::logic_error("simulate_run: depth maps asked for without an output directory");
   }
   // Depth maps of every n-th scan of the chosen vehicle (--vehicle), for `campo render --kind depth`.
@@ -306,9 +308,17 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
     create_output_directories(output().path("depth"));
     options.on_scan = [&](std::size_t vehicle, std::size_t i, const RangeScan& scan) {
       if (vehicle != run.vehicle_index || scans_seen[i]++ % request.record_depth_every != 0) return;
-      char name[96];
-      std::snprintf(name, sizeof name, "%s_%08.3f.png", def.sensors[i].alias.c_str(), scan.time_s);
-      write_depth_png(depth_map(scan, def.sensors[i].range), output().path("depth") / name);
+      write_depth_png(depth_map(scan, def.sensors[i].range),
+                      output().path("depth") / recorded_file_name(def.sensors[i].alias, scan.time_s));
+    };
+  }
+  // Every n-th image of each colour camera of the chosen vehicle, for videos' sensor panels.
+  std::vector<int> images_seen(def.rgb_cameras.size(), 0);
+  if (request.record_images_every > 0) {
+    create_output_directories(output().path("images"));
+    options.on_image = [&](std::size_t vehicle, std::size_t i, const RgbImage& image) {
+      if (vehicle != run.vehicle_index || images_seen[i]++ % request.record_images_every != 0) return;
+      write_rgb_png(image, output().path("images") / recorded_file_name(def.rgb_cameras[i].alias, image.time_s));
     };
   }
   // The depth map each replanning used, for `campo render --kind depth --step K`.
@@ -323,6 +333,15 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
         write_depth_png(depth_map(*reading.scan, *reading.config),
                         output().path("replans") / replan_depth_file(replan->index));
       }
+    };
+  }
+  // Every IMU sample, as the planners are given them (imu.csv).
+  ImuRecorder imus(scene.vehicles.size());
+  if (std::any_of(scene.vehicles.begin(), scene.vehicles.end(), [](const VehicleDef& v) { return !v.imus.empty(); })) {
+    options.on_plan = [&imus, then = std::move(options.on_plan)](std::size_t vehicle, const Observation& observation,
+                                                                   const PlanResult& plan) {
+      imus.observe(vehicle, observation);
+      if (then) then(vehicle, observation, plan);
     };
   }
   PlannerMaker make_planner = request.make_planner ? request.make_planner : PlannerMaker(&create_planner);
@@ -340,6 +359,7 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
     };
   }
   run.result = run_episode(scene, &make_vehicle, make_planner, options);
+  run.imu_samples = std::move(imus.samples());
   // Ended by the limit, not by the planner: the reason says so.
   if (limit && limit->tripped) {
     for (VehicleResult& vehicle : run.result.vehicles) {
@@ -360,6 +380,9 @@ std::vector<FigureFailure> write_run_files(const SimulatedRun& run, const RunReq
   for (std::size_t v = 0; v < run.result.vehicles.size(); ++v) {
     write_file_atomically(out.path(trajectory_file(run.result, v)), trajectory_csv(run.result.vehicles[v]));
     write_file_atomically(out.path(events_file(run.result, v)), events_jsonl(run.result.vehicles[v].events));
+    if (!run.scene.vehicles[v].imus.empty() && v < run.imu_samples.size()) {
+      write_file_atomically(out.path(imu_file(run.result, v)), imu_csv(run.scene.vehicles[v], run.imu_samples[v]));
+    }
   }
   write_file_atomically(out.path("run.json"), run.record.dump(2) + "\n");
   write_file_atomically(out.path("scene.json"), run.document.dump(2) + "\n");

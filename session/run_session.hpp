@@ -17,6 +17,7 @@
 #include "render/figure_canvas.hpp"
 #include "render/run_figures.hpp"
 #include "scene/scene_overrides.hpp"
+#include "session/imu_record.hpp"
 
 namespace campo {
 
@@ -41,6 +42,7 @@ struct RunRequest {
   std::vector<figure::FigureFormat> figure_formats{figure::FigureFormat::png};
   int record_depth_every = 0;           ///< depth map of every N-th scan under out/depth/ (0 = none)
   bool record_replans = true;           ///< the depth map of every replanning under out/replans/
+  int record_images_every = 0;          ///< every N-th image of each colour camera under out/images/ (0 = none)
   /// Wall clock the whole run may take, s (0: no limit). Checked at every
   /// planner call, and a Python planner's call in progress is interrupted:
   /// past it the run ends as failed (its files written) with a reason naming
@@ -81,6 +83,8 @@ struct SimulatedRun {
   EpisodeResult result;
   std::size_t vehicle_index = 0;
   nlohmann::json record;         ///< run.json
+  /// Every vehicle's IMU samples (imu.csv), in scene order; empty lists for vehicles without IMUs.
+  std::vector<std::vector<RecordedImuSample>> imu_samples;
 };
 
 /// Where a run's files go, asked for only once every input is valid (so bad
@@ -99,7 +103,7 @@ struct FigureFailure {
   bool bad_input = false;    ///< an InputError (the record, the scene, the place to write), else a bug
 };
 
-/// Writes run.json, events.jsonl, trajectory.csv and scene.json into `out`
+/// Writes run.json, events.jsonl, trajectory.csv, imu.csv (vehicles with IMUs) and scene.json into `out`
 /// (an OutputError naming the file when one cannot be written), then the
 /// requested figures. A figure that fails does not take the run with it: the
 /// figures that failed are returned and the run's files stay staged.

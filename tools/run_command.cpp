@@ -30,6 +30,7 @@ struct RunOptions {
   bool figures = true;
   FigureFormats figure_formats = kPngOnly;
   int record_depth_every = 0;
+  int record_images_every = 0;
   bool record_replans = true;
   double time_limit_s = 0.0;  ///< 0: none
   std::vector<std::string> plugins;
@@ -54,6 +55,7 @@ int run_run(const RunOptions& o) {
   request.figures = o.figures;
   request.figure_formats = o.figure_formats;
   request.record_depth_every = o.record_depth_every;
+  request.record_images_every = o.record_images_every;
   request.record_replans = o.record_replans;
   request.time_limit_s = o.time_limit_s;
   const ExecutedRun run = execute_run(request);
@@ -120,6 +122,10 @@ Command add_run(CLI::App& app) {
   add_figure_format_option(app, &o->figure_formats);
   app.add_option("--record-depth", o->record_depth_every,
                  "Save the depth map of every N-th scan of each sensor under DIR/depth/ (0 = none)")
+      ->check(non_negative_number());
+  app.add_option("--record-images", o->record_images_every,
+                 "Save every N-th image of each colour camera (rgb_camera) as an RGB PNG under DIR/images/ "
+                 "(0 = none)")
       ->check(non_negative_number());
   app.add_flag("!--no-replan-depth", o->record_replans,
                "Do not save the depth map of every replanning under DIR/replans/ (for sweeps)");

@@ -37,6 +37,7 @@ using gym::StepOutcome;
 namespace {
 
 using FloatArray = py::array_t<float, py::array::c_style>;
+using ByteArray = py::array_t<std::uint8_t, py::array::c_style>;
 
 // An override's value as JSON; numpy's scalars and arrays (a seed drawn by np.random) as the numbers and lists they hold.
 nlohmann::json override_value(const py::handle& value) {
@@ -109,6 +110,18 @@ class ObservationArrays {
     };
     for (const auto& [key, size] : gym::kStateKeys) add(std::string(key), {size});
     for (const gym::SensorLayout& s : env.sensors()) add(s.key, {s.rows, s.cols});
+    for (const gym::CameraLayout& c : env.cameras()) {
+      std::vector<py::ssize_t> shape{c.rows, c.cols, 3};
+      if (batch > 0) shape.insert(shape.begin(), static_cast<py::ssize_t>(batch));
+      camera_keys_.push_back(c.key);
+      camera_arrays_.emplace_back(shape);
+    }
+    for (const gym::ImuLayout& imu : env.imus()) {
+      std::vector<py::ssize_t> shape{6};
+      if (batch > 0) shape.insert(shape.begin(), static_cast<py::ssize_t>(batch));
+      imu_keys_.push_back(imu.key);
+      imu_arrays_.emplace_back(shape);
+    }
   }
 
   // Where observation `i` of the batch goes (i = 0 without a batch). Taken with the interpreter held.
@@ -120,12 +133,19 @@ class ObservationArrays {
       if (k < gym::kStateKeys.size()) b.state[k] = base;
       else b.sensors.push_back(base);
     }
+    for (ByteArray& images : camera_arrays_) {
+      const std::size_t per = static_cast<std::size_t>(images.size()) / std::max<std::size_t>(1, batch_);
+      b.cameras.push_back(images.mutable_data() + i * per);
+    }
+    for (FloatArray& samples : imu_arrays_) b.imus.push_back(samples.mutable_data() + i * 6);
     return b;
   }
 
   py::dict dict() const {
     py::dict d;
     for (std::size_t k = 0; k < arrays_.size(); ++k) d[py::str(keys_[k])] = arrays_[k];
+    for (std::size_t k = 0; k < camera_arrays_.size(); ++k) d[py::str(camera_keys_[k])] = camera_arrays_[k];
+    for (std::size_t k = 0; k < imu_arrays_.size(); ++k) d[py::str(imu_keys_[k])] = imu_arrays_[k];
     return d;
   }
 
@@ -133,6 +153,10 @@ class ObservationArrays {
   std::size_t batch_;
   std::vector<FloatArray> arrays_;  // kStateKeys, then the sensors
   std::vector<std::string> keys_;
+  std::vector<ByteArray> camera_arrays_;  // one RGB image per colour camera
+  std::vector<std::string> camera_keys_;
+  std::vector<FloatArray> imu_arrays_;  // 6 floats per IMU (gym::ImuLayout)
+  std::vector<std::string> imu_keys_;
 };
 
 py::dict info_of(const StepOutcome& s) {
@@ -370,6 +394,16 @@ void describe(py::class_<Class>& c, const NavigationEnv& (*env)(const Class&)) {
       .def_property_readonly("sensors", [env](const Class& self) {
         std::vector<std::tuple<std::string, int, int, double>> list;
         for (const gym::SensorLayout& s : env(self).sensors()) list.emplace_back(s.key, s.rows, s.cols, s.max_range_m);
+        return list;
+      })
+      .def_property_readonly("imus", [env](const Class& self) {
+        std::vector<std::string> keys;
+        for (const gym::ImuLayout& imu : env(self).imus()) keys.push_back(imu.key);
+        return keys;
+      })
+      .def_property_readonly("cameras", [env](const Class& self) {
+        std::vector<std::tuple<std::string, int, int>> list;
+        for (const gym::CameraLayout& c : env(self).cameras()) list.emplace_back(c.key, c.rows, c.cols);
         return list;
       })
       .def_property_readonly("reward_weights", [env](const Class& self) {

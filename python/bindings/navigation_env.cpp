@@ -120,6 +120,10 @@ NavigationEnv::NavigationEnv(const std::string& scene, const std::vector<SceneOv
     sensors_.push_back({sensor.alias + "_ranges_m", sensor.range.scan_rows(), sensor.range.scan_cols(),
                         sensor.range.max_range_m});
   }
+  for (const RgbCameraDef& camera : def.rgb_cameras) {
+    cameras_.push_back({camera.alias + "_rgb", camera.camera.rows, camera.camera.cols});
+  }
+  for (const ImuDef& imu : def.imus) imus_.push_back({imu.alias + "_imu"});
   const std::int64_t control = steps_per_period(s.world.control_rate_hz, s.world.physics_step_s);
   const std::int64_t sensing = steps_per_period(s.world.sensor_rate_hz, s.world.physics_step_s);
   ticks_per_step_ = options.ticks_per_step > 0 ? options.ticks_per_step
@@ -348,6 +352,24 @@ void NavigationEnv::write_observation(const ObservationBuffers& out) const {
                      [max_range](float r) { return std::clamp(r, 0.0f, max_range); });
     } else {
       std::fill(image, image + n, static_cast<float>(sensors_[i].max_range_m));  // nothing seen yet
+    }
+  }
+  for (std::size_t i = 0; i < cameras_.size(); ++i) {
+    std::uint8_t* pixels = out.cameras.at(i);
+    const std::size_t n = static_cast<std::size_t>(cameras_[i].rows) * static_cast<std::size_t>(cameras_[i].cols) * 3;
+    const RgbImage* image = i < o.images.size() ? o.images[i].image.get() : nullptr;
+    if (image && image->rgb.size() == n) {
+      std::copy(image->rgb.begin(), image->rgb.end(), pixels);
+    } else {
+      std::fill(pixels, pixels + n, std::uint8_t{0});  // nothing seen yet: black
+    }
+  }
+  for (std::size_t i = 0; i < imus_.size(); ++i) {
+    float* sample = out.imus.at(i);
+    const ImuReading* reading = i < o.imus.size() && o.imus[i].valid ? &o.imus[i] : nullptr;
+    for (int axis = 0; axis < 3; ++axis) {
+      sample[axis] = reading ? static_cast<float>(reading->specific_force_mps2[axis]) : 0.0f;
+      sample[3 + axis] = reading ? static_cast<float>(reading->angular_rate_radps[axis]) : 0.0f;
     }
   }
 }

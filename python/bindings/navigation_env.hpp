@@ -83,6 +83,19 @@ struct SensorLayout {
   double max_range_m = 0.0;
 };
 
+/// One colour camera's part of an observation: a rows x cols x 3 uint8 RGB image.
+struct CameraLayout {
+  std::string key;  ///< "<alias>_rgb"
+  int rows = 0;
+  int cols = 0;
+};
+
+/// One IMU's part of an observation: 6 float32, its latest sample in its own frame:
+/// specific force x, y, z (m/s²), then angular rate x, y, z (rad/s); zeros before its first sample.
+struct ImuLayout {
+  std::string key;  ///< "<alias>_imu"
+};
+
 /// The shape of an observation: the state keys below, then one image per sensor.
 inline constexpr std::array<std::pair<std::string_view, int>, 5> kStateKeys{{
     {"position_m", 3},                   // world frame
@@ -97,6 +110,8 @@ inline constexpr std::array<std::pair<std::string_view, int>, 5> kStateKeys{{
 struct ObservationBuffers {
   std::array<float*, kStateKeys.size()> state{};
   std::vector<float*> sensors;
+  std::vector<std::uint8_t*> cameras;  ///< rows * cols * 3 bytes each, RGB, row 0 at the top
+  std::vector<float*> imus;            ///< 6 floats each (ImuLayout)
 };
 
 struct StepOutcome {
@@ -124,6 +139,8 @@ class NavigationEnv {
   VehicleType vehicle_type() const;
   const std::string& vehicle_alias() const;
   const std::vector<SensorLayout>& sensors() const { return sensors_; }
+  const std::vector<CameraLayout>& cameras() const { return cameras_; }
+  const std::vector<ImuLayout>& imus() const { return imus_; }
   int action_size() const;
   /// Physical meaning of each action component, for documentation and errors: "vx_mps", ...
   std::vector<std::string> action_names() const;
@@ -158,6 +175,8 @@ class NavigationEnv {
   std::optional<PreparedRun> episode_scene_;  // this episode's, when reset() was given overrides
   std::size_t vehicle_index_ = 0;
   std::vector<SensorLayout> sensors_;
+  std::vector<CameraLayout> cameras_;
+  std::vector<ImuLayout> imus_;
   int ticks_per_step_ = 1;
   Rng rng_{0};
   std::optional<Episode> episode_;

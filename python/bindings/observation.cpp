@@ -30,17 +30,23 @@ std::pair<py::ssize_t, py::ssize_t> image_shape(const RangeScan& scan) {
   return {1, beams};
 }
 
+// A read-only C-ordered array of `shape` over `data` without a copy; its base keeps `owner`
+// (the owner of `data`) alive.
+template <class T, class Owner>
+py::array_t<T> shared_array(const std::shared_ptr<const Owner>& owner, const T* data, std::vector<py::ssize_t> shape) {
+  auto* kept = new std::shared_ptr<const Owner>(owner);
+  py::capsule base(kept, [](void* p) { delete static_cast<std::shared_ptr<const Owner>*>(p); });
+  py::array_t<T> array(std::move(shape), data, base);
+  // A view of the sensor's own buffer: writing to it would change what the next reader sees.
+  py::detail::array_proxy(array.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return array;
+}
+
 // A 2-D array over `data` (rows x cols) without a copy; it keeps `scan` (the owner of `data`) alive.
 template <class T>
 py::array_t<T> shared_view(const std::shared_ptr<const RangeScan>& scan, const T* data) {
   const auto [rows, cols] = image_shape(*scan);
-  auto* owner = new std::shared_ptr<const RangeScan>(scan);
-  py::capsule base(owner, [](void* p) { delete static_cast<std::shared_ptr<const RangeScan>*>(p); });
-  py::array_t<T> array({rows, cols}, {static_cast<py::ssize_t>(cols * sizeof(T)), static_cast<py::ssize_t>(sizeof(T))},
-                       data, base);
-  // A view of the sensor's own buffer: writing to it would change what the next reader sees.
-  py::detail::array_proxy(array.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-  return array;
+  return shared_array(scan, data, {rows, cols});
 }
 
 const RangeScan& scan_of(const SensorView& s) {
@@ -60,6 +66,12 @@ ObservationView view_of(const Observation& o, std::shared_ptr<const std::vector<
   for (const SensorReading& r : o.sensors) {
     v.sensors.push_back({std::string(r.alias), r.scan, r.config ? r.config->min_range_m : 0.0,
                          r.config ? r.config->max_range_m : 0.0, r.fresh});
+  }
+  v.images.reserve(o.images.size());
+  for (const ImageReading& r : o.images) v.images.push_back({std::string(r.alias), r.image, r.fresh});
+  v.imus.reserve(o.imus.size());
+  for (const ImuReading& r : o.imus) {
+    v.imus.push_back({std::string(r.alias), r.time_s, r.specific_force_mps2, r.angular_rate_radps, r.valid, r.fresh});
   }
   v.mission_m = std::move(mission_m);
   return v;
@@ -150,6 +162,22 @@ void bind_observation(py::module_& m) {
                              },
                              "4 x 4 world-from-sensor transform of the scan");
 
+  py::class_<ImuView>(m, "ImuReading",
+                      "An IMU's latest sample, in the IMU's own frame (x forward, y left, z up as mounted); "
+                      "numpy arrays are copies.")
+      .def_readonly("alias", &ImuView::alias)
+      .def_readonly("time_s", &ImuView::time_s, "when it was taken, s")
+      .def_readonly("valid", &ImuView::valid, "false before the first sample")
+      .def_readonly("fresh", &ImuView::fresh, "taken since the previous observation")
+      .def_property_readonly("specific_force_mps2",
+                             [](const ImuView& v) { return vector3(v.specific_force_mps2); },
+                             "accelerometer, m/s²: acceleration minus gravity (+9.81 up at rest)")
+      .def_property_readonly("angular_rate_radps", [](const ImuView& v) { return vector3(v.angular_rate_radps); },
+                             "gyroscope, rad/s")
+      .def("__repr__", [](const ImuView& v) {
+        return "ImuReading(alias='" + v.alias + "', time_s=" + std::to_string(v.time_s) + ")";
+      });
+
   py::class_<ObservationView>(m, "Observation", "What a planner sees at a control tick.")
       .def_readonly("time_s", &ObservationView::time_s)
       .def_readonly("state", &ObservationView::state, "as the planner is told it (estimated with state noise)")
@@ -162,6 +190,29 @@ void bind_observation(py::module_& m) {
                                return sensors;
                              },
                              "alias -> SensorReading")
+      .def_property_readonly("images",
+                             [](const ObservationView& o) {
+                               py::dict images;
+                               for (const ImageView& v : o.images) {
+                                 if (!v.image) {
+                                   images[py::str(v.alias)] = py::none();
+                                   continue;
+                                 }
+                                 const RgbImage& image = *v.image;
+                                 images[py::str(v.alias)] = shared_array(v.image, image.rgb.data(), {image.rows, image.cols, 3});
+                               }
+                               return images;
+                             },
+                             "alias -> the colour camera's latest image, a read-only uint8 array (rows, cols, 3) "
+                             "of RGB, row 0 at the top: a view of the camera's buffer, not a copy (the camera's "
+                             "next image overwrites it; numpy.copy to keep one); None before its first image")
+      .def_property_readonly("imus",
+                             [](const ObservationView& o) {
+                               py::dict imus;
+                               for (const ImuView& v : o.imus) imus[py::str(v.alias)] = py::cast(v);
+                               return imus;
+                             },
+                             "alias -> ImuReading, the vehicle's IMUs in scene order")
       .def_property_readonly("mission_m",
                              [](const ObservationView& o) {
                                const std::vector<Eigen::Vector3d>& w = *o.mission_m;

@@ -21,12 +21,31 @@ struct SensorView {
   bool fresh = false;
 };
 
+/// One colour camera's latest image.
+struct ImageView {
+  std::string alias;
+  std::shared_ptr<const RgbImage> image;  ///< the camera's buffer; null before the first image
+  bool fresh = false;
+};
+
+/// One IMU's latest sample, copied (six numbers).
+struct ImuView {
+  std::string alias;
+  double time_s = 0.0;
+  Eigen::Vector3d specific_force_mps2 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_rate_radps = Eigen::Vector3d::Zero();
+  bool valid = false;
+  bool fresh = false;
+};
+
 struct ObservationView {
   double time_s = 0.0;
   VehicleType vehicle = VehicleType::quadrotor;
   VehicleState state;  ///< as the planner is told it (estimated when the scene has state noise)
   bool stable = false;
   std::vector<SensorView> sensors;
+  std::vector<ImageView> images;
+  std::vector<ImuView> imus;
   std::shared_ptr<const std::vector<Eigen::Vector3d>> mission_m;  ///< the mission's waypoints, world frame
 };
 

@@ -51,6 +51,10 @@ def _observation_space(native) -> spaces.Dict:
         entries[key] = spaces.Box(low, high, (size,), np.float32)
     for key, rows, cols, max_range_m in native.sensors:
         entries[key] = spaces.Box(0.0, np.float32(max_range_m), (rows, cols), np.float32)
+    for key, rows, cols in native.cameras:  # "<alias>_rgb": RGB, row 0 at the top
+        entries[key] = spaces.Box(0, 255, (rows, cols, 3), np.uint8)
+    for key in native.imus:  # "<alias>_imu": specific force x, y, z (m/s²), angular rate x, y, z (rad/s)
+        entries[key] = spaces.Box(-np.inf, np.inf, (6,), np.float32)
     return spaces.Dict(entries)
 
 

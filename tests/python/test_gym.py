@@ -98,6 +98,29 @@ class EnvironmentApi(unittest.TestCase):
         np.testing.assert_allclose(obs["position_m"], [0.0, 0.0, 1.5], atol=0.05)
         np.testing.assert_allclose(np.linalg.norm(obs["orientation_wxyz"]), 1.0, atol=1e-5)
 
+    def test_a_colour_camera_is_a_uint8_box_of_its_image(self):
+        env = campo.gym.NavigationEnv(str(FIXTURES / "camera_field.json"))
+        space = env.observation_space["front_rgb"]
+        self.assertEqual(space.shape, (24, 32, 3))
+        self.assertEqual(space.dtype, np.uint8)
+        self.assertEqual((int(space.low.min()), int(space.high.max())), (0, 255))
+        obs, _ = env.reset(seed=0)
+        self.assertTrue(env.observation_space.contains(obs))
+        self.assertEqual(obs["front_rgb"].dtype, np.uint8)
+        # The observation is the camera's image: the sky's colour along the top row.
+        np.testing.assert_array_equal(obs["front_rgb"][0, 16], [round(0.2 * 255), round(0.4 * 255), round(0.8 * 255)])
+        obs, *_ = env.step(env.action_space.sample())
+        self.assertTrue(env.observation_space.contains(obs))
+        with warnings.catch_warnings():
+            warnings.filterwarnings("ignore", message=".*infinity.*")
+            check_env(env)
+        envs = campo.gym.NavigationVectorEnv(str(FIXTURES / "camera_field.json"), num_envs=2, num_threads=2)
+        self.assertEqual(envs.single_observation_space["front_rgb"].shape, (24, 32, 3))
+        obs, _ = envs.reset(seed=3)
+        self.assertEqual(obs["front_rgb"].shape, (2, 24, 32, 3))
+        np.testing.assert_array_equal(obs["front_rgb"][0], obs["front_rgb"][1])  # no noise: the same start
+        envs.close()
+
     def test_reset_with_a_seed_reproduces_the_episode_and_seeds_differ(self):
         noisy = {"/objects/drone/sensors/0/noise_stddev_m": 0.05}
         env = campo.gym.NavigationEnv(OPEN_FIELD, action_mode="velocity", overrides=noisy)

@@ -1155,5 +1155,40 @@ class LowLevelCommandsTest(unittest.TestCase):
             self.assertNotIn("cmd_thrust_n", t.columns)  # no attitude_thrust in this run
 
 
+CAMERA_FIELD = str(FIXTURES / "camera_field.json")
+
+
+class ColourCameraTest(unittest.TestCase):
+    def test_images_are_zero_copy_views_kept_alive_by_their_base(self):
+        episode = campo.Episode(CAMERA_FIELD, seed=1)
+        obs = episode.reset()
+        self.assertEqual(list(obs.images), ["front"])
+        image = obs.images["front"]
+        self.assertEqual(image.shape, (24, 32, 3))  # resolution [cols, rows] = [32, 24]
+        self.assertEqual(image.dtype, np.uint8)
+        self.assertFalse(image.flags.owndata)
+        self.assertFalse(image.flags.writeable)
+        self.assertIsNotNone(image.base)
+        # The sky along the top row, exactly the configured colour; the red box ahead and left.
+        np.testing.assert_array_equal(image[0, 16], [round(0.2 * 255), round(0.4 * 255), round(0.8 * 255)])
+        red = (image[..., 0].astype(int) > 2 * image[..., 1]) & (image[..., 0].astype(int) > 2 * image[..., 2])
+        self.assertGreater(int(red[:, :16].sum()), 5)
+        self.assertEqual(int(red[:, 16:].sum()), 0)
+        # Another observation's array shares the camera's buffer; the images follow the camera.
+        self.assertTrue(np.shares_memory(image, episode.observation.images["front"]))
+        kept = image.copy()
+        for _ in range(60):  # climb 3 m over 1 s: the next images see the ground from higher up
+            obs, done, info = episode.step(campo.Command.altitude(4.5))
+        self.assertTrue(np.shares_memory(image, obs.images["front"]))
+        self.assertFalse(np.array_equal(image, kept))
+        # The array outlives its episode: its base keeps the buffer alive.
+        del obs, episode
+        import gc
+        gc.collect()
+        self.assertEqual(image.shape, (24, 32, 3))
+        self.assertEqual(int(image.astype(np.int64).sum()), int(image.astype(np.int64).sum()))
+        np.testing.assert_array_equal(image[0, 16], [round(0.2 * 255), round(0.4 * 255), round(0.8 * 255)])
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -6,6 +6,7 @@
 
 #include "scene/dem_source.hpp"
 #include "scene/generator_fields.hpp"
+#include "scene/mesh_sources.hpp"
 #include "scene/sensor_fields.hpp"
 #include "scene/world_config.hpp"
 #include "tests/docs_tables_support.hpp"
@@ -17,12 +18,15 @@ TEST(ConfigDocs, SceneTablesAreTheDeclaredFields) {
   test_support::expect_docs_tables("docs/scene-format.md",
                                    {{"world", world_config_fields().markdown()},
                                     {"dem", dem_fields().markdown()},
+                                    {"mesh", mesh_source_fields().markdown()},
                                     {"rolling_terrain", rolling_terrain_fields().markdown()},
                                     {"trees", trees_fields().markdown()},
                                     {"vineyard", vineyard_fields().markdown()},
                                     {"grid_obstacles", grid_obstacles_fields().markdown()},
                                     {"state_noise", state_noise_fields().markdown()},
-                                    {"sensor", range_sensor_config_fields().markdown()}});
+                                    {"sensor", range_sensor_config_fields().markdown()},
+                                    {"imu", imu_config_fields().markdown()},
+                                    {"rgb_camera", rgb_camera_config_fields().markdown()}});
 }
 
 }  // namespace
