@@ -1,5 +1,8 @@
 #include "scene/world_config.hpp"
 
+#include <cmath>
+#include <numbers>
+
 namespace campo {
 
 const ConfigFields<GeoReference>& geo_reference_fields() {
@@ -28,6 +31,25 @@ const ConfigFields<WindConfig>& wind_config_fields() {
                   "where the steady wind blows toward, counter-clockwise from +x (east): 90 blows toward +y")
           .number("vertical_mps", &W::vertical_mps, Range::closed(-20.0, 20.0), "m/s",
                   "steady vertical component (an updraft > 0)")
+          // The steady wind as one vector, as a user of other simulators writes it: read into the
+          // three fields above (which run.json then records), never written itself.
+          .custom(
+              "velocity_mps", "m/s", "3 numbers, horizontal norm <= 100, z in [-20, 20]",
+              "the steady wind as a vector, world frame, instead of the three fields above",
+              [](const JsonNode& n, W& w) {
+                if (w.speed_mps != 0.0 || w.direction_deg != 0.0 || w.vertical_mps != 0.0) {
+                  n.fail("either velocity_mps or speed_mps, direction_deg and vertical_mps, not both");
+                }
+                const Eigen::Vector3d v = n.as_vector3(Range::closed(-100.0, 100.0));
+                const double horizontal = std::hypot(v.x(), v.y());
+                if (horizontal > 100.0 || v.z() < -20.0 || v.z() > 20.0) {
+                  n.fail("a horizontal speed within 100 m/s and a vertical one in [-20, 20] m/s");
+                }
+                w.speed_mps = horizontal;
+                w.direction_deg = horizontal > 0.0 ? std::atan2(v.y(), v.x()) * (180.0 / std::numbers::pi) : 0.0;
+                w.vertical_mps = v.z();
+              },
+              [](const W&, nlohmann::json&) {})
           .choice("gust", &W::gust,
                   {{"none", GustModel::none},
                    {"one_minus_cos", GustModel::one_minus_cos},

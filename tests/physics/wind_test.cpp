@@ -286,6 +286,22 @@ TEST(WindBlock, IsReadWithItsFieldsAndWrittenBack) {
   EXPECT_EQ(world_config_fields().write(still.world).at("wind").at("speed_mps"), 0.0);
 }
 
+// "velocity_mps" gives the steady wind as a vector; it is recorded as the three fields.
+TEST(WindBlock, VelocityVectorIsTheSteadyWind) {
+  const Scene scene = parse(R"j({"world": {"wind": {"velocity_mps": [-3, 4, 0.5]}}, "objects": []})j");
+  const WindConfig& w = scene.world.wind;
+  EXPECT_DOUBLE_EQ(w.speed_mps, 5.0);
+  EXPECT_NEAR(w.direction_deg, 180.0 - std::atan(4.0 / 3.0) * 180.0 / kPi, 1e-12);
+  EXPECT_EQ(w.vertical_mps, 0.5);
+  EXPECT_NEAR((w.steady_velocity_mps() - Eigen::Vector3d(-3.0, 4.0, 0.5)).norm(), 0.0, 1e-14);
+  const nlohmann::json written = world_config_fields().write(scene.world).at("wind");
+  EXPECT_FALSE(written.contains("velocity_mps"));
+  EXPECT_EQ(written.at("speed_mps"), 5.0);
+  // Read back from what run.json writes, the same wind.
+  const Scene again = parse(R"j({"world": {"wind": )j" + written.dump() + R"j(}, "objects": []})j");
+  EXPECT_EQ(again.world.wind.steady_velocity_mps(), w.steady_velocity_mps());
+}
+
 TEST(WindBlock, BadValuesNameTheirPointer) {
   using ::testing::HasSubstr;
   EXPECT_THAT(error_of(R"j({"wind": {"speed_mps": -1}})j"), HasSubstr("inline.json: /world/wind/speed_mps:"));
@@ -303,6 +319,12 @@ TEST(WindBlock, BadValuesNameTheirPointer) {
               HasSubstr("/world/wind/turbulence_length_m:"));
   EXPECT_THAT(error_of(R"j({"wind": {"gust": "one_minus_cos", "gust_amplitude_mps": [1, 0]}})j"),
               HasSubstr("/world/wind/gust_amplitude_mps:"));
+  EXPECT_THAT(error_of(R"j({"wind": {"speed_mps": 2, "velocity_mps": [1, 0, 0]}})j"),
+              HasSubstr("/world/wind/velocity_mps: expected either velocity_mps or speed_mps, direction_deg and "
+                        "vertical_mps, not both, got [1,0,0]"));
+  EXPECT_THAT(error_of(R"j({"wind": {"velocity_mps": [80, 80, 0]}})j"),
+              HasSubstr("/world/wind/velocity_mps: expected a horizontal speed within 100 m/s"));
+  EXPECT_THAT(error_of(R"j({"wind": {"velocity_mps": [1, 0]}})j"), HasSubstr("/world/wind/velocity_mps:"));
 }
 
 }  // namespace
