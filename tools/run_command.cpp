@@ -69,11 +69,14 @@ int run_run(const RunOptions& o) {
   }
   // The run's files as run.json names them: one vehicle's events.jsonl and trajectory.csv, or each vehicle's.
   std::string files = std::string(kEventsFile) + ", trajectory.csv";
+  if (std::filesystem::exists(out / "imu.csv")) files += ", imu.csv";  // a vehicle with IMUs
   if (const auto vehicles = run.record.find("vehicles"); vehicles != run.record.end()) {
     files.clear();
     for (const nlohmann::json& vehicle : *vehicles) {
       (files += files.empty() ? "" : ", ") += vehicle.at("event_log").at("file").get<std::string>();
       files += ", " + vehicle.at("trajectory_file").get<std::string>();
+      const std::string imus = "imu_" + vehicle.at("alias").get<std::string>() + ".csv";
+      if (std::filesystem::exists(out / imus)) files += ", " + imus;
     }
   }
   std::cout << run_summary_line(run.record) << "; wrote run.json, " << files << ", scene.json" << figures << " to "
