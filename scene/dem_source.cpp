@@ -557,33 +557,67 @@ class DemReader {
     return {col, row, px - col, py - row};
   }
 
-  void resample(const GridPlan& plan) {
+  // The window holding the 2 x 2 pixels of the vertices of `rows` (each row
+  // whole, or only its two ends).
+  Window window_of(const GridPlan& plan, const std::vector<int>& whole_rows, bool ends_of_others) const {
     const GridLayout& g = plan.layout;
     std::vector<double> px, py;
-    // Pass 1: the window every vertex's 2 x 2 pixels lie in.
     int col_min = pixels_.cols, col_max = -1, row_min = pixels_.rows, row_max = -1;
-    for (int r = 0; r < g.rows; ++r) {
+    const auto extend = [&](double x, double y, int c, int r) {
+      const Cell cell = cell_of(x, y, plan, c, r);
+      col_min = std::min(col_min, cell.col);
+      col_max = std::max(col_max, cell.col + 1);
+      row_min = std::min(row_min, cell.row);
+      row_max = std::max(row_max, cell.row + 1);
+    };
+    for (const int r : whole_rows) {
       row_pixels(plan, r, px, py);
-      for (int c = 0; c < g.cols; ++c) {
-        const Cell cell = cell_of(px[c], py[c], plan, c, r);
-        col_min = std::min(col_min, cell.col);
-        col_max = std::max(col_max, cell.col + 1);
-        row_min = std::min(row_min, cell.row);
-        row_max = std::max(row_max, cell.row + 1);
+      for (int c = 0; c < g.cols; ++c) extend(px[c], py[c], c, r);
+    }
+    if (ends_of_others) {
+      for (int r = 1; r + 1 < g.rows; ++r) {
+        for (const int c : {0, g.cols - 1}) {
+          const Eigen::Vector2d p = vertex_pixel(plan, c, r);
+          extend(p.x(), p.y(), c, r);
+        }
       }
     }
-    const Window window{col_min, row_min, col_max - col_min + 1, row_max - row_min + 1};
-    const std::vector<double> heights = read_window(window);
-    // Pass 2: bilinear interpolation of the four pixel centres around each vertex.
-    terrain_.grid.cols = g.cols;
-    terrain_.grid.rows = g.rows;
-    terrain_.grid.spacing_x_m = g.spacing_x_m;
-    terrain_.grid.spacing_y_m = g.spacing_y_m;
-    terrain_.grid.heights_m.resize(static_cast<std::size_t>(g.cols) * g.rows);
+    return {col_min, row_min, col_max - col_min + 1, row_max - row_min + 1};
+  }
+
+  // Pixel coordinates of one vertex (as row_pixels computes them).
+  Eigen::Vector2d vertex_pixel(const GridPlan& plan, int col, int row) const {
+    const GridLayout& g = plan.layout;
+    const double x = grid_vertex_coordinate(col, g.cols, g.spacing_x_m);
+    const double y = grid_vertex_coordinate(row, g.rows, g.spacing_y_m);
+    double fx = 0.0, fy = 0.0;
+    if (plan.east_north) {
+      const Geodetic p = enu_to_geodetic({x, y, 0.0}, plan.centre);
+      fx = p.longitude_deg;
+      fy = p.latitude_deg;
+      if (api_.OCTTransform(from_wgs84_.get(), 1, &fx, &fy, nullptr) == 0) {
+        session_.fail("cannot convert the crop's latitudes/longitudes to the file's CRS");
+      }
+    } else {
+      fx = plan.centre_file.x() + x / plan.metres_per_unit;
+      fy = plan.centre_file.y() + y / plan.metres_per_unit;
+    }
+    return {pixels_.pixel_x(fx), pixels_.pixel_y(fy)};
+  }
+
+  // Bilinear heights of every vertex from `window`; false (grid unfinished)
+  // if a vertex needs a pixel outside it.
+  bool sample(const GridPlan& plan, const Window& window, const std::vector<double>& heights) {
+    const GridLayout& g = plan.layout;
+    std::vector<double> px, py;
     for (int r = 0; r < g.rows; ++r) {
       row_pixels(plan, r, px, py);
       for (int c = 0; c < g.cols; ++c) {
         const Cell cell = cell_of(px[c], py[c], plan, c, r);
+        if (cell.col < window.col0 || cell.row < window.row0 || cell.col + 1 >= window.col0 + window.cols ||
+            cell.row + 1 >= window.row0 + window.rows) {
+          return false;
+        }
         const std::size_t i = static_cast<std::size_t>(cell.row - window.row0) * window.cols + (cell.col - window.col0);
         const double h00 = heights[i], h10 = heights[i + 1];
         const double h01 = heights[i + window.cols], h11 = heights[i + window.cols + 1];
@@ -592,6 +626,29 @@ class DemReader {
         terrain_.grid.heights_m[static_cast<std::size_t>(r) * g.cols + c] = h;
       }
     }
+    return true;
+  }
+
+  void resample(const GridPlan& plan) {
+    const GridLayout& g = plan.layout;
+    terrain_.grid.cols = g.cols;
+    terrain_.grid.rows = g.rows;
+    terrain_.grid.spacing_x_m = g.spacing_x_m;
+    terrain_.grid.spacing_y_m = g.spacing_y_m;
+    terrain_.grid.heights_m.resize(static_cast<std::size_t>(g.cols) * g.rows);
+    // The pixels the grid's edges need: every vertex's, wherever a vertex's
+    // pixel coordinates change monotonically along rows and columns (always
+    // on the file's axes; on east-north axes unless the crop spans a large
+    // part of the globe). Should an inner vertex reach beyond them, the
+    // window of every vertex is read instead.
+    Window window = window_of(plan, {0, g.rows - 1}, true);
+    std::vector<double> heights = read_window(window);
+    if (sample(plan, window, heights)) return;
+    std::vector<int> all_rows(static_cast<std::size_t>(g.rows));
+    for (int r = 0; r < g.rows; ++r) all_rows[static_cast<std::size_t>(r)] = r;
+    window = window_of(plan, all_rows, false);
+    heights = read_window(window);
+    if (!sample(plan, window, heights)) throw std::logic_error("DEM: a vertex outside the window of every vertex");
   }
 
   // The raster's pixels as the grid: grid row 0 is the southern raster row
