@@ -49,6 +49,8 @@ struct TriangleDistances final : btTriangleCallback {
   double best = kInfinity;
   btVector3 best_point{0, 0, 0};  // of the nearest triangle, heightfield frame
   double cutoff = kInfinity;
+  // Terrain is seen from above only; a mesh's triangles from either side.
+  bool two_sided = false;
   std::vector<Candidate>* candidates = nullptr;  // scratch, reused
   void processTriangle(btVector3* v, int, int) override {
     btVector3 lo = v[0], hi = v[0];
@@ -66,6 +68,10 @@ struct TriangleDistances final : btTriangleCallback {
       normal.normalize();
       const btVector3 lowest = body_pose * body->localGetSupportingVertex(body_pose.getBasis().transpose() * -normal);
       bound = std::max(bound, static_cast<double>(normal.dot(lowest - v[0])));
+      if (two_sided) {  // a body wholly below the plane is at least as far as its highest point
+        const btVector3 highest = body_pose * body->localGetSupportingVertex(body_pose.getBasis().transpose() * normal);
+        bound = std::max(bound, static_cast<double>(normal.dot(v[0] - highest)));
+      }
     }
     if (bound < std::min(best, cutoff)) candidates->push_back({bound, {v[0], v[1], v[2]}});
   }
@@ -84,6 +90,28 @@ struct TriangleDistances final : btTriangleCallback {
       }
     }
     candidates->clear();
+  }
+};
+
+// Counts the triangles a ray crosses (Moller-Trumbore), for the parity test
+// of a point inside a closed mesh.
+struct RayCrossings final : btTriangleCallback {
+  btVector3 origin, direction;
+  double length = 0.0;
+  int crossings = 0;
+  void processTriangle(btVector3* v, int, int) override {
+    const btVector3 e1 = v[1] - v[0], e2 = v[2] - v[0];
+    const btVector3 p = direction.cross(e2);
+    const double det = e1.dot(p);
+    if (det == 0.0) return;  // parallel to the triangle
+    const btVector3 s = origin - v[0];
+    const double u = s.dot(p) / det;
+    if (u < 0.0 || u > 1.0) return;
+    const btVector3 q = s.cross(e1);
+    const double w = direction.dot(q) / det;
+    if (w < 0.0 || u + w > 1.0) return;
+    const double t = e2.dot(q) / det;
+    if (t > 0.0 && t <= length) ++crossings;
   }
 };
 
@@ -135,6 +163,12 @@ void ClearanceQuery::add_moving_obstacle(const btCollisionObject& body, int id) 
 void ClearanceQuery::add_ground(const btCollisionObject& body, const HeightGrid* grid) {
   Ground ground{&body, grid ? HeightBlocks(*grid) : HeightBlocks()};
   ground_.push_back(std::move(ground));
+}
+
+void ClearanceQuery::add_static_mesh(const btCollisionObject& body, int id, bool closed) {
+  StaticMesh mesh{&body, id, closed, {}, {}};
+  body.getCollisionShape()->getAabb(body.getWorldTransform(), mesh.lo, mesh.hi);
+  meshes_.push_back(mesh);
 }
 
 void ClearanceQuery::find_vehicle(const btCollisionWorld& world, std::size_t vehicle) {
@@ -208,6 +242,9 @@ Touch ClearanceQuery::touch(const Clearance& c, const ContactSeen& seen) {
       if (m.body == seen.other) return touch_obstacle(m.id);
     }
   }
+  for (const StaticMesh& mesh : meshes_) {
+    if (mesh.body == seen.other) return touch_obstacle(mesh.id);
+  }
   for (const StaticCompound& compound : compounds_) {
     if (compound.body != seen.other) continue;
     if (seen.child >= 0 && static_cast<std::size_t>(seen.child) < compound.children.size()) {
@@ -254,6 +291,17 @@ Touch ClearanceQuery::touch_obstacle(int id) const {
     }
   }
   if (shape) nearest_on(*shape, pose);
+  for (const StaticMesh& mesh : meshes_) {
+    if (mesh.id != id) continue;
+    for (const VehiclePart& part : *vehicle_) {
+      btVector3 point;
+      const double d = const_cast<ClearanceQuery*>(this)->mesh_distance(mesh, part, kInfinity, &point);
+      if (d < best) {
+        best = d;
+        t.point_m = Eigen::Vector3d(point.x(), point.y(), point.z());
+      }
+    }
+  }
   return t;
 }
 
@@ -414,6 +462,7 @@ void ClearanceQuery::nearest_static(double cutoff_m, Clearance& out) {
     if (everything) break;
     radius = std::min(cutoff_m, 2.0 * radius);
   }
+  nearest_mesh(cutoff_m, out);
   if (out.obstacle_m >= cutoff_m) {
     out.obstacle_m = kInfinity;
     out.obstacle = -1;
@@ -483,6 +532,76 @@ double ClearanceQuery::ground_distance(const Ground& g, const VehiclePart& part,
   }
   if (point) *point = ground_pose * triangles.best_point;
   return triangles.best;
+}
+
+}  // namespace campo
+
+namespace campo {
+
+// Each static mesh whose box is within reach, part by part.
+void ClearanceQuery::nearest_mesh(double cutoff_m, Clearance& out) {
+  if (meshes_.empty()) return;
+  for (const StaticMesh& mesh : meshes_) {
+    for (const VehiclePart& part : *vehicle_) {
+      btVector3 lo, hi;
+      part.body->getCollisionShape()->getAabb(part.body->getWorldTransform(), lo, hi);
+      const double reach = std::min(out.obstacle_m, cutoff_m);
+      // Outside the mesh's box, farther than the reach: nothing of it is nearer (and not inside it).
+      if (box_distance(lo, hi, mesh.lo, mesh.hi) >= reach) continue;
+      const double d = mesh_distance(mesh, part, reach, nullptr);
+      if (d < out.obstacle_m) {
+        out.obstacle_m = d;
+        out.obstacle = mesh.id;
+      }
+    }
+  }
+}
+
+double ClearanceQuery::mesh_distance(const StaticMesh& m, const VehiclePart& part, double cutoff_m, btVector3* point) {
+  const auto* mesh = static_cast<const btConcaveShape*>(m.body->getCollisionShape());
+  const btTransform& mesh_pose = m.body->getWorldTransform();
+  TriangleDistances triangles;
+  triangles.body = static_cast<const btConvexShape*>(part.body->getCollisionShape());
+  triangles.two_sided = true;
+  triangles.candidates = &triangle_scratch_;
+  triangles.body_pose = mesh_pose.inverse() * part.body->getWorldTransform();
+  triangles.body->getAabb(triangles.body_pose, triangles.body_min, triangles.body_max);
+  btVector3 all_min, all_max;
+  mesh->getAabb(btTransform::getIdentity(), all_min, all_max);
+  // Inside a closed surface, inside the solid: the parity of the faces a ray
+  // from the body's origin crosses says which (the ray's direction skewed so
+  // that it meets no edge of an axis-aligned mesh). Inside, the nearest face
+  // is wanted however far.
+  bool inside = false;
+  const btVector3 origin = triangles.body_pose.getOrigin();
+  if (m.closed && covers(all_min, all_max, origin, origin, 3)) {
+    RayCrossings ray;
+    ray.origin = origin;
+    ray.direction = btVector3(0.01297, 0.00731, 1.0).normalized();
+    ray.length = (all_max - all_min).length() + 1.0;
+    const btVector3 end = origin + ray.direction * ray.length;
+    btVector3 lo = origin, hi = origin;
+    lo.setMin(end);
+    hi.setMax(end);
+    mesh->processAllTriangles(&ray, lo, hi);
+    inside = ray.crossings % 2 == 1;
+    if (inside) cutoff_m = kInfinity;
+  }
+  // The search box grows from the last answer until the nearest triangle found lies within it.
+  double radius = std::min(cutoff_m, std::max(kMinSearch_m, 2.0 * search_->obstacle_hint_m));
+  for (;;) {
+    triangles.cutoff = radius;
+    const btVector3 pad(radius, radius, radius);
+    mesh->processAllTriangles(&triangles, triangles.body_min - pad, triangles.body_max + pad);
+    triangles.measure();
+    if (triangles.best <= radius || radius >= cutoff_m) break;
+    if (covers(triangles.body_min - pad, triangles.body_max + pad, all_min, all_max, 3)) break;
+    radius = std::min(cutoff_m, 2.0 * radius);
+  }
+  // Clear of every face but inside: minus the distance to the nearest face.
+  const double d = inside && triangles.best > 0.0 ? -triangles.best : triangles.best;
+  if (point) *point = mesh_pose * triangles.best_point;
+  return d;
 }
 
 }  // namespace campo

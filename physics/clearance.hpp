@@ -55,6 +55,11 @@ class ClearanceQuery {
   /// A plane or heightfield body; a heightfield's `grid` (the heights Bullet
   /// was given) lets the search skip terrain that is out of reach.
   void add_ground(const btCollisionObject& body, const HeightGrid* grid = nullptr);
+  /// A static triangle mesh, its own body (a btBvhTriangleMeshShape): measured
+  /// triangle by triangle near the vehicle, through the shape's BVH. Inside a
+  /// `closed` mesh (a body's origin inside the surface) the distance is
+  /// minus the distance to the nearest face.
+  void add_static_mesh(const btCollisionObject& body, int id, bool closed);
 
   /// Clearance of the bodies tagged vehicle_tag(vehicle, ...) in `world`:
   /// exact below each cutoff, +infinity when nothing is nearer; whether
@@ -82,6 +87,12 @@ class ClearanceQuery {
   struct Ground {
     const btCollisionObject* body;
     HeightBlocks blocks;  // empty for planes
+  };
+  struct StaticMesh {
+    const btCollisionObject* body;
+    int id;
+    bool closed;
+    btVector3 lo, hi;  // the mesh's box, world frame
   };
   // The first contact in_contact found: the body the vehicle touches and,
   // for a compound, the child's index (Bullet's index on that side).
@@ -119,6 +130,10 @@ class ClearanceQuery {
   // Distance from one vehicle part to one ground body, exact below the
   // cutoff (+infinity beyond), and the ground's point nearest it (world frame).
   double ground_distance(const Ground& g, const VehiclePart& part, double cutoff_m, btVector3* point);
+  // Distance from one vehicle part to a static mesh, exact below the cutoff
+  // (+infinity beyond), and the mesh's point nearest it (world frame).
+  double mesh_distance(const StaticMesh& m, const VehiclePart& part, double cutoff_m, btVector3* point);
+  void nearest_mesh(double cutoff_m, Clearance& out);
   void remember(Floor& floor, double floor_m) const;
   const VehiclePart* part_of(const btCollisionObject* object) const;
   bool in_contact(const btCollisionWorld& world, ContactSeen& seen) const;
@@ -135,6 +150,7 @@ class ClearanceQuery {
   std::vector<StaticCompound> compounds_;
   std::vector<MovingObstacle> moving_;
   std::vector<Ground> ground_;
+  std::vector<StaticMesh> meshes_;
   std::vector<Search> searches_;  // by vehicle number
   // The search of the vehicle measure() is measuring; its parts.
   Search* search_ = nullptr;

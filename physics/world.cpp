@@ -11,6 +11,8 @@
 
 #include <btBulletDynamicsCommon.h>
 #include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
+#include <BulletCollision/CollisionShapes/btTriangleIndexVertexArray.h>
+#include <LinearMath/btConvexHullComputer.h>
 
 namespace campo {
 
@@ -52,6 +54,14 @@ struct World::Impl {
   btCollisionDispatcher dispatcher{&collision_config};
   btDbvtBroadphase broadphase;
   btSequentialImpulseConstraintSolver solver;
+  // The vertices and indices static meshes' shapes point into (Bullet keeps
+  // pointers, not copies): declared before the shapes, destroyed after them.
+  struct MeshArrays {
+    std::vector<btScalar> vertices;
+    std::vector<int> indices;
+    btTriangleIndexVertexArray array;
+  };
+  std::vector<std::unique_ptr<MeshArrays>> mesh_arrays;
   std::vector<std::unique_ptr<btCollisionShape>> shapes;
   // Static obstacles share compound bodies (one per friction value): Bullet
   // walks every collision object each step, so hundreds of posts as separate
@@ -141,8 +151,48 @@ struct World::Impl {
       case ShapeType::heightfield: {
         return std::make_unique<TerrainShape>(*shape.terrain);
       }
+      case ShapeType::mesh:
+        return shape.is_static ? static_mesh_shape(*shape.mesh) : convex_hull_shape(*shape.mesh);
     }
     throw std::logic_error("unhandled shape type");
+  }
+
+  // A static mesh collides as its triangles, through a bounding-volume tree.
+  std::unique_ptr<btCollisionShape> static_mesh_shape(const TriangleMesh& mesh) {
+    auto arrays = std::make_unique<MeshArrays>();
+    arrays->vertices.reserve(3 * mesh.vertices_m.size());
+    for (const Eigen::Vector3d& v : mesh.vertices_m) {
+      for (int k = 0; k < 3; ++k) arrays->vertices.push_back(static_cast<btScalar>(v[k]));
+    }
+    arrays->indices.reserve(3 * mesh.triangles.size());
+    for (const auto& t : mesh.triangles) {
+      for (const std::uint32_t i : t) arrays->indices.push_back(static_cast<int>(i));
+    }
+    btIndexedMesh part;
+    part.m_numTriangles = static_cast<int>(mesh.triangles.size());
+    part.m_triangleIndexBase = reinterpret_cast<const unsigned char*>(arrays->indices.data());
+    part.m_triangleIndexStride = 3 * sizeof(int);
+    part.m_numVertices = static_cast<int>(mesh.vertices_m.size());
+    part.m_vertexBase = reinterpret_cast<const unsigned char*>(arrays->vertices.data());
+    part.m_vertexStride = 3 * sizeof(btScalar);
+    arrays->array.addIndexedMesh(part, PHY_INTEGER);
+    auto shape = std::make_unique<btBvhTriangleMeshShape>(&arrays->array, true, true);
+    mesh_arrays.push_back(std::move(arrays));
+    return shape;
+  }
+
+  // A dynamic mesh collides as its convex hull, shrunk by Bullet's margin so
+  // that hull and margin together have the mesh's extents (as a dynamic box's
+  // margin lies within its size).
+  static std::unique_ptr<btCollisionShape> convex_hull_shape(const TriangleMesh& mesh) {
+    btConvexHullComputer hull;
+    hull.compute(mesh.vertices_m.data()->data(), static_cast<int>(sizeof(Eigen::Vector3d)),
+                 static_cast<int>(mesh.vertices_m.size()), CONVEX_DISTANCE_MARGIN, 0.25);
+    if (hull.vertices.size() == 0) {  // flat: no volume to shrink
+      hull.compute(mesh.vertices_m.data()->data(), static_cast<int>(sizeof(Eigen::Vector3d)),
+                   static_cast<int>(mesh.vertices_m.size()), 0.0, 0.0);
+    }
+    return std::make_unique<btConvexHullShape>(&hull.vertices[0].x(), hull.vertices.size(), sizeof(btVector3));
   }
 
   btTransform body_transform(const Shape& shape) const {
@@ -195,9 +245,14 @@ World::World(const Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()
   std::vector<CompoundKey> compound_keys;
   for (std::size_t i = 0; i < scene.shapes.size(); ++i) {
     const Shape& shape = scene.shapes[i];
-    const bool obstacle = shape.is_static && shape.type != ShapeType::plane && shape.type != ShapeType::heightfield;
+    // Static meshes are bodies of their own (a compound's ray hits would name a triangle, not the child).
+    const bool obstacle = shape.is_static && shape.type != ShapeType::plane && shape.type != ShapeType::heightfield &&
+                          shape.type != ShapeType::mesh;
     if (!obstacle) {
       d.shape_bodies[i] = d.add_body(shape, static_cast<int>(i), false);
+      if (shape.type == ShapeType::mesh && shape.is_static) {
+        d.clearance.add_static_mesh(*d.shape_bodies[i], static_cast<int>(i), shape.mesh->closed);
+      }
       continue;
     }
     // Group by friction and by a coarse grid cell of the position, so a

@@ -16,6 +16,7 @@
 #include "scene/generators.hpp"
 #include "scene/geodesy.hpp"
 #include "scene/heightfield_sources.hpp"
+#include "scene/mesh_sources.hpp"
 #include "scene/sensor_fields.hpp"
 #include "scene/world_config.hpp"
 
@@ -30,7 +31,7 @@ const Range kLength{0.0, 1e6, true, false};
 const Range kTerrainHeight = Range::closed(-1e5, 1e5);
 
 constexpr std::string_view kTypes[] = {
-    "cuboid", "cylinder", "sphere", "cone", "plane", "heightfield", "dummy",
+    "cuboid", "cylinder", "sphere", "cone", "plane", "heightfield", "mesh", "dummy",
     "rolling_terrain", "trees", "vineyard", "grid_obstacles", "mover", "quadrotor", "rover"};
 
 bool valid_alias(const std::string& alias) {
@@ -263,6 +264,7 @@ class Loader {
         break;
       case ShapeType::plane:
       case ShapeType::heightfield:
+      case ShapeType::mesh:
         break;
     }
   }
@@ -341,6 +343,8 @@ class Loader {
       read_shape_properties(r, shape);
       if (shape.type == ShapeType::heightfield) {
         r.check([&] { read_heightfield(r, shape); });
+      } else if (shape.type == ShapeType::mesh) {
+        r.check([&] { read_mesh(r, shape); });
       } else {
         read_primitive(r, shape);
       }
@@ -506,6 +510,25 @@ class Loader {
         }
       }
     }
+  }
+
+  // A "mesh" object: its file read (within what is left of the scene's triangle budget) and placed.
+  void read_mesh(ObjectReader& r, Shape& shape) {
+    MeshSourceConfig c;
+    mesh_source_fields().read_fields(r, c);
+    const JsonNode file = r.required("file");
+    if (!r.ok()) return;
+    const auto path = resolve_path(file);
+    MeshLimits limits;
+    limits.max_file_bytes = limits_.max_mesh_file_bytes;
+    limits.max_triangles = static_cast<std::size_t>(std::max(0L, limits_.max_mesh_triangles));
+    const std::size_t left = limits.max_triangles - std::min(limits.max_triangles, mesh_triangles_);
+    if (left == 0) {
+      file.fail("at most " + std::to_string(limits.max_triangles) + " triangles in all meshes of a scene, used up before this one");
+    }
+    MeshReadResult read = generated(file, [&] { return read_triangle_mesh(path, c.scale, c.up_axis, limits, left); });
+    mesh_triangles_ += read.mesh.triangles.size();
+    shape.mesh = std::make_shared<const TriangleMesh>(std::move(read.mesh));
   }
 
   std::filesystem::path resolve_path(const JsonNode& node) {
@@ -831,6 +854,7 @@ class Loader {
   std::optional<double> level_ground_m_;
   std::vector<std::pair<std::size_t, JsonNode>> pending_missions_;
   int object_count_ = 0;
+  std::size_t mesh_triangles_ = 0;  // in the meshes read so far
   InputErrors errors_;
   std::set<std::string> failed_aliases_;  // objects with errors, not in the scene
   std::string failed_ground_;             // pointer of the first terrain with errors

@@ -27,6 +27,8 @@ struct SceneLimits {
   int max_vehicles = 64;
   int max_sensors = 16;                ///< per vehicle
   long max_beams = 2048L * 2048L;      ///< per sensor
+  std::uintmax_t max_mesh_file_bytes = 128u << 20;  ///< one mesh file (and a glTF's buffers together)
+  long max_mesh_triangles = 2'000'000;  ///< in all "mesh" objects of a scene together (and so in one)
 };
 
 /// Checks of the blocks that other modules interpret, run by the loader on
