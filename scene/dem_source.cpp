@@ -264,10 +264,10 @@ constexpr double kOutsideTolerancePx = 0.5 + 1e-9;  // the outer half pixel is t
 class DemReader {
  public:
   DemReader(const std::filesystem::path& path, const DemOptions& options)
-      : session_(path), api_(session_.api()), options_(options) {}
+      : session_(path), api_(session_.api()), options_(options), path_(path) {}
 
-  DemTerrain read(const std::filesystem::path& path) {
-    open(path);
+  DemTerrain read() {
+    open(path_);
     read_crs();
     const GridPlan plan = plan_grid();
     terrain_.east_north_axes = plan.east_north;
@@ -786,6 +786,7 @@ class DemReader {
   GdalSession session_;
   const GdalApi& api_;
   const DemOptions& options_;
+  std::filesystem::path path_;
   DemTerrain terrain_;
   Dataset dataset_{nullptr, DatasetCloser{nullptr}};
   Srs file_srs_{nullptr, SrsDestroyer{nullptr}};
@@ -802,7 +803,7 @@ class DemReader {
 
 DemTerrain heightgrid_from_dem(const std::filesystem::path& path, const DemOptions& options) {
   DemReader reader(path, options);
-  return reader.read(path);
+  return reader.read();
 }
 
 }  // namespace campo
