@@ -221,6 +221,11 @@ TEST(RgbCamera, ShadingIsLambertUnderTheSunPlusAmbient) {
   const Scene scene = red_box_on_grey_ground();
   CAMERA_OR_SKIP(camera, build_scene_mesh(scene), camera_def());
   const RgbImage image = render(*camera, scene);
+  // The documented sun: 60 deg up at azimuth 30 deg; 35% ambient.
+  EXPECT_NEAR(kSunDirection.norm(), 1.0, 1e-12);
+  EXPECT_NEAR(std::asin(kSunDirection.z()) / kDeg, 60.0, 1e-9);
+  EXPECT_NEAR(std::atan2(kSunDirection.y(), kSunDirection.x()) / kDeg, 30.0, 1e-9);
+  EXPECT_EQ(kAmbient, 0.35);
   // The box's front face (normal -x) turns away from the sun: ambient only.
   const double away = kAmbient + (1.0 - kAmbient) * std::max(0.0, -kSunDirection.x());
   const Eigen::Vector2d face = image_point(Eigen::Vector3d(kFront_m, 0.5, 0.0));
@@ -235,6 +240,36 @@ TEST(RgbCamera, ShadingIsLambertUnderTheSunPlusAmbient) {
   EXPECT_NEAR(g.r, kGrey.r * lit * 255.0, 1.0);
   EXPECT_EQ(g.r, g.g);
   EXPECT_EQ(g.g, g.b);
+}
+
+TEST(RgbCamera, TiltedGroundIsShadedByItsNormal) {
+  // A ground plane tilted 30 deg, towards the sun's azimuth or away from it, seen from above:
+  // the image centre shows c (ambient + (1 - ambient) max(n . sun, 0)) for the plane's normal n.
+  const double azimuth = std::atan2(kSunDirection.y(), kSunDirection.x());
+  for (const double toward : {1.0, -1.0}) {
+    const Eigen::Vector3d horizontal(std::cos(azimuth), std::sin(azimuth), 0.0);
+    const Eigen::Vector3d normal =
+        (std::cos(30.0 * kDeg) * Eigen::Vector3d::UnitZ() + toward * std::sin(30.0 * kDeg) * horizontal).normalized();
+    Scene scene;
+    Shape ground;
+    ground.type = ShapeType::plane;
+    ground.color = kGrey;
+    ground.pose.linear() = Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), normal).toRotationMatrix();
+    scene.shapes.push_back(ground);
+    CAMERA_OR_SKIP(camera, build_scene_mesh(scene), camera_def());
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = Eigen::AngleAxisd(90.0 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();  // looking down
+    pose.translation() = Eigen::Vector3d(0.0, 0.0, 5.0);
+    RgbImage image;
+    camera->render(pose, 0.0, scripted_poses(scene, 0.0), image);
+    const double shade = kAmbient + (1.0 - kAmbient) * std::max(0.0, normal.dot(kSunDirection));
+    const Pixel p = at(image, kCols / 2, kRows / 2);
+    EXPECT_NEAR(p.r, kGrey.r * shade * 255.0, 1.0) << "toward " << toward;
+    EXPECT_EQ(p.r, p.g);
+    // The level ground's shade lies between the two.
+    const double level = kAmbient + (1.0 - kAmbient) * kSunDirection.z();
+    EXPECT_EQ(toward > 0 ? p.r > kGrey.r * level * 255.0 + 2 : p.r < kGrey.r * level * 255.0 - 2, true) << p.r;
+  }
 }
 
 TEST(RgbCamera, ImagesAreBitIdenticalAndTheBufferIsReused) {
