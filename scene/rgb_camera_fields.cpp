@@ -9,9 +9,6 @@ namespace {
 constexpr double kMaxRgbFov_deg = 170.0;
 // Pixels a side: a 4096 x 4096 image is 48 MiB, rendered at the sensor rate.
 constexpr int kMaxRgbPixels = 4096;
-// The lowest own rate: 0 means world.sensor_rate_hz, slower rates would be
-// periods of more than 10^7 physics steps (as for the range sensors).
-constexpr double kMinRgbRateHz = 0.01;
 
 }  // namespace
 
@@ -30,7 +27,8 @@ const ConfigFields<RgbCameraConfig>& rgb_camera_config_fields() {
                   },
                   [](const C& c, nlohmann::json& j) { j["resolution"] = {c.cols, c.rows}; })
           .custom("range_m", "m", "[min, max] with 0 <= min < max <= 100000",
-                  "clip distances along the optical axis: nearer surfaces are not drawn, farther ones show the sky",
+                  "distances along each pixel's ray: nearer surfaces are not drawn (what lies behind shows), "
+                  "farther ones show the sky",
                   [](const JsonNode& n, C& c) { read_range_m(n, c.min_range_m, c.max_range_m); },
                   [](const C& c, nlohmann::json& j) { j["range_m"] = {c.min_range_m, c.max_range_m}; })
           .custom("sky", "", "[r, g, b], each in [0, 1]", "background colour where nothing lies within range",
@@ -42,12 +40,12 @@ const ConfigFields<RgbCameraConfig>& rgb_camera_config_fields() {
           .number("noise_stddev", &C::noise_stddev, Range::closed(0.0, 1.0), "",
                   "Gaussian noise added to each channel of each pixel, as a fraction of full scale (255); "
                   "0 = none")
-          .number("rate_hz", &C::rate_hz, Range::closed(0.0, 10000.0), "Hz",
-                  "images per second, dividing the physics rate ([rates](#world)); 0 = `world.sensor_rate_hz`")
+          .custom("rate_hz", "Hz", "0, or [0.01, 10000]",
+                  "images per second, dividing the physics rate ([rates](#world)); 0 = `world.sensor_rate_hz`",
+                  [](const JsonNode& n, C& c) { c.rate_hz = read_sensor_rate_hz(n); },
+                  [](const C& c, nlohmann::json& j) { j["rate_hz"] = c.rate_hz; })
           .seed("seed", &C::seed, "pixel noise stream, combined with `world.seed`")
-          .nested("mount", &C::mount, mount_fields(), "pose on the vehicle body")
-          .requirement([](const C& c) { return c.rate_hz == 0.0 || c.rate_hz >= kMinRgbRateHz; },
-                       "\"rate_hz\" 0 (world.sensor_rate_hz) or a number in [0.01, 10000]");
+          .nested("mount", &C::mount, mount_fields(), "pose on the vehicle body");
   return fields;
 }
 

@@ -15,6 +15,14 @@ constexpr double kMaxSensorRateHz = 10000.0;
 
 }  // namespace
 
+double read_sensor_rate_hz(const JsonNode& node) {
+  const double rate = node.as_number();
+  if (!(rate == 0.0 || (rate >= kMinSensorRateHz && rate <= kMaxSensorRateHz))) {
+    node.fail("0 (world.sensor_rate_hz) or a number in [0.01, 10000]");
+  }
+  return rate;
+}
+
 void read_range_m(const JsonNode& node, double& min_m, double& max_m) {
   const Eigen::Vector2d mm = node.as_vector2(Range::non_negative());
   if (!(mm.x() < mm.y()) || mm.y() > 1e5) node.fail("[min, max] with 0 <= min < max <= 100000");
@@ -100,13 +108,7 @@ ConfigFields<RangeSensorConfig> range_sensor_config_fields(const SceneLimits& li
       // more than 10^7 physics steps (dividing_rates_near() past 2^53 once made that a 4 GB error).
       .custom("rate_hz", "Hz", "0, or [0.01, 10000]",
               "scans per second, dividing the physics rate ([rates](#world)); 0 = `world.sensor_rate_hz`",
-              [](const JsonNode& n, C& c) {
-                const double rate = n.as_number();
-                if (!(rate == 0.0 || (rate >= kMinSensorRateHz && rate <= kMaxSensorRateHz))) {
-                  n.fail("0 (world.sensor_rate_hz) or a number in [0.01, 10000]");
-                }
-                c.rate_hz = rate;
-              },
+              [](const JsonNode& n, C& c) { c.rate_hz = read_sensor_rate_hz(n); },
               [](const C& c, nlohmann::json& j) { j["rate_hz"] = c.rate_hz; })
       .seed("seed", &C::seed, "noise stream, combined with `world.seed`")
       .nested("mount", &C::mount, mount_fields(), "pose on the vehicle body")

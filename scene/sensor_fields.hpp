@@ -16,6 +16,9 @@ namespace campo {
 /// kind accepts is declared with them (requirements on the kind set before).
 ConfigFields<RangeSensorConfig> range_sensor_config_fields(const SceneLimits& limits = {});
 
+/// A sensor's own "rate_hz": 0 (world.sensor_rate_hz) or in [0.01, 10000] (a
+/// slower rate would be a period of more than 10^7 physics steps).
+double read_sensor_rate_hz(const JsonNode& node);
 /// A sensor's "range_m" [min, max], 0 <= min < max <= 100000, into min_m and max_m.
 void read_range_m(const JsonNode& node, double& min_m, double& max_m);
 /// A sensor's "mount": its pose on the vehicle body (every sensor type shares it).
