@@ -466,6 +466,30 @@ TEST_F(DemSource, HostileAndWrongFilesAreRefusedClearly) {
   EXPECT_THAT(error_of(geographic, projected), HasSubstr("the file's CRS is geographic"));
 }
 
+TEST_F(DemSource, NonFiniteHeightsAreRefusedAndABandIsChosen) {
+  const fs::path nan = geotiff("nan", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 nan\n3 4\n", "");
+  EXPECT_THAT(error_of(nan), HasSubstr("a height that is not finite (nan) at pixel (column 1, row 0)"));
+
+  // Two bands: the first the 5 x 4 heights, the second a 5 x 4 grid of 7s.
+  grid_5x4("EPSG:32633");
+  geotiff("sevens",
+          "ncols 5\nnrows 4\nxllcorner 438000\nyllcorner 4522000\ncellsize 2.5\n"
+          "7 7 7 7 7\n7 7 7 7 7\n7 7 7 7 7\n7 7 7 7 7\n",
+          "EPSG:32633");
+  const std::string band = R"(<VRTRasterBand dataType="Float64" band="%d"><SimpleSource><SourceFilename relativeToVRT="1">%s</SourceFilename><SourceBand>1</SourceBand></SimpleSource></VRTRasterBand>)";
+  char first[400], second[400];
+  std::snprintf(first, sizeof first, band.c_str(), 1, "grid.tif");
+  std::snprintf(second, sizeof second, band.c_str(), 2, "sevens.tif");
+  const fs::path two = write("two.vrt", std::string(R"(<VRTDataset rasterXSize="5" rasterYSize="4">)") +
+                                            "<GeoTransform>438000, 2.5, 0, 4522010, 0, -2.5</GeoTransform>" + first +
+                                            second + "</VRTDataset>");
+  DemOptions options;
+  EXPECT_EQ(heightgrid_from_dem(two, options).grid.at(0, 0), 98.7);
+  options.band = 2;
+  const DemTerrain sevens = heightgrid_from_dem(two, options);
+  EXPECT_EQ(sevens.grid.heights_m, std::vector<double>(20, 7.0));
+}
+
 TEST_F(DemSource, SceneErrorsNameTheFileAndPointer) {
   grid_5x4("EPSG:32633");
   write("text.tif", "not a raster");
