@@ -170,6 +170,36 @@ TEST(QuadrotorWind, QuadraticDragTiltsByItsAngle) {
   EXPECT_LT((f.s().position_m - Eigen::Vector3d(0.0, 0.0, 5.0)).norm(), 1e-3);
 }
 
+// Quadratic drag is per body axis: C_d A on body y alone. Heading 90 degrees, body y points
+// along world -x, into a wind toward +x: the drag is along body y, of size D cos(theta) with
+// D = 1/2 rho A w^2 as the body leans by theta (|v| = w, v_y = w cos(theta)). With the thrust
+// T along body z the balance is T sin(theta) = D cos^2(theta) across and T cos(theta) +
+// D cos(theta) sin(theta) = m g up (the tilted axis's drag lifts a little): together
+// tan(theta) = D / (m g). Heading 0, the same wind is along body x, which has no drag: the
+// quadrotor neither leans nor moves (a drag taken in world axes would fail both).
+TEST(QuadrotorWind, QuadraticDragActsAlongTheBodyAxes) {
+  QuadrotorConfig config;
+  config.linear_drag_n_per_mps = 0.0;
+  config.drag_area_m2 = {0.0, 0.05, 0.0};
+  const std::string scene = scene_with_world(R"j({"wind": {"speed_mps": 6, "direction_deg": 0}})j");
+  const double drag_n = 0.5 * config.air_density_kgpm3 * 0.05 * 6.0 * 6.0;
+  {
+    Flight f(scene, at({0.0, 0.0, 5.0}, kPi / 2), config);
+    f.fly(command::Hold{{0.0, 0.0, 5.0}, kPi / 2}, 60.0);
+    const double expected = std::atan(drag_n / (config.mass_kg * f.g()));
+    EXPECT_NEAR(f.tilt(), expected, 0.002 * expected);
+    EXPECT_LT((f.s().orientation * Eigen::Vector3d::UnitZ()).x(), 0.0);  // leaning upwind, toward -x
+  }
+  {
+    Flight f(scene, at({0.0, 0.0, 5.0}, 0.0), config);
+    double worst_m = 0.0;
+    f.fly(command::Hold{{0.0, 0.0, 5.0}, 0.0}, 10.0,
+          [&] { worst_m = std::max(worst_m, (f.s().position_m - Eigen::Vector3d(0.0, 0.0, 5.0)).norm()); });
+    EXPECT_LT(f.tilt(), 1e-6);
+    EXPECT_LT(worst_m, 1e-6);
+  }
+}
+
 // With the controller off (the rotors held at hover speed: thrust m g along body z, no
 // torque), a 1-cos gust along x moves the free body by m x'' = -c (x' - w(t)): integrated
 // here with RK4 on a fine step, and in the end by the gust's integral A D / 2 (the drag's
