@@ -242,6 +242,7 @@ struct Episode::Loop {
         reading.fresh = true;
         imu.before = now;
         imu.sampled = true;
+        if (options.on_imu) options.on_imu(v.index, i, reading);
       }
       for (std::size_t i = 0; i < v.cameras.size(); ++i) {
         MountedCamera& c = v.cameras[i];

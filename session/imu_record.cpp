@@ -5,13 +5,6 @@
 
 namespace campo {
 
-void ImuRecorder::observe(std::size_t vehicle, const Observation& observation) {
-  for (std::size_t i = 0; i < observation.imus.size(); ++i) {
-    const ImuReading& reading = observation.imus[i];
-    if (reading.valid && reading.fresh) record(vehicle, i, reading);
-  }
-}
-
 void ImuRecorder::record(std::size_t vehicle, std::size_t imu, const ImuReading& reading) {
   samples_.at(vehicle).push_back({imu, reading.time_s, reading.specific_force_mps2, reading.angular_rate_radps});
 }

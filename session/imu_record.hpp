@@ -26,11 +26,7 @@ struct RecordedImuSample {
 class ImuRecorder {
  public:
   explicit ImuRecorder(std::size_t vehicles) : samples_(vehicles) {}
-  /// Keeps the readings of `observation` taken since the previous one (ImuReading::fresh):
-  /// called at each of the vehicle's planner calls (EpisodeOptions::on_plan), it sees every
-  /// sample of an IMU no faster than the control rate, and the latest of a faster one.
-  void observe(std::size_t vehicle, const Observation& observation);
-  /// Keeps one sample of IMU `imu` of vehicle `vehicle`.
+  /// Keeps one sample of IMU `imu` of vehicle `vehicle` (EpisodeOptions::on_imu: every sample).
   void record(std::size_t vehicle, std::size_t imu, const ImuReading& reading);
   std::vector<std::vector<RecordedImuSample>>& samples() { return samples_; }
 

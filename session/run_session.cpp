@@ -335,15 +335,11 @@ SimulatedRun simulate_run(const RunRequest& request, const OutputProvider& outpu
       }
     };
   }
-  // Every IMU sample, as the planners are given them (imu.csv).
+  // Every IMU sample at its own rate (imu.csv).
   ImuRecorder imus(scene.vehicles.size());
-  if (std::any_of(scene.vehicles.begin(), scene.vehicles.end(), [](const VehicleDef& v) { return !v.imus.empty(); })) {
-    options.on_plan = [&imus, then = std::move(options.on_plan)](std::size_t vehicle, const Observation& observation,
-                                                                   const PlanResult& plan) {
-      imus.observe(vehicle, observation);
-      if (then) then(vehicle, observation, plan);
-    };
-  }
+  options.on_imu = [&imus](std::size_t vehicle, std::size_t imu, const ImuReading& reading) {
+    imus.record(vehicle, imu, reading);
+  };
   PlannerMaker make_planner = request.make_planner ? request.make_planner : PlannerMaker(&create_planner);
   std::optional<WallLimit> limit;
   if (request.time_limit_s > 0) {

@@ -64,6 +64,9 @@ struct EpisodeOptions {
   RgbCameraFactory make_camera;
   /// Called after every image with the vehicle's and the camera's index (in VehicleDef::rgb_cameras).
   std::function<void(std::size_t vehicle, std::size_t camera, const RgbImage& image)> on_image;
+  /// Called after every IMU sample with the vehicle's and the IMU's index (in VehicleDef::imus), at the
+  /// IMU's own rate (imu.csv keeps every sample, however fast).
+  std::function<void(std::size_t vehicle, std::size_t imu, const ImuReading& reading)> on_imu;
   /// Called after every planner call with the vehicle's index and what its
   /// planner saw and decided (e.g. to record the depth map a replanning used).
   std::function<void(std::size_t vehicle, const Observation& observation, const PlanResult& plan)> on_plan;
