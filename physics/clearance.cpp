@@ -76,18 +76,35 @@ struct TriangleDistances final : btTriangleCallback {
     if (bound < std::min(best, cutoff)) candidates->push_back({bound, {v[0], v[1], v[2]}});
   }
   void measure() {
+    if (two_sided) return measure_nearest_first();
     std::sort(candidates->begin(), candidates->end(),
               [](const Candidate& a, const Candidate& b) { return a.bound_m < b.bound_m; });
     for (const Candidate& c : *candidates) {
       if (c.bound_m >= std::min(best, cutoff)) break;
-      btTriangleShape triangle(c.v[0], c.v[1], c.v[2]);
-      triangle.setMargin(0.0);
-      btVector3 point;
-      const double d = signed_distance(*body, body_pose, triangle, btTransform::getIdentity(), &point);
-      if (d < best) {
-        best = d;
-        best_point = point;
-      }
+      measure(c);
+    }
+    candidates->clear();
+  }
+  void measure(const Candidate& c) {
+    btTriangleShape triangle(c.v[0], c.v[1], c.v[2]);
+    triangle.setMargin(0.0);
+    btVector3 point;
+    const double d = signed_distance(*body, body_pose, triangle, btTransform::getIdentity(), &point);
+    if (d < best) {
+      best = d;
+      best_point = point;
+    }
+  }
+  // A finely tessellated mesh puts thousands of slivers near a body, of which
+  // a few are measured: a heap yields them nearest bound first without
+  // sorting them all.
+  void measure_nearest_first() {
+    const auto farther = [](const Candidate& a, const Candidate& b) { return a.bound_m > b.bound_m; };
+    std::make_heap(candidates->begin(), candidates->end(), farther);
+    for (auto end = candidates->end(); end != candidates->begin(); --end) {
+      if (candidates->front().bound_m >= std::min(best, cutoff)) break;
+      std::pop_heap(candidates->begin(), end, farther);
+      measure(*(end - 1));
     }
     candidates->clear();
   }
