@@ -194,18 +194,28 @@ std::string trajectory_csv(const VehicleResult& result) {
 
 namespace {
 
+// Sensor blocks of one type as a scene gives them: "type", "alias" and every field.
+template <class Def, class Config>
+nlohmann::json sensor_blocks(const std::vector<Def>& defs, Config Def::*config, const ConfigFields<Config>& fields,
+                             const char* type) {
+  nlohmann::json blocks = nlohmann::json::array();
+  for (const Def& def : defs) {
+    nlohmann::json j = fields.write(def.*config);
+    j["type"] = type;
+    j["alias"] = def.alias;
+    blocks.push_back(j);
+  }
+  return blocks;
+}
+
 // What one vehicle ran with: its definition and effective parameters.
 nlohmann::json vehicle_parameters(const VehicleDef& def, const VehicleResult& result) {
   nlohmann::json sensors = nlohmann::json::array();
   for (const SensorDef& s : def.sensors) sensors.push_back(sensor_json(s));
-  // The IMUs (listed only where there are some, so the records of scenes without them are as before).
-  nlohmann::json imus = nlohmann::json::array();
-  for (const ImuDef& imu : def.imus) {
-    nlohmann::json j = imu_config_fields().write(imu.imu);
-    j["type"] = "imu";
-    j["alias"] = imu.alias;
-    imus.push_back(j);
-  }
+  // The IMUs and colour cameras (listed only where there are some, so the records of scenes
+  // without them are as before).
+  const nlohmann::json imus = sensor_blocks(def.imus, &ImuDef::imu, imu_config_fields(), "imu");
+  const nlohmann::json cameras = sensor_blocks(def.rgb_cameras, &RgbCameraDef::camera, rgb_camera_config_fields(), "rgb_camera");
   nlohmann::json mission = nlohmann::json::array();
   for (const Waypoint& wp : def.mission) {
     nlohmann::json j = {{"position_m", vector_json(wp.position_m)}};
@@ -224,6 +234,7 @@ nlohmann::json vehicle_parameters(const VehicleDef& def, const VehicleResult& re
       {"sensors", sensors},
       {"mission", mission}};
   if (!imus.empty()) parameters["imus"] = imus;
+  if (!cameras.empty()) parameters["rgb_cameras"] = cameras;
   return parameters;
 }
 

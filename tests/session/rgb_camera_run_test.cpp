@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "render/video_frame.hpp"
@@ -114,6 +115,15 @@ TEST_F(RecordImages, WithoutTheFlagNothingIsWritten) {
   const testing::Result r = campo("run " + scene + " --out " + out.string() + " --no-figures");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_FALSE(fs::exists(out / "images"));
+  // run.json lists the camera with every field of its block, as the scene gave them.
+  const nlohmann::json record = nlohmann::json::parse(testing::slurp(out / "run.json"));
+  const nlohmann::json& cameras = record.at("parameters").at("rgb_cameras");
+  ASSERT_EQ(cameras.size(), 1u);
+  EXPECT_EQ(cameras[0].at("alias"), "front");
+  EXPECT_EQ(cameras[0].at("type"), "rgb_camera");
+  EXPECT_EQ(cameras[0].at("resolution"), nlohmann::json({64, 48}));
+  EXPECT_EQ(cameras[0].at("range_m"), nlohmann::json({0.05, 60.0}));
+  EXPECT_EQ(cameras[0].at("sky"), nlohmann::json({0.2, 0.4, 0.8}));
 }
 
 }  // namespace
