@@ -502,7 +502,7 @@ MeshReadResult read_triangle_mesh(const std::filesystem::path& path, const Eigen
                                   MeshUpAxis up_axis, const MeshLimits& limits, std::size_t max_triangles) {
   max_triangles = std::min(max_triangles, limits.max_triangles);
   const Format format = format_of(path);
-  const std::string bytes = read_bytes(path, limits);
+  std::string bytes = read_bytes(path, limits);
   // The sizes the file declares, before assimp allocates for them.
   Declared declared;
   switch (format) {
@@ -513,6 +513,8 @@ MeshReadResult read_triangle_mesh(const std::filesystem::path& path, const Eigen
     case Format::glb: declared = scan_glb(bytes, path, limits); break;
   }
   check_declared(declared, limits, max_triangles);
+  const std::string sha256 = sha256_hex(bytes);
+  std::string().swap(bytes);  // assimp reads the file itself: not held twice
 
   if (up_axis == MeshUpAxis::from_format) {
     up_axis = format == Format::gltf || format == Format::glb ? MeshUpAxis::y : MeshUpAxis::z;
@@ -525,11 +527,14 @@ MeshReadResult read_triangle_mesh(const std::filesystem::path& path, const Eigen
   std::lock_guard<std::mutex> lock(assimp_mutex());
   aiPropertyStore* properties = api.create_properties();
   // Points and lines are dropped, not kept as meshes; no skeleton stand-ins.
+  // No aiProcess_JoinIdenticalVertices: the builder welds coincident
+  // positions itself (across parts too), and assimp's pass would double the
+  // memory of a large triangle soup (a binary STL) while it runs.
   api.set_integer(properties, AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   api.set_integer(properties, AI_CONFIG_IMPORT_NO_SKELETON_MESHES, 1);
   ImportedScene imported;
   imported.scene = api.import_file(path.c_str(),
-                                   aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
+                                   aiProcess_Triangulate | aiProcess_SortByPType |
                                        aiProcess_ValidateDataStructure,
                                    nullptr, properties);
   api.release_properties(properties);
@@ -562,7 +567,7 @@ MeshReadResult read_triangle_mesh(const std::filesystem::path& path, const Eigen
   }
   MeshReadResult result = builder.finish();
   result.mesh.source_path = path.string();
-  result.mesh.source_sha256 = sha256_hex(bytes);
+  result.mesh.source_sha256 = sha256;
   return result;
 }
 
