@@ -247,8 +247,7 @@ class DepthCamera final : public RangeSensor {
   std::vector<Eigen::Matrix4f> mover_model_views_; // eye from shape at the scan time
   std::vector<std::size_t> visible_movers_;
   ViewVolume view_volume_;
-  std::vector<GLsizei> draw_counts_;         // scratch for one multi-draw
-  std::vector<const void*> draw_offsets_;
+  DrawRuns draw_runs_;                       // scratch for one multi-draw
   std::vector<float> inverse_depth_;         // near * far / z per render pixel (0: none), rows bottom-up
 
   // GL objects last: they are released (context current) before the context.
@@ -282,8 +281,7 @@ DepthCamera::DepthCamera(const Scene& scene, const SceneMesh& mesh, const Sensor
       solids_.push_back(bound(mesh, part.first_index, part.index_count));
     }
   }
-  draw_counts_.reserve(chunks_.size());
-  draw_offsets_.reserve(chunks_.size());
+  draw_runs_.reserve(chunks_.size());
   view_volume_ = ViewVolume(frustum_.half_width, frustum_.half_height, frustum_.far_m);
   check_render_size(frustum_.width_px, frustum_.height_px, "depth camera '" + def_.alias + "': its grid");
 
@@ -342,18 +340,10 @@ void DepthCamera::render(const Eigen::Isometry3d& sensor_pose, std::span<const E
   bool close_by = false;  // some visible surface may lie within the minimum range
   const Eigen::Affine3f view(eye_from_world.matrix().cast<float>());
   const Eigen::Vector3f eye = sensor_pose.translation().cast<float>();
-  draw_counts_.clear();
-  draw_offsets_.clear();
-  std::uint32_t run_end = 0;
+  draw_runs_.clear();
   for (const Chunk& chunk : chunks_) {
     if (!visible(view, eye, chunk, close_by)) continue;
-    if (!draw_counts_.empty() && chunk.first_index == run_end) {
-      draw_counts_.back() += static_cast<GLsizei>(chunk.index_count);
-    } else {
-      draw_counts_.push_back(static_cast<GLsizei>(chunk.index_count));
-      draw_offsets_.push_back(reinterpret_cast<const void*>(std::size_t{chunk.first_index} * sizeof(std::uint32_t)));
-    }
-    run_end = chunk.first_index + chunk.index_count;
+    draw_runs_.add(chunk.first_index, chunk.index_count);
   }
   // Moving bodies, each where the world has it now.
   if (body_poses.size() != mover_chunks_.size()) {
@@ -378,10 +368,9 @@ void DepthCamera::render(const Eigen::Isometry3d& sensor_pose, std::span<const E
     gl().Disable(GL_CULL_FACE);
   }
   gl().Clear(GL_DEPTH_BUFFER_BIT);
-  if (!draw_counts_.empty()) {
+  if (!draw_runs_.empty()) {
     gl().UniformMatrix4fv(0, 1, GL_FALSE, view.matrix().data());
-    gl().MultiDrawElements(GL_TRIANGLES, draw_counts_.data(), GL_UNSIGNED_INT, draw_offsets_.data(),
-                        static_cast<GLsizei>(draw_counts_.size()));
+    draw_runs_.draw();
   }
   for (const std::size_t i : visible_movers_) {
     const Chunk& chunk = mover_chunks_[i];

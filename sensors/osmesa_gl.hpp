@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -113,6 +114,41 @@ Eigen::Matrix4f reversed_depth_projection(double half_width, double half_height,
 /// height, without dithering or multisampling (sensor images are exact and
 /// deterministic) and with tightly packed rows for glReadPixels.
 void use_reversed_depth(int width_px, int height_px);
+
+/// The index runs of one glMultiDrawElements: runs of triangles added in
+/// index order, each merged with the one before when they are adjacent.
+/// Reserve once; adding and clearing then allocate nothing.
+class DrawRuns {
+ public:
+  void reserve(std::size_t runs) {
+    counts_.reserve(runs);
+    offsets_.reserve(runs);
+  }
+  void clear() {
+    counts_.clear();
+    offsets_.clear();
+  }
+  bool empty() const { return counts_.empty(); }
+  void add(std::uint32_t first_index, std::uint32_t index_count) {
+    if (!counts_.empty() && first_index == end_) {
+      counts_.back() += static_cast<GLsizei>(index_count);
+    } else {
+      counts_.push_back(static_cast<GLsizei>(index_count));
+      offsets_.push_back(reinterpret_cast<const void*>(std::size_t{first_index} * sizeof(std::uint32_t)));
+    }
+    end_ = first_index + index_count;
+  }
+  /// Draws the runs as triangles of 32-bit indices of the bound vertex array.
+  void draw() const {
+    gl().MultiDrawElements(GL_TRIANGLES, counts_.data(), GL_UNSIGNED_INT, offsets_.data(),
+                           static_cast<GLsizei>(counts_.size()));
+  }
+
+ private:
+  std::vector<GLsizei> counts_;
+  std::vector<const void*> offsets_;
+  std::uint32_t end_ = 0;  // one past the last index of the last run
+};
 
 /// A mesh in GPU buffers: attribute 0 = position, 1 = normal (when uploaded).
 struct GpuMesh {

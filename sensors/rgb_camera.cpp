@@ -104,8 +104,7 @@ class OsmesaRgbCamera final : public RgbCamera {
   std::vector<Chunk> mover_chunks_;      // one per moving body, shape frame
   std::vector<Eigen::Vector3f> colours_;        // static parts'
   std::vector<Eigen::Vector3f> mover_colours_;  // moving bodies'
-  std::vector<GLsizei> draw_counts_;     // scratch for one multi-draw of one part
-  std::vector<const void*> draw_offsets_;
+  DrawRuns draw_runs_;                   // scratch for one multi-draw of one part
   Rng rng_;
 
   // GL objects last: they are released (context current) before the context.
@@ -129,8 +128,7 @@ OsmesaRgbCamera::OsmesaRgbCamera(const SceneMesh& mesh, const RgbCameraDef& def,
     mover_chunks_.push_back(bound(mesh, part.first_index, part.index_count));
     mover_colours_.push_back(Eigen::Vector3d(part.color.r, part.color.g, part.color.b).cast<float>());
   }
-  draw_counts_.reserve(chunks_.size());
-  draw_offsets_.reserve(chunks_.size());
+  draw_runs_.reserve(chunks_.size());
 
   check_render_size(c.cols, c.rows, "colour camera '" + def_.alias + "'");
   // The context is this camera's alone, so its state is set once here.
@@ -159,13 +157,11 @@ OsmesaRgbCamera::OsmesaRgbCamera(const SceneMesh& mesh, const RgbCameraDef& def,
 
 // Draws the runs gathered for static part `part`.
 void OsmesaRgbCamera::flush(std::uint32_t part) {
-  if (draw_counts_.empty()) return;
+  if (draw_runs_.empty()) return;
   const Eigen::Vector3f& colour = colours_[part];
   gl().Uniform3f(2, colour.x(), colour.y(), colour.z());
-  gl().MultiDrawElements(GL_TRIANGLES, draw_counts_.data(), GL_UNSIGNED_INT, draw_offsets_.data(),
-                         static_cast<GLsizei>(draw_counts_.size()));
-  draw_counts_.clear();
-  draw_offsets_.clear();
+  draw_runs_.draw();
+  draw_runs_.clear();
 }
 
 void OsmesaRgbCamera::render(const Eigen::Isometry3d& camera_pose, double time_s,
@@ -186,18 +182,11 @@ void OsmesaRgbCamera::render(const Eigen::Isometry3d& camera_pose, double time_s
   // Static geometry: the visible chunks, adjacent ones of a part merged into runs.
   const Eigen::Affine3f view_affine(view);
   std::uint32_t part = 0;
-  std::uint32_t run_end = 0;
   for (const Chunk& chunk : chunks_) {
     if (!view_volume_.may_see(view_affine * chunk.centre, chunk.radius)) continue;
     if (chunk.part != part) flush(part);
     part = chunk.part;
-    if (!draw_counts_.empty() && chunk.first_index == run_end) {
-      draw_counts_.back() += static_cast<GLsizei>(chunk.index_count);
-    } else {
-      draw_counts_.push_back(static_cast<GLsizei>(chunk.index_count));
-      draw_offsets_.push_back(reinterpret_cast<const void*>(std::size_t{chunk.first_index} * sizeof(std::uint32_t)));
-    }
-    run_end = chunk.first_index + chunk.index_count;
+    draw_runs_.add(chunk.first_index, chunk.index_count);
   }
   flush(part);
   // Moving bodies, each where the world has it now.
