@@ -9,6 +9,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <unordered_map>
+#include <string_view>
 #include <utility>
 
 #include <assimp/cimport.h>
@@ -103,8 +104,21 @@ bool starts_with_word(std::string_view line, std::string_view word) {
          (line[word.size()] == ' ' || line[word.size()] == '\t');
 }
 
+// A file a mesh names (an OBJ's material library, a glTF's buffer or image),
+// which assimp opens itself: it must be a regular file if it exists (a FIFO
+// or a device would block or never end); a missing one assimp reports.
+void check_side_file(const std::filesystem::path& mesh, std::string_view name, const char* what) {
+  std::filesystem::path side(std::string{name});
+  if (side.is_relative()) side = mesh.parent_path() / side;
+  std::error_code ec;
+  if (std::filesystem::exists(side, ec) && !std::filesystem::is_regular_file(side, ec)) {
+    refuse(std::string("a mesh whose ") + what + " is a regular file, but \"" + side.string() + "\" is not");
+  }
+}
+
 // OBJ: "v" lines are vertices; an "f" line of n corners is n - 2 triangles.
-Declared scan_obj(const std::string& bytes, const MeshLimits& limits, std::size_t max_triangles) {
+Declared scan_obj(const std::string& bytes, const std::filesystem::path& path, const MeshLimits& limits,
+                  std::size_t max_triangles) {
   Declared d;
   std::size_t at = 0;
   while (at < bytes.size()) {
@@ -112,7 +126,12 @@ Declared scan_obj(const std::string& bytes, const MeshLimits& limits, std::size_
     if (end == std::string::npos) end = bytes.size();
     std::string_view line(bytes.data() + at, end - at);
     while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
-    if (starts_with_word(line, "v")) {
+    if (starts_with_word(line, "mtllib")) {
+      std::string_view name = line.substr(7);
+      while (!name.empty() && std::isspace(static_cast<unsigned char>(name.back()))) name.remove_suffix(1);
+      while (!name.empty() && std::isspace(static_cast<unsigned char>(name.front()))) name.remove_prefix(1);
+      if (!name.empty()) check_side_file(path, name, "material library (mtllib)");
+    } else if (starts_with_word(line, "v")) {
       ++d.vertices;
     } else if (starts_with_word(line, "f")) {
       std::size_t corners = 0;
@@ -244,6 +263,13 @@ Declared scan_gltf_json(const std::string& text, const std::filesystem::path& pa
       d.vertices += positions;
       if (mode == 4) d.triangles += corners / 3;
       if ((mode == 5 || mode == 6) && corners >= 3) d.triangles += corners - 2;
+    }
+  }
+  for (const char* key : {"buffers", "images"}) {
+    for (const nlohmann::json& item : array(key)) {
+      if (!item.is_object() || !item.contains("uri") || !item["uri"].is_string()) continue;
+      const std::string uri = item["uri"].get<std::string>();
+      if (uri.rfind("data:", 0) != 0) check_side_file(path, uri, key[0] == 'b' ? "buffer file" : "image file");
     }
   }
   double buffer_bytes = 0.0;
@@ -506,7 +532,7 @@ MeshReadResult read_triangle_mesh(const std::filesystem::path& path, const Eigen
   // The sizes the file declares, before assimp allocates for them.
   Declared declared;
   switch (format) {
-    case Format::obj: declared = scan_obj(bytes, limits, max_triangles); break;
+    case Format::obj: declared = scan_obj(bytes, path, limits, max_triangles); break;
     case Format::stl: declared = scan_stl(bytes, limits, max_triangles); break;
     case Format::ply: declared = scan_ply(bytes); break;
     case Format::gltf: declared = scan_gltf_json(bytes, path, limits); break;

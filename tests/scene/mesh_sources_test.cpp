@@ -8,6 +8,7 @@
 #include <string>
 
 #include <gmock/gmock.h>
+#include <sys/stat.h>
 #include <gtest/gtest.h>
 
 #include "campo/scene_loader.hpp"
@@ -228,6 +229,16 @@ TEST_F(MeshFiles, BadFilesAreRefusedSayingWhy) {
   EXPECT_THAT(error_of(write("box.dae", "<xml/>")), HasSubstr("ending .obj, .stl, .ply, .gltf or .glb"));
   fs::create_directories(dir_ / "folder.obj");
   EXPECT_THAT(error_of(dir_ / "folder.obj"), HasSubstr("is not a file"));
+
+  // Files a mesh names that assimp would open: a FIFO (which would block the read) and a folder.
+  ASSERT_EQ(::mkfifo((dir_ / "pipe.mtl").c_str(), 0600), 0);
+  EXPECT_THAT(error_of(write("pipe.obj", "mtllib pipe.mtl\n" + test_support::obj_text(test_support::box_mesh()))),
+              HasSubstr("material library (mtllib) is a regular file"));
+  fs::create_directories(dir_ / "buffer.bin");
+  std::string external = test_support::gltf_bytes(test_support::box_mesh(), false);
+  const std::size_t uri = external.find("data:application");
+  external.replace(uri, external.find('"', uri) - uri, "buffer.bin");
+  EXPECT_THAT(error_of(write("external.gltf", external)), HasSubstr("buffer file is a regular file"));
 
   // A node graph with a cycle.
   const std::string cycle = R"([{"children": [1], "mesh": 0}, {"children": [0]}])";
