@@ -386,6 +386,31 @@ class Loader {
     }
   }
 
+  // An "imu" or "rgb_camera" sensor block of vehicle `vehicle`.
+  void read_other_sensor(const JsonNode& node, const std::string& type, const std::string& alias,
+                         VehicleDef& vehicle) {
+    ObjectReader r(node, &errors_);
+    r.required("alias");
+    r.required("type");
+    if (type == "imu") {
+      ImuDef imu{alias, {}};
+      imu_config_fields().read_fields(r, imu.imu);
+      r.finish();
+      if (!r.ok()) return;
+      if (imu.imu.rate_hz > 0.0) check_rate(*r.optional("rate_hz"), imu.imu.rate_hz, scene_.world.physics_step_s);
+      vehicle.imus.push_back(std::move(imu));
+    } else {
+      RgbCameraDef camera{alias, {}};
+      rgb_camera_config_fields().read_fields(r, camera.camera);
+      r.finish();
+      if (!r.ok()) return;
+      if (camera.camera.rate_hz > 0.0) {
+        check_rate(*r.optional("rate_hz"), camera.camera.rate_hz, scene_.world.physics_step_s);
+      }
+      vehicle.rgb_cameras.push_back(std::move(camera));
+    }
+  }
+
   void read_heightfield(ObjectReader& r, Shape& shape) {
     const JsonNode& node = r.node();
     const auto expression = r.optional("expression");
@@ -654,6 +679,13 @@ class Loader {
                                "duplicate sensor alias \"" + sensor_alias + "\" on vehicle \"" + alias + "\"");
             }
             const std::size_t before = errors_.count();
+            // IMUs and colour cameras are kept apart from the range sensors.
+            const JsonNode type_node = sr.required("type");
+            const std::string type = type_node.value().is_string() ? type_node.as_string() : std::string();
+            if (type == "imu" || type == "rgb_camera") {
+              read_other_sensor(s, type, sensor_alias, vehicle);
+              return;
+            }
             SensorDef sensor = read_sensor(s, limits_, &errors_);
             if (errors_.count() > before) return;
             // 0 = world.sensor_rate_hz, checked with the world.
