@@ -48,7 +48,7 @@ struct MountedSensor {
 struct MountedImu {
   ImuErrorModel errors;
   std::int64_t period;
-  VehicleState before;
+  CarrierMotion before;
   bool sampled = false;
 };
 
@@ -229,9 +229,10 @@ struct Episode::Loop {
       for (std::size_t i = 0; i < v.imus.size(); ++i) {
         MountedImu& imu = v.imus[i];
         if (k % imu.period != 0) continue;
-        const VehicleState now = v.vehicle->state();
+        const VehicleState state = v.vehicle->state();
+        const CarrierMotion now{state.orientation, state.linear_velocity_mps, state.angular_velocity_radps};
         // The first sample has no previous state: the carrier counts as unaccelerated.
-        const VehicleState& before = imu.sampled ? imu.before : now;
+        const CarrierMotion& before = imu.sampled ? imu.before : now;
         const ImuSample sample = imu.errors.corrupt(ideal_imu_sample(
             before, now, v.def.imus[i].imu.mount, static_cast<double>(imu.period) * dt, scene.world.gravity_mps2));
         ImuReading& reading = v.imu_readings[i];

@@ -6,11 +6,11 @@
 
 namespace campo {
 
-ImuSample ideal_imu_sample(const VehicleState& before, const VehicleState& now, const Pose& mount, double period_s,
+ImuSample ideal_imu_sample(const CarrierMotion& before, const CarrierMotion& now, const Pose& mount, double period_s,
                            const Eigen::Vector3d& gravity_mps2) {
   const Eigen::Isometry3d mount_pose = to_isometry(mount);
   // The mount point's world velocity: the body's plus omega x lever arm.
-  const auto mount_velocity = [&](const VehicleState& s) -> Eigen::Vector3d {
+  const auto mount_velocity = [&](const CarrierMotion& s) -> Eigen::Vector3d {
     const Eigen::Vector3d arm = s.orientation * mount_pose.translation();
     return s.linear_velocity_mps + s.angular_velocity_radps.cross(arm);
   };

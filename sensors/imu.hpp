@@ -8,7 +8,6 @@
 
 #include "campo/random.hpp"
 #include "campo/scene.hpp"
-#include "campo/vehicle.hpp"
 
 namespace campo {
 
@@ -16,6 +15,14 @@ namespace campo {
 struct ImuSample {
   Eigen::Vector3d specific_force_mps2 = Eigen::Vector3d::Zero();  ///< accelerometer
   Eigen::Vector3d angular_rate_radps = Eigen::Vector3d::Zero();    ///< gyroscope
+};
+
+/// The carrier's motion at one instant, world frame: what an IMU's reading
+/// depends on (the closed loop fills it from the vehicle's state).
+struct CarrierMotion {
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  ///< body to world
+  Eigen::Vector3d linear_velocity_mps = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity_radps = Eigen::Vector3d::Zero();
 };
 
 /// What an ideal IMU mounted at `mount` (carrier body frame) measures over
@@ -30,7 +37,7 @@ struct ImuSample {
 ///  - angular rate: the carrier's angular velocity `now`, in the IMU frame `now`.
 /// A carrier at rest reads -gravity (+9.81 m/s² up). `before` equal to `now`
 /// (no previous state) counts as unaccelerated.
-ImuSample ideal_imu_sample(const VehicleState& before, const VehicleState& now, const Pose& mount, double period_s,
+ImuSample ideal_imu_sample(const CarrierMotion& before, const CarrierMotion& now, const Pose& mount, double period_s,
                            const Eigen::Vector3d& gravity_mps2);
 
 /// The peak of a first-order Gauss-Markov process's Allan deviation in units

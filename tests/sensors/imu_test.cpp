@@ -14,7 +14,7 @@ namespace {
 
 const Eigen::Vector3d kGravity(0.0, 0.0, -9.81);
 
-VehicleState at_rest() { return VehicleState{}; }
+CarrierMotion at_rest() { return CarrierMotion{}; }
 
 Eigen::Quaterniond yaw(double rad) { return Eigen::Quaterniond(Eigen::AngleAxisd(rad, Eigen::Vector3d::UnitZ())); }
 
@@ -30,7 +30,7 @@ TEST(IdealImu, AtRestReadsGravityUp) {
   EXPECT_NEAR(r.specific_force_mps2.y(), 9.81, 1e-12);
   EXPECT_NEAR(r.specific_force_mps2.z(), 0.0, 1e-12);
   // Free fall reads nothing.
-  VehicleState falling = at_rest();
+  CarrierMotion falling = at_rest();
   falling.linear_velocity_mps = kGravity * 0.01;
   const ImuSample f = ideal_imu_sample(at_rest(), falling, Pose{}, 0.01, kGravity);
   EXPECT_NEAR(f.specific_force_mps2.norm(), 0.0, 1e-12);
@@ -38,7 +38,7 @@ TEST(IdealImu, AtRestReadsGravityUp) {
 
 TEST(IdealImu, ConstantYawRateReadsTheTurnRate) {
   const double rate = 0.7, period = 0.02;
-  VehicleState before, now;
+  CarrierMotion before, now;
   before.orientation = yaw(0.3);
   now.orientation = yaw(0.3 + rate * period);
   before.angular_velocity_radps = now.angular_velocity_radps = {0.0, 0.0, rate};
@@ -56,9 +56,8 @@ TEST(IdealImu, ConstantYawRateReadsTheTurnRate) {
 
 // A body circling counter-clockwise at `speed` on radius `radius` about the origin, nose along its
 // velocity (so the centre is on its left, +y), at polar angle `angle`.
-VehicleState circling(double radius, double speed, double angle) {
-  VehicleState s;
-  s.position_m = {radius * std::cos(angle), radius * std::sin(angle), 5.0};
+CarrierMotion circling(double radius, double speed, double angle) {
+  CarrierMotion s;
   s.linear_velocity_mps = {-speed * std::sin(angle), speed * std::cos(angle), 0.0};
   s.orientation = yaw(angle + std::numbers::pi / 2);
   s.angular_velocity_radps = {0.0, 0.0, speed / radius};
@@ -86,7 +85,7 @@ TEST(IdealImu, CirclingBodyReadsTheCentripetalAcceleration) {
 
 TEST(IdealImu, LeverArmOnASpinningBodyReadsOmegaSquaredR) {
   const double rate = 2.0, arm = 0.5, period = 0.005;
-  VehicleState before, now;
+  CarrierMotion before, now;
   before.orientation = yaw(0.0);
   now.orientation = yaw(rate * period);
   before.angular_velocity_radps = now.angular_velocity_radps = {0.0, 0.0, rate};
@@ -108,7 +107,7 @@ TEST(IdealImu, LeverArmOnAnAcceleratingSpinReadsTheTangentialTerm) {
   // Spin-up from w0 at angular acceleration a: the arm's end reads a r along its track (+y) and
   // the mid-period w^2 r inward, to first order in the period.
   const double w0 = 1.0, accel = 3.0, arm = 0.4, period = 1e-4;
-  VehicleState before, now;
+  CarrierMotion before, now;
   before.angular_velocity_radps = {0.0, 0.0, w0};
   now.angular_velocity_radps = {0.0, 0.0, w0 + accel * period};
   now.orientation = yaw(w0 * period + accel * period * period / 2.0);
