@@ -19,6 +19,7 @@
 #include <sys/wait.h>
 
 #include "tests/cli_support.hpp"
+#include "tests/hostile/hostile_support.hpp"
 
 namespace campo {
 namespace {
@@ -28,36 +29,10 @@ using ::testing::HasSubstr;
 
 const fs::path kCorpus = fs::path(CAMPO_SOURCE_DIR) / "tests" / "hostile" / "corpus";
 
-#if defined(__SANITIZE_ADDRESS__)
-// AddressSanitizer reserves terabytes of address space (no RLIMIT_AS) and runs
-// a few times slower; its own RSS limit stands in for the memory limit.
-constexpr int kSecondsPerCommand = 40;
-const std::string kLimits = "ASAN_OPTIONS=detect_leaks=0:hard_rss_limit_mb=3072 ";
-#else
-constexpr int kSecondsPerCommand = 10;
-const std::string kLimits = "ulimit -v 1048576; ";  // 1 GiB of address space
-#endif
-
-struct Outcome {
-  int exit_code;  ///< 124/137: killed at the time limit; 128+N: signal N
-  std::string err;
-};
-
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-/// Runs `campo ARGS` in `dir` with the limits; stdout is discarded.
-Outcome run_campo(const std::string& args, const fs::path& dir) {
-  const fs::path err = dir / "stderr.txt";
-  const std::string command = "cd " + quoted(dir.string()) + " && (" + kLimits + "exec timeout -s KILL " +
-                              std::to_string(kSecondsPerCommand) + " " + CAMPO_BINARY + " " + args +
-                              ") >/dev/null 2>" + quoted(err.string());
-  const int status = std::system(command.c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), testing::slurp(err)};
-}
+using hostile::kSecondsPerCommand;
+using hostile::Outcome;
+using hostile::quoted;
+using hostile::run_campo;
 
 /// Messages that a terminal shows as written: no raw control character (but the
 /// line ends), and no error about a path that reads empty ("error: : ...").

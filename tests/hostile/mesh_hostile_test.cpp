@@ -13,6 +13,7 @@
 #include <sys/wait.h>
 
 #include "tests/cli_support.hpp"
+#include "tests/hostile/hostile_support.hpp"
 #include "tests/mesh_file_writers.hpp"
 
 namespace campo {
@@ -21,18 +22,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kSecondsPerCommand = 40;
-const std::string kLimits = "ASAN_OPTIONS=detect_leaks=0:hard_rss_limit_mb=3072 ";
-#else
-constexpr int kSecondsPerCommand = 10;
-const std::string kLimits = "ulimit -v 1048576; ";  // 1 GiB of address space
-#endif
-
-struct Outcome {
-  int exit_code;
-  std::string err;
-};
+using hostile::Outcome;
 
 class HostileMesh : public ::testing::Test {
  protected:
@@ -44,14 +34,7 @@ class HostileMesh : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  Outcome campo(const std::string& args) const {
-    const fs::path err = dir_ / "stderr.txt";
-    const std::string command = "cd '" + dir_.string() + "' && (" + kLimits + "exec timeout -s KILL " +
-                                std::to_string(kSecondsPerCommand) + " " + CAMPO_BINARY + " " + args + ") >/dev/null 2>'" +
-                                err.string() + "'";
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), testing::slurp(err)};
-  }
+  Outcome campo(const std::string& args) const { return hostile::run_campo(args, dir_); }
 
   // A scene with a ground, the mesh `file` as object 1 and a drone; returns its path.
   fs::path scene_with(const std::string& file) const {

@@ -21,6 +21,7 @@
 #include "scene/scene_mesh.hpp"
 #include "tests/cli_support.hpp"
 #include "tests/render/figure_test_support.hpp"
+#include "tests/render/silhouette_support.hpp"
 #include "tests/triangle_meshes.hpp"
 
 namespace campo {
@@ -226,22 +227,11 @@ TEST_F(MeshReplay, PageDrawsTheMeshesWhereCamposRenderHasThem) {
   camera.height_px = 480;
   const cv::Mat own = render_snapshot(run.scene, build_scene_mesh(run.scene), camera, {}, std::nullopt,
                                       VehicleType::quadrotor);
-  const cv::Vec3b sky(240, 199, 161);
-  int both = 0, either = 0, solid = 0;
-  for (int row = 0; row < 480; ++row) {
-    for (int col = 0; col < 640; ++col) {
-      const cv::Vec3b o = own.at<cv::Vec3b>(row, col);
-      const bool ours = std::abs(o[0] - sky[0]) + std::abs(o[1] - sky[1]) + std::abs(o[2] - sky[2]) > 6;
-      const bool theirs = page.at<uchar>(row, col) > 127;
-      both += ours && theirs;
-      either += ours || theirs;
-      solid += theirs;
-    }
-  }
-  EXPECT_GT(solid, 640 * 480 / 8);
+  const test::SilhouetteComparison c = test::compare_silhouettes(own, page);
+  EXPECT_GT(c.solid, 640 * 480 / 8);
   // The silhouettes agree but for edge pixels (0.989 here).
-  const double overlap = static_cast<double>(both) / either;
-  EXPECT_GT(overlap, 0.98) << both << " / " << either;
+  const double overlap = c.overlap();
+  EXPECT_GT(overlap, 0.98) << c.both << " / " << c.either;
   RecordProperty("silhouette_overlap", std::to_string(overlap));
 }
 

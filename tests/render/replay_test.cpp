@@ -23,6 +23,7 @@
 #include "render/snapshot.hpp"
 #include "scene/scene_mesh.hpp"
 #include "tests/cli_support.hpp"
+#include "tests/render/silhouette_support.hpp"
 
 namespace campo {
 namespace {
@@ -265,22 +266,11 @@ TEST_F(Replay, ScreenshotMatchesCamposOwnRenderOfTheSameView) {
   // wherever it is not the sky colour.
   const Scene scene = load_scene(scene_file);
   const cv::Mat own = render_snapshot(scene, build_scene_mesh(scene), camera, {}, std::nullopt, VehicleType::quadrotor);
-  const cv::Vec3b sky(240, 199, 161);
-  int both = 0, either = 0, solid = 0;
-  for (int row = 0; row < 480; ++row) {
-    for (int col = 0; col < 640; ++col) {
-      const cv::Vec3b o = own.at<cv::Vec3b>(row, col);
-      const bool ours = std::abs(o[0] - sky[0]) + std::abs(o[1] - sky[1]) + std::abs(o[2] - sky[2]) > 6;
-      const bool theirs = page.at<uchar>(row, col) > 127;
-      both += ours && theirs;
-      either += ours || theirs;
-      solid += theirs;
-    }
-  }
+  const test::SilhouetteComparison c = test::compare_silhouettes(own, page);
   // The scene fills a good part of the view, and the two silhouettes agree but for edge pixels.
-  EXPECT_GT(solid, 640 * 480 / 10);
-  const double overlap = static_cast<double>(both) / either;
-  EXPECT_GT(overlap, 0.988) << both << " / " << either;  // 0.993 here; a camera 0.5 m off gives 0.986
+  EXPECT_GT(c.solid, 640 * 480 / 10);
+  const double overlap = c.overlap();
+  EXPECT_GT(overlap, 0.988) << c.both << " / " << c.either;  // 0.993 here; a camera 0.5 m off gives 0.986
   RecordProperty("silhouette_overlap", std::to_string(overlap));
 }
 

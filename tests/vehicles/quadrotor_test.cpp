@@ -13,6 +13,7 @@
 
 #include "campo/json_reader.hpp"
 #include "campo/scene_loader.hpp"
+#include "tests/vehicles/quadrotor_flight.hpp"
 #include "tests/vehicles/vehicle_test_support.hpp"
 
 namespace campo {
@@ -32,31 +33,11 @@ const char* kGround = R"j({"objects": [{"alias": "ground", "type": "plane"}]})j"
 const char* kWall = R"j({"objects": [{"alias": "ground", "type": "plane"},
   {"alias": "wall", "type": "cuboid", "size_m": [0.2, 4, 4], "pose": {"position_m": [3.1, 0, 2]}}]})j";
 
-// A quadrotor in a small world, flown as the episode loop flies it: the
-// command re-sent at the control rate, pre_step and a world step every tick.
-struct Flight {
+// A quadrotor flight starting 2 m up unless told otherwise.
+struct Flight : test::QuadrotorFlight {
   explicit Flight(const char* scene_json, const Eigen::Isometry3d& start = at({0.0, 0.0, 2.0}),
                   const QuadrotorConfig& config = {})
-      : scene(parse(scene_json)), world(scene), quad(world, config, start) {}
-
-  /// Flies `c` for `seconds`, calling `each` after every physics step.
-  void fly(const Command& c, double seconds, const std::function<void()>& each = [] {}) {
-    const double dt = scene.world.physics_step_s;
-    const int control_period = static_cast<int>(std::lround(1.0 / (scene.world.control_rate_hz * dt)));
-    const auto steps = static_cast<long>(std::lround(seconds / dt));
-    for (long k = 0; k < steps; ++k) {
-      if (k % control_period == 0) quad.command(c);
-      quad.pre_step(dt);
-      world.step();
-      each();
-    }
-  }
-  double t() const { return world.time_s(); }
-  VehicleState s() const { return quad.state(); }
-
-  Scene scene;
-  World world;
-  Quadrotor quad;
+      : QuadrotorFlight(scene_json, start, config) {}
 };
 
 TEST(Quadrotor, StartsAtHoverSpeedAndDoesNotDrop) {

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/vehicles/quadrotor_flight.hpp"
 #include "tests/vehicles/vehicle_test_support.hpp"
 
 namespace campo {
@@ -29,33 +30,14 @@ std::string scene_with_world(const std::string& world) {
   return R"j({"world": )j" + world + R"j(, "objects": [{"alias": "ground", "type": "plane"}]})j";
 }
 
-// A quadrotor in a small world, flown as the episode loop flies it: the command re-sent at
-// the control rate, pre_step and a world step every tick.
-struct Flight {
+// A quadrotor flight starting 5 m up unless told otherwise.
+struct Flight : test::QuadrotorFlight {
   explicit Flight(const std::string& scene_json, const Eigen::Isometry3d& start = at({0.0, 0.0, 5.0}),
                   const QuadrotorConfig& config = {})
-      : scene(parse(scene_json)), world(scene), quad(world, config, start) {}
-
-  void fly(const Command& c, double seconds, const std::function<void()>& each = [] {}) {
-    const double dt = scene.world.physics_step_s;
-    const int control_period = static_cast<int>(std::lround(1.0 / (scene.world.control_rate_hz * dt)));
-    const auto steps = static_cast<long>(std::lround(seconds / dt));
-    for (long k = 0; k < steps; ++k) {
-      if (k % control_period == 0) quad.command(c);
-      quad.pre_step(dt);
-      world.step();
-      each();
-    }
-  }
-  double t() const { return world.time_s(); }
-  VehicleState s() const { return quad.state(); }
+      : QuadrotorFlight(scene_json, start, config) {}
   double g() const { return -scene.world.gravity_mps2.z(); }
   // The angle between body z and world z, radians.
   double tilt() const { return std::acos(std::clamp((s().orientation * Eigen::Vector3d::UnitZ()).z(), -1.0, 1.0)); }
-
-  Scene scene;
-  World world;
-  Quadrotor quad;
 };
 
 // The linearised closed loop about hover along one horizontal axis, independent of the
