@@ -174,8 +174,9 @@ TEST_F(Cli, BadScanInputExitsTwoAndWritesNothing) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-const char* const kBundled[] = {"two_barriers", "trees_rolling_terrain", "obstacle_field", "zigzag",      "wall",
-                                "bridge",       "vineyard",              "vineyard_obstacles", "vineyard_gap"};
+const char* const kBundled[] = {"two_barriers", "trees_rolling_terrain", "obstacle_field",     "zigzag",
+                                "wall",         "bridge",                "vineyard",           "vineyard_obstacles",
+                                "vineyard_gap", "mesh_buildings",        "dem_terrain"};
 
 TEST_F(Cli, RunsEveryBundledSceneWithTheStraightPlanner) {
   for (const char* name : kBundled) {
