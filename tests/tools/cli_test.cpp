@@ -176,7 +176,7 @@ TEST_F(Cli, BadScanInputExitsTwoAndWritesNothing) {
 
 const char* const kBundled[] = {"two_barriers", "trees_rolling_terrain", "obstacle_field",     "zigzag",
                                 "wall",         "bridge",                "vineyard",           "vineyard_obstacles",
-                                "vineyard_gap", "mesh_buildings",        "dem_terrain"};
+                                "vineyard_gap", "mesh_buildings",        "dem_terrain",        "gusty_barriers"};
 
 TEST_F(Cli, RunsEveryBundledSceneWithTheStraightPlanner) {
   for (const char* name : kBundled) {
