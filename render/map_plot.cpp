@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
+#include <numbers>
 #include <set>
 #include <utility>
 
@@ -268,6 +270,28 @@ void add_symbol_entries(MapPlan& plan, const Scene& scene) {
   }
   if (!overlay && steps && any(&RunView::sensor_hits)) {
     legend.push_back(marker_entry([](Canvas& m, cv::Point2d c) { sensor_hit_marker(m, c); }, "LIDAR hit"));
+  }
+  // The wind the vehicles flew in: an arrow along the steady wind (north up, as the map), its speed and gusts.
+  const WindConfig& wind = scene.world.wind;
+  if (wind.speed_mps > 0.0 || wind.gust != GustModel::none) {
+    const double toward = wind.direction_deg * std::numbers::pi / 180.0;
+    const cv::Point2d along(std::cos(toward), -std::sin(toward));
+    const auto speed = [](double mps) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.3g m/s", mps);
+      return std::string(text);
+    };
+    std::string text = wind.speed_mps > 0.0 ? "wind " + speed(wind.speed_mps) : std::string("wind");
+    if (wind.gust == GustModel::one_minus_cos) text += ", 1-cos gust";
+    if (wind.gust == GustModel::dryden) {
+      text += ", turbulence " + speed(wind.turbulence_intensity_mps);
+    }
+    legend.push_back(marker_entry(
+        [along, steady = wind.speed_mps > 0.0](Canvas& m, cv::Point2d c) {
+          if (steady) m.arrow(c - 9.0 * along, c + 9.0 * along, figure::kInk, 2, 0.45);
+          else m.circle(c, 4.0, figure::kInk, 1.5);  // gusts only: no steady direction
+        },
+        text));
   }
 }
 

@@ -416,6 +416,25 @@ TEST(FiguresOverlay, LegendNamesEachSeedOfASweep) {
   }
 }
 
+TEST(FiguresMap, TheLegendGivesTheWindWhenThereIsSome) {
+  Scene scene = test_scene();
+  const std::vector<RunView> runs = three_runs();
+  const std::vector<const RunView*> views{&runs[0]};
+  const auto has_wind = [&](const std::string& want) {
+    const std::vector<std::string> texts = legend_texts(figure::plan_map(scene, views, small_style(), false));
+    return std::find(texts.begin(), texts.end(), want) != texts.end();
+  };
+  EXPECT_FALSE(has_wind("wind"));
+  scene.world.wind.speed_mps = 4.0;
+  EXPECT_TRUE(has_wind("wind 4 m/s"));
+  scene.world.wind.gust = GustModel::dryden;
+  scene.world.wind.turbulence_intensity_mps = 1.5;
+  EXPECT_TRUE(has_wind("wind 4 m/s, turbulence 1.5 m/s"));
+  scene.world.wind.speed_mps = 0.0;
+  scene.world.wind.gust = GustModel::one_minus_cos;
+  EXPECT_TRUE(has_wind("wind, 1-cos gust"));
+}
+
 TEST(FiguresOverlay, WritesPdfAndSvgOfTheSameDrawing) {
   expect_vector_outputs(draw_overlay(test_scene(), three_runs(), small_style()),
                         {"Test figure", "x, east (m)", "run_0 (reached)", "run_2 (collision)"});
