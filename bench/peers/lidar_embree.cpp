@@ -96,20 +96,30 @@ class EmbreeTriangles {
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
                                                                  RTC_FORMAT_FLOAT3, 3 * sizeof(float),
                                                                  mesh.positions.size()));
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i) std::memcpy(vertices + 3 * i, mesh.positions[i].data(), 12);
-    // The static shapes only, mesh shapes as their own triangles (build_scene_mesh); the peer has no
-    // moving bodies, so a scene with some would not be the world campo casts against.
-    if (!mesh.moving_parts.empty()) {
-      throw std::invalid_argument("the Embree peer takes scenes without moving bodies ('" + scene.name + "' has " +
-                                  std::to_string(mesh.moving_parts.size()) + ")");
+    // The static shapes in the world frame, mesh shapes as their own triangles (build_scene_mesh), and the moving
+    // bodies (a vineyard's walker) where they are at t = 0, as campo's RayCaster places them when it is built.
+    const std::vector<Eigen::Isometry3d> poses = scripted_poses(scene, 0.0);
+    std::vector<int> body_of(mesh.positions.size(), -1);
+    for (std::size_t b = 0; b < mesh.moving_parts.size(); ++b) {
+      const MeshPart& part = mesh.moving_parts[b];
+      for (std::uint32_t i = 0; i < part.index_count; ++i) body_of[mesh.indices[part.first_index + i]] = static_cast<int>(b);
+    }
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+      const Eigen::Vector3f p = body_of[i] < 0 ? mesh.positions[i]
+                                               : (poses[static_cast<std::size_t>(body_of[i])].cast<float>() * mesh.positions[i]);
+      std::memcpy(vertices + 3 * i, p.data(), 12);
     }
     std::size_t triangles = 0;
-    for (const MeshPart& part : mesh.parts) triangles += part.index_count / 3;
+    for (const auto* parts : {&mesh.parts, &mesh.moving_parts}) {
+      for (const MeshPart& part : *parts) triangles += part.index_count / 3;
+    }
     auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
                                                                    RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles));
     std::size_t k = 0;
-    for (const MeshPart& part : mesh.parts) {
-      for (std::uint32_t i = 0; i < part.index_count; ++i) indices[k++] = mesh.indices[part.first_index + i];
+    for (const auto* parts : {&mesh.parts, &mesh.moving_parts}) {
+      for (const MeshPart& part : *parts) {
+        for (std::uint32_t i = 0; i < part.index_count; ++i) indices[k++] = mesh.indices[part.first_index + i];
+      }
     }
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(scene_, geometry);
