@@ -12,6 +12,7 @@
 #include "campo/scene_loader.hpp"
 #include "physics/bullet_convert.hpp"
 #include "campo/vehicle_factory.hpp"
+#include "tests/physics/placed_vehicle.hpp"
 
 namespace campo {
 namespace {
@@ -85,12 +86,8 @@ Scene scene_from(const std::string& objects) {
 }
 
 // The quadrotor of a scene, placed in its world (no step taken).
-struct Placed {
-  Scene scene;
-  World world;
-  std::unique_ptr<Vehicle> vehicle;
-  explicit Placed(const std::string& objects)
-      : scene(scene_from(objects)), world(scene), vehicle(make_vehicle(world, scene.vehicles.front())) {}
+struct Placed : test::PlacedVehicle {
+  explicit Placed(const std::string& objects) : PlacedVehicle(scene_from(objects)) {}
 };
 
 TEST(VehicleClearance, QuadrotorBoxToABarrierAndTheGround) {

@@ -11,6 +11,7 @@
 
 #include "campo/scene_loader.hpp"
 #include "campo/vehicle_factory.hpp"
+#include "tests/physics/placed_vehicle.hpp"
 #include "campo/world.hpp"
 #include "tests/mesh_file_writers.hpp"
 
@@ -40,12 +41,8 @@ Scene scene_from(const std::string& objects) {
   return parse_scene(nlohmann::json::parse(R"j({"objects": [)j" + objects + "]}"), "inline.json", mesh_dir());
 }
 
-struct Placed {
-  Scene scene;
-  World world;
-  std::unique_ptr<Vehicle> vehicle;
-  explicit Placed(const std::string& objects)
-      : scene(scene_from(objects)), world(scene), vehicle(make_vehicle(world, scene.vehicles.front())) {}
+struct Placed : test::PlacedVehicle {
+  explicit Placed(const std::string& objects) : PlacedVehicle(scene_from(objects)) {}
 };
 
 std::string vec(const Eigen::Vector3d& v) {
