@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -62,6 +64,16 @@ inline SimpleMesh cylinder_mesh(double radius, double height, int segments) {
     m.triangles.push_back({top, n + i, n + j});
   }
   return m;
+}
+
+// A fresh directory of this process's own under the temporary directory. CTest
+// runs every test in a process of its own, two at a time: a fixed name shared
+// by several tests let one read a file another was still writing.
+inline std::filesystem::path process_temp_dir(const std::string& stem) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / (stem + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 inline void write_file(const std::filesystem::path& path, const std::string& bytes) {

@@ -25,8 +25,7 @@ constexpr double kMm = 1e-3;
 // (radius 0.5, height 1, 256 segments: the inscribed polygon is within 0.04 mm of the circle).
 const fs::path& mesh_dir() {
   static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / "campo_mesh_physics";
-    fs::create_directories(d);
+    const fs::path d = test_support::process_temp_dir("campo_mesh_physics");
     test_support::write_file(d / "box.stl", test_support::stl_binary_bytes(test_support::box_mesh()));
     test_support::write_file(d / "cylinder.obj", test_support::obj_text(test_support::cylinder_mesh(0.5, 1.0, 256)));
     test_support::SimpleMesh open = test_support::box_mesh();

@@ -18,8 +18,7 @@ namespace fs = std::filesystem;
 
 const fs::path& mesh_dir() {
   static const fs::path dir = [] {
-    fs::path d = fs::temp_directory_path() / "campo_mesh_occupancy";
-    fs::create_directories(d);
+    const fs::path d = test_support::process_temp_dir("campo_mesh_occupancy");
     test_support::write_file(d / "box.obj", test_support::obj_text(test_support::box_mesh()));
     test_support::write_file(d / "cylinder.stl",
                              test_support::stl_binary_bytes(test_support::cylinder_mesh(0.5, 1.0, 256)));
