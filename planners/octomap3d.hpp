@@ -9,6 +9,7 @@
 /// levels) is blocked while an occupied voxel lies within the cell's box grown
 /// by the vehicle's radius; free and unknown cells are traversable (001's
 /// optimistic assumption). Pure data, no Bullet; the octree is private.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -41,6 +42,14 @@ struct OccupiedVoxel {
   double size_m = 0.0;
 };
 
+/// One leaf of the octree as OctoMap stores it, to tell whether two maps are
+/// the same.
+struct OctreeLeaf {
+  std::array<std::uint16_t, 3> key{};  ///< OctoMap's key: voxel index + 2^15 on each axis, at depth 16
+  int depth = 0;                       ///< 16 for a voxel of resolution_m, less for a pruned one
+  float log_odds = 0.0f;               ///< occupancy log-odds
+};
+
 class OctoMap3d {
  public:
   /// Throws std::invalid_argument for a grid or octree configuration out of range.
@@ -65,6 +74,13 @@ class OctoMap3d {
   grid::CellState state(const grid::Cell& cell) const;
   /// Every occupied leaf of the octree, in the octree's order.
   std::vector<OccupiedVoxel> occupied_voxels() const;
+  /// The keys (as OctreeLeaf::key) of the voxels a ray from `origin_m` to
+  /// `end_m` crosses and insert_scan updates as free, in order from the
+  /// origin's, the end's left out: what OctoMap's computeRayKeys lists.
+  /// Empty when both lie in one voxel or either lies outside the octree.
+  std::vector<std::array<std::uint16_t, 3>> ray_voxels(const Eigen::Vector3d& origin_m, const Eigen::Vector3d& end_m) const;
+  /// Every leaf of the octree (free and occupied), in the octree's order.
+  std::vector<OctreeLeaf> leaves() const;
   /// Occupied voxels counted at leaf size.
   std::int64_t occupied_leaf_count() const { return occupied_leaves_; }
 

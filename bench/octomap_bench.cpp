@@ -1,0 +1,114 @@
+// OctoMap mapping (dstar_lite_3d's "mapping": "octomap"): the cost of
+// OctoMap3d::insert_scan per LIDAR scan over a flight through the bridge scene
+// (scenes/bridge.json), with the scene's LIDAR (the Leddar fan of 8 x 8 beams
+// over 48 x 48 deg, 100 m range, level) and with a 64 x 8 scanner of 20 m
+// range (90 x 30 deg), on the planner's 0.75 m voxels and 100 x 100 x 9 grid.
+// The scans are cast once by campo's Lidar before timing; one iteration maps a
+// whole flight into a fresh map, so the octree grows as it does in a run.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "campo/scene_loader.hpp"
+#include "planners/octomap3d.hpp"
+#include "sensors/lidar.hpp"
+#include "sensors/raycaster.hpp"
+
+namespace campo {
+namespace {
+
+// One scan as dstar_lite_3d hands it to the map: the origin, every beam's end
+// (the hit, or the end of the beam without a return) and its return flag.
+struct MappedScan {
+  Eigen::Vector3d origin_m;
+  std::vector<Eigen::Vector3d> ends_m;
+  std::vector<std::uint8_t> returns;
+};
+
+RangeSensorConfig leddar_8x8() {
+  RangeSensorConfig c = *sensor_preset("leddar_vu8");
+  c.fov_h_deg = 48.0;  // as scenes/bridge.json sets it
+  c.fov_v_deg = 48.0;
+  c.cols = 8;
+  c.rows = 8;
+  c.mount = Pose{};
+  return c;
+}
+
+RangeSensorConfig scanner_64x8() {
+  RangeSensorConfig c;
+  c.fov_h_deg = 90.0;
+  c.fov_v_deg = 30.0;
+  c.cols = 64;
+  c.rows = 8;
+  c.max_range_m = 20.0;
+  return c;
+}
+
+// The bridge route (scenes/bridge.json): a climb to 14 m above the ground at
+// x = 24 m, then north under the deck (y 28.5-33 m) at 0.1 m per scan (the
+// run flies 581 scans in about 60 m), the sensor looking north.
+std::vector<MappedScan> bridge_flight(const RangeSensorConfig& config) {
+  const Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/bridge.json");
+  const RayCaster caster(scene);
+  Lidar lidar(config, scene.world.seed);
+  const double x = 24.0, cruise_z = 14.0 + std::sin(x / 5.0);
+  std::vector<Eigen::Vector3d> route;
+  for (int i = 0; i <= 40; ++i) route.emplace_back(x, 0.75, 1.0 + (cruise_z - 1.0) * i / 40.0);
+  for (int i = 1; i <= 600; ++i) route.emplace_back(x, 0.75 + 0.1 * i, cruise_z);
+  std::vector<MappedScan> flight;
+  RangeScan scan;
+  for (const Eigen::Vector3d& p : route) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = p;
+    pose.linear() = Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    lidar.scan(caster, pose, 0.0, scan);
+    // As dstar_lite_3d's insert_rays: a beam without a return ends at its range.
+    MappedScan m{p, {}, scan.hits};
+    for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
+      m.ends_m.push_back(p + pose.linear() * lidar.directions()[i].cast<double>() * static_cast<double>(scan.ranges_m[i]));
+    }
+    flight.push_back(std::move(m));
+  }
+  return flight;
+}
+
+// The planner's grid over the bridge scene: 100 x 100 cells of 1.5 m, 9 levels 7 m apart.
+GridMap3dConfig bridge_grid() {
+  GridMap3dConfig g;
+  g.ground_z_m = 0.3;
+  return g;
+}
+
+void BM_OctoMapInsertScan(benchmark::State& state, RangeSensorConfig (*sensor)()) {
+  const std::vector<MappedScan> flight = bridge_flight(sensor());
+  std::optional<OctoMap3d> map;
+  std::int64_t scans = 0, changes = 0, occupied = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    map.reset();
+    map.emplace(bridge_grid(), OctoMap3dConfig{});
+    state.ResumeTiming();
+    for (const MappedScan& s : flight) {
+      changes += static_cast<std::int64_t>(map->insert_scan(s.origin_m, s.ends_m, s.returns).size());
+    }
+    scans += static_cast<std::int64_t>(flight.size());
+    occupied = map->occupied_leaf_count();
+  }
+  state.SetItemsProcessed(scans);
+  state.counters["per_scan"] = benchmark::Counter(static_cast<double>(scans),
+                                                     benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["scans"] = static_cast<double>(flight.size());
+  state.counters["cell_changes_per_flight"] = static_cast<double>(changes) / static_cast<double>(state.iterations());
+  state.counters["occupied_leaves"] = static_cast<double>(occupied);
+}
+
+BENCHMARK_CAPTURE(BM_OctoMapInsertScan, bridge_leddar_8x8_100m, &leddar_8x8)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OctoMapInsertScan, bridge_lidar_64x8_20m, &scanner_64x8)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace campo
