@@ -1,26 +1,33 @@
-// campo's LIDAR against Embree's own triangles cast as a stream (docs/PERFORMANCE.md,
-// "Peers"): scanner3d scans (256 x 256 beams, 90 x 90 deg, 10 m) from each scene's
-// vehicle, turned 0.05 rad per scan, one thread. campo casts them as a Lidar does:
-// the beams' RayFan cast from each scan's pose (analytic primitives, the heightfield's
-// triangles with watertight edge tests); the peer casts the same rays with rtcIntersect1M (coherent) against the same
-// scene as Embree triangles (build_scene_mesh: the heightfield exactly as Bullet
-// triangulates it, round shapes tessellated with 64 segments, meshes as their triangles), robust and
-// high-quality BVH. Repetitions interleave in one process; the figure is rays per
-// second, median of the repetitions. Scenes: trees_rolling_terrain, vineyard, and
-// trees_rolling_terrain's terrain alone.
+// campo's LIDAR against Embree's own triangles cast as a stream, and against a software
+// rasteriser (docs/PERFORMANCE.md, "Peers" and "LIDAR against a rasteriser"): scanner3d
+// scans (256 x 256 beams, 90 x 90 deg, 10 m) from each scene's vehicle, turned 0.05 rad per
+// scan, one thread. campo casts them as a Lidar does: the beams' RayFan cast from each
+// scan's pose (analytic primitives, the heightfield's triangles with watertight edge
+// tests). Embree casts the same rays with rtcIntersect1M (coherent) against the same scene
+// as Embree triangles (build_scene_mesh: the heightfield exactly as Bullet triangulates it,
+// round shapes tessellated with 64 segments, meshes as their triangles), high-quality BVH,
+// once with RTC_SCENE_FLAG_ROBUST and once without. The rasteriser (lidar_raster.hpp) draws
+// the same triangles with OSMesa on one thread into a depth buffer of the scan's resolution
+// and field of view, one pixel per ray, and reads the ranges back; its agreement with campo
+// is checked ray for ray by casting the pixels' own rays with campo (untimed). Repetitions
+// interleave in one process; the figure is rays per second, median of the repetitions.
+// Scenes: trees_rolling_terrain, vineyard, and trees_rolling_terrain's terrain alone.
 //
 //   build/campo_peer_lidar [--scans N] [--repetitions K] [--json]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <embree3/rtcore.h>
 
+#include "bench/peers/lidar_raster.hpp"
 #include "bench/peers/peer_record.hpp"
 #include "campo/scene_loader.hpp"
 #include "scene/scene_mesh.hpp"
@@ -87,10 +94,12 @@ double campo_rate(const Scene& scene, const Scans& scans, std::size_t& hits) {
 // Embree's triangles of `scene`, cast as a coherent stream.
 class EmbreeTriangles {
  public:
-  explicit EmbreeTriangles(const Scene& scene) : device_(rtcNewDevice("threads=1")) {
+  // `robust`: RTC_SCENE_FLAG_ROBUST (Embree's traversal and triangle test
+  // avoid some optimisations so fewer rays slip through shared edges).
+  EmbreeTriangles(const Scene& scene, bool robust) : device_(rtcNewDevice("threads=1")) {
     const SceneMesh mesh = build_scene_mesh(scene);
     scene_ = rtcNewScene(device_);
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneFlags(scene_, robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
@@ -161,35 +170,145 @@ class EmbreeTriangles {
   std::size_t triangles_ = 0;
 };
 
+std::string embree_name(std::size_t triangles, bool robust) {
+  return "Embree " + std::to_string(RTC_VERSION_MAJOR) + "." + std::to_string(RTC_VERSION_MINOR) + "." +
+         std::to_string(RTC_VERSION_PATCH) + " triangles (" + std::to_string(triangles) +
+         "), rtcIntersect1M coherent, " + (robust ? "robust" : "not robust");
+}
+
+// The rasteriser's view of a scan: its resolution and field of view, the
+// scan's range (docs/PERFORMANCE.md, "LIDAR against a rasteriser").
+peers::RasterView raster_view() {
+  const RangeSensorConfig config = *sensor_preset("scanner3d");
+  constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+  peers::RasterView view;
+  view.width_px = view.height_px = 256;
+  view.half_width = std::tan(0.5 * config.fov_h_deg * kDegToRad);
+  view.half_height = std::tan(0.5 * config.fov_v_deg * kDegToRad);
+  // The near plane cuts at the minimum range along the most oblique ray.
+  view.near_m = kMinRange_m / std::sqrt(1.0 + view.half_width * view.half_width + view.half_height * view.half_height);
+  view.far_m = kMaxRange_m;
+  return view;
+}
+
+// The rasteriser's scans, rays per second (a pixel is a ray).
+double raster_rate(peers::RasterScanner& raster, const Scans& scans, std::vector<float>& ranges, std::size_t& hits) {
+  hits = 0;
+  const auto start = Clock::now();
+  for (const Eigen::Isometry3d& pose : scans.poses) {
+    raster.scan(pose, ranges);
+    for (const float r : ranges) hits += r < kMaxRange_m + 1.0f;
+  }
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return static_cast<double>(scans.poses.size() * ranges.size()) / seconds;
+}
+
+// How the depth buffer agrees with campo: campo casts the pixels' own rays
+// (through their centres) from every pose of the scans, untimed, and each
+// pixel's range is compared with campo's along the same ray.
+struct Agreement {
+  std::size_t rays = 0, both_miss = 0, both_hit = 0, within_1cm = 0, campo_only = 0, raster_only = 0;
+  std::string text() const {
+    char buffer[256];
+    std::snprintf(buffer, sizeof buffer,
+                  "pixel rays cast by campo: %.2f %% agree (%zu hits within 1 cm of %zu both hit, %zu both miss; "
+                  "hit by one only: campo %zu, raster %zu)",
+                  100.0 * static_cast<double>(within_1cm + both_miss) / static_cast<double>(rays), within_1cm,
+                  both_hit, both_miss, campo_only, raster_only);
+    return buffer;
+  }
+};
+
+Agreement raster_agreement(const Scene& scene, peers::RasterScanner& raster, const Scans& scans) {
+  const RayCaster caster(scene);
+  const std::vector<Eigen::Vector3f> pixels = raster.pixel_directions();
+  const RayFan fan(pixels);
+  std::vector<RayHit> ours(pixels.size());
+  std::vector<float> theirs(pixels.size());
+  Agreement a;
+  for (const Eigen::Isometry3d& pose : scans.poses) {
+    caster.cast(pose, fan, kMinRange_m, kMaxRange_m, ours);
+    raster.scan(pose, theirs);
+    for (std::size_t i = 0; i < pixels.size(); ++i) {
+      const bool hit = ours[i].shape != RayHit::kNoShape, their_hit = std::isfinite(theirs[i]);
+      ++a.rays;
+      if (hit && their_hit) {
+        ++a.both_hit;
+        a.within_1cm += std::abs(ours[i].distance_m - theirs[i]) <= 0.01f;
+      } else if (hit) {
+        ++a.campo_only;
+      } else if (their_hit) {
+        ++a.raster_only;
+      } else {
+        ++a.both_miss;
+      }
+    }
+  }
+  return a;
+}
+
+void print(const peers::Comparison& c, bool json) {
+  if (json) {
+    peers::print_json(c);
+    return;
+  }
+  std::printf("| %s | campo %.2f M rays/s | %s: %.2f M rays/s | %.2fx | %s |\n", c.comparison.c_str(), c.campo / 1e6,
+              c.peer_name.c_str(), c.peer / 1e6, c.campo / c.peer, c.note.c_str());
+}
+
+// One scene against its peers: Embree robust and not, and the rasteriser,
+// culling each object as a whole or in runs of 256 triangles (the faster of
+// the two is reported); repetitions interleave campo and each peer.
 void compare(const std::string& id, const std::string& label, const Scene& scene, int scans_per_repetition,
              int repetitions, bool json) {
   const Scans scans = scanner3d_scans(scene, scans_per_repetition);
-  const EmbreeTriangles peer(scene);
-  std::vector<double> ours, theirs;
-  std::size_t our_hits = 0, their_hits = 0;
+  const EmbreeTriangles robust(scene, true), fast(scene, false);
+  std::vector<peers::RasterView> views(2, raster_view());
+  views[0].cull_run_triangles = 0;
+  views[1].cull_run_triangles = 256;
+  std::vector<std::unique_ptr<peers::RasterScanner>> rasters;
+  for (const peers::RasterView& view : views) rasters.push_back(std::make_unique<peers::RasterScanner>(scene, view));
+  std::vector<float> ranges(rasters.front()->pixel_directions().size());
+  std::vector<double> ours, robust_rates, fast_rates;
+  std::vector<std::vector<double>> raster_rates(rasters.size());
+  std::size_t our_hits = 0, robust_hits = 0, fast_hits = 0, raster_hits = 0;
   for (int r = 0; r < repetitions; ++r) {
     ours.push_back(campo_rate(scene, scans, our_hits));
-    theirs.push_back(peer.rate(scans, their_hits));
+    robust_rates.push_back(robust.rate(scans, robust_hits));
+    fast_rates.push_back(fast.rate(scans, fast_hits));
+    for (std::size_t i = 0; i < rasters.size(); ++i) {
+      raster_rates[i].push_back(raster_rate(*rasters[i], scans, ranges, raster_hits));
+    }
   }
-  const double a = median(ours), b = median(theirs);
-  if (json) {
-    peers::print_json({"lidar/" + id, label, a, b, "rays/s",
-                       "Embree " + std::to_string(RTC_VERSION_MAJOR) + "." + std::to_string(RTC_VERSION_MINOR) + "." +
-                           std::to_string(RTC_VERSION_PATCH) + " triangles (" + std::to_string(peer.triangles()) +
-                           "), rtcIntersect1M coherent",
-                       "hits " + std::to_string(our_hits) + " vs " + std::to_string(their_hits)});
-    return;
-  }
-  std::printf("| %s | campo %.2f M rays/s | Embree %d.%d.%d triangles (%zu), rtcIntersect1M coherent: %.2f M rays/s | "
-              "%.2fx | hits %zu vs %zu |\n",
-              label.c_str(), a / 1e6, RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH, peer.triangles(),
-              b / 1e6, a / b, our_hits, their_hits);
+  const double a = median(ours);
+  const auto hits = [&](std::size_t theirs) {
+    return "hits " + std::to_string(our_hits) + " vs " + std::to_string(theirs);
+  };
+  print({"lidar/" + id, label, a, median(robust_rates), "rays/s", embree_name(robust.triangles(), true),
+         hits(robust_hits)},
+        json);
+  print({"lidar/" + id + "/embree_not_robust", label, a, median(fast_rates), "rays/s",
+         embree_name(fast.triangles(), false), hits(fast_hits)},
+        json);
+  const std::size_t best = median(raster_rates[0]) >= median(raster_rates[1]) ? 0 : 1;
+  const peers::RasterView& view = views[best];
+  char other[96];
+  std::snprintf(other, sizeof other, "; culled %s: %.2f M rays/s",
+                best == 0 ? "in runs of 256 triangles" : "object by object", median(raster_rates[1 - best]) / 1e6);
+  print({"lidar/" + id + "/raster", label, a, median(raster_rates[best]), "rays/s",
+         "OSMesa llvmpipe, 1 thread, " + std::to_string(view.width_px) + " x " + std::to_string(view.height_px) +
+             " px depth buffer read back (" + std::to_string(rasters[best]->triangles()) + " triangles, culled " +
+             (best == 0 ? std::string("object by object") : "in runs of 256 triangles") + ")",
+         raster_agreement(scene, *rasters[best], scans).text() + other},
+        json);
 }
 
 }  // namespace
 }  // namespace campo
 
 int main(int argc, char** argv) {
+  // llvmpipe renders on the calling thread alone (read when its first context is made).
+  setenv("LP_NUM_THREADS", "0", 1);
   int scans = 20, repetitions = 5;
   const bool json = campo::peers::json_requested(argc, argv);
   for (int i = 1; i + 1 < argc; i += 2) {
