@@ -115,6 +115,22 @@ void for_each_run(const Rays& rays, const Rect& rect, Test&& test) {
   }
 }
 
+// True when the ball (c, radius) lies wholly outside the fan's cone: the
+// angle from the axis to its centre exceeds the cone's half-angle plus the
+// ball's angular radius (by a margin of 1e-4 in their cosines).
+bool outside_cone(const Rays& rays, const float c[3], float radius) {
+  if (rays.cone_cos <= -1.0f) return false;
+  const float l2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
+  if (l2 <= radius * radius) return false;
+  const float l = __builtin_sqrtf(l2);
+  const float sin_b = radius / l, cos_b = __builtin_sqrtf(max_f(0.0f, 1.0f - sin_b * sin_b));
+  // Past a half-turn (sine of the sum below 0) every direction is within.
+  if (rays.cone_sin * cos_b + rays.cone_cos * sin_b < 0.0f) return false;
+  const float cos_sum = rays.cone_cos * cos_b - rays.cone_sin * sin_b;
+  const float along = rays.cone_axis[0] * c[0] + rays.cone_axis[1] * c[1] + rays.cone_axis[2] * c[2];
+  return along < (cos_sum - 1e-4f) * l;
+}
+
 // --- eight lanes -----------------------------------------------------------
 
 using V = __m256;
@@ -244,15 +260,109 @@ inline D hit_cell(const Cell& cell, D x, D y, D z, D t0) {
   return _mm256_blendv_pd(cand, t2, andd(ok2, _mm256_cmp_pd(t2, cand, _CMP_LT_OQ)));
 }
 
-void cast_cell(const Rays& rays, const Cell& cell, std::uint32_t first, std::uint32_t end, float t0,
-               std::int32_t shape, const Best& best) {
+// The edge functions of a cell in float, eight rays at a time, as a cheap
+// first look. What separates a float edge function from the double one
+// hit_cell computes (the normal's rounding to float and the float dot
+// product's, about 4 * 2^-24 of the sum of |n_i d_i|, taken as 3e-7 of |n|_1
+// for unit d) plus hit_cell's own bound eps is the margin M: a float value of
+// at least M means the double one is above +eps, at most -M below -eps. A ray
+// whose edge functions settle both triangles this way gets hit_cell's answer
+// with one plane (or none) instead of all five edges in double: the nearest
+// hit is then that triangle's t = num / (n . d), computed as hit_cell computes
+// it. Anything unsettled goes to hit_cell.
+constexpr double kFloatEdgeSlack = 3e-7;
+
+struct FloatEdge {
+  V n[3];
+  V margin;  // M
+  V minus_margin;
+};
+
+FloatEdge float_edge(const Edge& e) {
+  const double slack = kFloatEdgeSlack * (__builtin_fabs(e.n[0]) + __builtin_fabs(e.n[1]) + __builtin_fabs(e.n[2]));
+  FloatEdge f;
+  for (int i = 0; i < 3; ++i) f.n[i] = set1(static_cast<float>(e.n[i]));
+  // Strictly above eps + slack once rounded to float.
+  const auto margin = static_cast<float>((e.eps + slack) * (1.0 + 1e-5));
+  f.margin = set1(margin);
+  f.minus_margin = set1(-margin);
+  return f;
+}
+
+struct FloatCell {
+  FloatEdge e0, diagonal, e2, e3, e4;
+};
+
+inline V dot3(const V n[3], V x, V y, V z) { return fmadd(n[0], x, fmadd(n[1], y, mul(n[2], z))); }
+
+// Per triangle, the rays surely through it (its edge functions all of one
+// sign past the margin) and surely not (some past it on either side), as
+// lane bits.
+struct Settled {
+  int in1, out1, in2, out2;
+};
+
+inline Settled settle(const FloatCell& f, V x, V y, V z) {
+  const V a = dot3(f.e0.n, x, y, z), d = dot3(f.diagonal.n, x, y, z), c = dot3(f.e2.n, x, y, z);
+  const V g = dot3(f.e3.n, x, y, z), h = dot3(f.e4.n, x, y, z);
+  const V ap = ge(a, f.e0.margin), an = le(a, f.e0.minus_margin);
+  const V dp = ge(d, f.diagonal.margin), dn = le(d, f.diagonal.minus_margin);
+  const V cp = ge(c, f.e2.margin), cn = le(c, f.e2.minus_margin);
+  const V gp = ge(g, f.e3.margin), gn = le(g, f.e3.minus_margin);
+  const V hp = ge(h, f.e4.margin), hn = le(h, f.e4.minus_margin);
+  const auto any = [](V p, V q, V r) { return _mm256_or_ps(p, _mm256_or_ps(q, r)); };
+  const auto all = [](V p, V q, V r) { return vand(p, vand(q, r)); };
+  // The second triangle sees the diagonal reversed: -d, whose signs swap.
+  Settled s;
+  s.in1 = _mm256_movemask_ps(_mm256_or_ps(all(ap, dp, cp), all(an, dn, cn)));
+  s.out1 = _mm256_movemask_ps(vand(any(ap, dp, cp), any(an, dn, cn)));
+  s.in2 = _mm256_movemask_ps(_mm256_or_ps(all(gp, hp, dn), all(gn, hn, dp)));
+  s.out2 = _mm256_movemask_ps(vand(any(gp, hp, dn), any(gn, hn, dp)));
+  return s;
+}
+
+// Four lanes' masks in double from their bits.
+inline D lanes_of(int bits) {
+  const __m256i bit = _mm256_setr_epi64x(1, 2, 4, 8);
+  return _mm256_castsi256_pd(_mm256_cmpeq_epi64(_mm256_and_si256(_mm256_set1_epi64x(bits), bit), bit));
+}
+
+// hit_cell for four rays each settled through exactly one triangle (bits
+// `in1` through the first) or neither.
+inline D hit_settled(const Cell& cell, int in1, int in, D x, D y, D z, D t0) {
+  const D first = lanes_of(in1);
+  const D n0 = _mm256_blendv_pd(set1d(cell.normal2[0]), set1d(cell.normal1[0]), first);
+  const D n1 = _mm256_blendv_pd(set1d(cell.normal2[1]), set1d(cell.normal1[1]), first);
+  const D n2 = _mm256_blendv_pd(set1d(cell.normal2[2]), set1d(cell.normal1[2]), first);
+  const D num = _mm256_blendv_pd(set1d(cell.num2), set1d(cell.num1), first);
+  const D t = _mm256_div_pd(num, _mm256_fmadd_pd(n0, x, _mm256_fmadd_pd(n1, y, _mm256_mul_pd(n2, z))));
+  const D lo = _mm256_max_pd(t0, set1d(cell.near)), hi = set1d(cell.far);
+  const D ok = andd(lanes_of(in), andd(ged(t, lo), led(t, hi)));
+  return _mm256_blendv_pd(set1d(__builtin_inf()), t, ok);
+}
+
+// The nearest hits of four rays (lanes `shift` to shift + 3 of the settled bits).
+inline D hit_four(const Cell& cell, const Settled& s, int shift, D x, D y, D z, D t0) {
+  const int in1 = (s.in1 >> shift) & 15, in2 = (s.in2 >> shift) & 15;
+  const int maybe = (~s.out1 | ~s.out2) >> shift & 15;
+  if (maybe == 0) return set1d(__builtin_inf());  // hit_cell's answer too
+  const bool settled = ((in1 | s.out1 >> shift) & (in2 | s.out2 >> shift) & 15) == 15 && (in1 & in2) == 0;
+  if (settled) return hit_settled(cell, in1, in1 | in2, x, y, z, t0);
+  return hit_cell(cell, x, y, z, t0);
+}
+
+void cast_cell(const Rays& rays, const Cell& cell, const FloatCell& fcell, std::uint32_t first, std::uint32_t end,
+               float t0, std::int32_t shape, const Best& best) {
   const D tmin = set1d(t0);
   for (std::uint32_t k = first; k < end; k += 8) {
     const V x = _mm256_loadu_ps(rays.x + k), y = _mm256_loadu_ps(rays.y + k), z = _mm256_loadu_ps(rays.z + k);
-    const D lo = hit_cell(cell, _mm256_cvtps_pd(_mm256_castps256_ps128(x)), _mm256_cvtps_pd(_mm256_castps256_ps128(y)),
-                          _mm256_cvtps_pd(_mm256_castps256_ps128(z)), tmin);
-    const D hi = hit_cell(cell, _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)), _mm256_cvtps_pd(_mm256_extractf128_ps(y, 1)),
-                          _mm256_cvtps_pd(_mm256_extractf128_ps(z, 1)), tmin);
+    const Settled s = settle(fcell, x, y, z);
+    if ((s.out1 & s.out2) == 0xff) continue;  // no ray may cross: hit_cell gives +inf for all
+    const D lo = hit_four(cell, s, 0, _mm256_cvtps_pd(_mm256_castps256_ps128(x)),
+                          _mm256_cvtps_pd(_mm256_castps256_ps128(y)), _mm256_cvtps_pd(_mm256_castps256_ps128(z)), tmin);
+    const D hi = hit_four(cell, s, 4, _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)),
+                          _mm256_cvtps_pd(_mm256_extractf128_ps(y, 1)), _mm256_cvtps_pd(_mm256_extractf128_ps(z, 1)),
+                          tmin);
     const V cand = _mm256_set_m128(_mm256_cvtpd_ps(hi), _mm256_cvtpd_ps(lo));
     commit(best, k, valid_lanes(k, end), cand, shape);
   }
@@ -376,11 +486,18 @@ V hit_cone(const Primitive& p, const LocalRays& r, V t0, float slack) {
   return cand;
 }
 
+// Eight rays all stopped short of `near`, which no hit of the surface comes
+// nearer than: none can take a hit from it.
+inline bool stopped_short(const Best& best, std::uint32_t k, V near) {
+  return none(ge(_mm256_loadu_ps(best.t + k), near));
+}
+
 template <V (*Hit)(const Primitive&, const LocalRays&, V, float)>
-void cast_primitive_run(const Rays& rays, const Primitive& p, std::uint32_t first, std::uint32_t end,
+void cast_primitive_run(const Rays& rays, const Primitive& p, V near, std::uint32_t first, std::uint32_t end,
                         float t0, float rim_slack, const Best& best) {
   const V tmin = set1(t0);
   for (std::uint32_t k = first; k < end; k += 8) {
+    if (stopped_short(best, k, near)) continue;
     const LocalRays r =
         to_local(p, _mm256_loadu_ps(rays.x + k), _mm256_loadu_ps(rays.y + k), _mm256_loadu_ps(rays.z + k));
     commit(best, k, valid_lanes(k, end), Hit(p, r, tmin, rim_slack), p.shape);
@@ -394,6 +511,43 @@ bool kernels_available() {
   return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
 }
 
+void reset(Best best, std::uint32_t count, float t, std::int32_t shape) {
+  const V tv = set1(t);
+  const __m256i sv = _mm256_set1_epi32(shape);
+  for (std::uint32_t k = 0; k < count + 8; k += 8) {
+    _mm256_storeu_ps(best.t + k, tv);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(best.shape + k), sv);
+  }
+}
+
+void write_hits(const std::uint32_t* order, std::uint32_t count, Best best, std::int32_t no_shape, void* out) {
+  auto* const bytes = static_cast<char*>(out);
+  const __m256i none_v = _mm256_set1_epi32(no_shape);
+  const V inf = set1(kInf);
+  std::uint32_t k = 0;
+  for (; k + 8 <= count; k += 8) {
+    const __m256i shape = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(best.shape + k));
+    const V t = select(_mm256_castsi256_ps(_mm256_cmpeq_epi32(shape, none_v)), inf, _mm256_loadu_ps(best.t + k));
+    // (t, shape) pairs of rays 0 1 4 5 and 2 3 6 7, stored as 64-bit
+    // integers (whose vector type may alias the RayHits).
+    const __m256i lo = _mm256_castps_si256(_mm256_unpacklo_ps(t, _mm256_castsi256_ps(shape)));
+    const __m256i hi = _mm256_castps_si256(_mm256_unpackhi_ps(t, _mm256_castsi256_ps(shape)));
+    const __m128i pairs[4] = {_mm256_castsi256_si128(lo), _mm256_castsi256_si128(hi), _mm256_extracti128_si256(lo, 1),
+                              _mm256_extracti128_si256(hi, 1)};
+    const std::uint32_t* o = order + k;
+    for (int i = 0; i < 4; ++i) {
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(bytes + 8 * std::size_t{o[2 * i]}), pairs[i]);
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(bytes + 8 * std::size_t{o[2 * i + 1]}),
+                       _mm_unpackhi_epi64(pairs[i], pairs[i]));
+    }
+  }
+  for (; k < count; ++k) {
+    const float t = best.shape[k] == no_shape ? kInf : best.t[k];
+    __builtin_memcpy(bytes + 8 * std::size_t{order[k]}, &t, 4);
+    __builtin_memcpy(bytes + 8 * std::size_t{order[k]} + 4, best.shape + k, 4);
+  }
+}
+
 void cast_planes(const Rays& rays, const Plane* planes, int count, float t0, Best best) {
   for (int i = 0; i < count; ++i) {
     const Plane& plane = planes[i];
@@ -403,8 +557,24 @@ void cast_planes(const Rays& rays, const Plane* planes, int count, float t0, Bes
       return _mm256_cvtpd_ps(_mm256_div_pd(offset, dot3d(plane.normal, _mm256_cvtps_pd(x), _mm256_cvtps_pd(y),
                                                           _mm256_cvtps_pd(z))));
     };
+    // A first look in float: a ray meets the plane short of its best hit so
+    // far (t = offset / (n . d) <= best, rounded) only where s n . d, s the
+    // sign of the offset, reaches |offset| / best. The float n . d is within
+    // 1e-6 of the double one for unit vectors, and the products below are
+    // rounded up by far more than their own rounding, so eight rays failing
+    // it all would fail in double too.
+    const bool screen = plane.offset != 0.0;
+    const float sign = plane.offset > 0.0 ? 1.0f : -1.0f;
+    const V n[3] = {set1(sign * static_cast<float>(plane.normal[0])), set1(sign * static_cast<float>(plane.normal[1])),
+                    set1(sign * static_cast<float>(plane.normal[2]))};
+    const V slack = set1(1e-6f), widen = set1(1.0f + 1e-5f);
+    const V reach = set1(static_cast<float>(__builtin_fabs(plane.offset)) * (1.0f - 1e-6f));
     for (std::uint32_t k = 0; k < rays.size; k += 8) {
       const V x = _mm256_loadu_ps(rays.x + k), y = _mm256_loadu_ps(rays.y + k), z = _mm256_loadu_ps(rays.z + k);
+      if (screen) {
+        const V along = fmadd(n[0], x, fmadd(n[1], y, fmadd(n[2], z, slack)));
+        if (none(ge(mul(mul(along, _mm256_loadu_ps(best.t + k)), widen), reach))) continue;
+      }
       const V t = _mm256_set_m128(hit(_mm256_extractf128_ps(x, 1), _mm256_extractf128_ps(y, 1), _mm256_extractf128_ps(z, 1)),
                                   hit(_mm256_castps256_ps128(x), _mm256_castps256_ps128(y), _mm256_castps256_ps128(z)));
       V cand = set1(kInf);
@@ -438,7 +608,7 @@ void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t
       }
       const float rho = __builtin_sqrtf(rho2) * 1.00001f + 1e-6f;
       const float dist = __builtin_sqrtf(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]);
-      if (dist - rho > t1 || dist + rho < t0) continue;
+      if (dist - rho > t1 || dist + rho < t0 || outside_cone(rays, centre, rho)) continue;
       const float* const hull[3] = {hull_x, hull_y, hull_z};
       Rect rects[kFaces];
       const int n = hull_rects(rays, hull, 4, centre, rho, rects);
@@ -455,30 +625,54 @@ void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t
       triangle_plane(p10, p11, p01, cell.normal2, cell.num2);
       cell.near = (dist - rho) * 0.9999 - 1e-5;
       cell.far = (dist + rho) * 1.0001 + 1e-5;
+      const FloatCell fcell{float_edge(cell.e0), float_edge(cell.diagonal), float_edge(cell.e2),
+                            float_edge(cell.e3), float_edge(cell.e4)};
       for (int i = 0; i < n; ++i) {
         for_each_run(rays, rects[i], [&](std::uint32_t first, std::uint32_t end) {
-          cast_cell(rays, cell, first, end, t0, patch.shape, best);
+          cast_cell(rays, cell, fcell, first, end, t0, patch.shape, best);
         });
       }
     }
   }
 }
 
-void cast_primitives(const Rays& rays, const Primitive* primitives, int count, float t0, float t1,
-                     Best best) {
-  for (int i = 0; i < count; ++i) {
-    const Primitive& p = primitives[i];
-    const float dist = __builtin_sqrtf(p.center[0] * p.center[0] + p.center[1] * p.center[1] + p.center[2] * p.center[2]);
-    if (dist - p.radius > t1 || dist + p.radius < t0) continue;
-    const float rim_slack = kRimRounding * (dist + p.radius);
-    // The bounding box's corners: the centre plus or minus each half extent
+namespace {
+
+// Calls test(first, end) for the runs of slots whose rays may meet the
+// primitive. A long shape (a row's canopy, a fence) is projected in pieces
+// along its longest axis, each about as long as the shape is wide, so its
+// rectangles follow it across the view instead of one rectangle around all
+// of it, and pieces out of range or out of the fan's cone are left out; a
+// ray in the rectangles of two pieces is tested twice, to the same answer.
+template <class Test>
+void for_each_primitive_run(const Rays& rays, const Primitive& p, float t0, float t1, Test&& test) {
+  int axis = 0;
+  for (int i = 1; i < 3; ++i) axis = p.half[i] > p.half[axis] ? i : axis;
+  const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+  const float width = max_f(max_f(p.half[b], p.half[c]), 0.5f);
+  const float length = p.half[axis];
+  const int pieces = p.kind == Kind::sphere || length < 2.0f ? 1 : static_cast<int>(__builtin_ceilf(length / width));
+  const float piece = length / static_cast<float>(pieces);
+  const float piece_radius =
+      pieces == 1 ? p.radius
+                  : __builtin_sqrtf(piece * piece + p.half[b] * p.half[b] + p.half[c] * p.half[c]) * 1.000001f + 1e-6f;
+  const float* const u = p.to_local + 3 * axis;  // the long axis in the sensor frame
+  for (int j = 0; j < pieces; ++j) {
+    const float s = pieces == 1 ? 0.0f : -length + (2.0f * static_cast<float>(j) + 1.0f) * piece;
+    const float centre[3] = {p.center[0] + s * u[0], p.center[1] + s * u[1], p.center[2] + s * u[2]};
+    if (pieces > 1) {
+      const float dist = __builtin_sqrtf(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]);
+      if (dist - piece_radius > t1 || dist + piece_radius < t0 || outside_cone(rays, centre, piece_radius)) continue;
+    }
+    // The piece's box corners: its centre plus or minus each half extent
     // along the local axes (rows of to_local, in the sensor frame).
     float corner_x[8], corner_y[8], corner_z[8];
     for (int k = 0; k < 8; ++k) {
-      float q[3] = {p.center[0], p.center[1], p.center[2]};
-      for (int axis = 0; axis < 3; ++axis) {
-        const float h = (k >> axis) & 1 ? p.half[axis] : -p.half[axis];
-        for (int j = 0; j < 3; ++j) q[j] += h * p.to_local[3 * axis + j];
+      float q[3] = {centre[0], centre[1], centre[2]};
+      for (int a = 0; a < 3; ++a) {
+        const float extent = a == axis ? piece : p.half[a];
+        const float h = (k >> a) & 1 ? extent : -extent;
+        for (int i = 0; i < 3; ++i) q[i] += h * p.to_local[3 * a + i];
       }
       corner_x[k] = q[0];
       corner_y[k] = q[1];
@@ -486,31 +680,49 @@ void cast_primitives(const Rays& rays, const Primitive* primitives, int count, f
     }
     const float* const hull[3] = {corner_x, corner_y, corner_z};
     Rect rects[kFaces];
-    const int n = hull_rects(rays, hull, 8, p.center, p.radius, rects);
-    for (int r = 0; r < n; ++r) {
-      for_each_run(rays, rects[r], [&](std::uint32_t first, std::uint32_t end) {
-        switch (p.kind) {
-          case Kind::cuboid:
-            cast_primitive_run<&hit_box>(rays, p, first, end, t0, rim_slack, best);
-            break;
-          case Kind::cylinder:
-            cast_primitive_run<&hit_cylinder>(rays, p, first, end, t0, rim_slack, best);
-            break;
-          case Kind::cone:
-            cast_primitive_run<&hit_cone>(rays, p, first, end, t0, rim_slack, best);
-            break;
-          case Kind::sphere:
-            cast_primitive_run<&hit_sphere>(rays, p, first, end, t0, rim_slack, best);
-            break;
-        }
-      });
-    }
+    const int n = hull_rects(rays, hull, 8, centre, piece_radius, rects);
+    for (int r = 0; r < n; ++r) for_each_run(rays, rects[r], test);
+  }
+}
+
+}  // namespace
+
+void cast_primitives(const Rays& rays, const Primitive* primitives, int count, float t0, float t1,
+                     Best best) {
+  for (int i = 0; i < count; ++i) {
+    const Primitive& p = primitives[i];
+    const float dist = __builtin_sqrtf(p.center[0] * p.center[0] + p.center[1] * p.center[1] + p.center[2] * p.center[2]);
+    if (dist - p.radius > t1 || dist + p.radius < t0 || outside_cone(rays, p.center, p.radius)) continue;
+    const float rim_slack = kRimRounding * (dist + p.radius);
+    // Every hit lies in the bounding ball (the solvers' rounding, some 1e-6
+    // of the distances, is far inside this margin), so rays already stopped
+    // nearer are past testing. Not for a cone, whose quadratic may put a
+    // nearly degenerate root anywhere along the ray.
+    const V near = set1(p.kind == Kind::cone ? -kInf : (dist - p.radius) * 0.999f - 1e-3f);
+    for_each_primitive_run(rays, p, t0, t1, [&](std::uint32_t first, std::uint32_t end) {
+      switch (p.kind) {
+        case Kind::cuboid:
+          cast_primitive_run<&hit_box>(rays, p, near, first, end, t0, rim_slack, best);
+          break;
+        case Kind::cylinder:
+          cast_primitive_run<&hit_cylinder>(rays, p, near, first, end, t0, rim_slack, best);
+          break;
+        case Kind::cone:
+          cast_primitive_run<&hit_cone>(rays, p, near, first, end, t0, rim_slack, best);
+          break;
+        case Kind::sphere:
+          cast_primitive_run<&hit_sphere>(rays, p, near, first, end, t0, rim_slack, best);
+          break;
+      }
+    });
   }
 }
 
 #else  // no AVX2: the fan is never used (RayCaster casts every ray through Embree)
 
 bool kernels_available() { return false; }
+void reset(Best, std::uint32_t, float, std::int32_t) {}
+void write_hits(const std::uint32_t*, std::uint32_t, Best, std::int32_t, void*) {}
 void cast_planes(const Rays&, const Plane*, int, float, Best) {}
 void cast_terrain(const Rays&, const TerrainPatch&, float, float, Best) {}
 void cast_primitives(const Rays&, const Primitive*, int, float, float, Best) {}

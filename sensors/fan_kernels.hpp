@@ -36,6 +36,12 @@ struct Rays {
   int grid[kFaces] = {};                // bins per side of each face; 0 when it holds no ray
   std::uint32_t first_bin[kFaces] = {};  // index of a face's bin (0, 0) in bin_start
   const std::uint32_t* bin_start = nullptr;  // first slot of bin b; bin_start[b + 1] ends it
+  // A cone around every ray (unit axis, cosine and sine of its half-angle,
+  // padded): a surface outside it is skipped unprojected. A fan over more
+  // than a hemisphere has cone_cos = -1: nothing is outside.
+  float cone_axis[3] = {1.0f, 0.0f, 0.0f};
+  float cone_cos = -1.0f;
+  float cone_sin = 0.0f;
 };
 
 /// Nearest hit so far per sorted slot: distance (starts at the max range, and
@@ -82,6 +88,14 @@ struct Primitive {
 
 /// True when the CPU runs the kernels (AVX2 and FMA).
 bool kernels_available();
+
+/// Sets slots [0, count) of `best`, and those past them up to the next
+/// multiple of 8 plus 8 more (best holds count + 16), to (t, shape).
+void reset(Best best, std::uint32_t count, float t, std::int32_t shape);
+/// Writes each sorted slot's result to its beam: out[order[k]] = (t, shape)
+/// as pairs of a float and an int32 (RayHit's layout), t = +inf where the
+/// shape is `no_shape`.
+void write_hits(const std::uint32_t* order, std::uint32_t count, Best best, std::int32_t no_shape, void* out);
 
 /// Each cast keeps, per ray, the nearest hit with t in [t0, best.t].
 void cast_planes(const Rays& rays, const Plane* planes, int count, float t0, Best best);

@@ -45,6 +45,22 @@ RayFan::RayFan(std::span<const Eigen::Vector3f> directions) {
     uv[i] = face_coordinates(d, face[i]);
     ++on_face[static_cast<std::size_t>(face[i])];
   }
+  // The cone around every ray: about their mean direction, as wide as the
+  // furthest ray plus 1 mrad (what rounding does to the culling tests is far
+  // smaller). Past a half-turn every surface may be seen.
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3f& d : directions) sum += d.cast<double>();
+  if (sum.norm() > 1e-3 * static_cast<double>(n)) {
+    const Eigen::Vector3d axis = sum.normalized();
+    double nearest = 1.0;
+    for (const Eigen::Vector3f& d : directions) nearest = std::min(nearest, axis.dot(d.cast<double>()) / d.cast<double>().norm());
+    const double half_angle = std::acos(std::clamp(nearest, -1.0, 1.0)) + 1e-3;
+    if (half_angle < 3.1) {
+      for (int i = 0; i < 3; ++i) cone_axis_[i] = static_cast<float>(axis[i]);
+      cone_cos_ = static_cast<float>(std::cos(half_angle));
+      cone_sin_ = static_cast<float>(std::sin(half_angle));
+    }
+  }
   // Per face, the finest grid whose occupied bins hold kRaysPerBin rays on
   // average: a 2D scan gets about that many per bin, a planar one a row of
   // bins along its line.
@@ -102,6 +118,9 @@ fan::Rays RayFan::rays() const {
     r.first_bin[f] = first_bin_[f];
   }
   r.bin_start = bin_start_.data();
+  for (int i = 0; i < 3; ++i) r.cone_axis[i] = cone_axis_[i];
+  r.cone_cos = cone_cos_;
+  r.cone_sin = cone_sin_;
   return r;
 }
 

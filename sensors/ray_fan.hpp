@@ -39,6 +39,8 @@ class RayFan {
   std::vector<std::uint32_t> bin_start_;
   int grid_[fan::kFaces] = {};
   std::uint32_t first_bin_[fan::kFaces] = {};
+  float cone_axis_[3] = {1.0f, 0.0f, 0.0f};  // see fan::Rays
+  float cone_cos_ = -1.0f, cone_sin_ = 0.0f;
 };
 
 }  // namespace campo

@@ -6,6 +6,7 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <cstddef>
 #include <deque>
 #include <limits>
 #include <stdexcept>
@@ -18,6 +19,10 @@
 #include "sensors/ray_fan.hpp"
 
 namespace campo {
+
+// fan::write_hits writes RayHits as (float, int32) pairs.
+static_assert(std::is_standard_layout_v<RayHit> && sizeof(RayHit) == 8 && offsetof(RayHit, distance_m) == 0 &&
+              offsetof(RayHit, shape) == 4);
 
 namespace {
 
@@ -871,9 +876,11 @@ struct RayCaster::Impl {
                 std::span<RayHit> hits) const {
     FanScratch& scratch = fan_scratch();
     const fan::Rays rays = fan.rays();
-    scratch.best_t.assign(rays.size + 8, std::min(max_range_m, std::numeric_limits<float>::max()));
-    scratch.best_shape.assign(rays.size + 8, RayHit::kNoShape);
+    // Rounded up to whole vectors of eight, and the eight readable past them.
+    scratch.best_t.resize(rays.size + 16);
+    scratch.best_shape.resize(rays.size + 16);
     const fan::Best best{scratch.best_t.data(), scratch.best_shape.data()};
+    fan::reset(best, rays.size, std::min(max_range_m, std::numeric_limits<float>::max()), RayHit::kNoShape);
     const Eigen::Matrix3d& rotation = pose.linear();
     const Eigen::Vector3d& origin = pose.translation();
 
@@ -945,11 +952,7 @@ struct RayCaster::Impl {
       }
     }
 
-    const std::span<const std::uint32_t> order = fan.order();
-    for (std::size_t k = 0; k < order.size(); ++k) {
-      const std::int32_t shape = scratch.best_shape[k];
-      hits[order[k]] = {shape == RayHit::kNoShape ? std::numeric_limits<float>::infinity() : scratch.best_t[k], shape};
-    }
+    fan::write_hits(fan.order().data(), rays.size, best, RayHit::kNoShape, hits.data());
   }
 };
 
