@@ -1,7 +1,9 @@
 #include "physics/clearance.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include <btBulletCollisionCommon.h>
 #include <BulletCollision/CollisionShapes/btTriangleCallback.h>
@@ -201,7 +203,10 @@ void ClearanceQuery::find_vehicle(const btCollisionWorld& world, std::size_t veh
     const int tag = objects[i]->getUserIndex();
     if (!is_vehicle_tag(tag)) continue;
     if (vehicle_of_tag(tag) == vehicle) {
-      search_->parts.push_back({objects[i], !is_wheel_tag(tag)});
+      btVector3 centre;
+      btScalar radius;
+      objects[i]->getCollisionShape()->getBoundingSphere(centre, radius);
+      search_->parts.push_back({objects[i], !is_wheel_tag(tag), centre.length() + radius});
     } else {
       search_->others.push_back({objects[i], vehicle_tag(vehicle_of_tag(tag), false)});
     }
@@ -216,6 +221,8 @@ Clearance ClearanceQuery::measure(const btCollisionWorld& world, std::size_t veh
   ContactSeen seen;
   out.contact = in_contact(world, seen);
   nearest_moving(obstacle_cutoff_m, other_vehicles, out);
+  rotations_.clear();
+  for (const VehiclePart& part : *vehicle_) rotations_.push_back(part.body->getWorldTransform().getRotation());
   // Static obstacles and the ground do not move: while the vehicle has not
   // moved far enough since their last exact answer to come within the
   // cutoff, it cannot have. Each is measured a little beyond its cutoff, so
@@ -223,7 +230,10 @@ Clearance ClearanceQuery::measure(const btCollisionWorld& world, std::size_t veh
   if (search_->static_floor.floor_m - travel_since(search_->static_floor) < obstacle_cutoff_m) {
     Clearance statics;
     const double reach = obstacle_cutoff_m + kSlack_m;
-    nearest_static(reach, statics);
+    if (!recall(search_->static_memo, reach, statics.obstacle_m, statics.obstacle)) {
+      nearest_static(reach, statics);
+      memorize(search_->static_memo, reach, statics.obstacle_m, statics.obstacle);
+    }
     remember(search_->static_floor, std::min(statics.obstacle_m, reach));
     if (statics.obstacle_m < out.obstacle_m) {
       out.obstacle_m = statics.obstacle_m;
@@ -236,7 +246,11 @@ Clearance ClearanceQuery::measure(const btCollisionWorld& world, std::size_t veh
   }
   if (search_->ground_floor.floor_m - travel_since(search_->ground_floor) < ground_cutoff_m) {
     const double reach = ground_cutoff_m + kSlack_m;
-    nearest_ground(reach, out);
+    int unused = -1;
+    if (!recall(search_->ground_memo, reach, out.ground_m, unused)) {
+      nearest_ground(reach, out);
+      memorize(search_->ground_memo, reach, out.ground_m, -1);
+    }
     remember(search_->ground_floor, std::min(out.ground_m, reach));
   }
   if (out.ground_m >= ground_cutoff_m) out.ground_m = kInfinity;
@@ -383,24 +397,74 @@ void ClearanceQuery::remember(Floor& floor, double floor_m) const {
   floor.floor_m = floor_m;
   floor.poses.clear();
   for (const VehiclePart& part : *vehicle_) floor.poses.push_back(part.body->getWorldTransform());
+  floor.rotations = rotations_;
 }
 
 double ClearanceQuery::travel_since(const Floor& floor) const {
   if (floor.poses.size() != vehicle_->size()) return kInfinity;
   // No point of a body moves farther than its origin's displacement plus the
-  // arc its farthest point turns through.
+  // arc its farthest point turns through. (The rotations then and now are
+  // kept, not found again from the poses: the same numbers, fewer instructions.)
   double travel = 0.0;
   for (std::size_t i = 0; i < vehicle_->size(); ++i) {
     const btTransform& now = (*vehicle_)[i].body->getWorldTransform();
     const btTransform& then = floor.poses[i];
-    btVector3 centre;
-    btScalar radius;
-    (*vehicle_)[i].body->getCollisionShape()->getBoundingSphere(centre, radius);
-    const btScalar angle = (now.getRotation() * then.getRotation().inverse()).getAngleShortestPath();
+    const btScalar angle = (rotations_[i] * floor.rotations[i].inverse()).getAngleShortestPath();
     travel = std::max(travel, static_cast<double>((now.getOrigin() - then.getOrigin()).length() +
-                                                  (centre.length() + radius) * angle));
+                                                  (*vehicle_)[i].reach_m * angle));
   }
   return travel;
+}
+
+namespace {
+
+// Bit for bit: -0 and +0, or two NaNs, are not the same pose to GJK.
+bool same_pose(const btTransform& a, const btTransform& b) {
+  const auto same = [](const btVector3& u, const btVector3& v) {
+    for (int k = 0; k < 3; ++k) {
+      if (std::bit_cast<std::uint64_t>(static_cast<double>(u[k])) != std::bit_cast<std::uint64_t>(static_cast<double>(v[k]))) {
+        return false;
+      }
+    }
+    return true;
+  };
+  for (int r = 0; r < 3; ++r) {
+    if (!same(a.getBasis()[r], b.getBasis()[r])) return false;
+  }
+  return same(a.getOrigin(), b.getOrigin());
+}
+
+}  // namespace
+
+// A search of things that do not move returns the least of the GJK
+// distances of the pairs it measures; which pairs it measures depends on
+// where its box starts (the hint) and on the cutoff, but not the least one's
+// distance when apart: a pair left out is one whose lower bound (the boxes'
+// distance, a triangle's plane) already reaches a distance measured
+// (tests/physics/clearance_reuse_test.cpp compares the ways over random poses).
+bool ClearanceQuery::recall(const Memo& memo, double reach_m, double& distance_m, int& id) const {
+  if (!reuse_ || memo.poses.size() != vehicle_->size()) return false;
+  // Found: the answer below any cutoff. Not found: none below a reach up to the memo's.
+  if (!std::isfinite(memo.distance_m) && reach_m > memo.reach_m) return false;
+  // An overlap is not reused: the search stops at the first overlapping pair
+  // it measures (every other's box is as near), which depends on its box.
+  if (memo.distance_m <= 0.0) return false;
+  for (std::size_t i = 0; i < vehicle_->size(); ++i) {
+    if (!same_pose((*vehicle_)[i].body->getWorldTransform(), memo.poses[i])) return false;
+  }
+  const bool below = memo.distance_m < reach_m;
+  distance_m = below ? memo.distance_m : kInfinity;
+  id = below ? memo.id : -1;
+  return true;
+}
+
+void ClearanceQuery::memorize(Memo& memo, double reach_m, double distance_m, int id) const {
+  if (!reuse_) return;
+  memo.reach_m = reach_m;
+  memo.distance_m = distance_m;
+  memo.id = id;
+  memo.poses.clear();
+  for (const VehiclePart& part : *vehicle_) memo.poses.push_back(part.body->getWorldTransform());
 }
 
 void ClearanceQuery::vehicle_box(btVector3& lo, btVector3& hi) const {

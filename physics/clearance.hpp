@@ -70,6 +70,13 @@ class ClearanceQuery {
   Clearance measure(const btCollisionWorld& world, std::size_t vehicle, double obstacle_cutoff_m,
                     double ground_cutoff_m, bool other_vehicles = true);
 
+  /// Whether a query may reuse the static obstacles' and the ground's answer
+  /// of the vehicle's last query when its bodies have not moved since (bit
+  /// for bit): the closed loop measures each state twice, after the physics
+  /// step and again, with no cutoff, at a control tick. Off, every query
+  /// searches (the reference the tests compare with).
+  void set_reuse(bool reuse) { reuse_ = reuse; }
+
  private:
   struct StaticObstacle {
     const btConvexShape* shape;
@@ -103,11 +110,24 @@ class ClearanceQuery {
   struct VehiclePart {
     const btCollisionObject* body;
     bool ground_counts;  // kVehicleBodyTag: touching the ground is a collision
+    double reach_m;      // from the body's origin to its farthest point (bounding sphere)
   };
   // A lower bound of a distance to things that do not move, valid with the
-  // vehicle's bodies at `poses`.
+  // vehicle's bodies at `poses` (and their rotations, for travel_since).
   struct Floor {
     double floor_m = -std::numeric_limits<double>::infinity();
+    std::vector<btTransform> poses;
+    std::vector<btQuaternion> rotations;
+  };
+  // The answer of the last search of things that do not move (static
+  // obstacles, or the ground), made with the vehicle's bodies at `poses` and
+  // exact below `reach_m`: the same bodies at the same poses get the same
+  // answer, which is that one below any cutoff when it was found (finite),
+  // and none below a cutoff up to reach_m when it was not.
+  struct Memo {
+    double reach_m = -std::numeric_limits<double>::infinity();  // none yet
+    double distance_m = std::numeric_limits<double>::infinity();
+    int id = -1;
     std::vector<btTransform> poses;
   };
   // What one vehicle's searches keep from one query to the next.
@@ -119,6 +139,8 @@ class ClearanceQuery {
     double ground_hint_m = 1.0;
     Floor static_floor;
     Floor ground_floor;
+    Memo static_memo;
+    Memo ground_memo;
   };
   void find_vehicle(const btCollisionWorld& world, std::size_t vehicle);
   void vehicle_box(btVector3& lo, btVector3& hi) const;
@@ -143,6 +165,9 @@ class ClearanceQuery {
   Touch touch_ground(const Ground* only);
   // How far any point of the vehicle's bodies may have moved since `floor` was set.
   double travel_since(const Floor& floor) const;
+  // The memo's answer below `reach_m` when it holds for the vehicle's bodies where they are now.
+  bool recall(const Memo& memo, double reach_m, double& distance_m, int& id) const;
+  void memorize(Memo& memo, double reach_m, double distance_m, int id) const;
 
   std::vector<StaticObstacle> statics_;
   btDbvt static_tree_;  // leaves: index into statics_
@@ -157,6 +182,8 @@ class ClearanceQuery {
   const std::vector<VehiclePart>* vehicle_ = nullptr;
   std::vector<int> candidates_;  // scratch of nearest_obstacle, reused
   std::vector<TriangleCandidate> triangle_scratch_;  // scratch of nearest_ground, reused
+  std::vector<btQuaternion> rotations_;  // of the vehicle's bodies now: measure() sets them for travel_since
+  bool reuse_ = true;
   static constexpr double kSlack_m = 0.5;  // measured beyond a cutoff, to skip the next steps
 };
 
