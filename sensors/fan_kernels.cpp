@@ -341,13 +341,15 @@ inline D hit_settled(const Cell& cell, int in1, int in, D x, D y, D z, D t0) {
   return _mm256_blendv_pd(set1d(__builtin_inf()), t, ok);
 }
 
-// The nearest hits of four rays (lanes `shift` to shift + 3 of the settled bits).
-inline D hit_four(const Cell& cell, const Settled& s, int shift, D x, D y, D z, D t0) {
-  const int in1 = (s.in1 >> shift) & 15, in2 = (s.in2 >> shift) & 15;
-  const int maybe = (~s.out1 | ~s.out2) >> shift & 15;
-  if (maybe == 0) return set1d(__builtin_inf());  // hit_cell's answer too
+// The nearest hits of four rays (lanes `shift` to shift + 3 of the settled
+// bits); `all_settled`: every one of the eight lanes is.
+inline D hit_four(const Cell& cell, const Settled& s, bool all_settled, int shift, D x, D y, D z, D t0) {
+  const int in1 = (s.in1 >> shift) & 15, in = ((s.in1 | s.in2) >> shift) & 15;
+  if (all_settled) return in == 0 ? set1d(__builtin_inf()) : hit_settled(cell, in1, in, x, y, z, t0);
+  if ((~(s.out1 & s.out2) >> shift & 15) == 0) return set1d(__builtin_inf());  // hit_cell's answer too
+  const int in2 = (s.in2 >> shift) & 15;
   const bool settled = ((in1 | s.out1 >> shift) & (in2 | s.out2 >> shift) & 15) == 15 && (in1 & in2) == 0;
-  if (settled) return hit_settled(cell, in1, in1 | in2, x, y, z, t0);
+  if (settled) return hit_settled(cell, in1, in, x, y, z, t0);
   return hit_cell(cell, x, y, z, t0);
 }
 
@@ -358,9 +360,10 @@ void cast_cell(const Rays& rays, const Cell& cell, const FloatCell& fcell, std::
     const V x = _mm256_loadu_ps(rays.x + k), y = _mm256_loadu_ps(rays.y + k), z = _mm256_loadu_ps(rays.z + k);
     const Settled s = settle(fcell, x, y, z);
     if ((s.out1 & s.out2) == 0xff) continue;  // no ray may cross: hit_cell gives +inf for all
-    const D lo = hit_four(cell, s, 0, _mm256_cvtps_pd(_mm256_castps256_ps128(x)),
+    const bool all_settled = ((s.in1 | s.out1) & (s.in2 | s.out2)) == 0xff && (s.in1 & s.in2) == 0;
+    const D lo = hit_four(cell, s, all_settled, 0, _mm256_cvtps_pd(_mm256_castps256_ps128(x)),
                           _mm256_cvtps_pd(_mm256_castps256_ps128(y)), _mm256_cvtps_pd(_mm256_castps256_ps128(z)), tmin);
-    const D hi = hit_four(cell, s, 4, _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)),
+    const D hi = hit_four(cell, s, all_settled, 4, _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)),
                           _mm256_cvtps_pd(_mm256_extractf128_ps(y, 1)), _mm256_cvtps_pd(_mm256_extractf128_ps(z, 1)),
                           tmin);
     const V cand = _mm256_set_m128(_mm256_cvtpd_ps(hi), _mm256_cvtpd_ps(lo));
@@ -584,53 +587,90 @@ void cast_planes(const Rays& rays, const Plane* planes, int count, float t0, Bes
   }
 }
 
+namespace {
+
+// One heightfield cell (c, r) of the patch: culled, projected, and its rays tested.
+void cast_terrain_cell(const Rays& rays, const TerrainPatch& patch, int c, int r, float t0, float t1,
+                   const Best& best) {
+  const double* const px = patch.x;
+  const double* const py = patch.y;
+  const double* const pz = patch.z;
+  const int i00 = r * patch.cols + c, i10 = i00 + 1, i01 = i00 + patch.cols, i11 = i01 + 1;
+  const int corners[4] = {i00, i10, i01, i11};
+  float hull_x[4], hull_y[4], hull_z[4];
+  for (int k = 0; k < 4; ++k) {
+    hull_x[k] = static_cast<float>(px[corners[k]]);
+    hull_y[k] = static_cast<float>(py[corners[k]]);
+    hull_z[k] = static_cast<float>(pz[corners[k]]);
+  }
+  const float centre[3] = {0.25f * (hull_x[0] + hull_x[1] + hull_x[2] + hull_x[3]),
+                           0.25f * (hull_y[0] + hull_y[1] + hull_y[2] + hull_y[3]),
+                           0.25f * (hull_z[0] + hull_z[1] + hull_z[2] + hull_z[3])};
+  float rho2 = 0.0f;
+  for (int k = 0; k < 4; ++k) {
+    const float ex = hull_x[k] - centre[0], ey = hull_y[k] - centre[1], ez = hull_z[k] - centre[2];
+    rho2 = max_f(rho2, ex * ex + ey * ey + ez * ez);
+  }
+  const float rho = __builtin_sqrtf(rho2) * 1.00001f + 1e-6f;
+  const float dist = __builtin_sqrtf(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]);
+  if (dist - rho > t1 || dist + rho < t0 || outside_cone(rays, centre, rho)) return;
+  const float* const hull[3] = {hull_x, hull_y, hull_z};
+  Rect rects[kFaces];
+  const int n = hull_rects(rays, hull, 4, centre, rho, rects);
+  if (n == 0) return;
+  const double p00[3] = {px[i00], py[i00], pz[i00]}, p10[3] = {px[i10], py[i10], pz[i10]};
+  const double p01[3] = {px[i01], py[i01], pz[i01]}, p11[3] = {px[i11], py[i11], pz[i11]};
+  Cell cell;
+  cell.e0 = make_edge(p00, p10);
+  cell.diagonal = make_edge(p10, p01);
+  cell.e2 = make_edge(p01, p00);
+  cell.e3 = make_edge(p10, p11);
+  cell.e4 = make_edge(p11, p01);
+  triangle_plane(p00, p10, p01, cell.normal1, cell.num1);
+  triangle_plane(p10, p11, p01, cell.normal2, cell.num2);
+  cell.near = (dist - rho) * 0.9999 - 1e-5;
+  cell.far = (dist + rho) * 1.0001 + 1e-5;
+  const FloatCell fcell{float_edge(cell.e0), float_edge(cell.diagonal), float_edge(cell.e2),
+                        float_edge(cell.e3), float_edge(cell.e4)};
+  for (int i = 0; i < n; ++i) {
+    for_each_run(rays, rects[i], [&](std::uint32_t first, std::uint32_t end) {
+      cast_cell(rays, cell, fcell, first, end, t0, patch.shape, best);
+    });
+  }
+}
+
+}  // namespace
+
 void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t1, Best best) {
   const double* const px = patch.x;
   const double* const py = patch.y;
   const double* const pz = patch.z;
-  for (int r = 0; r + 1 < patch.rows; ++r) {
-    for (int c = 0; c + 1 < patch.cols; ++c) {
-      const int i00 = r * patch.cols + c, i10 = i00 + 1, i01 = i00 + patch.cols, i11 = i01 + 1;
-      const int corners[4] = {i00, i10, i01, i11};
-      float hull_x[4], hull_y[4], hull_z[4];
-      for (int k = 0; k < 4; ++k) {
-        hull_x[k] = static_cast<float>(px[corners[k]]);
-        hull_y[k] = static_cast<float>(py[corners[k]]);
-        hull_z[k] = static_cast<float>(pz[corners[k]]);
+  // Blocks of cells are bounded first: most of the patch around the sensor
+  // lies outside the fan's cone, and a block outside it (or out of range)
+  // holds no cell a ray may meet.
+  constexpr int kBlock = 4;
+  for (int br = 0; br + 1 < patch.rows; br += kBlock) {
+    for (int bc = 0; bc + 1 < patch.cols; bc += kBlock) {
+      const int r_end = br + kBlock < patch.rows - 1 ? br + kBlock : patch.rows - 1;
+      const int c_end = bc + kBlock < patch.cols - 1 ? bc + kBlock : patch.cols - 1;
+      float lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
+      for (int r = br; r <= r_end; ++r) {
+        for (int c = bc; c <= c_end; ++c) {
+          const int i = r * patch.cols + c;
+          const float q[3] = {static_cast<float>(px[i]), static_cast<float>(py[i]), static_cast<float>(pz[i])};
+          for (int a = 0; a < 3; ++a) {
+            lo[a] = min_f(lo[a], q[a]);
+            hi[a] = max_f(hi[a], q[a]);
+          }
+        }
       }
-      const float centre[3] = {0.25f * (hull_x[0] + hull_x[1] + hull_x[2] + hull_x[3]),
-                               0.25f * (hull_y[0] + hull_y[1] + hull_y[2] + hull_y[3]),
-                               0.25f * (hull_z[0] + hull_z[1] + hull_z[2] + hull_z[3])};
-      float rho2 = 0.0f;
-      for (int k = 0; k < 4; ++k) {
-        const float ex = hull_x[k] - centre[0], ey = hull_y[k] - centre[1], ez = hull_z[k] - centre[2];
-        rho2 = max_f(rho2, ex * ex + ey * ey + ez * ez);
-      }
-      const float rho = __builtin_sqrtf(rho2) * 1.00001f + 1e-6f;
+      const float centre[3] = {0.5f * (lo[0] + hi[0]), 0.5f * (lo[1] + hi[1]), 0.5f * (lo[2] + hi[2])};
+      const float half[3] = {0.5f * (hi[0] - lo[0]), 0.5f * (hi[1] - lo[1]), 0.5f * (hi[2] - lo[2])};
+      const float radius = __builtin_sqrtf(half[0] * half[0] + half[1] * half[1] + half[2] * half[2]) * 1.0001f + 1e-5f;
       const float dist = __builtin_sqrtf(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]);
-      if (dist - rho > t1 || dist + rho < t0 || outside_cone(rays, centre, rho)) continue;
-      const float* const hull[3] = {hull_x, hull_y, hull_z};
-      Rect rects[kFaces];
-      const int n = hull_rects(rays, hull, 4, centre, rho, rects);
-      if (n == 0) continue;
-      const double p00[3] = {px[i00], py[i00], pz[i00]}, p10[3] = {px[i10], py[i10], pz[i10]};
-      const double p01[3] = {px[i01], py[i01], pz[i01]}, p11[3] = {px[i11], py[i11], pz[i11]};
-      Cell cell;
-      cell.e0 = make_edge(p00, p10);
-      cell.diagonal = make_edge(p10, p01);
-      cell.e2 = make_edge(p01, p00);
-      cell.e3 = make_edge(p10, p11);
-      cell.e4 = make_edge(p11, p01);
-      triangle_plane(p00, p10, p01, cell.normal1, cell.num1);
-      triangle_plane(p10, p11, p01, cell.normal2, cell.num2);
-      cell.near = (dist - rho) * 0.9999 - 1e-5;
-      cell.far = (dist + rho) * 1.0001 + 1e-5;
-      const FloatCell fcell{float_edge(cell.e0), float_edge(cell.diagonal), float_edge(cell.e2),
-                            float_edge(cell.e3), float_edge(cell.e4)};
-      for (int i = 0; i < n; ++i) {
-        for_each_run(rays, rects[i], [&](std::uint32_t first, std::uint32_t end) {
-          cast_cell(rays, cell, fcell, first, end, t0, patch.shape, best);
-        });
+      if (dist - radius > t1 || dist + radius < t0 || outside_cone(rays, centre, radius)) continue;
+      for (int r = br; r < r_end; ++r) {
+        for (int c = bc; c < c_end; ++c) cast_terrain_cell(rays, patch, c, r, t0, t1, best);
       }
     }
   }
