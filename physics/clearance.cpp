@@ -227,13 +227,23 @@ Clearance ClearanceQuery::measure(const btCollisionWorld& world, std::size_t veh
   // moved far enough since their last exact answer to come within the
   // cutoff, it cannot have. Each is measured a little beyond its cutoff, so
   // that the answer bounds the next steps.
-  if (search_->static_floor.floor_m - travel_since(search_->static_floor) < obstacle_cutoff_m) {
+  const double static_travel = travel_since(search_->static_floor);
+  if (search_->static_floor.floor_m - static_travel < obstacle_cutoff_m) {
     Clearance statics;
     const double reach = obstacle_cutoff_m + kSlack_m;
     if (!recall(search_->static_memo, reach, statics.obstacle_m, statics.obstacle)) {
-      nearest_static(reach, statics);
+      // The obstacle that was nearest is now at most as far as it was plus the travel since
+      // (above, by GJK's relative tolerance of 1e-6 at most, with room to spare): an obstacle
+      // whose box lies farther cannot be the nearest, and is not measured.
+      double within = kInfinity;
+      if (reuse_ && search_->static_found) {
+        const double upper = search_->static_floor.floor_m + static_travel;
+        within = upper + 1e-3 * (1.0 + upper);
+      }
+      nearest_static(reach, statics, within);
       memorize(search_->static_memo, reach, statics.obstacle_m, statics.obstacle);
     }
+    search_->static_found = std::isfinite(statics.obstacle_m) && statics.obstacle_m > 0.0;
     remember(search_->static_floor, std::min(statics.obstacle_m, reach));
     if (statics.obstacle_m < out.obstacle_m) {
       out.obstacle_m = statics.obstacle_m;
@@ -516,7 +526,7 @@ void ClearanceQuery::nearest_moving(double cutoff_m, bool other_vehicles, Cleara
 // obstacle found lies within it: everything outside the box is farther than
 // its margin, so the answer is exact. It starts from the last answer, which
 // moves little from one step to the next.
-void ClearanceQuery::nearest_static(double cutoff_m, Clearance& out) {
+void ClearanceQuery::nearest_static(double cutoff_m, Clearance& out, double within_m) {
   btVector3 lo, hi;
   vehicle_box(lo, hi);
   struct Collect : btDbvt::ICollide {
@@ -536,7 +546,7 @@ void ClearanceQuery::nearest_static(double cutoff_m, Clearance& out) {
     if (!statics_.empty()) static_tree_.collideTV(static_tree_.m_root, btDbvtVolume::FromMM(lo - pad, hi + pad), collect);
     for (const int k : candidates) {
       const StaticObstacle& o = statics_[static_cast<std::size_t>(k)];
-      measure_obstacle(lo, hi, *o.shape, o.pose, o.id, radius, out);
+      measure_obstacle(lo, hi, *o.shape, o.pose, o.id, std::min(radius, within_m), out);
     }
     if (out.obstacle_m <= radius || radius >= cutoff_m) break;
     // Nothing within the radius: grow the box until it covers every static obstacle.

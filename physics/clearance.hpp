@@ -141,13 +141,16 @@ class ClearanceQuery {
     Floor ground_floor;
     Memo static_memo;
     Memo ground_memo;
+    bool static_found = false;  // static_floor is the distance of an obstacle apart from the vehicle, not a reach
   };
   void find_vehicle(const btCollisionWorld& world, std::size_t vehicle);
   void vehicle_box(btVector3& lo, btVector3& hi) const;
   void measure_obstacle(const btVector3& lo, const btVector3& hi, const btConvexShape& shape, const btTransform& pose,
                         int id, double bound, Clearance& out) const;
   void nearest_moving(double cutoff_m, bool other_vehicles, Clearance& out) const;
-  void nearest_static(double cutoff_m, Clearance& out);
+  // `within_m`: a distance the answer is known not to exceed by more than
+  // GJK's tolerance; obstacles whose boxes lie farther are not measured.
+  void nearest_static(double cutoff_m, Clearance& out, double within_m = std::numeric_limits<double>::infinity());
   void nearest_ground(double cutoff_m, Clearance& out);
   // Distance from one vehicle part to one ground body, exact below the
   // cutoff (+infinity beyond), and the ground's point nearest it (world frame).
