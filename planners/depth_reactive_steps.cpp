@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <tuple>
 #include <vector>
@@ -194,31 +195,99 @@ DilationParams margin_layers(double margin_m, const DepthGrid& grid, Structuring
   return p;
 }
 
-cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
+namespace {
+
+// The layer (1 to n) of every pixel of `depth`, 0 for free space (no return,
+// or not a number).
+std::vector<int> depth_layers(const cv::Mat& depth, const DilationParams& p) {
   const int n = static_cast<int>(p.layer_radius_px.size());
   CV_Assert(depth.type() == CV_32F && depth.isContinuous() && n >= 1);
   CV_Assert(p.layer_upper.empty() || static_cast<int>(p.layer_upper.size()) == n);
-  // The pixels of each layer, by a counting sort on the layer (0 = free space).
   const int pixels = static_cast<int>(depth.total());
   const float* value = depth.ptr<float>();
-  std::vector<int> layer(pixels);
-  std::vector<int> start(n + 2, 0);
-  for (int i = 0; i < pixels; ++i) {
-    if (value[i] >= 1.0f) {
-      layer[i] = 0;
-    } else if (p.layer_upper.empty()) {
-      layer[i] = std::clamp(static_cast<int>(std::ceil(value[i] * n)), 1, n);
-    } else {  // the first layer whose upper bound is at least the value
-      const auto it = std::lower_bound(p.layer_upper.begin(), p.layer_upper.end(), static_cast<double>(value[i]));
-      layer[i] = std::clamp(static_cast<int>(it - p.layer_upper.begin()) + 1, 1, n);
+  std::vector<int> layer(static_cast<std::size_t>(pixels));
+  if (p.layer_upper.empty()) {
+    for (int i = 0; i < pixels; ++i) {
+      layer[i] = !(value[i] < 1.0f) ? 0 : std::clamp(static_cast<int>(std::ceil(value[i] * n)), 1, n);
     }
-    ++start[layer[i] + 1];
+    return layer;
   }
-  for (int s = 1; s <= n + 1; ++s) start[s] += start[s - 1];
-  std::vector<int> order(pixels);
-  std::vector<int> next(start.begin(), start.end() - 1);
-  for (int i = 0; i < pixels; ++i) order[next[layer[i]]++] = i;
-  const auto layer_pixels = [&](int s) { return std::span<const int>(order.data() + start[s], order.data() + start[s + 1]); };
+  // The first layer whose upper bound is at least the value (lower_bound),
+  // through a table of kBins bins over [0, 1): a bin holds the first
+  // candidate for its lower end, and the bounds inside the bin are stepped
+  // over one by one (the bins are exact in float and double, a power of 2),
+  // so the result is lower_bound's, without its search per pixel.
+  constexpr int kBins = 4096;
+  const std::vector<double>& upper = p.layer_upper;
+  std::vector<int> first(kBins);
+  for (int b = 0; b < kBins; ++b) {
+    first[b] = static_cast<int>(std::lower_bound(upper.begin(), upper.end(), static_cast<double>(b) / kBins) - upper.begin());
+  }
+  for (int i = 0; i < pixels; ++i) {
+    const float v = value[i];
+    if (!(v < 1.0f)) {
+      layer[i] = 0;
+      continue;
+    }
+    int k = v > 0.0f ? first[static_cast<int>(v * kBins)] : 0;  // v < 1: the bin is below kBins
+    while (k < n && upper[k] < static_cast<double>(v)) ++k;
+    layer[i] = std::clamp(k + 1, 1, n);
+  }
+  return layer;
+}
+
+// Minimum filter of one line whose window is each obstacle pixel's own:
+// out[x] = the smallest value[q] with |x - q| <= radius[q] (radius[q] < 0:
+// no obstacle at q; the radius must not grow with the value), kEmpty when
+// there is none; carry_out[x] = carry[q] of that q (when carry_out is given).
+void min_filter_line(const float* __restrict value, const std::int16_t* __restrict radius,
+                     const std::int16_t* __restrict carry, int width, float* __restrict out,
+                     std::int16_t* __restrict carry_out) {
+  // Candidates q, oldest first, whose reach covers the current x, with
+  // values increasing from front to back. A new obstacle pixel x makes every
+  // candidate q < x with value >= value[x] useless: its radius is no larger
+  // (the radius does not grow with the value), so it reaches no farther than
+  // x does, at a value no smaller. The front is then the smallest value of
+  // the candidates that still reach x, once those that do not are dropped.
+  thread_local std::vector<int> queue_buffer;
+  thread_local std::vector<int> left_buffer;
+  queue_buffer.resize(static_cast<std::size_t>(width));
+  left_buffer.resize(static_cast<std::size_t>(width));
+  int* __restrict queue = queue_buffer.data();
+  int* __restrict left = left_buffer.data();
+  int head = 0;
+  int tail = 0;
+  for (int x = 0; x < width; ++x) {  // obstacle pixels at or left of x
+    if (radius[x] >= 0) {
+      const float v = value[x];
+      while (tail > head && value[queue[tail - 1]] >= v) --tail;
+      queue[tail++] = x;
+    }
+    while (head < tail && queue[head] + radius[queue[head]] < x) ++head;
+    left[x] = head < tail ? queue[head] : -1;
+  }
+  head = tail = 0;
+  for (int x = width - 1; x >= 0; --x) {  // at or right of x
+    if (radius[x] >= 0) {
+      const float v = value[x];
+      while (tail > head && value[queue[tail - 1]] >= v) --tail;
+      queue[tail++] = x;
+    }
+    while (head < tail && queue[head] - radius[queue[head]] > x) ++head;
+    int q = left[x];
+    if (head < tail && (q < 0 || value[queue[head]] < value[q])) q = queue[head];
+    out[x] = q < 0 ? kEmpty : value[q];
+    if (carry_out) carry_out[x] = q < 0 ? std::int16_t{-1} : carry[q];
+  }
+}
+
+}  // namespace
+
+cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
+  const int n = static_cast<int>(p.layer_radius_px.size());
+  const std::vector<int> layer = depth_layers(depth, p);
+  const int pixels = static_cast<int>(depth.total());
+  const float* value = depth.ptr<float>();
 
   bool nested = p.shape == StructuringShape::square;
   for (int s = 1; s < n; ++s) {
@@ -227,26 +296,56 @@ cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
   }
   cv::Mat out(depth.size(), CV_32F, cv::Scalar(1.0f));
   if (nested) {
-    // Square elements that shrink with depth nest: eroding by R_s is eroding by
-    // R_s - R_(s+1), then ... then by R_n; and erosion commutes with the
-    // minimum. So every layer shares one chain of small erosions (Horner):
-    // erode_Rn(min(L_n, ... erode_(R1-R2)(L_1))), about one erosion's cost.
-    // Erosions between layers with no pixels add up into one (rectangles compose).
-    cv::Mat acc(depth.size(), CV_32F, cv::Scalar(kEmpty));
-    float* a = acc.ptr<float>();
-    bool any = false;
-    int last = 0;  // the last layer with pixels
+    // Square elements that shrink with depth: the dilation is separable with
+    // each obstacle pixel's own radius. A pixel q covers p when |dx| <= rx(v_q)
+    // and |dy| <= ry(v_q). Along each row, keep for every x only the smallest
+    // value h among the row's pixels that reach x across: any other, of value
+    // v >= h, has ry(v) <= ry(h), so every pixel it would reach down the
+    // column h reaches too, with a value no larger. The columns then take the
+    // same filter on h with ry(h). Two O(width) passes per line, whatever the
+    // number of layers (one erosion per layer in the chain it replaces).
+    // Radii beyond the image change nothing: clipped to its size, in 16 bits.
+    const int limit = std::max(depth.cols, depth.rows);
+    CV_Assert(limit <= std::numeric_limits<std::int16_t>::max());
+    const auto clip = [&](int r) { return static_cast<std::int16_t>(std::clamp(r, 0, limit)); };
+    std::vector<std::int16_t> rx_of(n + 1, -1), ry_of(n + 1, -1);  // by layer, -1: free space
     for (int s = 1; s <= n; ++s) {
-      if (start[s + 1] == start[s]) continue;
-      if (any) erode_square(acc, p.layer_radius_px[last - 1] - p.layer_radius_px[s - 1]);
-      for (const int i : layer_pixels(s)) a[i] = std::min(a[i], value[i]);
-      any = true;
-      last = s;
+      rx_of[s] = clip(p.layer_radius_px[s - 1].width);
+      ry_of[s] = clip(p.layer_radius_px[s - 1].height);
     }
-    if (any) erode_square(acc, p.layer_radius_px[last - 1]);
-    cv::min(acc, 1.0, out);
+    cv::Mat rx(depth.size(), CV_16S), ry(depth.size(), CV_16S);
+    std::int16_t* rxp = rx.ptr<std::int16_t>();
+    std::int16_t* ryp = ry.ptr<std::int16_t>();
+    for (int i = 0; i < pixels; ++i) {
+      rxp[i] = rx_of[layer[i]];
+      ryp[i] = ry_of[layer[i]];
+    }
+    cv::Mat across(depth.size(), CV_32F), across_ry(depth.size(), CV_16S);
+    for (int y = 0; y < depth.rows; ++y) {
+      min_filter_line(depth.ptr<float>(y), rx.ptr<std::int16_t>(y), ry.ptr<std::int16_t>(y), depth.cols,
+                      across.ptr<float>(y), across_ry.ptr<std::int16_t>(y));
+    }
+    cv::Mat columns, columns_ry;
+    cv::transpose(across, columns);
+    cv::transpose(across_ry, columns_ry);
+    cv::Mat down(columns.size(), CV_32F);
+    for (int x = 0; x < columns.rows; ++x) {
+      min_filter_line(columns.ptr<float>(x), columns_ry.ptr<std::int16_t>(x), nullptr, columns.cols,
+                      down.ptr<float>(x), nullptr);
+    }
+    cv::transpose(down, columns);
+    cv::min(columns, 1.0, out);
     return out;
   }
+
+  // The pixels of each layer, by a counting sort on the layer (0 = free space).
+  std::vector<int> start(n + 2, 0);
+  for (int i = 0; i < pixels; ++i) ++start[layer[i] + 1];
+  for (int s = 1; s <= n + 1; ++s) start[s] += start[s - 1];
+  std::vector<int> order(pixels);
+  std::vector<int> next(start.begin(), start.end() - 1);
+  for (int i = 0; i < pixels; ++i) order[next[layer[i]]++] = i;
+  const auto layer_pixels = [&](int s) { return std::span<const int>(order.data() + start[s], order.data() + start[s + 1]); };
   const cv::Rect image(0, 0, depth.cols, depth.rows);
   for (int s = 1; s <= n; ++s) {
     const std::span<const int> members = layer_pixels(s);
