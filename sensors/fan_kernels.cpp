@@ -62,7 +62,8 @@ bool face_rect(const Rays& rays, int f, const float* const p[3], int n, const fl
                Rect& rect) {
   const int grid = rays.grid[f];
   if (grid == 0) return false;
-  const int m = f >> 1, a = (m + 1) % 3, b = (m + 2) % 3;
+  constexpr int kNext[3] = {1, 2, 0};
+  const int m = f >> 1, a = kNext[m], b = kNext[a];
   const float s = (f & 1) ? -1.0f : 1.0f;
   float u0 = kInf, u1 = -kInf, v0 = kInf, v1 = -kInf;
   int front = 0;
@@ -599,9 +600,9 @@ void cast_terrain_cell(const Rays& rays, const TerrainPatch& patch, int c, int r
   const int corners[4] = {i00, i10, i01, i11};
   float hull_x[4], hull_y[4], hull_z[4];
   for (int k = 0; k < 4; ++k) {
-    hull_x[k] = static_cast<float>(px[corners[k]]);
-    hull_y[k] = static_cast<float>(py[corners[k]]);
-    hull_z[k] = static_cast<float>(pz[corners[k]]);
+    hull_x[k] = patch.xf[corners[k]];
+    hull_y[k] = patch.yf[corners[k]];
+    hull_z[k] = patch.zf[corners[k]];
   }
   const float centre[3] = {0.25f * (hull_x[0] + hull_x[1] + hull_x[2] + hull_x[3]),
                            0.25f * (hull_y[0] + hull_y[1] + hull_y[2] + hull_y[3]),
@@ -642,9 +643,6 @@ void cast_terrain_cell(const Rays& rays, const TerrainPatch& patch, int c, int r
 }  // namespace
 
 void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t1, Best best) {
-  const double* const px = patch.x;
-  const double* const py = patch.y;
-  const double* const pz = patch.z;
   // Blocks of cells are bounded first: most of the patch around the sensor
   // lies outside the fan's cone, and a block outside it (or out of range)
   // holds no cell a ray may meet.
@@ -657,7 +655,7 @@ void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t
       for (int r = br; r <= r_end; ++r) {
         for (int c = bc; c <= c_end; ++c) {
           const int i = r * patch.cols + c;
-          const float q[3] = {static_cast<float>(px[i]), static_cast<float>(py[i]), static_cast<float>(pz[i])};
+          const float q[3] = {patch.xf[i], patch.yf[i], patch.zf[i]};
           for (int a = 0; a < 3; ++a) {
             lo[a] = min_f(lo[a], q[a]);
             hi[a] = max_f(hi[a], q[a]);

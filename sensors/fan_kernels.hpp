@@ -68,6 +68,9 @@ struct TerrainPatch {
   const double* x = nullptr;
   const double* y = nullptr;
   const double* z = nullptr;
+  const float* xf = nullptr;  ///< the same vertices rounded to float (culling, projection)
+  const float* yf = nullptr;
+  const float* zf = nullptr;
   int cols = 0;  ///< vertices per row
   int rows = 0;
   std::int32_t shape = 0;

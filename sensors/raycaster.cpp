@@ -599,6 +599,7 @@ struct FanScratch {
   std::vector<float> best_t;
   std::vector<std::int32_t> best_shape;
   std::vector<double> x, y, z;  // a heightfield patch's vertices
+  std::vector<float> xf, yf, zf;  // the same rounded to float, for culling and projecting
   std::vector<fan::Plane> planes;
   std::vector<fan::Primitive> primitives;
   std::vector<Eigen::Vector3f> directions;  // world directions, for a fan cast through Embree
@@ -903,6 +904,9 @@ struct RayCaster::Impl {
       scratch.x.resize(count);
       scratch.y.resize(count);
       scratch.z.resize(count);
+      scratch.xf.resize(count);
+      scratch.yf.resize(count);
+      scratch.zf.resize(count);
       std::size_t k = 0;
       for (int r = r0; r <= r1 + 1; ++r) {
         const Eigen::Vector3d row = shift + turn.col(1) * terrain.vertex_y(r);
@@ -911,9 +915,13 @@ struct RayCaster::Impl {
           scratch.x[k] = p.x();
           scratch.y[k] = p.y();
           scratch.z[k] = p.z();
+          scratch.xf[k] = static_cast<float>(p.x());
+          scratch.yf[k] = static_cast<float>(p.y());
+          scratch.zf[k] = static_cast<float>(p.z());
         }
       }
-      const fan::TerrainPatch patch{scratch.x.data(), scratch.y.data(), scratch.z.data(), cols, rows,
+      const fan::TerrainPatch patch{scratch.x.data(),  scratch.y.data(),  scratch.z.data(), scratch.xf.data(),
+                                    scratch.yf.data(), scratch.zf.data(), cols,             rows,
                                     terrain.shape};
       fan::cast_terrain(rays, patch, min_range_m, max_range_m, best);
     }
