@@ -609,7 +609,9 @@ double ClearanceQuery::ground_distance(const Ground& g, const VehiclePart& part,
     // Bullet's own triangles, read from the heights it was given
     // without its per-vertex virtual calls.
     if (!g.blocks.empty()) {
-      g.blocks.triangles_under(triangles.body_min - pad, triangles.body_max + pad, triangles);
+      // Cells as far as the radius (or the nearest triangle yet) hold no triangle processTriangle keeps.
+      const HeightBlocks::Near near{triangles.body_min, triangles.body_max, std::min(triangles.best, triangles.cutoff)};
+      g.blocks.triangles_under(triangles.body_min - pad, triangles.body_max + pad, triangles, &near);
     } else {
       terrain->processAllTriangles(&triangles, triangles.body_min - pad, triangles.body_max + pad);
     }

@@ -51,7 +51,8 @@ double HeightBlocks::highest(double x0, double x1, double y0, double y1) const {
   return top;
 }
 
-void HeightBlocks::triangles_under(const btVector3& lo, const btVector3& hi, btTriangleCallback& callback) const {
+void HeightBlocks::triangles_under(const btVector3& lo, const btVector3& hi, btTriangleCallback& callback,
+                                   const Near* near) const {
   const int c0 = cell_of(lo.x(), dx_, cols_), c1 = cell_of(hi.x(), dx_, cols_);
   const int r0 = cell_of(lo.y(), dy_, rows_), r1 = cell_of(hi.y(), dy_, rows_);
   const auto vertex = [this](int c, int r) {
@@ -60,6 +61,23 @@ void HeightBlocks::triangles_under(const btVector3& lo, const btVector3& hi, btT
   btVector3 v[3];
   for (int r = r0; r <= r1; ++r) {
     for (int c = c0; c <= c1; ++c) {
+      if (near) {
+        // The cell's box from its four corners, and its distance from the near box (as the
+        // clearance's box distance computes it: no larger than any of its triangles').
+        const btVector3 a = vertex(c, r), b = vertex(c + 1, r), d = vertex(c, r + 1), e = vertex(c + 1, r + 1);
+        btVector3 cell_lo = a, cell_hi = a;
+        for (const btVector3* p : {&b, &d, &e}) {
+          cell_lo.setMin(*p);
+          cell_hi.setMax(*p);
+        }
+        double sum = 0.0;
+        for (int i = 0; i < 3; ++i) {
+          const double gap = std::max({0.0, static_cast<double>(cell_lo[i] - near->hi[i]),
+                                       static_cast<double>(near->lo[i] - cell_hi[i])});
+          sum += gap * gap;
+        }
+        if (std::sqrt(sum) >= near->limit_m) continue;
+      }
       // Bullet's split of a cell (no flipped, diamond or zigzag edges).
       v[0] = vertex(c, r);
       v[1] = vertex(c, r + 1);

@@ -24,8 +24,16 @@ class HeightBlocks {
   /// bound: whole blocks count; a box beyond the grid gets its edge blocks).
   double highest(double x0, double x1, double y0, double y1) const;
   /// Hands every triangle of the cells under [lo, hi] (x, y) to `callback`,
-  /// split as Bullet splits them.
-  void triangles_under(const btVector3& lo, const btVector3& hi, btTriangleCallback& callback) const;
+  /// split as Bullet splits them, in the same order whatever `near`.
+  /// `near`, when given, leaves out the cells whose bounding box lies at
+  /// least `near->limit_m` from the box [near->lo, near->hi]: no triangle of
+  /// them is nearer (its own box lies within the cell's).
+  struct Near {
+    btVector3 lo, hi;
+    double limit_m;
+  };
+  void triangles_under(const btVector3& lo, const btVector3& hi, btTriangleCallback& callback,
+                       const Near* near = nullptr) const;
 
  private:
   const HeightGrid* grid_ = nullptr;
