@@ -27,7 +27,7 @@ fi
 cd "$root"
 
 if ! command -v clang++ >/dev/null; then
-  echo "campo fuzz: clang++ not found; tools/setup.sh installs it (Debian packages clang, libclang-rt-dev)" >&2
+  echo "campo fuzz: clang++ not found; tools/setup.sh --tests installs it (Debian packages clang, libclang-rt-dev)" >&2
   exit 1
 fi
 if [ ! -f "$build_dir/CMakeCache.txt" ]; then

@@ -1,6 +1,6 @@
 // The 3D replay (campo render --kind replay): its data against the recorded files and the
 // scene's geometry, the page's self-containment, and the page itself in headless Chromium
-// (Debian's chromium, tools/setup.sh): it loads without console messages, its time slider
+// (Debian's chromium, tools/setup.sh --tests): it loads without console messages, its time slider
 // moves the vehicle to where trajectory.csv has it, and its view of the scene from a known
 // camera matches campo's own OSMesa render of the same view.
 #include "render/replay.hpp"

@@ -1,6 +1,6 @@
 // Heightfields from digital elevation models (scene/dem_source, the loader's
 // "dem" heightfield): GeoTIFFs written here from ASCII grids with GDAL's
-// gdal_translate (Debian gdal-bin, tools/setup.sh), checked against a CSV of
+// gdal_translate (Debian gdal-bin, tools/setup.sh --tests), checked against a CSV of
 // the same heights, hand-computed bilinear values, a meridian-arc inversion
 // of UTM northings, and the limits on hostile files.
 #include "scene/dem_source.hpp"
