@@ -4,6 +4,7 @@
 #include <unistd.h>
 #include <valgrind/callgrind.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <chrono>
@@ -14,6 +15,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <thread>
 #include <vector>
@@ -26,8 +28,11 @@
 #include "campo/vehicle_factory.hpp"
 #include "campo/version.hpp"
 #include "core/output_dir.hpp"
+#include "planners/depth_reactive.hpp"
+#include "planners/octomap3d.hpp"
 #include "run/provenance.hpp"
 #include "sensors/lidar.hpp"
+#include "sensors/raycaster.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
 #include "tools/path_options.hpp"
@@ -253,9 +258,11 @@ void bench_lidar(const BenchOptions& o, std::vector<Figure>& figures) {
 
 // Real-time factor of whole episodes with the straight planner (its default
 // parameters): no sensor, then scanner3d at 64 x 64 and 256 x 256, 10 Hz.
+// `guards`: only the episodes without a sensor.
 void bench_episodes(const BenchOptions& o, std::vector<Figure>& figures) {
+  const std::vector<int> resolutions = o.what == "guards" ? std::vector<int>{0} : std::vector<int>{0, 64, 256};
   for (const auto& [name, vehicle] : {std::pair{"trees_rolling_terrain", "quadrotor"}, std::pair{"vineyard", "rover"}}) {
-    for (int resolution : {0, 64, 256}) {
+    for (const int resolution : resolutions) {
       Scene scene = load_scene(bundled_scene(name));
       scene.world.time_limit_s = o.episode_time_s;
       VehicleDef& def = scene.vehicles.front();
@@ -393,6 +400,149 @@ void bench_fleet(const BenchOptions& o, std::vector<Figure>& figures) {
                           {"wall_time_s", r.fleet.wall_time_s}, {"cost_per_vehicle_vs_one", ratio}}});
     }
   }
+}
+
+// The median of `samples` (seconds), copied.
+double median_s(std::vector<double> samples) {
+  std::nth_element(samples.begin(), samples.begin() + static_cast<long>(samples.size() / 2), samples.end());
+  return samples[samples.size() / 2];
+}
+
+// Times `work` (one unit each call) until min_time_s has passed, at least 5 times; the median, in seconds.
+template <class Work>
+double median_time_s(double min_time_s, Work work) {
+  using Clock = std::chrono::steady_clock;
+  std::vector<double> samples;
+  const auto start = Clock::now();
+  while (samples.size() < 5 || std::chrono::duration<double>(Clock::now() - start).count() < min_time_s) {
+    const auto t0 = Clock::now();
+    work();
+    samples.push_back(std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  return median_s(std::move(samples));
+}
+
+// depth_reactive's first replanning of a seed 000 scene, as the planner replans: the depth map
+// of the scene's scanner at 256 x 256 from the drone's start, DilataMappa, ControllaVisibilita
+// and TrovaWP with the planner's default parameters.
+class ReplanCase {
+ public:
+  explicit ReplanCase(const std::string& name) {
+    const Scene scene = load_scene(bundled_scene(name));
+    const VehicleDef& drone = scene.vehicles.front();
+    sensor_ = drone.sensors.front().range;
+    sensor_.cols = sensor_.rows = kResolution;
+    const RayCaster caster(scene);
+    Lidar lidar(sensor_, scene.world.seed);
+    lidar.scan(caster, drone.pose * to_isometry(sensor_.mount), 0.0, scan_);
+    grid_ = DepthGrid::of(scan_, sensor_);
+    params_ = dilation_params(config_, grid_);
+    target_sensor_ = scan_.sensor_pose.inverse() * drone.mission.front().position_m;
+  }
+  void replan() const {
+    const cv::Mat dilated = dilate_depth_map(depth_map(scan_, sensor_), params_);
+    const VisibilityCheck check = check_visibility(dilated, grid_, target_sensor_, config_.safety_radius_m);
+    const WaypointSearch found =
+        find_waypoint(dilated, grid_, check.pixel, check.waypoint_range_m / grid_.max_range_m,
+                      check.obstacle_range_m / grid_.max_range_m, find_waypoint_params(config_));
+    benchmark_sink_ += found.candidates;
+  }
+  static constexpr int kResolution = 256;
+
+ private:
+  DepthReactiveConfig config_;
+  RangeSensorConfig sensor_;
+  RangeScan scan_;
+  DepthGrid grid_;
+  DilationParams params_;
+  Eigen::Vector3d target_sensor_;
+  mutable long benchmark_sink_ = 0;  // keeps the search from being optimised away
+};
+
+// OctoMap mapping as dstar_lite_3d maps with "mapping": "octomap": a 64 x 8 scanner (90 x 30 deg,
+// 20 m) flown up and then north under the bridge of scenes/bridge.json (0.1 m per scan), its
+// scans cast beforehand, inserted into a fresh map one after the other.
+class OctoMapCase {
+ public:
+  OctoMapCase() {
+    const Scene scene = load_scene(bundled_scene("bridge"));
+    RangeSensorConfig sensor;
+    sensor.fov_h_deg = 90.0;
+    sensor.fov_v_deg = 30.0;
+    sensor.cols = 64;
+    sensor.rows = 8;
+    sensor.max_range_m = 20.0;
+    const RayCaster caster(scene);
+    Lidar lidar(sensor, scene.world.seed);
+    const double x = 24.0, cruise_z = 14.0 + std::sin(x / 5.0);
+    RangeScan scan;
+    for (int i = 0; i < kScans; ++i) {
+      const Eigen::Vector3d p = i < 40 ? Eigen::Vector3d(x, 0.75, 1.0 + (cruise_z - 1.0) * i / 40.0)
+                                       : Eigen::Vector3d(x, 0.75 + 0.1 * (i - 40), cruise_z);
+      Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+      pose.translation() = p;
+      pose.linear() = Eigen::AngleAxisd(std::numbers::pi / 2.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      lidar.scan(caster, pose, 0.0, scan);
+      Scan s{p, {}, scan.hits};
+      for (std::size_t r = 0; r < scan.ranges_m.size(); ++r) {
+        s.ends_m.push_back(p + pose.linear() * lidar.directions()[r].cast<double>() * static_cast<double>(scan.ranges_m[r]));
+      }
+      scans_.push_back(std::move(s));
+    }
+  }
+  // Maps the whole flight into a fresh map; the scans inserted.
+  int map_flight() const {
+    GridMap3dConfig grid;
+    grid.ground_z_m = 0.3;
+    OctoMap3d map(grid, OctoMap3dConfig{});
+    for (const Scan& s : scans_) map.insert_scan(s.origin_m, s.ends_m, s.returns);
+    return kScans;
+  }
+  static constexpr int kScans = 140;
+
+ private:
+  struct Scan {
+    Eigen::Vector3d origin_m;
+    std::vector<Eigen::Vector3d> ends_m;
+    std::vector<std::uint8_t> returns;
+  };
+  std::vector<Scan> scans_;
+};
+
+// depth_reactive's replanning at 256 x 256 on both seed 000 scenes, and OctoMap's mapping of a
+// 64 x 8 scan: per replan and per scan, timed (median) or counted.
+void bench_planners(const BenchOptions& o, std::vector<Figure>& figures) {
+  for (const char* name : {"two_barriers", "trees_rolling_terrain"}) {
+    const ReplanCase replan(name);
+    const std::string id = "replan/depth_reactive/" + std::string(name) + "/" + std::to_string(ReplanCase::kResolution);
+    const nlohmann::json details{{"scene", name}, {"resolution", ReplanCase::kResolution}};
+    if (o.instructions) {
+      replan.replan();  // uncounted: first-touch allocations
+      constexpr int kReplans = 3;
+      counted(id, [&] {
+        for (int i = 0; i < kReplans; ++i) replan.replan();
+      });
+      figures.push_back({id, kReplans, "instructions/replan", details});
+      continue;
+    }
+    const double median = median_time_s(o.min_time_s, [&] { replan.replan(); });
+    std::cout << "replan depth_reactive 256x256 in " << std::left << std::setw(22) << name << std::right << std::fixed
+              << std::setprecision(3) << median * 1e3 << " ms (median, 1 thread)\n";
+    figures.push_back({id, 1.0 / median, "replans/s", details});
+  }
+  const OctoMapCase octomap;
+  const std::string id = "mapping/octomap/bridge/64x8";
+  const nlohmann::json details{{"scene", "bridge"}, {"scanner", "64 x 8, 90 x 30 deg, 20 m"}, {"scans", OctoMapCase::kScans}};
+  if (o.instructions) {
+    int scans = 0;
+    counted(id, [&] { scans = octomap.map_flight(); });
+    figures.push_back({id, static_cast<double>(scans), "instructions/scan", details});
+    return;
+  }
+  const double median = median_time_s(o.min_time_s, [&] { octomap.map_flight(); }) / OctoMapCase::kScans;
+  std::cout << "mapping octomap 64x8 scans under the bridge " << std::fixed << std::setprecision(3) << median * 1e3
+            << " ms per scan (median flight, 1 thread)\n";
+  figures.push_back({id, 1.0 / median, "scans/s", details});
 }
 
 // A rate for the peers table: "20.64 M rays/s", "1076976 steps/s", "92.7 problems/s".
@@ -542,8 +692,9 @@ std::vector<Figure> count_instructions(const BenchOptions& o) {
 Command add_bench(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   app.add_option("what", o->what,
-                 "What to measure: lidar, episodes, all (both), or peers (the bench/peers programs side by side)")
-      ->check(CLI::IsMember({"lidar", "episodes", "all", "peers"}))
+                 "What to measure: lidar, episodes, planners, all (the three), guards (the figures the test "
+                 "suite guards), or peers (the bench/peers programs side by side)")
+      ->check(CLI::IsMember({"lidar", "episodes", "planners", "all", "guards", "peers"}))
       ->capture_default_str();
   app.add_option("--min-time", o->min_time_s, "Seconds to measure each LIDAR case")
       ->check(CLI::Range(0.1, 600.0))
@@ -582,7 +733,12 @@ Command add_bench(CLI::App& app) {
       "trees_rolling_terrain and vineyard. episodes: physics steps per second and real-time\n"
       "factor of whole closed-loop episodes (straight planner with its default parameters;\n"
       "quadrotor in trees_rolling_terrain, rover in vineyard) without sensors and with scanner3d\n"
-      "64x64 and 256x256 at 10 Hz. Single-threaded. Figures go in docs/PERFORMANCE.md.\n"
+      "64x64 and 256x256 at 10 Hz. planners: depth_reactive's replanning at 256x256 on the views\n"
+      "at the start of two_barriers and trees_rolling_terrain (median time per replan), and OctoMap's\n"
+      "mapping of 64x8 scans flown under the bridge (median time per scan). guards: the figures the\n"
+      "test suite holds against bench/instruction_guards.json (run with --instructions): LIDAR at\n"
+      "256x256, the episodes without a sensor, and planners. Single-threaded. Figures go in\n"
+      "docs/PERFORMANCE.md.\n"
       "A quick check that every case runs: campo bench episodes --episode-time 1\n"
       "Regression check: campo bench --json base.json on one revision, then campo bench\n"
       "--compare base.json on another (same machine): exit 3 when a figure is slower. With\n"
@@ -616,11 +772,13 @@ Command add_bench(CLI::App& app) {
       if (o->instructions && o->work_file.empty()) {
         throw InputError("command line", "--instructions", "under valgrind, campo bench runs itself: drop valgrind");
       }
-      if (o->what != "episodes") bench_lidar(*o, figures);
-      if (o->what != "lidar") {
-        bench_episodes(*o, figures);
-        bench_fleet(*o, figures);
-      }
+      const auto measures = [&](std::initializer_list<const char*> whats) {
+        return std::any_of(whats.begin(), whats.end(), [&](const char* w) { return o->what == w; });
+      };
+      if (measures({"lidar", "all", "guards"})) bench_lidar(*o, figures);
+      if (measures({"episodes", "all", "guards"})) bench_episodes(*o, figures);
+      if (measures({"episodes", "all"})) bench_fleet(*o, figures);
+      if (measures({"planners", "all", "guards"})) bench_planners(*o, figures);
       if (o->instructions) {  // inside callgrind: the amounts of work, for the parent
         nlohmann::json work = nlohmann::json::array();
         for (const Figure& f : figures) work.push_back({{"id", f.id}, {"value", f.value}, {"unit", f.unit}, {"details", f.details}});

@@ -104,13 +104,21 @@ TEST_F(BenchCli, PeersAreRecordedAndTheirTableComesFromTheRecord) {
   ASSERT_EQ(live.exit_code, 0) << live.err;
   const nlohmann::json peers = nlohmann::json::parse(testing::slurp(record));
   EXPECT_EQ(peers["provenance"]["command"], "campo bench peers --peers lidar");
-  ASSERT_EQ(peers["figures"].size(), 3u);  // trees, vineyard, terrain alone
+  // Trees, vineyard and the terrain alone, each against Embree robust, Embree not robust and the rasteriser.
+  ASSERT_EQ(peers["figures"].size(), 9u);
   for (const auto& f : peers["figures"]) {
-    EXPECT_THAT(f["id"].get<std::string>(), ::testing::StartsWith("peers/lidar/"));
+    const std::string id = f["id"].get<std::string>();
+    EXPECT_THAT(id, ::testing::StartsWith("peers/lidar/"));
     EXPECT_EQ(f["unit"], "rays/s");
     EXPECT_GT(f["value"].get<double>(), 1e5);
     EXPECT_GT(f["peer"].get<double>(), 1e5);
-    EXPECT_THAT(f["peer_name"].get<std::string>(), HasSubstr("Embree"));
+    const std::string peer = f["peer_name"].get<std::string>();
+    if (id.ends_with("/raster")) {
+      EXPECT_THAT(peer, HasSubstr("OSMesa"));
+    } else {
+      EXPECT_THAT(peer, HasSubstr("Embree"));
+      EXPECT_THAT(peer, HasSubstr(id.ends_with("/embree_not_robust") ? "not robust" : ", robust"));
+    }
   }
   const auto table = campo("bench --table " + record);
   ASSERT_EQ(table.exit_code, 0) << table.err;
