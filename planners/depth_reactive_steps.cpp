@@ -197,42 +197,59 @@ DilationParams margin_layers(double margin_m, const DepthGrid& grid, Structuring
 
 namespace {
 
+// The layer (1 to n) of a value, 0 for free space (no return, or not a number).
+class LayerLookup {
+ public:
+  explicit LayerLookup(const DilationParams& p) : n_(static_cast<int>(p.layer_radius_px.size())), upper_(p.layer_upper) {
+    CV_Assert(n_ >= 1);
+    CV_Assert(upper_.empty() || static_cast<int>(upper_.size()) == n_);
+    if (upper_.empty()) return;
+    // The first layer whose upper bound is at least the value (lower_bound),
+    // through a table of kBins bins over [0, 1): a bin holds the first
+    // candidate for its lower end, and the bounds inside the bin are stepped
+    // over one by one (the bins are exact in float and double, a power of 2),
+    // so the result is lower_bound's, without its search per value. A bin
+    // that holds no bound below its upper end gives every value in it the
+    // same layer, kept whole so that most values need no step at all.
+    first_.resize(kBins);
+    whole_.resize(kBins);
+    int k = 0;  // lower_bound of b / kBins, which only grows with b: one walk over the bounds
+    for (int b = 0; b < kBins; ++b) {
+      while (k < n_ && upper_[k] < static_cast<double>(b) / kBins) ++k;
+      first_[b] = k;
+      const bool uniform = k == n_ || upper_[k] >= static_cast<double>(b + 1) / kBins;
+      whole_[b] = uniform ? std::clamp(k + 1, 1, n_) : -1;
+    }
+  }
+
+  int operator()(float v) const {
+    if (!(v < 1.0f)) return 0;
+    if (upper_.empty()) return std::clamp(static_cast<int>(std::ceil(v * n_)), 1, n_);
+    if (v <= 0.0f) return stepped(0, v);
+    const int b = static_cast<int>(v * kBins);  // v < 1: the bin is below kBins
+    return whole_[b] >= 0 ? whole_[b] : stepped(first_[b], v);
+  }
+
+ private:
+  static constexpr int kBins = 4096;
+  int stepped(int k, float v) const {
+    while (k < n_ && upper_[k] < static_cast<double>(v)) ++k;
+    return std::clamp(k + 1, 1, n_);
+  }
+  int n_;
+  const std::vector<double>& upper_;
+  std::vector<int> first_, whole_;
+};
+
 // The layer (1 to n) of every pixel of `depth`, 0 for free space (no return,
 // or not a number).
 std::vector<int> depth_layers(const cv::Mat& depth, const DilationParams& p) {
-  const int n = static_cast<int>(p.layer_radius_px.size());
-  CV_Assert(depth.type() == CV_32F && depth.isContinuous() && n >= 1);
-  CV_Assert(p.layer_upper.empty() || static_cast<int>(p.layer_upper.size()) == n);
+  CV_Assert(depth.type() == CV_32F && depth.isContinuous());
+  const LayerLookup layer_of(p);
   const int pixels = static_cast<int>(depth.total());
   const float* value = depth.ptr<float>();
   std::vector<int> layer(static_cast<std::size_t>(pixels));
-  if (p.layer_upper.empty()) {
-    for (int i = 0; i < pixels; ++i) {
-      layer[i] = !(value[i] < 1.0f) ? 0 : std::clamp(static_cast<int>(std::ceil(value[i] * n)), 1, n);
-    }
-    return layer;
-  }
-  // The first layer whose upper bound is at least the value (lower_bound),
-  // through a table of kBins bins over [0, 1): a bin holds the first
-  // candidate for its lower end, and the bounds inside the bin are stepped
-  // over one by one (the bins are exact in float and double, a power of 2),
-  // so the result is lower_bound's, without its search per pixel.
-  constexpr int kBins = 4096;
-  const std::vector<double>& upper = p.layer_upper;
-  std::vector<int> first(kBins);
-  for (int b = 0; b < kBins; ++b) {
-    first[b] = static_cast<int>(std::lower_bound(upper.begin(), upper.end(), static_cast<double>(b) / kBins) - upper.begin());
-  }
-  for (int i = 0; i < pixels; ++i) {
-    const float v = value[i];
-    if (!(v < 1.0f)) {
-      layer[i] = 0;
-      continue;
-    }
-    int k = v > 0.0f ? first[static_cast<int>(v * kBins)] : 0;  // v < 1: the bin is below kBins
-    while (k < n && upper[k] < static_cast<double>(v)) ++k;
-    layer[i] = std::clamp(k + 1, 1, n);
-  }
+  for (int i = 0; i < pixels; ++i) layer[i] = layer_of(value[i]);
   return layer;
 }
 
@@ -249,35 +266,62 @@ void min_filter_line(const float* __restrict value, const std::int16_t* __restri
   // (the radius does not grow with the value), so it reaches no farther than
   // x does, at a value no smaller. The front is then the smallest value of
   // the candidates that still reach x, once those that do not are dropped.
-  thread_local std::vector<int> queue_buffer;
-  thread_local std::vector<int> left_buffer;
-  queue_buffer.resize(static_cast<std::size_t>(width));
-  left_buffer.resize(static_cast<std::size_t>(width));
-  int* __restrict queue = queue_buffer.data();
-  int* __restrict left = left_buffer.data();
+  // The queue keeps each candidate's value, carry and the last x it reaches
+  // side by side, and the forward pass leaves the winner's value and carry
+  // (not its index), so neither pass loads through an index.
+  struct Line {
+    std::vector<float> value, left_value;
+    std::vector<int> end;
+    std::vector<std::int16_t> carry, left_carry;
+  };
+  thread_local Line buffers;
+  const std::size_t w = static_cast<std::size_t>(width);
+  for (auto* v : {&buffers.value, &buffers.left_value}) v->resize(w);
+  buffers.end.resize(w);
+  for (auto* v : {&buffers.carry, &buffers.left_carry}) v->resize(w);
+  float* __restrict qv = buffers.value.data();
+  int* __restrict qe = buffers.end.data();
+  std::int16_t* __restrict qc = buffers.carry.data();
+  float* __restrict left_value = buffers.left_value.data();
+  std::int16_t* __restrict left_carry = buffers.left_carry.data();
   int head = 0;
   int tail = 0;
   for (int x = 0; x < width; ++x) {  // obstacle pixels at or left of x
-    if (radius[x] >= 0) {
+    const int r = radius[x];
+    if (r >= 0) {
       const float v = value[x];
-      while (tail > head && value[queue[tail - 1]] >= v) --tail;
-      queue[tail++] = x;
+      while (tail > head && qv[tail - 1] >= v) --tail;
+      qv[tail] = v;
+      qe[tail] = x + r;
+      qc[tail] = carry ? carry[x] : std::int16_t{-1};
+      ++tail;
     }
-    while (head < tail && queue[head] + radius[queue[head]] < x) ++head;
-    left[x] = head < tail ? queue[head] : -1;
+    while (head < tail && qe[head] < x) ++head;
+    const bool any = head < tail;
+    left_value[x] = any ? qv[head] : kEmpty;
+    left_carry[x] = any ? qc[head] : std::int16_t{-1};
   }
   head = tail = 0;
   for (int x = width - 1; x >= 0; --x) {  // at or right of x
-    if (radius[x] >= 0) {
+    const int r = radius[x];
+    if (r >= 0) {
       const float v = value[x];
-      while (tail > head && value[queue[tail - 1]] >= v) --tail;
-      queue[tail++] = x;
+      while (tail > head && qv[tail - 1] >= v) --tail;
+      qv[tail] = v;
+      qe[tail] = x - r;
+      qc[tail] = carry ? carry[x] : std::int16_t{-1};
+      ++tail;
     }
-    while (head < tail && queue[head] - radius[queue[head]] > x) ++head;
-    int q = left[x];
-    if (head < tail && (q < 0 || value[queue[head]] < value[q])) q = queue[head];
-    out[x] = q < 0 ? kEmpty : value[q];
-    if (carry_out) carry_out[x] = q < 0 ? std::int16_t{-1} : carry[q];
+    while (head < tail && qe[head] > x) ++head;
+    // Ties go to the left candidate; an obstacle's value is below kEmpty.
+    float best = left_value[x];
+    std::int16_t best_carry = left_carry[x];
+    if (head < tail && qv[head] < best) {
+      best = qv[head];
+      best_carry = qc[head];
+    }
+    out[x] = best;
+    if (carry_out) carry_out[x] = best_carry;
   }
 }
 
@@ -285,7 +329,7 @@ void min_filter_line(const float* __restrict value, const std::int16_t* __restri
 
 cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
   const int n = static_cast<int>(p.layer_radius_px.size());
-  const std::vector<int> layer = depth_layers(depth, p);
+  CV_Assert(depth.type() == CV_32F && depth.isContinuous() && n >= 1);
   const int pixels = static_cast<int>(depth.total());
   const float* value = depth.ptr<float>();
 
@@ -294,7 +338,7 @@ cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
     nested = nested && p.layer_radius_px[s].width <= p.layer_radius_px[s - 1].width &&
              p.layer_radius_px[s].height <= p.layer_radius_px[s - 1].height;
   }
-  cv::Mat out(depth.size(), CV_32F, cv::Scalar(1.0f));
+  cv::Mat out(depth.size(), CV_32F);
   if (nested) {
     // Square elements that shrink with depth: the dilation is separable with
     // each obstacle pixel's own radius. A pixel q covers p when |dx| <= rx(v_q)
@@ -316,9 +360,11 @@ cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
     cv::Mat rx(depth.size(), CV_16S), ry(depth.size(), CV_16S);
     std::int16_t* rxp = rx.ptr<std::int16_t>();
     std::int16_t* ryp = ry.ptr<std::int16_t>();
+    const LayerLookup layer_of(p);
     for (int i = 0; i < pixels; ++i) {
-      rxp[i] = rx_of[layer[i]];
-      ryp[i] = ry_of[layer[i]];
+      const int s = layer_of(value[i]);
+      rxp[i] = rx_of[s];
+      ryp[i] = ry_of[s];
     }
     cv::Mat across(depth.size(), CV_32F), across_ry(depth.size(), CV_16S);
     for (int y = 0; y < depth.rows; ++y) {
@@ -338,7 +384,9 @@ cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
     return out;
   }
 
+  out.setTo(1.0f);
   // The pixels of each layer, by a counting sort on the layer (0 = free space).
+  const std::vector<int> layer = depth_layers(depth, p);
   std::vector<int> start(n + 2, 0);
   for (int i = 0; i < pixels; ++i) ++start[layer[i] + 1];
   for (int s = 1; s <= n + 1; ++s) start[s] += start[s - 1];
@@ -512,6 +560,23 @@ cv::Mat threshold_free(const cv::Mat& dilated, double threshold) {
   return binary;
 }
 
+std::vector<Eigen::Vector2i> obstacle_border(const cv::Mat& free) {
+  CV_Assert(free.type() == CV_8U);
+  std::vector<Eigen::Vector2i> border;
+  for (int y = 0; y < free.rows; ++y) {
+    const std::uint8_t* row = free.ptr<std::uint8_t>(y);
+    const std::uint8_t* above = y > 0 ? free.ptr<std::uint8_t>(y - 1) : nullptr;
+    const std::uint8_t* below = y + 1 < free.rows ? free.ptr<std::uint8_t>(y + 1) : nullptr;
+    for (int x = 0; x < free.cols; ++x) {
+      if (!row[x]) continue;
+      if ((x > 0 && !row[x - 1]) || (x + 1 < free.cols && !row[x + 1]) || (above && !above[x]) || (below && !below[x])) {
+        border.emplace_back(x, y);
+      }
+    }
+  }
+  return border;
+}
+
 std::vector<Eigen::Vector2i> pixel_segment(const cv::Size& size, const Eigen::Vector2i& from,
                                            const Eigen::Vector2d& to) {
   // Far-away ends are pulled in along the segment so the integer end stays representable.
@@ -558,19 +623,13 @@ WaypointSearch find_waypoint(const cv::Mat& dilated, const DepthGrid& grid,
     return length <= 0.0 || clear(turn, turn + leg.normalized() * length);
   };
   search.threshold = std::min(0.5 * (target_range_norm + obstacle_range_norm), p.threshold_cap);
-  const cv::Mat free = threshold_free(dilated, search.threshold);
-  cv::Mat distance;
-  cv::distanceTransform(free, distance, cv::DIST_L1, 3, CV_8U);
-
   // Candidates: free pixels next to the obstacle, cheapest first (ties by row, then column).
   std::vector<std::tuple<double, int, int>> candidates;
-  for (int y = 0; y < distance.rows; ++y) {
-    const std::uint8_t* d = distance.ptr<std::uint8_t>(y);
-    for (int x = 0; x < distance.cols; ++x) {
-      if (d[x] != 1) continue;
-      const double cost = (target_pixel - Eigen::Vector2d(x, y)).norm() + p.altitude_penalty * std::abs(target_pixel.y() - y);
-      candidates.emplace_back(cost, y, x);
-    }
+  for (const Eigen::Vector2i& q : obstacle_border(threshold_free(dilated, search.threshold))) {
+    const int x = q.x();
+    const int y = q.y();
+    const double cost = (target_pixel - Eigen::Vector2d(x, y)).norm() + p.altitude_penalty * std::abs(target_pixel.y() - y);
+    candidates.emplace_back(cost, y, x);
   }
   search.candidates = static_cast<int>(candidates.size());
   const std::size_t tries = std::min<std::size_t>(candidates.size(), static_cast<std::size_t>(p.max_candidates));

@@ -213,6 +213,12 @@ struct WaypointSearch {
 /// The binary map of TrovaWP: 255 where the dilated map is above t (free), 0 elsewhere.
 cv::Mat threshold_free(const cv::Mat& dilated, double threshold);
 
+/// The free pixels (non-zero) of a binary map (CV_8U) that share a side
+/// with an obstacle pixel (0) of the map, row by row: those at distance 1
+/// in its L1 distance transform (cv::distanceTransform, DIST_L1), without
+/// the transform (outside the image is not an obstacle).
+std::vector<Eigen::Vector2i> obstacle_border(const cv::Mat& free);
+
 /// TrovaWP (000 §4.4): threshold the dilated map at t; L1 distance transform;
 /// among the free pixels next to the obstacle (distance 1) take the one
 /// minimising c(P); its distance is the first value below t scanning from P

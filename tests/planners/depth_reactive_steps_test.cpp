@@ -661,6 +661,39 @@ TEST(TrovaWP, ThresholdIsCapped) {
   EXPECT_NEAR(s.threshold, 0.9, 1e-12);
 }
 
+// The candidates of TrovaWP are the pixels at distance 1 of the L1 distance
+// transform; obstacle_border finds them without it: same pixels, same order,
+// on random maps of every density (obstacles on the image's edges too), a
+// map without obstacles and one without free pixels.
+TEST(TrovaWP, ObstacleBorderIsDistanceOneOfTheTransform) {
+  Rng rng(11);
+  std::size_t total = 0;
+  for (int trial = 0; trial < 60; ++trial) {
+    const int rows = 1 + static_cast<int>(rng.uniform_int(0, 40));
+    const int cols = 1 + static_cast<int>(rng.uniform_int(0, 40));
+    const double obstacle = trial == 0 ? 0.0 : trial == 1 ? 1.0 : rng.uniform(0.0, 1.0);
+    cv::Mat free(rows, cols, CV_8U);
+    for (int y = 0; y < rows; ++y) {
+      for (int x = 0; x < cols; ++x) free.at<std::uint8_t>(y, x) = rng.uniform(0.0, 1.0) < obstacle ? 0 : 255;
+    }
+    cv::Mat distance;
+    cv::distanceTransform(free, distance, cv::DIST_L1, 3, CV_8U);
+    std::vector<Eigen::Vector2i> expected;
+    for (int y = 0; y < rows; ++y) {
+      for (int x = 0; x < cols; ++x) {
+        if (distance.at<std::uint8_t>(y, x) == 1) expected.emplace_back(x, y);
+      }
+    }
+    const std::vector<Eigen::Vector2i> border = obstacle_border(free);
+    ASSERT_EQ(border.size(), expected.size()) << "trial " << trial << ", " << rows << " x " << cols;
+    for (std::size_t i = 0; i < border.size(); ++i) {
+      EXPECT_EQ(border[i], expected[i]) << "trial " << trial << ", pixel " << i;
+    }
+    total += expected.size();
+  }
+  EXPECT_GT(total, 1000u);  // the maps do have borders to compare
+}
+
 TEST(PixelSegment, RunsFromTheStartTowardAPointOutsideTheImage) {
   const auto pixels = pixel_segment({10, 10}, {2, 5}, {1000.0, 5.0});
   ASSERT_EQ(pixels.size(), 8u);
