@@ -232,10 +232,21 @@ double Quadrotor::thrust_n() const {
   return total;
 }
 
+// Built in place, once per control tick: the same object an initializer list
+// would give, without its intermediate copies of each key and array.
 nlohmann::json Quadrotor::actuators() const {
-  return {{"rotor_speed_command_radps", rotor_commands_},
-          {"rotor_speed_radps", rotor_speeds_},
-          {"thrust_n", thrust_n()}};
+  const auto array = [](const RotorSpeeds& speeds) {
+    nlohmann::json::array_t a;
+    a.reserve(speeds.size());
+    for (const double w : speeds) a.emplace_back(w);
+    return a;
+  };
+  nlohmann::json j(nlohmann::json::value_t::object);
+  auto& fields = j.get_ref<nlohmann::json::object_t&>();
+  fields.emplace("rotor_speed_command_radps", array(rotor_commands_));
+  fields.emplace("rotor_speed_radps", array(rotor_speeds_));
+  fields.emplace("thrust_n", thrust_n());
+  return j;
 }
 
 }  // namespace campo

@@ -429,10 +429,16 @@ WheelSpeeds Rover::measured_side_speeds() const {
 nlohmann::json Rover::actuators() const {
   static constexpr std::string_view kNames[kWheels] = {"front_left", "front_right", "rear_left",
                                                        "rear_right"};
+  // Built in place, once per control tick: the same object an initializer
+  // list would give, without its intermediate copies.
   const auto measured = wheel_speeds_radps();
-  nlohmann::json j = nlohmann::json::object();
+  nlohmann::json j(nlohmann::json::value_t::object);
+  auto& wheels = j.get_ref<nlohmann::json::object_t&>();
   for (int i = 0; i < kWheels; ++i) {
-    j[std::string(kNames[i])] = {{"command_radps", wheel_targets_[i]}, {"speed_radps", measured[i]}};
+    nlohmann::json::object_t wheel;
+    wheel.emplace("command_radps", wheel_targets_[i]);
+    wheel.emplace("speed_radps", measured[i]);
+    wheels.emplace(std::string(kNames[i]), std::move(wheel));
   }
   return j;
 }

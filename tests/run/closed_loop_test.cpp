@@ -1,4 +1,5 @@
 // Whole episodes with the real vehicles and the registry's planners.
+#include <array>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -141,5 +142,48 @@ TEST(ClosedLoop, RecordsTheHeightAboveTheGroundBelow) {
   EXPECT_NE(csv.substr(0, csv.find('\n')).find(",height_above_ground_m"), std::string::npos);
 }
 
+
+// The actuator records of the trajectory, built in place by the vehicles, are
+// the objects the nested initializer lists they replaced give from the same
+// numbers: the same keys, floating-point values and text.
+TEST(ClosedLoop, ActuatorRecordsAreTheObjectsOfTheirInitializerLists) {
+  const EpisodeResult drone = run_episode(bundled("trees_rolling_terrain", 1.0), &make_vehicle, &create_planner);
+  ASSERT_FALSE(drone.only().trajectory.empty());
+  for (const TrajectorySample& s : drone.only().trajectory) {
+    const nlohmann::json& a = s.actuators;
+    const auto speeds = [](const nlohmann::json& j) {
+      std::array<double, 4> w{};
+      EXPECT_EQ(j.size(), 4u);
+      for (std::size_t i = 0; i < 4; ++i) {
+        EXPECT_TRUE(j.at(i).is_number_float());
+        w[i] = j.at(i).get<double>();
+      }
+      return w;
+    };
+    ASSERT_EQ(a.size(), 3u);
+    const nlohmann::json former = {{"rotor_speed_command_radps", speeds(a.at("rotor_speed_command_radps"))},
+                                   {"rotor_speed_radps", speeds(a.at("rotor_speed_radps"))},
+                                   {"thrust_n", a.at("thrust_n").get<double>()}};
+    EXPECT_EQ(a, former);
+    EXPECT_EQ(a.dump(), former.dump());
+  }
+  const EpisodeResult rover = run_episode(bundled("vineyard", 1.0), &make_vehicle, &create_planner);
+  ASSERT_FALSE(rover.only().trajectory.empty());
+  for (const TrajectorySample& s : rover.only().trajectory) {
+    const nlohmann::json& a = s.actuators;
+    ASSERT_EQ(a.size(), 4u);
+    nlohmann::json former = nlohmann::json::object();
+    for (const char* wheel : {"front_left", "front_right", "rear_left", "rear_right"}) {
+      const nlohmann::json& w = a.at(wheel);
+      ASSERT_EQ(w.size(), 2u);
+      EXPECT_TRUE(w.at("command_radps").is_number_float());
+      EXPECT_TRUE(w.at("speed_radps").is_number_float());
+      former[std::string(wheel)] = {{"command_radps", w.at("command_radps").get<double>()},
+                                    {"speed_radps", w.at("speed_radps").get<double>()}};
+    }
+    EXPECT_EQ(a, former);
+    EXPECT_EQ(a.dump(), former.dump());
+  }
+}
 }  // namespace
 }  // namespace campo
