@@ -507,6 +507,34 @@ VisibilityCheck check_visibility(const cv::Mat& dilated, const DepthGrid& grid, 
   return c;
 }
 
+std::optional<float> value_at_direction(const cv::Mat& image, const DepthGrid& grid, const Eigen::Vector3d& d) {
+  // DepthGrid::project in float: atan2f is off by a few float ulps of the
+  // angle plus the inputs' rounding to float, under 1e-6 rad; a pixel
+  // boundary more than 1e-5 rad from the float angle is on the same side of
+  // the exact one, so the pixels read are project's. Nearer, project decides.
+  constexpr double kSureRad = 1.0e-5;
+  const float xf = static_cast<float>(d.x());
+  const float yf = static_cast<float>(d.y());
+  const float zf = static_cast<float>(d.z());
+  const double azimuth_deg = static_cast<double>(std::atan2(yf, xf)) * kRadToDeg;
+  const double elevation_deg = static_cast<double>(std::atan2(zf, std::hypot(xf, yf))) * kRadToDeg;
+  // Pixel centres at integers: the pixel holding c is the one whose centre
+  // lies within half a pixel, so its boundaries are at half-integers.
+  const double cx = (0.5 * grid.fov_h_deg - azimuth_deg) / grid.deg_per_col();
+  const double cy = (0.5 * grid.fov_v_deg - elevation_deg) / grid.deg_per_row();
+  const double fx = cx - std::floor(cx);  // boundaries at whole numbers of these
+  const double fy = cy - std::floor(cy);
+  const double sure_x = kSureRad * kRadToDeg / grid.deg_per_col();
+  const double sure_y = kSureRad * kRadToDeg / grid.deg_per_row();
+  if (!(fx > sure_x && fx < 1.0 - sure_x && fy > sure_y && fy < 1.0 - sure_y)) {
+    return min_in_ellipse(image, grid.project(d), 0.0, 0.0);
+  }
+  const int x = static_cast<int>(std::floor(cx));
+  const int y = static_cast<int>(std::floor(cy));
+  if (x < 0 || y < 0 || x >= image.cols || y >= image.rows) return std::nullopt;
+  return image.at<float>(y, x);
+}
+
 bool segment_clear(const cv::Mat& dilated, const DepthGrid& grid, const Eigen::Vector3d& from,
                    const Eigen::Vector3d& to, double depth_margin_m, double min_range_m, const cv::Mat* depth) {
   const Eigen::Vector3d along = to - from;
@@ -520,7 +548,7 @@ bool segment_clear(const cv::Mat& dilated, const DepthGrid& grid, const Eigen::V
     const Eigen::Vector3d p = length > 0.0 ? from + along * (t / length) : from;
     const double range = p.norm();
     if (range >= min_range_m) {
-      const std::optional<float> m = min_in_ellipse(dilated, grid.project(p), 0.0, 0.0);
+      const std::optional<float> m = value_at_direction(dilated, grid, p);
       if (!m) return false;  // out of view: nothing vouches for it
       const double obstacle_m = *m * grid.max_range_m;
       if (*m < 1.0f && obstacle_m - range <= depth_margin_m) {

@@ -139,6 +139,13 @@ VisibilityCheck check_visibility(const cv::Mat& dilated, const DepthGrid& grid,
 /// rays. +infinity when none is nearer than radius_m.
 double nearest_hit_m(const cv::Mat& depth, const DepthGrid& grid, const Eigen::Vector3d& point, double radius_m);
 
+/// The smallest value of `image` over the pixels whose footprint holds the
+/// projection of direction `d` (sensor frame; grid.project, two pixels or
+/// four on a boundary), none when it lies outside the image. Mostly without
+/// project's double atan2: in float, unless the float angles lie within
+/// 1e-5 rad of a pixel boundary (their error is under 1e-6 rad).
+std::optional<float> value_at_direction(const cv::Mat& image, const DepthGrid& grid, const Eigen::Vector3d& d);
+
 /// Whether the straight segment from `from_sensor` to `to_sensor` (sensor
 /// frame) keeps `depth_margin_m` from everything on the dilated map: every
 /// point P of it at least `min_range_m` from the sensor is in view and the

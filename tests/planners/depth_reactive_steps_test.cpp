@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -692,6 +693,46 @@ TEST(TrovaWP, ObstacleBorderIsDistanceOneOfTheTransform) {
     total += expected.size();
   }
   EXPECT_GT(total, 1000u);  // the maps do have borders to compare
+}
+
+// segment_clear reads the map along its points through value_at_direction;
+// it must read what DepthGrid::project says: the pixels whose centres lie
+// within half a pixel of the projection (two or four on a boundary), none
+// outside the image. Random directions in and around the field of view at
+// several resolutions, and directions through pixel boundaries and corners
+// (where the float shortcut must defer to project).
+TEST(SegmentClear, ValueAtDirectionReadsTheProjectedPixels) {
+  Rng rng(5);
+  for (const int size : {16, 64, 256, 1024}) {
+    DepthGrid grid;
+    grid.cols = size;
+    grid.rows = size * 3 / 4;
+    grid.fov_h_deg = 90.0;
+    grid.fov_v_deg = 60.0;
+    cv::Mat image(grid.rows, grid.cols, CV_32F);
+    for (int y = 0; y < grid.rows; ++y) {
+      for (int x = 0; x < grid.cols; ++x) image.at<float>(y, x) = static_cast<float>(rng.uniform(0.0, 1.0));
+    }
+    const auto expected = [&](const Eigen::Vector3d& d) -> std::optional<float> {
+      const Eigen::Vector2d c = grid.project(d);
+      std::optional<float> best;
+      for (int y = 0; y < grid.rows; ++y) {
+        for (int x = 0; x < grid.cols; ++x) {
+          if (std::abs(x - c.x()) > 0.5 || std::abs(y - c.y()) > 0.5) continue;
+          best = std::min(best.value_or(2.0f), image.at<float>(y, x));
+        }
+      }
+      return best;
+    };
+    for (int i = 0; i < 400; ++i) {
+      Eigen::Vector2d pixel(rng.uniform(-3.0, grid.cols + 2.0), rng.uniform(-3.0, grid.rows + 2.0));
+      if (i % 4 == 1) pixel.x() = std::round(pixel.x()) + 0.5;  // on a column boundary
+      if (i % 4 == 2) pixel.y() = std::round(pixel.y()) + 0.5;  // on a row boundary
+      if (i % 4 == 3) pixel = (pixel.array().round() + 0.5).matrix();  // on a corner
+      const Eigen::Vector3d d = grid.direction(pixel) * rng.uniform(0.5, 20.0);
+      EXPECT_EQ(value_at_direction(image, grid, d), expected(d)) << size << " px, direction " << d.transpose();
+    }
+  }
 }
 
 TEST(PixelSegment, RunsFromTheStartTowardAPointOutsideTheImage) {
