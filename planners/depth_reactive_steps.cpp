@@ -9,6 +9,10 @@
 
 #include <opencv2/imgproc.hpp>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 namespace campo {
 
 namespace {
@@ -253,79 +257,162 @@ std::vector<int> depth_layers(const cv::Mat& depth, const DilationParams& p) {
   return layer;
 }
 
-// Minimum filter of one line whose window is each obstacle pixel's own:
-// out[x] = the smallest value[q] with |x - q| <= radius[q] (radius[q] < 0:
-// no obstacle at q; the radius must not grow with the value), kEmpty when
-// there is none; carry_out[x] = carry[q] of that q (when carry_out is given).
-void min_filter_line(const float* __restrict value, const std::int16_t* __restrict radius,
-                     const std::int16_t* __restrict carry, int width, float* __restrict out,
-                     std::int16_t* __restrict carry_out) {
-  // Candidates q, oldest first, whose reach covers the current x, with
-  // values increasing from front to back. A new obstacle pixel x makes every
-  // candidate q < x with value >= value[x] useless: its radius is no larger
-  // (the radius does not grow with the value), so it reaches no farther than
-  // x does, at a value no smaller. The front is then the smallest value of
-  // the candidates that still reach x, once those that do not are dropped.
-  // The queue keeps each candidate's value, carry and the last x it reaches
-  // side by side, and the forward pass leaves the winner's value and carry
-  // (not its index), so neither pass loads through an index.
-  struct Line {
-    std::vector<float> value, left_value;
-    std::vector<int> end;
-    std::vector<std::int16_t> carry, left_carry;
-  };
-  thread_local Line buffers;
-  const std::size_t w = static_cast<std::size_t>(width);
-  for (auto* v : {&buffers.value, &buffers.left_value}) v->resize(w);
-  buffers.end.resize(w);
-  for (auto* v : {&buffers.carry, &buffers.left_carry}) v->resize(w);
-  float* __restrict qv = buffers.value.data();
-  int* __restrict qe = buffers.end.data();
-  std::int16_t* __restrict qc = buffers.carry.data();
-  float* __restrict left_value = buffers.left_value.data();
-  std::int16_t* __restrict left_carry = buffers.left_carry.data();
-  int head = 0;
-  int tail = 0;
-  for (int x = 0; x < width; ++x) {  // obstacle pixels at or left of x
-    const int r = radius[x];
-    if (r >= 0) {
-      const float v = value[x];
-      while (tail > head && qv[tail - 1] >= v) --tail;
-      qv[tail] = v;
-      qe[tail] = x + r;
-      qc[tail] = carry ? carry[x] : std::int16_t{-1};
-      ++tail;
-    }
-    while (head < tail && qe[head] < x) ++head;
-    const bool any = head < tail;
-    left_value[x] = any ? qv[head] : kEmpty;
-    left_carry[x] = any ? qc[head] : std::int16_t{-1};
+// out[i] = min(a[i], b[i], c[i]) for i < n (out must not alias the inputs).
+// Eight lanes at a time with AVX2 where the CPU has it, four with SSE
+// otherwise; a minimum is exact, so both give the same floats.
+#if defined(__x86_64__)
+__attribute__((target("avx2"))) void min3_avx2(const float* a, const float* b, const float* c, float* out,
+                                               std::size_t n) {
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    const __m256 ab = _mm256_min_ps(_mm256_loadu_ps(a + i), _mm256_loadu_ps(b + i));
+    _mm256_storeu_ps(out + i, _mm256_min_ps(ab, _mm256_loadu_ps(c + i)));
   }
-  head = tail = 0;
-  for (int x = width - 1; x >= 0; --x) {  // at or right of x
-    const int r = radius[x];
-    if (r >= 0) {
-      const float v = value[x];
-      while (tail > head && qv[tail - 1] >= v) --tail;
-      qv[tail] = v;
-      qe[tail] = x - r;
-      qc[tail] = carry ? carry[x] : std::int16_t{-1};
-      ++tail;
-    }
-    while (head < tail && qe[head] > x) ++head;
-    // Ties go to the left candidate; an obstacle's value is below kEmpty.
-    float best = left_value[x];
-    std::int16_t best_carry = left_carry[x];
-    if (head < tail && qv[head] < best) {
-      best = qv[head];
-      best_carry = qc[head];
-    }
-    out[x] = best;
-    if (carry_out) carry_out[x] = best_carry;
+  if (i < n && n >= 8) {
+    // The last eight again, overlapping: the same minima (out aliases no input).
+    const std::size_t k = n - 8;
+    const __m256 ab = _mm256_min_ps(_mm256_loadu_ps(a + k), _mm256_loadu_ps(b + k));
+    _mm256_storeu_ps(out + k, _mm256_min_ps(ab, _mm256_loadu_ps(c + k)));
+    return;
+  }
+  for (; i < n; ++i) {
+    const float ab = a[i] < b[i] ? a[i] : b[i];
+    out[i] = ab < c[i] ? ab : c[i];
+  }
+}
+#endif
+
+void min3(const float* a, const float* b, const float* c, float* out, std::size_t n) {
+#if defined(__x86_64__)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) {
+    min3_avx2(a, b, c, out, n);
+    return;
+  }
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const __m128 ab = _mm_min_ps(_mm_loadu_ps(a + i), _mm_loadu_ps(b + i));
+    _mm_storeu_ps(out + i, _mm_min_ps(ab, _mm_loadu_ps(c + i)));
+  }
+#else
+  std::size_t i = 0;
+#endif
+  for (; i < n; ++i) {
+    const float ab = a[i] < b[i] ? a[i] : b[i];
+    out[i] = ab < c[i] ? ab : c[i];
   }
 }
 
 }  // namespace
+
+cv::Rect erode_rect(std::vector<float>& image, std::vector<float>& scratch, int rows, int cols, cv::Rect box, int rx,
+                    int ry) {
+  CV_Assert(rows >= 0 && cols >= 0 && rx >= 0 && ry >= 0 && image.size() == static_cast<std::size_t>(rows) * cols &&
+            scratch.size() == image.size());
+  box &= cv::Rect(0, 0, cols, rows);
+  if (box.empty()) return box;
+  // A window wider than the line covers all of it whatever its size.
+  rx = std::min(rx, cols - 1);
+  ry = std::min(ry, rows - 1);
+  const std::size_t stride = static_cast<std::size_t>(cols);
+  thread_local std::vector<float> prefix, suffix, transposed, empty_row;
+  // Radius 1 along the rows of `r`: each pixel and its two neighbours.
+  const auto across_by_one = [&](const float* a, float* out, const cv::Rect& r) {
+    const std::size_t width = static_cast<std::size_t>(r.width);
+    for (int y = r.y; y < r.y + r.height; ++y) {
+      const std::size_t i0 = static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(r.x);
+      const std::size_t i1 = i0 + width - 1;  // width >= 2 here
+      if (width > 2) min3(a + i0, a + i0 + 1, a + i0 + 2, out + i0 + 1, width - 2);
+      out[i0] = std::min(a[i0], a[i0 + 1]);
+      out[i1] = std::min(a[i1 - 1], a[i1]);
+    }
+  };
+  // Radius 1 down the columns of `r`: each row and the rows above and below it.
+  const auto down_by_one = [&](const float* a, float* out, const cv::Rect& r) {
+    const std::size_t width = static_cast<std::size_t>(r.width);
+    const auto row = [&](int y) { return static_cast<std::size_t>(y) * stride + static_cast<std::size_t>(r.x); };
+    const int last = r.y + r.height - 1;  // r.height >= 2 here
+    min3(a + row(r.y), a + row(r.y + 1), a + row(r.y + 1), out + row(r.y), width);
+    min3(a + row(last - 1), a + row(last), a + row(last), out + row(last), width);
+    for (int y = r.y + 1; y < last; ++y) min3(a + row(y - 1), a + row(y), a + row(y + 1), out + row(y), width);
+  };
+  // Radius d down the columns of `r`, in place (van Herk / Gil-Werman): the
+  // column padded by d empty pixels at each end is cut into blocks of 2 d + 1;
+  // a window of 2 d + 1 meets at most two blocks, so its minimum is the
+  // suffix minimum of its first pixel's block and the prefix minimum of its
+  // last one's. Three passes whatever d, a row of minima at a time.
+  const auto down_by = [&](float* a, std::size_t line_stride, const cv::Rect& r, int d) {
+    const std::size_t width = static_cast<std::size_t>(r.width);
+    const std::size_t n_rows = static_cast<std::size_t>(r.height);
+    const std::size_t pad = static_cast<std::size_t>(d);
+    const std::size_t block = 2 * pad + 1;
+    const std::size_t padded = n_rows + 2 * pad;
+    if (prefix.size() < padded * width) prefix.resize(padded * width);
+    if (suffix.size() < padded * width) suffix.resize(padded * width);
+    if (empty_row.size() < width) empty_row.resize(width, kEmpty);
+    float* const first = a + static_cast<std::size_t>(r.y) * line_stride + static_cast<std::size_t>(r.x);
+    const auto row = [&](std::size_t p) -> const float* {
+      return p >= pad && p < n_rows + pad ? first + (p - pad) * line_stride : empty_row.data();
+    };
+    for (std::size_t p = 0; p < padded; ++p) {
+      float* g = prefix.data() + p * width;
+      if (p % block == 0) {
+        std::copy_n(row(p), width, g);
+      } else {
+        min3(g - width, row(p), row(p), g, width);
+      }
+    }
+    for (std::size_t p = padded; p-- > 0;) {
+      float* h = suffix.data() + p * width;
+      if (p % block == block - 1 || p == padded - 1) {
+        std::copy_n(row(p), width, h);
+      } else {
+        min3(h + width, row(p), row(p), h, width);
+      }
+    }
+    for (std::size_t y = 0; y < n_rows; ++y) {
+      const float* h = suffix.data() + y * width;
+      min3(h, prefix.data() + (y + block - 1) * width, h, first + y * line_stride, width);
+    }
+  };
+  // The pixels outside `box` are empty, so the result is too beyond `box`
+  // grown by the radii: only that rectangle is computed.
+  constexpr int kStepped = 3;  // small radii as repeated steps of 1 (one pass each), larger in three
+  const cv::Rect image_rect(0, 0, cols, rows);
+  if (rx > 0) {
+    box = cv::Rect(box.x - rx, box.y, box.width + 2 * rx, box.height) & image_rect;
+    if (rx <= kStepped) {
+      for (int k = 0; k < rx; ++k) {
+        across_by_one(image.data(), scratch.data(), box);
+        image.swap(scratch);  // both stay empty outside the (growing) box
+      }
+    } else {
+      if (transposed.size() < image.size()) transposed.resize(image.size());
+      cv::Mat source = cv::Mat(rows, cols, CV_32F, image.data())(box);
+      cv::Mat columns(box.width, box.height, CV_32F, transposed.data());
+      cv::transpose(source, columns);
+      down_by(transposed.data(), static_cast<std::size_t>(box.height), cv::Rect(0, 0, box.height, box.width), rx);
+      cv::transpose(columns, source);
+    }
+  }
+  if (ry > 0) {
+    box = cv::Rect(box.x, box.y - ry, box.width, box.height + 2 * ry) & image_rect;
+    if (ry <= kStepped) {
+      for (int k = 0; k < ry; ++k) {
+        down_by_one(image.data(), scratch.data(), box);
+        image.swap(scratch);
+      }
+    } else {
+      down_by(image.data(), stride, box, ry);
+    }
+  }
+  return box;
+}
+
+void erode_rect(std::vector<float>& image, int rows, int cols, int rx, int ry) {
+  std::vector<float> scratch(image.size(), kEmpty);
+  erode_rect(image, scratch, rows, cols, cv::Rect(0, 0, cols, rows), rx, ry);
+}
 
 cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
   const int n = static_cast<int>(p.layer_radius_px.size());
@@ -339,52 +426,6 @@ cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
              p.layer_radius_px[s].height <= p.layer_radius_px[s - 1].height;
   }
   cv::Mat out(depth.size(), CV_32F);
-  if (nested) {
-    // Square elements that shrink with depth: the dilation is separable with
-    // each obstacle pixel's own radius. A pixel q covers p when |dx| <= rx(v_q)
-    // and |dy| <= ry(v_q). Along each row, keep for every x only the smallest
-    // value h among the row's pixels that reach x across: any other, of value
-    // v >= h, has ry(v) <= ry(h), so every pixel it would reach down the
-    // column h reaches too, with a value no larger. The columns then take the
-    // same filter on h with ry(h). Two O(width) passes per line, whatever the
-    // number of layers (one erosion per layer in the chain it replaces).
-    // Radii beyond the image change nothing: clipped to its size, in 16 bits.
-    const int limit = std::max(depth.cols, depth.rows);
-    CV_Assert(limit <= std::numeric_limits<std::int16_t>::max());
-    const auto clip = [&](int r) { return static_cast<std::int16_t>(std::clamp(r, 0, limit)); };
-    std::vector<std::int16_t> rx_of(n + 1, -1), ry_of(n + 1, -1);  // by layer, -1: free space
-    for (int s = 1; s <= n; ++s) {
-      rx_of[s] = clip(p.layer_radius_px[s - 1].width);
-      ry_of[s] = clip(p.layer_radius_px[s - 1].height);
-    }
-    cv::Mat rx(depth.size(), CV_16S), ry(depth.size(), CV_16S);
-    std::int16_t* rxp = rx.ptr<std::int16_t>();
-    std::int16_t* ryp = ry.ptr<std::int16_t>();
-    const LayerLookup layer_of(p);
-    for (int i = 0; i < pixels; ++i) {
-      const int s = layer_of(value[i]);
-      rxp[i] = rx_of[s];
-      ryp[i] = ry_of[s];
-    }
-    cv::Mat across(depth.size(), CV_32F), across_ry(depth.size(), CV_16S);
-    for (int y = 0; y < depth.rows; ++y) {
-      min_filter_line(depth.ptr<float>(y), rx.ptr<std::int16_t>(y), ry.ptr<std::int16_t>(y), depth.cols,
-                      across.ptr<float>(y), across_ry.ptr<std::int16_t>(y));
-    }
-    cv::Mat columns, columns_ry;
-    cv::transpose(across, columns);
-    cv::transpose(across_ry, columns_ry);
-    cv::Mat down(columns.size(), CV_32F);
-    for (int x = 0; x < columns.rows; ++x) {
-      min_filter_line(columns.ptr<float>(x), columns_ry.ptr<std::int16_t>(x), nullptr, columns.cols,
-                      down.ptr<float>(x), nullptr);
-    }
-    cv::transpose(down, columns);
-    cv::min(columns, 1.0, out);
-    return out;
-  }
-
-  out.setTo(1.0f);
   // The pixels of each layer, by a counting sort on the layer (0 = free space).
   const std::vector<int> layer = depth_layers(depth, p);
   std::vector<int> start(n + 2, 0);
@@ -394,6 +435,65 @@ cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
   std::vector<int> next(start.begin(), start.end() - 1);
   for (int i = 0; i < pixels; ++i) order[next[layer[i]]++] = i;
   const auto layer_pixels = [&](int s) { return std::span<const int>(order.data() + start[s], order.data() + start[s + 1]); };
+  if (nested) {
+    // Square elements that shrink with depth, nearest layer first: the
+    // dilation is the minimum over layers s of E(r_s) applied to layer s's
+    // pixels alone (E(r): the minimum filter with a (2 rx + 1) x (2 ry + 1)
+    // rectangle, nothing beyond the border). Rectangles add: E(a) E(b) =
+    // E(a + b), and E distributes over the minimum, so with r_1 >= r_2 >= ...
+    // the whole is one chain, Horner's way:
+    //   acc = layer 1; acc = min(E(r_1 - r_2) acc, layer 2); ...; E(r_n) acc,
+    // which applies to layer s exactly the sum of the steps after it, r_s.
+    // Each step is a few passes of vector minima over the image (E with a
+    // radius of 1 is one pass, a larger one three), and empty layers take
+    // no step of their own (their steps add up into the next).
+    // Radii beyond the image change nothing: clipped to its size.
+    const auto clip = [](int r, int size) { return std::clamp(r, 0, std::max(size - 1, 0)); };
+    // Only the rectangle that holds the obstacles so far, grown by each step,
+    // is computed; the rest is still empty.
+    thread_local std::vector<float> acc, scratch;
+    acc.assign(static_cast<std::size_t>(pixels), kEmpty);
+    scratch.assign(static_cast<std::size_t>(pixels), kEmpty);
+    cv::Rect box;
+    int last_rx = -1;
+    int last_ry = -1;
+    for (int s = 1; s <= n; ++s) {
+      const std::span<const int> members = layer_pixels(s);
+      if (members.empty()) continue;
+      const int rx = clip(p.layer_radius_px[s - 1].width, depth.cols);
+      const int ry = clip(p.layer_radius_px[s - 1].height, depth.rows);
+      if (last_rx >= 0) box = erode_rect(acc, scratch, depth.rows, depth.cols, box, last_rx - rx, last_ry - ry);
+      int x0 = box.empty() ? depth.cols : box.x;
+      int y0 = box.empty() ? depth.rows : box.y;
+      int x1 = box.empty() ? -1 : box.x + box.width - 1;
+      int y1 = box.empty() ? -1 : box.y + box.height - 1;
+      // The members come in increasing index (the counting sort is stable):
+      // their row only advances, so it is followed rather than divided out.
+      int y = members.front() / depth.cols;
+      int row_start = y * depth.cols;
+      y0 = std::min(y0, y);
+      for (const int i : members) {
+        acc[i] = std::min(acc[i], value[i]);
+        while (i >= row_start + depth.cols) {
+          ++y;
+          row_start += depth.cols;
+        }
+        x0 = std::min(x0, i - row_start);
+        x1 = std::max(x1, i - row_start);
+      }
+      y1 = std::max(y1, y);
+      box = cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
+      last_rx = rx;
+      last_ry = ry;
+    }
+    if (last_rx >= 0) erode_rect(acc, scratch, depth.rows, depth.cols, box, last_rx, last_ry);
+    float* o = out.ptr<float>();
+    for (int i = 0; i < pixels; ++i) o[i] = std::min(acc[i], 1.0f);
+    return out;
+  }
+
+  out.setTo(1.0f);
+  out.setTo(1.0f);
   const cv::Rect image(0, 0, depth.cols, depth.rows);
   for (int s = 1; s <= n; ++s) {
     const std::span<const int> members = layer_pixels(s);

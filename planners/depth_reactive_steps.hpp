@@ -92,6 +92,18 @@ DilationParams margin_layers(double margin_m, const DepthGrid& grid, Structuring
 /// pixels whose element covers it, or 1 when none does.
 cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& params);
 
+/// Minimum filter, in place, of a row-major `rows` x `cols` float image with
+/// a (2 rx + 1) x (2 ry + 1) rectangle, nothing beyond the border (as
+/// cv::erode with a constant border above every value). Vector minima, in
+/// passes over whole rows: the step of DilataMappa's chain of layers.
+void erode_rect(std::vector<float>& image, int rows, int cols, int rx, int ry);
+/// The same on the pixels that can change when those outside `box` are all
+/// above every value (empty): only `box` grown by the radii is computed, and
+/// returned; `scratch` (the image's size, empty outside `box` too) may be
+/// swapped with `image`, and both stay empty outside the returned box.
+cv::Rect erode_rect(std::vector<float>& image, std::vector<float>& scratch, int rows, int cols, cv::Rect box, int rx,
+                    int ry);
+
 // ------------------------------------------------------- ControllaVisibilita
 
 enum class Visibility { visible, invisible, unreachable };

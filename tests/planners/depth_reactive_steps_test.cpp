@@ -350,8 +350,8 @@ cv::Mat random_scene_map(Rng& rng, int size, const DilationParams& p) {
 }
 
 TEST(DilataMappa, MarginLayersEqualOneErosionPerRadiusOnRandomMaps) {
-  // The dilation the planner runs (one pass along the rows and one down the
-  // columns, each pixel with its own radius) against one OpenCV erosion per
+  // The dilation the planner runs (a chain of rectangle erosions, nearest
+  // layer first, each layer joining with the steps still to come) against one OpenCV erosion per
   // layer: equal value for value, at the grids the planner flies at, the
   // square default and a wider field across than down (different radii).
   Rng rng(2026);
@@ -374,7 +374,7 @@ TEST(DilataMappa, MarginLayersEqualOneErosionPerRadiusOnRandomMaps) {
 TEST(DilataMappa, SeparableDilationEqualsTheDefinitionForAnyShrinkingRadii) {
   // Radii that shrink with depth, drawn at random (equal steps, flat runs,
   // different across and down, beyond the image), on small maps of every
-  // density: the row-then-column filter against the definition.
+  // density: the chain of rectangle erosions against the definition.
   Rng rng(99);
   for (int trial = 0; trial < 200; ++trial) {
     const int size = static_cast<int>(rng.uniform_int(1, 24));
@@ -422,6 +422,62 @@ TEST(DilataMappa, StartViewsOfTheSeed000ScenesEqualOneErosionPerRadius) {
     const cv::Mat fast = dilate_depth_map(depth, p);
     EXPECT_EQ(cv::countNonZero(fast != per_layer_dilation(depth, p)), 0) << name;
     EXPECT_LT(cv::countNonZero(fast < 1.0f), static_cast<int>(fast.total())) << name << ": some free space";
+  }
+}
+
+TEST(DilataMappa, ErodeRectEqualsOpenCvErosion) {
+  // erode_rect (vector minima: steps of 1, or blocks of 2 r + 1 for larger
+  // radii) against cv::erode with a constant border above every value, on
+  // random images of every shape from 1 x 1, radii from 0 to beyond the image,
+  // values with many ties and empty pixels.
+  Rng rng(7);
+  constexpr float kAbove = std::numeric_limits<float>::max();
+  for (int trial = 0; trial < 300; ++trial) {
+    const bool large = trial < 6;
+    const int rows = large ? 256 : static_cast<int>(rng.uniform_int(1, 40));
+    const int cols = large ? 256 : static_cast<int>(rng.uniform_int(1, 40));
+    const int rx = static_cast<int>(rng.uniform_int(0, large ? 300 : 45));
+    const int ry = static_cast<int>(rng.uniform_int(0, large ? 300 : 45));
+    cv::Mat image(rows, cols, CV_32F);
+    for (int y = 0; y < rows; ++y) {
+      for (int x = 0; x < cols; ++x) {
+        image.at<float>(y, x) =
+            rng.bernoulli(0.3) ? kAbove : static_cast<float>(rng.uniform_int(0, 20)) / 20.0f;
+      }
+    }
+    cv::Mat reference;
+    cv::erode(image, reference, cv::getStructuringElement(cv::MORPH_RECT, {2 * rx + 1, 2 * ry + 1}),
+              cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(kAbove));
+    std::vector<float> flat(image.begin<float>(), image.end<float>());
+    erode_rect(flat, rows, cols, rx, ry);
+    const cv::Mat fast(rows, cols, CV_32F, flat.data());
+    EXPECT_EQ(cv::countNonZero(fast != reference), 0) << rows << " x " << cols << ", radii " << rx << ", " << ry;
+
+    // Only a box holds values: the same result, computed in the grown box,
+    // with the scratch (garbage inside the box) and the image empty beyond it.
+    const int bx = static_cast<int>(rng.uniform_int(0, cols - 1));
+    const int by = static_cast<int>(rng.uniform_int(0, rows - 1));
+    const cv::Rect box(bx, by, static_cast<int>(rng.uniform_int(1, cols - bx)),
+                       static_cast<int>(rng.uniform_int(1, rows - by)));
+    cv::Mat boxed(rows, cols, CV_32F, cv::Scalar(kAbove));
+    image(box).copyTo(boxed(box));
+    cv::erode(boxed, reference, cv::getStructuringElement(cv::MORPH_RECT, {2 * rx + 1, 2 * ry + 1}),
+              cv::Point(-1, -1), 1, cv::BORDER_CONSTANT, cv::Scalar(kAbove));
+    std::vector<float> in_box(boxed.begin<float>(), boxed.end<float>());
+    std::vector<float> scratch(in_box.size(), kAbove);
+    for (int y = box.y; y < box.y + box.height; ++y) {
+      for (int x = box.x; x < box.x + box.width; ++x) scratch[static_cast<std::size_t>(y) * cols + x] = -1.0f;
+    }
+    const cv::Rect grown = erode_rect(in_box, scratch, rows, cols, box, rx, ry);
+    EXPECT_EQ(cv::countNonZero(cv::Mat(rows, cols, CV_32F, in_box.data()) != reference), 0)
+        << rows << " x " << cols << ", box " << box << ", radii " << rx << ", " << ry;
+    for (int y = 0; y < rows; ++y) {
+      for (int x = 0; x < cols; ++x) {
+        if (grown.contains({x, y})) continue;
+        ASSERT_EQ(in_box[static_cast<std::size_t>(y) * cols + x], kAbove);
+        ASSERT_EQ(scratch[static_cast<std::size_t>(y) * cols + x], kAbove);
+      }
+    }
   }
 }
 
