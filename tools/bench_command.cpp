@@ -445,7 +445,7 @@ class ReplanCase {
     const WaypointSearch found =
         find_waypoint(dilated, grid_, check.pixel, check.waypoint_range_m / grid_.max_range_m,
                       check.obstacle_range_m / grid_.max_range_m, find_waypoint_params(config_));
-    benchmark_sink_ += found.candidates;
+    candidates_seen_ += found.candidates;
   }
   static constexpr int kResolution = 256;
 
@@ -456,7 +456,7 @@ class ReplanCase {
   DepthGrid grid_;
   DilationParams params_;
   Eigen::Vector3d target_sensor_;
-  mutable long benchmark_sink_ = 0;  // keeps the search from being optimised away
+  mutable long candidates_seen_ = 0;  // used, so the search is not optimised away
 };
 
 // OctoMap mapping as dstar_lite_3d maps with "mapping": "octomap": a 64 x 8 scanner (90 x 30 deg,
