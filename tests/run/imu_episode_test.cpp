@@ -231,7 +231,8 @@ TEST(ImuEpisode, TheFilesAreNamedAsTheTrajectoriesAndHoldEveryRow) {
   EXPECT_EQ(imu_file(two, 1), "imu_west.csv");
   VehicleDef def;
   def.imus = {{"a", {}}, {"b", {}}};
-  const std::string csv = imu_csv(def, {{1, 0.25, {0.5, -1.0, 9.81}, {0.0, 0.125, -2.0}}, {0, 0.5, {}, {}}});
+  // Zero() spelled out: `{}` would value-initialise an Eigen vector, which leaves it uninitialised.
+  const std::string csv = imu_csv(def, {{1, 0.25, {0.5, -1.0, 9.81}, {0.0, 0.125, -2.0}}, {0, 0.5, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}});
   EXPECT_EQ(csv,
             "time_s,alias,f_x_mps2,f_y_mps2,f_z_mps2,w_x_radps,w_y_radps,w_z_radps\n"
             "0.250000,b,0.5,-1,9.81,0,0.125,-2\n"
