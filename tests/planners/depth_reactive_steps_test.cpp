@@ -481,6 +481,47 @@ TEST(DilataMappa, ErodeRectEqualsOpenCvErosion) {
   }
 }
 
+TEST(DilataMappa, TheThreeByThreeStepInPlaceIsTheErosion) {
+  // The chain's usual step (radius 1 both ways) runs in one pass, in place,
+  // through a ring of row minima: against cv::erode on random boxes of random
+  // images, including one-pixel-wide and one-pixel-high images and boxes at
+  // every side.
+  Rng rng(11);
+  constexpr float kAbove = std::numeric_limits<float>::max();
+  for (int trial = 0; trial < 400; ++trial) {
+    const int rows = trial < 4 ? 256 : static_cast<int>(rng.uniform_int(1, 30));
+    const int cols = trial < 4 ? 256 : static_cast<int>(rng.uniform_int(1, 30));
+    const int bx = static_cast<int>(rng.uniform_int(0, cols - 1));
+    const int by = static_cast<int>(rng.uniform_int(0, rows - 1));
+    const cv::Rect box(bx, by, static_cast<int>(rng.uniform_int(1, cols - bx)),
+                       static_cast<int>(rng.uniform_int(1, rows - by)));
+    cv::Mat boxed(rows, cols, CV_32F, cv::Scalar(kAbove));
+    for (int y = box.y; y < box.y + box.height; ++y) {
+      for (int x = box.x; x < box.x + box.width; ++x) {
+        boxed.at<float>(y, x) = rng.bernoulli(0.2) ? kAbove : static_cast<float>(rng.uniform_int(0, 30)) / 30.0f;
+      }
+    }
+    cv::Mat reference;
+    cv::erode(boxed, reference, cv::getStructuringElement(cv::MORPH_RECT, {3, 3}), cv::Point(-1, -1), 1,
+              cv::BORDER_CONSTANT, cv::Scalar(kAbove));
+    std::vector<float> image(boxed.begin<float>(), boxed.end<float>());
+    std::vector<float> scratch(image.size(), kAbove);
+    const cv::Rect grown = erode_rect(image, scratch, rows, cols, box, 1, 1);
+    EXPECT_EQ(cv::countNonZero(cv::Mat(rows, cols, CV_32F, image.data()) != reference), 0)
+        << rows << " x " << cols << ", box " << box;
+    EXPECT_EQ(grown, cv::Rect(box.x - 1, box.y - 1, box.width + 2, box.height + 2) & cv::Rect(0, 0, cols, rows));
+    // Twice more, as the chain runs it: each step on the last one's box.
+    cv::Rect again = grown;
+    for (int k = 0; k < 2; ++k) {
+      cv::erode(reference, reference, cv::getStructuringElement(cv::MORPH_RECT, {3, 3}), cv::Point(-1, -1), 1,
+                cv::BORDER_CONSTANT, cv::Scalar(kAbove));
+      again = erode_rect(image, scratch, rows, cols, again, 1, 1);
+    }
+    EXPECT_EQ(cv::countNonZero(cv::Mat(rows, cols, CV_32F, image.data()) != reference), 0)
+        << rows << " x " << cols << ", box " << box << ", three steps";
+  }
+}
+
 TEST(DilataMappa, NoReturnIsFreeSpace) {
   const cv::Mat out = dilate_depth_map(free_map(16), DilationParams{StructuringShape::square, descending_radii(9, 2)});
   EXPECT_EQ(cv::countNonZero(out != 1.0f), 0);
