@@ -209,20 +209,31 @@ class LayerLookup {
     CV_Assert(upper_.empty() || static_cast<int>(upper_.size()) == n_);
     if (upper_.empty()) return;
     // The first layer whose upper bound is at least the value (lower_bound),
-    // through a table of kBins bins over [0, 1): a bin holds the first
-    // candidate for its lower end, and the bounds inside the bin are stepped
-    // over one by one (the bins are exact in float and double, a power of 2),
-    // so the result is lower_bound's, without its search per value. A bin
-    // that holds no bound below its upper end gives every value in it the
-    // same layer, kept whole so that most values need no step at all.
-    first_.resize(kBins);
-    whole_.resize(kBins);
+    // through a table of kBins bins over [0, 1) (exact in float and double,
+    // a power of 2). A bin that holds no bound gives all its values one
+    // layer; one that holds one bound, the layer below it or the next, by a
+    // comparison with the bound rounded down to a float (v > that float
+    // exactly when v > the bound, v being a float); one that holds more,
+    // stepped over from the bin's first candidate. So the result is
+    // lower_bound's, and almost every value costs a load and a comparison,
+    // without a branch that neighbouring pixels could mispredict.
+    bins_.resize(kBins);
     int k = 0;  // lower_bound of b / kBins, which only grows with b: one walk over the bounds
     for (int b = 0; b < kBins; ++b) {
       while (k < n_ && upper_[k] < static_cast<double>(b) / kBins) ++k;
-      first_[b] = k;
-      const bool uniform = k == n_ || upper_[k] >= static_cast<double>(b + 1) / kBins;
-      whole_[b] = uniform ? std::clamp(k + 1, 1, n_) : -1;
+      const double bin_end = static_cast<double>(b + 1) / kBins;
+      Bin& bin = bins_[b];
+      bin.first = k;
+      if (k >= n_ - 1 || upper_[k] >= bin_end) {
+        bin.layer = std::clamp(k + 1, 1, n_);  // no bound inside, or only the last (beyond it the layer is n too)
+      } else if (upper_[k + 1] >= bin_end) {
+        float below = static_cast<float>(upper_[k]);
+        if (static_cast<double>(below) > upper_[k]) below = std::nextafter(below, -1.0f);
+        bin.above = below;
+        bin.layer = k + 1;
+      } else {
+        bin.layer = -1;
+      }
     }
   }
 
@@ -230,19 +241,24 @@ class LayerLookup {
     if (!(v < 1.0f)) return 0;
     if (upper_.empty()) return std::clamp(static_cast<int>(std::ceil(v * n_)), 1, n_);
     if (v <= 0.0f) return stepped(0, v);
-    const int b = static_cast<int>(v * kBins);  // v < 1: the bin is below kBins
-    return whole_[b] >= 0 ? whole_[b] : stepped(first_[b], v);
+    const Bin& bin = bins_[static_cast<std::size_t>(v * kBins)];  // v < 1: the bin is below kBins
+    return bin.layer >= 0 ? bin.layer + static_cast<int>(v > bin.above) : stepped(bin.first, v);
   }
 
  private:
   static constexpr int kBins = 4096;
+  struct Bin {
+    float above = std::numeric_limits<float>::infinity();  // values above it take the next layer
+    int layer = 0;  // of the values up to `above`; -1: several bounds, stepped from `first`
+    int first = 0;
+  };
   int stepped(int k, float v) const {
     while (k < n_ && upper_[k] < static_cast<double>(v)) ++k;
     return std::clamp(k + 1, 1, n_);
   }
   int n_;
   const std::vector<double>& upper_;
-  std::vector<int> first_, whole_;
+  std::vector<Bin> bins_;
 };
 
 // Consecutive pixels of one row in one layer.
