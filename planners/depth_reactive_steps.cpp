@@ -9,6 +9,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "planners/fast_atan.hpp"
+
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
@@ -706,16 +708,20 @@ VisibilityCheck check_visibility(const cv::Mat& dilated, const DepthGrid& grid, 
 }
 
 std::optional<float> value_at_direction(const cv::Mat& image, const DepthGrid& grid, const Eigen::Vector3d& d) {
-  // DepthGrid::project in float: atan2f is off by a few float ulps of the
-  // angle plus the inputs' rounding to float, under 1e-6 rad; a pixel
-  // boundary more than 1e-5 rad from the float angle is on the same side of
-  // the exact one, so the pixels read are project's. Nearer, project decides.
+  // DepthGrid::project from floats: fast_atan2_double is within 6e-9 rad of
+  // the arctangent of its float arguments, and their rounding to float (the
+  // horizontal length's too) moves the angle by a few 1e-7 rad at most; so
+  // the angles are within 1e-6 rad, and a pixel boundary more than 1e-5 rad
+  // from them is on the same side of the exact angle: the pixels read are
+  // project's. Nearer a boundary, project decides.
   constexpr double kSureRad = 1.0e-5;
   const float xf = static_cast<float>(d.x());
   const float yf = static_cast<float>(d.y());
   const float zf = static_cast<float>(d.z());
-  const double azimuth_deg = static_cast<double>(std::atan2(yf, xf)) * kRadToDeg;
-  const double elevation_deg = static_cast<double>(std::atan2(zf, std::hypot(xf, yf))) * kRadToDeg;
+  const float horizontal = static_cast<float>(
+      std::sqrt(static_cast<double>(xf) * xf + static_cast<double>(yf) * yf));
+  const double azimuth_deg = fast_atan2_double(yf, xf) * kRadToDeg;
+  const double elevation_deg = fast_atan2_double(zf, horizontal) * kRadToDeg;
   // Pixel centres at integers: the pixel holding c is the one whose centre
   // lies within half a pixel, so its boundaries are at half-integers.
   const double cx = (0.5 * grid.fov_h_deg - azimuth_deg) / grid.deg_per_col();
