@@ -1,6 +1,7 @@
 #include "planners/depth_reactive_steps.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -799,11 +800,36 @@ std::vector<Eigen::Vector2i> obstacle_border(const cv::Mat& free) {
     const std::uint8_t* row = free.ptr<std::uint8_t>(y);
     const std::uint8_t* above = y > 0 ? free.ptr<std::uint8_t>(y - 1) : nullptr;
     const std::uint8_t* below = y + 1 < free.rows ? free.ptr<std::uint8_t>(y + 1) : nullptr;
-    for (int x = 0; x < free.cols; ++x) {
-      if (!row[x]) continue;
-      if ((x > 0 && !row[x - 1]) || (x + 1 < free.cols && !row[x + 1]) || (above && !above[x]) || (below && !below[x])) {
-        border.emplace_back(x, y);
+    // A free pixel with an obstacle beside, above or below it (none beyond the image).
+    const auto on_border = [&](int x) {
+      return row[x] &&
+             ((x > 0 && !row[x - 1]) || (x + 1 < free.cols && !row[x + 1]) || (above && !above[x]) || (below && !below[x]));
+    };
+    int x = 0;
+#if defined(__SSE2__)
+    // Sixteen pixels with both side neighbours in the image at a time: the
+    // same test on bytes, the pixels it marks taken in order from the mask.
+    if (x == 0 && free.cols > 0) {
+      if (on_border(0)) border.emplace_back(0, y);
+      x = 1;
+    }
+    const __m128i zero = _mm_setzero_si128();
+    const auto blocked = [&](const std::uint8_t* p) {
+      return _mm_cmpeq_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)), zero);
+    };
+    for (; x + 17 <= free.cols; x += 16) {
+      __m128i near = _mm_or_si128(blocked(row + x - 1), blocked(row + x + 1));
+      if (above) near = _mm_or_si128(near, blocked(above + x));
+      if (below) near = _mm_or_si128(near, blocked(below + x));
+      unsigned mask = static_cast<unsigned>(_mm_movemask_epi8(_mm_andnot_si128(blocked(row + x), near)));
+      while (mask) {
+        border.emplace_back(x + std::countr_zero(mask), y);
+        mask &= mask - 1;
       }
+    }
+#endif
+    for (; x < free.cols; ++x) {
+      if (on_border(x)) border.emplace_back(x, y);
     }
   }
   return border;

@@ -768,7 +768,9 @@ TEST(TrovaWP, ObstacleBorderIsDistanceOneOfTheTransform) {
   std::size_t total = 0;
   for (int trial = 0; trial < 60; ++trial) {
     const int rows = 1 + static_cast<int>(rng.uniform_int(0, 40));
-    const int cols = 1 + static_cast<int>(rng.uniform_int(0, 40));
+    // Some rows as wide as the planner's images (sixteen pixels at a time there).
+    const int cols = trial % 10 == 9 ? 250 + static_cast<int>(rng.uniform_int(0, 20))
+                                     : 1 + static_cast<int>(rng.uniform_int(0, 40));
     const double obstacle = trial == 0 ? 0.0 : trial == 1 ? 1.0 : rng.uniform(0.0, 1.0);
     cv::Mat free(rows, cols, CV_8U);
     for (int y = 0; y < rows; ++y) {
