@@ -2,8 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <numbers>
 #include <stdexcept>
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 namespace campo {
 
@@ -111,24 +117,63 @@ float reported_range(double range_m, const RangeSensorConfig& config) {
   return static_cast<float>(std::clamp(range_m, 0.0, config.max_range_m));
 }
 
+namespace {
+
+// depth_map's value of one beam: 1 without a return, 0 nearer than the
+// minimum range, else the range over the maximum, at most 1.
+float normalised_depth(float range_m, std::uint8_t hit, double min_range_m, double max_range_m) {
+  const double range = range_m;
+  if (!hit) return 1.0f;
+  if (range < min_range_m) return 0.0f;
+  return static_cast<float>(std::min(range / max_range_m, 1.0));
+}
+
+#if defined(__x86_64__)
+// normalised_depth four beams at a time, the same operations in the same
+// order (a quotient in double, its minimum with 1 as std::min takes it, one
+// rounding to float), so the same floats; returns the beams it did.
+__attribute__((target("avx2"))) std::size_t normalised_depths_avx2(const float* ranges, const std::uint8_t* hits,
+                                                                  float* out, std::size_t n, double min_range_m,
+                                                                  double max_range_m) {
+  const __m256d min_range = _mm256_set1_pd(min_range_m);
+  const __m256d max_range = _mm256_set1_pd(max_range_m);
+  const __m256d one = _mm256_set1_pd(1.0);
+  const __m128 no_return = _mm_set1_ps(1.0f);
+  const __m256i even_lanes = _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0);
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    const __m256d range = _mm256_cvtps_pd(_mm_loadu_ps(ranges + i));
+    // std::min(q, 1.0) is (1.0 < q ? 1.0 : q): min_pd(one, q) exactly, a NaN quotient included.
+    const __m128 quotient = _mm256_cvtpd_ps(_mm256_min_pd(one, _mm256_div_pd(range, max_range)));
+    // range < min_range, its four 64-bit masks narrowed to 32-bit lanes: 0 there.
+    const __m256d below = _mm256_cmp_pd(range, min_range, _CMP_LT_OQ);
+    const __m128 below_lanes = _mm256_castps256_ps128(_mm256_permutevar8x32_ps(_mm256_castpd_ps(below), even_lanes));
+    const __m128 hit_value = _mm_andnot_ps(below_lanes, quotient);
+    std::int32_t hit_bytes;
+    std::memcpy(&hit_bytes, hits + i, sizeof hit_bytes);
+    const __m128i no_hit = _mm_cmpeq_epi32(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(hit_bytes)), _mm_setzero_si128());
+    _mm_storeu_ps(out + i, _mm_blendv_ps(hit_value, no_return, _mm_castsi128_ps(no_hit)));
+  }
+  return i;
+}
+#endif
+
+}  // namespace
+
 cv::Mat depth_map(const RangeScan& scan, const RangeSensorConfig& config) {
   cv::Mat depth(scan.rows, scan.cols, CV_32F);
-  const double min_range = config.min_range_m;
-  const double max_range = config.max_range_m;
-  for (int row = 0; row < scan.rows; ++row) {
-    auto* pixel = depth.ptr<float>(row);
-    for (int col = 0; col < scan.cols; ++col) {
-      const std::size_t i = static_cast<std::size_t>(row) * scan.cols + col;
-      const double range = scan.ranges_m[i];
-      if (!scan.hits[i]) {
-        pixel[col] = 1.0f;
-      } else if (range < min_range) {
-        pixel[col] = 0.0f;
-      } else {
-        pixel[col] = static_cast<float>(std::min(range / max_range, 1.0));
-      }
-    }
+  const std::size_t beams = static_cast<std::size_t>(scan.rows) * static_cast<std::size_t>(scan.cols);
+  CV_Assert(depth.isContinuous() && scan.ranges_m.size() >= beams && scan.hits.size() >= beams);
+  float* out = depth.ptr<float>();
+  std::size_t i = 0;
+#if defined(__x86_64__)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2) {
+    i = normalised_depths_avx2(scan.ranges_m.data(), scan.hits.data(), out, beams, config.min_range_m,
+                               config.max_range_m);
   }
+#endif
+  for (; i < beams; ++i) out[i] = normalised_depth(scan.ranges_m[i], scan.hits[i], config.min_range_m, config.max_range_m);
   return depth;
 }
 

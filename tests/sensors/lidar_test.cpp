@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
 #include <numbers>
 #include <stdexcept>
 #include <string_view>
@@ -232,6 +235,42 @@ TEST(Lidar, DepthMapIsRangeOverMaxZeroBelowMinAndOneWithoutReturn) {
   EXPECT_FLOAT_EQ(depth.at<float>(0, 1), 0.0f);
   EXPECT_FLOAT_EQ(depth.at<float>(1, 0), 1.0f);
   EXPECT_FLOAT_EQ(depth.at<float>(1, 1), 0.25f);
+}
+
+TEST(Lidar, DepthMapIsItsDefinitionOnEveryBeamOfAnOddSizedScan) {
+  // Beams are done several at a time where the CPU allows: every beam of a
+  // scan whose size is not a multiple of any vector width, against the
+  // definition in double (a hit's range over the maximum, at most 1; 0 below
+  // the minimum range; 1 without a return), with ranges at and around both
+  // limits, beyond the maximum, zero, and a NaN.
+  RangeSensorConfig c = grid_config(37, 11, 90.0, 30.0);
+  c.min_range_m = 0.3;
+  c.max_range_m = 12.5;
+  RangeScan scan;
+  scan.rows = 11;
+  scan.cols = 37;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> range(0.0f, 14.0f);
+  const float special[] = {0.0f, 0.3f, std::nextafter(0.3f, 0.0f), std::nextafter(0.3f, 1.0f), 12.5f,
+                           std::nextafter(12.5f, 0.0f), 13.0f, std::numeric_limits<float>::quiet_NaN()};
+  for (int i = 0; i < scan.rows * scan.cols; ++i) {
+    scan.ranges_m.push_back(i % 5 == 0 ? special[(i / 5) % 8] : range(rng));
+    scan.hits.push_back(static_cast<std::uint8_t>(i % 7 == 3 ? 0 : 1 + i % 2));
+  }
+  const cv::Mat depth = depth_map(scan, c);
+  for (int i = 0; i < scan.rows * scan.cols; ++i) {
+    const double r = scan.ranges_m[static_cast<std::size_t>(i)];
+    const float got = depth.at<float>(i / scan.cols, i % scan.cols);
+    if (!scan.hits[static_cast<std::size_t>(i)]) {
+      EXPECT_EQ(got, 1.0f) << i;
+    } else if (r < c.min_range_m) {
+      EXPECT_EQ(got, 0.0f) << i;
+    } else if (std::isnan(r)) {
+      EXPECT_TRUE(std::isnan(got)) << i;
+    } else {
+      EXPECT_EQ(got, static_cast<float>(r / c.max_range_m > 1.0 ? 1.0 : r / c.max_range_m)) << i << ": " << r;
+    }
+  }
 }
 
 TEST(Lidar, DepthMapPixelZeroZeroLooksUpAndLeft) {
