@@ -708,36 +708,61 @@ VisibilityCheck check_visibility(const cv::Mat& dilated, const DepthGrid& grid, 
   return c;
 }
 
-std::optional<float> value_at_direction(const cv::Mat& image, const DepthGrid& grid, const Eigen::Vector3d& d) {
-  // DepthGrid::project from floats: fast_atan2_double is within 6e-9 rad of
-  // the arctangent of its float arguments, and their rounding to float (the
-  // horizontal length's too) moves the angle by a few 1e-7 rad at most; so
-  // the angles are within 1e-6 rad, and a pixel boundary more than 1e-5 rad
-  // from them is on the same side of the exact angle: the pixels read are
-  // project's. Nearer a boundary, project decides.
-  constexpr double kSureRad = 1.0e-5;
-  const float xf = static_cast<float>(d.x());
-  const float yf = static_cast<float>(d.y());
-  const float zf = static_cast<float>(d.z());
-  const float horizontal = static_cast<float>(
-      std::sqrt(static_cast<double>(xf) * xf + static_cast<double>(yf) * yf));
-  const double azimuth_deg = fast_atan2_double(yf, xf) * kRadToDeg;
-  const double elevation_deg = fast_atan2_double(zf, horizontal) * kRadToDeg;
-  // Pixel centres at integers: the pixel holding c is the one whose centre
-  // lies within half a pixel, so its boundaries are at half-integers.
-  const double cx = (0.5 * grid.fov_h_deg - azimuth_deg) / grid.deg_per_col();
-  const double cy = (0.5 * grid.fov_v_deg - elevation_deg) / grid.deg_per_row();
-  const double fx = cx - std::floor(cx);  // boundaries at whole numbers of these
-  const double fy = cy - std::floor(cy);
-  const double sure_x = kSureRad * kRadToDeg / grid.deg_per_col();
-  const double sure_y = kSureRad * kRadToDeg / grid.deg_per_row();
-  if (!(fx > sure_x && fx < 1.0 - sure_x && fy > sure_y && fy < 1.0 - sure_y)) {
-    return min_in_ellipse(image, grid.project(d), 0.0, 0.0);
+namespace {
+
+// value_at_direction for one grid, its constants worked out once (a segment
+// asks it at every step).
+class PixelLookup {
+ public:
+  explicit PixelLookup(const DepthGrid& grid)
+      : grid_(grid),
+        half_fov_h_rad_(0.5 * grid.fov_h_deg * kDegToRad),
+        half_fov_v_rad_(0.5 * grid.fov_v_deg * kDegToRad),
+        cols_per_rad_(1.0 / (grid.deg_per_col() * kDegToRad)),
+        rows_per_rad_(1.0 / (grid.deg_per_row() * kDegToRad)),
+        sure_x_(kSureRad * cols_per_rad_),
+        sure_y_(kSureRad * rows_per_rad_) {}
+
+  std::optional<float> operator()(const cv::Mat& image, const Eigen::Vector3d& d) const {
+    // DepthGrid::project from floats: fast_atan2_double is within 6e-9 rad
+    // of the arctangent of its float arguments, and their rounding to float
+    // (the horizontal length's too) moves the angle by a few 1e-7 rad at
+    // most; so the angles are within 1e-6 rad, and a pixel boundary more than
+    // kSureRad from them is on the same side of the exact angle: the pixels
+    // read are project's. Nearer a boundary, project decides. (The products
+    // with the pitches' reciprocals err by ulps of a pixel, nothing beside
+    // that margin.)
+    const float xf = static_cast<float>(d.x());
+    const float yf = static_cast<float>(d.y());
+    const float zf = static_cast<float>(d.z());
+    const float horizontal = static_cast<float>(
+        std::sqrt(static_cast<double>(xf) * xf + static_cast<double>(yf) * yf));
+    // Pixel k spans [k, k + 1) in these (project puts its centre at k).
+    const double cx = (half_fov_h_rad_ - fast_atan2_double(yf, xf)) * cols_per_rad_;
+    const double cy = (half_fov_v_rad_ - fast_atan2_double(zf, horizontal)) * rows_per_rad_;
+    const double fx = cx - std::floor(cx);  // boundaries at whole numbers of these
+    const double fy = cy - std::floor(cy);
+    if (!(fx > sure_x_ && fx < 1.0 - sure_x_ && fy > sure_y_ && fy < 1.0 - sure_y_)) {
+      return min_in_ellipse(image, grid_.project(d), 0.0, 0.0);
+    }
+    const int x = static_cast<int>(std::floor(cx));
+    const int y = static_cast<int>(std::floor(cy));
+    if (x < 0 || y < 0 || x >= image.cols || y >= image.rows) return std::nullopt;
+    return image.at<float>(y, x);
   }
-  const int x = static_cast<int>(std::floor(cx));
-  const int y = static_cast<int>(std::floor(cy));
-  if (x < 0 || y < 0 || x >= image.cols || y >= image.rows) return std::nullopt;
-  return image.at<float>(y, x);
+
+ private:
+  static constexpr double kSureRad = 1.0e-5;
+  const DepthGrid& grid_;
+  double half_fov_h_rad_, half_fov_v_rad_;
+  double cols_per_rad_, rows_per_rad_;  // pixels per radian of azimuth, of elevation
+  double sure_x_, sure_y_;              // kSureRad in pixels
+};
+
+}  // namespace
+
+std::optional<float> value_at_direction(const cv::Mat& image, const DepthGrid& grid, const Eigen::Vector3d& d) {
+  return PixelLookup(grid)(image, d);
 }
 
 bool segment_clear(const cv::Mat& dilated, const DepthGrid& grid, const Eigen::Vector3d& from,
@@ -747,13 +772,14 @@ bool segment_clear(const cv::Mat& dilated, const DepthGrid& grid, const Eigen::V
   // Steps of at most half the finer pitch as seen from the sensor: a point
   // at range d moves across the line of sight by at most the step.
   const double half_px_rad = 0.5 * std::min(grid.deg_per_col(), grid.deg_per_row()) * kDegToRad;
+  const PixelLookup value_at(grid);
   constexpr int kMaxSteps = 100000;
   double t = 0.0;  // metres from `from`
   for (int step = 0; step < kMaxSteps; ++step) {
     const Eigen::Vector3d p = length > 0.0 ? from + along * (t / length) : from;
     const double range = p.norm();
     if (range >= min_range_m) {
-      const std::optional<float> m = value_at_direction(dilated, grid, p);
+      const std::optional<float> m = value_at(dilated, p);
       if (!m) return false;  // out of view: nothing vouches for it
       const double obstacle_m = *m * grid.max_range_m;
       if (*m < 1.0f && obstacle_m - range <= depth_margin_m) {
