@@ -12,30 +12,13 @@
 #include "campo/scene_loader.hpp"
 #include "planners/depth_reactive.hpp"
 #include "sensors/lidar.hpp"
-#include "sensors/raycaster.hpp"
+#include "tools/bench_workloads.hpp"
 
 namespace campo {
 namespace {
 
-struct StartView {
-  RangeSensorConfig config;
-  DepthGrid grid;
-  RangeScan scan;
-  Eigen::Vector3d target_m;
-};
-
 StartView start_view(const std::string& name, int resolution) {
-  const Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json");
-  const VehicleDef& drone = scene.vehicles.front();
-  StartView v;
-  v.config = drone.sensors.front().range;
-  v.config.cols = v.config.rows = resolution;
-  v.target_m = drone.mission.front().position_m;
-  const RayCaster caster(scene);
-  Lidar lidar(v.config, scene.world.seed);
-  lidar.scan(caster, drone.pose * to_isometry(v.config.mount), 0.0, v.scan);
-  v.grid = DepthGrid::of(v.scan, v.config);
-  return v;
+  return campo::start_view(load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json"), resolution);
 }
 
 DepthReactiveConfig planner_config(StructuringShape shape) {
@@ -46,14 +29,14 @@ DepthReactiveConfig planner_config(StructuringShape shape) {
 
 void BM_DilataMappa(benchmark::State& state, const std::string& name, StructuringShape shape) {
   const StartView v = start_view(name, static_cast<int>(state.range(0)));
-  const cv::Mat depth = depth_map(v.scan, v.config);
+  const cv::Mat depth = depth_map(v.scan, v.sensor);
   const DilationParams params = dilation_params(planner_config(shape), v.grid);
   for (auto _ : state) benchmark::DoNotOptimize(dilate_depth_map(depth, params));
 }
 
 void BM_ThresholdAndDistanceTransform(benchmark::State& state, const std::string& name) {
   const StartView v = start_view(name, static_cast<int>(state.range(0)));
-  const cv::Mat dilated = dilate_depth_map(depth_map(v.scan, v.config), dilation_params(DepthReactiveConfig{}, v.grid));
+  const cv::Mat dilated = dilate_depth_map(depth_map(v.scan, v.sensor), dilation_params(DepthReactiveConfig{}, v.grid));
   cv::Mat distance;
   for (auto _ : state) {
     cv::distanceTransform(threshold_free(dilated, 0.6), distance, cv::DIST_L1, 3, CV_8U);
@@ -65,7 +48,7 @@ void BM_ThresholdAndDistanceTransform(benchmark::State& state, const std::string
 void BM_TrovaWP(benchmark::State& state, const std::string& name) {
   const StartView v = start_view(name, static_cast<int>(state.range(0)));
   const DepthReactiveConfig config;
-  const cv::Mat dilated = dilate_depth_map(depth_map(v.scan, v.config), dilation_params(config, v.grid));
+  const cv::Mat dilated = dilate_depth_map(depth_map(v.scan, v.sensor), dilation_params(config, v.grid));
   const Eigen::Vector3d target = v.scan.sensor_pose.inverse() * v.target_m;
   const VisibilityCheck check = check_visibility(dilated, v.grid, target, config.safety_radius_m);
   for (auto _ : state) {
@@ -81,7 +64,7 @@ void BM_Replan(benchmark::State& state, const std::string& name) {
   const DilationParams params = dilation_params(config, v.grid);
   const Eigen::Vector3d target = v.scan.sensor_pose.inverse() * v.target_m;
   for (auto _ : state) {
-    const cv::Mat dilated = dilate_depth_map(depth_map(v.scan, v.config), params);
+    const cv::Mat dilated = dilate_depth_map(depth_map(v.scan, v.sensor), params);
     const VisibilityCheck check = check_visibility(dilated, v.grid, target, config.safety_radius_m);
     benchmark::DoNotOptimize(find_waypoint(dilated, v.grid, check.pixel, check.waypoint_range_m / v.grid.max_range_m,
                                            check.obstacle_range_m / v.grid.max_range_m, find_waypoint_params(config)));
@@ -102,13 +85,13 @@ void BM_ReplanAsPlanner(benchmark::State& state, const std::string& name) {
   const double margin = config.margin_in_depth ? config.dilation_margin_m : 0.0;
   FindWaypointParams search = find_waypoint_params(config);
   if (config.margin_in_depth) {
-    search.next_leg_check_m = blind_leg_m(config.dilation_margin_m, 0.5 * std::min(v.config.fov_h_deg, v.config.fov_v_deg),
-                                          v.config.mount.position_m.x());
+    search.next_leg_check_m = blind_leg_m(config.dilation_margin_m, 0.5 * std::min(v.sensor.fov_h_deg, v.sensor.fov_v_deg),
+                                          v.sensor.mount.position_m.x());
   }
   const Eigen::Vector3d origin = to_sensor * v.scan.sensor_pose.translation();
   const Eigen::Vector3d up = to_sensor.linear() * Eigen::Vector3d::UnitZ();
   for (auto _ : state) {
-    const cv::Mat depth = depth_map(v.scan, v.config);
+    const cv::Mat depth = depth_map(v.scan, v.sensor);
     const cv::Mat dilated = dilate_depth_map(depth, params);
     const VisibilityCheck check = check_visibility(dilated, v.grid, target, config.safety_radius_m, 0.0, margin, &depth);
     benchmark::DoNotOptimize(find_waypoint(dilated, v.grid, check.pixel, check.waypoint_range_m / v.grid.max_range_m,

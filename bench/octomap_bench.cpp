@@ -8,7 +8,6 @@
 // _cold variants evict the caches between scans.
 #include <benchmark/benchmark.h>
 
-#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -16,19 +15,10 @@
 
 #include "campo/scene_loader.hpp"
 #include "planners/octomap3d.hpp"
-#include "sensors/lidar.hpp"
-#include "sensors/raycaster.hpp"
+#include "tools/bench_workloads.hpp"
 
 namespace campo {
 namespace {
-
-// One scan as dstar_lite_3d hands it to the map: the origin, every beam's end
-// (the hit, or the end of the beam without a return) and its return flag.
-struct MappedScan {
-  Eigen::Vector3d origin_m;
-  std::vector<Eigen::Vector3d> ends_m;
-  std::vector<std::uint8_t> returns;
-};
 
 RangeSensorConfig leddar_8x8() {
   RangeSensorConfig c = *sensor_preset("leddar_vu8");
@@ -40,42 +30,10 @@ RangeSensorConfig leddar_8x8() {
   return c;
 }
 
-RangeSensorConfig scanner_64x8() {
-  RangeSensorConfig c;
-  c.fov_h_deg = 90.0;
-  c.fov_v_deg = 30.0;
-  c.cols = 64;
-  c.rows = 8;
-  c.max_range_m = 20.0;
-  return c;
-}
-
-// The bridge route (scenes/bridge.json): a climb to 14 m above the ground at
-// x = 24 m, then north under the deck (y 28.5-33 m) at 0.1 m per scan (the
-// run flies 581 scans in about 60 m), the sensor looking north.
+// The bridge route's flight (tools/bench_workloads.hpp): 41 scans up, 600 north (the run
+// flies 581 scans in about 60 m).
 std::vector<MappedScan> bridge_flight(const RangeSensorConfig& config) {
-  const Scene scene = load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/bridge.json");
-  const RayCaster caster(scene);
-  Lidar lidar(config, scene.world.seed);
-  const double x = 24.0, cruise_z = 14.0 + std::sin(x / 5.0);
-  std::vector<Eigen::Vector3d> route;
-  for (int i = 0; i <= 40; ++i) route.emplace_back(x, 0.75, 1.0 + (cruise_z - 1.0) * i / 40.0);
-  for (int i = 1; i <= 600; ++i) route.emplace_back(x, 0.75 + 0.1 * i, cruise_z);
-  std::vector<MappedScan> flight;
-  RangeScan scan;
-  for (const Eigen::Vector3d& p : route) {
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    pose.translation() = p;
-    pose.linear() = Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    lidar.scan(caster, pose, 0.0, scan);
-    // As dstar_lite_3d's insert_rays: a beam without a return ends at its range.
-    MappedScan m{p, {}, scan.hits};
-    for (std::size_t i = 0; i < scan.ranges_m.size(); ++i) {
-      m.ends_m.push_back(p + pose.linear() * lidar.directions()[i].cast<double>() * static_cast<double>(scan.ranges_m[i]));
-    }
-    flight.push_back(std::move(m));
-  }
-  return flight;
+  return campo::bridge_flight(load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/bridge.json"), config, 600);
 }
 
 // The planner's grid over the bridge scene: 100 x 100 cells of 1.5 m, 9 levels 7 m apart.
@@ -119,9 +77,9 @@ void BM_OctoMapInsertScan(benchmark::State& state, RangeSensorConfig (*sensor)()
 }
 
 BENCHMARK_CAPTURE(BM_OctoMapInsertScan, bridge_leddar_8x8_100m, &leddar_8x8, false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_OctoMapInsertScan, bridge_lidar_64x8_20m, &scanner_64x8, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OctoMapInsertScan, bridge_lidar_64x8_20m, &mapping_scanner_64x8, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_OctoMapInsertScan, bridge_leddar_8x8_100m_cold, &leddar_8x8, true)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_OctoMapInsertScan, bridge_lidar_64x8_20m_cold, &scanner_64x8, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_OctoMapInsertScan, bridge_lidar_64x8_20m_cold, &mapping_scanner_64x8, true)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace campo

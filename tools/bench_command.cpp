@@ -33,6 +33,7 @@
 #include "run/provenance.hpp"
 #include "sensors/lidar.hpp"
 #include "sensors/raycaster.hpp"
+#include "tools/bench_workloads.hpp"
 #include "tools/bundled.hpp"
 #include "tools/commands.hpp"
 #include "tools/path_options.hpp"
@@ -424,36 +425,26 @@ double median_time_s(double min_time_s, Work work) {
 
 // depth_reactive's first replanning of a seed 000 scene, as the planner replans: the depth map
 // of the scene's scanner at 256 x 256 from the drone's start, DilataMappa, ControllaVisibilita
-// and TrovaWP with the planner's default parameters.
+// and TrovaWP with the planner's default parameters (BM_Replan's workload).
 class ReplanCase {
  public:
-  explicit ReplanCase(const std::string& name) {
-    const Scene scene = load_scene(bundled_scene(name));
-    const VehicleDef& drone = scene.vehicles.front();
-    sensor_ = drone.sensors.front().range;
-    sensor_.cols = sensor_.rows = kResolution;
-    const RayCaster caster(scene);
-    Lidar lidar(sensor_, scene.world.seed);
-    lidar.scan(caster, drone.pose * to_isometry(sensor_.mount), 0.0, scan_);
-    grid_ = DepthGrid::of(scan_, sensor_);
-    params_ = dilation_params(config_, grid_);
-    target_sensor_ = scan_.sensor_pose.inverse() * drone.mission.front().position_m;
-  }
+  explicit ReplanCase(const std::string& name)
+      : view_(start_view(load_scene(bundled_scene(name)), kResolution)),
+        params_(dilation_params(config_, view_.grid)),
+        target_sensor_(view_.scan.sensor_pose.inverse() * view_.target_m) {}
   void replan() const {
-    const cv::Mat dilated = dilate_depth_map(depth_map(scan_, sensor_), params_);
-    const VisibilityCheck check = check_visibility(dilated, grid_, target_sensor_, config_.safety_radius_m);
+    const cv::Mat dilated = dilate_depth_map(depth_map(view_.scan, view_.sensor), params_);
+    const VisibilityCheck check = check_visibility(dilated, view_.grid, target_sensor_, config_.safety_radius_m);
     const WaypointSearch found =
-        find_waypoint(dilated, grid_, check.pixel, check.waypoint_range_m / grid_.max_range_m,
-                      check.obstacle_range_m / grid_.max_range_m, find_waypoint_params(config_));
+        find_waypoint(dilated, view_.grid, check.pixel, check.waypoint_range_m / view_.grid.max_range_m,
+                      check.obstacle_range_m / view_.grid.max_range_m, find_waypoint_params(config_));
     candidates_seen_ += found.candidates;
   }
   static constexpr int kResolution = 256;
 
  private:
   DepthReactiveConfig config_;
-  RangeSensorConfig sensor_;
-  RangeScan scan_;
-  DepthGrid grid_;
+  StartView view_;
   DilationParams params_;
   Eigen::Vector3d target_sensor_;
   mutable long candidates_seen_ = 0;  // used, so the search is not optimised away
@@ -461,52 +452,24 @@ class ReplanCase {
 
 // OctoMap mapping as dstar_lite_3d maps with "mapping": "octomap": a 64 x 8 scanner (90 x 30 deg,
 // 20 m) flown up and then north under the bridge of scenes/bridge.json (0.1 m per scan), its
-// scans cast beforehand, inserted into a fresh map one after the other.
+// scans cast beforehand, inserted into a fresh map one after the other (the first scans of
+// BM_OctoMapInsertScan's flight).
 class OctoMapCase {
  public:
-  OctoMapCase() {
-    const Scene scene = load_scene(bundled_scene("bridge"));
-    RangeSensorConfig sensor;
-    sensor.fov_h_deg = 90.0;
-    sensor.fov_v_deg = 30.0;
-    sensor.cols = 64;
-    sensor.rows = 8;
-    sensor.max_range_m = 20.0;
-    const RayCaster caster(scene);
-    Lidar lidar(sensor, scene.world.seed);
-    const double x = 24.0, cruise_z = 14.0 + std::sin(x / 5.0);
-    RangeScan scan;
-    for (int i = 0; i < kScans; ++i) {
-      const Eigen::Vector3d p = i < 40 ? Eigen::Vector3d(x, 0.75, 1.0 + (cruise_z - 1.0) * i / 40.0)
-                                       : Eigen::Vector3d(x, 0.75 + 0.1 * (i - 40), cruise_z);
-      Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-      pose.translation() = p;
-      pose.linear() = Eigen::AngleAxisd(std::numbers::pi / 2.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-      lidar.scan(caster, pose, 0.0, scan);
-      Scan s{p, {}, scan.hits};
-      for (std::size_t r = 0; r < scan.ranges_m.size(); ++r) {
-        s.ends_m.push_back(p + pose.linear() * lidar.directions()[r].cast<double>() * static_cast<double>(scan.ranges_m[r]));
-      }
-      scans_.push_back(std::move(s));
-    }
-  }
+  OctoMapCase() : flight_(bridge_flight(load_scene(bundled_scene("bridge")), mapping_scanner_64x8(), kNorthScans)) {}
   // Maps the whole flight into a fresh map; the scans inserted.
   int map_flight() const {
     GridMap3dConfig grid;
     grid.ground_z_m = 0.3;
     OctoMap3d map(grid, OctoMap3dConfig{});
-    for (const Scan& s : scans_) map.insert_scan(s.origin_m, s.ends_m, s.returns);
-    return kScans;
+    for (const MappedScan& s : flight_) map.insert_scan(s.origin_m, s.ends_m, s.returns);
+    return scans();
   }
-  static constexpr int kScans = 140;
+  int scans() const { return static_cast<int>(flight_.size()); }
 
  private:
-  struct Scan {
-    Eigen::Vector3d origin_m;
-    std::vector<Eigen::Vector3d> ends_m;
-    std::vector<std::uint8_t> returns;
-  };
-  std::vector<Scan> scans_;
+  static constexpr int kNorthScans = 99;  // and 41 up: 140 scans
+  std::vector<MappedScan> flight_;
 };
 
 // depth_reactive's replanning at 256 x 256 on both seed 000 scenes, and OctoMap's mapping of a
@@ -532,14 +495,14 @@ void bench_planners(const BenchOptions& o, std::vector<Figure>& figures) {
   }
   const OctoMapCase octomap;
   const std::string id = "mapping/octomap/bridge/64x8";
-  const nlohmann::json details{{"scene", "bridge"}, {"scanner", "64 x 8, 90 x 30 deg, 20 m"}, {"scans", OctoMapCase::kScans}};
+  const nlohmann::json details{{"scene", "bridge"}, {"scanner", "64 x 8, 90 x 30 deg, 20 m"}, {"scans", octomap.scans()}};
   if (o.instructions) {
     int scans = 0;
     counted(id, [&] { scans = octomap.map_flight(); });
     figures.push_back({id, static_cast<double>(scans), "instructions/scan", details});
     return;
   }
-  const double median = median_time_s(o.min_time_s, [&] { octomap.map_flight(); }) / OctoMapCase::kScans;
+  const double median = median_time_s(o.min_time_s, [&] { octomap.map_flight(); }) / octomap.scans();
   std::cout << "mapping octomap 64x8 scans under the bridge " << std::fixed << std::setprecision(3) << median * 1e3
             << " ms per scan (median flight, 1 thread)\n";
   figures.push_back({id, 1.0 / median, "scans/s", details});
