@@ -187,12 +187,6 @@ float sample_inverse_depth(const float* image, std::size_t width, const Tap& tap
   return along_line(rows[0], rows[1], rows[2], rows[3], tap.fy);
 }
 
-// A plane or heightfield: a surface with no inside, seen from below too.
-struct OpenSurface {
-  const Shape* shape;
-  double top_m;  // local z of its highest point: 0 for a plane
-};
-
 void validate(const SensorDef& def) {
   const RangeSensorConfig& c = def.range;
   const std::string name = "depth camera '" + def.alias + "': ";
@@ -310,27 +304,8 @@ bool DepthCamera::visible(const Eigen::Affine3f& eye_from_mesh, const Eigen::Vec
   return true;
 }
 
-// The ray caster's surfaces are two-sided, but the first surface along any
-// ray faces the eye when the eye is outside every closed shape and above
-// every heightfield and plane; back faces can then be culled (a third fewer
-// triangles to set up). A heightfield has no walls: outside its footprint
-// the eye must be above its highest point.
 bool DepthCamera::back_faces_hidden(const Eigen::Vector3d& eye) const {
-  const Eigen::Vector3f eye_f = eye.cast<float>();
-  for (const Chunk& solid : solids_) {
-    if (solid.box.contains(eye_f)) return false;
-  }
-  for (std::size_t i = 0; i < mover_chunks_.size(); ++i) {
-    if (mover_chunks_[i].box.contains((mover_poses_[i].inverse() * eye).cast<float>())) return false;
-  }
-  for (const OpenSurface& surface : open_surfaces_) {
-    const Eigen::Vector3d local = surface.shape->pose.inverse() * eye;
-    if (local.z() > surface.top_m) continue;
-    if (surface.shape->type == ShapeType::plane) return false;
-    const std::optional<double> ground = surface.shape->terrain->height_at(local.x(), local.y());
-    if (!ground || local.z() <= *ground) return false;
-  }
-  return true;
+  return campo::back_faces_hidden(eye, solids_, mover_chunks_, mover_poses_, open_surfaces_);
 }
 
 void DepthCamera::render(const Eigen::Isometry3d& sensor_pose, std::span<const Eigen::Isometry3d> body_poses) {

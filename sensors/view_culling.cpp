@@ -1,5 +1,7 @@
 #include "sensors/view_culling.hpp"
 
+#include <optional>
+
 #include <algorithm>
 
 namespace campo {
@@ -37,6 +39,25 @@ ViewVolume::ViewVolume(double half_width, double half_height, double far_m) : fa
   side_planes_[1] = plane(-1.0, 0.0, half_width);
   side_planes_[2] = plane(0.0, 1.0, half_height);
   side_planes_[3] = plane(0.0, -1.0, half_height);
+}
+
+bool back_faces_hidden(const Eigen::Vector3d& eye, const std::vector<Chunk>& solids, const std::vector<Chunk>& movers,
+                       const std::vector<Eigen::Isometry3d>& mover_poses, const std::vector<OpenSurface>& open_surfaces) {
+  const Eigen::Vector3f eye_f = eye.cast<float>();
+  for (const Chunk& solid : solids) {
+    if (solid.box.contains(eye_f)) return false;
+  }
+  for (std::size_t i = 0; i < movers.size(); ++i) {
+    if (movers[i].box.contains((mover_poses[i].inverse() * eye).cast<float>())) return false;
+  }
+  for (const OpenSurface& surface : open_surfaces) {
+    const Eigen::Vector3d local = surface.shape->pose.inverse() * eye;
+    if (local.z() > surface.top_m) continue;
+    if (surface.shape->type == ShapeType::plane) return false;
+    const std::optional<double> ground = surface.shape->terrain->height_at(local.x(), local.y());
+    if (!ground || local.z() <= *ground) return false;
+  }
+  return true;
 }
 
 }  // namespace campo

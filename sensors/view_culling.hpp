@@ -30,6 +30,22 @@ Chunk bound(const SceneMesh& mesh, std::uint32_t first, std::uint32_t count);
 std::vector<Chunk> cut_into_chunks(const SceneMesh& mesh, const std::vector<MeshPart>& parts,
                                    std::uint32_t max_triangles);
 
+/// A plane or heightfield: a surface with no inside, seen from below too.
+struct OpenSurface {
+  const Shape* shape = nullptr;
+  double top_m = 0.0;  ///< local z of its highest point: 0 for a plane
+};
+
+/// Whether back faces may be culled for an eye at `eye` (world frame). The
+/// ray caster's surfaces are two-sided, but the first surface along any ray
+/// faces the eye when the eye is outside every closed shape (`solids`, static,
+/// mesh frame = world; `movers`, each in its shape frame, placed by
+/// `mover_poses`) and above every heightfield and plane (`open_surfaces`). A
+/// heightfield has no walls: outside its footprint the eye must be above its
+/// highest point.
+bool back_faces_hidden(const Eigen::Vector3d& eye, const std::vector<Chunk>& solids, const std::vector<Chunk>& movers,
+                       const std::vector<Eigen::Isometry3d>& mover_poses, const std::vector<OpenSurface>& open_surfaces);
+
 /// The eye frame (GL's: looking along -z, x right, y up) of a sensor at
 /// `sensor_pose` (world frame; x forward, y left, z up) from the world frame.
 inline Eigen::Isometry3d eye_from_world_at(const Eigen::Isometry3d& sensor_pose) {

@@ -24,12 +24,6 @@ constexpr const char* kFragmentShader = R"(#version 450 core
 void main() {}
 )";
 
-// A plane or heightfield: seen from below, its back faces are what a ray meets first.
-struct OpenSurface {
-  const Shape* shape;
-  double top_m;  // local z of its highest point: 0 for a plane
-};
-
 }  // namespace
 
 struct RasterScanner::Impl {
@@ -53,23 +47,11 @@ struct RasterScanner::Impl {
 
   ~Impl() { context.bind(); }
 
+  // As the depth camera decides it (sensors/view_culling).
   bool back_faces_hidden(const Eigen::Vector3d& eye) const {
-    const Eigen::Vector3f eye_f = eye.cast<float>();
-    for (const Chunk& solid : solids) {
-      if (solid.box.contains(eye_f)) return false;
-    }
-    for (std::size_t i = 0; i < movers.size(); ++i) {
-      if (movers[i].box.contains((mover_poses[i].inverse() * eye).cast<float>())) return false;
-    }
-    for (const OpenSurface& surface : open_surfaces) {
-      const Eigen::Vector3d local = surface.shape->pose.inverse() * eye;
-      if (local.z() > surface.top_m) continue;
-      if (surface.shape->type == ShapeType::plane) return false;
-      const std::optional<double> ground = surface.shape->terrain->height_at(local.x(), local.y());
-      if (!ground || local.z() <= *ground) return false;
-    }
-    return true;
+    return campo::back_faces_hidden(eye, solids, movers, mover_poses, open_surfaces);
   }
+
 };
 
 RasterScanner::RasterScanner(const Scene& scene, const RasterView& view) : impl_(std::make_unique<Impl>()) {
