@@ -11,7 +11,8 @@
 // and field of view, one pixel per ray, and reads the ranges back; its agreement with campo
 // is checked ray for ray by casting the pixels' own rays with campo (untimed). Repetitions
 // interleave in one process; the figure is rays per second, median of the repetitions.
-// Scenes: trees_rolling_terrain, vineyard, and trees_rolling_terrain's terrain alone.
+// Scenes: trees_rolling_terrain, vineyard, trees_rolling_terrain's terrain alone, then every
+// other bundled scene (scenes/*.json, by name), each from its first vehicle's start.
 //
 //   build/campo_peer_lidar [--scans N] [--repetitions K] [--json]
 #include <algorithm>
@@ -20,6 +21,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -323,6 +325,18 @@ int main(int argc, char** argv) {
     campo::Scene terrain = trees;
     std::erase_if(terrain.shapes, [](const campo::Shape& s) { return s.type != campo::ShapeType::heightfield; });
     campo::compare("terrain", "terrain alone (trees_rolling_terrain's)", terrain, scans, repetitions, json);
+    std::vector<std::filesystem::path> others;
+    for (const auto& entry : std::filesystem::directory_iterator(scenes)) {
+      const std::string name = entry.path().stem().string();
+      if (entry.path().extension() == ".json" && name != "trees_rolling_terrain" && name != "vineyard") {
+        others.push_back(entry.path());
+      }
+    }
+    std::sort(others.begin(), others.end());
+    for (const std::filesystem::path& path : others) {
+      const std::string name = path.stem().string();
+      campo::compare(name, name, campo::load_scene(path), scans, repetitions, json);
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "campo_peer_lidar: %s\n", e.what());
     return 1;
