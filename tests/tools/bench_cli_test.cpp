@@ -4,6 +4,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
+#include <set>
+#include <string>
+
 #include "tests/cli_support.hpp"
 
 namespace campo {
@@ -104,10 +108,19 @@ TEST_F(BenchCli, PeersAreRecordedAndTheirTableComesFromTheRecord) {
   ASSERT_EQ(live.exit_code, 0) << live.err;
   const nlohmann::json peers = nlohmann::json::parse(testing::slurp(record));
   EXPECT_EQ(peers["provenance"]["command"], "campo bench peers --peers lidar");
-  // Trees, vineyard and the terrain alone, each against Embree robust, Embree not robust and the rasteriser.
-  ASSERT_EQ(peers["figures"].size(), 9u);
+  // Every bundled scene and the trees' terrain alone, each against Embree robust, Embree not robust
+  // and the rasteriser.
+  std::set<std::string> expected{"terrain"};
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(CAMPO_SOURCE_DIR) / "scenes")) {
+    if (entry.path().extension() == ".json") expected.insert(entry.path().stem().string());
+  }
+  ASSERT_EQ(peers["figures"].size(), 3 * expected.size());
+  std::set<std::string> compared;
   for (const auto& f : peers["figures"]) {
     const std::string id = f["id"].get<std::string>();
+    // peers/lidar/<scene>[/embree_not_robust|/raster]
+    const std::string scene = id.substr(std::string("peers/lidar/").size());
+    compared.insert(scene.substr(0, scene.find('/')));
     EXPECT_THAT(id, ::testing::StartsWith("peers/lidar/"));
     EXPECT_EQ(f["unit"], "rays/s");
     EXPECT_GT(f["value"].get<double>(), 1e5);
@@ -120,6 +133,7 @@ TEST_F(BenchCli, PeersAreRecordedAndTheirTableComesFromTheRecord) {
       EXPECT_THAT(peer, HasSubstr(id.ends_with("/embree_not_robust") ? "not robust" : ", robust"));
     }
   }
+  EXPECT_EQ(compared, expected);
   const auto table = campo("bench --table " + record);
   ASSERT_EQ(table.exit_code, 0) << table.err;
   EXPECT_THAT(live.out, HasSubstr(table.out));
