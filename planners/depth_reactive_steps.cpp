@@ -724,7 +724,7 @@ class PixelLookup {
         sure_y_(kSureRad * rows_per_rad_) {}
 
   std::optional<float> operator()(const cv::Mat& image, const Eigen::Vector3d& d) const {
-    // DepthGrid::project from floats: fast_atan2_double is within 6e-9 rad
+    // DepthGrid::project from floats: fast_atan2 is within 6e-9 rad
     // of the arctangent of its float arguments, and their rounding to float
     // (the horizontal length's too) moves the angle by a few 1e-7 rad at
     // most; so the angles are within 1e-6 rad, and a pixel boundary more than
@@ -738,8 +738,8 @@ class PixelLookup {
     const float horizontal = static_cast<float>(
         std::sqrt(static_cast<double>(xf) * xf + static_cast<double>(yf) * yf));
     // Pixel k spans [k, k + 1) in these (project puts its centre at k).
-    const double cx = (half_fov_h_rad_ - fast_atan2_double(yf, xf)) * cols_per_rad_;
-    const double cy = (half_fov_v_rad_ - fast_atan2_double(zf, horizontal)) * rows_per_rad_;
+    const double cx = (half_fov_h_rad_ - fast_atan2(yf, xf)) * cols_per_rad_;
+    const double cy = (half_fov_v_rad_ - fast_atan2(zf, horizontal)) * rows_per_rad_;
     const double fx = cx - std::floor(cx);  // boundaries at whole numbers of these
     const double fy = cy - std::floor(cy);
     if (!(fx > sure_x_ && fx < 1.0 - sure_x_ && fy > sure_y_ && fy < 1.0 - sure_y_)) {
@@ -832,10 +832,11 @@ std::vector<Eigen::Vector2i> obstacle_border(const cv::Mat& free) {
              ((x > 0 && !row[x - 1]) || (x + 1 < free.cols && !row[x + 1]) || (above && !above[x]) || (below && !below[x]));
     };
     int x = 0;
-#if defined(__SSE2__)
-    // Sixteen pixels with both side neighbours in the image at a time: the
-    // same test on bytes, the pixels it marks taken in order from the mask.
-    if (x == 0 && free.cols > 0) {
+#if defined(__x86_64__)
+    // Sixteen pixels with both side neighbours in the image at a time (SSE2,
+    // which every x86-64 has): the same test on bytes, the pixels it marks
+    // taken in order from the mask.
+    if (free.cols > 0) {
       if (on_border(0)) border.emplace_back(0, y);
       x = 1;
     }

@@ -1,29 +1,24 @@
 #pragma once
-/// A fast two-argument arctangent for hot loops that need an angle to within
-/// a few 1e-7 rad, not a correctly rounded one.
+/// A fast two-argument arctangent of two floats, in double, for hot loops
+/// that need an angle to within some 1e-8 rad, not a correctly rounded one.
 ///
 /// Why: the depth-reactive planner's pixel lookup (value_at_direction in
 /// depth_reactive_steps.cpp) turns a direction into an azimuth and an
 /// elevation thousands of times per replan, and only needs each angle within
 /// 1e-6 rad of the exact one (nearer a pixel boundary it falls back to the
 /// exact double projection). glibc's atan2f spends ~130 instructions per call
-/// on a correctly rounded result; fast_atan2 spends ~50 (callgrind, gcc 12
-/// -O3, x86-64 without FMA).
+/// on a correctly rounded float; this spends ~50 (callgrind, gcc 12 -O3,
+/// x86-64 without FMA).
 ///
-/// Bound: |fast_atan2(y, x) - atan2((double)y, (double)x)| <= 1.25e-7 rad for
-/// every pair of finite floats: 5.8e-9 from the polynomial plus the
-/// unavoidable half float ulp of the result (1.19e-7 for angles in [2, pi]).
-/// Measured: 1.250e-7 over every float y in [0, 2^24] against x = +-1 (lo / hi
-/// through every float in [0, 1], both octants of the upper half plane's
-/// right quarter and their mirror in x); tests/planners/fast_atan_test.cpp
-/// checks 2e-7 over dense sweeps and random pairs.
-/// fast_atan2_double returns the same angle before that rounding, within
-/// 5.8e-9 rad (measured 5.756e-9), for callers that go on in double anyway.
+/// Bound: |fast_atan2(y, x) - atan2((double)y, (double)x)| <= 5.8e-9
+/// rad for every pair of finite floats (measured 5.756e-9 over every float
+/// y in [0, 2^24] against x = +-1: lo / hi through every float in [0, 1]);
+/// tests/planners/fast_atan_test.cpp checks 6e-9 over dense sweeps and random
+/// pairs.
 ///
 /// Method: everything after reading the floats is done in double, so the
 /// quotient and the quadrant offsets add no error worth counting and no pair
-/// of floats (subnormal, huge) can overflow or underflow the quotient; only
-/// the return rounds once. With lo = min(|x|, |y|), hi = max(|x|, |y|),
+/// of floats (subnormal, huge) can overflow or underflow the quotient. With lo = min(|x|, |y|), hi = max(|x|, |y|),
 /// a = p(lo / hi) ~ atan(lo / hi) in [0, pi/4]; then pi/2 - a if |y| > |x|,
 /// pi - that if x has its sign bit set, and y's sign. No tables, no libm.
 ///
@@ -73,7 +68,7 @@ inline constexpr double kQuarterPi = 0.7853981633974483;
 /// atan2(y, x) in radians in [-pi, pi], within 5.8e-9 rad of the exact
 /// angle of the float inputs (see the file comment); std::atan2's quadrants
 /// and special values.
-inline double fast_atan2_double(float y, float x) {
+inline double fast_atan2(float y, float x) {
   using namespace fast_atan_detail;
   const double yd = y;
   const double xd = x;
@@ -99,10 +94,5 @@ inline double fast_atan2_double(float y, float x) {
   if (std::signbit(xd)) angle = kPi - angle;   // left half plane, -0 included
   return std::copysign(angle, yd);             // lower half plane, -0 included
 }
-
-/// atan2(y, x) in radians in [-pi, pi], within 1.25e-7 rad of the exact
-/// angle of the float inputs (see the file comment); std::atan2's quadrants
-/// and special values.
-inline float fast_atan2(float y, float x) { return static_cast<float>(fast_atan2_double(y, x)); }
 
 }  // namespace campo
