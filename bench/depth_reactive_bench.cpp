@@ -63,12 +63,7 @@ void BM_Replan(benchmark::State& state, const std::string& name) {
   const DepthReactiveConfig config;
   const DilationParams params = dilation_params(config, v.grid);
   const Eigen::Vector3d target = v.scan.sensor_pose.inverse() * v.target_m;
-  for (auto _ : state) {
-    const cv::Mat dilated = dilate_depth_map(depth_map(v.scan, v.sensor), params);
-    const VisibilityCheck check = check_visibility(dilated, v.grid, target, config.safety_radius_m);
-    benchmark::DoNotOptimize(find_waypoint(dilated, v.grid, check.pixel, check.waypoint_range_m / v.grid.max_range_m,
-                                           check.obstacle_range_m / v.grid.max_range_m, find_waypoint_params(config)));
-  }
+  for (auto _ : state) benchmark::DoNotOptimize(replan_step(v, params, target, config));
 }
 
 // The replanning step as DepthReactive::evaluate runs it at the start of an

@@ -432,14 +432,7 @@ class ReplanCase {
       : view_(start_view(load_scene(bundled_scene(name)), kResolution)),
         params_(dilation_params(config_, view_.grid)),
         target_sensor_(view_.scan.sensor_pose.inverse() * view_.target_m) {}
-  void replan() const {
-    const cv::Mat dilated = dilate_depth_map(depth_map(view_.scan, view_.sensor), params_);
-    const VisibilityCheck check = check_visibility(dilated, view_.grid, target_sensor_, config_.safety_radius_m);
-    const WaypointSearch found =
-        find_waypoint(dilated, view_.grid, check.pixel, check.waypoint_range_m / view_.grid.max_range_m,
-                      check.obstacle_range_m / view_.grid.max_range_m, find_waypoint_params(config_));
-    candidates_seen_ += found.candidates;
-  }
+  void replan() const { candidates_seen_ += replan_step(view_, params_, target_sensor_, config_).candidates; }
   static constexpr int kResolution = 256;
 
  private:

@@ -24,6 +24,14 @@ StartView start_view(const Scene& scene, int resolution) {
   return v;
 }
 
+WaypointSearch replan_step(const StartView& view, const DilationParams& params, const Eigen::Vector3d& target_sensor,
+                           const DepthReactiveConfig& config) {
+  const cv::Mat dilated = dilate_depth_map(depth_map(view.scan, view.sensor), params);
+  const VisibilityCheck check = check_visibility(dilated, view.grid, target_sensor, config.safety_radius_m);
+  return find_waypoint(dilated, view.grid, check.pixel, check.waypoint_range_m / view.grid.max_range_m,
+                       check.obstacle_range_m / view.grid.max_range_m, find_waypoint_params(config));
+}
+
 RangeSensorConfig mapping_scanner_64x8() {
   RangeSensorConfig c;
   c.fov_h_deg = 90.0;

@@ -10,6 +10,7 @@
 
 #include "campo/range_scan.hpp"
 #include "campo/scene.hpp"
+#include "planners/depth_reactive.hpp"
 #include "planners/depth_reactive_steps.hpp"
 
 namespace campo {
@@ -24,6 +25,13 @@ struct StartView {
   Eigen::Vector3d target_m = Eigen::Vector3d::Zero();  ///< world frame
 };
 StartView start_view(const Scene& scene, int resolution);
+
+/// One replanning step as depth_reactive takes it at `view` with `config`'s
+/// defaults for the search (`params`: dilation_params(config, view.grid);
+/// `target_sensor`: view.target_m in the sensor frame): the depth map,
+/// DilataMappa, ControllaVisibilita and TrovaWP.
+WaypointSearch replan_step(const StartView& view, const DilationParams& params, const Eigen::Vector3d& target_sensor,
+                           const DepthReactiveConfig& config);
 
 /// One scan as dstar_lite_3d hands it to its map: the origin, every beam's
 /// end (the hit, or the end of the beam without a return) and its return flag.
