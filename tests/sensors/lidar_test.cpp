@@ -6,13 +6,13 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <random>
 #include <numbers>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
 
 #include "campo/pose.hpp"
+#include "campo/random.hpp"
 
 namespace campo {
 namespace {
@@ -249,12 +249,11 @@ TEST(Lidar, DepthMapIsItsDefinitionOnEveryBeamOfAnOddSizedScan) {
   RangeScan scan;
   scan.rows = 11;
   scan.cols = 37;
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<float> range(0.0f, 14.0f);
+  Rng rng(3);
   const float special[] = {0.0f, 0.3f, std::nextafter(0.3f, 0.0f), std::nextafter(0.3f, 1.0f), 12.5f,
                            std::nextafter(12.5f, 0.0f), 13.0f, std::numeric_limits<float>::quiet_NaN()};
   for (int i = 0; i < scan.rows * scan.cols; ++i) {
-    scan.ranges_m.push_back(i % 5 == 0 ? special[(i / 5) % 8] : range(rng));
+    scan.ranges_m.push_back(i % 5 == 0 ? special[(i / 5) % 8] : static_cast<float>(rng.uniform(0.0, 14.0)));
     scan.hits.push_back(static_cast<std::uint8_t>(i % 7 == 3 ? 0 : 1 + i % 2));
   }
   const cv::Mat depth = depth_map(scan, c);
