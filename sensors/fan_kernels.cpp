@@ -5,6 +5,7 @@
 // could hand an AVX2 copy of std::fmin to code that runs on any CPU.
 #include "sensors/fan_kernels.hpp"
 
+#include <cstddef>
 #include <cstdint>
 
 #if defined(__AVX2__) && defined(__FMA__)
@@ -676,6 +677,117 @@ void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t
 
 namespace {
 
+// --- mesh triangles ----------------------------------------------------------
+
+// One triangle (a, b, c) as hit_cell sees each of a cell's two: its edge
+// functions with their rounding bounds, in double and (as a first look) in
+// float, its plane, and the distances bounding it.
+struct Triangle {
+  Edge ab, bc, ca;
+  double normal[3], num;
+  double near, far;
+};
+
+struct FloatTriangle {
+  FloatEdge ab, bc, ca;
+};
+
+// hit_cell for one triangle: the nearest hit of four rays, +inf where none.
+inline D hit_triangle(const Triangle& tri, D x, D y, D z, D t0) {
+  const D a = dot3d(tri.ab.n, x, y, z), b = dot3d(tri.bc.n, x, y, z), c = dot3d(tri.ca.n, x, y, z);
+  const D in = one_sign(a, set1d(tri.ab.eps), b, set1d(tri.bc.eps), c, set1d(tri.ca.eps));
+  const D inf = set1d(__builtin_inf());
+  if (_mm256_movemask_pd(in) == 0) return inf;
+  const D t = _mm256_div_pd(set1d(tri.num), dot3d(tri.normal, x, y, z));
+  const D ok = andd(in, andd(ged(t, _mm256_max_pd(t0, set1d(tri.near))), led(t, set1d(tri.far))));
+  return _mm256_blendv_pd(inf, t, ok);
+}
+
+// hit_triangle for four rays whose float edge functions settled them: `in`
+// the lane bits of those through the triangle (the others are not).
+inline D hit_triangle_settled(const Triangle& tri, int in, D x, D y, D z, D t0) {
+  const D inf = set1d(__builtin_inf());
+  if (in == 0) return inf;
+  const D t = _mm256_div_pd(set1d(tri.num), dot3d(tri.normal, x, y, z));
+  const D ok = andd(lanes_of(in), andd(ged(t, _mm256_max_pd(t0, set1d(tri.near))), led(t, set1d(tri.far))));
+  return _mm256_blendv_pd(inf, t, ok);
+}
+
+// The rays of slots [first, end) against one triangle: the float edge
+// functions settle most rays past the margin (see FloatEdge), the rest get
+// hit_triangle's double test, so every answer is hit_triangle's.
+void cast_triangle_run(const Rays& rays, const Triangle& tri, const FloatTriangle& ftri, std::uint32_t first,
+                       std::uint32_t end, float t0, std::int32_t shape, const Best& best) {
+  const D tmin = set1d(t0);
+  for (std::uint32_t k = first; k < end; k += 8) {
+    const V x = _mm256_loadu_ps(rays.x + k), y = _mm256_loadu_ps(rays.y + k), z = _mm256_loadu_ps(rays.z + k);
+    const V a = dot3(ftri.ab.n, x, y, z), b = dot3(ftri.bc.n, x, y, z), c = dot3(ftri.ca.n, x, y, z);
+    const V ap = ge(a, ftri.ab.margin), an = le(a, ftri.ab.minus_margin);
+    const V bp = ge(b, ftri.bc.margin), bn = le(b, ftri.bc.minus_margin);
+    const V cp = ge(c, ftri.ca.margin), cn = le(c, ftri.ca.minus_margin);
+    const int in = _mm256_movemask_ps(_mm256_or_ps(vand(ap, vand(bp, cp)), vand(an, vand(bn, cn))));
+    const int out = _mm256_movemask_ps(
+        vand(_mm256_or_ps(ap, _mm256_or_ps(bp, cp)), _mm256_or_ps(an, _mm256_or_ps(bn, cn))));
+    if (out == 0xff) continue;
+    const auto four = [&](int shift, D xd, D yd, D zd) {
+      if (((in | out) >> shift & 15) == 15) return hit_triangle_settled(tri, in >> shift & 15, xd, yd, zd, tmin);
+      return hit_triangle(tri, xd, yd, zd, tmin);
+    };
+    const D lo = four(0, _mm256_cvtps_pd(_mm256_castps256_ps128(x)), _mm256_cvtps_pd(_mm256_castps256_ps128(y)),
+                      _mm256_cvtps_pd(_mm256_castps256_ps128(z)));
+    const D hi = four(4, _mm256_cvtps_pd(_mm256_extractf128_ps(x, 1)), _mm256_cvtps_pd(_mm256_extractf128_ps(y, 1)),
+                      _mm256_cvtps_pd(_mm256_extractf128_ps(z, 1)));
+    commit(best, k, valid_lanes(k, end), _mm256_set_m128(_mm256_cvtpd_ps(hi), _mm256_cvtpd_ps(lo)), shape);
+  }
+}
+
+}  // namespace
+
+void cast_triangles(const Rays& rays, const TriangleSoup& soup, float t0, float t1, Best best) {
+  for (std::uint32_t i = 0; i < soup.count; ++i) {
+    const std::uint32_t* v = soup.triangles + 3 * static_cast<std::size_t>(i);
+    float hull_x[3], hull_y[3], hull_z[3];
+    for (int k = 0; k < 3; ++k) {
+      hull_x[k] = soup.xf[v[k]];
+      hull_y[k] = soup.yf[v[k]];
+      hull_z[k] = soup.zf[v[k]];
+    }
+    constexpr float kThird = 1.0f / 3.0f;
+    const float centre[3] = {kThird * (hull_x[0] + hull_x[1] + hull_x[2]), kThird * (hull_y[0] + hull_y[1] + hull_y[2]),
+                             kThird * (hull_z[0] + hull_z[1] + hull_z[2])};
+    float rho2 = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+      const float ex = hull_x[k] - centre[0], ey = hull_y[k] - centre[1], ez = hull_z[k] - centre[2];
+      rho2 = max_f(rho2, ex * ex + ey * ey + ez * ez);
+    }
+    const float rho = __builtin_sqrtf(rho2) * 1.00001f + 1e-6f;
+    const float dist = __builtin_sqrtf(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]);
+    if (dist - rho > t1 || dist + rho < t0 || outside_cone(rays, centre, rho)) continue;
+    const float* const hull[3] = {hull_x, hull_y, hull_z};
+    Rect rects[kFaces];
+    const int n = hull_rects(rays, hull, 3, centre, rho, rects);
+    if (n == 0) continue;
+    const double a[3] = {soup.x[v[0]], soup.y[v[0]], soup.z[v[0]]};
+    const double b[3] = {soup.x[v[1]], soup.y[v[1]], soup.z[v[1]]};
+    const double c[3] = {soup.x[v[2]], soup.y[v[2]], soup.z[v[2]]};
+    Triangle tri;
+    tri.ab = make_edge(a, b);
+    tri.bc = make_edge(b, c);
+    tri.ca = make_edge(c, a);
+    triangle_plane(a, b, c, tri.normal, tri.num);
+    tri.near = (dist - rho) * 0.9999 - 1e-5;
+    tri.far = (dist + rho) * 1.0001 + 1e-5;
+    const FloatTriangle ftri{float_edge(tri.ab), float_edge(tri.bc), float_edge(tri.ca)};
+    for (int r = 0; r < n; ++r) {
+      for_each_run(rays, rects[r], [&](std::uint32_t first, std::uint32_t end) {
+        cast_triangle_run(rays, tri, ftri, first, end, t0, soup.shape, best);
+      });
+    }
+  }
+}
+
+namespace {
+
 // Calls test(first, end) for the runs of slots whose rays may meet the
 // primitive. A long shape (a row's canopy, a fence) is projected in pieces
 // along its longest axis, each about as long as the shape is wide, so its
@@ -763,6 +875,7 @@ void reset(Best, std::uint32_t, float, std::int32_t) {}
 void write_hits(const std::uint32_t*, std::uint32_t, Best, std::int32_t, void*) {}
 void cast_planes(const Rays&, const Plane*, int, float, Best) {}
 void cast_terrain(const Rays&, const TerrainPatch&, float, float, Best) {}
+void cast_triangles(const Rays&, const TriangleSoup&, float, float, Best) {}
 void cast_primitives(const Rays&, const Primitive*, int, float, float, Best) {}
 
 #endif

@@ -76,6 +76,22 @@ struct TerrainPatch {
   std::int32_t shape = 0;
 };
 
+/// A triangle mesh's vertices in the sensor frame (in double, as a
+/// heightfield's, and rounded to float for culling and projection) and its
+/// triangles as three vertex indices each. Open or closed, either winding: a
+/// triangle is met from both sides.
+struct TriangleSoup {
+  const double* x = nullptr;
+  const double* y = nullptr;
+  const double* z = nullptr;
+  const float* xf = nullptr;
+  const float* yf = nullptr;
+  const float* zf = nullptr;
+  const std::uint32_t* triangles = nullptr;  ///< 3 * count vertex indices
+  std::uint32_t count = 0;
+  std::int32_t shape = 0;
+};
+
 /// The analytic shapes of Primitive (sensors/raycaster.cpp), local axis z.
 enum class Kind : std::uint8_t { cuboid, cylinder, cone, sphere };
 
@@ -103,6 +119,9 @@ void write_hits(const std::uint32_t* order, std::uint32_t count, Best best, std:
 /// Each cast keeps, per ray, the nearest hit with t in [t0, best.t].
 void cast_planes(const Rays& rays, const Plane* planes, int count, float t0, Best best);
 void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t1, Best best);
+/// Each triangle as a heightfield cell's triangle is tested: every ray through
+/// it, edges and vertices included, is found, so a closed mesh lets no ray out.
+void cast_triangles(const Rays& rays, const TriangleSoup& soup, float t0, float t1, Best best);
 void cast_primitives(const Rays& rays, const Primitive* primitives, int count, float t0, float t1,
                      Best best);
 

@@ -598,7 +598,7 @@ namespace {
 struct FanScratch {
   std::vector<float> best_t;
   std::vector<std::int32_t> best_shape;
-  std::vector<double> x, y, z;  // a heightfield patch's vertices
+  std::vector<double> x, y, z;  // a heightfield patch's or a mesh's vertices, in the sensor frame
   std::vector<float> xf, yf, zf;  // the same rounded to float, for culling and projecting
   std::vector<fan::Plane> planes;
   std::vector<fan::Primitive> primitives;
@@ -628,6 +628,11 @@ bool cells_in_range(const Terrain& terrain, const Eigen::Vector3d& origin_local,
   return true;
 }
 
+// True when mesh shape `p`'s bounding sphere comes within `range` of `origin`.
+bool mesh_in_range(const Primitive& p, const Eigen::Vector3d& origin, double range) {
+  return (p.center + p.rotation * p.mesh->centre - origin).norm() - p.mesh->radius * (1.0 + 1e-9) - 1e-6 <= range;
+}
+
 fan::Primitive fan_primitive(const Primitive& p, const Eigen::Matrix3d& sensor_to_world,
                              const Eigen::Vector3d& origin) {
   fan::Primitive f;
@@ -654,7 +659,7 @@ fan::Primitive fan_primitive(const Primitive& p, const Eigen::Matrix3d& sensor_t
     case ShapeType::sphere:
     case ShapeType::plane:  // never a Primitive (make_primitive)
     case ShapeType::heightfield:
-    case ShapeType::mesh:   // never projected (cast_fan casts meshes ray by ray)
+    case ShapeType::mesh:   // never a fan::Primitive (cast_fan casts a mesh's triangles)
       f.kind = fan::Kind::sphere;
       break;
   }
@@ -669,10 +674,6 @@ fan::Primitive fan_primitive(const Primitive& p, const Eigen::Matrix3d& sensor_t
 // ray.
 constexpr std::size_t kMinFanRays = 256;
 constexpr double kFanRaysPerSurface = 2.0;
-// A fan casts each of its rays that meets a mesh's bounding sphere through the
-// mesh's BVH, after testing every ray against every mesh's sphere: with more
-// meshes than this within range, ray by ray through Embree's BVH is cheaper.
-constexpr std::size_t kMaxFanMeshes = 16;
 
 struct RayCaster::Impl {
   RTCDevice device = nullptr;
@@ -684,7 +685,6 @@ struct RayCaster::Impl {
   std::unordered_map<const TriangleMesh*, const MeshModel*> mesh_model_of;
   CastMethod method = CastMethod::automatic;
   bool fan_kernels = false;
-  std::size_t mesh_shapes = 0;  // static and moving
 
   ~Impl() {
     if (fixed.scene) rtcReleaseScene(fixed.scene);
@@ -730,7 +730,6 @@ struct RayCaster::Impl {
     Primitive p = make_primitive(shape, id);
     if (shape.type == ShapeType::mesh) {
       p.mesh = mesh_model(*shape.mesh);
-      ++mesh_shapes;
     }
     return p;
   }
@@ -859,16 +858,12 @@ struct RayCaster::Impl {
         surfaces += (c1 - c0 + 1.0) * (r1 - r0 + 1.0);
       }
     }
-    if (mesh_shapes > kMaxFanMeshes) {
-      // A fan tests every ray against every mesh's bounding sphere; the BVH culls them instead.
-      std::size_t near = 0;
-      for (const Layer* layer : {&fixed, &moving}) {
-        for (const Primitive& p : layer->primitives) {
-          if (p.type != ShapeType::mesh) continue;
-          near += (p.center + p.rotation * p.mesh->centre - origin).norm() - p.mesh->radius <= max_range_m;
-        }
+    // A mesh in range is as many surfaces as it has triangles (one is counted above).
+    for (const Layer* layer : {&fixed, &moving}) {
+      for (const Primitive& p : layer->primitives) {
+        if (p.type != ShapeType::mesh || !mesh_in_range(p, origin, max_range_m)) continue;
+        surfaces += static_cast<double>(p.mesh->mesh->triangles.size()) - 1.0;
       }
-      if (near > kMaxFanMeshes) return false;
     }
     return surfaces <= kFanRaysPerSurface * static_cast<double>(fan.size());
   }
@@ -935,28 +930,41 @@ struct RayCaster::Impl {
     fan::cast_primitives(rays, scratch.primitives.data(), static_cast<int>(scratch.primitives.size()), min_range_m,
                          max_range_m, best);
 
-    // Meshes have no projection kernel: each ray that meets a mesh's bounding
-    // sphere short of its nearest hit so far traverses the mesh's triangles,
-    // turned into the world in float as a cast through Embree turns it (same answers).
-    const Eigen::Matrix3f rotation_f = rotation.cast<float>();
+    // Meshes: their vertices turned into the sensor frame, each triangle
+    // projected and tested like a heightfield cell's.
     for (const Layer* layer : {&fixed, &moving}) {
       for (const Primitive& p : layer->primitives) {
-        if (p.type != ShapeType::mesh) continue;
-        const Eigen::Vector3d centre = rotation.transpose() * (p.center + p.rotation * p.mesh->centre - origin);
-        const double radius = p.mesh->radius * (1.0 + 1e-9) + 1e-6;
-        if (centre.norm() - radius > max_range_m) continue;
-        for (std::size_t k = 0; k < rays.size; ++k) {
-          const Eigen::Vector3d d(rays.x[k], rays.y[k], rays.z[k]);
-          const double along = centre.dot(d);  // directions are unit vectors
-          if (along + radius < min_range_m || along - radius > scratch.best_t[k]) continue;
-          if ((centre - along * d).squaredNorm() > radius * radius) continue;
-          const Eigen::Vector3d world = (rotation_f * Eigen::Vector3f(rays.x[k], rays.y[k], rays.z[k])).cast<double>();
-          const double t = intersect_mesh(p, origin, world, min_range_m, scratch.best_t[k]);
-          if (t < kNoHit) {
-            scratch.best_t[k] = static_cast<float>(t);
-            scratch.best_shape[k] = p.shape;
-          }
+        if (p.type != ShapeType::mesh || !mesh_in_range(p, origin, max_range_m)) continue;
+        const TriangleMesh& mesh = *p.mesh->mesh;
+        const Eigen::Matrix3d turn = rotation.transpose() * p.rotation;
+        const Eigen::Vector3d shift = rotation.transpose() * (p.center - origin);
+        const std::size_t count = mesh.vertices_m.size();
+        scratch.x.resize(count);
+        scratch.y.resize(count);
+        scratch.z.resize(count);
+        scratch.xf.resize(count);
+        scratch.yf.resize(count);
+        scratch.zf.resize(count);
+        for (std::size_t k = 0; k < count; ++k) {
+          const Eigen::Vector3d v = turn * mesh.vertices_m[k] + shift;
+          scratch.x[k] = v.x();
+          scratch.y[k] = v.y();
+          scratch.z[k] = v.z();
+          scratch.xf[k] = static_cast<float>(v.x());
+          scratch.yf[k] = static_cast<float>(v.y());
+          scratch.zf[k] = static_cast<float>(v.z());
         }
+        static_assert(sizeof(mesh.triangles[0]) == 3 * sizeof(std::uint32_t));
+        const fan::TriangleSoup soup{scratch.x.data(),
+                                     scratch.y.data(),
+                                     scratch.z.data(),
+                                     scratch.xf.data(),
+                                     scratch.yf.data(),
+                                     scratch.zf.data(),
+                                     mesh.triangles.empty() ? nullptr : mesh.triangles.front().data(),
+                                     static_cast<std::uint32_t>(mesh.triangles.size()),
+                                     p.shape};
+        fan::cast_triangles(rays, soup, min_range_m, max_range_m, best);
       }
     }
 

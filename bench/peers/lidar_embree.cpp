@@ -312,23 +312,33 @@ int main(int argc, char** argv) {
   // llvmpipe renders on the calling thread alone (read when its first context is made).
   setenv("LP_NUM_THREADS", "0", 1);
   int scans = 20, repetitions = 5;
+  std::string only;  // --scene NAME: that comparison alone
   const bool json = campo::peers::json_requested(argc, argv);
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::strcmp(argv[i], "--scans") == 0) scans = std::stoi(argv[i + 1]);
     if (std::strcmp(argv[i], "--repetitions") == 0) repetitions = std::stoi(argv[i + 1]);
+    if (std::strcmp(argv[i], "--scene") == 0) only = argv[i + 1];
   }
+  const auto wanted = [&](const std::string& id) { return only.empty() || only == id; };
   try {
     const std::string scenes = std::string(CAMPO_SOURCE_DIR) + "/scenes/";
     const campo::Scene trees = campo::load_scene(scenes + "trees_rolling_terrain.json");
-    campo::compare("trees_rolling_terrain", "trees_rolling_terrain", trees, scans, repetitions, json);
-    campo::compare("vineyard", "vineyard", campo::load_scene(scenes + "vineyard.json"), scans, repetitions, json);
+    if (wanted("trees_rolling_terrain")) {
+      campo::compare("trees_rolling_terrain", "trees_rolling_terrain", trees, scans, repetitions, json);
+    }
+    if (wanted("vineyard")) {
+      campo::compare("vineyard", "vineyard", campo::load_scene(scenes + "vineyard.json"), scans, repetitions, json);
+    }
     campo::Scene terrain = trees;
     std::erase_if(terrain.shapes, [](const campo::Shape& s) { return s.type != campo::ShapeType::heightfield; });
-    campo::compare("terrain", "terrain alone (trees_rolling_terrain's)", terrain, scans, repetitions, json);
+    if (wanted("terrain")) {
+      campo::compare("terrain", "terrain alone (trees_rolling_terrain's)", terrain, scans, repetitions, json);
+    }
     std::vector<std::filesystem::path> others;
     for (const auto& entry : std::filesystem::directory_iterator(scenes)) {
       const std::string name = entry.path().stem().string();
-      if (entry.path().extension() == ".json" && name != "trees_rolling_terrain" && name != "vineyard") {
+      if (entry.path().extension() == ".json" && name != "trees_rolling_terrain" && name != "vineyard" &&
+          wanted(name)) {
         others.push_back(entry.path());
       }
     }

@@ -339,7 +339,12 @@ TEST(MeshRaycast, ManyMeshesAroundTheSensorGiveThePrimitivesRanges) {
     const Agreement r = compare_scans(mesh_scene, box_scene, method, poses, kNoExcuse);
     EXPECT_EQ(r.disagreeing, 0);
     EXPECT_GT(r.compared, 20000);
-    EXPECT_LT(r.worst_m, 1e-5);
+    // The boxes' cast (Embree) turns each float beam into the world in float;
+    // a fan turns the scene into the sensor frame in double instead. The
+    // directions thus differ by a float rounding (~1e-7 rad), which moves a
+    // hit 3 m away at a grazing angle a by 3e-7 m / sin(a): tens of
+    // micrometres at one degree.
+    EXPECT_LT(r.worst_m, method == CastMethod::embree ? 1e-5 : 1e-4);
   }
 }
 
