@@ -24,22 +24,13 @@ struct MeshSize {
   std::size_t triangles = 0;
 };
 
-// How a TriangleMesh's triangles are drawn. A closed mesh whose every edge
-// runs once each way between its two triangles has an outside: its triangles
-// are drawn once, turned (per connected piece) so that they run
-// counter-clockwise seen from outside, and back faces may be culled. Any
-// other mesh (open, or wound inconsistently) is drawn from both sides, as
-// the ray caster sees it: each triangle twice, the second reversed.
-struct MeshFacing {
-  bool two_sided = true;
-  std::vector<bool> flip;  // per triangle, when one-sided: reverse its winding
-};
-
 // Union-find over vertex indices, for the connected pieces of a mesh.
 std::uint32_t root(std::vector<std::uint32_t>& parent, std::uint32_t i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
 }
+
+}  // namespace
 
 MeshFacing mesh_facing(const TriangleMesh& mesh) {
   MeshFacing facing;
@@ -76,6 +67,8 @@ MeshFacing mesh_facing(const TriangleMesh& mesh) {
   for (std::size_t i = 0; i < count; ++i) facing.flip[i] = volume[root(parent, mesh.triangles[i][0])] < 0.0;
   return facing;
 }
+
+namespace {
 
 MeshSize mesh_size(const Shape& shape, int n, const MeshFacing* facing) {
   const auto segments = static_cast<std::size_t>(n);

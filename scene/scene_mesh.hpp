@@ -40,4 +40,18 @@ struct SceneMesh {
 
 SceneMesh build_scene_mesh(const Scene& scene, const MeshOptions& options = {});
 
+/// How a TriangleMesh's triangles face. A closed mesh whose every edge runs
+/// once each way between its two triangles has an outside: its triangles are
+/// drawn once, turned (per connected piece) so that they run
+/// counter-clockwise seen from outside, and back faces may be culled (by the
+/// renderers, and by the ray caster while the sensor is outside the mesh).
+/// Any other mesh (open, or wound inconsistently) is two-sided: it is drawn
+/// from both sides, each triangle twice, the second reversed.
+struct MeshFacing {
+  bool two_sided = true;
+  std::vector<bool> flip;  ///< per triangle, when one-sided: reverse its winding to face out
+};
+
+MeshFacing mesh_facing(const TriangleMesh& mesh);
+
 }  // namespace campo

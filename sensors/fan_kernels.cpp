@@ -763,18 +763,25 @@ void cast_triangles(const Rays& rays, const TriangleSoup& soup, float t0, float 
     const float rho = __builtin_sqrtf(rho2) * 1.00001f + 1e-6f;
     const float dist = __builtin_sqrtf(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]);
     if (dist - rho > t1 || dist + rho < t0 || outside_cone(rays, centre, rho)) continue;
-    const float* const hull[3] = {hull_x, hull_y, hull_z};
-    Rect rects[kFaces];
-    const int n = hull_rects(rays, hull, 3, centre, rho, rects);
-    if (n == 0) continue;
     const double a[3] = {soup.x[v[0]], soup.y[v[0]], soup.z[v[0]]};
     const double b[3] = {soup.x[v[1]], soup.y[v[1]], soup.z[v[1]]};
     const double c[3] = {soup.x[v[2]], soup.y[v[2]], soup.z[v[2]]};
     Triangle tri;
+    triangle_plane(a, b, c, tri.normal, tri.num);
+    if (soup.facing) {
+      // Facing away: the origin on the inner side of its plane, num = n . a
+      // of the sign of the facing, and not within 1e-9 rad of edge-on.
+      const double* n = tri.normal;
+      const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2], a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+      if (soup.facing[i] * tri.num > 0.0 && tri.num * tri.num > 1e-18 * n2 * a2) continue;
+    }
+    const float* const hull[3] = {hull_x, hull_y, hull_z};
+    Rect rects[kFaces];
+    const int n = hull_rects(rays, hull, 3, centre, rho, rects);
+    if (n == 0) continue;
     tri.ab = make_edge(a, b);
     tri.bc = make_edge(b, c);
     tri.ca = make_edge(c, a);
-    triangle_plane(a, b, c, tri.normal, tri.num);
     tri.near = (dist - rho) * 0.9999 - 1e-5;
     tri.far = (dist + rho) * 1.0001 + 1e-5;
     const FloatTriangle ftri{float_edge(tri.ab), float_edge(tri.bc), float_edge(tri.ca)};

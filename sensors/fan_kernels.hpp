@@ -88,6 +88,12 @@ struct TriangleSoup {
   const float* yf = nullptr;
   const float* zf = nullptr;
   const std::uint32_t* triangles = nullptr;  ///< 3 * count vertex indices
+  /// Per triangle, +1 when it runs counter-clockwise seen from outside the
+  /// mesh, -1 when clockwise; null when back faces must be tested too (an
+  /// open mesh, or an origin inside the mesh's bounds or within t0 of them).
+  /// Given, a triangle facing away from the origin (by more than 1e-9 rad) is
+  /// skipped: a ray reaches a back face only through a front face nearer.
+  const std::int8_t* facing = nullptr;
   std::uint32_t count = 0;
   std::int32_t shape = 0;
 };

@@ -15,6 +15,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "scene/scene_mesh.hpp"
 #include "sensors/fan_kernels.hpp"
 #include "sensors/ray_fan.hpp"
 
@@ -57,6 +58,9 @@ struct MeshModel {
   Eigen::Vector3d centre;  // of the local bounds
   Eigen::Vector3d half;    // half sizes of the local bounds
   double radius = 0.0;     // of a sphere about `centre` holding every vertex
+  // Per triangle, +1 when counter-clockwise seen from outside, -1 when
+  // clockwise (fan::TriangleSoup::facing); empty when two-sided.
+  std::vector<std::int8_t> facing;
 };
 
 // An infinite plane, intersected outside Embree (it has no finite bounds).
@@ -633,6 +637,16 @@ bool mesh_in_range(const Primitive& p, const Eigen::Vector3d& origin, double ran
   return (p.center + p.rotation * p.mesh->centre - origin).norm() - p.mesh->radius * (1.0 + 1e-9) - 1e-6 <= range;
 }
 
+// True when mesh shape `p` has an outside (MeshModel::facing) and `origin`
+// lies outside its bounds by more than `min_range` (and a micrometre): every
+// ray then meets a face turned towards the origin, at or past min_range,
+// before any face turned away.
+bool back_faces_hidden(const Primitive& p, const Eigen::Vector3d& origin, double min_range) {
+  if (p.mesh->facing.empty()) return false;
+  const Eigen::Vector3d local = p.rotation.transpose() * (origin - p.center);
+  return p.mesh->mesh->bounds_m.exteriorDistance(local) > min_range + 1e-6;
+}
+
 fan::Primitive fan_primitive(const Primitive& p, const Eigen::Matrix3d& sensor_to_world,
                              const Eigen::Vector3d& origin) {
   fan::Primitive f;
@@ -707,6 +721,9 @@ struct RayCaster::Impl {
       model.half = 0.5 * mesh.bounds_m.sizes();
     }
     for (const Eigen::Vector3d& v : mesh.vertices_m) model.radius = std::max(model.radius, (v - model.centre).norm());
+    if (const MeshFacing facing = mesh_facing(mesh); !facing.two_sided) {
+      for (const bool flip : facing.flip) model.facing.push_back(flip ? -1 : 1);
+    }
     model.scene = rtcNewScene(device);
     rtcSetSceneBuildQuality(model.scene, RTC_BUILD_QUALITY_HIGH);
     if (!mesh.triangles.empty()) {
@@ -962,6 +979,7 @@ struct RayCaster::Impl {
                                      scratch.yf.data(),
                                      scratch.zf.data(),
                                      mesh.triangles.empty() ? nullptr : mesh.triangles.front().data(),
+                                     back_faces_hidden(p, origin, min_range_m) ? p.mesh->facing.data() : nullptr,
                                      static_cast<std::uint32_t>(mesh.triangles.size()),
                                      p.shape};
         fan::cast_triangles(rays, soup, min_range_m, max_range_m, best);

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <utility>
 #include <limits>
 #include <numbers>
 #include <span>
@@ -14,6 +16,7 @@
 #include "campo/pose.hpp"
 #include "campo/random.hpp"
 #include "campo/range_sensor_config.hpp"
+#include "scene/scene_mesh.hpp"
 #include "sensors/depth_camera.hpp"
 #include "sensors/fan_kernels.hpp"
 #include "sensors/lidar.hpp"
@@ -315,6 +318,88 @@ TEST(MeshRaycast, ClosedIcosphereLetsNoRayOutEvenThroughSharedEdgesAndVertices) 
       }
     }
     EXPECT_EQ(through, 0u) << "of " << cast << " rays";
+  }
+}
+
+TEST(MeshRaycast, ClosedMeshSeenFromOutsideStopsRaysOnItsNearSideWhicheverWayItIsWound) {
+  // Seen from outside its bounds, a closed mesh's faces turned away are
+  // skipped by a fan (fan::TriangleSoup::facing). The truth is the sphere the
+  // icosphere is inscribed in: a ray missing the sphere misses, one meeting
+  // the inner sphere (which the polyhedron holds) stops between the two
+  // spheres' near crossings, and a ray aimed at a vertex or an edge's middle
+  // on the near side stops on the surface no further than that point.
+  const double radius = 2.0, inner = radius * std::cos(0.2);  // the faces' centres lie within 0.2 rad
+  const auto outward = icosphere_mesh(radius, 3);
+  auto inward = std::make_shared<TriangleMesh>(*outward);
+  for (auto& t : inward->triangles) std::swap(t[1], t[2]);
+  const Eigen::Vector3d centre(4.0, -3.0, 1.5);
+  Rng rng(36);
+  for (const auto& mesh : {std::shared_ptr<const TriangleMesh>(outward), std::shared_ptr<const TriangleMesh>(inward)}) {
+    const MeshFacing facing = mesh_facing(*mesh);
+    ASSERT_FALSE(facing.two_sided);
+    EXPECT_EQ(facing.flip[0], mesh.get() == inward.get());
+    const Scene scene = scene_of({mesh_shape(mesh, pose(centre, {10.0, 20.0, 30.0}))});
+    const Eigen::Matrix3d turn = pose(centre, {10.0, 20.0, 30.0}).linear();
+    for (const CastMethod method : methods()) {
+      SCOPED_TRACE(name(method) + (mesh.get() == inward.get() ? " inward" : " outward"));
+      const RayCaster caster(scene, method);
+      int wrong = 0, aimed = 0, met = 0;
+      for (int o = 0; o < 6; ++o) {
+        // Outside the bounds (a cube of half-size 2 about the centre, turned).
+        const Eigen::Vector3d away = Eigen::Vector3d(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0),
+                                                     rng.uniform(-1.0, 1.0)).normalized();
+        const Eigen::Vector3d origin = centre + (3.6 + o) * away;
+        std::vector<Eigen::Vector3f> dirs;
+        std::vector<double> target_range;  // for the aimed rays
+        const auto aim = [&](const Eigen::Vector3d& local) {
+          const Eigen::Vector3d target = centre + turn * local;
+          // Well on the near side: 0.3 rad or more from grazing the sphere.
+          if ((target - centre).normalized().dot((origin - target).normalized()) < std::sin(0.3)) return;
+          dirs.push_back((target - origin).normalized().cast<float>());
+          target_range.push_back((target - origin).norm());
+        };
+        for (const Eigen::Vector3d& v : mesh->vertices_m) aim(v);
+        for (const auto& t : mesh->triangles) aim(0.5 * (mesh->vertices_m[t[0]] + mesh->vertices_m[t[1]]));
+        const std::size_t aimed_count = dirs.size();
+        const Eigen::Vector3d to_centre = (centre - origin).normalized();
+        for (int i = 0; i < 20000; ++i) {
+          const Eigen::Vector3d d =
+              (to_centre + 0.6 * Eigen::Vector3d(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)))
+                  .normalized();
+          dirs.push_back(d.cast<float>());
+        }
+        std::vector<RayHit> hits(dirs.size());
+        caster.cast(origin, dirs, 0.0f, 100.0f, hits);
+        for (std::size_t i = 0; i < dirs.size(); ++i) {
+          const Eigen::Vector3d d = dirs[i].cast<double>();
+          const bool hit = hits[i].shape == 0;
+          const Eigen::Vector3d end = origin + double{hits[i].distance_m} * d;
+          const bool on_surface = hit && (end - centre).norm() <= radius + 1e-5 && (end - centre).norm() >= inner - 1e-5;
+          if (i < aimed_count) {
+            ++aimed;
+            wrong += !on_surface || hits[i].distance_m > target_range[i] + 1e-5;
+            continue;
+          }
+          // The near crossing of a sphere of radius r, or NaN when the ray misses it.
+          const auto crossing = [&](double r) {
+            const double b = d.dot(origin - centre), c = (origin - centre).squaredNorm() - r * r;
+            return b * b - c >= 0.0 ? -b - std::sqrt(b * b - c) : std::numeric_limits<double>::quiet_NaN();
+          };
+          const double outer_t = crossing(radius), inner_t = crossing(inner);
+          if (std::isnan(outer_t)) {
+            wrong += hit;
+          } else if (!std::isnan(inner_t)) {
+            ++met;
+            wrong += !on_surface || hits[i].distance_m < outer_t - 1e-5 || hits[i].distance_m > inner_t + 1e-5;
+          } else {
+            wrong += hit && !on_surface;  // between the spheres: a hit or a miss, on the surface
+          }
+        }
+      }
+      EXPECT_EQ(wrong, 0) << "of " << aimed << " aimed rays and 120000 others";
+      EXPECT_GT(aimed, 1000);
+      EXPECT_GT(met, 30000);
+    }
   }
 }
 
