@@ -164,11 +164,13 @@ inline void keep(V t, V ok, V t0, V& cand) {
   cand = select(vand(ok, vand(ge(t, t0), lt(t, cand))), t, cand);
 }
 
-// Writes the lanes of `cand` nearer than the best so far (a lane without a
-// hit holds +inf; the best so far starts finite, see Best).
+// Writes the lanes of `cand` at least as near as the best so far (strictly
+// nearer: kStrict) to it. A lane without a hit holds +inf; the best so far
+// starts finite (see Best).
+template <bool kStrict = false>
 inline void commit(const Best& best, std::uint32_t k, V valid, V cand, std::int32_t shape) {
   const V old = _mm256_loadu_ps(best.t + k);
-  const V take = vand(valid, le(cand, old));
+  const V take = vand(valid, kStrict ? lt(cand, old) : le(cand, old));
   if (none(take)) return;
   _mm256_storeu_ps(best.t + k, select(take, cand, old));
   const __m256i old_shape = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(best.shape + k));
@@ -584,7 +586,7 @@ void cast_planes(const Rays& rays, const Plane* planes, int count, float t0, Bes
                                   hit(_mm256_castps256_ps128(x), _mm256_castps256_ps128(y), _mm256_castps256_ps128(z)));
       V cand = set1(kInf);
       keep(t, _mm256_castsi256_ps(_mm256_set1_epi32(-1)), set1(t0), cand);
-      commit(best, k, valid_lanes(k, rays.size), cand, plane.shape);
+      commit<true>(best, k, valid_lanes(k, rays.size), cand, plane.shape);
     }
   }
 }

@@ -122,13 +122,18 @@ void reset(Best best, std::uint32_t count, float t, std::int32_t shape);
 /// shape is `no_shape`.
 void write_hits(const std::uint32_t* order, std::uint32_t count, Best best, std::int32_t no_shape, void* out);
 
-/// Each cast keeps, per ray, the nearest hit with t in [t0, best.t].
-void cast_planes(const Rays& rays, const Plane* planes, int count, float t0, Best best);
+/// Each cast keeps, per ray, the nearest hit with t in [t0, best.t]: on a tie
+/// the surface cast later wins.
 void cast_terrain(const Rays& rays, const TerrainPatch& patch, float t0, float t1, Best best);
 /// Each triangle as a heightfield cell's triangle is tested: every ray through
 /// it, edges and vertices included, is found, so a closed mesh lets no ray out.
 void cast_triangles(const Rays& rays, const TriangleSoup& soup, float t0, float t1, Best best);
 void cast_primitives(const Rays& rays, const Primitive* primitives, int count, float t0, float t1,
                      Best best);
+/// Planes keep a hit only when strictly nearer than the best so far: cast
+/// last (when most rays have stopped short of the ground) and in reverse
+/// order, they give what casting them first and in order would, where on a
+/// tie the other surfaces win, then the later plane.
+void cast_planes(const Rays& rays, const Plane* planes, int count, float t0, Best best);
 
 }  // namespace campo::fan

@@ -897,13 +897,6 @@ struct RayCaster::Impl {
     const Eigen::Matrix3d& rotation = pose.linear();
     const Eigen::Vector3d& origin = pose.translation();
 
-    scratch.planes.clear();
-    for (const Plane& plane : planes) {
-      const Eigen::Vector3d n = rotation.transpose() * plane.normal;
-      scratch.planes.push_back({{n.x(), n.y(), n.z()}, plane.normal.dot(plane.point - origin), plane.shape});
-    }
-    fan::cast_planes(rays, scratch.planes.data(), static_cast<int>(scratch.planes.size()), min_range_m, best);
-
     for (const Terrain& terrain : fixed.terrains) {
       const Eigen::Vector3d local = terrain.rotation.transpose() * (origin - terrain.translation);
       int c0, c1, r0, r1;
@@ -985,6 +978,16 @@ struct RayCaster::Impl {
         fan::cast_triangles(rays, soup, min_range_m, max_range_m, best);
       }
     }
+
+    // Planes last, in reverse order, keeping strictly nearer hits only: the
+    // answer of casting them first (fan::cast_planes), but rays stopped
+    // short of the ground by then skip it.
+    scratch.planes.clear();
+    for (auto plane = planes.rbegin(); plane != planes.rend(); ++plane) {
+      const Eigen::Vector3d n = rotation.transpose() * plane->normal;
+      scratch.planes.push_back({{n.x(), n.y(), n.z()}, plane->normal.dot(plane->point - origin), plane->shape});
+    }
+    fan::cast_planes(rays, scratch.planes.data(), static_cast<int>(scratch.planes.size()), min_range_m, best);
 
     fan::write_hits(fan.order().data(), rays.size, best, RayHit::kNoShape, hits.data());
   }

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <deque>
+#include <memory>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -14,6 +17,7 @@
 #include "campo/pose.hpp"
 #include "campo/random.hpp"
 #include "campo/world.hpp"
+#include "sensors/fan_kernels.hpp"
 #include "tests/sensors/seam_points.hpp"
 
 namespace campo {
@@ -495,6 +499,59 @@ TEST_P(RayCasterTest, NearestOfOverlappingShapesWinsAndIsNamed) {
   EXPECT_NEAR(cast_one(caster, {0.0, 7.0, 1.0}, -Eigen::Vector3d::UnitZ()).distance_m, 1.0, 1e-6);
   // Up: nothing.
   EXPECT_EQ(cast_one(caster, o, Eigen::Vector3d::UnitZ()).shape, RayHit::kNoShape);
+}
+
+TEST(RayCasterFan, KeepsTheNearestSurfaceAndBreaksTiesInOneFixedOrder) {
+  // Planes are cast last but keep only strictly nearer hits, so a fan must
+  // answer as if every surface were cast alone and the answers merged in the
+  // order planes (in scene order), heightfields, primitives, each taking a
+  // tie. Coincident surfaces make ties common: two planes and a flat
+  // heightfield at z = 0, a box standing on them.
+  if (!fan::kernels_available()) GTEST_SKIP() << "no AVX2 and FMA: no fan";
+  std::vector<Shape> shapes;
+  shapes.push_back(make_shape(ShapeType::plane, {0.0, 0.0, 0.0}));                                   // 0
+  shapes.push_back(heightfield(21, 21, 0.5, {0.5, 0.3, 0.0}, 17.0, [](double, double) { return 0.0; }));  // 1
+  shapes.push_back(make_shape(ShapeType::plane, {3.0, -2.0, 0.0}));                                  // 2
+  shapes.push_back(cuboid({2.0, 0.5, 0.5}, {1.0, 2.0, 1.0}, {0.0, 0.0, 30.0}));                     // 3
+  Scene scene;
+  scene.shapes = shapes;
+  const RayCaster caster(scene, CastMethod::fan);
+  const std::array<int, 4> merge_order = {0, 2, 1, 3};
+  std::deque<Scene> singles;  // each outlives its caster
+  std::vector<std::unique_ptr<RayCaster>> alone;
+  for (const Shape& shape : shapes) {
+    singles.emplace_back().shapes = {shape};
+    alone.push_back(std::make_unique<RayCaster>(singles.back(), CastMethod::fan));
+  }
+  Rng rng(37);
+  std::vector<Eigen::Vector3f> dirs;
+  for (int i = 0; i < 4000; ++i) {
+    const Eigen::Vector3d d(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, -0.05));
+    dirs.push_back(d.normalized().cast<float>());
+  }
+  const Eigen::Vector3d origin(0.1, -0.2, 1.7);
+  std::vector<RayHit> hits(dirs.size()), one(dirs.size());
+  caster.cast(origin, dirs, 0.05f, 20.0f, hits);
+  std::vector<RayHit> expected(dirs.size(), RayHit{std::numeric_limits<float>::infinity(), RayHit::kNoShape});
+  for (const int index : merge_order) {
+    alone[static_cast<std::size_t>(index)]->cast(origin, dirs, 0.05f, 20.0f, one);
+    for (std::size_t i = 0; i < dirs.size(); ++i) {
+      if (one[i].shape != RayHit::kNoShape && one[i].distance_m <= expected[i].distance_m) {
+        expected[i] = {one[i].distance_m, index};
+      }
+    }
+  }
+  int ties = 0;
+  for (std::size_t i = 0; i < dirs.size(); ++i) {
+    ASSERT_EQ(hits[i].shape, expected[i].shape) << "ray " << i;
+    ASSERT_EQ(hits[i].distance_m, expected[i].distance_m) << "ray " << i;
+  }
+  // The planes' and the heightfield's ranges tie on most rays that meet the heightfield.
+  alone[0]->cast(origin, dirs, 0.05f, 20.0f, one);
+  std::vector<RayHit> terrain(dirs.size());
+  alone[1]->cast(origin, dirs, 0.05f, 20.0f, terrain);
+  for (std::size_t i = 0; i < dirs.size(); ++i) ties += terrain[i].shape != RayHit::kNoShape && terrain[i].distance_m == one[i].distance_m;
+  EXPECT_GT(ties, 500);
 }
 
 TEST_P(RayCasterTest, SetTimeMovesMoversAlongTheirPaths) {
