@@ -593,6 +593,45 @@ void cast_planes(const Rays& rays, const Plane* planes, int count, float t0, Bes
 
 namespace {
 
+// The corners of one cell or triangle (float, sensor frame) and the ball
+// about their mean that holds them.
+struct Hull {
+  float x[4], y[4], z[4];
+  float centre[3];
+  float rho;   // the ball's radius, padded for rounding
+  float dist;  // of its centre from the origin
+};
+
+// Gathers vertices index[0, N) of (xf, yf, zf) into `hull`; false when its
+// ball lies out of [t0, t1] or outside the fan's cone (no ray may meet it).
+template <int N, class Index>
+bool gather_hull(const Rays& rays, const float* xf, const float* yf, const float* zf, const Index* index, float t0,
+                 float t1, Hull& hull) {
+  static_assert(N >= 1 && N <= 4);
+  for (int k = 0; k < N; ++k) {
+    hull.x[k] = xf[index[k]];
+    hull.y[k] = yf[index[k]];
+    hull.z[k] = zf[index[k]];
+  }
+  constexpr float kInvN = 1.0f / N;
+  float sum[3] = {hull.x[0], hull.y[0], hull.z[0]};
+  for (int k = 1; k < N; ++k) {
+    sum[0] += hull.x[k];
+    sum[1] += hull.y[k];
+    sum[2] += hull.z[k];
+  }
+  for (int a = 0; a < 3; ++a) hull.centre[a] = kInvN * sum[a];
+  float rho2 = 0.0f;
+  for (int k = 0; k < N; ++k) {
+    const float ex = hull.x[k] - hull.centre[0], ey = hull.y[k] - hull.centre[1], ez = hull.z[k] - hull.centre[2];
+    rho2 = max_f(rho2, ex * ex + ey * ey + ez * ez);
+  }
+  hull.rho = __builtin_sqrtf(rho2) * 1.00001f + 1e-6f;
+  const float* c = hull.centre;
+  hull.dist = __builtin_sqrtf(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  return !(hull.dist - hull.rho > t1 || hull.dist + hull.rho < t0 || outside_cone(rays, c, hull.rho));
+}
+
 // One heightfield cell (c, r) of the patch: culled, projected, and its rays tested.
 void cast_terrain_cell(const Rays& rays, const TerrainPatch& patch, int c, int r, float t0, float t1,
                    const Best& best) {
@@ -601,26 +640,11 @@ void cast_terrain_cell(const Rays& rays, const TerrainPatch& patch, int c, int r
   const double* const pz = patch.z;
   const int i00 = r * patch.cols + c, i10 = i00 + 1, i01 = i00 + patch.cols, i11 = i01 + 1;
   const int corners[4] = {i00, i10, i01, i11};
-  float hull_x[4], hull_y[4], hull_z[4];
-  for (int k = 0; k < 4; ++k) {
-    hull_x[k] = patch.xf[corners[k]];
-    hull_y[k] = patch.yf[corners[k]];
-    hull_z[k] = patch.zf[corners[k]];
-  }
-  const float centre[3] = {0.25f * (hull_x[0] + hull_x[1] + hull_x[2] + hull_x[3]),
-                           0.25f * (hull_y[0] + hull_y[1] + hull_y[2] + hull_y[3]),
-                           0.25f * (hull_z[0] + hull_z[1] + hull_z[2] + hull_z[3])};
-  float rho2 = 0.0f;
-  for (int k = 0; k < 4; ++k) {
-    const float ex = hull_x[k] - centre[0], ey = hull_y[k] - centre[1], ez = hull_z[k] - centre[2];
-    rho2 = max_f(rho2, ex * ex + ey * ey + ez * ez);
-  }
-  const float rho = __builtin_sqrtf(rho2) * 1.00001f + 1e-6f;
-  const float dist = __builtin_sqrtf(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]);
-  if (dist - rho > t1 || dist + rho < t0 || outside_cone(rays, centre, rho)) return;
-  const float* const hull[3] = {hull_x, hull_y, hull_z};
+  Hull h;
+  if (!gather_hull<4>(rays, patch.xf, patch.yf, patch.zf, corners, t0, t1, h)) return;
+  const float* const hull[3] = {h.x, h.y, h.z};
   Rect rects[kFaces];
-  const int n = hull_rects(rays, hull, 4, centre, rho, rects);
+  const int n = hull_rects(rays, hull, 4, h.centre, h.rho, rects);
   if (n == 0) return;
   const double p00[3] = {px[i00], py[i00], pz[i00]}, p10[3] = {px[i10], py[i10], pz[i10]};
   const double p01[3] = {px[i01], py[i01], pz[i01]}, p11[3] = {px[i11], py[i11], pz[i11]};
@@ -632,8 +656,8 @@ void cast_terrain_cell(const Rays& rays, const TerrainPatch& patch, int c, int r
   cell.e4 = make_edge(p11, p01);
   triangle_plane(p00, p10, p01, cell.normal1, cell.num1);
   triangle_plane(p10, p11, p01, cell.normal2, cell.num2);
-  cell.near = (dist - rho) * 0.9999 - 1e-5;
-  cell.far = (dist + rho) * 1.0001 + 1e-5;
+  cell.near = (h.dist - h.rho) * 0.9999 - 1e-5;
+  cell.far = (h.dist + h.rho) * 1.0001 + 1e-5;
   const FloatCell fcell{float_edge(cell.e0), float_edge(cell.diagonal), float_edge(cell.e2),
                         float_edge(cell.e3), float_edge(cell.e4)};
   for (int i = 0; i < n; ++i) {
@@ -748,23 +772,8 @@ void cast_triangle_run(const Rays& rays, const Triangle& tri, const FloatTriangl
 void cast_triangles(const Rays& rays, const TriangleSoup& soup, float t0, float t1, Best best) {
   for (std::uint32_t i = 0; i < soup.count; ++i) {
     const std::uint32_t* v = soup.triangles + 3 * static_cast<std::size_t>(i);
-    float hull_x[3], hull_y[3], hull_z[3];
-    for (int k = 0; k < 3; ++k) {
-      hull_x[k] = soup.xf[v[k]];
-      hull_y[k] = soup.yf[v[k]];
-      hull_z[k] = soup.zf[v[k]];
-    }
-    constexpr float kThird = 1.0f / 3.0f;
-    const float centre[3] = {kThird * (hull_x[0] + hull_x[1] + hull_x[2]), kThird * (hull_y[0] + hull_y[1] + hull_y[2]),
-                             kThird * (hull_z[0] + hull_z[1] + hull_z[2])};
-    float rho2 = 0.0f;
-    for (int k = 0; k < 3; ++k) {
-      const float ex = hull_x[k] - centre[0], ey = hull_y[k] - centre[1], ez = hull_z[k] - centre[2];
-      rho2 = max_f(rho2, ex * ex + ey * ey + ez * ez);
-    }
-    const float rho = __builtin_sqrtf(rho2) * 1.00001f + 1e-6f;
-    const float dist = __builtin_sqrtf(centre[0] * centre[0] + centre[1] * centre[1] + centre[2] * centre[2]);
-    if (dist - rho > t1 || dist + rho < t0 || outside_cone(rays, centre, rho)) continue;
+    Hull h;
+    if (!gather_hull<3>(rays, soup.xf, soup.yf, soup.zf, v, t0, t1, h)) continue;
     const double a[3] = {soup.x[v[0]], soup.y[v[0]], soup.z[v[0]]};
     const double b[3] = {soup.x[v[1]], soup.y[v[1]], soup.z[v[1]]};
     const double c[3] = {soup.x[v[2]], soup.y[v[2]], soup.z[v[2]]};
@@ -777,15 +786,15 @@ void cast_triangles(const Rays& rays, const TriangleSoup& soup, float t0, float 
       const double n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2], a2 = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
       if (soup.facing[i] * tri.num > 0.0 && tri.num * tri.num > 1e-18 * n2 * a2) continue;
     }
-    const float* const hull[3] = {hull_x, hull_y, hull_z};
+    const float* const hull[3] = {h.x, h.y, h.z};
     Rect rects[kFaces];
-    const int n = hull_rects(rays, hull, 3, centre, rho, rects);
+    const int n = hull_rects(rays, hull, 3, h.centre, h.rho, rects);
     if (n == 0) continue;
     tri.ab = make_edge(a, b);
     tri.bc = make_edge(b, c);
     tri.ca = make_edge(c, a);
-    tri.near = (dist - rho) * 0.9999 - 1e-5;
-    tri.far = (dist + rho) * 1.0001 + 1e-5;
+    tri.near = (h.dist - h.rho) * 0.9999 - 1e-5;
+    tri.far = (h.dist + h.rho) * 1.0001 + 1e-5;
     const FloatTriangle ftri{float_edge(tri.ab), float_edge(tri.bc), float_edge(tri.ca)};
     for (int r = 0; r < n; ++r) {
       for_each_run(rays, rects[r], [&](std::uint32_t first, std::uint32_t end) {

@@ -604,6 +604,20 @@ struct FanScratch {
   std::vector<std::int32_t> best_shape;
   std::vector<double> x, y, z;  // a heightfield patch's or a mesh's vertices, in the sensor frame
   std::vector<float> xf, yf, zf;  // the same rounded to float, for culling and projecting
+
+  // Room for `count` vertices, and vertex k set to p (and its float copy).
+  void resize_vertices(std::size_t count) {
+    for (std::vector<double>* v : {&x, &y, &z}) v->resize(count);
+    for (std::vector<float>* v : {&xf, &yf, &zf}) v->resize(count);
+  }
+  void set_vertex(std::size_t k, const Eigen::Vector3d& p) {
+    x[k] = p.x();
+    y[k] = p.y();
+    z[k] = p.z();
+    xf[k] = static_cast<float>(p.x());
+    yf[k] = static_cast<float>(p.y());
+    zf[k] = static_cast<float>(p.z());
+  }
   std::vector<fan::Plane> planes;
   std::vector<fan::Primitive> primitives;
   std::vector<Eigen::Vector3f> directions;  // world directions, for a fan cast through Embree
@@ -906,23 +920,12 @@ struct RayCaster::Impl {
       const Eigen::Vector3d shift = rotation.transpose() * (terrain.translation - origin);
       const int cols = c1 - c0 + 2, rows = r1 - r0 + 2;
       const auto count = static_cast<std::size_t>(cols) * static_cast<std::size_t>(rows);
-      scratch.x.resize(count);
-      scratch.y.resize(count);
-      scratch.z.resize(count);
-      scratch.xf.resize(count);
-      scratch.yf.resize(count);
-      scratch.zf.resize(count);
+      scratch.resize_vertices(count);
       std::size_t k = 0;
       for (int r = r0; r <= r1 + 1; ++r) {
         const Eigen::Vector3d row = shift + turn.col(1) * terrain.vertex_y(r);
         for (int c = c0; c <= c1 + 1; ++c, ++k) {
-          const Eigen::Vector3d p = row + turn.col(0) * terrain.vertex_x(c) + turn.col(2) * terrain.grid->at(c, r);
-          scratch.x[k] = p.x();
-          scratch.y[k] = p.y();
-          scratch.z[k] = p.z();
-          scratch.xf[k] = static_cast<float>(p.x());
-          scratch.yf[k] = static_cast<float>(p.y());
-          scratch.zf[k] = static_cast<float>(p.z());
+          scratch.set_vertex(k, row + turn.col(0) * terrain.vertex_x(c) + turn.col(2) * terrain.grid->at(c, r));
         }
       }
       const fan::TerrainPatch patch{scratch.x.data(),  scratch.y.data(),  scratch.z.data(), scratch.xf.data(),
@@ -949,21 +952,8 @@ struct RayCaster::Impl {
         const Eigen::Matrix3d turn = rotation.transpose() * p.rotation;
         const Eigen::Vector3d shift = rotation.transpose() * (p.center - origin);
         const std::size_t count = mesh.vertices_m.size();
-        scratch.x.resize(count);
-        scratch.y.resize(count);
-        scratch.z.resize(count);
-        scratch.xf.resize(count);
-        scratch.yf.resize(count);
-        scratch.zf.resize(count);
-        for (std::size_t k = 0; k < count; ++k) {
-          const Eigen::Vector3d v = turn * mesh.vertices_m[k] + shift;
-          scratch.x[k] = v.x();
-          scratch.y[k] = v.y();
-          scratch.z[k] = v.z();
-          scratch.xf[k] = static_cast<float>(v.x());
-          scratch.yf[k] = static_cast<float>(v.y());
-          scratch.zf[k] = static_cast<float>(v.z());
-        }
+        scratch.resize_vertices(count);
+        for (std::size_t k = 0; k < count; ++k) scratch.set_vertex(k, turn * mesh.vertices_m[k] + shift);
         static_assert(sizeof(mesh.triangles[0]) == 3 * sizeof(std::uint32_t));
         const fan::TriangleSoup soup{scratch.x.data(),
                                      scratch.y.data(),
