@@ -15,7 +15,7 @@ std::string format_bound(double v) {
 }
 
 // A table cell: a '|' would end the cell early.
-std::string cell(const std::string& text) {
+std::string escape_pipes(const std::string& text) {
   std::string out;
   for (char c : text) {
     if (c == '|') out += '\\';
@@ -63,8 +63,8 @@ std::string field_value_text(const nlohmann::json& value) {
 std::string markdown_table(const std::vector<FieldDoc>& rows) {
   std::string out = "| key | default | unit | accepted | meaning |\n| --- | --- | --- | --- | --- |\n";
   for (const FieldDoc& row : rows) {
-    out += "| `" + cell(row.key) + "` | " + cell(row.default_value) + " | " + cell(row.unit) + " | " +
-           cell(row.accepted) + " | " + cell(row.doc) + " |\n";
+    out += "| `" + escape_pipes(row.key) + "` | " + escape_pipes(row.default_value) + " | " + escape_pipes(row.unit) + " | " +
+           escape_pipes(row.accepted) + " | " + escape_pipes(row.doc) + " |\n";
   }
   return out;
 }

@@ -18,7 +18,7 @@ constexpr std::array<std::pair<RecordType, std::string_view>, 6> kTypeNames{{
 }};
 
 // A Markdown table cell: no line break, no column separator.
-std::string cell(const std::string& text) {
+std::string one_line_cell(const std::string& text) {
   std::string out;
   for (const char c : text) {
     if (c == '|') out += "\\|";
@@ -102,8 +102,8 @@ void RecordFields::check(const nlohmann::json& record, const std::string& file, 
 std::string RecordFields::markdown() const {
   std::string out = "| field | type | unit | meaning |\n| --- | --- | --- | --- |\n";
   for (const RecordFieldInfo& f : fields_) {
-    out += "| `" + cell(f.name) + "` | " + std::string(to_string(f.type)) + " | " + cell(f.unit) + " | " +
-           cell(f.meaning) + " |\n";
+    out += "| `" + one_line_cell(f.name) + "` | " + std::string(to_string(f.type)) + " | " + one_line_cell(f.unit) + " | " +
+           one_line_cell(f.meaning) + " |\n";
   }
   return out;
 }

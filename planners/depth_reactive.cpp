@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/angles.hpp"
 #include "campo/json_reader.hpp"
 #include "sensors/lidar.hpp"
 
@@ -15,7 +16,6 @@ namespace campo {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kDegToRad = M_PI / 180.0;
 constexpr double kAltitudeTolerance_m = 0.1;  // an altitude change is done within this
 
 double wrap_angle(double a) { return std::remainder(a, 2.0 * M_PI); }
@@ -24,9 +24,9 @@ double elapsed_ms(Clock::time_point since) {
   return std::chrono::duration<double, std::milli>(Clock::now() - since).count();
 }
 
-nlohmann::json to_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-nlohmann::json to_json(const Eigen::Vector2d& v) { return {v.x(), v.y()}; }
-nlohmann::json to_json(const Eigen::Vector2i& v) { return {v.x(), v.y()}; }
+nlohmann::json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json vector_json(const Eigen::Vector2d& v) { return {v.x(), v.y()}; }
+nlohmann::json vector_json(const Eigen::Vector2i& v) { return {v.x(), v.y()}; }
 
 // A point far along heading `yaw` at the height of `from`, to face with command::Face.
 Eigen::Vector3d point_at_yaw(const Eigen::Vector3d& from, double yaw) {
@@ -241,9 +241,9 @@ class DepthReactivePlanner final : public Planner {
       if (search.found) {
         const FoundWaypoint& f = *search.found;
         const Eigen::Vector3d waypoint = scan.sensor_pose * (f.direction_sensor * f.range_m);
-        rec.chosen_pixel.set(replan.details, to_json(f.pixel));
-        rec.edge_pixel.set(replan.details, to_json(f.edge_pixel));
-        rec.waypoint_pixel.set(replan.details, to_json(f.waypoint_pixel));
+        rec.chosen_pixel.set(replan.details, vector_json(f.pixel));
+        rec.edge_pixel.set(replan.details, vector_json(f.edge_pixel));
+        rec.waypoint_pixel.set(replan.details, vector_json(f.waypoint_pixel));
         rec.edge_range_m.set(replan.details, f.edge_range_m);
         rec.new_waypoint_range_m.set(replan.details, f.range_m);
         rec.tried.set(replan.details, f.tried);
@@ -272,11 +272,11 @@ class DepthReactivePlanner final : public Planner {
     ReplanDecision replan{.index = replans_++, .sensor = std::string(reading.alias)};
     const DepthReactiveRecord& rec = depth_reactive_record();
     rec.scan_time_s.set(replan.details, scan.time_s);
-    rec.waypoint.set(replan.details, to_json(entry.position_m));
+    rec.waypoint.set(replan.details, vector_json(entry.position_m));
     rec.role.set(replan.details, entry.temporary ? "intermediate" : "target");
     rec.visibility.set(replan.details, std::string(to_string(check.visibility)));
-    rec.pixel.set(replan.details, to_json(check.pixel));
-    rec.radius_px.set(replan.details, to_json(Eigen::Vector2d(check.radius_x_px, check.radius_y_px)));
+    rec.pixel.set(replan.details, vector_json(check.pixel));
+    rec.radius_px.set(replan.details, vector_json(Eigen::Vector2d(check.radius_x_px, check.radius_y_px)));
     rec.waypoint_range_m.set(replan.details, check.waypoint_range_m);
     rec.obstacle_range_m.set(replan.details, check.obstacle_range_m);
     return replan;
@@ -355,7 +355,7 @@ class DepthReactivePlanner final : public Planner {
         clear_range(dilated, grid, ahead, config_.wall_step_m, config_.safety_radius_m, 0.0, 1.5, depth_margin()).value_or(0.0);
     const double yaw = o.state.yaw_rad();
     const Eigen::Vector3d waypoint = o.state.position_m + range * Eigen::Vector3d(std::cos(yaw), std::sin(yaw), 0.0);
-    record["waypoint"] = to_json(waypoint);
+    record["waypoint"] = vector_json(waypoint);
     depth_reactive_record().wall_following.set(result.decisions.own, record);
     result.decisions.planned_waypoint = waypoint;
     stack_.push_back({waypoint, true});

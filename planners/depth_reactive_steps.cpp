@@ -10,6 +10,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "core/angles.hpp"
 #include "planners/fast_atan.hpp"
 
 #if defined(__x86_64__)
@@ -20,7 +21,6 @@ namespace campo {
 
 namespace {
 
-constexpr double kDegToRad = M_PI / 180.0;
 constexpr double kRadToDeg = 180.0 / M_PI;
 // Marks "no obstacle of this layer" in a layer image; above every depth value.
 constexpr float kEmpty = std::numeric_limits<float>::max();

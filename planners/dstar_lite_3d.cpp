@@ -17,8 +17,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-nlohmann::json to_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-nlohmann::json to_json(const grid::Cell& c) { return {c.x, c.y, c.z}; }
+nlohmann::json position_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+nlohmann::json cell_json(const grid::Cell& c) { return {c.x, c.y, c.z}; }
 
 class DStarLite3dPlanner final : public Planner {
  public:
@@ -78,7 +78,7 @@ class DStarLite3dPlanner final : public Planner {
     const std::optional<grid::Cell> start = start_cell(o.state.position_m);
     if (!start) {
       result.status = PlanStatus::aborted;
-      result.reason = "the vehicle left the grid or its whole column is blocked at " + to_json(o.state.position_m).dump();
+      result.reason = "the vehicle left the grid or its whole column is blocked at " + position_json(o.state.position_m).dump();
       return result;
     }
     const grid::Cell goal = map_->cell_of(o.mission[next_].position_m);
@@ -113,15 +113,15 @@ class DStarLite3dPlanner final : public Planner {
       ReplanDecision& step = result.decisions.replan.emplace(
           ReplanDecision{.index = replans_++, .sensor = std::string(lidar->alias), .time_ms = time_ms});
       const DStarLite3dRecord& record = dstar_lite_3d_record();
-      record.start_cell.set(step.details, to_json(*start));
-      record.goal_cell.set(step.details, to_json(goal));
+      record.start_cell.set(step.details, cell_json(*start));
+      record.goal_cell.set(step.details, cell_json(goal));
       record.changed_cells.set(step.details, static_cast<std::int64_t>(changes.size()));
       record.expansions.set(step.details, found.expansions);
       record.mapping_ms.set(step.details, mapping_ms);
       if (found.status != grid::SearchStatus::found) {
         result.status = PlanStatus::no_path;
-        result.reason = "no path from cell " + to_json(*start).dump() + " to mission waypoint " +
-                        std::to_string(next_) + " at cell " + to_json(goal).dump() + " on the mapped grid";
+        result.reason = "no path from cell " + cell_json(*start).dump() + " to mission waypoint " +
+                        std::to_string(next_) + " at cell " + cell_json(goal).dump() + " on the mapped grid";
         return result;
       }
       // A path that only lost the cell just left is the same plan.
@@ -205,7 +205,7 @@ class DStarLite3dPlanner final : public Planner {
       // Planning cells an occupied voxel now blocks or no longer blocks: [column, row, level].
       nlohmann::json blocked = nlohmann::json::array(), cleared = nlohmann::json::array();
       for (const grid::CellChange& c : changes) {
-        (c.state == grid::CellState::blocked ? blocked : cleared).push_back(to_json(c.cell));
+        (c.state == grid::CellState::blocked ? blocked : cleared).push_back(cell_json(c.cell));
       }
       const DStarLite3dRecord& record = dstar_lite_3d_record();
       if (!blocked.empty()) record.blocked_cells.set(result.decisions.own, blocked);

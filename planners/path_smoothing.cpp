@@ -9,7 +9,7 @@
 namespace campo {
 namespace {
 
-void require(bool ok, const std::string& message) {
+void smoothing_requires(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument("path smoothing: " + message);
 }
 
@@ -60,12 +60,12 @@ std::vector<Eigen::Vector2d> without_repeats(std::span<const Eigen::Vector2d> pa
 }  // namespace
 
 void validate(const PathSmoothingConfig& c) {
-  require(std::isfinite(c.min_turning_radius_m) && c.min_turning_radius_m > 0.0,
+  smoothing_requires(std::isfinite(c.min_turning_radius_m) && c.min_turning_radius_m > 0.0,
           "min_turning_radius must be finite and > 0");
-  require(std::isfinite(c.max_turning_radius_m) && c.max_turning_radius_m >= c.min_turning_radius_m,
+  smoothing_requires(std::isfinite(c.max_turning_radius_m) && c.max_turning_radius_m >= c.min_turning_radius_m,
           "max_turning_radius must be finite and >= min_turning_radius");
-  require(c.radius_ratio > 0.0 && c.radius_ratio < 1.0, "radius_ratio must be in (0, 1)");
-  require(std::isfinite(c.step_m) && c.step_m > 0.0, "step must be finite and > 0");
+  smoothing_requires(c.radius_ratio > 0.0 && c.radius_ratio < 1.0, "radius_ratio must be in (0, 1)");
+  smoothing_requires(std::isfinite(c.step_m) && c.step_m > 0.0, "step must be finite and > 0");
 }
 
 std::vector<Eigen::Vector2d> shortcut_path(const OccupancyGrid& grid, std::span<const Eigen::Vector2d> path_m) {

@@ -16,7 +16,7 @@
 namespace campo {
 namespace {
 
-void require(bool ok, const std::string& message) {
+void rrt_star_requires(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument("RRT*: " + message);
 }
 
@@ -106,12 +106,12 @@ std::size_t max_neighbours(std::size_t n) {
 }
 
 void validate(const RrtStarConfig& c) {
-  require(c.step_m >= kMinStepM && c.step_m <= kMaxLengthM, "step must be in [0.001, 1000000] m");
-  require(c.rewire_radius_m >= 0.0 && c.rewire_radius_m <= kMaxLengthM, "rewire_radius must be in [0, 1000000] m");
-  require(c.rewire_gamma_m >= 0.0 && c.rewire_gamma_m <= kMaxLengthM, "rewire_gamma must be in [0, 1000000] m");
-  require(std::isfinite(c.goal_radius_m) && c.goal_radius_m > 0.0, "goal_radius must be finite and > 0");
-  require(c.goal_bias >= 0.0 && c.goal_bias <= 1.0, "goal_bias must be in [0, 1]");
-  require(c.max_iterations >= 0 && c.max_iterations <= 10'000'000,
+  rrt_star_requires(c.step_m >= kMinStepM && c.step_m <= kMaxLengthM, "step must be in [0.001, 1000000] m");
+  rrt_star_requires(c.rewire_radius_m >= 0.0 && c.rewire_radius_m <= kMaxLengthM, "rewire_radius must be in [0, 1000000] m");
+  rrt_star_requires(c.rewire_gamma_m >= 0.0 && c.rewire_gamma_m <= kMaxLengthM, "rewire_gamma must be in [0, 1000000] m");
+  rrt_star_requires(std::isfinite(c.goal_radius_m) && c.goal_radius_m > 0.0, "goal_radius must be finite and > 0");
+  rrt_star_requires(c.goal_bias >= 0.0 && c.goal_bias <= 1.0, "goal_bias must be in [0, 1]");
+  rrt_star_requires(c.max_iterations >= 0 && c.max_iterations <= 10'000'000,
           "max_iterations must be in [0, 10000000], got " + std::to_string(c.max_iterations));
 }
 

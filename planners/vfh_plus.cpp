@@ -9,18 +9,17 @@
 namespace campo {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 /// Angle in (-pi, pi].
 double wrap(double angle) {
-  double a = std::remainder(angle, 2.0 * kPi);
-  if (a <= -kPi) a += 2.0 * kPi;
+  double a = std::remainder(angle, 2.0 * std::numbers::pi);
+  if (a <= -std::numbers::pi) a += 2.0 * std::numbers::pi;
   return a;
 }
 
-double sector_width(int sectors) { return 2.0 * kPi / sectors; }
+double sector_width(int sectors) { return 2.0 * std::numbers::pi / sectors; }
 
-void require(bool ok, const std::string& message) {
+void vfh_requires(bool ok, const std::string& message) {
   if (!ok) throw std::invalid_argument("VFH+: " + message);
 }
 
@@ -46,21 +45,21 @@ void for_each_window_obstacle(const OccupancyGrid& grid, const Eigen::Vector2d& 
 }  // namespace
 
 void validate(const VfhPlusConfig& c) {
-  require(c.sectors >= 4 && c.sectors <= 3600, "sectors must be in [4, 3600], got " + std::to_string(c.sectors));
-  require(std::isfinite(c.window_radius_m) && c.window_radius_m > 0.0, "window_radius must be finite and > 0");
-  require(std::isfinite(c.magnitude_a) && c.magnitude_a >= 1.0, "magnitude_a must be finite and >= 1");
-  require(std::isfinite(c.robot_radius_m) && c.robot_radius_m >= 0.0, "robot_radius must be finite and >= 0");
-  require(std::isfinite(c.safety_distance_m) && c.safety_distance_m >= 0.0,
+  vfh_requires(c.sectors >= 4 && c.sectors <= 3600, "sectors must be in [4, 3600], got " + std::to_string(c.sectors));
+  vfh_requires(std::isfinite(c.window_radius_m) && c.window_radius_m > 0.0, "window_radius must be finite and > 0");
+  vfh_requires(std::isfinite(c.magnitude_a) && c.magnitude_a >= 1.0, "magnitude_a must be finite and >= 1");
+  vfh_requires(std::isfinite(c.robot_radius_m) && c.robot_radius_m >= 0.0, "robot_radius must be finite and >= 0");
+  vfh_requires(std::isfinite(c.safety_distance_m) && c.safety_distance_m >= 0.0,
           "safety_distance must be finite and >= 0");
-  require(std::isfinite(c.threshold_low) && std::isfinite(c.threshold_high) && c.threshold_low >= 0.0 &&
+  vfh_requires(std::isfinite(c.threshold_low) && std::isfinite(c.threshold_high) && c.threshold_low >= 0.0 &&
               c.threshold_low <= c.threshold_high,
           "thresholds need 0 <= threshold_low <= threshold_high");
-  require(std::isfinite(c.min_turning_radius_m) && c.min_turning_radius_m >= 0.0,
+  vfh_requires(std::isfinite(c.min_turning_radius_m) && c.min_turning_radius_m >= 0.0,
           "min_turning_radius must be finite and >= 0");
-  require(c.wide_opening_sectors >= 1, "wide_opening_sectors must be >= 1");
-  require(c.mu_target >= 0.0 && c.mu_heading >= 0.0 && c.mu_previous >= 0.0, "the mu weights must be >= 0");
+  vfh_requires(c.wide_opening_sectors >= 1, "wide_opening_sectors must be >= 1");
+  vfh_requires(c.mu_target >= 0.0 && c.mu_heading >= 0.0 && c.mu_previous >= 0.0, "the mu weights must be >= 0");
   // Otherwise heading and previous direction together could outweigh the target.
-  require(c.mu_target > c.mu_heading + c.mu_previous, "mu_target must exceed mu_heading + mu_previous");
+  vfh_requires(c.mu_target > c.mu_heading + c.mu_previous, "mu_target must exceed mu_heading + mu_previous");
 }
 
 std::vector<double> vfh_polar_histogram(const OccupancyGrid& grid, const Eigen::Vector2d& position_m,
@@ -73,7 +72,7 @@ std::vector<double> vfh_polar_histogram(const OccupancyGrid& grid, const Eigen::
   for_each_window_obstacle(grid, position_m, config.window_radius_m,
                            [&](const Eigen::Vector2d&, double distance, double bearing) {
                              const double magnitude = config.magnitude_a - b * distance * distance;
-                             const double gamma = distance > enlargement ? std::asin(enlargement / distance) : kPi / 2;
+                             const double gamma = distance > enlargement ? std::asin(enlargement / distance) : std::numbers::pi / 2;
                              const int first = static_cast<int>(std::ceil((bearing - gamma) / alpha));
                              const int last = static_cast<int>(std::floor((bearing + gamma) / alpha));
                              for (int k = first; k <= last; ++k) polar[static_cast<std::size_t>(((k % n) + n) % n)] += magnitude;
@@ -184,7 +183,7 @@ std::vector<VfhCandidate> vfh_candidates(std::span<const VfhOpening> openings, i
     add((right + half_wide) * alpha);
     add((left - half_wide) * alpha);
     const double target_from_right = wrap(target_rad - right * alpha);
-    const double target_offset = (target_from_right < 0.0 ? target_from_right + 2.0 * kPi : target_from_right) / alpha;
+    const double target_offset = (target_from_right < 0.0 ? target_from_right + 2.0 * std::numbers::pi : target_from_right) / alpha;
     if (target_offset >= half_wide && target_offset <= left - right - half_wide) add(target_rad);
   }
   return candidates;

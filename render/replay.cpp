@@ -26,7 +26,7 @@ using nlohmann::json;
 // Millimetres and thousandths of a degree are plenty for a viewer, and keep the file short.
 double rounded(double v, double unit = 1e-3) { return std::round(v / unit) * unit; }
 json xyz(const Eigen::Vector3d& v) { return {rounded(v.x()), rounded(v.y()), rounded(v.z())}; }
-json rgb(const Color& c) { return {rounded(c.r), rounded(c.g), rounded(c.b)}; }
+json colour_json(const Color& c) { return {rounded(c.r), rounded(c.g), rounded(c.b)}; }
 
 json rotation(const Eigen::Matrix3d& m) {
   json out = json::array();
@@ -168,7 +168,7 @@ void extend_by_mesh(const Shape& s, Eigen::AlignedBox3d& bounds) {
 
 json solid_json(const Shape& s, int mover, ReplayMeshes& meshes) {
   json j{{"type", std::string(to_string(s.type))}, {"alias", s.alias}, {"position_m", xyz(s.pose.translation())},
-         {"rotation", rotation(s.pose.linear())}, {"color", rgb(s.color)}, {"mover", mover}};
+         {"rotation", rotation(s.pose.linear())}, {"color", colour_json(s.color)}, {"mover", mover}};
   switch (s.type) {
     case ShapeType::cuboid:
       j["size_m"] = xyz(s.size_m);
@@ -230,7 +230,7 @@ json scene_json(const Scene& scene, double duration_s, const ReplayLimits& limit
   for (const Shape& s : scene.shapes) {
     if (s.type == ShapeType::plane) {
       planes.push_back({{"position_m", xyz(s.pose.translation())}, {"normal", xyz(s.pose.linear().col(2))},
-                        {"color", rgb(s.color)}});
+                        {"color", colour_json(s.color)}});
     } else if (s.type == ShapeType::heightfield) {
       const HeightGrid g = resampled(*s.terrain, static_cast<int>(std::floor((s.terrain->cols - 1) * shrink)) + 1,
                                      static_cast<int>(std::floor((s.terrain->rows - 1) * shrink)) + 1);
@@ -238,7 +238,7 @@ json scene_json(const Scene& scene, double duration_s, const ReplayLimits& limit
       for (double h : g.heights_m) heights.push_back(rounded(h));
       terrains.push_back({{"position_m", xyz(s.pose.translation())}, {"rotation", rotation(s.pose.linear())},
                           {"cols", g.cols}, {"rows", g.rows}, {"spacing_m", {g.spacing_x_m, g.spacing_y_m}},
-                          {"heights_m", std::move(heights)}, {"color", rgb(s.color)}});
+                          {"heights_m", std::move(heights)}, {"color", colour_json(s.color)}});
       for (double x : {-0.5, 0.5}) {
         for (double y : {-0.5, 0.5}) {
           for (double z : {g.min_height_m(), g.max_height_m()}) {

@@ -331,13 +331,13 @@ cv::Mat draw_replan_figure(const RecordedRun& run, const ReplanStep& step, bool 
 namespace {
 
 // A heading mark the planner left (a rover_route run's follow-the-gap choices) and when.
-struct TimedMark {
+struct TimedHeadingMark {
   double time_s = 0.0;
   HeadingMark mark;
 };
 
-std::vector<TimedMark> heading_marks(const RecordedRun& run) {
-  std::vector<TimedMark> out;
+std::vector<TimedHeadingMark> heading_marks(const RecordedRun& run) {
+  std::vector<TimedHeadingMark> out;
   if (!run.planner || !run.planner->heading) return out;
   for (const PlannerEvent& event : run.events) {
     if (auto mark = run.planner->heading(event.decisions)) out.push_back({event.time_s, std::move(*mark)});
@@ -348,13 +348,13 @@ std::vector<TimedMark> heading_marks(const RecordedRun& run) {
 }  // namespace
 
 std::vector<double> gap_switch_instants(const RecordedRun& run) {
-  const std::vector<TimedMark> marks = heading_marks(run);
+  const std::vector<TimedHeadingMark> marks = heading_marks(run);
   const auto chosen =
-      std::find_if(marks.begin(), marks.end(), [](const TimedMark& m) { return !m.mark.side.empty(); });
+      std::find_if(marks.begin(), marks.end(), [](const TimedHeadingMark& m) { return !m.mark.side.empty(); });
   if (chosen == marks.end()) {
     throw InputError(record_file(run), "/events", "no decision on a side (e.g. a follow-the-gap decision with a chosen gap)");
   }
-  const auto other = std::find_if(chosen, marks.end(), [&](const TimedMark& m) {
+  const auto other = std::find_if(chosen, marks.end(), [&](const TimedHeadingMark& m) {
     return !m.mark.side.empty() && m.mark.side != chosen->mark.side;
   });
   if (other == marks.end()) {
@@ -372,7 +372,7 @@ std::vector<double> gap_switch_instants(const RecordedRun& run) {
 std::vector<std::filesystem::path> write_sequence(const RecordedRun& run, std::vector<double> times_s,
                                                   const std::filesystem::path& out_dir, const FigureFormats& formats) {
   if (times_s.empty()) times_s = gap_switch_instants(run);
-  const std::vector<TimedMark> marks = heading_marks(run);
+  const std::vector<TimedHeadingMark> marks = heading_marks(run);
   std::vector<SequencePanel> panels;
   for (std::size_t i = 0; i < times_s.size(); ++i) {
     SequencePanel panel;
@@ -382,7 +382,7 @@ std::vector<std::filesystem::path> write_sequence(const RecordedRun& run, std::v
             << " s";
     // The latest mark at or before the instant, if avoidance was on then.
     const HeadingMark* latest = nullptr;
-    for (const TimedMark& m : marks) {
+    for (const TimedHeadingMark& m : marks) {
       if (m.time_s <= panel.time_s + 1e-9) latest = &m.mark;
     }
     const bool avoiding = std::any_of(run.view.avoiding_s.begin(), run.view.avoiding_s.end(), [&](const auto& a) {

@@ -33,7 +33,7 @@ constexpr double kCruiseEndMargin_m = 2.0;  // take-off and arrival are not terr
 
 // ---- The measurements every claim of seed 000 reads ---------------------------------------------------------------
 
-struct Measured {
+struct Seed000Measured {
   bool ran = false;
   std::vector<int> resolutions;  // highest first
   SweepRuns main;                // campo's depth planner on the bundled scenes
@@ -234,7 +234,7 @@ Departure simulator_departure() {
 
 // ---- Table 5.1 ----------------------------------------------------------------------------------------------------
 
-void run_sweeps(const Workbench& bench, Claim& claim, Measured& m) {
+void run_sweeps(const Workbench& bench, Claim& claim, Seed000Measured& m) {
   m.resolutions = bench.quick() ? std::vector<int>{64, 16} : std::vector<int>{256, 128, 64, 32, 16};
   const auto reduce = [&](nlohmann::json& d) {
     d["seeds"]["count"] = 1;
@@ -251,7 +251,7 @@ void run_sweeps(const Workbench& bench, Claim& claim, Measured& m) {
   m.ran = true;
 }
 
-void table_5_1(const Workbench& bench, Claim& claim, Measured& m) {
+void table_5_1(const Workbench& bench, Claim& claim, Seed000Measured& m) {
   claim.id = "000-table-5-1";
   claim.source = "000 §5.5 and §5.5.1, Tabella 5.1";
   claim.thesis_value = "on the trees at 256, 128, 64 and 32 px every run completes the path and \"the ratio to the "
@@ -451,7 +451,7 @@ BarrierRun barrier_run(const SweepRuns& s, const RunResult& r, const BarrierGeom
   return b;
 }
 
-void barriers(Claim& claim, const Measured& m) {
+void barriers(Claim& claim, const Seed000Measured& m) {
   claim.id = "000-barriers-16";
   claim.source = "000 §5.4 and §5.5";
   claim.thesis_value = "\"The first scenario was solved in the same way as already described, even after an extreme "
@@ -571,7 +571,7 @@ void barriers(Claim& claim, const Measured& m) {
                            "not established.");
 }
 
-void one_waypoint(Claim& claim, const Measured& m) {
+void one_waypoint(Claim& claim, const Seed000Measured& m) {
   claim.id = "000-barriers-one-waypoint";
   claim.source = "000 §5.4, Figure 5.2";
   claim.thesis_value = "\"Once oriented toward the goal, the drone manages to set an intermediate waypoint\"";
@@ -620,7 +620,7 @@ void one_waypoint(Claim& claim, const Measured& m) {
 
 // ---- Waypoints on the trees ---------------------------------------------------------------------------------------
 
-void four_waypoints(Claim& claim, const Measured& m) {
+void four_waypoints(Claim& claim, const Seed000Measured& m) {
   constexpr int kThesisCount = 4;  // 000 §5.4: "quattro waypoint intermedi"
   claim.id = "000-trees-four-waypoints";
   claim.source = "000 §5.4";
@@ -669,7 +669,7 @@ void four_waypoints(Claim& claim, const Measured& m) {
                                       verdict_word(holds) + ".";
 }
 
-void discarded(Claim& claim, const Measured& m) {
+void discarded(Claim& claim, const Seed000Measured& m) {
   claim.id = "000-discarded-waypoints";
   claim.source = "000 Tabella 5.1 and §5.5.1";
   std::vector<double> thesis;
@@ -761,7 +761,7 @@ void discarded(Claim& claim, const Measured& m) {
 
 // ---- Replanning time ----------------------------------------------------------------------------------------------
 
-void replanning_time(Claim& claim, const Measured& m) {
+void replanning_time(Claim& claim, const Seed000Measured& m) {
   claim.id = "000-replanning-time";
   claim.source = "000 §5.4";
   claim.thesis_value = "\"The replanning time is of the order of a tenth of a second\"";
@@ -811,7 +811,7 @@ void replanning_time(Claim& claim, const Measured& m) {
 
 // ---- Fig. 5.6 -----------------------------------------------------------------------------------------------------
 
-void fig_5_6(const Workbench& bench, Claim& claim, const Measured& m) {
+void fig_5_6(const Workbench& bench, Claim& claim, const Seed000Measured& m) {
   claim.id = "000-fig-5-6";
   claim.source = "000 §5.5.1, Figura 5.6";
   claim.thesis_value = "\"The solutions of some of the tests carried out\": several flown paths through the trees "
@@ -892,7 +892,7 @@ Following following(const SweepRuns& s, const std::vector<const RunResult*>& run
   return f;
 }
 
-void terrain_following(const Workbench& bench, Claim& claim, const Measured& m) {
+void terrain_following(const Workbench& bench, Claim& claim, const Seed000Measured& m) {
   claim.id = "000-fig-5-5";
   claim.source = "000 §5.4, Figura 5.5";
   claim.thesis_value = "\"it can follow the inclination of the terrain automatically\"";
@@ -992,7 +992,7 @@ void sensor_sweep(const Workbench& bench, Claim& claim) {
 
 std::vector<Claim> seed_000_claims(const Workbench& bench) {
   std::vector<Claim> claims;
-  Measured m;
+  Seed000Measured m;
   claims.push_back(measure_claim("000", "Table 5.1 side by side", [&](Claim& c) { table_5_1(bench, c, m); }));
   claims.push_back(measure_claim("000", "The barriers solved down to 16 x 16", [&](Claim& c) { barriers(c, m); }));
   claims.push_back(measure_claim("000", "One intermediate waypoint on the barriers", [&](Claim& c) { one_waypoint(c, m); }));

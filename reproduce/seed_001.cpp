@@ -224,7 +224,7 @@ std::vector<Eigen::Vector3d> lap_track(const Flight& f, std::size_t first, std::
   return out;
 }
 
-std::vector<Eigen::Vector2d> xy(const std::vector<Eigen::Vector3d>& points) {
+std::vector<Eigen::Vector2d> planar_track(const std::vector<Eigen::Vector3d>& points) {
   std::vector<Eigen::Vector2d> out;
   for (const Eigen::Vector3d& p : points) out.push_back(p.head<2>());
   return out;
@@ -288,7 +288,7 @@ struct SweepSetting {
   std::vector<Side> weave_sides;
 };
 
-struct Measured {
+struct Seed001Measured {
   std::map<std::string, SceneInfo> scenes;
   std::map<std::string, Flight> bundled;  // the bundled scenes, as they are
   std::optional<SweepRuns> sweep;
@@ -302,7 +302,7 @@ std::string sweep_key(const std::string& connectivity, double climb, double pitc
   return connectivity + "|" + fixed(climb, 2) + "|" + fixed(pitch, 1);
 }
 
-const SweepSetting* setting(const Measured& m, const std::string& connectivity, double climb, double pitch) {
+const SweepSetting* setting(const Seed001Measured& m, const std::string& connectivity, double climb, double pitch) {
   for (const SweepSetting& s : m.settings) {
     if (s.behaviours.connectivity == connectivity && std::abs(s.behaviours.climb_cost - climb) < 1e-9 &&
         std::abs(s.behaviours.pitch_deg - pitch) < 1e-9) {
@@ -312,18 +312,18 @@ const SweepSetting* setting(const Measured& m, const std::string& connectivity, 
   return nullptr;
 }
 
-const SweepSetting* thesis_setting(const Measured& m) {
+const SweepSetting* thesis_setting(const Seed001Measured& m) {
   return setting(m, kThesisConnectivity, kThesisClimbCost, kThesisPitch_deg);
 }
 
 // The run of `scene` with the thesis's settings, from the sweep.
-std::optional<Flight> thesis_flight(const Measured& m, const std::string& scene) {
+std::optional<Flight> thesis_flight(const Seed001Measured& m, const std::string& scene) {
   const SweepSetting* s = thesis_setting(m);
   if (!s || !s->runs.count(scene) || !s->runs.at(scene)->completed) return std::nullopt;
   return flight(m.sweep->dir / run_dir(s->runs.at(scene)->name));
 }
 
-const SceneInfo& info(Measured& m, const std::string& name) {
+const SceneInfo& info(Seed001Measured& m, const std::string& name) {
   auto it = m.scenes.find(name);
   if (it == m.scenes.end()) it = m.scenes.emplace(name, scene_info(fs::path("scenes") / (name + ".json"))).first;
   return it->second;
@@ -336,7 +336,7 @@ WeaveMeasure weave_measure(const Flight& f, const SceneInfo& s, const Lap& lap) 
   w.lap_m = leg_path_length_m(f.metrics, lap.last).value_or(0.0);
   std::vector<Rect> buildings;
   for (const GridBlock& b : thesis_scene("zigzag").blocks) buildings.push_back(footprint(b, s.cell_m, s.origin_m));
-  w.sides = passing_sides(xy(lap_track(f, lap.first, lap.last)), buildings);
+  w.sides = passing_sides(planar_track(lap_track(f, lap.first, lap.last)), buildings);
   return w;
 }
 
@@ -354,7 +354,7 @@ void reduce_behaviour(nlohmann::json& d) {
 }
 
 // Runs the sweep once (the first claim that needs it records its command) and measures every setting.
-void ensure_sweep(const Workbench& bench, Measured& m, Claim& claim) {
+void ensure_sweep(const Workbench& bench, Seed001Measured& m, Claim& claim) {
   if (!m.sweep_error.empty()) throw std::runtime_error(m.sweep_error);
   if (m.sweep) {
     claim.commands.push_back(m.sweep_command);
@@ -402,7 +402,7 @@ void ensure_sweep(const Workbench& bench, Measured& m, Claim& claim) {
 
 // A departure of the bundled scenes' cost model, with the sweep's run of the same scene that puts back the thesis's
 // value of that one setting, and the run with all three of the thesis's settings.
-std::vector<Departure> cost_model_departures(const Measured& m, const std::string& what,
+std::vector<Departure> cost_model_departures(const Seed001Measured& m, const std::string& what,
                                              const std::function<std::string(const SweepSetting*)>& outcome) {
   const SceneInfo& s = m.scenes.at("zigzag");
   const auto with = [&](const std::string& c, double climb, double pitch) {
@@ -423,7 +423,7 @@ std::vector<Departure> cost_model_departures(const Measured& m, const std::strin
 
 // The same three departures for a claim measured on the bundled runs and on the run with all three of the thesis's
 // settings only (`with_thesis` says what that run gave); the sweep's runs of one setting are not measured for it.
-std::vector<Departure> bundled_departures(const Measured& m, const std::string& with_thesis) {
+std::vector<Departure> bundled_departures(const Seed001Measured& m, const std::string& with_thesis) {
   std::vector<Departure> out = cost_model_departures(m, "the weave and the climb over the wall both hold",
                                                      [](const SweepSetting*) { return std::string(); });
   for (Departure& d : out) d.with_thesis_setting = "with all three of the thesis's settings together: " + with_thesis;
@@ -432,7 +432,7 @@ std::vector<Departure> bundled_departures(const Measured& m, const std::string& 
 
 // ---- Claims -------------------------------------------------------------------------------------------------------
 
-void obstacle_tables(Measured& m, Claim& claim) {
+void obstacle_tables(Seed001Measured& m, Claim& claim) {
   claim.id = "001-tables-obstacles";
   claim.source = "001 §5.1-5.3, Tabelle 5.1, 5.3, 5.5";
   claim.thesis_value = "the obstacle cells of the three simulations";
@@ -471,7 +471,7 @@ void obstacle_tables(Measured& m, Claim& claim) {
                                          : "An input: " + std::to_string(mismatches) + " blocks differ (see the table).";
 }
 
-void route_tables(Measured& m, Claim& claim) {
+void route_tables(Seed001Measured& m, Claim& claim) {
   claim.id = "001-tables-routes";
   claim.source = "001 §4.2.3, Tabelle 5.2, 5.4, 5.6";
   claim.thesis_value = "the routes in latitude and longitude, converted to cells from the north-west reference point";
@@ -519,7 +519,7 @@ void route_tables(Measured& m, Claim& claim) {
 }
 
 // Runs the three bundled scenes as they are (figures included).
-void run_bundled(const Workbench& bench, Measured& m, Claim& claim) {
+void run_bundled(const Workbench& bench, Seed001Measured& m, Claim& claim) {
   for (const char* name : {"obstacle_field", "zigzag", "wall"}) {
     const fs::path dir = bench.work(std::string("001_") + name);
     claim.commands.push_back(bench.campo({"run", "scenes/" + std::string(name) + ".json", "--out", dir.string()}));
@@ -527,7 +527,7 @@ void run_bundled(const Workbench& bench, Measured& m, Claim& claim) {
   }
 }
 
-void avoidance(const Workbench& bench, Measured& m, Claim& claim) {
+void avoidance(const Workbench& bench, Seed001Measured& m, Claim& claim) {
   claim.id = "001-fig-5-4-5-8-5-12";
   claim.source = "001 §5.1-5.3, Figure 5.4, 5.8, 5.12 (5.5, 5.9, 5.13)";
   claim.thesis_value = "at the lower altitude \"all the obstacles were avoided successfully\"; the drone \"completes "
@@ -596,7 +596,7 @@ void avoidance(const Workbench& bench, Measured& m, Claim& claim) {
                                       : "Not every simulation completes without collision (see the table).";
 }
 
-void high_lap(Measured& m, Claim& claim) {
+void high_lap(Seed001Measured& m, Claim& claim) {
   claim.id = "001-high-lap-nominal";
   claim.source = "001 §5.1-5.3, Figure 5.4, 5.8, 5.12";
   claim.thesis_value = "\"the trajectory flown at the higher altitude coincides with the nominal trajectory\"";
@@ -616,7 +616,7 @@ void high_lap(Measured& m, Claim& claim) {
     const auto offset = [&](const Flight& f) -> std::optional<double> {
       const std::vector<Eigen::Vector3d> track = lap_track(f, high.first, high.last);
       if (track.empty()) return std::nullopt;
-      return max_offset_m(xy(track), nominal(f, high.first, high.last));
+      return max_offset_m(planar_track(track), nominal(f, high.first, high.last));
     };
     const std::optional<double> b = offset(m.bundled.at(name));
     const std::optional<Flight> tf = thesis_flight(m, name);
@@ -646,7 +646,7 @@ void high_lap(Measured& m, Claim& claim) {
                                  : "No lap was measured.";
 }
 
-void low_blocks(Measured& m, Claim& claim) {
+void low_blocks(Seed001Measured& m, Claim& claim) {
   claim.id = "001-low-blocks";
   claim.source = "001 §5.1, Tabella 5.1";
   claim.thesis_value = "obstacles \"poco elevati\", placed \"to check that they would not be recognised as obstacles\"";
@@ -720,7 +720,7 @@ void low_blocks(Measured& m, Claim& claim) {
                                     : "The 28 m lap went round or climbed over a low block (see the table).";
 }
 
-void slot(const Workbench& bench, Measured& m, Claim& claim) {
+void slot(const Workbench& bench, Seed001Measured& m, Claim& claim) {
   claim.id = "001-slot";
   claim.source = "001 §5.1, Figura 5.4, Tabella 5.1";
   claim.thesis_value = "two obstacles side by side with a free gap between them: the drone would judge it could pass "
@@ -827,7 +827,7 @@ void slot(const Workbench& bench, Measured& m, Claim& claim) {
                            "take it is not settled.";
 }
 
-void weave(const Workbench& bench, Measured& m, Claim& claim) {
+void weave(const Workbench& bench, Seed001Measured& m, Claim& claim) {
   claim.id = "001-weave";
   claim.source = "001 §5.2, Figura 5.8, Tabelle 5.3-5.4";
   claim.thesis_value = "the drone would \"navigate between the buildings instead of going round them from outside, a "
@@ -925,7 +925,7 @@ void weave(const Workbench& bench, Measured& m, Claim& claim) {
   else claim.verdict_reason = "The lap does not weave with either setting, and no computed cause explains it.";
 }
 
-void wall(const Workbench& bench, Measured& m, Claim& claim) {
+void wall(const Workbench& bench, Seed001Measured& m, Claim& claim) {
   claim.id = "001-wall";
   claim.source = "001 §5.3, Figura 5.12, Tabelle 5.5-5.6";
   claim.thesis_value = "the drone \"understands it must move along the Z axis and manages to climb over it\"; the "
@@ -987,7 +987,7 @@ void wall(const Workbench& bench, Measured& m, Claim& claim) {
                                     : "The drone does not climb over the wall within a cell of sideways movement.";
 }
 
-void behaviour_sweep(const Workbench& bench, Measured& m, Claim& claim) {
+void behaviour_sweep(const Workbench& bench, Seed001Measured& m, Claim& claim) {
   claim.id = "001-cost-model";
   claim.source = "001 §4.2.2, §4.2.4, §5.1-5.3";
   claim.thesis_value = "with a six-connected graph whose links weigh the same and the LIDAR at 45°, the three "
@@ -1198,7 +1198,7 @@ void movers(const Workbench& bench, Claim& claim) {
     MoverRun m;
     // The run ends at its first collision; the mover was what it hit when it is the nearest obstacle then.
     m.hit = r->metrics.outcome == "collision" && f.metrics.value("nearest_obstacle", "") == "bird";
-    m.max_offset_m = max_offset_m(xy(track), nominal(f, 0, 1));
+    m.max_offset_m = max_offset_m(planar_track(track), nominal(f, 0, 1));
     runs.push_back(m);
     rows.push_back({r->params.at("mover_start_s").dump(), r->metrics.outcome, m.hit ? "yes" : "no",
                     r->metrics.min_clearance_m ? fixed(*r->metrics.min_clearance_m, 2) : "–", fixed(m.max_offset_m, 2)});
@@ -1232,7 +1232,7 @@ void movers(const Workbench& bench, Claim& claim) {
 
 std::vector<Claim> seed_001_claims(const Workbench& bench) {
   std::vector<Claim> claims;
-  Measured m;
+  Seed001Measured m;
   claims.push_back(measure_claim("001", "Obstacles as Tabelle 5.1, 5.3 and 5.5", [&](Claim& c) { obstacle_tables(m, c); }));
   claims.push_back(measure_claim("001", "Routes as Tabelle 5.2, 5.4 and 5.6, in latitude and longitude",
                                  [&](Claim& c) { route_tables(m, c); }));

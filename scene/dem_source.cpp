@@ -152,7 +152,7 @@ const GdalApi& gdal() {
   return api;
 }
 
-std::string str(double value) {
+std::string dem_number(double value) {
   std::ostringstream out;
   out.precision(12);
   out << value;
@@ -316,12 +316,12 @@ class DemReader {
     terrain_.geotransform = pixels_.gt;
     const auto& gt = pixels_.gt;
     if (gt[2] != 0.0 || gt[4] != 0.0) {
-      session_.fail("a rotated geotransform (row rotation " + str(gt[2]) + ", column rotation " + str(gt[4]) +
+      session_.fail("a rotated geotransform (row rotation " + dem_number(gt[2]) + ", column rotation " + dem_number(gt[4]) +
                     "); warp it north-up first, e.g. gdalwarp");
     }
     if (!(std::isfinite(gt[0]) && std::isfinite(gt[3]) && std::isfinite(gt[1]) && std::isfinite(gt[5]) &&
           gt[1] != 0.0 && gt[5] != 0.0)) {
-      session_.fail("a geotransform with pixel size " + str(gt[1]) + " x " + str(gt[5]) + "; expected finite, non-zero");
+      session_.fail("a geotransform with pixel size " + dem_number(gt[1]) + " x " + dem_number(gt[5]) + "; expected finite, non-zero");
     }
     int has_nodata = 0;
     const double nodata = api_.GDALGetRasterNoDataValue(band_, &has_nodata);
@@ -335,7 +335,7 @@ class DemReader {
     const auto unit_m = height_unit_metres(unit ? unit : "");
     if (!unit_m) session_.fail(std::string("heights in \"") + printable(unit) + "\"; expected metres or feet");
     if (!(std::isfinite(scale_) && std::isfinite(offset_) && scale_ != 0.0)) {
-      session_.fail("band scale " + str(scale_) + " and offset " + str(offset_) + "; expected finite, scale non-zero");
+      session_.fail("band scale " + dem_number(scale_) + " and offset " + dem_number(offset_) + "; expected finite, scale non-zero");
     }
     scale_ *= *unit_m;
     offset_ *= *unit_m;
@@ -360,7 +360,7 @@ class DemReader {
       terrain_.crs = DemCrs::projected;
       terrain_.metres_per_unit = api_.OSRGetLinearUnits(file_srs_.get(), nullptr);
       if (!(std::isfinite(terrain_.metres_per_unit) && terrain_.metres_per_unit > 0.0)) {
-        session_.fail("a projected CRS whose linear unit is " + str(terrain_.metres_per_unit) + " m");
+        session_.fail("a projected CRS whose linear unit is " + dem_number(terrain_.metres_per_unit) + " m");
       }
     } else if (api_.OSRIsLocal(file_srs_.get()) != 0) {
       // A local (engineering) CRS: plain coordinates in its linear unit, no geodetic position.
@@ -392,7 +392,7 @@ class DemReader {
   Eigen::Vector2d file_to_lat_lon(double x, double y) const {
     double lon = x, lat = y;
     if (api_.OCTTransform(to_wgs84_.get(), 1, &lon, &lat, nullptr) == 0 || !std::isfinite(lat) || !std::isfinite(lon)) {
-      session_.fail("cannot convert (" + str(x) + ", " + str(y) + ") of the file's CRS to latitude/longitude");
+      session_.fail("cannot convert (" + dem_number(x) + ", " + dem_number(y) + ") of the file's CRS to latitude/longitude");
     }
     return {lat, lon};
   }
@@ -401,7 +401,7 @@ class DemReader {
   Eigen::Vector2d lat_lon_to_file(double latitude_deg, double longitude_deg) const {
     double x = longitude_deg, y = latitude_deg;
     if (api_.OCTTransform(from_wgs84_.get(), 1, &x, &y, nullptr) == 0 || !std::isfinite(x) || !std::isfinite(y)) {
-      session_.fail("cannot convert latitude " + str(latitude_deg) + ", longitude " + str(longitude_deg) +
+      session_.fail("cannot convert latitude " + dem_number(latitude_deg) + ", longitude " + dem_number(longitude_deg) +
                     " to the file's CRS");
     }
     return {x, y};
@@ -546,8 +546,8 @@ class DemReader {
           py >= -kOutsideTolerancePx && py <= pixels_.rows - 1 + kOutsideTolerancePx)) {
       const double x = grid_vertex_coordinate(grid_col, plan.layout.cols, plan.layout.spacing_x_m);
       const double y = grid_vertex_coordinate(grid_row, plan.layout.rows, plan.layout.spacing_y_m);
-      session_.fail("the crop reaches outside the raster: its vertex at (" + str(x) + ", " + str(y) +
-                    ") m from its centre falls at pixel (" + str(px) + ", " + str(py) + ") of a raster of " +
+      session_.fail("the crop reaches outside the raster: its vertex at (" + dem_number(x) + ", " + dem_number(y) +
+                    ") m from its centre falls at pixel (" + dem_number(px) + ", " + dem_number(py) + ") of a raster of " +
                     std::to_string(pixels_.cols) + " x " + std::to_string(pixels_.rows) + " pixels");
     }
     px = std::clamp(px, 0.0, pixels_.cols - 1.0);
@@ -706,7 +706,7 @@ class DemReader {
       }
       const double h = values[i] * scale_ + offset_;
       if (!std::isfinite(h)) {
-        session_.fail("a height that is not finite (" + str(values[i]) + ") at pixel (column " +
+        session_.fail("a height that is not finite (" + dem_number(values[i]) + ") at pixel (column " +
                       std::to_string(w.col0 + static_cast<long>(i % w.cols)) + ", row " +
                       std::to_string(w.row0 + static_cast<long>(i / w.cols)) + ")");
       }
@@ -717,7 +717,7 @@ class DemReader {
                                 ", row " + std::to_string(w.row0 + static_cast<long>(first_nodata / w.cols)) + ")";
       if (options_.nodata == DemNodata::refuse) {
         session_.fail(std::to_string(nodata_count) + " nodata cell" + (nodata_count == 1 ? "" : "s") + " (value " +
-                      str(*terrain_.nodata_value) + ") among the " + std::to_string(values.size()) +
+                      dem_number(*terrain_.nodata_value) + ") among the " + std::to_string(values.size()) +
                       " read, the first at pixel " + first + "; set \"nodata\": \"fill\" to fill them");
       }
       if (static_cast<std::size_t>(nodata_count) == values.size()) {

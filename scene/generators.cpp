@@ -30,7 +30,7 @@ constexpr double kObstacleRowClearance_m = 0.3;
 /// Grid obstacles: boxes reach this far below the lowest ground under them.
 constexpr double kGridBoxFooting_m = 1.0;
 
-std::string str(double value) {
+std::string generator_number(double value) {
   std::ostringstream out;
   out << value;
   return out.str();
@@ -50,7 +50,7 @@ bool valid_range(const Eigen::Vector2d& range) {
 double ground_at(const GroundFunction& ground, double x, double y) {
   const double z = ground(x, y);
   if (!std::isfinite(z)) {
-    throw std::runtime_error("ground height at (" + str(x) + ", " + str(y) + ") is not finite");
+    throw std::runtime_error("ground height at (" + generator_number(x) + ", " + generator_number(y) + ") is not finite");
   }
   return z;
 }
@@ -155,8 +155,8 @@ void validate(const VineyardConfig& c) {
   require(finite_positive(c.canopy_width_m), "vineyard: canopy_width must be finite and > 0");
   require(std::isfinite(c.canopy_bottom_m) && std::isfinite(c.canopy_top_m) && c.canopy_bottom_m >= 0.0 &&
               c.canopy_bottom_m < c.canopy_top_m,
-          "vineyard: canopy needs 0 <= canopy_bottom < canopy_top, got " + str(c.canopy_bottom_m) + " and " +
-              str(c.canopy_top_m));
+          "vineyard: canopy needs 0 <= canopy_bottom < canopy_top, got " + generator_number(c.canopy_bottom_m) + " and " +
+              generator_number(c.canopy_top_m));
   require(finite_positive(c.fence_height_m), "vineyard: fence_height must be finite and > 0");
   require(finite_positive(c.fence_thickness_m), "vineyard: fence_thickness must be finite and > 0");
   require(c.obstacle_count >= 0 && c.obstacle_count <= 10000,
@@ -164,19 +164,19 @@ void validate(const VineyardConfig& c) {
   require(valid_range(c.obstacle_size_m), "vineyard: obstacle_size must be a range 0 < min <= max");
 
   const double row_length = c.field_size_m.y() - 2.0 * c.headland_m;
-  require(row_length > 0.0, "vineyard: headlands of " + str(c.headland_m) + " m leave no room for rows in a field " +
-                                str(c.field_size_m.y()) + " m long (y)");
+  require(row_length > 0.0, "vineyard: headlands of " + generator_number(c.headland_m) + " m leave no room for rows in a field " +
+                                generator_number(c.field_size_m.y()) + " m long (y)");
   // Keeps the post count far inside int; the scene loader caps the total.
   require(row_length / c.post_spacing_m <= 1e6, "vineyard: post_spacing gives more than 1e6 posts per row");
   const double half_width = row_half_width(c);
   require(c.row_count == 1 || 2.0 * half_width < c.row_spacing_m,
-          "vineyard: rows " + str(2.0 * half_width) + " m wide (canopy or posts) must be narrower than the row spacing " +
-              str(c.row_spacing_m) + " m");
+          "vineyard: rows " + generator_number(2.0 * half_width) + " m wide (canopy or posts) must be narrower than the row spacing " +
+              generator_number(c.row_spacing_m) + " m");
   const double rows_span = (c.row_count - 1) * c.row_spacing_m + 2.0 * half_width;
   const double available = c.field_size_m.x() - 2.0 * c.headland_m;
-  require(rows_span <= available, "vineyard: " + std::to_string(c.row_count) + " rows at " + str(c.row_spacing_m) +
-                                      " m spacing span " + str(rows_span) + " m but the field " +
-                                      str(c.field_size_m.x()) + " m wide leaves " + str(available) +
+  require(rows_span <= available, "vineyard: " + std::to_string(c.row_count) + " rows at " + generator_number(c.row_spacing_m) +
+                                      " m spacing span " + generator_number(rows_span) + " m but the field " +
+                                      generator_number(c.field_size_m.x()) + " m wide leaves " + generator_number(available) +
                                       " m inside the headland margins");
   if (c.obstacle_count > 0) {
     require(c.row_count >= 2, "vineyard: obstacles go between rows, so they need at least 2 rows");
@@ -185,12 +185,12 @@ void validate(const VineyardConfig& c) {
     const double gap = c.row_spacing_m - 2.0 * half_width;
     const double needed = widest + kObstacleRowClearance_m + std::max(kObstacleRowClearance_m, c.obstacle_passage_m);
     require(gap >= needed,
-            "vineyard: the " + str(gap) + " m between rows cannot hold obstacles up to " + str(c.obstacle_size_m[1]) +
-                " m with " + str(kObstacleRowClearance_m) + " m clearance on one side and a passage of " +
-                str(std::max(kObstacleRowClearance_m, c.obstacle_passage_m)) + " m on the other (needs " + str(needed) +
+            "vineyard: the " + generator_number(gap) + " m between rows cannot hold obstacles up to " + generator_number(c.obstacle_size_m[1]) +
+                " m with " + generator_number(kObstacleRowClearance_m) + " m clearance on one side and a passage of " +
+                generator_number(std::max(kObstacleRowClearance_m, c.obstacle_passage_m)) + " m on the other (needs " + generator_number(needed) +
                 " m)");
-    require(row_length >= widest, "vineyard: rows of " + str(row_length) + " m are shorter than obstacles up to " +
-                                      str(widest) + " m across");
+    require(row_length >= widest, "vineyard: rows of " + generator_number(row_length) + " m are shorter than obstacles up to " +
+                                      generator_number(widest) + " m across");
   }
 }
 
@@ -273,9 +273,9 @@ std::vector<Shape> make_trees(const TreesConfig& config, const std::string& alia
   }
   if (static_cast<int>(trunks.points().size()) < config.count) {
     throw std::runtime_error("could not place " + std::to_string(config.count) + " trees with min spacing " +
-                             str(config.min_spacing_m) + " m in area [" + str(config.area_min_m.x()) + ", " +
-                             str(config.area_max_m.x()) + "] x [" + str(config.area_min_m.y()) + ", " +
-                             str(config.area_max_m.y()) + "] m; placed " + std::to_string(trunks.points().size()));
+                             generator_number(config.min_spacing_m) + " m in area [" + generator_number(config.area_min_m.x()) + ", " +
+                             generator_number(config.area_max_m.x()) + "] x [" + generator_number(config.area_min_m.y()) + ", " +
+                             generator_number(config.area_max_m.y()) + "] m; placed " + std::to_string(trunks.points().size()));
   }
 
   const Color bark{0.40, 0.26, 0.13};

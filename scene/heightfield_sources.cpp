@@ -24,7 +24,7 @@ namespace {
 /// A CSV field longer than this is not a number anyone meant to write.
 constexpr std::size_t kMaxCsvFieldChars = 64;
 
-std::string str(double value) {
+std::string heightfield_number(double value) {
   std::ostringstream out;
   out << value;
   return out.str();
@@ -125,8 +125,8 @@ HeightGrid heightgrid_from_expression(const std::string& expression, const Eigen
         y = world.y();
         const double z = parser.Eval();
         if (!std::isfinite(z)) {
-          throw std::runtime_error(context + "not finite (" + str(z) + ") at x = " + str(world.x()) +
-                                   ", y = " + str(world.y()));
+          throw std::runtime_error(context + "not finite (" + heightfield_number(z) + ") at x = " + heightfield_number(world.x()) +
+                                   ", y = " + heightfield_number(world.y()));
         }
         grid.heights_m[static_cast<std::size_t>(r) * grid.cols + c] = z - pose.translation().z();
       }
@@ -139,7 +139,7 @@ HeightGrid heightgrid_from_expression(const std::string& expression, const Eigen
 
 HeightGrid heightgrid_from_csv(const std::filesystem::path& path, double spacing_m) {
   if (!(std::isfinite(spacing_m) && spacing_m > 0.0)) {
-    throw std::runtime_error("CSV grid spacing must be finite and > 0, got " + str(spacing_m));
+    throw std::runtime_error("CSV grid spacing must be finite and > 0, got " + heightfield_number(spacing_m));
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open CSV file '" + path.string() + "'");
@@ -224,8 +224,8 @@ HeightGrid heightgrid_from_csv(const std::filesystem::path& path, double spacing
 HeightGrid heightgrid_from_png(const std::filesystem::path& path, const Eigen::Vector2d& size_m,
                                double height_scale_m, double min_height_m) {
   if (!(size_m.allFinite() && size_m.minCoeff() > 0.0)) {
-    throw std::runtime_error("PNG terrain size must be finite and > 0, got " + str(size_m.x()) + " x " +
-                             str(size_m.y()) + " m");
+    throw std::runtime_error("PNG terrain size must be finite and > 0, got " + heightfield_number(size_m.x()) + " x " +
+                             heightfield_number(size_m.y()) + " m");
   }
   if (!std::isfinite(height_scale_m) || !std::isfinite(min_height_m)) {
     throw std::runtime_error("PNG terrain height scale and minimum height must be finite");

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "campo/scene_loader.hpp"
+#include "core/angles.hpp"
 #include "scene/scene_mesh.hpp"
 #include "sensors/lidar.hpp"
 #include "sensors/osmesa_gl.hpp"
@@ -18,17 +19,11 @@ namespace campo {
 
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 // The perspective render is finer than the sensor grid by this factor at the
 // image centre (and finer still towards the edges), so every grid ray falls
 // between render pixels that see the same surface.
 constexpr double kOversampling = 1.25;
-// Near plane when the minimum range is 0: closer surfaces are not seen.
-constexpr double kSmallestNear_m = 1e-3;
-// Static geometry is culled in runs of this many triangles (two heightfield
-// tiles, a cylinder, a band of a sphere).
-constexpr std::uint32_t kCullChunkTriangles = 256;
 // Between two render pixels, a change of inverse depth beyond the range of
 // the changes beside it, widened by half their difference, by this fraction
 // of the larger and by this fraction of the inverse depth, is a silhouette
@@ -187,7 +182,7 @@ float sample_inverse_depth(const float* image, std::size_t width, const Tap& tap
   return along_line(rows[0], rows[1], rows[2], rows[3], tap.fy);
 }
 
-void validate(const SensorDef& def) {
+void validate_depth_camera(const SensorDef& def) {
   const RangeSensorConfig& c = def.range;
   const std::string name = "depth camera '" + def.alias + "': ";
   if (def.range.kind != RangeSensorKind::depth_camera) {
@@ -396,7 +391,7 @@ void DepthCamera::scan(const Eigen::Isometry3d& sensor_pose, double time_s,
 }  // namespace
 
 std::unique_ptr<RangeSensor> make_depth_camera(const Scene& scene, const SceneMesh& mesh, const SensorDef& def) {
-  validate(def);
+  validate_depth_camera(def);
   return std::make_unique<DepthCamera>(scene, mesh, def);
 }
 

@@ -11,12 +11,13 @@
 #include <immintrin.h>
 #endif
 
+#include "core/angles.hpp"
+
 namespace campo {
 
 namespace {
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
-void validate(const RangeSensorConfig& c) {
+void validate_lidar(const RangeSensorConfig& c) {
   if (c.beam_count() < 1 || (c.beams.empty() && (c.cols < 1 || c.rows < 1))) {
     throw std::invalid_argument("Lidar: the config has no beams");
   }
@@ -56,7 +57,7 @@ std::vector<Beam> lidar_beams(const RangeSensorConfig& config) {
 
 namespace {
 std::vector<Eigen::Vector3f> beam_directions(const RangeSensorConfig& config) {
-  validate(config);
+  validate_lidar(config);
   std::vector<Eigen::Vector3f> directions;
   for (const Beam& beam : lidar_beams(config)) directions.push_back(beam_direction(beam));
   return directions;

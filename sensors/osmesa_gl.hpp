@@ -101,6 +101,10 @@ Framebuffer make_framebuffer(int width_px, int height_px, GLenum colour_format, 
 /// than ... OpenGL allows" when either side exceeds GL_MAX_RENDERBUFFER_SIZE.
 void check_render_size(int width_px, int height_px, const std::string& what);
 
+/// The cameras' near plane when their minimum range is 0, m: closer surfaces
+/// are not seen.
+inline constexpr double kSmallestNear_m = 1e-3;
+
 /// The projection of a pinhole view (eye frame: looking along -z, x right, y
 /// up; the image plane at z = -1 reaching +-half_width, +-half_height) to
 /// reversed depth in [0, 1] (with use_reversed_depth): window depth

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "campo/random.hpp"
+#include "core/angles.hpp"
 #include "sensors/osmesa_gl.hpp"
 #include "sensors/view_culling.hpp"
 
@@ -15,15 +16,10 @@ namespace campo {
 
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr double kMaxFov_deg = 170.0;
 constexpr int kMaxSide_px = 4096;
-// Near plane when the minimum range is 0: closer surfaces are not seen.
-constexpr double kSmallestNear_m = 1e-3;
-// Static geometry is culled in runs of this many triangles, as in the depth camera.
-constexpr std::uint32_t kCullChunkTriangles = 256;
 
-constexpr const char* kVertexShader = R"(#version 450 core
+constexpr const char* kColourVertexShader = R"(#version 450 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 layout(location = 0) uniform mat4 model_view;  // eye from mesh; rigid
@@ -42,7 +38,7 @@ void main() {
 // first row read is the image's top row; that turns counter-clockwise faces
 // (seen from outside) clockwise on screen, so GL calls the faces seen from
 // outside back faces, and the normal turns towards the eye on front faces.
-constexpr const char* kFragmentShader = R"(#version 450 core
+constexpr const char* kColourFragmentShader = R"(#version 450 core
 in vec3 eye_position;
 in vec3 eye_normal;
 layout(location = 2) uniform vec3 colour;
@@ -59,7 +55,7 @@ void main() {
 }
 )";
 
-void validate(const RgbCameraDef& def) {
+void validate_rgb_camera(const RgbCameraDef& def) {
   const RgbCameraConfig& c = def.camera;
   const std::string name = "colour camera '" + def.alias + "': ";
   if (c.cols < 1 || c.rows < 1 || c.cols > kMaxSide_px || c.rows > kMaxSide_px) {
@@ -132,7 +128,7 @@ OsmesaRgbCamera::OsmesaRgbCamera(const SceneMesh& mesh, const RgbCameraDef& def,
 
   check_render_size(c.cols, c.rows, "colour camera '" + def_.alias + "'");
   // The context is this camera's alone, so its state is set once here.
-  program_ = make_program(kVertexShader, kFragmentShader);
+  program_ = make_program(kColourVertexShader, kColourFragmentShader);
   mesh_ = upload_mesh(mesh, true);
   target_ = make_framebuffer(c.cols, c.rows, GL_RGBA8, GL_DEPTH_COMPONENT32F);
   use_reversed_depth(c.cols, c.rows);
@@ -220,7 +216,7 @@ void OsmesaRgbCamera::add_noise(std::vector<std::uint8_t>& rgb) {
 }  // namespace
 
 std::unique_ptr<RgbCamera> make_rgb_camera(const SceneMesh& mesh, const RgbCameraDef& def, std::uint64_t world_seed) {
-  validate(def);
+  validate_rgb_camera(def);
   return std::make_unique<OsmesaRgbCamera>(mesh, def, world_seed);
 }
 

@@ -25,6 +25,10 @@ struct Chunk {
 /// The bounds of indices [first, first + count) of `mesh`.
 Chunk bound(const SceneMesh& mesh, std::uint32_t first, std::uint32_t count);
 
+/// The cameras cull static geometry in runs of this many triangles (two
+/// heightfield tiles, a cylinder, a band of a sphere).
+inline constexpr std::uint32_t kCullChunkTriangles = 256;
+
 /// `parts` (of `mesh`) cut into runs of at most `max_triangles` triangles, in
 /// index-buffer order; each run records the index of its part in `parts`.
 std::vector<Chunk> cut_into_chunks(const SceneMesh& mesh, const std::vector<MeshPart>& parts,

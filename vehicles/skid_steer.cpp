@@ -14,7 +14,7 @@ double sinc(double x) {
   return std::sin(x) / x;
 }
 
-double wrap_angle(double a) {
+double wrap_yaw(double a) {
   a = std::remainder(a, 2.0 * std::numbers::pi);
   return a <= -std::numbers::pi ? a + 2.0 * std::numbers::pi : a;
 }
@@ -60,7 +60,7 @@ PlanarPose integrate_odometry(const PlanarPose& pose, const WheelSpeeds& wheels,
   const double chord = twist.v_mps * dt_s * sinc(0.5 * turn);
   const double heading = pose.yaw_rad + 0.5 * turn;
   return {pose.x_m + chord * std::cos(heading), pose.y_m + chord * std::sin(heading),
-          wrap_angle(pose.yaw_rad + turn)};
+          wrap_yaw(pose.yaw_rad + turn)};
 }
 
 }  // namespace campo
