@@ -29,8 +29,8 @@ class RayFan;
 
 /// How RayCaster::cast finds hits. `automatic` casts a RayFan by projection
 /// when the CPU has AVX2 and the fan holds many rays for the geometry in
-/// range (and at most 16 meshes within it), and otherwise ray by ray through
-/// Embree; the others force a method (tests, benchmarks).
+/// range (primitives, heightfield cells and mesh triangles), and otherwise
+/// ray by ray through Embree; the others force a method (tests, benchmarks).
 enum class CastMethod { automatic, embree, fan };
 
 class RayCaster {
