@@ -272,18 +272,6 @@ struct LayerRun {
   int layer;
 };
 
-// The layer (1 to n) of every pixel of `depth`, 0 for free space (no return,
-// or not a number).
-std::vector<int> depth_layers(const cv::Mat& depth, const DilationParams& p) {
-  CV_Assert(depth.type() == CV_32F && depth.isContinuous());
-  const LayerLookup layer_of(p);
-  const int pixels = static_cast<int>(depth.total());
-  const float* value = depth.ptr<float>();
-  std::vector<int> layer(static_cast<std::size_t>(pixels));
-  for (int i = 0; i < pixels; ++i) layer[i] = layer_of(value[i]);
-  return layer;
-}
-
 // out[i] = min(a[i], b[i], c[i]) for i < n (out must not alias the inputs).
 // Eight lanes at a time with AVX2 where the CPU has it, four with SSE
 // otherwise; a minimum is exact, so both give the same floats.
@@ -335,9 +323,14 @@ void min3(const float* a, const float* b, const float* c, float* out, std::size_
 cv::Rect erode_rect(std::vector<float>& image, std::vector<float>& scratch, int rows, int cols, cv::Rect box, int rx,
                     int ry) {
   CV_Assert(rows >= 0 && cols >= 0 && rx >= 0 && ry >= 0 && image.size() == static_cast<std::size_t>(rows) * cols &&
-            scratch.size() == image.size());
+            (scratch.empty() || scratch.size() == image.size()));
   box &= cv::Rect(0, 0, cols, rows);
   if (box.empty()) return box;
+  // Only the steps of 2 and 3 pixels use the scratch image: the chain's usual
+  // step of 1 never fills it.
+  const auto ready_scratch = [&] {
+    if (scratch.size() != image.size()) scratch.assign(image.size(), kEmpty);
+  };
   // A window wider than the line covers all of it whatever its size.
   rx = std::min(rx, cols - 1);
   ry = std::min(ry, rows - 1);
@@ -465,6 +458,7 @@ cv::Rect erode_rect(std::vector<float>& image, std::vector<float>& scratch, int 
   if (rx > 0) {
     box = cv::Rect(box.x - rx, box.y, box.width + 2 * rx, box.height) & image_rect;
     if (rx <= kStepped) {
+      ready_scratch();
       for (int k = 0; k < rx; ++k) {
         across_by_one(image.data(), scratch.data(), box);
         image.swap(scratch);  // both stay empty outside the (growing) box
@@ -481,6 +475,7 @@ cv::Rect erode_rect(std::vector<float>& image, std::vector<float>& scratch, int 
   if (ry > 0) {
     box = cv::Rect(box.x, box.y - ry, box.width, box.height + 2 * ry) & image_rect;
     if (ry <= kStepped) {
+      ready_scratch();
       for (int k = 0; k < ry; ++k) {
         down_by_one(image.data(), scratch.data(), box);
         image.swap(scratch);
@@ -493,7 +488,7 @@ cv::Rect erode_rect(std::vector<float>& image, std::vector<float>& scratch, int 
 }
 
 void erode_rect(std::vector<float>& image, int rows, int cols, int rx, int ry) {
-  std::vector<float> scratch(image.size(), kEmpty);
+  std::vector<float> scratch;  // filled if a step needs it
   erode_rect(image, scratch, rows, cols, cv::Rect(0, 0, cols, rows), rx, ry);
 }
 
@@ -514,17 +509,21 @@ cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
   // counting sort of the runs on their layer. Sorting runs rather than
   // pixels is what keeps this cheap: a counter bumped once per pixel waits
   // on its own last store whenever neighbours share a layer.
-  const std::vector<int> layer = depth_layers(depth, p);
+  // Each pixel's layer is looked up once, as the runs are cut.
+  const LayerLookup layer_of(p);
   thread_local std::vector<LayerRun> runs, sorted;
   runs.clear();
   for (int y = 0; y < depth.rows; ++y) {
     const int row_start = y * depth.cols;
-    for (int x = 0; x < depth.cols;) {
-      const int s = layer[row_start + x];
+    int x = 0;
+    int s = depth.cols > 0 ? layer_of(value[row_start]) : 0;
+    while (x < depth.cols) {
       int end = x + 1;
-      while (end < depth.cols && layer[row_start + end] == s) ++end;
+      int next = 0;
+      while (end < depth.cols && (next = layer_of(value[row_start + end])) == s) ++end;
       if (s > 0) runs.push_back({row_start + x, end - x, y, s});
       x = end;
+      s = next;
     }
   }
   std::vector<int> start(n + 2, 0);
@@ -556,7 +555,7 @@ cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& p) {
     // is computed; the rest is still empty.
     thread_local std::vector<float> acc, scratch;
     acc.assign(static_cast<std::size_t>(pixels), kEmpty);
-    scratch.assign(static_cast<std::size_t>(pixels), kEmpty);
+    scratch.clear();  // filled by erode_rect if a step needs it
     cv::Rect box;
     int last_rx = -1;
     int last_ry = -1;

@@ -99,7 +99,8 @@ cv::Mat dilate_depth_map(const cv::Mat& depth, const DilationParams& params);
 void erode_rect(std::vector<float>& image, int rows, int cols, int rx, int ry);
 /// The same on the pixels that can change when those outside `box` are all
 /// above every value (empty): only `box` grown by the radii is computed, and
-/// returned; `scratch` (the image's size, empty outside `box` too) may be
+/// returned; `scratch` (the image's size, empty outside `box` too; or no
+/// size at all, filled with empty pixels here when a step needs it) may be
 /// swapped with `image`, and both stay empty outside the returned box.
 cv::Rect erode_rect(std::vector<float>& image, std::vector<float>& scratch, int rows, int cols, cv::Rect box, int rx,
                     int ry);

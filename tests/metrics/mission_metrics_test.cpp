@@ -14,7 +14,7 @@
 namespace campo {
 namespace {
 
-TrajectorySample sample_at(double t, double x, double y, double z) {
+TrajectorySample mission_sample_at(double t, double x, double y, double z) {
   TrajectorySample s;
   s.time_s = t;
   s.state.position_m = {x, y, z};
@@ -27,8 +27,8 @@ struct TwoLegs : ::testing::Test {
     def.mission = {{{10, 0, 10}}, {{10, 10, 10}}};
     def.gates = {{"slot", Eigen::AlignedBox2d(Eigen::Vector2d(9, 4), Eigen::Vector2d(11, 6)), 5.0},
                  {"never", Eigen::AlignedBox2d(Eigen::Vector2d(-9, -9), Eigen::Vector2d(-8, -8)), std::nullopt}};
-    trajectory = {sample_at(0, 0, 0, 10), sample_at(1, 5, 0, 10), sample_at(2, 10, 0, 10),
-                  sample_at(3, 10, 5, 10), sample_at(4, 10, 5, 10), sample_at(5, 10, 10, 10)};
+    trajectory = {mission_sample_at(0, 0, 0, 10), mission_sample_at(1, 5, 0, 10), mission_sample_at(2, 10, 0, 10),
+                  mission_sample_at(3, 10, 5, 10), mission_sample_at(4, 10, 5, 10), mission_sample_at(5, 10, 10, 10)};
     // Heights above ground: the gate's ceiling of 5 m is met from t = 4 only.
     for (std::size_t i = 0; i < trajectory.size(); ++i) trajectory[i].height_above_ground_m = i >= 4 ? 3.0 : 8.0;
   }
@@ -80,7 +80,7 @@ TEST_F(TwoLegs, ALegWithAnEndNotReachedIsNull) {
 
 TEST_F(TwoLegs, ALegThatClimbsReportsHowFarItMovedSidewaysFirst) {
   // Leg 0 flown 3 m to the side of its line, then up 6 m over a wall, then on: 3 m sideways before the climb.
-  trajectory = {sample_at(0, 0, 0, 10), sample_at(1, 3, 3, 10), sample_at(2, 5, 0, 16), sample_at(3, 10, 0, 10)};
+  trajectory = {mission_sample_at(0, 0, 0, 10), mission_sample_at(1, 3, 3, 10), mission_sample_at(2, 5, 0, 16), mission_sample_at(3, 10, 0, 10)};
   const std::vector<std::optional<std::size_t>> reached{3, std::nullopt};
   nlohmann::json record;
   write_mission_metrics(def, start, trajectory, reached, record);

@@ -13,11 +13,12 @@
 #include "physics/bullet_convert.hpp"
 #include "campo/vehicle_factory.hpp"
 #include "tests/physics/placed_vehicle.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
 
-constexpr double kMm = 1e-3;
+using namespace campo::test_units;
 
 btTransform at(double x, double y, double z, double yaw_deg = 0.0) {
   btQuaternion q(btVector3(0, 0, 1), yaw_deg * std::numbers::pi / 180.0);

@@ -14,12 +14,13 @@
 #include "tests/physics/placed_vehicle.hpp"
 #include "campo/world.hpp"
 #include "tests/mesh_file_writers.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kMm = 1e-3;
+using namespace campo::test_units;
 
 // The mesh files every test here reads: a unit box and a closed cylinder
 // (radius 0.5, height 1, 256 segments: the inscribed polygon is within 0.04 mm of the circle).
@@ -36,12 +37,12 @@ const fs::path& mesh_dir() {
   return dir;
 }
 
-Scene scene_from(const std::string& objects) {
+Scene mesh_scene_from(const std::string& objects) {
   return parse_scene(nlohmann::json::parse(R"j({"objects": [)j" + objects + "]}"), "inline.json", mesh_dir());
 }
 
-struct Placed : test::PlacedVehicle {
-  explicit Placed(const std::string& objects) : PlacedVehicle(scene_from(objects)) {}
+struct PlacedOnMeshes : test::PlacedVehicle {
+  explicit PlacedOnMeshes(const std::string& objects) : PlacedVehicle(mesh_scene_from(objects)) {}
 };
 
 std::string vec(const Eigen::Vector3d& v) {
@@ -69,8 +70,8 @@ TEST(MeshClearance, BoxMeshMeasuresAsTheCuboid) {
       {{0, 0, 1.5}, 0}, {{0.5, 0.3, 1.0}, 45}, {{1.2, 2.8, 3.0}, 10}, {{2.3, 0, 4.6}, 0}, {{3.0, -3.5, 2.0}, 70}};
   for (const auto& [position, yaw] : poses) {
     SCOPED_TRACE(position.transpose());
-    const Placed primitive(kBoxPrimitive + "," + drone_at(position, yaw));
-    const Placed mesh(kBoxMesh + "," + drone_at(position, yaw));
+    const PlacedOnMeshes primitive(kBoxPrimitive + "," + drone_at(position, yaw));
+    const PlacedOnMeshes mesh(kBoxMesh + "," + drone_at(position, yaw));
     const Clearance a = primitive.world.vehicle_clearance();
     const Clearance b = mesh.world.vehicle_clearance();
     ASSERT_TRUE(std::isfinite(a.obstacle_m));
@@ -80,7 +81,7 @@ TEST(MeshClearance, BoxMeshMeasuresAsTheCuboid) {
     EXPECT_TRUE(std::isinf(mesh.world.vehicle_clearance(a.obstacle_m - 0.01, 1.0).obstacle_m));
   }
   // One analytic value: face on, unrotated barrier face at x = 1.85, the drone's box reaching 0.3.
-  const Placed straight(R"({"alias": "barrier", "type": "mesh", "file": "box.stl", "scale": [0.3, 5, 4],
+  const PlacedOnMeshes straight(R"({"alias": "barrier", "type": "mesh", "file": "box.stl", "scale": [0.3, 5, 4],
       "pose": {"position_m": [2, 0, 2]}},)" + drone_at({0, 0, 1.5}, 0));
   EXPECT_NEAR(straight.world.vehicle_clearance().obstacle_m, 1.85 - 0.3, kMm);
 }
@@ -91,8 +92,8 @@ TEST(MeshClearance, CylinderMeshMeasuresAsTheCylinder) {
       const double a = angle_deg * std::numbers::pi / 180.0;
       const Eigen::Vector3d p(range * std::cos(a), 2.0 + range * std::sin(a), 1.2);
       SCOPED_TRACE(p.transpose());
-      const Placed primitive(kCylinderPrimitive + "," + drone_at(p, angle_deg / 3));
-      const Placed mesh(kCylinderMesh + "," + drone_at(p, angle_deg / 3));
+      const PlacedOnMeshes primitive(kCylinderPrimitive + "," + drone_at(p, angle_deg / 3));
+      const PlacedOnMeshes mesh(kCylinderMesh + "," + drone_at(p, angle_deg / 3));
       const double expected = primitive.world.vehicle_clearance().obstacle_m;
       const double measured = mesh.world.vehicle_clearance().obstacle_m;
       if (expected > 0.0) {
@@ -105,13 +106,13 @@ TEST(MeshClearance, CylinderMeshMeasuresAsTheCylinder) {
     }
   }
   // Above the top cap: 3 m tall, the drone's box 0.06 below its centre at z = 3.5.
-  const Placed above(kCylinderMesh + "," + drone_at({0.1, 2.0, 3.5}, 0));
+  const PlacedOnMeshes above(kCylinderMesh + "," + drone_at({0.1, 2.0, 3.5}, 0));
   EXPECT_NEAR(above.world.vehicle_clearance().obstacle_m, 0.5 - 0.06, kMm);
 }
 
 TEST(MeshClearance, InsideAClosedMeshIsNegativeAndAnOpenMeshHasNoInside) {
   // A 6 m cube around the drone: 3 - 0.3 to the nearest (side) face.
-  const Placed closed(R"({"alias": "hall", "type": "mesh", "file": "box.stl", "scale": 6, "pose": {"position_m": [0, 0, 1]}},)" +
+  const PlacedOnMeshes closed(R"({"alias": "hall", "type": "mesh", "file": "box.stl", "scale": 6, "pose": {"position_m": [0, 0, 1]}},)" +
                       drone_at({0, 0, 1}, 0));
   const Clearance c = closed.world.vehicle_clearance();
   EXPECT_NEAR(c.obstacle_m, -(3.0 - 0.3), kMm);
@@ -119,18 +120,18 @@ TEST(MeshClearance, InsideAClosedMeshIsNegativeAndAnOpenMeshHasNoInside) {
   // A cutoff does not hide it.
   EXPECT_LT(closed.world.vehicle_clearance(0.5, 0.5).obstacle_m, 0.0);
   // Without its +x face the box has no inside: the distance to the nearest face, positive.
-  const Placed open(R"({"alias": "hall", "type": "mesh", "file": "open_box.ply", "scale": 6, "pose": {"position_m": [0, 0, 1]}},)" +
+  const PlacedOnMeshes open(R"({"alias": "hall", "type": "mesh", "file": "open_box.ply", "scale": 6, "pose": {"position_m": [0, 0, 1]}},)" +
                     drone_at({0, 0, 1}, 0));
   EXPECT_NEAR(open.world.vehicle_clearance().obstacle_m, 3.0 - 0.3, kMm);
   // Just outside the closed one: positive again.
-  const Placed outside(R"({"alias": "hall", "type": "mesh", "file": "box.stl", "scale": 6, "pose": {"position_m": [0, 0, 1]}},)" +
+  const PlacedOnMeshes outside(R"({"alias": "hall", "type": "mesh", "file": "box.stl", "scale": 6, "pose": {"position_m": [0, 0, 1]}},)" +
                        drone_at({4, 0, 1}, 0));
   EXPECT_NEAR(outside.world.vehicle_clearance().obstacle_m, 1.0 - 0.3, kMm);
 }
 
 TEST(MeshContacts, ABulletContactNamesTheMesh) {
   // The unpowered drone's box bottom 2 mm above the top of a mesh block (top at z = 1): it falls onto it.
-  const Placed p(R"({"alias": "block", "type": "mesh", "file": "box.stl", "scale": [2, 2, 1], "pose": {"position_m": [0, 0, 0.5]}},)" +
+  const PlacedOnMeshes p(R"({"alias": "block", "type": "mesh", "file": "box.stl", "scale": [2, 2, 1], "pose": {"position_m": [0, 0, 0.5]}},)" +
                  drone_at({0, 0, 1.062}, 0));
   World& world = const_cast<World&>(p.world);
   Clearance c;
@@ -148,7 +149,7 @@ TEST(MeshContacts, ABulletContactNamesTheMesh) {
 
 // Where a dynamic 0.5 m box dropped onto a static block comes to rest.
 double resting_height(const std::string& block, const std::string& falling) {
-  const Scene scene = scene_from(block + "," + falling);
+  const Scene scene = mesh_scene_from(block + "," + falling);
   World world(scene);
   for (int i = 0; i < 3 * 240; ++i) world.step();
   const BodyState s = world.shape_state(1);
@@ -179,7 +180,7 @@ TEST(MeshContacts, ABoxRestsOnAMeshBlockAsOnACuboid) {
 }
 
 TEST(MeshWorld, RaysHitTheMeshAndStepsAreDeterministic) {
-  const Scene scene = scene_from(kCylinderMesh + "," + kBoxMesh +
+  const Scene scene = mesh_scene_from(kCylinderMesh + "," + kBoxMesh +
                                  R"(, {"alias": "crate", "type": "mesh", "file": "box.stl", "scale": 0.5, "static": false, "mass_kg": 3, "pose": {"position_m": [0, 2, 5]}})");
   World a(scene), b(scene);
   const auto hit = a.ray_test({0, -2, 1}, {0, 6, 1});

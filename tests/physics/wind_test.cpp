@@ -14,13 +14,14 @@
 #include "campo/scene_loader.hpp"
 #include "campo/world.hpp"
 #include "scene/world_config.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using namespace campo::test_units;
 
-Scene parse(const std::string& text) {
+Scene wind_scene(const std::string& text) {
   return parse_scene(nlohmann::json::parse(text), "inline.json", std::filesystem::temp_directory_path());
 }
 
@@ -203,7 +204,7 @@ TEST(Wind, DrydenIsDeterministicPerSeed) {
 // The World: steady wind as given, a gust at the world's time, turbulence that moves with
 // the steps and is the same for the same seeds.
 TEST(Wind, WorldReturnsSteadyPlusGustAtItsTime) {
-  const Scene scene = parse(R"j({"world": {"wind": {"speed_mps": 5, "direction_deg": 180, "vertical_mps": 0.5,
+  const Scene scene = wind_scene(R"j({"world": {"wind": {"speed_mps": 5, "direction_deg": 180, "vertical_mps": 0.5,
       "gust": "one_minus_cos", "gust_amplitude_mps": [0, 2, 0], "gust_start_s": 0.5, "gust_duration_s": 1}},
       "objects": []})j");
   World world(scene);
@@ -219,7 +220,7 @@ TEST(Wind, WorldReturnsSteadyPlusGustAtItsTime) {
 }
 
 TEST(Wind, WorldWithoutWindHasStillAir) {
-  const Scene scene = parse(R"j({"objects": []})j");
+  const Scene scene = wind_scene(R"j({"objects": []})j");
   World world(scene);
   world.step();
   EXPECT_EQ(world.wind_mps({1, 2, 3}), Eigen::Vector3d::Zero());
@@ -241,11 +242,11 @@ TEST(Wind, WorldTurbulenceIsSeededAndMovesEachStep) {
     }
     return out;
   };
-  const Scene a = parse(scene_text(3, 9));
+  const Scene a = wind_scene(scene_text(3, 9));
   const std::vector<Eigen::Vector3d> h = history(a);
   EXPECT_EQ(h, history(a));
-  EXPECT_NE(h, history(parse(scene_text(4, 9))));
-  EXPECT_NE(h, history(parse(scene_text(3, 10))));
+  EXPECT_NE(h, history(wind_scene(scene_text(4, 9))));
+  EXPECT_NE(h, history(wind_scene(scene_text(3, 10))));
   EXPECT_NE(h[0], h[1]);
   // The mean over 500 steps (2 s, T = 20/6 s) is near the steady wind: within a few sigma.
   Eigen::Vector3d m = Eigen::Vector3d::Zero();
@@ -255,7 +256,7 @@ TEST(Wind, WorldTurbulenceIsSeededAndMovesEachStep) {
 
 std::string error_of(const std::string& world) {
   try {
-    parse(R"j({"world": )j" + world + R"j(, "objects": []})j");
+    wind_scene(R"j({"world": )j" + world + R"j(, "objects": []})j");
   } catch (const InputError& e) {
     return e.what();
   }
@@ -264,7 +265,7 @@ std::string error_of(const std::string& world) {
 
 // The "wind" block as the loader reads it: every field, and the errors naming the pointer.
 TEST(WindBlock, IsReadWithItsFieldsAndWrittenBack) {
-  const Scene scene = parse(R"j({"world": {"seed": 4, "wind": {"speed_mps": 7.5, "direction_deg": -45,
+  const Scene scene = wind_scene(R"j({"world": {"seed": 4, "wind": {"speed_mps": 7.5, "direction_deg": -45,
       "vertical_mps": 1, "gust": "dryden", "turbulence_intensity_mps": 2, "turbulence_length_m": 120,
       "seed": 11}}, "objects": []})j");
   const WindConfig& w = scene.world.wind;
@@ -282,14 +283,14 @@ TEST(WindBlock, IsReadWithItsFieldsAndWrittenBack) {
   EXPECT_EQ(written.at("wind").at("seed"), 11);
   EXPECT_FALSE(written.at("wind").contains("gust_amplitude_mps"));
   // Without a wind block: still air, and run.json says so.
-  const Scene still = parse(R"j({"objects": []})j");
+  const Scene still = wind_scene(R"j({"objects": []})j");
   EXPECT_EQ(still.world.wind.steady_velocity_mps(), Eigen::Vector3d::Zero());
   EXPECT_EQ(world_config_fields().write(still.world).at("wind").at("speed_mps"), 0.0);
 }
 
 // "velocity_mps" gives the steady wind as a vector; it is recorded as the three fields.
 TEST(WindBlock, VelocityVectorIsTheSteadyWind) {
-  const Scene scene = parse(R"j({"world": {"wind": {"velocity_mps": [-3, 4, 0.5]}}, "objects": []})j");
+  const Scene scene = wind_scene(R"j({"world": {"wind": {"velocity_mps": [-3, 4, 0.5]}}, "objects": []})j");
   const WindConfig& w = scene.world.wind;
   EXPECT_DOUBLE_EQ(w.speed_mps, 5.0);
   EXPECT_NEAR(w.direction_deg, 180.0 - std::atan(4.0 / 3.0) * 180.0 / kPi, 1e-12);
@@ -299,7 +300,7 @@ TEST(WindBlock, VelocityVectorIsTheSteadyWind) {
   EXPECT_FALSE(written.contains("velocity_mps"));
   EXPECT_EQ(written.at("speed_mps"), 5.0);
   // Read back from what run.json writes, the same wind.
-  const Scene again = parse(R"j({"world": {"wind": )j" + written.dump() + R"j(}, "objects": []})j");
+  const Scene again = wind_scene(R"j({"world": {"wind": )j" + written.dump() + R"j(}, "objects": []})j");
   EXPECT_EQ(again.world.wind.steady_velocity_mps(), w.steady_velocity_mps());
 }
 

@@ -26,27 +26,27 @@ constexpr double kDeckNorthM = 33.0;
 constexpr double kDeckBottomM = 19.0;
 constexpr double kDeckTopM = 22.0;
 
-ParamsBlock params(nlohmann::json values) { return {std::move(values), "scene.json", "/objects/2/planner/params"}; }
+ParamsBlock bridge_params(nlohmann::json values) { return {std::move(values), "scene.json", "/objects/2/planner/params"}; }
 
 // Seed 001's grid with take-off ground at z = 0: cell (x, y, z) has its centre
 // at (0.75 + 1.5 x, 0.75 + 1.5 y, 7 (z - 2)).
-Eigen::Vector3d center(int x, int y, int z) { return {0.75 + 1.5 * x, 0.75 + 1.5 * y, 7.0 * (z - 2)}; }
+Eigen::Vector3d bridge_cell_center(int x, int y, int z) { return {0.75 + 1.5 * x, 0.75 + 1.5 * y, 7.0 * (z - 2)}; }
 
 // Flies east along level 4 (14 m) from cell (0, 0) to (6, 0); the first scan,
 // from the vehicle, returns hits on the underside of an overhang at 19 m over
 // columns 2-4, rows 0-11 (going round it, 24 cells, costs more than climbing
 // two levels over it and back, 21). The planned path's highest point is returned.
 double highest_planned_z(const std::string& mapping) {
-  auto planner = make_dstar_lite_3d_planner(params({{"mapping", mapping}}), {VehicleType::quadrotor, nullptr});
-  const std::vector<Waypoint> mission{{center(6, 0, 4), {}}};
+  auto planner = make_dstar_lite_3d_planner(bridge_params({{"mapping", mapping}}), {VehicleType::quadrotor, nullptr});
+  const std::vector<Waypoint> mission{{bridge_cell_center(6, 0, 4), {}}};
   RangeScan scan;
-  scan.sensor_pose.translation() = center(0, 0, 4);
+  scan.sensor_pose.translation() = bridge_cell_center(0, 0, 4);
   for (int x = 2; x <= 4; ++x) {
     for (int y = 0; y <= 11; ++y) scan.points.emplace_back(0.75f + 1.5f * x, 0.75f + 1.5f * y, 19.0f);
   }
   std::vector<SensorReading> sensors{{"leddar", nullptr, test_support::borrowed(scan), true}};
   Observation o;
-  o.state.position_m = center(0, 0, 4);
+  o.state.position_m = bridge_cell_center(0, 0, 4);
   o.sensors = sensors;
   o.mission = mission;
   const PlanResult r = planner->plan(o);
@@ -69,20 +69,20 @@ TEST(DStarLite3dOctomap, AnOverhangBlocksOnlyItsOwnLevel) {
 
 TEST(DStarLite3dOctomap, ParsesItsSettingsStrictly) {
   const DStarLite3dConfig c = parse_dstar_lite_3d_config(
-      params({{"mapping", "octomap"}, {"octomap", {{"resolution_m", 0.25}, {"vehicle_radius_m", 1.0}}}}));
+      bridge_params({{"mapping", "octomap"}, {"octomap", {{"resolution_m", 0.25}, {"vehicle_radius_m", 1.0}}}}));
   EXPECT_EQ(c.mapping, Mapping3d::octomap);
   EXPECT_DOUBLE_EQ(c.octomap.resolution_m, 0.25);
   EXPECT_DOUBLE_EQ(c.octomap.vehicle_radius_m, 1.0);
   EXPECT_DOUBLE_EQ(c.octomap.probability_hit, 0.7);
-  EXPECT_EQ(parse_dstar_lite_3d_config(params(nlohmann::json::object())).mapping, Mapping3d::columns);
+  EXPECT_EQ(parse_dstar_lite_3d_config(bridge_params(nlohmann::json::object())).mapping, Mapping3d::columns);
   // The effective parameters read back the same.
-  auto planner = make_dstar_lite_3d_planner(params({{"mapping", "octomap"}}), {VehicleType::quadrotor, nullptr});
+  auto planner = make_dstar_lite_3d_planner(bridge_params({{"mapping", "octomap"}}), {VehicleType::quadrotor, nullptr});
   EXPECT_EQ(planner->parameters()["mapping"], "octomap");
-  EXPECT_DOUBLE_EQ(parse_dstar_lite_3d_config(params(planner->parameters())).octomap.resolution_m, 0.75);
+  EXPECT_DOUBLE_EQ(parse_dstar_lite_3d_config(bridge_params(planner->parameters())).octomap.resolution_m, 0.75);
 
   const auto expect_error = [](nlohmann::json values, const std::string& message) {
     try {
-      parse_dstar_lite_3d_config(params(std::move(values)));
+      parse_dstar_lite_3d_config(bridge_params(std::move(values)));
       ADD_FAILURE() << "accepted: " << message;
     } catch (const InputError& e) {
       EXPECT_THAT(e.what(), ::testing::HasSubstr(message));

@@ -19,11 +19,11 @@ namespace {
 
 using ::testing::HasSubstr;
 
-ParamsBlock params(nlohmann::json values) { return {std::move(values), "scene.json", "/objects/2/planner/params"}; }
+ParamsBlock dstar_params(nlohmann::json values) { return {std::move(values), "scene.json", "/objects/2/planner/params"}; }
 
 // Synthetic observations on seed 001's grid with take-off ground at z = 0:
 // cell (x, y, z) has its centre at (0.75 + 1.5 x, 0.75 + 1.5 y, 7 (z - 2)).
-Eigen::Vector3d center(int x, int y, int z) { return {0.75 + 1.5 * x, 0.75 + 1.5 * y, 7.0 * (z - 2)}; }
+Eigen::Vector3d cell_center(int x, int y, int z) { return {0.75 + 1.5 * x, 0.75 + 1.5 * y, 7.0 * (z - 2)}; }
 
 struct Feed {
   std::vector<Waypoint> mission;
@@ -49,13 +49,13 @@ Eigen::Vector3d goto_target(const PlanResult& r) {
 
 TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
   Feed feed;
-  feed.mission = {{center(0, 0, 4), {}}, {center(6, 0, 4), {}}};
+  feed.mission = {{cell_center(0, 0, 4), {}}, {cell_center(6, 0, 4), {}}};
   auto planner = make_dstar_lite_3d_planner({}, {VehicleType::quadrotor, nullptr});
 
   // Take-off: straight up two levels to the first waypoint, itself the target.
-  PlanResult r = planner->plan(feed.at(center(0, 0, 2)));
+  PlanResult r = planner->plan(feed.at(cell_center(0, 0, 2)));
   EXPECT_EQ(r.status, PlanStatus::running);
-  EXPECT_EQ(goto_target(r), center(0, 0, 4));
+  EXPECT_EQ(goto_target(r), cell_center(0, 0, 4));
   EXPECT_DOUBLE_EQ(std::get<command::GoTo>(r.command).speed_mps, 1.0);
   ASSERT_TRUE(r.decisions.replan.has_value());
   EXPECT_EQ(r.decisions.replan->index, 0);
@@ -69,16 +69,16 @@ TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
   EXPECT_FALSE(dstar_lite_3d_record().height_map_columns.in(r.decisions.own));
 
   // Waypoint 0 reached: the next leg runs east along level 4, three cells ahead at a time.
-  r = planner->plan(feed.at(center(0, 0, 4) + Eigen::Vector3d(0.1, 0.0, 0.2)));
+  r = planner->plan(feed.at(cell_center(0, 0, 4) + Eigen::Vector3d(0.1, 0.0, 0.2)));
   EXPECT_EQ(r.decisions.reached_waypoints, std::vector<int>{0});
-  EXPECT_EQ(goto_target(r), center(3, 0, 4));
+  EXPECT_EQ(goto_target(r), cell_center(3, 0, 4));
   ASSERT_TRUE(r.decisions.planned_path.has_value());
   EXPECT_EQ(r.decisions.planned_path->size(), 7u);
   EXPECT_FALSE(dstar_lite_3d_record().height_map_grid.in(r.decisions.own));  // once
 
   // A hit on a roof at level 4 in column (2, 0) blocks levels 0..4 there: only
   // those five cells go to D* Lite, and the new path avoids them.
-  r = planner->plan(feed.at(center(0, 0, 4), {Eigen::Vector3f(3.0f, 0.75f, 14.5f)}));
+  r = planner->plan(feed.at(cell_center(0, 0, 4), {Eigen::Vector3f(3.0f, 0.75f, 14.5f)}));
   ASSERT_TRUE(r.decisions.replan.has_value());
   EXPECT_EQ(r.decisions.replan->index, 2);
   EXPECT_EQ(dstar_lite_3d_record().changed_cells.get(r.decisions.replan->details), 5);
@@ -89,7 +89,7 @@ TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
     EXPECT_FALSE((point - Eigen::Vector3d(3.75, 0.75, point.z())).norm() < 0.1 && point.z() < 15.0)
         << point.transpose();
   }
-  EXPECT_EQ(r.decisions.planned_path->back(), center(6, 0, 4));
+  EXPECT_EQ(r.decisions.planned_path->back(), cell_center(6, 0, 4));
   // For the figures: the hit, and column (2, 0) whose top is now level 4 (centre z 14 m).
   EXPECT_EQ(r.decisions.lidar_hits, (std::vector<Eigen::Vector3d>{{3.0, 0.75, 14.5}}));
   EXPECT_EQ(dstar_lite_3d_record().height_map_columns.get(r.decisions.own), (std::vector<HeightMapColumn>{{2, 0, 14.0}}));
@@ -97,7 +97,7 @@ TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
   const std::vector<Eigen::Vector3d> path = *r.decisions.planned_path;
 
   // The same hit again changes nothing: no replan while the vehicle stays in its cell.
-  r = planner->plan(feed.at(center(0, 0, 4), {Eigen::Vector3f(3.0f, 0.75f, 14.5f)}));
+  r = planner->plan(feed.at(cell_center(0, 0, 4), {Eigen::Vector3f(3.0f, 0.75f, 14.5f)}));
   EXPECT_FALSE(r.decisions.replan.has_value());
   EXPECT_EQ(r.decisions.lidar_hits.size(), 1u);
   EXPECT_FALSE(dstar_lite_3d_record().height_map_columns.in(r.decisions.own));
@@ -113,10 +113,10 @@ TEST(DStarLite3d, FliesCellToCellAndReplansAroundMappedHits) {
 
 TEST(DStarLite3d, ReportsNoPathWhenTheGoalColumnIsBlocked) {
   Feed feed;
-  feed.mission = {{center(5, 5, 4), {}}};
+  feed.mission = {{cell_center(5, 5, 4), {}}};
   auto planner = make_dstar_lite_3d_planner({}, {VehicleType::quadrotor, nullptr});
-  EXPECT_EQ(planner->plan(feed.at(center(5, 0, 2))).status, PlanStatus::running);
-  const PlanResult r = planner->plan(feed.at(center(5, 0, 2), {Eigen::Vector3f(8.25f, 8.25f, 14.0f)}));
+  EXPECT_EQ(planner->plan(feed.at(cell_center(5, 0, 2))).status, PlanStatus::running);
+  const PlanResult r = planner->plan(feed.at(cell_center(5, 0, 2), {Eigen::Vector3f(8.25f, 8.25f, 14.0f)}));
   EXPECT_EQ(r.status, PlanStatus::no_path);
   EXPECT_THAT(r.reason, HasSubstr("no path from cell [5,0,2] to mission waypoint 0 at cell [5,5,4]"));
   EXPECT_TRUE(std::holds_alternative<command::Hold>(r.command));
@@ -124,37 +124,37 @@ TEST(DStarLite3d, ReportsNoPathWhenTheGoalColumnIsBlocked) {
 
 TEST(DStarLite3d, NeedsItsSensorAndReachesTheLastWaypoint) {
   Feed feed;
-  feed.mission = {{center(1, 1, 3), {}}};
-  auto planner = make_dstar_lite_3d_planner(params({{"sensor", "lidar2"}}), {VehicleType::quadrotor, nullptr});
-  PlanResult r = planner->plan(feed.at(center(1, 1, 3)));
+  feed.mission = {{cell_center(1, 1, 3), {}}};
+  auto planner = make_dstar_lite_3d_planner(dstar_params({{"sensor", "lidar2"}}), {VehicleType::quadrotor, nullptr});
+  PlanResult r = planner->plan(feed.at(cell_center(1, 1, 3)));
   EXPECT_EQ(r.status, PlanStatus::invalid_start);
   EXPECT_THAT(r.reason, HasSubstr("no sensor \"lidar2\""));
   planner = make_dstar_lite_3d_planner({}, {VehicleType::quadrotor, nullptr});
-  r = planner->plan(feed.at(center(1, 1, 3)));
+  r = planner->plan(feed.at(cell_center(1, 1, 3)));
   EXPECT_EQ(r.status, PlanStatus::reached);
   EXPECT_EQ(r.decisions.reached_waypoints, std::vector<int>{0});
 }
 
 TEST(DStarLite3d, ParsesParamsStrictly) {
   const DStarLite3dConfig c = parse_dstar_lite_3d_config(
-      params({{"connectivity", "six"}, {"levels", 12}, {"ground_level", 3}, {"origin_m", {-75.0, -75.0}}}));
+      dstar_params({{"connectivity", "six"}, {"levels", 12}, {"ground_level", 3}, {"origin_m", {-75.0, -75.0}}}));
   EXPECT_EQ(c.connectivity, grid::Connectivity::six);
   EXPECT_EQ(c.levels, 12);
   EXPECT_EQ(c.ground_level, 3);
   EXPECT_EQ(c.origin_m, Eigen::Vector2d(-75.0, -75.0));
-  const DStarLite3dConfig defaults = parse_dstar_lite_3d_config(params(nlohmann::json::object()));
+  const DStarLite3dConfig defaults = parse_dstar_lite_3d_config(dstar_params(nlohmann::json::object()));
   EXPECT_EQ(defaults.connectivity, grid::Connectivity::twenty_six);
   EXPECT_DOUBLE_EQ(defaults.speed_mps, 1.0);
   // A climb costs its length by default: 7 m over 1.5 m cells; 001's uniform cost is 1.
   EXPECT_DOUBLE_EQ(climb_cost_cells(defaults), 7.0 / 1.5);
-  EXPECT_DOUBLE_EQ(climb_cost_cells(parse_dstar_lite_3d_config(params({{"climb_cost_cells", 1.0}}))), 1.0);
-  auto planner = make_dstar_lite_3d_planner(params({{"speed_mps", 2.0}}), {VehicleType::quadrotor, nullptr});
+  EXPECT_DOUBLE_EQ(climb_cost_cells(parse_dstar_lite_3d_config(dstar_params({{"climb_cost_cells", 1.0}}))), 1.0);
+  auto planner = make_dstar_lite_3d_planner(dstar_params({{"speed_mps", 2.0}}), {VehicleType::quadrotor, nullptr});
   EXPECT_EQ(planner->parameters()["speed_mps"], 2.0);
-  EXPECT_EQ(parse_dstar_lite_3d_config(params(planner->parameters())).speed_mps, 2.0);
+  EXPECT_EQ(parse_dstar_lite_3d_config(dstar_params(planner->parameters())).speed_mps, 2.0);
 
   const auto expect_error = [](nlohmann::json values, const std::string& message) {
     try {
-      parse_dstar_lite_3d_config(params(std::move(values)));
+      parse_dstar_lite_3d_config(dstar_params(std::move(values)));
       ADD_FAILURE() << "accepted: " << message;
     } catch (const InputError& e) {
       EXPECT_THAT(e.what(), HasSubstr(message));
@@ -167,22 +167,22 @@ TEST(DStarLite3d, ParsesParamsStrictly) {
   // Issue 16: grids that GridGraph or memory could not take are input errors.
   expect_error({{"columns", 4000}, {"rows", 4000}, {"levels", 17}},
                "/objects/2/planner/params: expected columns x rows x levels <= 8000000 cells, got 4000 x 4000 x 17");
-  EXPECT_NO_THROW(parse_dstar_lite_3d_config(params({{"columns", 1000}, {"rows", 1000}, {"levels", 8}})));
+  EXPECT_NO_THROW(parse_dstar_lite_3d_config(dstar_params({{"columns", 1000}, {"rows", 1000}, {"levels", 8}})));
   expect_error({{"cell_size_m", 1e-300}}, "/objects/2/planner/params/cell_size_m");
   expect_error({{"level_spacing_m", 1e300}}, "/objects/2/planner/params/level_spacing_m");
   expect_error({{"cell_size_m", 0.01}, {"level_spacing_m", 20.0}}, "expected level_spacing_m / cell_size_m <= 1000");
-  EXPECT_NO_THROW(parse_dstar_lite_3d_config(params({{"cell_size_m", 0.01}, {"level_spacing_m", 20.0}, {"climb_cost_cells", 1.0}})));
+  EXPECT_NO_THROW(parse_dstar_lite_3d_config(dstar_params({{"cell_size_m", 0.01}, {"level_spacing_m", 20.0}, {"climb_cost_cells", 1.0}})));
 }
 
 // Closed loop on seed 001's scenes (each a fraction of a second in Release),
 // with optional --set style overrides.
-EpisodeResult fly(const std::string& name, const std::vector<std::string>& overrides = {}) {
+EpisodeResult fly_dstar(const std::string& name, const std::vector<std::string>& overrides = {}) {
   return testing::run_bundled(name, "dstar_lite_3d", overrides);
 }
 
 using testing::waypoints_reached;
 
-void expect_solved(const EpisodeResult& r, int waypoints, const char* what, double max_path_ratio = 1.25,
+void expect_dstar_solved(const EpisodeResult& r, int waypoints, const char* what, double max_path_ratio = 1.25,
                    double min_clearance_m = 0.2) {
   SCOPED_TRACE(what);
   EXPECT_EQ(r.only().metrics.outcome, Outcome::reached) << r.only().metrics.reason;
@@ -229,8 +229,8 @@ LegMeasure leg(const EpisodeResult& r, std::size_t k) {
 }
 
 TEST(DStarLite3dClosedLoop, ObstacleField) {
-  const EpisodeResult r = fly("obstacle_field");
-  expect_solved(r, 9, "obstacle_field");
+  const EpisodeResult r = fly_dstar("obstacle_field");
+  expect_dstar_solved(r, 9, "obstacle_field");
   // At 28 m above ground the tall blocks on the route were mapped and avoided: the path changed on the way.
   int changed_paths = 0;
   for (const PlannerEvent& e : r.only().events) changed_paths += e.decisions.planned_path.has_value() ? 1 : 0;
@@ -249,10 +249,10 @@ TEST(DStarLite3dClosedLoop, ObstacleField) {
 // the block is 6 cells shorter than the slot, so a leg straight through the
 // slot checks that the mapped slot is judged passable (seed 001 §5.1).
 TEST(DStarLite3dClosedLoop, ObstacleFieldSlotIsPassable) {
-  const EpisodeResult r = fly("obstacle_field", {R"(/objects/drone/mission/waypoints=[
+  const EpisodeResult r = fly_dstar("obstacle_field", {R"(/objects/drone/mission/waypoints=[
       {"cell": [1, 16], "agl_m": 42}, {"cell": [60, 50], "agl_m": 42}, {"cell": [40, 51], "agl_m": 42},
       {"cell": [60, 50], "agl_m": 28}, {"cell": [40, 51], "agl_m": 28}])"});
-  expect_solved(r, 5, "slot", 1.25, 0.2);
+  expect_dstar_solved(r, 5, "slot", 1.25, 0.2);
   // At 28 m the blocks (35 m) stand in the way: the drone flies through the slot, below their tops,
   // and the scene's gate says so (the legs at 42 m pass over it, above the gate's 35 m).
   EXPECT_TRUE(passes(r, 49, 50, 50, 51, 20.0, 33.0));
@@ -268,8 +268,8 @@ TEST(DStarLite3dClosedLoop, ObstacleFieldSlotIsPassable) {
 // the buildings it mapped from 42 m (001 §5.2) instead of climbing over them or
 // going round them: it stays below their tops the whole leg.
 TEST(DStarLite3dClosedLoop, Zigzag) {
-  const EpisodeResult r = fly("zigzag");
-  expect_solved(r, 4, "zigzag");
+  const EpisodeResult r = fly_dstar("zigzag");
+  expect_dstar_solved(r, 4, "zigzag");
   // The weave with the whole map known: A* on the 8-connected plane of 1.5 m
   // cells with the four buildings (Tabella 5.3) blocked, cell (76, 16) to (1, 16).
   grid::GridGraph plane({100, 100, 1}, grid::Connectivity::eight);
@@ -308,7 +308,7 @@ TEST(DStarLite3dClosedLoop, Zigzag) {
 // Six-connected (the seed's 4 in plane + up/down) flies the same mission; its
 // moves turn sharply next to walls, so less clearance is required.
 TEST(DStarLite3dClosedLoop, ZigzagSixConnected) {
-  expect_solved(fly("zigzag", {"/objects/drone/planner/params/connectivity=\"six\""}), 4, "six", 1.25, 0.05);
+  expect_dstar_solved(fly_dstar("zigzag", {"/objects/drone/planner/params/connectivity=\"six\""}), 4, "six", 1.25, 0.05);
 }
 
 // The wall spans the map: coming back south at 28 m the drone climbs over it
@@ -317,8 +317,8 @@ TEST(DStarLite3dClosedLoop, ZigzagSixConnected) {
 // before topping its climb (with 4.67 cells a level and 45 deg it flew 19.6 m
 // west along the wall first).
 TEST(DStarLite3dClosedLoop, WallClimbedOver) {
-  const EpisodeResult r = fly("wall");
-  expect_solved(r, 4, "wall", 1.5);
+  const EpisodeResult r = fly_dstar("wall");
+  expect_dstar_solved(r, 4, "wall", 1.5);
   ASSERT_TRUE(leg(r, 3).measured);
   ASSERT_FALSE(leg(r, 4).measured);  // four legs
   ASSERT_TRUE(leg(r, 3).lateral_before_climb_m.has_value());

@@ -10,11 +10,12 @@
 #include <string>
 
 #include "campo/random.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo::dubins {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using namespace campo::test_units;
 constexpr double kTol = 1e-9;
 
 Pose2 pose_deg(double x_m, double y_m, double heading_deg) { return {x_m, y_m, heading_deg * kPi / 180.0}; }

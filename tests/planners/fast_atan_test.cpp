@@ -13,11 +13,12 @@
 #include <vector>
 
 #include "campo/random.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using namespace campo::test_units;
 constexpr double kBound = 6.0e-9;  // the file comment states 5.8e-9
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();

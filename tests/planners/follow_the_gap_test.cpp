@@ -9,11 +9,12 @@
 #include <gtest/gtest.h>
 
 #include "campo/random.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
+using namespace campo::test_units;
 constexpr int kBeams = 181;      // planar180: +90 deg .. -90 deg, beam i at 90 - i deg
 constexpr float kNoHit = 20.0f;  // planar180 reads its maximum where nothing is hit
 

@@ -173,7 +173,7 @@ void expect_same_changes(const std::vector<CellChange>& got, const std::vector<C
 }
 
 // Flies `scans` random scans through both maps, checking them after each.
-void fly(const GridMap3dConfig& grid, const OctoMap3dConfig& config, std::uint64_t seed, int scans, int beams) {
+void map_random_scans(const GridMap3dConfig& grid, const OctoMap3dConfig& config, std::uint64_t seed, int scans, int beams) {
   OctoMap3d map(grid, config);
   ReferenceMap reference(grid, config);
   Rng rng(seed);
@@ -223,14 +223,14 @@ GridMap3dConfig metre_grid() {
 }
 
 TEST(OctoMap3dReference, DefaultSettingsGiveTheSameMapScanAfterScan) {
-  for (const std::uint64_t seed : {1u, 2u, 3u}) fly(metre_grid(), OctoMap3dConfig{}, seed, 60, 64);
+  for (const std::uint64_t seed : {1u, 2u, 3u}) map_random_scans(metre_grid(), OctoMap3dConfig{}, seed, 60, 64);
 }
 
 TEST(OctoMap3dReference, FineVoxelsAndWideScansGiveTheSameMap) {
   OctoMap3dConfig c;
   c.resolution_m = 0.3;
   c.vehicle_radius_m = 0.2;
-  fly(metre_grid(), c, 7, 25, 512);
+  map_random_scans(metre_grid(), c, 7, 25, 512);
 }
 
 TEST(OctoMap3dReference, StrongUpdatesReachTheClampingBoundsAndGiveTheSameMap) {
@@ -243,13 +243,13 @@ TEST(OctoMap3dReference, StrongUpdatesReachTheClampingBoundsAndGiveTheSameMap) {
   c.clamping_min = 0.3;
   c.clamping_max = 0.8;
   c.vehicle_radius_m = 0.0;
-  fly(metre_grid(), c, 11, 80, 96);
+  map_random_scans(metre_grid(), c, 11, 80, 96);
 }
 
 TEST(OctoMap3dReference, PlannerGridOverTheBridgeGivesTheSameMap) {
   GridMap3dConfig g;  // dstar_lite_3d's default: 100 x 100 cells of 1.5 m, 9 levels 7 m apart
   g.ground_z_m = 0.3;
-  fly(g, OctoMap3dConfig{}, 5, 30, 64);
+  map_random_scans(g, OctoMap3dConfig{}, 5, 30, 64);
 }
 
 TEST(OctoMap3dReference, MoreScansThanTheKeyTableCountsGiveTheSameMap) {

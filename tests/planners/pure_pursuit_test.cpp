@@ -1,4 +1,5 @@
 #include "planners/pure_pursuit.hpp"
+#include "tests/test_units.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +14,7 @@ namespace {
 
 using Path = std::vector<Eigen::Vector2d>;
 
-constexpr double kDeg = M_PI / 180.0;
+using namespace campo::test_units;
 
 void expect_near(const Eigen::Vector2d& actual, const Eigen::Vector2d& expected, double tolerance = 1e-9) {
   EXPECT_NEAR(actual.x(), expected.x(), tolerance);

@@ -18,15 +18,15 @@ namespace {
 
 using ::testing::HasSubstr;
 
-ParamsBlock params(nlohmann::json values) { return {std::move(values), "scene.json", "/objects/3/planner/params"}; }
+ParamsBlock rover_params(nlohmann::json values) { return {std::move(values), "scene.json", "/objects/3/planner/params"}; }
 
 TEST(RoverRoute, ParsesParamsStrictlyAndRoundTrips) {
-  const RoverRouteConfig defaults = parse_rover_route_config(params(nlohmann::json::object()));
+  const RoverRouteConfig defaults = parse_rover_route_config(rover_params(nlohmann::json::object()));
   EXPECT_EQ(defaults.global, GlobalRoute::dubins);
   EXPECT_EQ(defaults.local, LocalAvoidance::follow_the_gap);
   EXPECT_DOUBLE_EQ(defaults.follow_the_gap.activation_range_m, 3.5);  // 003 §3.6
 
-  const RoverRouteConfig c = parse_rover_route_config(params(
+  const RoverRouteConfig c = parse_rover_route_config(rover_params(
       {{"global", "rrt_star"}, {"local", "vfh_plus"}, {"turning_radius_m", 3.0},
        {"pure_pursuit", {{"lookahead_m", 2.5}}}, {"rrt_star", {{"seed", 9}, {"max_iterations", 100}}}}));
   EXPECT_EQ(c.global, GlobalRoute::rrt_star);
@@ -36,15 +36,15 @@ TEST(RoverRoute, ParsesParamsStrictlyAndRoundTrips) {
   EXPECT_EQ(c.rrt_star.max_iterations, 100);
 
   // The effective parameters read back as the same configuration.
-  auto planner = make_rover_route_planner(params({{"turning_radius_m", 3.0}, {"follow_the_gap", {{"k_width", 2.0}}}}),
+  auto planner = make_rover_route_planner(rover_params({{"turning_radius_m", 3.0}, {"follow_the_gap", {{"k_width", 2.0}}}}),
                                           {VehicleType::rover, nullptr});
-  const RoverRouteConfig back = parse_rover_route_config(params(planner->parameters()));
+  const RoverRouteConfig back = parse_rover_route_config(rover_params(planner->parameters()));
   EXPECT_DOUBLE_EQ(back.turning_radius_m, 3.0);
   EXPECT_DOUBLE_EQ(back.follow_the_gap.k_width, 2.0);
 
   const auto expect_error = [](nlohmann::json values, const std::string& message) {
     try {
-      parse_rover_route_config(params(std::move(values)));
+      parse_rover_route_config(rover_params(std::move(values)));
       ADD_FAILURE() << "accepted: " << message;
     } catch (const InputError& e) {
       EXPECT_THAT(e.what(), HasSubstr(message));
@@ -59,7 +59,7 @@ TEST(RoverRoute, ParsesParamsStrictlyAndRoundTrips) {
 TEST(RoverRoute, FormerLiteralTunablesAreWrittenOnlyWhenChanged) {
   // At their defaults they stay out of parameters(), as before they were fields.
   const nlohmann::json defaults =
-      make_rover_route_planner(params(nlohmann::json::object()), {VehicleType::rover, nullptr})->parameters();
+      make_rover_route_planner(rover_params(nlohmann::json::object()), {VehicleType::rover, nullptr})->parameters();
   for (const char* key : {"guard_step_s", "guard_reverse_speed_mps", "avoid_stop_heading_deg", "blocked_turn_rad",
                           "memory_margin_m", "memory_cell_m", "see_through_margin_m", "vfh_grid_resolution_m",
                           "vfh_grid_margin_m", "rejoin_behind_m", "rejoin_ahead_m", "record_path_step_m"}) {
@@ -69,7 +69,7 @@ TEST(RoverRoute, FormerLiteralTunablesAreWrittenOnlyWhenChanged) {
   EXPECT_FALSE(defaults.contains("sensor"));
 
   // The behaviour they had: 60 deg is pi / 3 exactly, so the stop test is the one it was.
-  const RoverRouteConfig c = parse_rover_route_config(params(nlohmann::json::object()));
+  const RoverRouteConfig c = parse_rover_route_config(rover_params(nlohmann::json::object()));
   EXPECT_EQ(c.avoid_stop_heading_deg * M_PI / 180.0, M_PI / 3.0);
   EXPECT_EQ(c.guard_step_s, 0.1);
   EXPECT_EQ(c.guard_reverse_speed_mps, 0.2);
@@ -78,19 +78,19 @@ TEST(RoverRoute, FormerLiteralTunablesAreWrittenOnlyWhenChanged) {
 
   // Changed, they are written and read back.
   const nlohmann::json changed =
-      make_rover_route_planner(params({{"guard_step_s", 0.05}, {"rejoin_ahead_m", 12.5}, {"sensor", "front"}}),
+      make_rover_route_planner(rover_params({{"guard_step_s", 0.05}, {"rejoin_ahead_m", 12.5}, {"sensor", "front"}}),
                                {VehicleType::rover, nullptr})
           ->parameters();
   EXPECT_EQ(changed["guard_step_s"], 0.05);
   EXPECT_EQ(changed["rejoin_ahead_m"], 12.5);
   EXPECT_EQ(changed["sensor"], "front");
-  const RoverRouteConfig back = parse_rover_route_config(params(changed));
+  const RoverRouteConfig back = parse_rover_route_config(rover_params(changed));
   EXPECT_EQ(back.guard_step_s, 0.05);
   EXPECT_EQ(back.rejoin_ahead_m, 12.5);
   EXPECT_EQ(back.memory_cell_m, 0.05);
 
   try {
-    parse_rover_route_config(params({{"guard_step_s", 0.0}}));
+    parse_rover_route_config(rover_params({{"guard_step_s", 0.0}}));
     ADD_FAILURE() << "accepted guard_step_s 0";
   } catch (const InputError& e) {
     EXPECT_STREQ(e.what(), "scene.json: /objects/3/planner/params/guard_step_s: expected a number in [0.01, 1], got 0.0");

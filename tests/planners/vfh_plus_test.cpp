@@ -1,4 +1,5 @@
 #include "planners/vfh_plus.hpp"
+#include "tests/test_units.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -9,7 +10,7 @@
 namespace campo {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using namespace campo::test_units;
 
 /// Free 10 m x 10 m grid of 0.1 m cells centred on the origin.
 OccupancyGrid open_field() {

@@ -11,11 +11,12 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "campo/scene_loader.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using namespace campo::test_units;
 
 Scene bundled(const std::string& name) {
   return load_scene(std::string(CAMPO_SOURCE_DIR) + "/scenes/" + name + ".json");

@@ -39,7 +39,7 @@ RunView until(const RunView& run, double t) {
   return v;
 }
 
-cv::Vec3b bgr(const Color& c) {
+cv::Vec3b frame_bgr(const Color& c) {
   return {static_cast<uchar>(std::lround(255 * c.b)), static_cast<uchar>(std::lround(255 * c.g)),
           static_cast<uchar>(std::lround(255 * c.r))};
 }
@@ -65,8 +65,8 @@ TEST(VideoFrames, ObstaclesMoversAndVehicleAreWhereTheWorldPutsThem) {
     ASSERT_EQ(frame.size(), cv::Size(1280, 720));
     // The box and the post in their scene colours at their centres (drawn by the map figure;
     // located by the frame's own mapping).
-    EXPECT_LT(nearest_colour(frame, frames.to_frame_px({0.0, 4.0}), bgr(scene.shapes[1].color)), 30) << t;
-    EXPECT_LT(nearest_colour(frame, frames.to_frame_px({-4.0, -2.5}), bgr(scene.shapes[2].color)), 30) << t;
+    EXPECT_LT(nearest_colour(frame, frames.to_frame_px({0.0, 4.0}), frame_bgr(scene.shapes[1].color)), 30) << t;
+    EXPECT_LT(nearest_colour(frame, frames.to_frame_px({-4.0, -2.5}), frame_bgr(scene.shapes[2].color)), 30) << t;
     // The vehicle's white footprint about its track point (x = -8 + t, y = 0, heading east): its rear half.
     EXPECT_LT(nearest_colour(frame, frames.to_frame_px({-8.0 + t - 0.4, 0.0}), cv::Vec3b(250, 250, 250), 1), 10) << t;
     // The walker where it was then: waiting at its first point until 2 s, then 1 m/s north.

@@ -12,7 +12,7 @@
 namespace campo {
 namespace {
 
-Verdict result(std::optional<bool> holds, bool departures, bool cause_known) {
+Verdict verdict_of(std::optional<bool> holds, bool departures, bool cause_known) {
   return judge(ClaimKind::thesis_result, holds, departures, cause_known);
 }
 
@@ -26,15 +26,15 @@ TEST(Seed003Criteria, Fig45EveryDrawReachedCleanlyOrNot) {
   EXPECT_EQ(c.avoided, 19);
   EXPECT_EQ(c.with_avoidance, 19);
   EXPECT_EQ(every_run_reaches_without_collision(runs), true);
-  EXPECT_EQ(result(every_run_reaches_without_collision(runs), false, false), Verdict::reproduced);
-  EXPECT_EQ(result(every_run_reaches_without_collision(runs), true, false), Verdict::reproduced_with_departures);
+  EXPECT_EQ(verdict_of(every_run_reaches_without_collision(runs), false, false), Verdict::reproduced);
+  EXPECT_EQ(verdict_of(every_run_reaches_without_collision(runs), true, false), Verdict::reproduced_with_departures);
   // One draw with a scrape: the criterion fails, whether or not the cause is shown.
   runs[3].collisions = 1;
   EXPECT_EQ(count_outcomes(runs).collision_free, 19);
   EXPECT_EQ(every_run_reaches_without_collision(runs), false);
-  EXPECT_EQ(result(every_run_reaches_without_collision(runs), true, true), Verdict::deviates);
-  EXPECT_EQ(result(every_run_reaches_without_collision(runs), true, false), Verdict::not_reproduced);
-  EXPECT_EQ(result(every_run_reaches_without_collision({}), true, true), Verdict::not_reproduced);
+  EXPECT_EQ(verdict_of(every_run_reaches_without_collision(runs), true, true), Verdict::deviates);
+  EXPECT_EQ(verdict_of(every_run_reaches_without_collision(runs), true, false), Verdict::not_reproduced);
+  EXPECT_EQ(verdict_of(every_run_reaches_without_collision({}), true, true), Verdict::not_reproduced);
 }
 
 TEST(Seed003Criteria, TrappedRunFailsNoLocalMinimum) {
@@ -44,7 +44,7 @@ TEST(Seed003Criteria, TrappedRunFailsNoLocalMinimum) {
   EXPECT_EQ(never_trapped(runs), true);
   runs.push_back({false, 0, 292.4, true});  // timed out standing behind a box
   EXPECT_EQ(never_trapped(runs), false);
-  EXPECT_EQ(result(never_trapped(runs), true, true), Verdict::deviates);
+  EXPECT_EQ(verdict_of(never_trapped(runs), true, true), Verdict::deviates);
   EXPECT_EQ(never_trapped({}), std::nullopt);
   // A rover that stood from 7.6 s to 190.6 s, sampled every 0.1 s.
   std::vector<double> t, v;
@@ -66,10 +66,10 @@ TEST(Seed003Criteria, Fig46SwitchRightThenLeftAndSafePassage) {
   std::vector<CrossingRun> runs{{thesis_like, {true, 0, 3.5}}, {{40.0}, {true, 0, 2.0}}};
   EXPECT_EQ(fig46_switches(runs), 1);
   EXPECT_EQ(fig46_holds(runs), true);
-  EXPECT_EQ(result(fig46_holds(runs), true, false), Verdict::reproduced_with_departures);
+  EXPECT_EQ(verdict_of(fig46_holds(runs), true, false), Verdict::reproduced_with_departures);
   runs[1].outcome.collisions = 1;  // a run that hits the walker
   EXPECT_EQ(fig46_holds(runs), false);
-  EXPECT_EQ(result(fig46_holds(runs), true, false), Verdict::not_reproduced);
+  EXPECT_EQ(verdict_of(fig46_holds(runs), true, false), Verdict::not_reproduced);
   runs = {{{40.0}, {true, 0, 2.0}}};  // safe, but the switch never occurs
   EXPECT_EQ(fig46_holds(runs), false);
   EXPECT_EQ(fig46_holds({}), std::nullopt);
@@ -83,10 +83,10 @@ TEST(Seed003Criteria, HysteresisNeedsIndecisionWithoutTheBonusAndNoneWithIt) {
   EXPECT_EQ(gap_flips({75.0, 73.0, 11.0, 12.0, 6.0, -2.0}, 20.0), 0);  // one change, kept
   EXPECT_EQ(gap_flips({}, 20.0), 0);
   EXPECT_EQ(hysteresis_holds({0, 5, 1}, {0, 1, 1}, 3), true);
-  EXPECT_EQ(result(hysteresis_holds({0, 5, 1}, {0, 1, 1}, 3), true, false), Verdict::reproduced_with_departures);
+  EXPECT_EQ(verdict_of(hysteresis_holds({0, 5, 1}, {0, 1, 1}, 3), true, false), Verdict::reproduced_with_departures);
   EXPECT_EQ(hysteresis_holds({0, 5, 1}, {0, 4, 1}, 3), false);  // the bonus did not help
   EXPECT_EQ(hysteresis_holds({1, 1, 1}, {1, 1, 1}, 3), false);  // no indecision to resolve
-  EXPECT_EQ(result(hysteresis_holds({1, 1, 1}, {1, 1, 1}, 3), true, false), Verdict::not_reproduced);
+  EXPECT_EQ(verdict_of(hysteresis_holds({1, 1, 1}, {1, 1, 1}, 3), true, false), Verdict::not_reproduced);
   EXPECT_EQ(hysteresis_holds({}, {1}, 3), std::nullopt);
 }
 
@@ -126,7 +126,7 @@ TEST(Seed003Criteria, TrackingSlowsInCurvesAndStaysInTheRow) {
   EXPECT_NEAR(s.straight_mps, 1.0, 1e-12);
   EXPECT_NEAR(s.curve_mps, 0.6, 1e-12);
   EXPECT_EQ(tracking_holds(0.36, 1.2, s), true);
-  EXPECT_EQ(result(tracking_holds(0.36, 1.2, s), false, false), Verdict::reproduced);
+  EXPECT_EQ(verdict_of(tracking_holds(0.36, 1.2, s), false, false), Verdict::reproduced);
   EXPECT_EQ(tracking_holds(1.3, 1.2, s), false);  // left its inter-row
   speed.assign(speed.size(), 1.0);               // no slowing in the curve
   EXPECT_EQ(tracking_holds(0.36, 1.2, speed_by_curvature(track, speed, route, 0.05, 0.2)), false);
@@ -158,7 +158,7 @@ TEST(Seed003Criteria, LookaheadOscillatesWhenSmallAndCutsCornersWhenLarge) {
   EXPECT_EQ(curve_miss_m(route, {{0.0, 0.0}}, 5.0), 0.0);  // no point that curved
   const std::vector<LookaheadRun> runs{{0.3, 9, 0.05}, {1.5, 0, 0.3}, {6.0, 0, 1.4}};
   EXPECT_EQ(lookahead_holds(runs, 1.5), true);
-  EXPECT_EQ(result(lookahead_holds(runs, 1.5), false, false), Verdict::reproduced);
+  EXPECT_EQ(verdict_of(lookahead_holds(runs, 1.5), false, false), Verdict::reproduced);
   EXPECT_EQ(lookahead_holds({{0.3, 0, 0.05}, {1.5, 0, 0.3}, {6.0, 0, 1.4}}, 1.5), false);  // no oscillation
   EXPECT_EQ(lookahead_holds({{0.3, 9, 0.05}, {1.5, 0, 0.3}, {6.0, 0, 0.2}}, 1.5), false);  // no corner cutting
   EXPECT_EQ(lookahead_holds({{1.5, 0, 0.3}, {6.0, 0, 1.4}}, 1.5), std::nullopt);

@@ -44,7 +44,7 @@ nlohmann::json drone(const std::string& alias, double x, double y, double z, dou
           {"mission", {{"waypoints", {{{"position_m", goal}}}}}}};
 }
 
-Scene scene_of(nlohmann::json vehicles, double time_limit_s = 30.0, const std::string& end = "all") {
+Scene fleet_scene(nlohmann::json vehicles, double time_limit_s = 30.0, const std::string& end = "all") {
   nlohmann::json objects = {{{"alias", "ground"}, {"type", "plane"}}};
   for (auto& v : vehicles) objects.push_back(std::move(v));
   const nlohmann::json document = {{"world", {{"time_limit_s", time_limit_s}}}, {"end", end}, {"objects", objects}};
@@ -71,7 +71,7 @@ std::map<std::pair<std::size_t, std::size_t>, RangeScan> first_scans(const Scene
 
 void expect_sees_each_other(const SensorFactory& factory, const char* what) {
   // Face to face 4 m apart (centres), each sensor at its vehicle's centre.
-  const Scene scene = scene_of({drone("a", 0, 0, 2, 0, {10, 0, 2}), drone("b", 4, 0, 2, 180, {-10, 0, 2})});
+  const Scene scene = fleet_scene({drone("a", 0, 0, 2, 0, {10, 0, 2}), drone("b", 4, 0, 2, 180, {-10, 0, 2})});
   const auto scans = first_scans(scene, factory);
   ASSERT_EQ(scans.size(), 4u) << what;
   // Forward: the other's near face, 4 - 0.3 m away (the first scan is at t = 0, where they start).
@@ -89,7 +89,7 @@ TEST(MultiVehicle, EachSensorSeesTheOtherVehicleNeverItsOwn) {
 }
 
 TEST(MultiVehicle, DepthCamerasSeeTheOtherVehicleToo) {
-  const Scene scene = scene_of({drone("a", 0, 0, 2, 0, {10, 0, 2}, "depth_camera"),
+  const Scene scene = fleet_scene({drone("a", 0, 0, 2, 0, {10, 0, 2}, "depth_camera"),
                                 drone("b", 4, 0, 2, 180, {-10, 0, 2}, "depth_camera")});
   const auto scans = first_scans(scene, range_sensor_factory());
   ASSERT_EQ(scans.size(), 4u);
@@ -101,14 +101,14 @@ TEST(MultiVehicle, DepthCamerasSeeTheOtherVehicleToo) {
 }
 
 TEST(MultiVehicle, AVehicleAloneSeesNothingWhereTheOtherWouldBe) {
-  const Scene scene = scene_of({drone("a", 0, 0, 2, 0, {10, 0, 2})});
+  const Scene scene = fleet_scene({drone("a", 0, 0, 2, 0, {10, 0, 2})});
   const auto scans = first_scans(scene, &make_lidar_sensor);
   EXPECT_EQ(scans.at({0, 0}).hits.at(0), 0);
 }
 
 TEST(MultiVehicle, VehiclesThatCollideBothCountItNamingTheOther) {
   // Head-on along x at the same height, each flying to where the other starts.
-  const Scene scene = scene_of({drone("a", 0, 0, 2, 0, {4, 0, 2}), drone("b", 4, 0, 2, 180, {0, 0, 2})});
+  const Scene scene = fleet_scene({drone("a", 0, 0, 2, 0, {4, 0, 2}), drone("b", 4, 0, 2, 180, {0, 0, 2})});
   const EpisodeResult r = run_episode(scene, &make_vehicle, &create_planner);
   ASSERT_EQ(r.vehicles.size(), 2u);
   for (const auto& [self, other] : {std::pair{0, 1}, std::pair{1, 0}}) {
@@ -135,14 +135,14 @@ TEST(MultiVehicle, TheEndRuleStopsTheOthersAtTheFirstFailureOrLetsThemFinish) {
   nlohmann::json vehicles = pair;
   vehicles.push_back(drone("far", 0, 30, 2, 0, {6, 30, 2}));
   {
-    const EpisodeResult all = run_episode(scene_of(vehicles, 60.0, "all"), &make_vehicle, &create_planner);
+    const EpisodeResult all = run_episode(fleet_scene(vehicles, 60.0, "all"), &make_vehicle, &create_planner);
     EXPECT_EQ(all.vehicles[2].metrics.outcome, Outcome::reached) << all.vehicles[2].metrics.reason;
     EXPECT_GT(all.vehicles[2].metrics.sim_time_s, all.vehicles[0].metrics.sim_time_s);
     EXPECT_EQ(all.fleet.sim_time_s, all.vehicles[2].metrics.sim_time_s);
     EXPECT_EQ(all.fleet.vehicles_reached, 1);
   }
   {
-    const EpisodeResult first = run_episode(scene_of(vehicles, 60.0, "first_failure"), &make_vehicle, &create_planner);
+    const EpisodeResult first = run_episode(fleet_scene(vehicles, 60.0, "first_failure"), &make_vehicle, &create_planner);
     const EpisodeMetrics& far = first.vehicles[2].metrics;
     EXPECT_EQ(far.outcome, Outcome::stopped) << far.reason;
     EXPECT_NE(far.reason.find("collision"), std::string::npos) << far.reason;
@@ -155,7 +155,7 @@ TEST(MultiVehicle, TheEndRuleStopsTheOthersAtTheFirstFailureOrLetsThemFinish) {
 
 TEST(MultiVehicle, TheLeastDistanceIsTheGapBetweenTheirBoxes) {
   // Side by side 5 m apart across y, holding for a second: the gap between the boxes is 5 - 2 * 0.3 m.
-  const Scene scene = scene_of({drone("a", 0, 0, 2, 0, {10, 0, 2}), drone("b", 0, 5, 2, 0, {10, 5, 2})}, 1.0);
+  const Scene scene = fleet_scene({drone("a", 0, 0, 2, 0, {10, 0, 2}), drone("b", 0, 5, 2, 0, {10, 5, 2})}, 1.0);
   Episode episode(scene, &make_vehicle);
   while (!episode.done()) episode.step({hold_at(episode.observation(0)), hold_at(episode.observation(1))});
   const EpisodeResult r = episode.finish();
@@ -176,7 +176,7 @@ TEST(MultiVehicle, TheLeastDistanceIsTheGapBetweenTheirBoxes) {
 }
 
 TEST(MultiVehicle, ACommandAVehicleCannotFollowNamesItAndChangesNothing) {
-  const Scene scene = scene_of({drone("a", 0, 0, 2, 0, {10, 0, 2}), drone("b", 0, 5, 2, 0, {10, 5, 2})}, 0.5);
+  const Scene scene = fleet_scene({drone("a", 0, 0, 2, 0, {10, 0, 2}), drone("b", 0, 5, 2, 0, {10, 5, 2})}, 0.5);
   const auto run = [&](bool bad_first) {
     Episode episode(scene, &make_vehicle);
     if (bad_first) {
@@ -198,7 +198,7 @@ TEST(MultiVehicle, ACommandAVehicleCannotFollowNamesItAndChangesNothing) {
 }
 
 TEST(MultiVehicle, TheSingleVehicleApiRefusesSeveral) {
-  const Scene scene = scene_of({drone("a", 0, 0, 2, 0, {10, 0, 2}), drone("b", 0, 5, 2, 0, {10, 5, 2})}, 0.2);
+  const Scene scene = fleet_scene({drone("a", 0, 0, 2, 0, {10, 0, 2}), drone("b", 0, 5, 2, 0, {10, 5, 2})}, 0.2);
   Episode episode(scene, &make_vehicle);
   EXPECT_EQ(episode.vehicle_count(), 2u);
   EXPECT_THROW(episode.step(hold_at(episode.observation(0))), std::logic_error);
@@ -210,7 +210,7 @@ TEST(MultiVehicle, TheSingleVehicleApiRefusesSeveral) {
 }
 
 TEST(MultiVehicle, RunsAreBitIdentical) {
-  const Scene scene = scene_of({drone("a", 0, 0, 2, 0, {4, 1, 2}), drone("b", 4, 0, 2.5, 180, {0, -1, 2.5})});
+  const Scene scene = fleet_scene({drone("a", 0, 0, 2, 0, {4, 1, 2}), drone("b", 4, 0, 2.5, 180, {0, -1, 2.5})});
   const EpisodeResult first = run_episode(scene, &make_vehicle, &create_planner);
   const EpisodeResult second = run_episode(scene, &make_vehicle, &create_planner);
   EXPECT_EQ(first.final_state_hash, second.final_state_hash);

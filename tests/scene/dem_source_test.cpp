@@ -18,6 +18,7 @@
 
 #include "campo/scene_loader.hpp"
 #include "scene/heightfield_sources.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
@@ -25,7 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using namespace campo::test_units;
 constexpr double kA = 6378137.0;                 // WGS84 semi-major axis, m
 constexpr double kE2 = 0.00669437999014132;      // WGS84 first eccentricity squared
 
@@ -86,7 +87,7 @@ class DemSource : public ::testing::Test {
   fs::path dir_;
 };
 
-std::string error_of(const fs::path& path, const DemOptions& options = {}) {
+std::string dem_error_of(const fs::path& path, const DemOptions& options = {}) {
   try {
     heightgrid_from_dem(path, options);
   } catch (const std::runtime_error& e) {
@@ -368,7 +369,7 @@ std::string grid_with_holes(const std::vector<std::pair<int, int>>& holes) {
 
 TEST_F(DemSource, NodataIsRefusedByDefaultNamingTheCountAndTheFirstCell) {
   const fs::path tif = geotiff("holes", grid_with_holes({{2, 1}, {1, 3}}), "EPSG:32633", "Float32");
-  const std::string error = error_of(tif);
+  const std::string error = dem_error_of(tif);
   EXPECT_THAT(error, HasSubstr("holes.tif"));
   EXPECT_THAT(error, HasSubstr("2 nodata cells (value -9999) among the 16 read, the first at pixel (column 2, row 1)"));
   EXPECT_THAT(error, HasSubstr("\"nodata\": \"fill\""));
@@ -404,7 +405,7 @@ TEST_F(DemSource, NodataFillTakesTheMeanOfTheValidNeighboursRingByRing) {
       geotiff("empty", grid_with_holes({{0, 0}, {1, 0}, {2, 0}, {3, 0}, {0, 1}, {1, 1}, {2, 1}, {3, 1}, {0, 2},
                                         {1, 2}, {2, 2}, {3, 2}, {0, 3}, {1, 3}, {2, 3}, {3, 3}}),
               "", "Float32");
-  EXPECT_THAT(error_of(empty, options), HasSubstr("every one of the 16 cells read is nodata"));
+  EXPECT_THAT(dem_error_of(empty, options), HasSubstr("every one of the 16 cells read is nodata"));
 }
 
 TEST_F(DemSource, ACropReadsOnlyTheCellsItNeedsSoNodataElsewhereDoesNotMatter) {
@@ -425,12 +426,12 @@ TEST_F(DemSource, ACropReadsOnlyTheCellsItNeedsSoNodataElsewhereDoesNotMatter) {
 // --- errors ----------------------------------------------------------------------------------
 
 TEST_F(DemSource, HostileAndWrongFilesAreRefusedClearly) {
-  EXPECT_THAT(error_of(write("text.tif", "elevation 100 m\n")), HasSubstr("not a raster GDAL can read"));
+  EXPECT_THAT(dem_error_of(write("text.tif", "elevation 100 m\n")), HasSubstr("not a raster GDAL can read"));
 
   const fs::path good = grid_5x4("EPSG:32633");
   std::ifstream in(good, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string truncated_error = error_of(write("truncated.tif", bytes.substr(0, bytes.size() - 100)));
+  const std::string truncated_error = dem_error_of(write("truncated.tif", bytes.substr(0, bytes.size() - 100)));
   EXPECT_THAT(truncated_error, HasSubstr("truncated.tif"));
   EXPECT_FALSE(truncated_error.empty());
 
@@ -439,36 +440,36 @@ TEST_F(DemSource, HostileAndWrongFilesAreRefusedClearly) {
       R"(<VRTDataset rasterXSize="100000" rasterYSize="100000"><GeoTransform>0, 1, 0, 0, 0, -1</GeoTransform>
          <VRTRasterBand dataType="Float32" band="1"><SimpleSource><SourceFilename relativeToVRT="1">grid.tif</SourceFilename>
          <SourceBand>1</SourceBand></SimpleSource></VRTRasterBand></VRTDataset>)";
-  EXPECT_THAT(error_of(write("huge.vrt", vrt_huge)), HasSubstr("the raster is 100000 x 100000 pixels, more than the limit"));
+  EXPECT_THAT(dem_error_of(write("huge.vrt", vrt_huge)), HasSubstr("the raster is 100000 x 100000 pixels, more than the limit"));
   DemOptions coarse;
   coarse.spacing_m = 1000.0;
-  EXPECT_THAT(error_of(write("huge.vrt", vrt_huge), coarse), HasSubstr("more than the limit of 16777216"));
+  EXPECT_THAT(dem_error_of(write("huge.vrt", vrt_huge), coarse), HasSubstr("more than the limit of 16777216"));
 
   const std::string vrt_rotated =
       R"(<VRTDataset rasterXSize="5" rasterYSize="4"><GeoTransform>0, 1, 0.5, 0, 0.25, -1</GeoTransform>
          <VRTRasterBand dataType="Float32" band="1"><SimpleSource><SourceFilename relativeToVRT="1">grid.tif</SourceFilename>
          <SourceBand>1</SourceBand></SimpleSource></VRTRasterBand></VRTDataset>)";
-  EXPECT_THAT(error_of(write("rotated.vrt", vrt_rotated)), HasSubstr("a rotated geotransform"));
+  EXPECT_THAT(dem_error_of(write("rotated.vrt", vrt_rotated)), HasSubstr("a rotated geotransform"));
 
   DemOptions band2;
   band2.band = 2;
-  EXPECT_THAT(error_of(good, band2), HasSubstr("no band 2: the file has 1"));
+  EXPECT_THAT(dem_error_of(good, band2), HasSubstr("no band 2: the file has 1"));
 
   DemOptions outside;
   outside.crop = {DemCropForm::lat_long_centre, 0, 0, 0, 0, 40.0, 14.0, {100.0, 100.0}};
-  EXPECT_THAT(error_of(good, outside), HasSubstr("the crop reaches outside the raster"));
-  EXPECT_THAT(error_of(grid_5x4(""), outside), HasSubstr("no coordinate reference system, so no latitude/longitude crop"));
+  EXPECT_THAT(dem_error_of(good, outside), HasSubstr("the crop reaches outside the raster"));
+  EXPECT_THAT(dem_error_of(grid_5x4(""), outside), HasSubstr("no coordinate reference system, so no latitude/longitude crop"));
 
   const fs::path geographic = geotiff("wgs84", wgs84_5x5(), "EPSG:4326");
   DemOptions projected;
   projected.crop.form = DemCropForm::projected_box;
   projected.crop.max_x = projected.crop.max_y = 1.0;
-  EXPECT_THAT(error_of(geographic, projected), HasSubstr("the file's CRS is geographic"));
+  EXPECT_THAT(dem_error_of(geographic, projected), HasSubstr("the file's CRS is geographic"));
 }
 
 TEST_F(DemSource, NonFiniteHeightsAreRefusedAndABandIsChosen) {
   const fs::path nan = geotiff("nan", "ncols 2\nnrows 2\nxllcorner 0\nyllcorner 0\ncellsize 1\n1 nan\n3 4\n", "");
-  EXPECT_THAT(error_of(nan), HasSubstr("a height that is not finite (nan) at pixel (column 1, row 0)"));
+  EXPECT_THAT(dem_error_of(nan), HasSubstr("a height that is not finite (nan) at pixel (column 1, row 0)"));
 
   // Two bands: the first the 5 x 4 heights, the second a 5 x 4 grid of 7s.
   grid_5x4("EPSG:32633");
@@ -519,7 +520,7 @@ const std::string kExampleDem = std::string(CAMPO_SOURCE_DIR) + "/scenes/dem/nap
 
 TEST(DemExample, TheBundledFileIsSmallSyntheticUtmWithAVoid) {
   EXPECT_LE(fs::file_size(kExampleDem), 200u * 1024u);
-  EXPECT_THAT(error_of(kExampleDem), HasSubstr("nodata cells (value -32768)"));
+  EXPECT_THAT(dem_error_of(kExampleDem), HasSubstr("nodata cells (value -32768)"));
   DemOptions fill;
   fill.nodata = DemNodata::fill;
   const DemTerrain dem = heightgrid_from_dem(kExampleDem, fill);

@@ -21,7 +21,7 @@ Config read_back(const ConfigFields<Config>& fields, const Config& config) {
 }
 
 template <class Config>
-std::string error_of(const ConfigFields<Config>& fields, const nlohmann::json& j) {
+std::string fields_error_of(const ConfigFields<Config>& fields, const nlohmann::json& j) {
   try {
     Config c;
     fields.read(JsonNode(j, "inline.json", "/objects/0"), c);
@@ -81,20 +81,20 @@ TEST(GeneratorFields, VineyardTerrainAndNoiseWriteWhatTheyRead) {
 }
 
 TEST(GeneratorFields, ChecksNameTheKey) {
-  EXPECT_THAT(error_of(trees_fields(), {{"trunk_radius_m", {0.3, 0.1}}}),
+  EXPECT_THAT(fields_error_of(trees_fields(), {{"trunk_radius_m", {0.3, 0.1}}}),
               HasSubstr("/objects/0/trunk_radius_m: expected [min, max] with min <= max"));
-  EXPECT_THAT(error_of(trees_fields(), {{"crown", "palm"}}), HasSubstr("/objects/0/crown"));
+  EXPECT_THAT(fields_error_of(trees_fields(), {{"crown", "palm"}}), HasSubstr("/objects/0/crown"));
   // A block's cells are checked against the grid's rows, read before it.
   const nlohmann::json outside = {{"rows", 5}, {"boxes", {{{"rows", 6}, {"cols", 1}, {"height_m", 2}}}}};
-  EXPECT_THAT(error_of(grid_obstacles_fields(), outside), HasSubstr("/objects/0/boxes/0/rows"));
-  EXPECT_THAT(error_of(grid_obstacles_fields(), {{"boxes", {{{"rows", 1}, {"cols", 1}}}}}),
+  EXPECT_THAT(fields_error_of(grid_obstacles_fields(), outside), HasSubstr("/objects/0/boxes/0/rows"));
+  EXPECT_THAT(fields_error_of(grid_obstacles_fields(), {{"boxes", {{{"rows", 1}, {"cols", 1}}}}}),
               HasSubstr("/objects/0/boxes/0: missing required key \"height_m\""));
   // Loader limits bound the counts.
   SceneLimits small;
   small.max_trees = 3;
-  EXPECT_THAT(error_of(trees_fields(small), {{"count", 4}}),
+  EXPECT_THAT(fields_error_of(trees_fields(small), {{"count", 4}}),
               HasSubstr("/objects/0/count: expected an integer in [0, 3]"));
-  EXPECT_THAT(error_of(vineyard_fields(), {{"spare", 1}}), HasSubstr("/objects/0/spare: unknown key"));
+  EXPECT_THAT(fields_error_of(vineyard_fields(), {{"spare", 1}}), HasSubstr("/objects/0/spare: unknown key"));
 }
 
 }  // namespace

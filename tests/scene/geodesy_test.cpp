@@ -1,4 +1,5 @@
 #include "scene/geodesy.hpp"
+#include "tests/test_units.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -8,15 +9,15 @@
 namespace campo {
 namespace {
 
-constexpr double kA = 6378137.0;
+constexpr double kWgs84SemiMajor_m = 6378137.0;
 constexpr double kF = 1.0 / 298.257223563;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using namespace campo::test_units;
 
 TEST(Geodesy, EcefOfReferencePoints) {
-  EXPECT_TRUE(geodetic_to_ecef({0, 0, 0}).isApprox(Eigen::Vector3d(kA, 0, 0), 1e-12));
-  EXPECT_TRUE(geodetic_to_ecef({0, 90, 0}).isApprox(Eigen::Vector3d(0, kA, 0), 1e-12));
+  EXPECT_TRUE(geodetic_to_ecef({0, 0, 0}).isApprox(Eigen::Vector3d(kWgs84SemiMajor_m, 0, 0), 1e-12));
+  EXPECT_TRUE(geodetic_to_ecef({0, 90, 0}).isApprox(Eigen::Vector3d(0, kWgs84SemiMajor_m, 0), 1e-12));
   const Eigen::Vector3d pole = geodetic_to_ecef({90, 0, 100});
-  EXPECT_NEAR(pole.z(), kA * (1 - kF) + 100, 1e-6);
+  EXPECT_NEAR(pole.z(), kWgs84SemiMajor_m * (1 - kF) + 100, 1e-6);
   EXPECT_NEAR(pole.head<2>().norm(), 0.0, 1e-6);
 }
 
@@ -53,8 +54,8 @@ TEST(Geodesy, SmallOffsetsMatchTheRadiiOfCurvature) {
   const double phi = origin.latitude_deg * kDeg;
   const double e2 = kF * (2 - kF);
   const double w = std::sqrt(1 - e2 * std::sin(phi) * std::sin(phi));
-  const double meridian = kA * (1 - e2) / (w * w * w);  // north-south radius
-  const double normal = kA / w;                         // east-west radius (times cos phi)
+  const double meridian = kWgs84SemiMajor_m * (1 - e2) / (w * w * w);  // north-south radius
+  const double normal = kWgs84SemiMajor_m / w;                         // east-west radius (times cos phi)
   const double d = 1e-4;                                // degrees: ~11 m, curvature negligible
   const Eigen::Vector3d north = geodetic_to_enu({origin.latitude_deg + d, origin.longitude_deg, 0}, origin);
   EXPECT_NEAR(north.y(), meridian * d * kDeg, 1e-3);

@@ -68,7 +68,7 @@ double area_of(const TriangleMesh& m) {
 }
 
 // The volume enclosed (divergence theorem): positive when the triangles face outward.
-double volume_of(const TriangleMesh& m) {
+double enclosed_volume(const TriangleMesh& m) {
   double six_v = 0.0;
   for (const auto& t : m.triangles) {
     six_v += m.vertices_m[t[0]].dot(m.vertices_m[t[1]].cross(m.vertices_m[t[2]]));
@@ -104,7 +104,7 @@ TEST_F(MeshFiles, EveryFormatGivesTheSameClosedBox) {
     EXPECT_TRUE(m.bounds_m.min().isApprox(Eigen::Vector3d::Constant(-0.5))) << m.bounds_m.min().transpose();
     EXPECT_TRUE(m.bounds_m.max().isApprox(Eigen::Vector3d::Constant(0.5))) << m.bounds_m.max().transpose();
     EXPECT_NEAR(area_of(m), 6.0, 1e-9);
-    EXPECT_NEAR(volume_of(m), 1.0, 1e-9);  // outward faces kept outward
+    EXPECT_NEAR(enclosed_volume(m), 1.0, 1e-9);  // outward faces kept outward
     EXPECT_EQ(m.source_path, path.string());
     EXPECT_EQ(m.source_sha256, sha256_hex(file_bytes(path)));
     EXPECT_EQ(m.source_sha256.size(), 64u);
@@ -130,7 +130,7 @@ TEST_F(MeshFiles, CylinderKeepsItsRadiusHeightAndVolume) {
       EXPECT_TRUE(std::abs(r - 0.5) < 1e-6 || r < 1e-9) << v.transpose();
     }
     // The inscribed 256-gon prism: n/2 r^2 sin(2 pi / n) h.
-    EXPECT_NEAR(volume_of(m), 0.5 * n * 0.25 * std::sin(2.0 * std::numbers::pi / n), 1e-6);
+    EXPECT_NEAR(enclosed_volume(m), 0.5 * n * 0.25 * std::sin(2.0 * std::numbers::pi / n), 1e-6);
   }
 }
 
@@ -139,7 +139,7 @@ TEST_F(MeshFiles, ScaleStretchesEachAxis) {
   const TriangleMesh m = read(path, {2.0, 3.0, 4.0}).mesh;
   EXPECT_TRUE(m.bounds_m.max().isApprox(Eigen::Vector3d(1.0, 1.5, 2.0)));
   EXPECT_TRUE(m.bounds_m.min().isApprox(Eigen::Vector3d(-1.0, -1.5, -2.0)));
-  EXPECT_NEAR(volume_of(m), 24.0, 1e-9);
+  EXPECT_NEAR(enclosed_volume(m), 24.0, 1e-9);
 }
 
 TEST_F(MeshFiles, GltfIsYUpAndTheOthersZUpUnlessTold) {
@@ -155,7 +155,7 @@ TEST_F(MeshFiles, GltfIsYUpAndTheOthersZUpUnlessTold) {
   const TriangleMesh obj_y = read(obj, Eigen::Vector3d::Ones(), MeshUpAxis::y).mesh;
   EXPECT_TRUE(obj_y.bounds_m.max().isApprox(Eigen::Vector3d(0.5, 1.0, 1.5)));
   // A turn, not a mirror: the faces still face out.
-  EXPECT_NEAR(volume_of(obj_y), 6.0, 1e-9);
+  EXPECT_NEAR(enclosed_volume(obj_y), 6.0, 1e-9);
   // Scale applies along the shape's axes, after the turn.
   const TriangleMesh scaled = read(glb, {1.0, 1.0, 2.0}).mesh;
   EXPECT_NEAR(scaled.bounds_m.max().z(), 3.0, 1e-9);
@@ -173,7 +173,7 @@ TEST_F(MeshFiles, NodeTransformsPlaceEachPart) {
   EXPECT_TRUE(m.closed);  // two closed boxes
   EXPECT_TRUE(m.bounds_m.min().isApprox(Eigen::Vector3d(9.0, -1.0, -0.5))) << m.bounds_m.min().transpose();
   EXPECT_TRUE(m.bounds_m.max().isApprox(Eigen::Vector3d(11.0, 1.0, 6.0))) << m.bounds_m.max().transpose();
-  EXPECT_NEAR(volume_of(m), 1.0 + 8.0, 1e-9);
+  EXPECT_NEAR(enclosed_volume(m), 1.0 + 8.0, 1e-9);
 }
 
 TEST_F(MeshFiles, OpenMeshIsAcceptedAndNotClosed) {

@@ -16,7 +16,7 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 
 // The InputError that loading `text` as "several.json" throws; fails the test if none.
-InputError error_of(const std::string& text) {
+InputError input_error_of(const std::string& text) {
   try {
     load_scene_text(text, "several.json");
   } catch (const InputError& e) {
@@ -42,7 +42,7 @@ const std::string kSeveral = R"j(
 )j";
 
 TEST(SceneErrors, SeveralIndependentErrorsAreAllReportedWithTheirPlaces) {
-  const InputError e = error_of(kSeveral);
+  const InputError e = input_error_of(kSeveral);
   ASSERT_EQ(e.count(), 4u) << e.what();
   ASSERT_EQ(e.issues().size(), 4u);
   const auto& issues = e.issues();
@@ -81,7 +81,7 @@ TEST(SceneErrors, SeveralIndependentErrorsAreAllReportedWithTheirPlaces) {
 
 TEST(SceneErrors, AnObjectWithAnErrorIsCheckedInFull) {
   // Three errors in one object: each of its keys is checked on its own.
-  const InputError e = error_of(R"({"objects": [
+  const InputError e = input_error_of(R"({"objects": [
     {"alias": "can", "type": "cylinder", "radius_m": -1, "height_m": -2, "friction": 99, "wheels": 4}]})");
   ASSERT_EQ(e.count(), 4u) << e.what();
   EXPECT_EQ(e.issues()[0].pointer, "/objects/0/friction");
@@ -96,7 +96,7 @@ TEST(SceneErrors, ReportsTheFirstTwentyThenCountsTheRest) {
   for (int i = 0; i < 25; ++i) {
     objects += (i == 0 ? "" : ",\n") + ("{\"alias\": \"b" + std::to_string(i) + "\", \"type\": \"sphere\", \"radius_m\": 1, \"spin\": 1}");
   }
-  const InputError e = error_of("{\"objects\": [\n" + objects + "]}");
+  const InputError e = input_error_of("{\"objects\": [\n" + objects + "]}");
   EXPECT_EQ(e.count(), 25u);
   ASSERT_EQ(e.issues().size(), InputErrors::kMaxKept);
   EXPECT_EQ(e.issues().back().pointer, "/objects/19/spin");
@@ -118,7 +118,7 @@ TEST(SceneErrors, InvalidJsonStopsAtOnce) {
 
 TEST(SceneErrors, APointOutsideTheTerrainSaysSoWithTheTerrainsExtent) {
   // The terrain is declared first: 40 m x 40 m centred on (10, 0), so x in [-10, 30], y in [-20, 20].
-  const InputError e = error_of(R"({"objects": [
+  const InputError e = input_error_of(R"({"objects": [
     {"alias": "hills", "type": "heightfield", "expression": "0", "size_m": [40, 40],
      "pose": {"position_m": [10, 0, 0]}},
     {"alias": "goal", "type": "dummy", "pose": {"position_m": [45, 0, 1], "above_ground": true}}]})");
@@ -132,7 +132,7 @@ TEST(SceneErrors, APointOutsideTheTerrainSaysSoWithTheTerrainsExtent) {
 
 TEST(SceneErrors, APointWithNoTerrainDeclaredBeforeAsksForOne) {
   // The terrain comes after the object that stands on it.
-  const InputError e = error_of(R"({"objects": [
+  const InputError e = input_error_of(R"({"objects": [
     {"alias": "goal", "type": "dummy", "pose": {"position_m": [5, 0, 1], "above_ground": true}},
     {"alias": "hills", "type": "heightfield", "expression": "0", "size_m": [40, 40]}]})");
   ASSERT_EQ(e.count(), 1u) << e.what();
@@ -142,7 +142,7 @@ TEST(SceneErrors, APointWithNoTerrainDeclaredBeforeAsksForOne) {
 }
 
 TEST(SceneErrors, AWaypointOutsideTheTerrainSaysSo) {
-  const InputError e = error_of(R"({"objects": [
+  const InputError e = input_error_of(R"({"objects": [
     {"alias": "hills", "type": "heightfield", "expression": "0", "size_m": [20, 10]},
     {"alias": "drone", "type": "quadrotor", "pose": {"position_m": [0, 0, 1]},
      "mission": {"waypoints": [{"position_m": [45, 0], "agl_m": 2}]}}]})");
@@ -156,7 +156,7 @@ TEST(SceneErrors, AWaypointOutsideTheTerrainSaysSo) {
 
 TEST(SceneErrors, ATerrainWithErrorsIsNamedAsTheCause) {
   // The terrain's own error, then the object on it: no "declare the terrain", which was declared.
-  const InputError e = error_of(R"({"objects": [
+  const InputError e = input_error_of(R"({"objects": [
     {"alias": "hills", "type": "heightfield", "expression": "0", "size_m": [40, -40]},
     {"alias": "goal", "type": "dummy", "pose": {"position_m": [5, 0, 1], "above_ground": true}}]})");
   ASSERT_EQ(e.count(), 2u) << e.what();
@@ -167,7 +167,7 @@ TEST(SceneErrors, ATerrainWithErrorsIsNamedAsTheCause) {
 }
 
 TEST(SceneErrors, AReferenceToAnObjectWithErrorsNamesThatObject) {
-  const InputError e = error_of(R"({"objects": [
+  const InputError e = input_error_of(R"({"objects": [
     {"alias": "gate", "type": "dummy", "pose": {"position_m": [5, 0]}},
     {"alias": "drone", "type": "quadrotor", "mission": {"waypoints": [{"frame": "gate"}]}}]})");
   ASSERT_EQ(e.count(), 2u) << e.what();

@@ -13,7 +13,7 @@ namespace {
 
 constexpr double kUm = 1e-6;
 
-Shape make_shape(ShapeType type, const Eigen::Vector3d& position,
+Shape shape_of(ShapeType type, const Eigen::Vector3d& position,
                  const Eigen::Vector3d& rpy_deg = Eigen::Vector3d::Zero()) {
   Shape s;
   s.type = type;
@@ -33,7 +33,7 @@ Shape heightfield(const Eigen::Vector3d& position, double yaw_deg) {
   for (int r = 0; r < grid->rows; ++r) {
     for (int c = 0; c < grid->cols; ++c) grid->heights_m.push_back(std::sin(0.7 * c) * std::cos(1.3 * r));
   }
-  Shape s = make_shape(ShapeType::heightfield, position, {0.0, 0.0, yaw_deg});
+  Shape s = shape_of(ShapeType::heightfield, position, {0.0, 0.0, yaw_deg});
   s.terrain = grid;
   return s;
 }
@@ -56,11 +56,11 @@ Eigen::Vector3d face_normal(const SceneMesh& mesh, std::size_t triangle) {
 
 TEST(SceneMesh, TriangleCountsPerShape) {
   Scene scene;
-  scene.shapes.push_back(make_shape(ShapeType::cuboid, {0, 0, 0}));
-  scene.shapes.push_back(make_shape(ShapeType::cylinder, {3, 0, 0}));
-  scene.shapes.push_back(make_shape(ShapeType::cone, {6, 0, 0}));
-  scene.shapes.push_back(make_shape(ShapeType::sphere, {9, 0, 0}));
-  scene.shapes.push_back(make_shape(ShapeType::plane, {0, 0, -2}));
+  scene.shapes.push_back(shape_of(ShapeType::cuboid, {0, 0, 0}));
+  scene.shapes.push_back(shape_of(ShapeType::cylinder, {3, 0, 0}));
+  scene.shapes.push_back(shape_of(ShapeType::cone, {6, 0, 0}));
+  scene.shapes.push_back(shape_of(ShapeType::sphere, {9, 0, 0}));
+  scene.shapes.push_back(shape_of(ShapeType::plane, {0, 0, -2}));
   scene.shapes.push_back(heightfield({0, 0, -1}, 0.0));
   MeshOptions options;
   options.round_segments = 16;
@@ -125,10 +125,10 @@ TEST(SceneMesh, HeightfieldHasBulletsTrianglesInTheWorldFrame) {
 TEST(SceneMesh, NormalsAreUnitAndPointOutward) {
   Scene scene;
   const Eigen::Vector3d tilt(20.0, -35.0, 50.0);
-  scene.shapes.push_back(make_shape(ShapeType::cuboid, {1, 2, 3}, tilt));
-  scene.shapes.push_back(make_shape(ShapeType::cylinder, {-4, 0, 1}, tilt));
-  scene.shapes.push_back(make_shape(ShapeType::cone, {0, 5, 0}, tilt));
-  scene.shapes.push_back(make_shape(ShapeType::sphere, {3, -3, 2}, tilt));
+  scene.shapes.push_back(shape_of(ShapeType::cuboid, {1, 2, 3}, tilt));
+  scene.shapes.push_back(shape_of(ShapeType::cylinder, {-4, 0, 1}, tilt));
+  scene.shapes.push_back(shape_of(ShapeType::cone, {0, 5, 0}, tilt));
+  scene.shapes.push_back(shape_of(ShapeType::sphere, {3, -3, 2}, tilt));
   const SceneMesh mesh = build_scene_mesh(scene);
   for (const MeshPart& part : mesh.parts) {
     const Eigen::Vector3d centre = scene.shapes[static_cast<std::size_t>(part.shape)].pose.translation();
@@ -148,11 +148,11 @@ TEST(SceneMesh, NormalsAreUnitAndPointOutward) {
 
 TEST(SceneMesh, BoundsMatchTheShapesAndRoundVerticesLieOnTheSurface) {
   Scene scene;
-  scene.shapes.push_back(make_shape(ShapeType::cuboid, {1, 2, 3}));
-  scene.shapes.push_back(make_shape(ShapeType::cylinder, {-4, 0, 1}));
-  scene.shapes.push_back(make_shape(ShapeType::cone, {0, 5, 0}));
-  scene.shapes.push_back(make_shape(ShapeType::sphere, {3, -3, 2}));
-  scene.shapes.push_back(make_shape(ShapeType::plane, {0, 0, -1}));
+  scene.shapes.push_back(shape_of(ShapeType::cuboid, {1, 2, 3}));
+  scene.shapes.push_back(shape_of(ShapeType::cylinder, {-4, 0, 1}));
+  scene.shapes.push_back(shape_of(ShapeType::cone, {0, 5, 0}));
+  scene.shapes.push_back(shape_of(ShapeType::sphere, {3, -3, 2}));
+  scene.shapes.push_back(shape_of(ShapeType::plane, {0, 0, -1}));
   MeshOptions options;
   options.plane_half_extent_m = 50.0;
   const SceneMesh mesh = build_scene_mesh(scene, options);
@@ -180,13 +180,13 @@ TEST(SceneMesh, BoundsMatchTheShapesAndRoundVerticesLieOnTheSurface) {
 
 TEST(SceneMesh, MoversAreInTheirShapeFrameOnePartEach) {
   Scene scene;
-  scene.shapes.push_back(make_shape(ShapeType::cuboid, {0, 0, 0}));
+  scene.shapes.push_back(shape_of(ShapeType::cuboid, {0, 0, 0}));
   Mover walker;
-  walker.shape = make_shape(ShapeType::cylinder, {10, 0, 1}, {0, 0, 45});
+  walker.shape = shape_of(ShapeType::cylinder, {10, 0, 1}, {0, 0, 45});
   walker.path_m = {{10, 0, 1}, {10, 10, 1}};
   scene.movers.push_back(walker);
   Mover ball;
-  ball.shape = make_shape(ShapeType::sphere, {-5, 0, 1});
+  ball.shape = shape_of(ShapeType::sphere, {-5, 0, 1});
   ball.path_m = {{-5, 0, 1}, {-5, 5, 1}};
   scene.movers.push_back(ball);
   const SceneMesh mesh = build_scene_mesh(scene);
@@ -204,7 +204,7 @@ TEST(SceneMesh, MoversAreInTheirShapeFrameOnePartEach) {
 TEST(SceneMesh, IsDeterministic) {
   Scene scene;
   scene.shapes.push_back(heightfield({0, 0, 0}, 10.0));
-  scene.shapes.push_back(make_shape(ShapeType::sphere, {3, -3, 2}, {5, 6, 7}));
+  scene.shapes.push_back(shape_of(ShapeType::sphere, {3, -3, 2}, {5, 6, 7}));
   const SceneMesh a = build_scene_mesh(scene);
   const SceneMesh b = build_scene_mesh(scene);
   EXPECT_EQ(a.positions, b.positions);

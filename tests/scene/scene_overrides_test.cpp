@@ -16,7 +16,7 @@ nlohmann::json document() {
     {"alias": "drone", "type": "quadrotor", "planner": {"name": "straight", "params": {}}}]})");
 }
 
-std::string error_of(const std::string& assignment) {
+std::string override_error_of(const std::string& assignment) {
   nlohmann::json d = document();
   try {
     apply_override(d, parse_override(assignment));
@@ -55,11 +55,11 @@ TEST(SceneOverrides, ReturnsThePointerAssignedWithIndices) {
 }
 
 TEST(SceneOverrides, ReportsBadPaths) {
-  EXPECT_THAT(error_of("world.seed=3"), HasSubstr("command line: --set world.seed=3: expected PATH=VALUE"));
-  EXPECT_THAT(error_of("/world/seed"), HasSubstr("expected PATH=VALUE"));
-  EXPECT_THAT(error_of("/objects/7/size_m=1"), HasSubstr("index 7 out of range at /objects/7"));
-  EXPECT_THAT(error_of("/objects/tree/size_m=1"), HasSubstr("no element with alias \"tree\" at /objects/tree"));
-  EXPECT_THAT(error_of("/world/seed/x=1"), HasSubstr("cannot descend into a number at /world/seed/x"));
+  EXPECT_THAT(override_error_of("world.seed=3"), HasSubstr("command line: --set world.seed=3: expected PATH=VALUE"));
+  EXPECT_THAT(override_error_of("/world/seed"), HasSubstr("expected PATH=VALUE"));
+  EXPECT_THAT(override_error_of("/objects/7/size_m=1"), HasSubstr("index 7 out of range at /objects/7"));
+  EXPECT_THAT(override_error_of("/objects/tree/size_m=1"), HasSubstr("no element with alias \"tree\" at /objects/tree"));
+  EXPECT_THAT(override_error_of("/world/seed/x=1"), HasSubstr("cannot descend into a number at /world/seed/x"));
 }
 
 }  // namespace
@@ -76,21 +76,21 @@ TEST(SceneOverrides, UnescapesPointerSegments) {
 
 TEST(SceneOverrides, ArrayIndicesAreRfc6901s) {
   // "04" is not index 4 (RFC 6901: no leading zeros): refused, naming the pointer and what was expected.
-  EXPECT_EQ(error_of("/objects/01/alias=x"),
+  EXPECT_EQ(override_error_of("/objects/01/alias=x"),
             "command line: --set /objects/01/alias=x: expected an array index in [0, 2) without leading zeros "
             "(RFC 6901) or the alias of an element of /objects, got \"01\" (a leading zero) at /objects/01");
-  EXPECT_THAT(error_of("/objects/00=1"), HasSubstr("got \"00\" (a leading zero) at /objects/00"));
-  EXPECT_THAT(error_of("/objects/0/size_m/01=1"),
+  EXPECT_THAT(override_error_of("/objects/00=1"), HasSubstr("got \"00\" (a leading zero) at /objects/00"));
+  EXPECT_THAT(override_error_of("/objects/0/size_m/01=1"),
               HasSubstr("expected an array index in [0, 3) without leading zeros (RFC 6901) or the alias of an element "
                         "of /objects/0/size_m, got \"01\""));
   // Neither a sign, a space, a suffix nor "-" (past the end) is an index; no element has such an alias.
   for (const std::string segment : {"+1", " 1", "1a", "-", "0x1", "1e0", ""}) {
-    EXPECT_THAT(error_of("/objects/" + segment + "/alias=x"),
+    EXPECT_THAT(override_error_of("/objects/" + segment + "/alias=x"),
                 HasSubstr("no element with alias \"" + segment + "\" at /objects/" + segment +
                           "; expected an array index in [0, 2) without leading zeros (RFC 6901)"))
         << segment;
   }
-  EXPECT_THAT(error_of("/objects/99999999999999999999999/alias=x"),
+  EXPECT_THAT(override_error_of("/objects/99999999999999999999999/alias=x"),
               HasSubstr("index 99999999999999999999999 out of range at /objects/99999999999999999999999"));
   // "0" and indices without leading zeros still work, and so do aliases made of digits that are not indices.
   nlohmann::json d = document();
@@ -102,15 +102,15 @@ TEST(SceneOverrides, ArrayIndicesAreRfc6901s) {
 }
 
 TEST(SceneOverrides, OnlyTildeZeroAndTildeOneAreEscapes) {
-  EXPECT_THAT(error_of("/world/a~2b=1"),
+  EXPECT_THAT(override_error_of("/world/a~2b=1"),
               HasSubstr("--set /world/a~2b=1: expected '~' followed by 0 or 1 (RFC 6901: \"~0\" is '~', \"~1\" is '/') "
                         "in \"a~2b\" at /world/a~2b"));
-  EXPECT_THAT(error_of("/world/a~=1"), HasSubstr("expected '~' followed by 0 or 1"));
+  EXPECT_THAT(override_error_of("/world/a~=1"), HasSubstr("expected '~' followed by 0 or 1"));
 }
 
 TEST(SceneOverrides, ControlCharactersInAPointerAreEscaped) {
   using namespace std::string_literals;
-  const std::string error = error_of("/objects/\x1b[2J\0/alias=x"s);
+  const std::string error = override_error_of("/objects/\x1b[2J\0/alias=x"s);
   EXPECT_THAT(error, HasSubstr("no element with alias \"\\x1b[2J\\x00\" at /objects/\\x1b[2J\\x00"));
   EXPECT_EQ(error.find('\x1b'), std::string::npos);
 }

@@ -17,14 +17,15 @@
 #include "campo/sensor_factory.hpp"
 #include "sensors/lidar.hpp"
 #include "sensors/scan_io.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
 
 constexpr double kCm = 0.01;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using namespace campo::test_units;
 
-SensorDef camera_def(int cols, int rows, double fov_h = 90.0, double fov_v = 90.0) {
+SensorDef depth_camera_def(int cols, int rows, double fov_h = 90.0, double fov_v = 90.0) {
   SensorDef def;
   def.alias = "camera";
   def.range = *sensor_preset("scanner3d");
@@ -64,7 +65,7 @@ void expect_plane_exact(int n, double tilt_deg, const Eigen::Vector3d& tilt_axis
   const Eigen::Vector3d normal = Eigen::AngleAxisd(tilt_deg * kDeg, tilt_axis.normalized()) * -Eigen::Vector3d::UnitX();
   const Eigen::Vector3d point(5.0, 0.0, 0.0);
   scene.shapes.push_back(plane(point, normal));
-  const SensorDef def = camera_def(n, n);
+  const SensorDef def = depth_camera_def(n, n);
   const auto camera = make_depth_camera(scene, def);
   // Off the origin and turned, so the test does not rely on symmetry.
   const Eigen::Isometry3d pose = to_isometry(Pose{{0.0, 0.4, -0.3}, {3.0, -4.0, 6.0}});
@@ -172,7 +173,7 @@ Agreement compare(const RangeScan& lidar, const RangeScan& camera) {
 void expect_agreement(const std::string& scene_name, int n) {
   const Scene scene = bundled(scene_name);
   const VehicleDef& vehicle = scene.vehicles.front();
-  const SensorDef def = camera_def(n, n);
+  const SensorDef def = depth_camera_def(n, n);
   const auto camera = make_depth_camera(scene, def);
   const auto lidar = make_lidar_sensor(scene, as_lidar(def), 0);
   const Eigen::Isometry3d start = vehicle.pose * to_isometry(def.range.mount);
@@ -224,7 +225,7 @@ TEST(DepthCamera, MoversAppearWhereTheyAreAtTheScanTime) {
      "path_m": [[5, -3, 0], [5, 3, 0]], "speed_mps": 1.0},
     {"alias": "ball", "type": "mover", "shape": {"type": "sphere", "radius_m": 0.5},
      "path_m": [[3, 2, 0.5], [3, -2, 0.5]], "speed_mps": 2.0, "start_time_s": 1.0}]})j");
-  const SensorDef def = camera_def(64, 64);
+  const SensorDef def = depth_camera_def(64, 64);
   const auto camera = make_depth_camera(scene, def);
   RangeScan scan;
   // Pixel (32, 32) looks just right of and below straight ahead.
@@ -245,8 +246,8 @@ TEST(DepthCamera, TwoCamerasWorkSideBySide) {
   Scene near_wall, far_wall;
   near_wall.shapes.push_back(plane({4.0, 0.0, 0.0}, -Eigen::Vector3d::UnitX()));
   far_wall.shapes.push_back(plane({7.0, 0.0, 0.0}, -Eigen::Vector3d::UnitX()));
-  auto first = make_depth_camera(near_wall, camera_def(32, 32));
-  auto second = make_depth_camera(far_wall, camera_def(48, 16, 60.0, 20.0));
+  auto first = make_depth_camera(near_wall, depth_camera_def(32, 32));
+  auto second = make_depth_camera(far_wall, depth_camera_def(48, 16, 60.0, 20.0));
   RangeScan a, b;
   const auto straight_ahead = [](const RangeScan& scan) {
     // Mean distance along the optical axis of the four pixels around it.
@@ -282,7 +283,7 @@ TEST(DepthCamera, SeesBackFacesWhereTheLidarDoes) {
     {"alias": "box", "type": "cuboid", "size_m": [2, 2, 2], "pose": {"position_m": [-5, 0, 3]}},
     {"alias": "sheet", "type": "cuboid", "size_m": [0.1, 4, 4], "pose": {"position_m": [-1.07, 8, 2]}},
     {"alias": "tree", "type": "cylinder", "radius_m": 0.3, "height_m": 4, "pose": {"position_m": [2, 6, 2]}}]})j");
-  const SensorDef def = camera_def(96, 96);
+  const SensorDef def = depth_camera_def(96, 96);
   const std::vector<std::pair<std::string, Eigen::Isometry3d>> cases = {
       {"above everything", to_isometry(Pose{{0.0, 0.0, 2.0}, {0.0, 10.0, 0.0}})},
       {"inside the box", to_isometry(Pose{{-5.2, 0.3, 3.1}, {0.0, 0.0, 20.0}})},
@@ -300,7 +301,7 @@ TEST(DepthCamera, SeesBackFacesWhereTheLidarDoes) {
 
 TEST(DepthCamera, SingleRowWithoutVerticalFieldOfView) {
   const Scene scene = bundled("trees_rolling_terrain");
-  SensorDef def = camera_def(181, 1, 120.0, 0.0);
+  SensorDef def = depth_camera_def(181, 1, 120.0, 0.0);
   def.range.max_range_m = 20.0;
   const Eigen::Isometry3d pose = scene.vehicles.front().pose * to_isometry(Pose{{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}});
   expect_matches_lidar(scene, def, pose, 0.0);
@@ -310,7 +311,7 @@ TEST(DepthCamera, SingleRowWithoutVerticalFieldOfView) {
 
 TEST(DepthCamera, FillsTheScanLikeTheLidar) {
   const Scene scene = bundled("two_barriers");
-  SensorDef def = camera_def(40, 30, 100.0, 60.0);
+  SensorDef def = depth_camera_def(40, 30, 100.0, 60.0);
   def.range.quantization_m = 0.05;
   const Eigen::Isometry3d pose = to_isometry(Pose{{1.0, 0.5, 1.5}, {0.0, 5.0, 10.0}});
   const auto camera = make_depth_camera(scene, def);
@@ -347,28 +348,28 @@ TEST(DepthCamera, FillsTheScanLikeTheLidar) {
 
 TEST(DepthCamera, RejectsWhatItCannotRender) {
   const Scene scene;
-  SensorDef def = camera_def(16, 16);
+  SensorDef def = depth_camera_def(16, 16);
   def.range.noise_stddev_m = 0.01;
   EXPECT_THROW(make_depth_camera(scene, def), std::invalid_argument);
-  def = camera_def(16, 16);
+  def = depth_camera_def(16, 16);
   def.range.dropout_probability = 0.1;
   EXPECT_THROW(make_depth_camera(scene, def), std::invalid_argument);
-  def = camera_def(16, 16);
+  def = depth_camera_def(16, 16);
   def.range.beams = {{0.0, 0.0}};
   EXPECT_THROW(make_depth_camera(scene, def), std::invalid_argument);
-  def = camera_def(16, 16, 170.0, 90.0);
+  def = depth_camera_def(16, 16, 170.0, 90.0);
   EXPECT_THROW(make_depth_camera(scene, def), std::invalid_argument);
-  EXPECT_THROW(make_depth_camera(scene, as_lidar(camera_def(16, 16))), std::invalid_argument);
+  EXPECT_THROW(make_depth_camera(scene, as_lidar(depth_camera_def(16, 16))), std::invalid_argument);
   // An empty scene renders: every pixel a miss.
   RangeScan scan;
-  make_depth_camera(scene, camera_def(16, 16))->scan(Eigen::Isometry3d::Identity(), 0.0, scripted_poses(scene, 0.0), scan);
+  make_depth_camera(scene, depth_camera_def(16, 16))->scan(Eigen::Isometry3d::Identity(), 0.0, scripted_poses(scene, 0.0), scan);
   EXPECT_EQ(std::count(scan.hits.begin(), scan.hits.end(), 0), 256);
 }
 
 // The kind travels with the configuration: written as the block's "type" (run.json, campo scan) and read
 // back into the same configuration; make_range_sensor builds what the kind says.
 TEST(DepthCamera, TheKindIsTheConfigurations) {
-  SensorDef def = camera_def(24, 12, 60.0, 30.0);
+  SensorDef def = depth_camera_def(24, 12, 60.0, 30.0);
   def.range.mount.rpy_deg = {0.0, 10.0, 0.0};
   const nlohmann::json block = sensor_json(def);
   EXPECT_EQ(block.at("type"), "depth_camera");

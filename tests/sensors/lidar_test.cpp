@@ -13,12 +13,12 @@
 
 #include "campo/pose.hpp"
 #include "campo/random.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
 
-constexpr double kMm = 1e-3;
-constexpr double kDeg = std::numbers::pi / 180.0;
+using namespace campo::test_units;
 
 Shape plane_through(const Eigen::Vector3d& point,
                     const Eigen::Vector3d& rpy_deg = Eigen::Vector3d::Zero()) {

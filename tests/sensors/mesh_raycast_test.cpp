@@ -23,6 +23,7 @@
 #include "sensors/ray_fan.hpp"
 #include "sensors/raycaster.hpp"
 #include "tests/triangle_meshes.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
@@ -32,7 +33,7 @@ using test_support::cylinder_mesh;
 using test_support::icosphere_mesh;
 using test_support::mesh_shape;
 
-constexpr double kMm = 1e-3;
+using namespace campo::test_units;
 constexpr float kMinRange_m = 0.05f, kMaxRange_m = 10.0f;
 
 Eigen::Isometry3d pose(const Eigen::Vector3d& position, const Eigen::Vector3d& rpy_deg = Eigen::Vector3d::Zero()) {
@@ -104,7 +105,7 @@ std::vector<Eigen::Isometry3d> sensor_poses(const Eigen::Vector3d& centre) {
   return poses;
 }
 
-struct Agreement {
+struct MeshAgreement {
   int compared = 0;     // rays that hit in both scenes
   int misses = 0;       // rays that missed in both
   int disagreeing = 0;  // hit in one scene only, or ranges more than 1 mm apart, not excused
@@ -115,14 +116,14 @@ struct Agreement {
 // Casts every pose's scan in the mesh scene and the primitive scene; rays for
 // which `excuse(pose, direction)` holds may disagree (counted apart).
 template <class Excuse>
-Agreement compare_scans(const Scene& mesh_scene, const Scene& primitive_scene, CastMethod method,
+MeshAgreement compare_scans(const Scene& mesh_scene, const Scene& primitive_scene, CastMethod method,
                         const std::vector<Eigen::Isometry3d>& poses, Excuse excuse) {
   const RayCaster mesh_caster(mesh_scene, method);
   const RayCaster primitive_caster(primitive_scene, CastMethod::embree);
   const std::vector<Eigen::Vector3f> beams = scanner_beams();
   const RayFan fan(beams);
   std::vector<RayHit> a(beams.size()), b(beams.size());
-  Agreement out;
+  MeshAgreement out;
   for (const Eigen::Isometry3d& p : poses) {
     mesh_caster.cast(p, fan, kMinRange_m, kMaxRange_m, a);
     primitive_caster.cast(p, fan, kMinRange_m, kMaxRange_m, b);
@@ -155,7 +156,7 @@ TEST(MeshRaycast, UnitCubeMeshGivesTheCuboidsRangesFromEveryPose) {
   const Scene primitives = scene_of({cuboid(at, Eigen::Vector3d::Ones())});
   for (const CastMethod method : methods()) {
     SCOPED_TRACE(name(method));
-    const Agreement r = compare_scans(meshes, primitives, method, sensor_poses(at.translation()), kNoExcuse);
+    const MeshAgreement r = compare_scans(meshes, primitives, method, sensor_poses(at.translation()), kNoExcuse);
     EXPECT_EQ(r.disagreeing, 0);
     EXPECT_GT(r.compared, 20000);  // the grid sees the cube from every pose
     EXPECT_GT(r.misses, 20000);    // ... and past it
@@ -194,7 +195,7 @@ TEST(MeshRaycast, CylinderOf512SegmentsGivesTheCylindersRangesWithinAMillimetre)
   const Scene primitives = scene_of({cylinder(at, r, h)});
   for (const CastMethod method : methods()) {
     SCOPED_TRACE(name(method));
-    const Agreement result = compare_scans(
+    const MeshAgreement result = compare_scans(
         meshes, primitives, method, sensor_poses(at.translation()),
         [&](const Eigen::Isometry3d& sensor, const Eigen::Vector3d& d) { return grazes_cylinder(at, r, h, sensor, d); });
     EXPECT_EQ(result.disagreeing, 0);
@@ -218,11 +219,11 @@ TEST(MeshRaycast, TurnedAndScaledMeshesMatchTurnedPrimitives) {
   const Scene cylinders = scene_of({cylinder(cylinder_at, r, h)});
   for (const CastMethod method : methods()) {
     SCOPED_TRACE(name(method));
-    const Agreement box = compare_scans(box_meshes, boxes, method, sensor_poses(box_at.translation()), kNoExcuse);
+    const MeshAgreement box = compare_scans(box_meshes, boxes, method, sensor_poses(box_at.translation()), kNoExcuse);
     EXPECT_EQ(box.disagreeing, 0);
     EXPECT_GT(box.compared, 20000);
     EXPECT_LT(box.worst_m, 1e-5);
-    const Agreement cyl = compare_scans(
+    const MeshAgreement cyl = compare_scans(
         cylinder_meshes, cylinders, method, sensor_poses(cylinder_at.translation()),
         [&](const Eigen::Isometry3d& sensor, const Eigen::Vector3d& d) {
           return grazes_cylinder(cylinder_at, r, h, sensor, d);
@@ -421,7 +422,7 @@ TEST(MeshRaycast, ManyMeshesAroundTheSensorGiveThePrimitivesRanges) {
   for (int k = 0; k < 6; ++k) poses.push_back(pose({0.2 * k - 0.5, 0.1 * k, 0.1}, {0.0, 10.0 * k - 20.0, 60.0 * k}));
   for (const CastMethod method : methods()) {
     SCOPED_TRACE(name(method));
-    const Agreement r = compare_scans(mesh_scene, box_scene, method, poses, kNoExcuse);
+    const MeshAgreement r = compare_scans(mesh_scene, box_scene, method, poses, kNoExcuse);
     EXPECT_EQ(r.disagreeing, 0);
     EXPECT_GT(r.compared, 20000);
     // The boxes' cast (Embree) turns each float beam into the world in float;

@@ -31,7 +31,7 @@ std::vector<Eigen::Vector3f> grid_beams(int cols, int rows, double fov_h_deg, do
   return beams;
 }
 
-Eigen::Vector3f random_unit(Rng& rng) {
+Eigen::Vector3f random_unit_float(Rng& rng) {
   const double z = rng.uniform(-1.0, 1.0);
   const double phi = rng.uniform(0.0, 2.0 * std::numbers::pi);
   const double s = std::sqrt(1.0 - z * z);
@@ -41,7 +41,7 @@ Eigen::Vector3f random_unit(Rng& rng) {
 TEST(RayFan, SortsEveryDirectionIntoTheBinOfItsFace) {
   Rng rng(5);
   std::vector<Eigen::Vector3f> dirs = grid_beams(64, 48, 120.0, 90.0);
-  for (int i = 0; i < 3000; ++i) dirs.push_back(random_unit(rng));
+  for (int i = 0; i < 3000; ++i) dirs.push_back(random_unit_float(rng));
   dirs.push_back(Eigen::Vector3f::UnitX());  // exactly on a face centre, and one of each sign
   dirs.push_back(-Eigen::Vector3f::UnitZ());
   const RayFan fan(dirs);
@@ -148,8 +148,8 @@ TEST(FanCast, AgreesWithEmbreeOnSmallShapesCloseToTheSensor) {
   for (int i = 0; i < 60; ++i) {
     Shape s;
     s.type = kinds[i % 4];
-    const Eigen::Vector3d at = random_unit(rng).cast<double>() * rng.uniform(0.15, 1.2);
-    s.pose = Eigen::Translation3d(at) * Eigen::AngleAxisd(rng.uniform(0.0, 3.0), random_unit(rng).cast<double>());
+    const Eigen::Vector3d at = random_unit_float(rng).cast<double>() * rng.uniform(0.15, 1.2);
+    s.pose = Eigen::Translation3d(at) * Eigen::AngleAxisd(rng.uniform(0.0, 3.0), random_unit_float(rng).cast<double>());
     s.size_m = Eigen::Vector3d(rng.uniform(0.01, 0.06), rng.uniform(0.01, 0.06), rng.uniform(0.01, 0.06));
     s.radius_m = rng.uniform(0.005, 0.03);
     s.height_m = rng.uniform(0.01, 0.06);
@@ -163,7 +163,7 @@ TEST(FanCast, AgreesWithEmbreeOnSmallShapesCloseToTheSensor) {
   const RayCaster embree(scene, CastMethod::embree);
   const RayCaster fan_caster(scene, CastMethod::fan);
   std::vector<Eigen::Vector3f> dirs;
-  for (int i = 0; i < 120000; ++i) dirs.push_back(random_unit(rng));
+  for (int i = 0; i < 120000; ++i) dirs.push_back(random_unit_float(rng));
   const RayFan fan(dirs);
   std::vector<RayHit> a(fan.size()), b(fan.size());
   const Eigen::Isometry3d at_origin = Eigen::Isometry3d::Identity();
@@ -197,7 +197,7 @@ TEST(FanCast, AgreesWithEmbreeOnLongShapesAndTheGround) {
     s.type = kinds[i % 3];
     const double length = rng.uniform(2.0, 80.0);
     const Eigen::Vector3d at(rng.uniform(-15.0, 15.0), rng.uniform(-15.0, 15.0), rng.uniform(0.0, 2.0));
-    s.pose = Eigen::Translation3d(at) * Eigen::AngleAxisd(rng.uniform(0.0, 3.2), random_unit(rng).cast<double>());
+    s.pose = Eigen::Translation3d(at) * Eigen::AngleAxisd(rng.uniform(0.0, 3.2), random_unit_float(rng).cast<double>());
     s.size_m = Eigen::Vector3d(rng.uniform(0.05, 1.0), rng.uniform(0.05, 1.5), length);
     s.radius_m = rng.uniform(0.03, 0.6);
     s.height_m = length;

@@ -19,11 +19,12 @@
 #include "campo/world.hpp"
 #include "sensors/fan_kernels.hpp"
 #include "tests/sensors/seam_points.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
 
-constexpr double kMm = 1e-3;
+using namespace campo::test_units;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 Shape make_shape(ShapeType type, const Eigen::Vector3d& position,

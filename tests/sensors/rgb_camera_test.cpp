@@ -19,15 +19,16 @@
 #include "scene/scene_mesh.hpp"
 #include "sensors/depth_camera.hpp"
 #include "sensors/lidar.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using namespace campo::test_units;
 constexpr int kCols = 96;
 constexpr int kRows = 64;
 constexpr double kFov_deg = 60.0;
-constexpr double kMaxRange_m = 30.0;
+constexpr double kCameraMaxRange_m = 30.0;
 const Color kRed{0.9, 0.1, 0.1};
 const Color kGrey{0.5, 0.5, 0.5};
 const Color kSky{0.62, 0.75, 0.88};
@@ -61,7 +62,7 @@ RgbCameraDef camera_def(double noise = 0.0, std::uint64_t seed = 0) {
   def.camera.fov_h_deg = kFov_deg;
   def.camera.cols = kCols;
   def.camera.rows = kRows;
-  def.camera.max_range_m = kMaxRange_m;
+  def.camera.max_range_m = kCameraMaxRange_m;
   def.camera.sky = kSky;
   def.camera.noise_stddev = noise;
   def.camera.seed = seed;
@@ -134,7 +135,7 @@ TEST(RgbCamera, SeesTheBoxWhereTheDepthCameraDoesAndTheSkyWhereItSeesNothing) {
   depth.range.rows = kRows;
   depth.range.fov_h_deg = kFov_deg;
   depth.range.fov_v_deg = 2.0 * std::atan(half_height()) / kDeg;
-  depth.range.max_range_m = kMaxRange_m;
+  depth.range.max_range_m = kCameraMaxRange_m;
   const auto depth_camera = make_depth_camera(scene, mesh, depth);
   RangeScan scan;
   depth_camera->scan(camera_pose(), 0.0, scripted_poses(scene, 0.0), scan);

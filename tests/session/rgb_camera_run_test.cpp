@@ -45,7 +45,7 @@ class RecordImages : public testing::CliTest {
 
 // Flat grey ground, a red box ahead and to the left, a quadrotor flying
 // straight ahead for 2 s with a 64 x 48 colour camera at 10 Hz.
-constexpr const char* kScene = R"({
+constexpr const char* kCameraRunScene = R"({
   "campo_scene": 1, "name": "camera_run",
   "world": {"physics_step_s": 0.004166666666666667, "control_rate_hz": 60, "sensor_rate_hz": 10,
             "time_limit_s": 2, "seed": 3},
@@ -62,7 +62,7 @@ constexpr const char* kScene = R"({
 })";
 
 TEST_F(RecordImages, EveryNthImageIsAnRgbPngOfTheCamerasSize) {
-  const std::string scene = write("camera_run.json", kScene);
+  const std::string scene = write("camera_run.json", kCameraRunScene);
   const fs::path out = dir_ / "run";
   const testing::Result r = campo("run " + scene + " --out " + out.string() + " --no-figures --record-images 4");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -110,7 +110,7 @@ TEST_F(RecordImages, EveryNthImageIsAnRgbPngOfTheCamerasSize) {
 }
 
 TEST_F(RecordImages, WithoutTheFlagNothingIsWritten) {
-  const std::string scene = write("camera_run.json", kScene);
+  const std::string scene = write("camera_run.json", kCameraRunScene);
   const fs::path out = dir_ / "run";
   const testing::Result r = campo("run " + scene + " --out " + out.string() + " --no-figures");
   ASSERT_EQ(r.exit_code, 0) << r.err;

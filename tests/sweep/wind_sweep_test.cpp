@@ -36,7 +36,7 @@ constexpr const char* kWindSpec = R"({
 
 class WindSweep : public campo::testing::CliTest {};
 
-campo::Scene run_scene(const campo::SweepRun& run) {
+campo::Scene wind_run_scene(const campo::SweepRun& run) {
   nlohmann::json document = campo::read_json_file(run.scene_file);
   for (const campo::SceneOverride& o : run.overrides) campo::apply_override(document, campo::parse_override(o.text));
   return campo::parse_scene(document, run.scene_file.string(), run.scene_file.parent_path());
@@ -48,7 +48,7 @@ TEST_F(WindSweep, EachRunsSceneAndWorldHaveItsWind) {
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const double speed = i == 0 ? 0.0 : 6.0;
     EXPECT_EQ(runs[i].params.at("wind"), speed);
-    const campo::Scene scene = run_scene(runs[i]);
+    const campo::Scene scene = wind_run_scene(runs[i]);
     EXPECT_EQ(scene.world.wind.speed_mps, speed);
     const campo::World world(scene);
     const Eigen::Vector3d wind = world.wind_mps({0.0, 0.0, 2.0});

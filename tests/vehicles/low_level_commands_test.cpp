@@ -20,6 +20,7 @@
 #include "vehicles/quadrotor.hpp"
 #include "vehicles/rover.hpp"
 #include "tests/vehicles/vehicle_test_support.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
@@ -27,19 +28,19 @@ namespace {
 using test::parse;
 using test::at;
 using test::wrap;
+using test::kGround;
 
 using ::testing::HasSubstr;
 
-constexpr double kPi = std::numbers::pi;
+using namespace campo::test_units;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-const char* kGround = R"j({"objects": [{"alias": "ground", "type": "plane"}]})j";
 
 // A quadrotor flown as the episode loop flies it: the command re-sent at the
 // control rate, pre_step and a world step every physics step.
-struct Flight {
-  explicit Flight(const Eigen::Isometry3d& start = at({0.0, 0.0, 5.0}), const QuadrotorConfig& config = {})
+struct CommandFlight {
+  explicit CommandFlight(const Eigen::Isometry3d& start = at({0.0, 0.0, 5.0}), const QuadrotorConfig& config = {})
       : scene(parse(kGround)), world(scene), quad(world, config, start) {}
 
   /// Flies `c` for `seconds`, calling `each` after every physics step.
@@ -102,7 +103,7 @@ TEST(LowLevelCommands, NamesOfTheNewKinds) {
 // ---- Rotors --------------------------------------------------------------
 
 TEST(QuadrotorRotors, HoverSpeedOnAllFourHoldsAltitude) {
-  Flight f;
+  CommandFlight f;
   const double w = f.hover();
   const Eigen::Vector3d start = f.s().position_m;
   f.fly(command::Rotors{{w, w, w, w}}, 5.0);
@@ -119,7 +120,7 @@ TEST(QuadrotorRotors, HoverSpeedOnAllFourHoldsAltitude) {
 TEST(QuadrotorRotors, AboveHoverClimbsAndBelowSinksAsTheVerticalDynamicsSay) {
   for (const double factor : {1.05, 0.95}) {
     SCOPED_TRACE("rotor speed " + std::to_string(factor) + " x hover");
-    Flight f;
+    CommandFlight f;
     const double w0 = f.hover();
     const double w = factor * w0;
     const double z0 = f.s().position_m.z();
@@ -142,7 +143,7 @@ TEST(QuadrotorRotors, AboveHoverClimbsAndBelowSinksAsTheVerticalDynamicsSay) {
 }
 
 TEST(QuadrotorRotors, SpeedsPassThroughTheMotorLag) {
-  Flight f;
+  CommandFlight f;
   const double w0 = f.hover();
   const double w = 800.0;
   const int steps = 5;
@@ -153,7 +154,7 @@ TEST(QuadrotorRotors, SpeedsPassThroughTheMotorLag) {
 }
 
 TEST(QuadrotorRotors, SpeedsAreClampedToTheMotorRange) {
-  Flight f;
+  CommandFlight f;
   const QuadrotorConfig& c = f.quad.config();
   f.fly(command::Rotors{{-50.0, 0.5 * c.min_rotor_speed_radps, 2.0 * c.max_rotor_speed_radps, 700.0}}, f.dt());
   const auto commanded = f.quad.actuators()["rotor_speed_command_radps"].get<std::array<double, 4>>();
@@ -164,7 +165,7 @@ TEST(QuadrotorRotors, SpeedsAreClampedToTheMotorRange) {
 }
 
 TEST(QuadrotorRotors, HoldAfterUnevenRotorsRecoversAndHolds) {
-  Flight f;
+  CommandFlight f;
   const double w = f.hover();
   // Front rotors (0 and 3) faster: it pitches up and drifts.
   f.fly(command::Rotors{{1.02 * w, w, w, 1.02 * w}}, 0.3);
@@ -179,7 +180,7 @@ TEST(QuadrotorRotors, HoldAfterUnevenRotorsRecoversAndHolds) {
 
 TEST(QuadrotorVelocity, ReachesTheHeadingFrameVelocity) {
   const double yaw = 0.5;
-  Flight f(at({0.0, 0.0, 5.0}, yaw));
+  CommandFlight f(at({0.0, 0.0, 5.0}, yaw));
   const QuadrotorControllerConfig& k = f.quad.config().controller;
   const double c_over_m = f.quad.config().linear_drag_n_per_mps / f.quad.config().mass_kg;
   struct Case {
@@ -210,7 +211,7 @@ TEST(QuadrotorVelocity, TurnsAtTheYawRateUpToTheTurnRateLimit) {
   const double limit = QuadrotorControllerConfig{}.attitude_yaw.output_limit;
   for (const double rate : {0.5, -0.3, 5.0}) {
     SCOPED_TRACE("yaw rate " + std::to_string(rate));
-    Flight f;
+    CommandFlight f;
     // Unwrapped heading, sampled every step.
     double heading = f.s().yaw_rad();
     double last = heading;
@@ -231,7 +232,7 @@ TEST(QuadrotorVelocity, TurnsAtTheYawRateUpToTheTurnRateLimit) {
 }
 
 TEST(QuadrotorVelocity, HoldAfterwardsStopsAtTheHoldPoint) {
-  Flight f;
+  CommandFlight f;
   f.fly(command::Velocity{{1.0, 0.0, 0.0}, 0.2}, 4.0);
   EXPECT_GT(f.s().linear_velocity_mps.norm(), 0.8);
   const VehicleState s = f.s();
@@ -243,7 +244,7 @@ TEST(QuadrotorVelocity, HoldAfterwardsStopsAtTheHoldPoint) {
 }
 
 TEST(QuadrotorVelocity, SpeedIsCappedAtTheHighestSpeedCommanded) {
-  Flight f;
+  CommandFlight f;
   const double cap = f.quad.config().controller.position.output_limit;
   double fastest = 0.0;
   f.fly(command::Velocity{{0.0, 0.0, 100.0}, 0.0}, 6.0,
@@ -255,7 +256,7 @@ TEST(QuadrotorVelocity, SpeedIsCappedAtTheHighestSpeedCommanded) {
 // ---- AttitudeThrust --------------------------------------------------------
 
 TEST(QuadrotorAttitudeThrust, WeightAtLevelAttitudeHoldsAltitude) {
-  Flight f(at({0.0, 0.0, 5.0}, 1.0));
+  CommandFlight f(at({0.0, 0.0, 5.0}, 1.0));
   const double weight = f.quad.config().mass_kg * f.g();
   const Eigen::Vector3d start = f.s().position_m;
   f.fly(command::AttitudeThrust{0.0, 0.0, 0.0, weight}, 3.0);
@@ -278,7 +279,7 @@ TEST(QuadrotorAttitudeThrust, TiltAcceleratesAtGTanTiltInTheRightDirection) {
   const Case cases[] = {{0.0, tilt, forward}, {0.0, -tilt, -forward}, {tilt, 0.0, right}, {-tilt, 0.0, -right}};
   for (const Case& c : cases) {
     SCOPED_TRACE("roll " + std::to_string(c.roll) + ", pitch " + std::to_string(c.pitch));
-    Flight f(at({0.0, 0.0, 5.0}, yaw));
+    CommandFlight f(at({0.0, 0.0, 5.0}, yaw));
     const QuadrotorConfig& config = f.quad.config();
     // Thrust whose vertical part is the weight.
     const double thrust = config.mass_kg * f.g() / std::cos(tilt);
@@ -301,20 +302,20 @@ TEST(QuadrotorAttitudeThrust, TiltAcceleratesAtGTanTiltInTheRightDirection) {
 }
 
 TEST(QuadrotorAttitudeThrust, TiltIsCappedAtMaxTilt) {
-  Flight f;
+  CommandFlight f;
   const double max_tilt = f.quad.config().controller.max_tilt_deg * kPi / 180.0;
   const double thrust = f.quad.config().mass_kg * f.g() / std::cos(max_tilt);
   f.fly(command::AttitudeThrust{0.0, 1.2, 0.0, thrust}, 0.6);
   EXPECT_NEAR(f.rpy().y(), max_tilt, 0.01);
   // Combined roll and pitch: the body z tilts by max_tilt at most.
-  Flight g;
+  CommandFlight g;
   g.fly(command::AttitudeThrust{0.6, 0.6, 0.0, thrust}, 0.6);
   const double tilt = std::acos((g.s().orientation * Eigen::Vector3d::UnitZ()).z());
   EXPECT_NEAR(tilt, max_tilt, 0.01);
 }
 
 TEST(QuadrotorAttitudeThrust, TurnsAtTheYawRate) {
-  Flight f;
+  CommandFlight f;
   const double weight = f.quad.config().mass_kg * f.g();
   f.fly(command::AttitudeThrust{0.0, 0.0, 0.4, weight}, 2.0);
   const double from = f.s().yaw_rad();
@@ -323,7 +324,7 @@ TEST(QuadrotorAttitudeThrust, TurnsAtTheYawRate) {
 }
 
 TEST(LowLevelCommands, SwitchingBetweenAllTheQuadrotorsCommandsStaysInControl) {
-  Flight f;
+  CommandFlight f;
   const double w = f.hover();
   const double weight = f.quad.config().mass_kg * f.g();
   f.fly(command::Velocity{{1.0, 0.0, 0.2}, 0.3}, 2.0);
@@ -343,7 +344,7 @@ TEST(LowLevelCommands, SwitchingBetweenAllTheQuadrotorsCommandsStaysInControl) {
 // ---- Rejections ------------------------------------------------------------
 
 TEST(LowLevelCommands, QuadrotorRefusesTheRoversCommandsAndNonFiniteValues) {
-  Flight f;
+  CommandFlight f;
   const auto refuses = [&](const Command& c, const std::string& message) {
     SCOPED_TRACE(std::string(command_name(c)));
     try {

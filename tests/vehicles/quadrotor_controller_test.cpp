@@ -7,11 +7,12 @@
 #include <gtest/gtest.h>
 
 #include "vehicles/quadrotor.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using namespace campo::test_units;
 
 QuadrotorModel preset_model() { return model_of(QuadrotorConfig{}, {0.0, 0.0, -9.81}); }
 

@@ -15,6 +15,7 @@
 #include "campo/scene_loader.hpp"
 #include "tests/vehicles/quadrotor_flight.hpp"
 #include "tests/vehicles/vehicle_test_support.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
@@ -22,12 +23,12 @@ namespace {
 using test::parse;
 using test::at;
 using test::wrap;
+using test::kGround;
 
 using ::testing::HasSubstr;
 
-constexpr double kPi = std::numbers::pi;
+using namespace campo::test_units;
 
-const char* kGround = R"j({"objects": [{"alias": "ground", "type": "plane"}]})j";
 
 // A ground plane and a 4 m wide wall whose near face is at x = 3.
 const char* kWall = R"j({"objects": [{"alias": "ground", "type": "plane"},

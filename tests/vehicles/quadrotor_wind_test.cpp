@@ -16,6 +16,7 @@
 
 #include "tests/vehicles/quadrotor_flight.hpp"
 #include "tests/vehicles/vehicle_test_support.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
@@ -23,7 +24,7 @@ namespace {
 using test::at;
 using test::parse;
 
-constexpr double kPi = std::numbers::pi;
+using namespace campo::test_units;
 
 // A ground plane and the world block given.
 std::string scene_with_world(const std::string& world) {
@@ -31,8 +32,8 @@ std::string scene_with_world(const std::string& world) {
 }
 
 // A quadrotor flight starting 5 m up unless told otherwise.
-struct Flight : test::QuadrotorFlight {
-  explicit Flight(const std::string& scene_json, const Eigen::Isometry3d& start = at({0.0, 0.0, 5.0}),
+struct WindFlight : test::QuadrotorFlight {
+  explicit WindFlight(const std::string& scene_json, const Eigen::Isometry3d& start = at({0.0, 0.0, 5.0}),
                   const QuadrotorConfig& config = {})
       : QuadrotorFlight(scene_json, start, config) {}
   double g() const { return -scene.world.gravity_mps2.z(); }
@@ -86,7 +87,7 @@ struct LinearLoop {
 TEST(QuadrotorWind, SteadyWindTiltsByTheDragAngleAndThePositionHolds) {
   const double speed = 3.0;
   const double direction = 30.0 * kPi / 180.0;
-  Flight f(scene_with_world(R"j({"wind": {"speed_mps": 3, "direction_deg": 30}})j"));
+  WindFlight f(scene_with_world(R"j({"wind": {"speed_mps": 3, "direction_deg": 30}})j"));
   const QuadrotorConfig& c = f.quad.config();
   const double drag_n = c.linear_drag_n_per_mps * speed;
   const double expected_tilt = std::atan(drag_n / (c.mass_kg * f.g()));  // 3.50 degrees
@@ -120,7 +121,7 @@ TEST(QuadrotorWind, SteadyWindTiltsByTheDragAngleAndThePositionHolds) {
 // P only) commands from a position error of 0.24 m, downwind. The tilt is the drag angle still.
 TEST(QuadrotorWind, StrongWindLeavesTheOffsetTheSaturatedIntegralPredicts) {
   const double speed = 8.0;
-  Flight f(scene_with_world(R"j({"wind": {"speed_mps": 8, "direction_deg": -90}})j"));
+  WindFlight f(scene_with_world(R"j({"wind": {"speed_mps": 8, "direction_deg": -90}})j"));
   const QuadrotorConfig& c = f.quad.config();
   const QuadrotorControllerConfig& k = c.controller;
   const double drag_accel = c.linear_drag_n_per_mps * speed / c.mass_kg;
@@ -144,7 +145,7 @@ TEST(QuadrotorWind, QuadraticDragTiltsByItsAngle) {
   config.linear_drag_n_per_mps = 0.0;
   config.drag_area_m2 = {0.05, 0.05, 0.05};
   const double speed = 6.0;
-  Flight f(scene_with_world(R"j({"wind": {"speed_mps": 6, "direction_deg": 135}})j"), at({0.0, 0.0, 5.0}), config);
+  WindFlight f(scene_with_world(R"j({"wind": {"speed_mps": 6, "direction_deg": 135}})j"), at({0.0, 0.0, 5.0}), config);
   const double drag_n = 0.5 * config.air_density_kgpm3 * 0.05 * speed * speed;  // 1.10 N
   f.fly(command::Hold{{0.0, 0.0, 5.0}, 0.0}, 60.0);
   const double expected = std::atan(drag_n / (config.mass_kg * f.g()));
@@ -166,14 +167,14 @@ TEST(QuadrotorWind, QuadraticDragActsAlongTheBodyAxes) {
   const std::string scene = scene_with_world(R"j({"wind": {"speed_mps": 6, "direction_deg": 0}})j");
   const double drag_n = 0.5 * config.air_density_kgpm3 * 0.05 * 6.0 * 6.0;
   {
-    Flight f(scene, at({0.0, 0.0, 5.0}, kPi / 2), config);
+    WindFlight f(scene, at({0.0, 0.0, 5.0}, kPi / 2), config);
     f.fly(command::Hold{{0.0, 0.0, 5.0}, kPi / 2}, 60.0);
     const double expected = std::atan(drag_n / (config.mass_kg * f.g()));
     EXPECT_NEAR(f.tilt(), expected, 0.002 * expected);
     EXPECT_LT((f.s().orientation * Eigen::Vector3d::UnitZ()).x(), 0.0);  // leaning upwind, toward -x
   }
   {
-    Flight f(scene, at({0.0, 0.0, 5.0}, 0.0), config);
+    WindFlight f(scene, at({0.0, 0.0, 5.0}, 0.0), config);
     double worst_m = 0.0;
     f.fly(command::Hold{{0.0, 0.0, 5.0}, 0.0}, 10.0,
           [&] { worst_m = std::max(worst_m, (f.s().position_m - Eigen::Vector3d(0.0, 0.0, 5.0)).norm()); });
@@ -190,7 +191,7 @@ TEST(QuadrotorWind, GustDisplacesTheFreeBodyByTheIntegratedDrag) {
   const double amplitude = 3.0;
   const double start = 1.0;
   const double duration = 2.0;
-  Flight f(scene_with_world(R"j({"wind": {"gust": "one_minus_cos", "gust_amplitude_mps": [3, 0, 0],
+  WindFlight f(scene_with_world(R"j({"wind": {"gust": "one_minus_cos", "gust_amplitude_mps": [3, 0, 0],
       "gust_start_s": 1, "gust_duration_s": 2}})j"));
   const QuadrotorConfig& c = f.quad.config();
   const double hover = hover_rotor_speed(model_of(c, f.scene.world.gravity_mps2));
@@ -239,7 +240,7 @@ TEST(QuadrotorWind, GustDisplacesTheFreeBodyByTheIntegratedDrag) {
 // more than a first-order lag, the rate loop and the motor lag); nothing moves across the gust.
 TEST(QuadrotorWind, GustDisplacesTheHoveringQuadrotorAsTheLinearLoopPredicts) {
   const double amplitude = 4.0;
-  Flight f(scene_with_world(R"j({"wind": {"gust": "one_minus_cos", "gust_amplitude_mps": [0, 4, 0],
+  WindFlight f(scene_with_world(R"j({"wind": {"gust": "one_minus_cos", "gust_amplitude_mps": [0, 4, 0],
       "gust_start_s": 2, "gust_duration_s": 3}})j"));
   const QuadrotorConfig& c = f.quad.config();
   const QuadrotorControllerConfig& k = c.controller;
@@ -267,7 +268,7 @@ TEST(QuadrotorWind, GustDisplacesTheHoveringQuadrotorAsTheLinearLoopPredicts) {
 // seed flies otherwise.
 TEST(QuadrotorWind, TurbulentFlightIsDeterministicPerSeed) {
   const auto final_state = [](int wind_seed) {
-    Flight f(scene_with_world(R"j({"seed": 5, "wind": {"speed_mps": 4, "direction_deg": 60, "gust": "dryden",
+    WindFlight f(scene_with_world(R"j({"seed": 5, "wind": {"speed_mps": 4, "direction_deg": 60, "gust": "dryden",
         "turbulence_intensity_mps": 1.5, "turbulence_length_m": 30, "seed": )j" +
                               std::to_string(wind_seed) + "}}"));
     f.fly(command::Hold{{0.0, 0.0, 5.0}, 0.0}, 8.0);

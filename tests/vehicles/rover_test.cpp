@@ -12,6 +12,7 @@
 
 #include "campo/scene_loader.hpp"
 #include "tests/vehicles/vehicle_test_support.hpp"
+#include "tests/test_units.hpp"
 
 namespace campo {
 namespace {
@@ -20,7 +21,7 @@ using test::parse;
 
 using ::testing::HasSubstr;
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+using namespace campo::test_units;
 
 const char* kFlat = R"j({"objects": [{"alias": "ground", "type": "plane"}]})j";
 

@@ -18,6 +18,9 @@ inline Scene parse(const std::string& text) {
   return parse_scene(nlohmann::json::parse(text), "inline.json", std::filesystem::temp_directory_path());
 }
 
+/// A scene of nothing but the ground plane.
+inline constexpr const char* kGround = R"j({"objects": [{"alias": "ground", "type": "plane"}]})j";
+
 /// The pose at `p` heading `yaw` radians from +x.
 inline Eigen::Isometry3d at(const Eigen::Vector3d& p, double yaw = 0.0) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
