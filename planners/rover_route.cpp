@@ -557,10 +557,12 @@ class RoverRoutePlanner final : public Planner {
       if (beam < 0.0 || beam >= static_cast<double>(scan.ranges_m.size())) return false;
       return scan.ranges_m[static_cast<std::size_t>(beam)] > d.norm() + config_.see_through_margin_m;
     };
-    // One point per memory cell, so a rover standing still does not pile up copies.
+    // One point per memory cell, so a rover standing still does not pile up copies. The row
+    // index's low 32 bits through a signed integer: a negative double converted straight to an
+    // unsigned one is undefined behaviour.
     const auto key = [cell = config_.memory_cell_m](const Eigen::Vector2d& q) {
       return (static_cast<std::int64_t>(std::floor(q.x() / cell)) << 32) ^
-             static_cast<std::int64_t>(static_cast<std::uint32_t>(std::floor(q.y() / cell)));
+             static_cast<std::int64_t>(static_cast<std::uint32_t>(static_cast<std::int64_t>(std::floor(q.y() / cell))));
     };
     cells_.clear();
     std::size_t kept = 0;

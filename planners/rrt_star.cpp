@@ -183,10 +183,14 @@ RrtStarResult rrt_star(const OccupancyGrid& grid, const Eigen::Vector2d& start_m
     }
     iterations = iteration;
     const std::int64_t cells_before = cells;
-    const Eigen::Vector2d sample = rng.bernoulli(config.goal_bias)
-                                       ? goal_m
-                                       : Eigen::Vector2d(grid.origin_m.x() + extent.x() * rng.uniform01(),
-                                                         grid.origin_m.y() + extent.y() * rng.uniform01());
+    Eigen::Vector2d sample = goal_m;
+    if (!rng.bernoulli(config.goal_bias)) {
+      // One draw per statement, y first: the order of a call's arguments is the compiler's (GCC,
+      // which made the recorded results, evaluated them right to left; clang left to right).
+      const double y = grid.origin_m.y() + extent.y() * rng.uniform01();
+      const double x = grid.origin_m.x() + extent.x() * rng.uniform01();
+      sample = Eigen::Vector2d(x, y);
+    }
     const int nearest = index.nearest(sample);
     const Eigen::Vector2d from = points[static_cast<std::size_t>(nearest)];
     const double distance = (sample - from).norm();

@@ -263,8 +263,11 @@ std::vector<Shape> make_trees(const TreesConfig& config, const std::string& alia
   const long max_attempts = static_cast<long>(kAttemptsPerTree) * config.count;
   for (long attempt = 0; attempt < max_attempts && static_cast<int>(trunks.points().size()) < config.count;
        ++attempt) {
-    const Eigen::Vector2d p(rng.uniform(config.area_min_m.x(), config.area_max_m.x()),
-                            rng.uniform(config.area_min_m.y(), config.area_max_m.y()));
+    // One draw per statement: the order of a call's arguments is the compiler's (GCC, which
+    // made the recorded scenes, drew y first; clang draws x first). Likewise below.
+    const double y = rng.uniform(config.area_min_m.y(), config.area_max_m.y());
+    const double x = rng.uniform(config.area_min_m.x(), config.area_max_m.x());
+    const Eigen::Vector2d p(x, y);
     const bool kept_out = std::any_of(config.keep_out.begin(), config.keep_out.end(), [&](const Eigen::Vector3d& k) {
       return (p - k.head<2>()).norm() < k.z();
     });
@@ -379,9 +382,8 @@ std::vector<Shape> make_vineyard(const VineyardConfig& config, const std::string
   const double half_width = row_half_width(config);
   for (int k = 0; k < config.obstacle_count; ++k) {
     const auto gap = static_cast<int>(rng.uniform_int(0, config.row_count - 2));
-    const Eigen::Vector3d size(rng.uniform(config.obstacle_size_m[0], config.obstacle_size_m[1]),
-                               rng.uniform(config.obstacle_size_m[0], config.obstacle_size_m[1]),
-                               rng.uniform(config.obstacle_size_m[0], config.obstacle_size_m[1]));
+    Eigen::Vector3d size;
+    for (int axis = 2; axis >= 0; --axis) size[axis] = rng.uniform(config.obstacle_size_m[0], config.obstacle_size_m[1]);
     const double yaw = rng.uniform(0.0, std::numbers::pi);
     const double c = std::abs(std::cos(yaw));
     const double s = std::abs(std::sin(yaw));

@@ -24,9 +24,12 @@ void StateEstimator::draw(double dt_s) {
   // A random walk: independent steps of variance walk^2 dt.
   const double step = config_.bias_walk_m_per_sqrt_s * std::sqrt(dt_s);
   for (int i = 0; i < 3; ++i) bias_m_[i] += rng_.normal(0.0, step);
-  error_.position_m = bias_m_ + Eigen::Vector3d(rng_.normal(0.0, config_.position_stddev_m),
-                                                rng_.normal(0.0, config_.position_stddev_m),
-                                                rng_.normal(0.0, config_.altitude_stddev_m));
+  // One draw per statement, altitude first: the order of a call's arguments is the compiler's
+  // (GCC, which made the recorded runs, evaluated these right to left; clang goes left to right).
+  const double altitude_error_m = rng_.normal(0.0, config_.altitude_stddev_m);
+  const double y_error_m = rng_.normal(0.0, config_.position_stddev_m);
+  const double x_error_m = rng_.normal(0.0, config_.position_stddev_m);
+  error_.position_m = bias_m_ + Eigen::Vector3d(x_error_m, y_error_m, altitude_error_m);
   for (int i = 0; i < 3; ++i) error_.velocity_mps[i] = rng_.normal(0.0, config_.velocity_stddev_mps);
   error_.heading_rad = rng_.normal(0.0, config_.heading_stddev_deg * std::numbers::pi / 180.0);
 }

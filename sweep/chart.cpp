@@ -544,9 +544,9 @@ figure::Canvas PlotBuilder::draw(const PlotConfig& config) const {
     if (line || rate) {
       legend.push_back(line_row(color, text, style));
     } else {
-      legend.push_back({[color, &style](figure::Canvas& m, cv::Point2d c) {
-                          const cv::Point2d half(0.5 * style.legend_row_px, 0.3 * style.legend_row_px);
-                          draw_box(m, c - half, c + half, color, style);
+      legend.push_back({[color, &box_style = style](figure::Canvas& m, cv::Point2d c) {
+                          const cv::Point2d half(0.5 * box_style.legend_row_px, 0.3 * box_style.legend_row_px);
+                          draw_box(m, c - half, c + half, color, box_style);
                         },
                         text});
     }

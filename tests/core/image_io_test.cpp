@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "core/output_dir.hpp"
+#include "tests/sanitizers.hpp"
 
 namespace campo {
 namespace {
@@ -128,7 +129,7 @@ std::string error_in_small_address_space(const fs::path& path) {
   const fs::path report = fs::path(path).replace_extension(".report");
   const pid_t pid = ::fork();
   if (pid == 0) {
-#if !defined(__SANITIZE_ADDRESS__)
+#if !defined(CAMPO_TEST_UNDER_ASAN)
     const rlimit limit{256u << 20, 256u << 20};
     ::setrlimit(RLIMIT_AS, &limit);
 #endif

@@ -8,10 +8,11 @@
 #include <sys/wait.h>
 
 #include "tests/cli_support.hpp"
+#include "tests/sanitizers.hpp"
 
 namespace campo::hostile {
 
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(CAMPO_TEST_UNDER_ASAN)
 // AddressSanitizer reserves terabytes of address space (no RLIMIT_AS) and runs
 // a few times slower; its own RSS limit stands in for the memory limit.
 inline constexpr int kSecondsPerCommand = 40;

@@ -23,6 +23,7 @@
 #include "sweep/table.hpp"
 #include "tests/cli_support.hpp"
 #include "tests/sweep/results_fixture.hpp"
+#include "tests/sanitizers.hpp"
 
 namespace campo {
 namespace {
@@ -186,7 +187,7 @@ void write_results(const fs::path& dir, int runs) {
 }
 
 TEST_F(ResultsStream, PeakMemoryOfTableAndPlotDoesNotGrowWithTheFile) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(CAMPO_TEST_UNDER_ASAN)
   GTEST_SKIP() << "AddressSanitizer keeps freed memory in quarantine: the plain build measures this";
 #endif
   // 1,000 and 10,000 runs: about 1.5 and 15 MB. Holding the runs (5.7 times the file before

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "tests/cli_support.hpp"
+#include "tests/sanitizers.hpp"
 
 namespace campo {
 namespace {
@@ -60,7 +61,7 @@ TEST_F(BenchCli, WritesFiguresWithProvenanceAndComparesThem) {
 
 // Under callgrind: instructions per ray, nearly the same on every run; fewer is faster.
 TEST_F(BenchCli, CountsInstructionsAndComparesThemLowerIsFaster) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(CAMPO_TEST_UNDER_ASAN)
   GTEST_SKIP() << "valgrind cannot run an AddressSanitizer build; the plain build runs this test";
 #endif
   const std::string record = (dir_ / "counted.json").string();
@@ -100,7 +101,7 @@ TEST_F(BenchCli, CountsInstructionsAndComparesThemLowerIsFaster) {
 // The peers side by side (the Embree LIDAR peer is always built): figures of campo's rate with
 // the peer's beside it, and the table printed from the record equals the one printed live.
 TEST_F(BenchCli, PeersAreRecordedAndTheirTableComesFromTheRecord) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(CAMPO_TEST_UNDER_ASAN)
   GTEST_SKIP() << "sanitized builds build no peer programs; the plain build runs this test";
 #endif
   const std::string record = (dir_ / "peers.json").string();

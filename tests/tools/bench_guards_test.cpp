@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/cli_support.hpp"
+#include "tests/sanitizers.hpp"
 
 namespace campo {
 namespace {
@@ -24,7 +25,7 @@ class BenchGuards : public testing::CliTest {};
 const std::string kBaseline = std::string(CAMPO_SOURCE_DIR) + "/bench/instruction_guards.json";
 
 TEST_F(BenchGuards, EveryGuardedFigureHoldsItsBaseline) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(CAMPO_TEST_UNDER_ASAN)
   GTEST_SKIP() << "valgrind cannot run an AddressSanitizer build; the plain build runs this test";
 #endif
   const std::string record = (dir_ / "guards.json").string();
